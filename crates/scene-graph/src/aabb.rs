@@ -1,0 +1,109 @@
+use nalgebra::Point3;
+use serde::{Deserialize, Serialize};
+
+use crate::Pose;
+
+/// An axis-aligned bounding box, in metres.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Aabb {
+    /// Corner with the smallest coordinates.
+    pub min: Point3<f64>,
+    /// Corner with the largest coordinates.
+    pub max: Point3<f64>,
+}
+
+impl Aabb {
+    /// A box from its two corners (callers keep `min <= max` on every axis).
+    pub fn new(min: Point3<f64>, max: Point3<f64>) -> Self {
+        Self { min, max }
+    }
+
+    /// The smallest box holding every point, or `None` for no points.
+    pub fn from_points<'a>(points: impl IntoIterator<Item = &'a Point3<f64>>) -> Option<Self> {
+        let mut iter = points.into_iter();
+        let first = *iter.next()?;
+        Some(iter.fold(Self::new(first, first), |b, p| b.including(p)))
+    }
+
+    /// This box grown to include `p`.
+    pub fn including(&self, p: &Point3<f64>) -> Self {
+        Self::new(self.min.inf(p), self.max.sup(p))
+    }
+
+    /// The smallest box holding both boxes.
+    pub fn union(&self, other: &Aabb) -> Self {
+        Self::new(self.min.inf(&other.min), self.max.sup(&other.max))
+    }
+
+    /// Edge lengths along x, y and z.
+    pub fn size(&self) -> nalgebra::Vector3<f64> {
+        self.max - self.min
+    }
+
+    /// The centre point.
+    pub fn center(&self) -> Point3<f64> {
+        nalgebra::center(&self.min, &self.max)
+    }
+
+    /// The eight corners.
+    pub fn corners(&self) -> [Point3<f64>; 8] {
+        let (a, b) = (self.min, self.max);
+        [
+            Point3::new(a.x, a.y, a.z),
+            Point3::new(b.x, a.y, a.z),
+            Point3::new(a.x, b.y, a.z),
+            Point3::new(b.x, b.y, a.z),
+            Point3::new(a.x, a.y, b.z),
+            Point3::new(b.x, a.y, b.z),
+            Point3::new(a.x, b.y, b.z),
+            Point3::new(b.x, b.y, b.z),
+        ]
+    }
+
+    /// The world-space box of this asset-frame box placed with `pose` (tight for yaw about +Y).
+    pub fn transformed(&self, pose: &Pose) -> Self {
+        let corners = self.corners().map(|c| pose.transform_point(&c));
+        Self::from_points(corners.iter()).expect("eight corners")
+    }
+
+    /// Whether the boxes overlap by more than `tolerance` on every axis.
+    pub fn overlaps(&self, other: &Aabb, tolerance: f64) -> bool {
+        (0..3).all(|i| {
+            self.min[i] + tolerance < other.max[i] && other.min[i] + tolerance < self.max[i]
+        })
+    }
+
+    /// Whether `p` lies inside or on the box.
+    pub fn contains_point(&self, p: &Point3<f64>) -> bool {
+        (0..3).all(|i| self.min[i] <= p[i] && p[i] <= self.max[i])
+    }
+
+    /// Whether both corners are finite and ordered on every axis.
+    pub fn is_valid(&self) -> bool {
+        (0..3).all(|i| {
+            self.min[i].is_finite() && self.max[i].is_finite() && self.min[i] <= self.max[i]
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Vector3;
+
+    #[test]
+    fn quarter_turn_swaps_extents() {
+        let b = Aabb::new(Point3::new(-1.0, 0.0, -0.5), Point3::new(1.0, 1.0, 0.5));
+        let pose = Pose::new(
+            2.0,
+            std::f64::consts::FRAC_PI_2,
+            Vector3::new(10.0, 0.0, 0.0),
+        );
+        let w = b.transformed(&pose);
+        assert!(
+            (w.size() - Vector3::new(2.0, 2.0, 4.0)).norm() < 1e-9,
+            "{w:?}"
+        );
+        assert!((w.center() - Point3::new(10.0, 1.0, 0.0)).norm() < 1e-9);
+    }
+}

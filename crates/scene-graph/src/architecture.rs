@@ -1,0 +1,253 @@
+use nalgebra::{Point2, Point3, Vector2};
+use serde::{Deserialize, Serialize};
+
+use crate::Aabb;
+
+/// Whether the scene is a closed room or open ground.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Environment {
+    /// A room with walls and at least one door opening.
+    #[default]
+    Indoor,
+    /// Open ground (beach, park, campsite): a floor area and no walls.
+    Outdoor,
+}
+
+/// The static parts of a scene: floor, walls and door openings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+pub struct Architecture {
+    /// Indoor room or outdoor ground.
+    pub environment: Environment,
+    /// The walkable ground rectangle at y = 0.
+    pub floor: Floor,
+    /// Wall segments standing on the floor.
+    #[serde(default)]
+    pub walls: Vec<Wall>,
+    /// Openings cut into walls.
+    #[serde(default)]
+    pub doors: Vec<DoorOpening>,
+}
+
+/// The floor: an axis-aligned rectangle on the plane y = 0, given in (x, z).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Floor {
+    /// Stable id, also the glTF node name (usually `floor`).
+    pub id: String,
+    /// Corner with the smallest x and z.
+    pub min: Point2<f64>,
+    /// Corner with the largest x and z.
+    pub max: Point2<f64>,
+}
+
+impl Default for Floor {
+    fn default() -> Self {
+        Self {
+            id: "floor".into(),
+            min: Point2::new(-2.0, -2.0),
+            max: Point2::new(2.0, 2.0),
+        }
+    }
+}
+
+impl Floor {
+    /// Width along x and depth along z.
+    pub fn extent(&self) -> Vector2<f64> {
+        self.max - self.min
+    }
+
+    /// Whether the (x, z) point lies on the floor rectangle.
+    pub fn contains_xz(&self, x: f64, z: f64) -> bool {
+        self.min.x <= x && x <= self.max.x && self.min.y <= z && z <= self.max.y
+    }
+}
+
+/// A straight wall segment standing on the floor, its centre line running from `start` to `end`
+/// in (x, z). The side facing the room is to the left when walking from `start` to `end`
+/// (so walls listed counter-clockwise seen from above enclose the room).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Wall {
+    /// Stable id, also the glTF node name (e.g. `wall_0`).
+    pub id: String,
+    /// Start of the centre line in (x, z).
+    pub start: Point2<f64>,
+    /// End of the centre line in (x, z).
+    pub end: Point2<f64>,
+    /// Height above the floor in metres.
+    pub height: f64,
+    /// Thickness in metres, centred on the centre line.
+    pub thickness: f64,
+}
+
+impl Wall {
+    /// Length of the centre line.
+    pub fn length(&self) -> f64 {
+        (self.end - self.start).norm()
+    }
+
+    /// Unit direction from `start` to `end` in (x, z).
+    pub fn direction(&self) -> Vector2<f64> {
+        (self.end - self.start).normalize()
+    }
+
+    /// Unit normal in (x, z) pointing into the room (left of the direction of travel, seen
+    /// from above with +Y up: for direction (dx, dz) the left side is (dz, -dx)).
+    pub fn inward_normal(&self) -> Vector2<f64> {
+        let d = self.direction();
+        Vector2::new(d.y, -d.x)
+    }
+
+    /// The wall's world-space box (exact for axis-aligned walls).
+    pub fn aabb(&self) -> Aabb {
+        let half = self.thickness / 2.0;
+        let n = self.inward_normal() * half;
+        let d = self.direction() * half;
+        let pts = [
+            self.start - d + n,
+            self.start - d - n,
+            self.end + d + n,
+            self.end + d - n,
+        ];
+        let lo = pts
+            .iter()
+            .fold(Point2::new(f64::MAX, f64::MAX), |a, p| a.inf(p));
+        let hi = pts
+            .iter()
+            .fold(Point2::new(f64::MIN, f64::MIN), |a, p| a.sup(p));
+        Aabb::new(
+            Point3::new(lo.x, 0.0, lo.y),
+            Point3::new(hi.x, self.height, hi.y),
+        )
+    }
+}
+
+/// A door opening cut into a wall, from the floor up to `height`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DoorOpening {
+    /// Stable id (e.g. `door_0`).
+    pub id: String,
+    /// Id of the wall holding the opening.
+    pub wall: String,
+    /// Distance along the wall from its `start` to the opening's centre, in metres.
+    pub offset: f64,
+    /// Opening width in metres.
+    pub width: f64,
+    /// Opening height in metres.
+    pub height: f64,
+}
+
+impl Architecture {
+    /// A closed rectangular room of the given size centred on the origin, with four walls
+    /// (`wall_0` … `wall_3`, counter-clockwise from the back wall at −z) and one door opening
+    /// `door_0` of the given width in the middle of the front wall (+z).
+    pub fn rectangular_room(width_x: f64, depth_z: f64, wall_height: f64, door_width: f64) -> Self {
+        let (hx, hz) = (width_x / 2.0, depth_z / 2.0);
+        let t = 0.1;
+        // Centre lines sit half a thickness outside the floor so the inner faces bound it.
+        let (ox, oz) = (hx + t / 2.0, hz + t / 2.0);
+        let corners = [
+            Point2::new(ox, -oz),
+            Point2::new(-ox, -oz),
+            Point2::new(-ox, oz),
+            Point2::new(ox, oz),
+        ];
+        let walls: Vec<Wall> = (0..4)
+            .map(|i| Wall {
+                id: format!("wall_{i}"),
+                start: corners[i],
+                end: corners[(i + 1) % 4],
+                height: wall_height,
+                thickness: t,
+            })
+            .collect();
+        let front = &walls[2];
+        let doors = vec![DoorOpening {
+            id: "door_0".into(),
+            wall: front.id.clone(),
+            offset: front.length() / 2.0,
+            width: door_width,
+            height: 2.1_f64.min(wall_height),
+        }];
+        Self {
+            environment: Environment::Indoor,
+            floor: Floor {
+                id: "floor".into(),
+                min: Point2::new(-hx, -hz),
+                max: Point2::new(hx, hz),
+            },
+            walls,
+            doors,
+        }
+    }
+
+    /// Open ground of the given size centred on the origin, with no walls.
+    pub fn open_ground(width_x: f64, depth_z: f64) -> Self {
+        Self {
+            environment: Environment::Outdoor,
+            floor: Floor {
+                id: "ground_plane".into(),
+                min: Point2::new(-width_x / 2.0, -depth_z / 2.0),
+                max: Point2::new(width_x / 2.0, depth_z / 2.0),
+            },
+            walls: Vec::new(),
+            doors: Vec::new(),
+        }
+    }
+
+    /// The wall with this id.
+    pub fn wall(&self, id: &str) -> Option<&Wall> {
+        self.walls.iter().find(|w| w.id == id)
+    }
+
+    /// Every architecture id: floor, walls and doors.
+    pub fn ids(&self) -> impl Iterator<Item = &str> {
+        std::iter::once(self.floor.id.as_str())
+            .chain(self.walls.iter().map(|w| w.id.as_str()))
+            .chain(self.doors.iter().map(|d| d.id.as_str()))
+    }
+
+    /// World (x, z) centre of a door opening on the floor, and the unit inward normal of its
+    /// wall; `None` if the door's wall is unknown.
+    pub fn door_position(&self, door: &DoorOpening) -> Option<(Point2<f64>, Vector2<f64>)> {
+        let wall = self.wall(&door.wall)?;
+        Some((
+            wall.start + wall.direction() * door.offset,
+            wall.inward_normal(),
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rectangular_room_walls_face_inward() {
+        let room = Architecture::rectangular_room(6.0, 4.0, 2.8, 0.9);
+        for wall in &room.walls {
+            let mid = nalgebra::center(&wall.start, &wall.end);
+            let inside = mid + wall.inward_normal() * 0.5;
+            assert!(
+                room.floor.contains_xz(inside.x, inside.y),
+                "{} faces out",
+                wall.id
+            );
+        }
+        let (door, normal) = room.door_position(&room.doors[0]).unwrap();
+        assert!(
+            (door.y - 2.05).abs() < 1e-9 && door.x.abs() < 1e-9,
+            "{door:?}"
+        );
+        assert!((normal.y + 1.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn wall_box_covers_thickness() {
+        let room = Architecture::rectangular_room(6.0, 4.0, 2.8, 0.9);
+        let b = room.walls[0].aabb();
+        assert!(
+            (b.min.z - -2.1).abs() < 1e-9 && (b.max.z - -2.0).abs() < 1e-9,
+            "{b:?}"
+        );
+    }
+}

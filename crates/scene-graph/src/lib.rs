@@ -1,0 +1,65 @@
+//! The scene graph shared by every scenethesis stage.
+//!
+//! A [`Scene`] holds the room's [`Architecture`] (floor, walls, door openings), the movable
+//! [`SceneObject`]s with their 5-DoF [`Pose`]s (uniform scale, yaw about +Y, translation), the
+//! anchor object, parent links rooted at the ground, and spatial [`Relation`]s. It reads and
+//! writes `scene.json` ([`Scene::from_json_str`], [`Scene::write_json_atomic`]), checks itself
+//! ([`Scene::validate`]) and walks its hierarchy breadth-first from the ground
+//! ([`Scene::bfs_order`]). The pinhole [`Camera`] lives here too so that rendering and
+//! correspondence agree on one projection.
+//!
+//! Conventions: metres, right-handed, +Y up, ground plane at y = 0. An object's canonical front
+//! is +Z in its own frame, and the origin of an asset's frame is the centre of its footprint at
+//! its lowest point, so a pose's translation is where the object stands.
+
+mod aabb;
+mod architecture;
+mod camera;
+mod io;
+mod object;
+mod pose;
+mod scene;
+mod traversal;
+mod validate;
+
+pub use aabb::Aabb;
+pub use architecture::{Architecture, DoorOpening, Environment, Floor, Wall};
+pub use camera::{Camera, Intrinsics, Projection};
+pub use io::{write_file_atomic, SceneIoError};
+pub use object::{AssetRef, ParentRef, Relation, RelationKind, SceneObject, GROUND_ID};
+pub use pose::Pose;
+pub use scene::{Scene, FORMAT_VERSION};
+pub use validate::ValidationError;
+
+/// Re-export of the linear-algebra crate used in this crate's public types.
+pub use nalgebra;
+
+#[cfg(test)]
+pub(crate) mod test_support {
+    use crate::*;
+    use nalgebra::{Point3, Vector3};
+
+    /// A unit-box object with the given parent link.
+    pub fn object(id: &str, parent: ParentRef, support: RelationKind) -> SceneObject {
+        SceneObject {
+            id: id.into(),
+            category: "box".into(),
+            asset: AssetRef::Procedural {
+                generator: "box".into(),
+                seed: 1,
+            },
+            pose: Pose::new(1.0, 0.0, Vector3::zeros()),
+            parent,
+            support,
+            relations: Vec::new(),
+            local_bounds: Aabb::new(Point3::new(-0.5, 0.0, -0.5), Point3::new(0.5, 1.0, 0.5)),
+        }
+    }
+
+    /// A 6 × 4 m room holding `objects`.
+    pub fn scene_with(objects: Vec<SceneObject>) -> Scene {
+        let mut scene = Scene::new(Architecture::rectangular_room(6.0, 4.0, 2.8, 0.9));
+        scene.objects = objects;
+        scene
+    }
+}

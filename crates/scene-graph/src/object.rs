@@ -1,0 +1,214 @@
+use std::fmt;
+
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+use crate::{Aabb, Pose};
+
+/// The reserved id of the ground, the root of every scene graph.
+pub const GROUND_ID: &str = "ground";
+
+/// A movable object of the scene.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SceneObject {
+    /// Stable id: the key in `scene.json` and the glTF node name. Not serialized inside the
+    /// object: `scene.json` stores it as the object's key.
+    #[serde(skip)]
+    pub id: String,
+    /// Semantic category, e.g. `bookshelf`.
+    pub category: String,
+    /// Which mesh the object uses.
+    pub asset: AssetRef,
+    /// The object's 5-DoF pose in world coordinates.
+    pub pose: Pose,
+    /// What the object rests on: the ground or another object.
+    pub parent: ParentRef,
+    /// How the object rests on its parent (`on-floor`, `on`, `inside`, `under`, `against-wall`).
+    pub support: RelationKind,
+    /// Further spatial relations the layout should satisfy.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub relations: Vec<Relation>,
+    /// Bounding box of the asset in its own frame, before the pose (scale 1).
+    pub local_bounds: Aabb,
+}
+
+impl SceneObject {
+    /// The world-space axis-aligned box of the posed asset.
+    pub fn world_aabb(&self) -> Aabb {
+        self.local_bounds.transformed(&self.pose)
+    }
+}
+
+/// Where an object's mesh comes from.
+#[derive(Debug, Clone, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum AssetRef {
+    /// A built-in procedural generator run with a seed.
+    Procedural {
+        /// Generator name, usually the category.
+        generator: String,
+        /// Seed that fixes dimensions and materials.
+        seed: u64,
+    },
+    /// A user-supplied asset imported from a directory.
+    Imported {
+        /// The asset's id in its library's `assets.json`.
+        id: String,
+        /// Path of the mesh file as given to the importer.
+        path: String,
+    },
+}
+
+impl fmt::Display for AssetRef {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            AssetRef::Procedural { generator, seed } => write!(f, "{generator}#{seed}"),
+            AssetRef::Imported { id, path } => write!(f, "{id} ({path})"),
+        }
+    }
+}
+
+/// An object's parent: the ground or another object, serialized as `"ground"` or the id.
+#[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum ParentRef {
+    /// The ground plane, root of the scene graph.
+    Ground,
+    /// Another object, by id.
+    Object(String),
+}
+
+impl ParentRef {
+    /// The parent's object id, or `None` for the ground.
+    pub fn object_id(&self) -> Option<&str> {
+        match self {
+            ParentRef::Ground => None,
+            ParentRef::Object(id) => Some(id),
+        }
+    }
+}
+
+impl fmt::Display for ParentRef {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.object_id().unwrap_or(GROUND_ID))
+    }
+}
+
+impl Serialize for ParentRef {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.object_id().unwrap_or(GROUND_ID))
+    }
+}
+
+impl<'de> Deserialize<'de> for ParentRef {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let s = String::deserialize(d)?;
+        Ok(if s == GROUND_ID {
+            ParentRef::Ground
+        } else {
+            ParentRef::Object(s)
+        })
+    }
+}
+
+/// The kinds of spatial relation a plan or scene may state.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RelationKind {
+    /// Resting on top of the target's support surface.
+    On,
+    /// Resting inside the target (a shelf compartment, a crate, a bowl).
+    Inside,
+    /// Standing underneath the target (under a table or desk).
+    Under,
+    /// Standing on the ground.
+    OnFloor,
+    /// Back against a wall (target: a wall id, or the ground for "any wall").
+    AgainstWall,
+    /// Next to the target, side by side.
+    Beside,
+    /// In front of the target (along the target's front direction).
+    InFrontOf,
+    /// Behind the target.
+    Behind,
+    /// To the target's left (seen from the target's front).
+    LeftOf,
+    /// To the target's right (seen from the target's front).
+    RightOf,
+    /// Turned so that its front points at the target.
+    Facing,
+    /// Arranged around the target (chairs around a table).
+    Around,
+}
+
+impl RelationKind {
+    /// Every relation kind, in declaration order.
+    pub const ALL: [RelationKind; 12] = [
+        RelationKind::On,
+        RelationKind::Inside,
+        RelationKind::Under,
+        RelationKind::OnFloor,
+        RelationKind::AgainstWall,
+        RelationKind::Beside,
+        RelationKind::InFrontOf,
+        RelationKind::Behind,
+        RelationKind::LeftOf,
+        RelationKind::RightOf,
+        RelationKind::Facing,
+        RelationKind::Around,
+    ];
+
+    /// The kebab-case name used in `scene.json` (e.g. `in-front-of`).
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            RelationKind::On => "on",
+            RelationKind::Inside => "inside",
+            RelationKind::Under => "under",
+            RelationKind::OnFloor => "on-floor",
+            RelationKind::AgainstWall => "against-wall",
+            RelationKind::Beside => "beside",
+            RelationKind::InFrontOf => "in-front-of",
+            RelationKind::Behind => "behind",
+            RelationKind::LeftOf => "left-of",
+            RelationKind::RightOf => "right-of",
+            RelationKind::Facing => "facing",
+            RelationKind::Around => "around",
+        }
+    }
+
+    /// Whether this relation says what physically supports an object (its parent link).
+    pub fn is_support(&self) -> bool {
+        matches!(
+            self,
+            RelationKind::On
+                | RelationKind::Inside
+                | RelationKind::Under
+                | RelationKind::OnFloor
+                | RelationKind::AgainstWall
+        )
+    }
+}
+
+impl fmt::Display for RelationKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// A spatial relation from the owning object to a target: another object's id, a wall id, or
+/// `ground`.
+#[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub struct Relation {
+    /// What kind of relation.
+    pub kind: RelationKind,
+    /// Id of the related object, wall or `ground`.
+    pub target: String,
+}
+
+impl Relation {
+    /// A relation of `kind` to `target`.
+    pub fn new(kind: RelationKind, target: impl Into<String>) -> Self {
+        Self {
+            kind,
+            target: target.into(),
+        }
+    }
+}
