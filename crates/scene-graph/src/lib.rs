@@ -5,8 +5,9 @@
 //! anchor object, parent links rooted at the ground, and spatial [`Relation`]s. It reads and
 //! writes `scene.json` ([`Scene::from_json_str`], [`Scene::write_json_atomic`]), checks itself
 //! ([`Scene::validate`]) and walks its hierarchy breadth-first from the ground
-//! ([`Scene::bfs_order`]). The pinhole [`Camera`] lives here too so that rendering and
-//! correspondence agree on one projection.
+//! ([`Scene::bfs_order`]). The pinhole [`Camera`] and the triangle [`Mesh`] with per-part
+//! [`Material`]s live here too, so that assets, rendering, signed distance fields, correspondence
+//! and export share one geometry and one projection.
 //!
 //! Conventions: metres, right-handed, +Y up, ground plane at y = 0. An object's canonical front
 //! is +Z in its own frame, and the origin of an asset's frame is the centre of its footprint at
@@ -16,6 +17,7 @@ mod aabb;
 mod architecture;
 mod camera;
 mod io;
+mod mesh;
 mod object;
 mod pose;
 mod scene;
@@ -26,6 +28,7 @@ pub use aabb::Aabb;
 pub use architecture::{Architecture, DoorOpening, Environment, Floor, Wall};
 pub use camera::{Camera, Intrinsics, Projection};
 pub use io::{write_file_atomic, SceneIoError};
+pub use mesh::{Material, Mesh, MeshPart};
 pub use object::{AssetRef, ParentRef, Relation, RelationKind, SceneObject, GROUND_ID};
 pub use pose::Pose;
 pub use scene::{Scene, FORMAT_VERSION};

@@ -1,0 +1,216 @@
+use std::collections::HashMap;
+
+use nalgebra::{Point3, Vector3};
+use serde::{Deserialize, Serialize};
+
+use crate::{Aabb, Pose};
+
+/// A surface material: linear-space base colour and roughness (metallic-roughness PBR model,
+/// as in glTF).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Material {
+    /// Human-readable name, e.g. `oak` or `fabric_grey`.
+    pub name: String,
+    /// Linear RGBA base colour, each channel in [0, 1].
+    pub base_color: [f32; 4],
+    /// Perceptual roughness in [0, 1].
+    pub roughness: f32,
+    /// Metalness in [0, 1].
+    pub metallic: f32,
+}
+
+impl Material {
+    /// An opaque dielectric material.
+    pub fn new(name: impl Into<String>, rgb: [f32; 3], roughness: f32) -> Self {
+        Self {
+            name: name.into(),
+            base_color: [rgb[0], rgb[1], rgb[2], 1.0],
+            roughness,
+            metallic: 0.0,
+        }
+    }
+}
+
+/// One part of a mesh: an indexed triangle list with one material. Parts of procedural assets
+/// are closed and consistently oriented (counter-clockwise seen from outside), and parts may
+/// overlap one another (a table top and its legs).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct MeshPart {
+    /// Name of the part, e.g. `leg_0`.
+    pub name: String,
+    /// Index into [`Mesh::materials`].
+    pub material: usize,
+    /// Vertex positions in the asset's frame, metres.
+    pub positions: Vec<[f32; 3]>,
+    /// Triangles as vertex indices, counter-clockwise seen from outside.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+impl MeshPart {
+    /// The position of vertex `i` as a point.
+    pub fn point(&self, i: u32) -> Point3<f32> {
+        Point3::from(self.positions[i as usize])
+    }
+
+    /// The three corners of triangle `t`.
+    pub fn triangle(&self, t: usize) -> [Point3<f32>; 3] {
+        self.triangles[t].map(|i| self.point(i))
+    }
+
+    /// Signed volume enclosed by the part (positive when faces point outward).
+    pub fn signed_volume(&self) -> f64 {
+        self.triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| Vector3::from(self.positions[i as usize]).cast::<f64>());
+                a.dot(&b.cross(&c)) / 6.0
+            })
+            .sum()
+    }
+
+    /// Whether the part is a closed 2-manifold whose faces are consistently oriented: every
+    /// directed edge occurs exactly once and its reverse occurs exactly once, no triangle is
+    /// degenerate in its indices, and every index is in range.
+    pub fn is_closed_and_oriented(&self) -> bool {
+        let n = self.positions.len() as u32;
+        let mut edges: HashMap<(u32, u32), u32> = HashMap::new();
+        for t in &self.triangles {
+            if t.iter().any(|&i| i >= n) || t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
+                return false;
+            }
+            for k in 0..3 {
+                *edges.entry((t[k], t[(k + 1) % 3])).or_default() += 1;
+            }
+        }
+        !self.triangles.is_empty()
+            && edges
+                .iter()
+                .all(|(&(a, b), &count)| count == 1 && edges.get(&(b, a)) == Some(&1))
+    }
+}
+
+/// A triangle mesh made of parts, each with a material: the geometry of one asset.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct Mesh {
+    /// The parts; each references one of `materials`.
+    pub parts: Vec<MeshPart>,
+    /// The materials the parts use.
+    pub materials: Vec<Material>,
+}
+
+impl Mesh {
+    /// Total number of triangles over all parts.
+    pub fn triangle_count(&self) -> usize {
+        self.parts.iter().map(|p| p.triangles.len()).sum()
+    }
+
+    /// Total number of vertices over all parts.
+    pub fn vertex_count(&self) -> usize {
+        self.parts.iter().map(|p| p.positions.len()).sum()
+    }
+
+    /// The box around every vertex, or `None` for an empty mesh.
+    pub fn bounds(&self) -> Option<Aabb> {
+        let mut it = self.parts.iter().flat_map(|p| p.positions.iter());
+        let first = it.next()?;
+        let start = Point3::from(*first).cast::<f64>();
+        Some(it.fold(Aabb::new(start, start), |b, p| {
+            b.including(&Point3::from(*p).cast())
+        }))
+    }
+
+    /// All parts merged into one vertex and triangle list (indices rebased), e.g. to build a
+    /// signed distance field of the whole asset.
+    pub fn merged(&self) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
+        let mut positions = Vec::with_capacity(self.vertex_count());
+        let mut triangles = Vec::with_capacity(self.triangle_count());
+        for part in &self.parts {
+            let base = positions.len() as u32;
+            positions.extend_from_slice(&part.positions);
+            triangles.extend(part.triangles.iter().map(|t| t.map(|i| i + base)));
+        }
+        (positions, triangles)
+    }
+
+    /// A copy with every vertex mapped through `pose` (asset frame → world).
+    pub fn transformed(&self, pose: &Pose) -> Mesh {
+        let mut out = self.clone();
+        for part in &mut out.parts {
+            for p in &mut part.positions {
+                let w = pose.transform_point(&Point3::from(*p).cast::<f64>());
+                *p = [w.x as f32, w.y as f32, w.z as f32];
+            }
+        }
+        out
+    }
+
+    /// Appends another mesh's parts and materials (material indices rebased).
+    pub fn append(&mut self, other: &Mesh) {
+        let base = self.materials.len();
+        self.materials.extend(other.materials.iter().cloned());
+        self.parts.extend(other.parts.iter().cloned().map(|mut p| {
+            p.material += base;
+            p
+        }));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A unit cube with outward faces.
+    pub fn cube() -> MeshPart {
+        let positions = (0..8)
+            .map(|i| [(i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32])
+            .collect();
+        let triangles = vec![
+            [0, 2, 1],
+            [1, 2, 3], // z = 0, normal −z
+            [4, 5, 6],
+            [5, 7, 6], // z = 1
+            [0, 1, 4],
+            [1, 5, 4], // y = 0
+            [2, 6, 3],
+            [3, 6, 7], // y = 1
+            [0, 4, 2],
+            [2, 4, 6], // x = 0
+            [1, 3, 5],
+            [3, 7, 5], // x = 1
+        ];
+        MeshPart {
+            name: "cube".into(),
+            material: 0,
+            positions,
+            triangles,
+        }
+    }
+
+    #[test]
+    fn cube_is_closed_with_unit_volume() {
+        let c = cube();
+        assert!(c.is_closed_and_oriented());
+        assert!((c.signed_volume() - 1.0).abs() < 1e-9);
+        let mut open = c.clone();
+        open.triangles.pop();
+        assert!(!open.is_closed_and_oriented());
+        let mut flipped = c;
+        flipped.triangles[0].swap(1, 2);
+        assert!(!flipped.is_closed_and_oriented());
+    }
+
+    #[test]
+    fn merged_rebases_indices_and_transform_moves_bounds() {
+        let mesh = Mesh {
+            parts: vec![cube(), cube()],
+            materials: vec![Material::new("m", [0.5, 0.5, 0.5], 0.8)],
+        };
+        let (p, t) = mesh.merged();
+        assert_eq!(p.len(), 16);
+        assert_eq!(t[12], [8, 10, 9]);
+        let moved = mesh.transformed(&Pose::new(2.0, 0.0, Vector3::new(1.0, 0.0, 0.0)));
+        let b = moved.bounds().unwrap();
+        assert_eq!(b.min, Point3::new(1.0, 0.0, 0.0));
+        assert_eq!(b.max, Point3::new(3.0, 2.0, 2.0));
+    }
+}
