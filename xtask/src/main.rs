@@ -1,16 +1,27 @@
-//! Developer tasks: `cargo xtask ci` runs the same checks as `.ci/run` (without installing
-//! system packages).
+//! Developer tasks:
+//!
+//! - `cargo xtask ci` runs the same checks as `.ci/run` (without installing system packages);
+//! - `cargo xtask bench [--json] [FILTER]` runs every crate's criterion benchmarks in release
+//!   mode and prints their figures — mean time per iteration and, where a benchmark declares a
+//!   throughput, elements per second — as a table or as one JSON object.
 
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use anyhow::{bail, Context, Result};
+use serde_json::{json, Value};
 
 fn main() -> Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     match args.first().map(String::as_str) {
         Some("ci") => ci(),
+        Some("bench") => bench(&args[1..]),
         _ => {
-            eprintln!("usage: cargo xtask ci    run fmt --check, clippy -D warnings and the tests");
+            eprintln!(
+                "usage: cargo xtask ci                    fmt --check, clippy -D warnings, tests"
+            );
+            eprintln!("       cargo xtask bench [--json] [FILTER] criterion benchmarks → figures");
             bail!("unknown or missing task {:?}", args.first());
         }
     }
@@ -38,4 +49,100 @@ fn ci() -> Result<()> {
         "warnings",
     ])?;
     cargo(&["test", "--workspace"])
+}
+
+fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("xtask lives in the workspace")
+        .to_owned()
+}
+
+fn bench(args: &[String]) -> Result<()> {
+    let json_out = args.iter().any(|a| a == "--json");
+    let filter: Vec<&str> = args
+        .iter()
+        .filter(|a| !a.starts_with("--"))
+        .map(String::as_str)
+        .collect();
+    let root = workspace_root();
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| root.join("target"));
+    let criterion_dir = target.join("criterion");
+    // Stale results of benchmarks that no longer exist must not be reported.
+    if criterion_dir.exists() {
+        std::fs::remove_dir_all(&criterion_dir)
+            .with_context(|| format!("cannot clear {}", criterion_dir.display()))?;
+    }
+    let mut cmd = Command::new(env!("CARGO"));
+    cmd.current_dir(&root)
+        .args(["bench", "--workspace", "--quiet", "--"]);
+    cmd.args(&filter);
+    cmd.arg("--noplot");
+    if json_out {
+        // Keep stdout for the JSON object alone.
+        cmd.stdout(std::process::Stdio::null());
+    }
+    let status = cmd.status().context("cannot run cargo bench")?;
+    if !status.success() {
+        bail!("cargo bench failed with {status}");
+    }
+    let figures = collect_figures(&criterion_dir)?;
+    if json_out {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&Value::Object(figures.into_iter().collect()))?
+        );
+    } else {
+        for (name, value) in &figures {
+            println!("{name:<60} {value}");
+        }
+    }
+    Ok(())
+}
+
+/// Reads every `new/benchmark.json` + `new/estimates.json` pair under criterion's output folder.
+fn collect_figures(dir: &Path) -> Result<BTreeMap<String, Value>> {
+    let mut figures = BTreeMap::new();
+    let mut stack = vec![dir.to_owned()];
+    while let Some(d) = stack.pop() {
+        let Ok(entries) = std::fs::read_dir(&d) else {
+            continue;
+        };
+        for entry in entries.flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                if path.file_name().is_some_and(|n| n == "new") {
+                    if let Some((name, value)) = read_benchmark(&path)? {
+                        figures.insert(name, value);
+                    }
+                } else {
+                    stack.push(path);
+                }
+            }
+        }
+    }
+    Ok(figures)
+}
+
+fn read_benchmark(new_dir: &Path) -> Result<Option<(String, Value)>> {
+    let (bench, estimates) = (
+        new_dir.join("benchmark.json"),
+        new_dir.join("estimates.json"),
+    );
+    if !bench.exists() || !estimates.exists() {
+        return Ok(None);
+    }
+    let bench: Value = serde_json::from_str(&std::fs::read_to_string(&bench)?)?;
+    let estimates: Value = serde_json::from_str(&std::fs::read_to_string(&estimates)?)?;
+    let name = bench["full_id"].as_str().unwrap_or("unnamed").to_owned();
+    let mean_ns = estimates["mean"]["point_estimate"]
+        .as_f64()
+        .unwrap_or(f64::NAN);
+    let mut value = json!({ "mean_ms": mean_ns / 1e6 });
+    if let Some(elements) = bench["throughput"]["Elements"].as_f64() {
+        value["elements_per_s"] = json!(elements / (mean_ns / 1e9));
+    }
+    Ok(Some((name, value)))
 }

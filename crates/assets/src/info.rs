@@ -1,0 +1,140 @@
+use scenethesis_scene_graph::{AssetRef, Mesh};
+use serde::{Deserialize, Serialize};
+
+/// Where an asset is normally placed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Placement {
+    /// Stands on the floor (furniture, appliances, plants in pots).
+    Floor,
+    /// Hangs on a wall (paintings, whiteboards, wall shelves).
+    Wall,
+    /// Rests on another object's support surface (books, mugs, lamps on tables).
+    Surface,
+    /// Hangs from the ceiling (pendant lamps).
+    Ceiling,
+}
+
+/// What kind of place a support surface is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SurfaceKind {
+    /// An upward face open above: a table top, a counter, a bed.
+    Top,
+    /// The floor of a compartment enclosed above: a shelf board, a cabinet or locker bay.
+    Shelf,
+    /// The inside bottom of a container open on top: a crate, a basket, a bowl, a mug.
+    Interior,
+    /// Floor space beneath the asset: under a table, a desk's knee hole, under a bench.
+    Under,
+}
+
+/// A place where something can rest, in the asset's own frame.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SupportSurface {
+    /// Name unique within the asset, e.g. `top`, `shelf_2`, `under`.
+    pub name: String,
+    /// The kind of place.
+    pub kind: SurfaceKind,
+    /// The usable region as a convex polygon in (x, z), counter-clockwise seen from above
+    /// (+Y toward the viewer); already shrunk by walls and rims so anything inside it is free.
+    pub polygon: Vec<[f32; 2]>,
+    /// Height of the surface (y) in the asset frame; 0 for `Under`.
+    pub height: f32,
+    /// Free height above the surface before hitting the asset again; `None` when open above.
+    pub clearance: Option<f32>,
+}
+
+impl SupportSurface {
+    /// The (x, z) centroid of the polygon's vertices.
+    pub fn center(&self) -> [f32; 2] {
+        let n = self.polygon.len().max(1) as f32;
+        let (sx, sz) = self
+            .polygon
+            .iter()
+            .fold((0.0, 0.0), |(x, z), p| (x + p[0], z + p[1]));
+        [sx / n, sz / n]
+    }
+
+    /// Area of the polygon in square metres.
+    pub fn area(&self) -> f32 {
+        let n = self.polygon.len();
+        let twice: f32 = (0..n)
+            .map(|i| {
+                let (a, b) = (self.polygon[i], self.polygon[(i + 1) % n]);
+                a[0] * b[1] - b[0] * a[1]
+            })
+            .sum();
+        twice.abs() / 2.0
+    }
+
+    /// Whether the (x, z) point lies inside the convex polygon (or on its border).
+    pub fn contains(&self, x: f32, z: f32) -> bool {
+        let n = self.polygon.len();
+        if n < 3 {
+            return false;
+        }
+        let mut sign = 0.0f32;
+        for i in 0..n {
+            let (a, b) = (self.polygon[i], self.polygon[(i + 1) % n]);
+            let cross = (b[0] - a[0]) * (z - a[1]) - (b[1] - a[1]) * (x - a[0]);
+            if cross.abs() > 1e-7 {
+                if sign != 0.0 && cross.signum() != sign {
+                    return false;
+                }
+                sign = cross.signum();
+            }
+        }
+        true
+    }
+}
+
+/// Everything the planner, guide and optimizer need to know about one asset.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AssetInfo {
+    /// Where the mesh comes from (generator and seed, or imported file).
+    pub source: AssetRef,
+    /// Category, e.g. `bookshelf`.
+    pub category: String,
+    /// Other names for the category (`bookcase`), used by retrieval.
+    pub synonyms: Vec<String>,
+    /// Extent of the mesh along x, y and z in metres (at scale 1).
+    pub size: [f32; 3],
+    /// Where the asset is normally placed.
+    pub placement: Placement,
+    /// Canonical front in the asset frame; always +Z (`[0, 0, 1]`) after normalisation.
+    pub front: [f32; 3],
+    /// Every place something can rest on, in, or under the asset.
+    pub support_surfaces: Vec<SupportSurface>,
+    /// The range of uniform scale the optimizer may apply and still look plausible.
+    pub scale_range: [f32; 2],
+}
+
+/// An asset: its mesh and its metadata.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Asset {
+    /// Metadata.
+    pub info: AssetInfo,
+    /// Geometry and materials in the asset's own frame.
+    pub mesh: Mesh,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn polygon_area_center_and_containment() {
+        let s = SupportSurface {
+            name: "top".into(),
+            kind: SurfaceKind::Top,
+            polygon: vec![[-1.0, -0.5], [-1.0, 0.5], [1.0, 0.5], [1.0, -0.5]],
+            height: 0.75,
+            clearance: None,
+        };
+        assert!((s.area() - 2.0).abs() < 1e-6);
+        assert_eq!(s.center(), [0.0, 0.0]);
+        assert!(s.contains(0.9, 0.4));
+        assert!(!s.contains(1.1, 0.0));
+    }
+}

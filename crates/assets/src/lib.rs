@@ -1,0 +1,14 @@
+//! The asset library: procedural generators for the built-in categories, import of a user's own
+//! asset folder, and the metadata every later stage relies on (category, synonyms, size,
+//! placement kind, canonical front and support surfaces).
+//!
+//! Every asset follows the scene conventions: metres, +Y up, canonical front +Z, and the origin
+//! at the centre of the footprint at the lowest point, so that a pose's translation is where the
+//! asset stands. Procedural meshes are made of closed, consistently oriented parts that may
+//! overlap, with real cavities (shelf compartments, open crates, hollow mugs).
+
+mod info;
+pub mod primitives;
+
+pub use info::{Asset, AssetInfo, Placement, SupportSurface, SurfaceKind};
+pub mod catalog;
