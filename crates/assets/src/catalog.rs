@@ -1,6 +1,8 @@
 //! The registry of built-in procedural categories.
 
+use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
+use scenethesis_scene_graph::AssetRef;
 
 use crate::{Asset, Placement};
 
@@ -13,6 +15,38 @@ pub struct Category {
     pub synonyms: &'static [&'static str],
     /// Where the category is normally placed.
     pub placement: Placement,
-    /// Builds one asset; all randomness comes from the seeded generator passed in.
+    /// Builds one asset; all randomness comes from the seeded generator passed in. The
+    /// registry fills in [`crate::AssetInfo::source`], `category` and `synonyms` afterwards.
     pub generate: fn(&mut ChaCha8Rng) -> Asset,
+}
+
+/// Every built-in category, furniture first, in a stable order.
+pub fn categories() -> impl Iterator<Item = &'static Category> {
+    crate::furniture::CATEGORIES
+        .iter()
+        .chain(crate::items::CATEGORIES)
+        .chain(crate::outdoor::CATEGORIES)
+}
+
+/// The built-in category with this canonical name.
+pub fn category(name: &str) -> Option<&'static Category> {
+    categories().find(|c| c.name == name)
+}
+
+/// Generates the asset of `category` for `seed`: the same pair always gives the same asset.
+pub fn generate(category: &Category, seed: u64) -> Asset {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed ^ name_hash(category.name));
+    let mut asset = (category.generate)(&mut rng);
+    asset.info.source = AssetRef::Procedural {
+        generator: category.name.to_owned(),
+        seed,
+    };
+    asset.info.category = category.name.to_owned();
+    asset.info.synonyms = category.synonyms.iter().map(|s| s.to_string()).collect();
+    asset
+}
+
+/// A stable 64-bit FNV-1a hash of a name, so categories sharing a seed still differ.
+fn name_hash(name: &str) -> u64 {
+    name.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3))
 }

@@ -5,10 +5,14 @@
 //! Every asset follows the scene conventions: metres, +Y up, canonical front +Z, and the origin
 //! at the centre of the footprint at the lowest point, so that a pose's translation is where the
 //! asset stands. Procedural meshes are made of closed, consistently oriented parts that may
-//! overlap, with real cavities (shelf compartments, open crates, hollow mugs).
+//! overlap, with real cavities (shelf compartments, open crates, hollow mugs). Parts are convex
+//! wherever possible, so that per-part convex hulls (physics engines, MuJoCo) keep cavities open.
 
+pub mod catalog;
+mod furniture;
 mod info;
+mod items;
+mod outdoor;
 pub mod primitives;
 
 pub use info::{Asset, AssetInfo, Placement, SupportSurface, SurfaceKind};
-pub mod catalog;
