@@ -15,6 +15,10 @@ pub struct Category {
     pub synonyms: &'static [&'static str],
     /// Where the category is normally placed.
     pub placement: Placement,
+    /// Documented extent of the generated assets in metres, as `[min, max]` along x (width),
+    /// y (height) and z (depth), over all seeds at scale 1. Crate tests check that every
+    /// generated asset's [`crate::AssetInfo::size`] lies inside it.
+    pub size_range: [[f32; 2]; 3],
     /// Builds one asset; all randomness comes from the seeded generator passed in. The
     /// registry fills in [`crate::AssetInfo::source`], `category` and `synonyms` afterwards.
     pub generate: fn(&mut ChaCha8Rng) -> Asset,
