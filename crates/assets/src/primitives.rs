@@ -1,7 +1,9 @@
 //! Closed, outward-oriented mesh parts to build assets from. Every function returns a part that
 //! passes [`MeshPart::is_closed_and_oriented`] with positive volume.
 
-use scenethesis_scene_graph::MeshPart;
+use scenethesis_scene_graph::{AssetRef, Material, Mesh, MeshPart};
+
+use crate::{Asset, AssetInfo, Placement, SupportSurface, SurfaceKind};
 
 /// An axis-aligned box from `min` to `max` (asset frame), 8 vertices and 12 triangles.
 pub fn cuboid(name: &str, material: usize, min: [f32; 3], max: [f32; 3]) -> MeshPart {
@@ -194,6 +196,589 @@ pub fn compact(part: &mut MeshPart) {
     part.positions = positions;
 }
 
+/// Flips every triangle of `part` when its signed volume is negative, so faces point outward.
+pub fn orient_outward(part: &mut MeshPart) {
+    if part.signed_volume() < 0.0 {
+        for t in &mut part.triangles {
+            t.swap(1, 2);
+        }
+    }
+}
+
+/// The cuboid's triangle list for corners indexed by bits (x, y, z).
+const HEX_TRIANGLES: [[u32; 3]; 12] = [
+    [0, 2, 1],
+    [1, 2, 3],
+    [4, 5, 6],
+    [5, 7, 6],
+    [0, 1, 4],
+    [1, 5, 4],
+    [2, 6, 3],
+    [3, 6, 7],
+    [0, 4, 2],
+    [2, 4, 6],
+    [1, 3, 5],
+    [3, 7, 5],
+];
+
+/// A hexahedron from its 8 corners, indexed like [`cuboid`]: bit 0 of the index selects the
+/// far side along the first edge direction, bit 1 along the second, bit 2 along the third. The
+/// part is convex when every face is planar and the corners are in convex position (a sheared
+/// or tapered box, a wedge with a non-zero top, a tyre segment). Faces are oriented outward
+/// whatever the handedness of the corner order.
+pub fn hexahedron(name: &str, material: usize, corners: [[f32; 3]; 8]) -> MeshPart {
+    let mut part = MeshPart {
+        name: name.into(),
+        material,
+        positions: corners.to_vec(),
+        triangles: HEX_TRIANGLES.to_vec(),
+    };
+    orient_outward(&mut part);
+    part
+}
+
+/// A box with edge directions `axes` (unit vectors, mutually perpendicular), centred at `center`
+/// with half extents `half` along those axes.
+pub fn oriented_box(
+    name: &str,
+    material: usize,
+    center: [f32; 3],
+    axes: [[f32; 3]; 3],
+    half: [f32; 3],
+) -> MeshPart {
+    let corners = std::array::from_fn(|i| {
+        let s = |bit: usize| if i & (1 << bit) == 0 { -1.0 } else { 1.0 };
+        std::array::from_fn(|k| {
+            center[k]
+                + s(0) * half[0] * axes[0][k]
+                + s(1) * half[1] * axes[1][k]
+                + s(2) * half[2] * axes[2][k]
+        })
+    });
+    hexahedron(name, material, corners)
+}
+
+/// A box from `y0` to `y1` with footprint half extents `half` = (x, z), centred at `center` =
+/// (x, z) and turned by `yaw` radians about +Y (same sense as a pose's yaw).
+pub fn box_yaw(
+    name: &str,
+    material: usize,
+    center: [f32; 2],
+    half: [f32; 2],
+    y0: f32,
+    y1: f32,
+    yaw: f32,
+) -> MeshPart {
+    let (s, c) = yaw.sin_cos();
+    oriented_box(
+        name,
+        material,
+        [center[0], 0.5 * (y0 + y1), center[1]],
+        [[c, 0.0, -s], [0.0, 1.0, 0.0], [s, 0.0, c]],
+        [half[0], 0.5 * (y1 - y0), half[1]],
+    )
+}
+
+/// Two unit vectors perpendicular to `axis` and to each other, (u, v) with u × v along `axis`.
+fn frame(axis: [f32; 3]) -> ([f32; 3], [f32; 3]) {
+    let w = normalized(axis);
+    let reference = if w[1].abs() < 0.9 {
+        [0.0, 1.0, 0.0]
+    } else {
+        [1.0, 0.0, 0.0]
+    };
+    let u = normalized(cross(reference, w));
+    let v = cross(w, u);
+    (u, v)
+}
+
+fn cross(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn normalized(a: [f32; 3]) -> [f32; 3] {
+    let n = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt().max(1e-12);
+    [a[0] / n, a[1] / n, a[2] / n]
+}
+
+/// A straight bar of rectangular cross-section `section` = (width, thickness) from `a` to `b`
+/// (slanted legs, rails, ladder stiles, frames).
+pub fn beam(name: &str, material: usize, a: [f32; 3], b: [f32; 3], section: [f32; 2]) -> MeshPart {
+    let axis = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let (u, v) = frame(axis);
+    let corners = std::array::from_fn(|i| {
+        let su = if i & 1 == 0 { -0.5 } else { 0.5 } * section[0];
+        let sv = if i & 2 == 0 { -0.5 } else { 0.5 } * section[1];
+        let end = if i & 4 == 0 { a } else { b };
+        std::array::from_fn(|k| end[k] + su * u[k] + sv * v[k])
+    });
+    hexahedron(name, material, corners)
+}
+
+/// Joins two convex rings of equal length (same winding) into a closed part: side quads between
+/// them and a fan to each ring's centroid as caps. Faces are oriented outward.
+pub fn loft(name: &str, material: usize, ring0: &[[f32; 3]], ring1: &[[f32; 3]]) -> MeshPart {
+    assert_eq!(
+        ring0.len(),
+        ring1.len(),
+        "loft rings must have equal length"
+    );
+    let n = ring0.len() as u32;
+    assert!(n >= 3, "loft rings need at least 3 points");
+    let centroid = |ring: &[[f32; 3]]| {
+        let mut c = [0.0f32; 3];
+        for p in ring {
+            for k in 0..3 {
+                c[k] += p[k] / ring.len() as f32;
+            }
+        }
+        c
+    };
+    let mut positions = Vec::with_capacity(2 * n as usize + 2);
+    positions.extend_from_slice(ring0);
+    positions.extend_from_slice(ring1);
+    positions.push(centroid(ring0));
+    positions.push(centroid(ring1));
+    let (c0, c1) = (2 * n, 2 * n + 1);
+    let mut triangles = Vec::with_capacity(4 * n as usize);
+    for i in 0..n {
+        let j = (i + 1) % n;
+        triangles.push([i, n + i, j]);
+        triangles.push([j, n + i, n + j]);
+        triangles.push([c0, i, j]);
+        triangles.push([c1, n + j, n + i]);
+    }
+    let mut part = MeshPart {
+        name: name.into(),
+        material,
+        positions,
+        triangles,
+    };
+    orient_outward(&mut part);
+    part
+}
+
+/// A prism over a convex polygon in (x, z) (either winding), from `y0` to `y1`.
+pub fn prism_y(name: &str, material: usize, polygon: &[[f32; 2]], y0: f32, y1: f32) -> MeshPart {
+    let ring = |y: f32| -> Vec<[f32; 3]> { polygon.iter().map(|p| [p[0], y, p[1]]).collect() };
+    loft(name, material, &ring(y0), &ring(y1))
+}
+
+/// A prism over a convex polygon in (z, y) (a side profile, either winding), from `x0` to `x1`:
+/// wedge-shaped seats, sloped backs, ramps.
+pub fn prism_x(name: &str, material: usize, profile: &[[f32; 2]], x0: f32, x1: f32) -> MeshPart {
+    let ring = |x: f32| -> Vec<[f32; 3]> { profile.iter().map(|p| [x, p[1], p[0]]).collect() };
+    loft(name, material, &ring(x0), &ring(x1))
+}
+
+/// A prism over a convex polygon in (x, y) (a front profile, either winding), from `z0` to `z1`.
+pub fn prism_z(name: &str, material: usize, profile: &[[f32; 2]], z0: f32, z1: f32) -> MeshPart {
+    let ring = |z: f32| -> Vec<[f32; 3]> { profile.iter().map(|p| [p[0], p[1], z]).collect() };
+    loft(name, material, &ring(z0), &ring(z1))
+}
+
+/// A cylinder (or truncated cone when `r0 != r1`; both radii must be positive) along the
+/// segment from `a` to `b`, with `segments` sides.
+#[allow(clippy::too_many_arguments)]
+pub fn rod(
+    name: &str,
+    material: usize,
+    a: [f32; 3],
+    b: [f32; 3],
+    r0: f32,
+    r1: f32,
+    segments: u32,
+) -> MeshPart {
+    let (u, v) = frame([b[0] - a[0], b[1] - a[1], b[2] - a[2]]);
+    let n = segments.max(3);
+    let ring = |c: [f32; 3], r: f32| -> Vec<[f32; 3]> {
+        (0..n)
+            .map(|i| {
+                let t = i as f32 / n as f32 * std::f32::consts::TAU;
+                let (s, co) = t.sin_cos();
+                std::array::from_fn(|k| c[k] + r * (co * u[k] + s * v[k]))
+            })
+            .collect()
+    };
+    loft(name, material, &ring(a, r0), &ring(b, r1))
+}
+
+/// A regular polygon of `sides` corners with circumradius `radius` around `center` in (x, z),
+/// counter-clockwise seen from above.
+pub fn regular_polygon(center: [f32; 2], radius: f32, sides: u32) -> Vec<[f32; 2]> {
+    let n = sides.max(3);
+    (0..n)
+        .map(|i| {
+            let a = -(i as f32) / n as f32 * std::f32::consts::TAU;
+            [center[0] + radius * a.cos(), center[1] + radius * a.sin()]
+        })
+        .collect()
+}
+
+/// The part moved by `offset`.
+pub fn translated(mut part: MeshPart, offset: [f32; 3]) -> MeshPart {
+    for p in &mut part.positions {
+        for k in 0..3 {
+            p[k] += offset[k];
+        }
+    }
+    part
+}
+
+/// The part turned by `yaw` radians about the vertical axis through `pivot` = (x, z), in the
+/// same sense as a pose's yaw.
+pub fn rotated_y(mut part: MeshPart, yaw: f32, pivot: [f32; 2]) -> MeshPart {
+    let (s, c) = yaw.sin_cos();
+    for p in &mut part.positions {
+        let (x, z) = (p[0] - pivot[0], p[2] - pivot[1]);
+        p[0] = pivot[0] + c * x + s * z;
+        p[2] = pivot[1] - s * x + c * z;
+    }
+    part
+}
+
+/// Families of plausible materials an asset picks from per seed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Palette {
+    /// Natural wood tones (oak, walnut, pine, maple, cherry, teak).
+    Wood,
+    /// Painted or laminated wood (white, black, grey, sage, navy).
+    PaintedWood,
+    /// Bright metals (steel, aluminium, chrome, brass).
+    Metal,
+    /// Powder-coated metal (black, graphite, white, blue, red, green).
+    CoatedMetal,
+    /// Upholstery fabric (grey, beige, navy, olive, rust, charcoal, cream).
+    Fabric,
+    /// Leather and vinyl (brown, black, tan, oxblood).
+    Leather,
+    /// Plastics in muted colours (white, grey, black, beige).
+    Plastic,
+    /// Toy-like saturated plastics (red, yellow, blue, green, orange, purple).
+    BrightPlastic,
+    /// Clear or tinted glass (semi-transparent base colour).
+    Glass,
+    /// Stone and concrete (marble, granite, slate, concrete).
+    Stone,
+    /// Plant foliage greens.
+    Foliage,
+    /// Glazed ceramic (white, terracotta, blue, sage, black).
+    Ceramic,
+    /// Rubber and foam (black, dark grey, blue, purple, green yoga mats).
+    Rubber,
+    /// Paper, canvas and board (white, cream, kraft, coloured covers).
+    Paper,
+}
+
+/// (name, sRGB colour, roughness, metallic) entries of each palette.
+fn palette_entries(palette: Palette) -> &'static [(&'static str, [u8; 3], f32, f32)] {
+    match palette {
+        Palette::Wood => &[
+            ("oak", [0xB8, 0x8A, 0x5A], 0.6, 0.0),
+            ("walnut", [0x5D, 0x40, 0x2C], 0.55, 0.0),
+            ("pine", [0xD8, 0xB4, 0x7E], 0.65, 0.0),
+            ("maple", [0xE0, 0xC0, 0x90], 0.6, 0.0),
+            ("cherry", [0x8E, 0x4A, 0x32], 0.5, 0.0),
+            ("teak", [0x9A, 0x6A, 0x3C], 0.55, 0.0),
+            ("ash", [0xC9, 0xB0, 0x8C], 0.6, 0.0),
+        ],
+        Palette::PaintedWood => &[
+            ("white_paint", [0xEE, 0xEC, 0xE6], 0.5, 0.0),
+            ("black_paint", [0x24, 0x24, 0x26], 0.45, 0.0),
+            ("grey_paint", [0x8C, 0x8E, 0x90], 0.5, 0.0),
+            ("sage_paint", [0x9C, 0xAF, 0x88], 0.5, 0.0),
+            ("navy_paint", [0x2A, 0x3A, 0x5C], 0.5, 0.0),
+            ("cream_paint", [0xE8, 0xDC, 0xC0], 0.5, 0.0),
+        ],
+        Palette::Metal => &[
+            ("steel", [0xA8, 0xAA, 0xAD], 0.35, 1.0),
+            ("aluminium", [0xC8, 0xCA, 0xCC], 0.3, 1.0),
+            ("chrome", [0xDD, 0xDE, 0xE0], 0.12, 1.0),
+            ("brass", [0xC8, 0xA0, 0x50], 0.3, 1.0),
+            ("brushed_steel", [0x9A, 0x9C, 0x9E], 0.45, 1.0),
+        ],
+        Palette::CoatedMetal => &[
+            ("black_metal", [0x2A, 0x2A, 0x2C], 0.5, 0.6),
+            ("graphite_metal", [0x4A, 0x4C, 0x50], 0.5, 0.6),
+            ("white_metal", [0xE4, 0xE4, 0xE2], 0.45, 0.4),
+            ("blue_metal", [0x2E, 0x5A, 0x9C], 0.45, 0.5),
+            ("red_metal", [0xB0, 0x2A, 0x24], 0.45, 0.5),
+            ("green_metal", [0x3A, 0x6A, 0x48], 0.45, 0.5),
+            ("grey_metal", [0x80, 0x84, 0x88], 0.45, 0.6),
+        ],
+        Palette::Fabric => &[
+            ("grey_fabric", [0x80, 0x80, 0x82], 0.95, 0.0),
+            ("beige_fabric", [0xC8, 0xB8, 0x9A], 0.95, 0.0),
+            ("navy_fabric", [0x2C, 0x3A, 0x5A], 0.95, 0.0),
+            ("olive_fabric", [0x6E, 0x70, 0x44], 0.95, 0.0),
+            ("rust_fabric", [0xA4, 0x54, 0x32], 0.95, 0.0),
+            ("charcoal_fabric", [0x3C, 0x3C, 0x40], 0.95, 0.0),
+            ("cream_fabric", [0xE6, 0xDE, 0xCC], 0.95, 0.0),
+            ("teal_fabric", [0x2E, 0x6E, 0x6E], 0.95, 0.0),
+        ],
+        Palette::Leather => &[
+            ("brown_leather", [0x6A, 0x40, 0x28], 0.6, 0.0),
+            ("black_leather", [0x22, 0x20, 0x20], 0.55, 0.0),
+            ("tan_leather", [0xB0, 0x7A, 0x48], 0.6, 0.0),
+            ("oxblood_leather", [0x5A, 0x1E, 0x1E], 0.55, 0.0),
+        ],
+        Palette::Plastic => &[
+            ("white_plastic", [0xEC, 0xEC, 0xEA], 0.5, 0.0),
+            ("grey_plastic", [0x90, 0x92, 0x94], 0.5, 0.0),
+            ("black_plastic", [0x26, 0x26, 0x28], 0.45, 0.0),
+            ("beige_plastic", [0xD6, 0xCC, 0xB4], 0.5, 0.0),
+        ],
+        Palette::BrightPlastic => &[
+            ("red_plastic", [0xD8, 0x30, 0x2C], 0.4, 0.0),
+            ("yellow_plastic", [0xF2, 0xC8, 0x1E], 0.4, 0.0),
+            ("blue_plastic", [0x24, 0x6C, 0xD0], 0.4, 0.0),
+            ("green_plastic", [0x3C, 0xA8, 0x48], 0.4, 0.0),
+            ("orange_plastic", [0xF0, 0x80, 0x20], 0.4, 0.0),
+            ("purple_plastic", [0x84, 0x4C, 0xC0], 0.4, 0.0),
+        ],
+        Palette::Glass => &[
+            ("clear_glass", [0xDC, 0xEC, 0xF0], 0.05, 0.0),
+            ("tinted_glass", [0xA8, 0xC0, 0xC0], 0.05, 0.0),
+        ],
+        Palette::Stone => &[
+            ("white_marble", [0xE8, 0xE6, 0xE2], 0.25, 0.0),
+            ("black_granite", [0x30, 0x30, 0x32], 0.3, 0.0),
+            ("slate", [0x5C, 0x62, 0x68], 0.6, 0.0),
+            ("concrete", [0xA0, 0x9E, 0x98], 0.85, 0.0),
+            ("travertine", [0xD6, 0xC8, 0xAC], 0.5, 0.0),
+        ],
+        Palette::Foliage => &[
+            ("leaf_green", [0x3C, 0x7A, 0x34], 0.8, 0.0),
+            ("dark_leaf", [0x24, 0x50, 0x28], 0.8, 0.0),
+            ("yellow_leaf", [0x7A, 0x94, 0x38], 0.8, 0.0),
+            ("blue_leaf", [0x3A, 0x6A, 0x58], 0.8, 0.0),
+        ],
+        Palette::Ceramic => &[
+            ("white_ceramic", [0xF0, 0xEE, 0xEA], 0.2, 0.0),
+            ("terracotta", [0xB8, 0x5C, 0x38], 0.8, 0.0),
+            ("blue_ceramic", [0x3A, 0x5E, 0x90], 0.2, 0.0),
+            ("sage_ceramic", [0x9C, 0xB0, 0x94], 0.25, 0.0),
+            ("black_ceramic", [0x28, 0x28, 0x2A], 0.25, 0.0),
+        ],
+        Palette::Rubber => &[
+            ("black_rubber", [0x1E, 0x1E, 0x20], 0.9, 0.0),
+            ("grey_rubber", [0x50, 0x52, 0x54], 0.9, 0.0),
+            ("blue_foam", [0x3A, 0x6E, 0xB0], 0.85, 0.0),
+            ("purple_foam", [0x7A, 0x4E, 0x9E], 0.85, 0.0),
+            ("green_foam", [0x58, 0x9A, 0x5C], 0.85, 0.0),
+        ],
+        Palette::Paper => &[
+            ("white_paper", [0xF4, 0xF2, 0xEC], 0.9, 0.0),
+            ("cream_paper", [0xEC, 0xE2, 0xC8], 0.9, 0.0),
+            ("kraft", [0xB8, 0x94, 0x68], 0.9, 0.0),
+            ("red_cover", [0xA0, 0x2C, 0x2C], 0.7, 0.0),
+            ("blue_cover", [0x2C, 0x4C, 0x8C], 0.7, 0.0),
+            ("green_cover", [0x2C, 0x6C, 0x44], 0.7, 0.0),
+        ],
+    }
+}
+
+/// sRGB byte to linear channel.
+fn srgb_to_linear(c: u8) -> f32 {
+    let c = c as f32 / 255.0;
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// A material drawn from `palette`: one of its entries, brightness jittered by up to ±8 % so
+/// that two seeds rarely share exactly the same colour. Glass gets an alpha of 0.3.
+pub fn pick_material(palette: Palette, rng: &mut impl rand::Rng) -> Material {
+    let entries = palette_entries(palette);
+    let (name, rgb, roughness, metallic) = entries[rng.random_range(0..entries.len())];
+    let jitter = rng.random_range(0.92f32..1.08);
+    let c = rgb.map(|v| (srgb_to_linear(v) * jitter).clamp(0.0, 1.0));
+    let alpha = if palette == Palette::Glass { 0.3 } else { 1.0 };
+    Material {
+        name: name.into(),
+        base_color: [c[0], c[1], c[2], alpha],
+        roughness,
+        metallic,
+    }
+}
+
+/// A material with a fixed sRGB colour (for parts that do not vary: screens, rubber feet).
+pub fn fixed_material(name: &str, srgb: [u8; 3], roughness: f32, metallic: f32) -> Material {
+    let c = srgb.map(srgb_to_linear);
+    Material {
+        name: name.into(),
+        base_color: [c[0], c[1], c[2], 1.0],
+        roughness,
+        metallic,
+    }
+}
+
+/// A support surface over the axis-aligned rectangle `min`..`max` in (x, z), shrunk by `margin`
+/// on every side (never below a 1 cm square around the centre).
+pub fn rect_surface(
+    name: &str,
+    kind: SurfaceKind,
+    min: [f32; 2],
+    max: [f32; 2],
+    height: f32,
+    clearance: Option<f32>,
+    margin: f32,
+) -> SupportSurface {
+    let shrink = |lo: f32, hi: f32| {
+        let m = margin.min(0.5 * (hi - lo) - 0.005).max(0.0);
+        (lo + m, hi - m)
+    };
+    let (x0, x1) = shrink(min[0], max[0]);
+    let (z0, z1) = shrink(min[1], max[1]);
+    SupportSurface {
+        name: name.into(),
+        kind,
+        polygon: vec![[x0, z0], [x0, z1], [x1, z1], [x1, z0]],
+        height,
+        clearance,
+    }
+}
+
+/// A support surface over a regular `sides`-gon inscribed in the circle of `radius` (already
+/// shrunk by the caller) around `center` in (x, z).
+pub fn disc_surface(
+    name: &str,
+    kind: SurfaceKind,
+    center: [f32; 2],
+    radius: f32,
+    height: f32,
+    clearance: Option<f32>,
+    sides: u32,
+) -> SupportSurface {
+    SupportSurface {
+        name: name.into(),
+        kind,
+        polygon: regular_polygon(center, radius, sides),
+        height,
+        clearance,
+    }
+}
+
+/// Collects parts, materials and support surfaces, then normalises them into an [`Asset`]
+/// whose origin is the centre of its footprint at its lowest point.
+#[derive(Debug, Default, Clone)]
+pub struct AssetBuilder {
+    mesh: Mesh,
+    surfaces: Vec<SupportSurface>,
+}
+
+impl AssetBuilder {
+    /// An empty builder.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds `material` (or finds an identical one) and returns its index.
+    pub fn material(&mut self, material: Material) -> usize {
+        if let Some(i) = self.mesh.materials.iter().position(|m| *m == material) {
+            return i;
+        }
+        self.mesh.materials.push(material);
+        self.mesh.materials.len() - 1
+    }
+
+    /// Adds a part (its material index must come from [`AssetBuilder::material`]).
+    pub fn part(&mut self, part: MeshPart) -> &mut Self {
+        self.mesh.parts.push(part);
+        self
+    }
+
+    /// Adds an axis-aligned box part.
+    pub fn cuboid(&mut self, name: &str, material: usize, min: [f32; 3], max: [f32; 3]) {
+        self.mesh.parts.push(cuboid(name, material, min, max));
+    }
+
+    /// Adds a support surface (in the same frame as the parts).
+    pub fn surface(&mut self, surface: SupportSurface) -> &mut Self {
+        self.surfaces.push(surface);
+        self
+    }
+
+    /// The support surfaces added so far, to adjust them after later parts.
+    pub fn surfaces_mut(&mut self) -> &mut Vec<SupportSurface> {
+        &mut self.surfaces
+    }
+
+    /// Turns everything added so far by half a turn about the vertical axis through `pivot`
+    /// = (x, z), e.g. to make compartments built facing +Z open toward −Z.
+    pub fn turn_around(&mut self, pivot: [f32; 2]) {
+        for part in &mut self.mesh.parts {
+            for p in &mut part.positions {
+                p[0] = 2.0 * pivot[0] - p[0];
+                p[2] = 2.0 * pivot[1] - p[2];
+            }
+        }
+        for s in &mut self.surfaces {
+            for p in &mut s.polygon {
+                p[0] = 2.0 * pivot[0] - p[0];
+                p[1] = 2.0 * pivot[1] - p[1];
+            }
+        }
+    }
+
+    /// The parts added so far.
+    pub fn parts(&self) -> &[MeshPart] {
+        &self.mesh.parts
+    }
+
+    /// Moves everything so that the footprint centre at the lowest point is the origin, and
+    /// returns the asset with its size from the mesh bounds. `source`, `category` and
+    /// `synonyms` are left for [`crate::catalog::generate`] to fill in.
+    ///
+    /// # Panics
+    /// When no part was added.
+    pub fn finish(mut self, placement: Placement, scale_range: [f32; 2]) -> Asset {
+        let bounds = self
+            .mesh
+            .bounds()
+            .expect("an asset needs at least one part");
+        let (min, max) = (bounds.min.cast::<f32>(), bounds.max.cast::<f32>());
+        let shift = [-0.5 * (min.x + max.x), -min.y, -0.5 * (min.z + max.z)];
+        for part in &mut self.mesh.parts {
+            for p in &mut part.positions {
+                for k in 0..3 {
+                    p[k] += shift[k];
+                }
+            }
+        }
+        for s in &mut self.surfaces {
+            for p in &mut s.polygon {
+                p[0] += shift[0];
+                p[1] += shift[2];
+            }
+            s.height += shift[1];
+        }
+        let size = max - min;
+        Asset {
+            info: AssetInfo {
+                source: AssetRef::Procedural {
+                    generator: String::new(),
+                    seed: 0,
+                },
+                category: String::new(),
+                synonyms: Vec::new(),
+                size: [size.x, size.y, size.z],
+                placement,
+                front: [0.0, 0.0, 1.0],
+                support_surfaces: self.surfaces,
+                scale_range,
+            },
+            mesh: self.mesh,
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -240,5 +825,79 @@ mod tests {
             4.0 / 3.0 * PI,
             0.01,
         );
+        check(
+            &box_yaw("turned", 0, [1.0, 2.0], [0.5, 1.0], 0.0, 3.0, 0.7),
+            6.0,
+            1e-5,
+        );
+        check(
+            &beam("bar", 0, [0.0, 0.0, 0.0], [1.0, 2.0, 2.0], [0.1, 0.2]),
+            0.06,
+            1e-5,
+        );
+        check(
+            &rod("rod", 0, [0.0, 0.0, 0.0], [0.0, 0.0, -2.0], 0.5, 0.5, 128),
+            PI * 0.25 * 2.0,
+            0.01,
+        );
+        let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        check(&prism_y("py", 0, &square, 0.0, 2.0), 2.0, 1e-6);
+        check(&prism_x("px", 0, &square, 1.0, 0.0), 1.0, 1e-6);
+        check(&prism_z("pz", 0, &square, 0.0, 3.0), 3.0, 1e-6);
+        let wedge = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [1.0, 0.0, 1.0],
+            [0.0, 0.5, 1.0],
+            [1.0, 0.5, 1.0],
+        ];
+        check(&hexahedron("wedge", 0, wedge), 0.75, 1e-6);
+        let mut mirrored = wedge;
+        mirrored.swap(0, 1);
+        mirrored.swap(2, 3);
+        mirrored.swap(4, 5);
+        mirrored.swap(6, 7);
+        check(&hexahedron("mirrored", 0, mirrored), 0.75, 1e-6);
+    }
+
+    #[test]
+    fn builder_moves_the_footprint_centre_to_the_origin() {
+        let mut b = AssetBuilder::new();
+        let m = b.material(fixed_material("m", [10, 20, 30], 0.5, 0.0));
+        assert_eq!(b.material(fixed_material("m", [10, 20, 30], 0.5, 0.0)), m);
+        b.cuboid("slab", m, [1.0, 2.0, 3.0], [3.0, 2.5, 4.0]);
+        b.surface(rect_surface(
+            "top",
+            SurfaceKind::Top,
+            [1.0, 3.0],
+            [3.0, 4.0],
+            2.5,
+            None,
+            0.1,
+        ));
+        let asset = b.finish(Placement::Floor, [0.9, 1.1]);
+        assert_eq!(asset.info.size, [2.0, 0.5, 1.0]);
+        let top = &asset.info.support_surfaces[0];
+        assert_eq!(top.height, 0.5);
+        assert!((top.area() - 1.8 * 0.8).abs() < 1e-5);
+        assert_eq!(top.center(), [0.0, 0.0]);
+        let bounds = asset.mesh.bounds().unwrap();
+        assert_eq!(bounds.min.y, 0.0);
+        assert_eq!(bounds.min.x, -1.0);
+    }
+
+    #[test]
+    fn palettes_vary_with_the_seed_and_repeat_with_it() {
+        use rand::SeedableRng;
+        let draw = |seed| {
+            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+            pick_material(Palette::Wood, &mut rng)
+        };
+        assert_eq!(draw(3), draw(3));
+        assert!((0..8).any(|s| draw(s) != draw(0)));
+        assert_eq!(regular_polygon([0.0, 0.0], 1.0, 4).len(), 4);
     }
 }
