@@ -1,0 +1,308 @@
+//! The scene driver: places every object in breadth-first order (anchor, parents, children)
+//! with an [`Optimizer`], stage 1 (pose alignment) then stage 2 (physics), against a scene of
+//! the objects already placed plus the architecture, and checks the post-conditions on the
+//! exact fields.
+
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+use nalgebra::{Point3, Vector3};
+use scenethesis_assets::Placement as AssetPlacement;
+use scenethesis_scene_graph::{Architecture, ParentRef, Pose, Scene, SceneObject};
+use scenethesis_sdf::{BoxSdf, SignedDistance};
+use serde::{Deserialize, Serialize};
+
+use crate::alignment::PoseAlignment;
+use crate::objective::{LossSettings, ObjectProblem, RoomBounds, Stage};
+use crate::obstacles::Obstacles;
+use crate::optimizer::Optimizer;
+use crate::params::{rotate_y, unrotate_y};
+use crate::prepare::PreparedAsset;
+use crate::report::{ObjectReport, Placement};
+use crate::support::{choose_surface, Support, SupportPlane};
+use crate::verify::{verify, Placed, Tolerances};
+use crate::PhysicsOptError;
+
+/// A scene to optimize: the scene graph with the guide's initial poses, each object's prepared
+/// asset, and the correspondences of the objects the vision path matched.
+pub struct SceneProblem {
+    /// The scene graph; its poses are the starting poses.
+    pub scene: Scene,
+    /// Prepared geometry per object id (objects may share one asset).
+    pub assets: BTreeMap<String, Arc<PreparedAsset>>,
+    /// Pose-alignment correspondences per object id.
+    pub alignments: BTreeMap<String, PoseAlignment>,
+}
+
+impl SceneProblem {
+    /// A problem over `scene` with no assets or correspondences yet.
+    pub fn new(scene: Scene) -> Self {
+        Self {
+            scene,
+            assets: BTreeMap::new(),
+            alignments: BTreeMap::new(),
+        }
+    }
+
+    /// Sets the prepared asset of object `id`.
+    pub fn set_asset(&mut self, id: &str, asset: Arc<PreparedAsset>) {
+        self.assets.insert(id.to_owned(), asset);
+    }
+
+    /// Sets the correspondences of object `id`.
+    pub fn set_alignment(&mut self, id: &str, alignment: PoseAlignment) {
+        self.alignments.insert(id.to_owned(), alignment);
+    }
+}
+
+/// Settings of a scene optimization.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+pub struct OptimizeSettings {
+    /// Loss tolerances and weights.
+    pub losses: LossSettings,
+    /// Post-condition tolerances.
+    pub tolerances: Tolerances,
+    /// Skip the second physics pass against the exact fields (only the baked grids are used;
+    /// faster, but grid error near edges may leave sub-millimetre penetrations).
+    pub skip_exact_polish: bool,
+    /// Do not move children along when their parent moves (by default a child keeps its pose
+    /// relative to its parent's displacement before it is optimized).
+    pub keep_children_in_place: bool,
+}
+
+/// Optimizes every object of `problem` with `optimizer` and reports per object whether the
+/// post-conditions hold. Objects that cannot be placed are reported with the reason (which
+/// object or surface they collide with, how far they float, how far they stick out); they are
+/// never silently left colliding.
+pub fn optimize_scene(
+    problem: &SceneProblem,
+    optimizer: &dyn Optimizer,
+    settings: &OptimizeSettings,
+) -> Result<Placement, PhysicsOptError> {
+    let scene = &problem.scene;
+    let order = scene.bfs_order()?;
+    for object in &order {
+        if !problem.assets.contains_key(&object.id) {
+            return Err(PhysicsOptError::MissingAsset {
+                id: object.id.clone(),
+            });
+        }
+        if !object.pose.is_finite() || object.pose.scale <= 0.0 {
+            return Err(PhysicsOptError::InvalidPose {
+                id: object.id.clone(),
+                pose: object.pose,
+            });
+        }
+    }
+    let room = RoomBounds::of(&scene.architecture);
+    let mut grid = Obstacles::new();
+    let mut exact = Obstacles::new();
+    for (id, field, pose) in architecture_fields(&scene.architecture) {
+        grid.insert(&id, field.clone(), pose, true);
+        exact.insert(&id, field, pose, true);
+    }
+    let mut finals: BTreeMap<&str, Pose> = BTreeMap::new();
+    let mut reports: Vec<ObjectReport> = Vec::with_capacity(order.len());
+    let mut supports: Vec<Support> = Vec::with_capacity(order.len());
+    for object in &order {
+        let asset = &problem.assets[&object.id];
+        let start = match object.parent.object_id() {
+            Some(parent) if !settings.keep_children_in_place => {
+                let before = scene.object(parent).map(|p| p.pose);
+                match (before, finals.get(parent)) {
+                    (Some(before), Some(after)) => carry(&before, after, &object.pose),
+                    _ => object.pose,
+                }
+            }
+            _ => object.pose,
+        };
+        let support = resolve_support(problem, object, asset, &start, &finals);
+        let alignment = problem.alignments.get(&object.id);
+        let mut object_problem = ObjectProblem {
+            id: &object.id,
+            asset,
+            obstacles: &grid,
+            support: &support,
+            room: Some(room),
+            alignment,
+            settings: &settings.losses,
+        };
+        let aligned = optimizer.optimize(&object_problem, Stage::Alignment, start);
+        let settled = optimizer.optimize(&object_problem, Stage::Physics, aligned.pose);
+        let mut pose = settled.pose;
+        let mut physics_iterations = settled.iterations;
+        let mut polished = false;
+        if !settings.skip_exact_polish {
+            object_problem.obstacles = &exact;
+            if !object_problem.collision(&pose).is_free() {
+                let polish = optimizer.optimize(&object_problem, Stage::Physics, pose);
+                pose = polish.pose;
+                physics_iterations += polish.iterations;
+                polished = true;
+            }
+        }
+        grid.insert(&object.id, asset.grid_field(), pose, false);
+        exact.insert(&object.id, asset.exact_field(), pose, false);
+        finals.insert(&object.id, pose);
+        reports.push(ObjectReport {
+            id: object.id.clone(),
+            initial_pose: object.pose,
+            pose,
+            support: support.clone(),
+            alignment_iterations: aligned.iterations,
+            physics_iterations,
+            polished,
+            penetration: 0.0,
+            support_gap: None,
+            issues: Vec::new(),
+        });
+        supports.push(support);
+    }
+    let placed: Vec<Placed<'_>> = order
+        .iter()
+        .zip(&reports)
+        .zip(&supports)
+        .map(|((object, report), support)| Placed {
+            id: &object.id,
+            asset: &problem.assets[&object.id],
+            pose: report.pose,
+            support,
+        })
+        .collect();
+    let verdicts = verify(&placed, &exact, Some(room), &settings.tolerances);
+    for (report, verdict) in reports.iter_mut().zip(verdicts) {
+        report.penetration = verdict.penetration;
+        report.support_gap = verdict.support_gap;
+        report.issues = verdict.issues;
+    }
+    Ok(Placement {
+        optimizer: optimizer.name().to_owned(),
+        objects: reports,
+    })
+}
+
+/// What `object` rests on, given the final poses of the objects placed before it.
+fn resolve_support(
+    problem: &SceneProblem,
+    object: &SceneObject,
+    asset: &PreparedAsset,
+    start: &Pose,
+    finals: &BTreeMap<&str, Pose>,
+) -> Support {
+    if matches!(
+        asset.placement(),
+        AssetPlacement::Wall | AssetPlacement::Ceiling
+    ) {
+        return Support::Free;
+    }
+    match &object.parent {
+        ParentRef::Ground => Support::Surface(SupportPlane::floor(&problem.scene.architecture)),
+        ParentRef::Object(parent) => {
+            let (Some(parent_pose), Some(parent_asset)) =
+                (finals.get(parent.as_str()), problem.assets.get(parent))
+            else {
+                return Support::ParentGeometry {
+                    parent: parent.clone(),
+                };
+            };
+            let foot = Point3::from(start.translation);
+            choose_surface(
+                parent,
+                parent_pose,
+                parent_asset.support_surfaces(),
+                object.support,
+                &foot,
+            )
+            .map_or_else(
+                || Support::ParentGeometry {
+                    parent: parent.clone(),
+                },
+                Support::Surface,
+            )
+        }
+    }
+}
+
+/// A child's pose moved rigidly with its parent from `before` to `after` (position and yaw
+/// follow the parent; the child's own scale is kept).
+fn carry(before: &Pose, after: &Pose, child: &Pose) -> Pose {
+    let local = unrotate_y(before.yaw, &(child.translation - before.translation)) / before.scale;
+    let translation = after.translation + rotate_y(after.yaw, &(local * after.scale));
+    Pose::new(child.scale, child.yaw + (after.yaw - before.yaw), translation)
+}
+
+/// The architecture as posed box fields: a floor slab under the floor rectangle (reaching a
+/// metre beyond it) and one box per wall along its centre line, lengthened by its thickness so
+/// that corners close. Door openings are kept solid: nothing should stand in a doorway.
+pub fn architecture_fields(
+    architecture: &Architecture,
+) -> Vec<(String, Arc<dyn SignedDistance>, Pose)> {
+    let floor = &architecture.floor;
+    let extent = floor.extent();
+    let centre = nalgebra::center(&floor.min, &floor.max);
+    let slab = 0.5;
+    let mut out: Vec<(String, Arc<dyn SignedDistance>, Pose)> = vec![(
+        floor.id.clone(),
+        Arc::new(BoxSdf::new(Vector3::new(
+            (extent.x / 2.0 + 1.0) as f32,
+            (slab / 2.0) as f32,
+            (extent.y / 2.0 + 1.0) as f32,
+        ))),
+        Pose::new(1.0, 0.0, Vector3::new(centre.x, -slab / 2.0, centre.y)),
+    )];
+    for wall in &architecture.walls {
+        let length = wall.length();
+        if length <= 0.0 || wall.height <= 0.0 || wall.thickness <= 0.0 {
+            continue;
+        }
+        let d = wall.direction();
+        let mid = nalgebra::center(&wall.start, &wall.end);
+        // R_y(yaw)·x̂ = (cos yaw, 0, −sin yaw) must equal the wall direction (dx, 0, dz).
+        let yaw = (-d.y).atan2(d.x);
+        out.push((
+            wall.id.clone(),
+            Arc::new(BoxSdf::new(Vector3::new(
+                ((length + wall.thickness) / 2.0) as f32,
+                (wall.height / 2.0) as f32,
+                (wall.thickness / 2.0) as f32,
+            ))),
+            Pose::new(1.0, yaw, Vector3::new(mid.x, wall.height / 2.0, mid.y)),
+        ));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn carried_child_keeps_its_place_relative_to_the_parent() {
+        let before = Pose::new(1.0, 0.0, Vector3::new(0.0, 0.0, 0.0));
+        let after = Pose::new(1.0, std::f64::consts::FRAC_PI_2, Vector3::new(1.0, 0.0, 0.0));
+        let child = Pose::new(0.8, 0.1, Vector3::new(0.0, 0.75, 0.3));
+        let moved = carry(&before, &after, &child);
+        // +Z turns toward +X under a quarter-turn yaw.
+        assert!((moved.translation - Vector3::new(1.3, 0.75, 0.0)).norm() < 1e-12);
+        assert!((moved.yaw - (0.1 + std::f64::consts::FRAC_PI_2)).abs() < 1e-12);
+        assert_eq!(moved.scale, 0.8);
+    }
+
+    #[test]
+    fn wall_boxes_cover_the_walls() {
+        let arch = Architecture::rectangular_room(6.0, 4.0, 2.8, 0.9);
+        let fields = architecture_fields(&arch);
+        assert_eq!(fields.len(), 5);
+        for ((_, field, pose), wall) in fields[1..].iter().zip(&arch.walls) {
+            let mid = nalgebra::center(&wall.start, &wall.end);
+            let inner = mid + wall.inward_normal() * (wall.thickness / 2.0 + 0.01);
+            let outer = mid + wall.inward_normal() * (wall.thickness / 2.0 - 0.01);
+            let d = |x: f64, z: f64| {
+                let p = pose.inverse_transform_point(&Point3::new(x, 1.0, z));
+                field.distance(&p.cast::<f32>())
+            };
+            assert!((d(inner.x, inner.y) - 0.01).abs() < 1e-4, "{}", wall.id);
+            assert!((d(outer.x, outer.y) + 0.01).abs() < 1e-4, "{}", wall.id);
+        }
+    }
+}

@@ -1,0 +1,408 @@
+//! The per-object optimization problem and the paper's losses: translation and scale collision
+//! losses over penetrating surface points, the stability loss over bottom points, and the
+//! pose-alignment loss over correspondences.
+
+use nalgebra::{Point2, Point3, Vector3};
+use scenethesis_scene_graph::{Aabb, Architecture, Pose};
+use serde::{Deserialize, Serialize};
+
+use crate::alignment::PoseAlignment;
+use crate::obstacles::Obstacles;
+use crate::params::{world_point, PoseVector, SCALE, TX, TY, TZ};
+use crate::prepare::PreparedAsset;
+use crate::support::Support;
+
+/// Tolerances and weights of the losses.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LossSettings {
+    /// A surface point closer than this to another object or the architecture counts as
+    /// colliding (the paper's threshold is 0; a small positive margin leaves a visible gap that
+    /// survives rounding), in metres.
+    pub collision_margin: f64,
+    /// The gap the stability loss aims for between an object's bottom and its support, in
+    /// metres; kept above `collision_margin` so the two terms never fight.
+    pub support_clearance: f64,
+    /// Length scale σ of the stability loss `1 − exp(−(d/σ)²)`, in metres (the paper's
+    /// formula is σ = 1 m; metres make that nearly quadratic, so a shorter scale is used).
+    pub stability_length: f64,
+    /// Weight λ_p of the pose-alignment loss.
+    pub weight_pose: f64,
+    /// Weight λ_cT of the translation collision loss.
+    pub weight_translation: f64,
+    /// Weight λ_cS of the scale collision loss.
+    pub weight_scale: f64,
+    /// Weight λ_s of the stability loss.
+    pub weight_stability: f64,
+    /// Two penetrating points belong to the same cluster when they are closer than this many
+    /// mean sample spacings on the asset surface.
+    pub cluster_link_spacings: f64,
+}
+
+impl Default for LossSettings {
+    fn default() -> Self {
+        Self {
+            collision_margin: 0.001,
+            support_clearance: 0.00125,
+            stability_length: 0.1,
+            weight_pose: 1.0,
+            weight_translation: 1.0,
+            weight_scale: 1.0,
+            weight_stability: 1.0,
+            cluster_link_spacings: 2.5,
+        }
+    }
+}
+
+/// The floor rectangle an object must stay inside, in world (x, z).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct RoomBounds {
+    /// Smallest x and z.
+    pub min: Point2<f64>,
+    /// Largest x and z.
+    pub max: Point2<f64>,
+}
+
+impl RoomBounds {
+    /// The floor rectangle of an architecture.
+    pub fn of(architecture: &Architecture) -> Self {
+        Self {
+            min: architecture.floor.min,
+            max: architecture.floor.max,
+        }
+    }
+
+    /// How far a world box sticks out of the rectangle (0 when inside).
+    pub fn overhang(&self, b: &Aabb) -> f64 {
+        [
+            self.min.x - b.min.x,
+            b.max.x - self.max.x,
+            self.min.y - b.min.z,
+            b.max.z - self.max.y,
+        ]
+        .into_iter()
+        .fold(0.0, f64::max)
+    }
+
+    /// The shift in (x, z) that moves a world box inside the rectangle (centring it on an axis
+    /// where it is wider than the room).
+    pub fn shift_inside(&self, b: &Aabb) -> Vector3<f64> {
+        let axis = |lo: f64, hi: f64, rmin: f64, rmax: f64| {
+            if hi - lo > rmax - rmin {
+                (rmin + rmax) / 2.0 - (lo + hi) / 2.0
+            } else if lo < rmin {
+                rmin - lo
+            } else if hi > rmax {
+                rmax - hi
+            } else {
+                0.0
+            }
+        };
+        Vector3::new(
+            axis(b.min.x, b.max.x, self.min.x, self.max.x),
+            0.0,
+            axis(b.min.z, b.max.z, self.min.y, self.max.y),
+        )
+    }
+}
+
+/// Which part of the optimization is running.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Stage {
+    /// Stage 1: pose alignment to the guidance image only.
+    Alignment,
+    /// Stage 2: collision and stability.
+    Physics,
+}
+
+/// One surface point closer to an obstacle than the collision margin.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Contact {
+    /// Index of the point in [`PreparedAsset::surface_points`].
+    pub sample: usize,
+    /// The point in world coordinates.
+    pub world: Point3<f64>,
+    /// Its signed distance to the nearest obstacle (negative inside).
+    pub distance: f64,
+    /// How much it violates the margin: `margin − distance` (positive).
+    pub violation: f64,
+    /// Index of the nearest obstacle in the [`Obstacles`].
+    pub obstacle: usize,
+}
+
+/// The collision state of an object at a pose.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct CollisionState {
+    /// Every violating surface point.
+    pub contacts: Vec<Contact>,
+    /// The contacts grouped into clusters of nearby points (indices into `contacts`).
+    pub clusters: Vec<Vec<usize>>,
+}
+
+impl CollisionState {
+    /// Whether no point violates the margin.
+    pub fn is_free(&self) -> bool {
+        self.contacts.is_empty()
+    }
+
+    /// The largest violation, 0 when free.
+    pub fn worst_violation(&self) -> f64 {
+        self.contacts
+            .iter()
+            .map(|c| c.violation)
+            .fold(0.0, f64::max)
+    }
+}
+
+/// The loss terms at one pose.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Losses {
+    /// `L_pose` (0 without correspondences).
+    pub pose: f64,
+    /// `L_translation`: mean squared push over the penetrating points.
+    pub translation: f64,
+    /// `L_scale`: mean squared scale pull when the penetration forms two or more clusters.
+    pub scale: f64,
+    /// `L_stability`: mean `1 − exp(−(d/σ)²)` over the bottom points.
+    pub stability: f64,
+}
+
+impl Losses {
+    /// The weighted total of the terms that belong to `stage`.
+    pub fn total(&self, stage: Stage, s: &LossSettings) -> f64 {
+        match stage {
+            Stage::Alignment => s.weight_pose * self.pose,
+            Stage::Physics => {
+                s.weight_translation * self.translation
+                    + s.weight_scale * self.scale
+                    + s.weight_stability * self.stability
+            }
+        }
+    }
+}
+
+/// Everything an [`crate::Optimizer`] needs to place one object: its geometry, the scene it is
+/// placed into, what it rests on, the room, its correspondences and the loss settings.
+#[derive(Clone, Copy)]
+pub struct ObjectProblem<'a> {
+    /// The object's id.
+    pub id: &'a str,
+    /// Its prepared geometry.
+    pub asset: &'a PreparedAsset,
+    /// The objects placed before it and the architecture.
+    pub obstacles: &'a Obstacles,
+    /// What it rests on.
+    pub support: &'a Support,
+    /// The floor rectangle it must stay inside, if any.
+    pub room: Option<RoomBounds>,
+    /// Its correspondences with the guidance image, if any.
+    pub alignment: Option<&'a PoseAlignment>,
+    /// Loss tolerances and weights.
+    pub settings: &'a LossSettings,
+}
+
+impl ObjectProblem<'_> {
+    /// The allowed scale interval.
+    pub fn scale_range(&self) -> [f64; 2] {
+        self.asset.scale_range()
+    }
+
+    /// The world box of the object at `pose`.
+    pub fn world_box(&self, pose: &Pose) -> Aabb {
+        self.asset.bounds().transformed(pose)
+    }
+
+    /// The object's centroid in world coordinates.
+    pub fn world_centroid(&self, pose: &Pose) -> Point3<f64> {
+        world_point(pose, &self.asset.centroid())
+    }
+
+    /// The surface points closer than the collision margin to an obstacle, clustered.
+    pub fn collision(&self, pose: &Pose) -> CollisionState {
+        let margin = self.settings.collision_margin;
+        let mut contacts = Vec::new();
+        // Only obstacles near the object's box can matter.
+        let region = self.world_box(pose);
+        let near = self.obstacles.near_box(&region, margin);
+        if near.is_empty() {
+            return CollisionState::default();
+        }
+        for (sample, local) in self.asset.surface_points().iter().enumerate() {
+            let world = world_point(pose, local);
+            let mut best: Option<(usize, f64)> = None;
+            for &index in &near {
+                let b = self.obstacles.bounds(index);
+                let outside = crate::obstacles::box_distance(b, &world);
+                if outside >= margin {
+                    continue;
+                }
+                let d = self.obstacles.distance_to(index, &world);
+                if d < margin && best.is_none_or(|(_, bd)| d < bd) {
+                    best = Some((index, d));
+                }
+            }
+            if let Some((obstacle, distance)) = best {
+                contacts.push(Contact {
+                    sample,
+                    world,
+                    distance,
+                    violation: margin - distance,
+                    obstacle,
+                });
+            }
+        }
+        let clusters = self
+            .asset
+            .cluster(&contacts, self.settings.cluster_link_spacings);
+        CollisionState { contacts, clusters }
+    }
+
+    /// The outward unit normal of the obstacle at a contact (the direction that increases the
+    /// contact's distance fastest).
+    pub fn obstacle_normal(&self, contact: &Contact) -> Vector3<f64> {
+        self.obstacles.gradient_of(contact.obstacle, &contact.world)
+    }
+
+    /// The stability residuals `d_i − clearance` of the bottom points, with the vertical
+    /// derivative of each `d_i` (1 for a surface, the parent's gradient's y for a parent's
+    /// geometry). Empty for a free object.
+    pub fn stability_residuals(&self, pose: &Pose) -> Vec<(f64, f64)> {
+        let clearance = self.settings.support_clearance;
+        match self.support {
+            Support::Free => Vec::new(),
+            Support::Surface(plane) => self
+                .asset
+                .bottom_points()
+                .iter()
+                .map(|p| (world_point(pose, p).y - plane.height - clearance, 1.0))
+                .collect(),
+            Support::ParentGeometry { parent } => {
+                let Some(index) = self.obstacles.index_of(parent) else {
+                    return Vec::new();
+                };
+                self.asset
+                    .bottom_points()
+                    .iter()
+                    .map(|p| {
+                        let w = world_point(pose, p);
+                        let d = self.obstacles.distance_to(index, &w);
+                        let g = self.obstacles.gradient_of(index, &w);
+                        (d - clearance, g.y)
+                    })
+                    .collect()
+            }
+        }
+    }
+
+    /// The loss terms at `pose` and the paper's descent direction for `stage`: the gradient of
+    /// the weighted total, where the collision targets `T + u·|d|` and `g(|d|, u)·S` are held
+    /// fixed (as in an autodiff graph that detaches them).
+    pub fn losses_and_gradient(&self, pose: &Pose, stage: Stage) -> (Losses, PoseVector) {
+        let s = self.settings;
+        let mut losses = Losses::default();
+        let mut grad = PoseVector::zeros();
+        match stage {
+            Stage::Alignment => {
+                if let Some(align) = self.alignment {
+                    let (l, g) = align.loss_and_gradient(pose);
+                    losses.pose = l;
+                    grad += g * s.weight_pose;
+                }
+            }
+            Stage::Physics => {
+                let state = self.collision(pose);
+                if !state.is_free() {
+                    let centroid = self.world_centroid(pose);
+                    let n = state.contacts.len() as f64;
+                    let mut push = Vector3::zeros();
+                    for c in &state.contacts {
+                        let u = centroid - c.world;
+                        let dir = if u.norm() > 1e-9 { u.normalize() } else { Vector3::y() };
+                        push += dir * c.violation;
+                        losses.translation += c.violation * c.violation / n;
+                    }
+                    // ∂/∂T Σ‖(T + u|d|) − T‖² with the target detached: −2 Σ u|d| (mean).
+                    let g = push * (-2.0 / n) * s.weight_translation;
+                    grad[TX] += g.x;
+                    grad[TY] += g.y;
+                    grad[TZ] += g.z;
+                    if state.clusters.len() > 1 {
+                        let mut pull = 0.0;
+                        for c in &state.contacts {
+                            let arm = (centroid - c.world).norm().max(1e-6);
+                            let target = pose.scale * ((arm - c.violation) / arm).max(0.0);
+                            losses.scale += (target - pose.scale).powi(2) / n;
+                            pull += target - pose.scale;
+                        }
+                        grad[SCALE] += -2.0 * pull / n * s.weight_scale;
+                    }
+                }
+                let residuals = self.stability_residuals(pose);
+                if !residuals.is_empty() {
+                    let sigma2 = s.stability_length * s.stability_length;
+                    let n = residuals.len() as f64;
+                    let mut dy = 0.0;
+                    for (r, dr_dy) in &residuals {
+                        let e = (-(r * r) / sigma2).exp();
+                        losses.stability += (1.0 - e) / n;
+                        dy += 2.0 * r / sigma2 * e * dr_dy / n;
+                    }
+                    // Gravity acts vertically: the stability term moves the object up or down.
+                    grad[TY] += dy * s.weight_stability;
+                }
+            }
+        }
+        (losses, grad)
+    }
+
+    /// The loss terms at `pose`.
+    pub fn losses(&self, pose: &Pose, stage: Stage) -> Losses {
+        self.losses_and_gradient(pose, stage).0
+    }
+
+    /// The nearest feasible pose: scale inside its range (and below a compartment's clearance),
+    /// the footprint centre over the support region, and the object's box inside the room.
+    pub fn project(&self, pose: &Pose) -> Pose {
+        let mut p = *pose;
+        let [lo, hi] = self.scale_range();
+        let mut hi = hi;
+        if let Some(limit) = self.clearance_scale_limit() {
+            hi = hi.min(limit).max(lo);
+        }
+        p.scale = p.scale.clamp(lo, hi);
+        if !p.yaw.is_finite() {
+            p.yaw = pose.yaw;
+        }
+        if let Some(plane) = self.support.plane() {
+            let c = plane.clamp(p.translation.x, p.translation.z);
+            p.translation.x = c.x;
+            p.translation.z = c.y;
+        }
+        if let Some(room) = self.room {
+            p.translation += room.shift_inside(&self.world_box(&p));
+        }
+        p
+    }
+
+    /// The largest scale at which the object fits under its support's clearance, if the
+    /// support is enclosed above.
+    pub fn clearance_scale_limit(&self) -> Option<f64> {
+        let plane = self.support.plane()?;
+        let clearance = plane.clearance?;
+        let height = self.asset.bounds().max.y.max(1e-6);
+        Some(
+            (clearance - self.settings.support_clearance - 2.0 * self.settings.collision_margin)
+                / height,
+        )
+    }
+
+    /// The translation height that puts the object's bottom at its support plus clearance
+    /// (only for surface supports).
+    pub fn resting_height(&self, pose: &Pose) -> Option<f64> {
+        let plane = self.support.plane()?;
+        Some(
+            plane.height + self.settings.support_clearance
+                - pose.scale * self.asset.bounds().min.y,
+        )
+    }
+}

@@ -1,0 +1,134 @@
+//! The obstacles an object is optimized against: a [`SceneSdf`] of the objects already placed
+//! and of the architecture, with stable indices and world boxes so that the inner loop only
+//! queries the few fields near the object.
+
+use std::sync::Arc;
+
+use nalgebra::{Point3, Vector3};
+use scenethesis_scene_graph::{Aabb, Pose};
+use scenethesis_sdf::{SceneSdf, SignedDistance};
+
+use crate::params::world_point;
+
+/// A [`SceneSdf`] (negative inside) plus, per field, a stable index, its world box and whether
+/// it is architecture.
+#[derive(Default)]
+pub struct Obstacles {
+    scene: SceneSdf,
+    ids: Vec<String>,
+    bounds: Vec<Aabb>,
+    architecture: Vec<bool>,
+}
+
+impl Obstacles {
+    /// An empty set.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds (or re-places) the field `id` with `pose`. `architecture` marks floors and walls.
+    pub fn insert(
+        &mut self,
+        id: &str,
+        field: Arc<dyn SignedDistance>,
+        pose: Pose,
+        architecture: bool,
+    ) {
+        self.scene.insert(id, field, pose);
+        let (lo, hi) = self
+            .scene
+            .world_bounds(id)
+            .unwrap_or((Point3::origin(), Point3::origin()));
+        let bounds = Aabb::new(lo.cast::<f64>(), hi.cast::<f64>());
+        match self.index_of(id) {
+            Some(i) => {
+                self.bounds[i] = bounds;
+                self.architecture[i] = architecture;
+            }
+            None => {
+                self.ids.push(id.to_owned());
+                self.bounds.push(bounds);
+                self.architecture.push(architecture);
+            }
+        }
+    }
+
+    /// The underlying scene field.
+    pub fn scene(&self) -> &SceneSdf {
+        &self.scene
+    }
+
+    /// Number of fields.
+    pub fn len(&self) -> usize {
+        self.ids.len()
+    }
+
+    /// Whether there are no fields.
+    pub fn is_empty(&self) -> bool {
+        self.ids.is_empty()
+    }
+
+    /// The id of field `index`.
+    pub fn id(&self, index: usize) -> &str {
+        &self.ids[index]
+    }
+
+    /// Whether field `index` is architecture (floor or wall).
+    pub fn is_architecture(&self, index: usize) -> bool {
+        self.architecture[index]
+    }
+
+    /// The index of the field `id`.
+    pub fn index_of(&self, id: &str) -> Option<usize> {
+        self.ids.iter().position(|f| f == id)
+    }
+
+    /// The world bounding box of field `index`.
+    pub fn bounds(&self, index: usize) -> &Aabb {
+        &self.bounds[index]
+    }
+
+    /// The signed distance from world point `p` to field `index`.
+    pub fn distance_to(&self, index: usize, p: &Point3<f64>) -> f64 {
+        self.scene
+            .distance_to(&self.ids[index], &p.cast::<f32>())
+            .map_or(f64::INFINITY, f64::from)
+    }
+
+    /// The outward unit gradient of field `index` at world point `p`.
+    pub fn gradient_of(&self, index: usize, p: &Point3<f64>) -> Vector3<f64> {
+        self.scene
+            .distance_and_gradient_to(&self.ids[index], &p.cast::<f32>())
+            .and_then(|(_, g)| g.cast::<f64>().try_normalize(1e-12))
+            .unwrap_or_else(Vector3::y)
+    }
+
+    /// Indices of the fields whose boxes come within `margin` of `region`.
+    pub fn near_box(&self, region: &Aabb, margin: f64) -> Vec<usize> {
+        (0..self.ids.len())
+            .filter(|&i| box_gap(&self.bounds[i], region) < margin)
+            .collect()
+    }
+}
+
+/// The largest per-axis separation between two boxes (negative when they overlap).
+pub fn box_gap(a: &Aabb, b: &Aabb) -> f64 {
+    (0..3)
+        .map(|i| (a.min[i] - b.max[i]).max(b.min[i] - a.max[i]))
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// Euclidean distance from `p` to a box (0 inside).
+pub fn box_distance(b: &Aabb, p: &Point3<f64>) -> f64 {
+    let mut s = 0.0;
+    for i in 0..3 {
+        let d = (b.min[i] - p[i]).max(p[i] - b.max[i]).max(0.0);
+        s += d * d;
+    }
+    s.sqrt()
+}
+
+/// The world points of `local` points under `pose`.
+pub fn posed_points(pose: &Pose, local: &[Point3<f64>]) -> Vec<Point3<f64>> {
+    local.iter().map(|p| world_point(pose, p)).collect()
+}

@@ -1,0 +1,238 @@
+//! Per-asset preparation, done once per asset and shared by every object that uses it: the
+//! exact and baked signed distance fields, seeded surface and bottom samples, the centroid, and
+//! the metadata the losses need (support surfaces, scale range, placement).
+
+use std::sync::Arc;
+
+use nalgebra::{Point3, Vector3};
+use scenethesis_assets::{Asset, Placement, SupportSurface};
+use scenethesis_scene_graph::{Aabb, Mesh};
+use scenethesis_sdf::{sampling, GridSdf, MeshSdf, SignedDistance};
+use serde::{Deserialize, Serialize};
+
+use crate::objective::Contact;
+use crate::PhysicsOptError;
+
+/// How densely to sample an asset.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PrepareSettings {
+    /// Surface samples used by the collision losses (the paper uses n = 400).
+    pub surface_samples: usize,
+    /// Samples on the bottom face of the bounding box used by the stability loss.
+    pub bottom_samples: usize,
+    /// Surface samples (besides every vertex) used to check the post-conditions.
+    pub check_samples: usize,
+    /// Largest cell edge of the baked grid in metres (`None`: the grid's default, at most
+    /// 2 cm and at most 1/64 of the longest side).
+    pub grid_cell: Option<f32>,
+    /// Seed of all sampling.
+    pub seed: u64,
+}
+
+impl Default for PrepareSettings {
+    fn default() -> Self {
+        Self {
+            surface_samples: 400,
+            bottom_samples: 32,
+            check_samples: 2000,
+            grid_cell: None,
+            seed: 0x5ce7_e515,
+        }
+    }
+}
+
+/// An asset ready for optimization.
+pub struct PreparedAsset {
+    exact: Arc<MeshSdf>,
+    grid: Arc<GridSdf>,
+    surface_points: Vec<Point3<f64>>,
+    bottom_points: Vec<Point3<f64>>,
+    check_points: Vec<Point3<f64>>,
+    centroid: Point3<f64>,
+    bounds: Aabb,
+    sample_spacing: f64,
+    support_surfaces: Vec<SupportSurface>,
+    scale_range: [f64; 2],
+    placement: Placement,
+}
+
+impl std::fmt::Debug for PreparedAsset {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("PreparedAsset")
+            .field("bounds", &self.bounds)
+            .field("surface_points", &self.surface_points.len())
+            .field("scale_range", &self.scale_range)
+            .field("placement", &self.placement)
+            .finish_non_exhaustive()
+    }
+}
+
+impl PreparedAsset {
+    /// Prepares a mesh (asset frame) with its support surfaces, allowed scale range and
+    /// placement. `name` only labels errors.
+    pub fn new(
+        name: &str,
+        mesh: &Mesh,
+        support_surfaces: Vec<SupportSurface>,
+        scale_range: [f64; 2],
+        placement: Placement,
+        settings: &PrepareSettings,
+    ) -> Result<Self, PhysicsOptError> {
+        let bounds = mesh.bounds().ok_or_else(|| PhysicsOptError::EmptyMesh {
+            asset: name.to_owned(),
+        })?;
+        if !(scale_range[0] > 0.0 && scale_range[0] <= scale_range[1]) {
+            return Err(PhysicsOptError::InvalidScaleRange {
+                asset: name.to_owned(),
+                range: scale_range,
+            });
+        }
+        let exact = MeshSdf::from_mesh(mesh).map_err(|source| PhysicsOptError::Sdf {
+            asset: name.to_owned(),
+            source,
+        })?;
+        let grid = GridSdf::bake(&exact, settings.grid_cell);
+        let to64 = |p: &Point3<f32>| p.cast::<f64>();
+        let surface: Vec<Point3<f64>> =
+            sampling::surface_points(mesh, settings.surface_samples, settings.seed)
+                .iter()
+                .map(to64)
+                .collect();
+        if surface.is_empty() {
+            return Err(PhysicsOptError::EmptyMesh {
+                asset: name.to_owned(),
+            });
+        }
+        let (lo, hi) = (bounds.min.cast::<f32>(), bounds.max.cast::<f32>());
+        let bottom = sampling::bottom_points(
+            lo,
+            hi,
+            0.0,
+            settings.bottom_samples.max(1),
+            settings.seed ^ 0xb0,
+        )
+        .iter()
+        .map(to64)
+        .collect();
+        let mut check: Vec<Point3<f64>> =
+            sampling::surface_points(mesh, settings.check_samples, settings.seed ^ 0xc4)
+                .iter()
+                .map(to64)
+                .collect();
+        for part in &mesh.parts {
+            check.extend(part.positions.iter().map(|p| Point3::from(*p).cast::<f64>()));
+        }
+        let centroid = Point3::from(
+            surface
+                .iter()
+                .fold(Vector3::zeros(), |acc, p| acc + p.coords)
+                / surface.len() as f64,
+        );
+        let sample_spacing = (surface_area(mesh) / surface.len() as f64).sqrt();
+        Ok(Self {
+            exact: Arc::new(exact),
+            grid: Arc::new(grid),
+            surface_points: surface,
+            bottom_points: bottom,
+            check_points: check,
+            centroid,
+            bounds,
+            sample_spacing,
+            support_surfaces,
+            scale_range,
+            placement,
+        })
+    }
+
+    /// Prepares a library asset with its own metadata.
+    pub fn from_asset(asset: &Asset, settings: &PrepareSettings) -> Result<Self, PhysicsOptError> {
+        let [lo, hi] = asset.info.scale_range;
+        Self::new(
+            &asset.info.source.to_string(),
+            &asset.mesh,
+            asset.info.support_surfaces.clone(),
+            [lo as f64, hi as f64],
+            asset.info.placement,
+            settings,
+        )
+    }
+
+    /// The exact field (for post-condition checks).
+    pub fn exact_field(&self) -> Arc<dyn SignedDistance> {
+        self.exact.clone()
+    }
+
+    /// The baked grid field (for the inner loop).
+    pub fn grid_field(&self) -> Arc<dyn SignedDistance> {
+        self.grid.clone()
+    }
+
+    /// Surface samples for the collision losses, asset frame.
+    pub fn surface_points(&self) -> &[Point3<f64>] {
+        &self.surface_points
+    }
+
+    /// Samples on the bottom face of the bounding box, asset frame.
+    pub fn bottom_points(&self) -> &[Point3<f64>] {
+        &self.bottom_points
+    }
+
+    /// Dense surface samples plus every vertex, asset frame, for the post-conditions.
+    pub fn check_points(&self) -> &[Point3<f64>] {
+        &self.check_points
+    }
+
+    /// The centroid of the surface samples, asset frame.
+    pub fn centroid(&self) -> Point3<f64> {
+        self.centroid
+    }
+
+    /// The mesh's bounding box, asset frame.
+    pub fn bounds(&self) -> &Aabb {
+        &self.bounds
+    }
+
+    /// The mean spacing of the surface samples, metres (at scale 1).
+    pub fn sample_spacing(&self) -> f64 {
+        self.sample_spacing
+    }
+
+    /// The support surfaces (asset frame).
+    pub fn support_surfaces(&self) -> &[SupportSurface] {
+        &self.support_surfaces
+    }
+
+    /// The allowed uniform scale range.
+    pub fn scale_range(&self) -> [f64; 2] {
+        self.scale_range
+    }
+
+    /// Where the asset is normally placed.
+    pub fn placement(&self) -> Placement {
+        self.placement
+    }
+
+    /// Groups contacts into clusters of surface samples closer than `link_spacings` mean
+    /// spacings to each other (the paper's `N_cluster`: separate penetration regions).
+    pub fn cluster(&self, contacts: &[Contact], link_spacings: f64) -> Vec<Vec<usize>> {
+        let points: Vec<Point3<f32>> = contacts
+            .iter()
+            .map(|c| self.surface_points[c.sample].cast::<f32>())
+            .collect();
+        let distances = vec![-1.0f32; points.len()];
+        sampling::negative_clusters(
+            &points,
+            &distances,
+            (self.sample_spacing * link_spacings) as f32,
+        )
+    }
+}
+
+/// Total triangle area of a mesh (overlapping parts counted once each).
+fn surface_area(mesh: &Mesh) -> f64 {
+    mesh.parts
+        .iter()
+        .flat_map(|part| (0..part.triangles.len()).map(move |t| part.triangle(t)))
+        .map(|[a, b, c]| ((b - a).cross(&(c - a))).norm() as f64 / 2.0)
+        .sum()
+}
