@@ -1,0 +1,242 @@
+//! The static architecture as solid boxes: a floor slab under y = 0 and wall boxes split around
+//! their door openings. Every exporter builds floor and walls from these pieces so that the
+//! formats agree.
+
+use nalgebra::{Point3, Rotation3, Vector3};
+use scenethesis_scene_graph::{Architecture, Material, Mesh, MeshPart};
+
+/// Thickness of the floor slab below y = 0, in metres.
+pub const FLOOR_THICKNESS: f64 = 0.05;
+
+/// What a piece of architecture is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum PieceKind {
+    /// The floor slab (its top face is the plane y = 0).
+    Floor,
+    /// A wall, possibly split into several boxes around door openings.
+    Wall,
+}
+
+/// An oriented box in world coordinates: centre, half extents along its own axes, and a yaw
+/// about +Y (its local +X runs along a wall's centre line, local +Z across the thickness).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OrientedBox {
+    /// Centre of the box in world coordinates.
+    pub center: Point3<f64>,
+    /// Half of the box's size along its local x, y and z axes.
+    pub half_extents: Vector3<f64>,
+    /// Rotation about +Y in radians (the scene's yaw convention: +Z turns toward +X).
+    pub yaw: f64,
+}
+
+impl OrientedBox {
+    /// The box's rotation.
+    pub fn rotation(&self) -> Rotation3<f64> {
+        Rotation3::from_axis_angle(&Vector3::y_axis(), self.yaw)
+    }
+
+    /// The box as a closed, outward-oriented mesh part in world coordinates.
+    pub fn to_mesh_part(&self, name: &str, material: usize) -> MeshPart {
+        let rotation = self.rotation();
+        let h = self.half_extents;
+        let positions = (0..8)
+            .map(|i| {
+                let local = Vector3::new(
+                    if i & 1 == 0 { -h.x } else { h.x },
+                    if i & 2 == 0 { -h.y } else { h.y },
+                    if i & 4 == 0 { -h.z } else { h.z },
+                );
+                let p = self.center + rotation * local;
+                [p.x as f32, p.y as f32, p.z as f32]
+            })
+            .collect();
+        // Same corner numbering as `scenethesis_assets::primitives::cuboid`.
+        let triangles = vec![
+            [0, 2, 1],
+            [1, 2, 3],
+            [4, 5, 6],
+            [5, 7, 6],
+            [0, 1, 4],
+            [1, 5, 4],
+            [2, 6, 3],
+            [3, 6, 7],
+            [0, 4, 2],
+            [2, 4, 6],
+            [1, 3, 5],
+            [3, 7, 5],
+        ];
+        MeshPart {
+            name: name.to_owned(),
+            material,
+            positions,
+            triangles,
+        }
+    }
+}
+
+/// One named piece of architecture (the floor or one wall) made of boxes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Piece {
+    /// The architecture id (`floor`, `wall_0`, …): the node name in every format.
+    pub id: String,
+    /// Floor or wall.
+    pub kind: PieceKind,
+    /// The solid boxes; a wall with a door has a box on each side and a lintel above it.
+    pub boxes: Vec<OrientedBox>,
+}
+
+impl Piece {
+    /// The piece as a mesh in world coordinates, one part per box, with one material.
+    pub fn to_mesh(&self) -> Mesh {
+        let material = match self.kind {
+            PieceKind::Floor => floor_material(),
+            PieceKind::Wall => wall_material(),
+        };
+        let parts = self
+            .boxes
+            .iter()
+            .enumerate()
+            .map(|(i, b)| b.to_mesh_part(&format!("{}_{i}", self.id), 0))
+            .collect();
+        Mesh {
+            parts,
+            materials: vec![material],
+        }
+    }
+}
+
+/// The material of floors.
+pub fn floor_material() -> Material {
+    Material::new("floor", [0.45, 0.36, 0.28], 0.7)
+}
+
+/// The material of walls.
+pub fn wall_material() -> Material {
+    Material::new("wall", [0.82, 0.80, 0.76], 0.9)
+}
+
+/// The architecture as solid pieces: the floor slab first, then each wall in order, cut around
+/// the door openings it holds (a box left and right of each door and a lintel above it when the
+/// door is lower than the wall). Segments shorter than 1 mm are dropped.
+pub fn pieces(architecture: &Architecture) -> Vec<Piece> {
+    let floor = &architecture.floor;
+    let extent = floor.extent();
+    let mut out = vec![Piece {
+        id: floor.id.clone(),
+        kind: PieceKind::Floor,
+        boxes: vec![OrientedBox {
+            center: Point3::new(
+                (floor.min.x + floor.max.x) / 2.0,
+                -FLOOR_THICKNESS / 2.0,
+                (floor.min.y + floor.max.y) / 2.0,
+            ),
+            half_extents: Vector3::new(extent.x / 2.0, FLOOR_THICKNESS / 2.0, extent.y / 2.0),
+            yaw: 0.0,
+        }],
+    }];
+    for wall in &architecture.walls {
+        let length = wall.length();
+        if length <= 0.0 || !length.is_finite() {
+            continue;
+        }
+        let direction = wall.direction();
+        let yaw = (-direction.y).atan2(direction.x);
+        let half_t = wall.thickness / 2.0;
+        // Intervals along the centre line, measured from `start`; the box overhangs each end
+        // by half a thickness so that corners close.
+        let mut doors: Vec<_> = architecture
+            .doors
+            .iter()
+            .filter(|d| d.wall == wall.id)
+            .collect();
+        doors.sort_by(|a, b| a.offset.total_cmp(&b.offset));
+        let mut spans: Vec<(f64, f64, f64, f64)> = Vec::new(); // (from, to, y0, y1)
+        let mut cursor = -half_t;
+        for door in doors {
+            let (a, b) = (
+                door.offset - door.width / 2.0,
+                door.offset + door.width / 2.0,
+            );
+            spans.push((cursor, a, 0.0, wall.height));
+            spans.push((a.max(cursor), b, door.height.min(wall.height), wall.height));
+            cursor = cursor.max(b);
+        }
+        spans.push((cursor, length + half_t, 0.0, wall.height));
+        let boxes = spans
+            .into_iter()
+            .filter(|&(a, b, y0, y1)| b - a > 1e-3 && y1 - y0 > 1e-3)
+            .map(|(a, b, y0, y1)| {
+                let mid = wall.start + direction * ((a + b) / 2.0);
+                OrientedBox {
+                    center: Point3::new(mid.x, (y0 + y1) / 2.0, mid.y),
+                    half_extents: Vector3::new((b - a) / 2.0, (y1 - y0) / 2.0, half_t),
+                    yaw,
+                }
+            })
+            .collect();
+        out.push(Piece {
+            id: wall.id.clone(),
+            kind: PieceKind::Wall,
+            boxes,
+        });
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn room_has_floor_and_four_walls_with_a_door_gap() {
+        let room = Architecture::rectangular_room(6.0, 4.0, 2.8, 0.9);
+        let pieces = pieces(&room);
+        let ids: Vec<_> = pieces.iter().map(|p| p.id.as_str()).collect();
+        assert_eq!(ids, ["floor", "wall_0", "wall_1", "wall_2", "wall_3"]);
+        assert_eq!(pieces[1].boxes.len(), 1);
+        // wall_2 holds the door: left, lintel, right.
+        let door_wall = &pieces[3];
+        assert_eq!(door_wall.boxes.len(), 3);
+        let (door, _) = room.door_position(&room.doors[0]).unwrap();
+        for b in &door_wall.boxes {
+            let part = b.to_mesh_part("b", 0);
+            assert!(part.is_closed_and_oriented());
+            assert!(part.signed_volume() > 0.0);
+            let mesh = Mesh {
+                parts: vec![part],
+                materials: vec![wall_material()],
+            };
+            let bounds = mesh.bounds().unwrap();
+            // Nothing solid in the door opening below the door's height.
+            let in_gap_x = bounds.min.x < door.x + 0.44 && bounds.max.x > door.x - 0.44;
+            if in_gap_x {
+                assert!(
+                    bounds.min.y >= 2.1 - 1e-5,
+                    "box blocks the door: {bounds:?}"
+                );
+            }
+        }
+        // A wall without doors spans its length plus the thickness and sits on the centre line.
+        let w0 = &pieces[1].boxes[0];
+        assert!((w0.half_extents.x * 2.0 - (room.walls[0].length() + 0.1)).abs() < 1e-9);
+        let part = w0.to_mesh_part("w", 0);
+        let b = Mesh {
+            parts: vec![part],
+            materials: vec![wall_material()],
+        }
+        .bounds()
+        .unwrap();
+        let expected = room.walls[0].aabb();
+        assert!((b.min - expected.min).norm() < 1e-5 && (b.max - expected.max).norm() < 1e-5);
+    }
+
+    #[test]
+    fn floor_slab_top_is_at_zero() {
+        let room = Architecture::open_ground(10.0, 8.0);
+        let pieces = pieces(&room);
+        assert_eq!(pieces.len(), 1);
+        let b = pieces[0].to_mesh().bounds().unwrap();
+        assert!(b.max.y.abs() < 1e-9 && (b.min.y + FLOOR_THICKNESS).abs() < 1e-6);
+        assert!((b.max.x - 5.0).abs() < 1e-6 && (b.min.z + 4.0).abs() < 1e-6);
+    }
+}

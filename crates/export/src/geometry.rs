@@ -1,0 +1,304 @@
+//! Geometry shared by the writers: vertex normals with a crease angle, mass properties of
+//! closed meshes, frame conversion to Z-up and identifier sanitising.
+
+use std::collections::{BTreeSet, HashMap};
+
+use nalgebra::{Matrix3, UnitQuaternion, Vector3};
+use scenethesis_scene_graph::{Mesh, MeshPart};
+
+/// Faces meeting at less than this angle share smooth vertex normals (a cylinder's side);
+/// sharper edges (a box's corners) keep one normal per face.
+const CREASE_ANGLE_DEG: f32 = 40.0;
+
+/// A part ready for a renderer: vertices split wherever faces meet at a crease, with one
+/// normal per vertex.
+pub(crate) struct ShadedPart {
+    pub positions: Vec<[f32; 3]>,
+    pub normals: Vec<[f32; 3]>,
+    pub indices: Vec<u32>,
+}
+
+pub(crate) fn shade(part: &MeshPart) -> ShadedPart {
+    let face_normals: Vec<Vector3<f32>> = part
+        .triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = part.triangle_points(t);
+            (b - a).cross(&(c - a))
+        })
+        .collect();
+    let mut faces_at: Vec<Vec<usize>> = vec![Vec::new(); part.positions.len()];
+    for (f, t) in part.triangles.iter().enumerate() {
+        for &i in t {
+            faces_at[i as usize].push(f);
+        }
+    }
+    let cos_crease = CREASE_ANGLE_DEG.to_radians().cos();
+    let unit = |v: &Vector3<f32>| v.try_normalize(1e-20).unwrap_or_else(Vector3::zeros);
+    let mut out = ShadedPart {
+        positions: Vec::with_capacity(part.positions.len()),
+        normals: Vec::with_capacity(part.positions.len()),
+        indices: Vec::with_capacity(part.triangles.len() * 3),
+    };
+    // A split vertex is identified by its source vertex and the set of faces it averages;
+    // output order follows the triangles, so the map's iteration order never matters.
+    let mut seen: HashMap<(u32, Vec<usize>), u32> = HashMap::new();
+    for (f, t) in part.triangles.iter().enumerate() {
+        let nf = unit(&face_normals[f]);
+        for &i in t {
+            let group: Vec<usize> = faces_at[i as usize]
+                .iter()
+                .copied()
+                .filter(|&g| unit(&face_normals[g]).dot(&nf) >= cos_crease)
+                .collect();
+            let index = *seen.entry((i, group.clone())).or_insert_with(|| {
+                // Area-weighted average (the raw cross products carry twice the area).
+                let sum: Vector3<f32> = group.iter().map(|&g| face_normals[g]).sum();
+                let n = sum.try_normalize(1e-20).unwrap_or(nf);
+                out.positions.push(part.positions[i as usize]);
+                out.normals.push([n.x, n.y, n.z]);
+                out.positions.len() as u32 - 1
+            });
+            out.indices.push(index);
+        }
+    }
+    out
+}
+
+trait TrianglePoints {
+    fn triangle_points(&self, t: &[u32; 3]) -> [Vector3<f32>; 3];
+}
+
+impl TrianglePoints for MeshPart {
+    fn triangle_points(&self, t: &[u32; 3]) -> [Vector3<f32>; 3] {
+        t.map(|i| Vector3::from(self.positions[i as usize]))
+    }
+}
+
+/// Mass, centre of mass and inertia of a solid of uniform density bounded by closed,
+/// outward-oriented parts (summed part by part, so overlapping parts count twice).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MassProperties {
+    /// Mass in kilograms.
+    pub mass: f64,
+    /// Centre of mass in the frame of the vertices.
+    pub center_of_mass: Vector3<f64>,
+    /// Inertia tensor about the centre of mass, axes of the frame of the vertices, kg·m².
+    pub inertia: Matrix3<f64>,
+}
+
+impl MassProperties {
+    /// Mass properties of `mesh` scaled uniformly by `scale`, at `density` kg/m³. Parts with a
+    /// non-positive volume (open or inward-facing) are skipped; `None` when nothing remains.
+    pub fn of_mesh(mesh: &Mesh, scale: f64, density: f64) -> Option<MassProperties> {
+        // Integrate over signed tetrahedra (origin, a, b, c) with the divergence theorem.
+        let mut volume = 0.0;
+        let mut first = Vector3::zeros();
+        let mut second = Matrix3::zeros();
+        for part in &mesh.parts {
+            let (mut v, mut m1, mut m2) = (0.0, Vector3::zeros(), Matrix3::zeros());
+            for t in &part.triangles {
+                let [a, b, c] =
+                    t.map(|i| Vector3::from(part.positions[i as usize]).cast::<f64>() * scale);
+                let tv = a.dot(&b.cross(&c)) / 6.0;
+                let s = a + b + c;
+                v += tv;
+                m1 += tv * s / 4.0;
+                m2 += tv / 20.0
+                    * (a * a.transpose()
+                        + b * b.transpose()
+                        + c * c.transpose()
+                        + s * s.transpose());
+            }
+            if v > 0.0 {
+                volume += v;
+                first += m1;
+                second += m2;
+            }
+        }
+        if volume <= 0.0 {
+            return None;
+        }
+        let mass = density * volume;
+        let com = first / volume;
+        let covariance = density * second - mass * com * com.transpose();
+        let inertia = Matrix3::identity() * covariance.trace() - covariance;
+        Some(MassProperties {
+            mass,
+            center_of_mass: com,
+            inertia,
+        })
+    }
+}
+
+/// The rotation taking the scene's +Y-up frame to a +Z-up frame (MuJoCo, ROS): +90° about +X,
+/// so `(x, y, z)` becomes `(x, −z, y)`.
+pub(crate) fn y_up_to_z_up() -> UnitQuaternion<f64> {
+    UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::FRAC_PI_2)
+}
+
+/// A +Y-up point or vector in +Z-up coordinates.
+pub(crate) fn to_z_up(v: &Vector3<f64>) -> Vector3<f64> {
+    Vector3::new(v.x, -v.z, v.y)
+}
+
+/// Names made safe for formats with identifier rules (letters, digits, `_` and, when
+/// `allow_dash`, `-`; not starting with a digit), kept unique by numeric suffixes, in the order
+/// the ids are given.
+pub(crate) struct Identifiers {
+    used: BTreeSet<String>,
+    allow_dash: bool,
+}
+
+impl Identifiers {
+    pub fn new(allow_dash: bool) -> Self {
+        Self {
+            used: BTreeSet::new(),
+            allow_dash,
+        }
+    }
+
+    /// Reserves a name without sanitising it.
+    pub fn reserve(&mut self, name: &str) {
+        self.used.insert(name.to_owned());
+    }
+
+    /// A fresh identifier derived from `raw`.
+    pub fn make(&mut self, raw: &str) -> String {
+        let mut base: String = raw
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '_' || (self.allow_dash && c == '-') {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        if base.is_empty() || base.starts_with(|c: char| c.is_ascii_digit()) {
+            base.insert(0, '_');
+        }
+        let mut name = base.clone();
+        let mut k = 1;
+        while self.used.contains(&name) {
+            name = format!("{base}_{k}");
+            k += 1;
+        }
+        self.used.insert(name.clone());
+        name
+    }
+}
+
+/// Formats a float for text formats: shortest round-trip representation, `-0` as `0`.
+pub(crate) fn num(v: f64) -> String {
+    if v == 0.0 {
+        "0".to_owned()
+    } else {
+        format!("{v}")
+    }
+}
+
+/// Formats an `f32` for text formats, as [`num`].
+pub(crate) fn num32(v: f32) -> String {
+    if v == 0.0 {
+        "0".to_owned()
+    } else {
+        format!("{v}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use scenethesis_scene_graph::Material;
+
+    fn cube(size: f32) -> MeshPart {
+        let positions = (0..8)
+            .map(|i| {
+                [
+                    (i & 1) as f32 * size,
+                    ((i >> 1) & 1) as f32 * size,
+                    ((i >> 2) & 1) as f32 * size,
+                ]
+            })
+            .collect();
+        let triangles = vec![
+            [0, 2, 1],
+            [1, 2, 3],
+            [4, 5, 6],
+            [5, 7, 6],
+            [0, 1, 4],
+            [1, 5, 4],
+            [2, 6, 3],
+            [3, 6, 7],
+            [0, 4, 2],
+            [2, 4, 6],
+            [1, 3, 5],
+            [3, 7, 5],
+        ];
+        MeshPart {
+            name: "cube".into(),
+            material: 0,
+            positions,
+            triangles,
+        }
+    }
+
+    #[test]
+    fn cube_gets_flat_normals_pointing_out() {
+        let shaded = shade(&cube(1.0));
+        // 6 faces × 4 corners: every corner is a crease.
+        assert_eq!(shaded.positions.len(), 24);
+        assert_eq!(shaded.indices.len(), 36);
+        for tri in shaded.indices.chunks(3) {
+            let p: Vec<Vector3<f32>> = tri
+                .iter()
+                .map(|&i| Vector3::from(shaded.positions[i as usize]))
+                .collect();
+            let centre = (p[0] + p[1] + p[2]) / 3.0 - Vector3::repeat(0.5);
+            for &i in tri {
+                let n = Vector3::from(shaded.normals[i as usize]);
+                assert!((n.norm() - 1.0).abs() < 1e-5);
+                assert!(n.dot(&centre) > 0.0, "normal points inward");
+            }
+        }
+    }
+
+    #[test]
+    fn cube_mass_properties_match_closed_form() {
+        let mesh = Mesh {
+            parts: vec![cube(1.0)],
+            materials: vec![Material::new("m", [1.0; 3], 0.5)],
+        };
+        let props = MassProperties::of_mesh(&mesh, 2.0, 1000.0).unwrap();
+        assert!((props.mass - 8000.0).abs() < 1e-6);
+        assert!((props.center_of_mass - Vector3::repeat(1.0)).norm() < 1e-9);
+        // Solid cube of side 2: I = m (s² + s²) / 12 on the diagonal.
+        let expected = 8000.0 * 8.0 / 12.0;
+        for i in 0..3 {
+            assert!((props.inertia[(i, i)] - expected).abs() < 1e-6);
+            for j in 0..3 {
+                if i != j {
+                    assert!(props.inertia[(i, j)].abs() < 1e-6);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn identifiers_are_valid_and_unique() {
+        let mut ids = Identifiers::new(false);
+        assert_eq!(ids.make("chair_0"), "chair_0");
+        assert_eq!(ids.make("chair 0"), "chair_0_1");
+        assert_eq!(ids.make("3d-print"), "_3d_print");
+        assert_eq!(ids.make(""), "_");
+        let mut dashed = Identifiers::new(true);
+        assert_eq!(dashed.make("a-b"), "a-b");
+    }
+
+    #[test]
+    fn z_up_conversion_matches_the_rotation() {
+        let v = Vector3::new(0.3, 1.2, -0.7);
+        assert!((y_up_to_z_up() * v - to_z_up(&v)).norm() < 1e-12);
+    }
+}

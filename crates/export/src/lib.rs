@@ -1,0 +1,285 @@
+//! Scene exporters for the tools that consume scenethesis scenes.
+//!
+//! An [`ExportScene`] pairs a [`Scene`] with the mesh of every object (in the asset's own frame;
+//! the exporters apply the pose). From it this crate writes:
+//!
+//! - **glTF 2.0 binary** ([`glb::to_glb`]): +Y up, metres, one node per object named by its id,
+//!   one mesh per object with one primitive per part, PBR metallic-roughness materials, and the
+//!   architecture (`floor`, `wall_0`, …, walls split around their door openings) as box nodes.
+//! - **OpenUSD text** ([`usd::to_usda`]): `upAxis = "Y"`, `metersPerUnit = 1`, an `Xform` per
+//!   object with translate / rotateY / scale ops, `Mesh` prims per part bound to
+//!   `UsdPreviewSurface` materials.
+//! - **MuJoCo MJCF** ([`mjcf::to_mjcf`]): Z-up as MuJoCo expects, one body per object with a
+//!   free joint (objects hanging on walls are welded to the world), one convex mesh geom per
+//!   part, density 1000 kg/m³, friction 0.5, a floor plane and static wall boxes.
+//! - **URDF** ([`urdf::to_urdf`]): Z-up as ROS expects, a `world` root link, a link per object
+//!   with visual and collision meshes per part (OBJ files beside the URDF), mass and inertia
+//!   from the closed part meshes, floating or fixed joints.
+//!
+//! Every writer is deterministic: the same input gives byte-identical output.
+
+#![warn(missing_docs)]
+
+pub mod architecture;
+mod geometry;
+pub mod glb;
+pub mod mjcf;
+pub mod urdf;
+pub mod usd;
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt;
+use std::path::{Path, PathBuf};
+use std::str::FromStr;
+
+use scenethesis_scene_graph::{write_file_atomic, Mesh, RelationKind, Scene, SceneObject};
+
+pub use geometry::MassProperties;
+
+/// Density given to every object in the physics formats, kg/m³ (water; solid wood is 500–900).
+pub const DENSITY: f64 = 1000.0;
+/// Sliding friction coefficient of every object in the physics formats.
+pub const FRICTION: f64 = 0.5;
+
+/// Why a scene could not be exported.
+#[derive(Debug, thiserror::Error)]
+pub enum ExportError {
+    /// An object of the scene has no mesh in the mesh map.
+    #[error("object `{id}` has no mesh: every object of the scene needs one to be exported")]
+    MissingMesh {
+        /// The object's id.
+        id: String,
+    },
+    /// An object's mesh cannot be written.
+    #[error("mesh of object `{id}` is unusable: {reason}")]
+    InvalidMesh {
+        /// The object's id.
+        id: String,
+        /// What is wrong, e.g. an index out of range.
+        reason: String,
+    },
+    /// An object's pose is not finite or its scale is not positive.
+    #[error("object `{id}` has an invalid pose (non-finite numbers or scale ≤ 0)")]
+    InvalidPose {
+        /// The object's id.
+        id: String,
+    },
+    /// A file could not be written.
+    #[error("cannot write {path}")]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// The OS error.
+        #[source]
+        source: std::io::Error,
+    },
+}
+
+/// How an object behaves in the physics formats (MJCF, URDF).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Dynamics {
+    /// A free rigid body under gravity (six degrees of freedom).
+    Free,
+    /// Welded to the world: wall-hung and ceiling-hung objects.
+    Fixed,
+}
+
+/// A scene ready to export: the scene graph plus the mesh of every object.
+#[derive(Debug, Clone)]
+pub struct ExportScene<'a> {
+    scene: &'a Scene,
+    meshes: &'a BTreeMap<String, Mesh>,
+    fixed: BTreeSet<String>,
+}
+
+impl<'a> ExportScene<'a> {
+    /// Pairs a scene with its meshes (keyed by object id, in each asset's own frame) and checks
+    /// that every object has a usable mesh and a valid pose. Meshes of ids that are not objects
+    /// of the scene are ignored.
+    pub fn new(scene: &'a Scene, meshes: &'a BTreeMap<String, Mesh>) -> Result<Self, ExportError> {
+        for object in &scene.objects {
+            let mesh = meshes
+                .get(&object.id)
+                .ok_or_else(|| ExportError::MissingMesh {
+                    id: object.id.clone(),
+                })?;
+            check_mesh(&object.id, mesh)?;
+            if !object.pose.is_finite() || object.pose.scale <= 0.0 {
+                return Err(ExportError::InvalidPose {
+                    id: object.id.clone(),
+                });
+            }
+        }
+        Ok(Self {
+            scene,
+            meshes,
+            fixed: BTreeSet::new(),
+        })
+    }
+
+    /// Marks objects as welded to the world in the physics formats, in addition to those
+    /// [`ExportScene::dynamics`] fixes by itself.
+    pub fn with_fixed<I, S>(mut self, ids: I) -> Self
+    where
+        I: IntoIterator<Item = S>,
+        S: Into<String>,
+    {
+        self.fixed.extend(ids.into_iter().map(Into::into));
+        self
+    }
+
+    /// The scene being exported.
+    pub fn scene(&self) -> &'a Scene {
+        self.scene
+    }
+
+    /// The mesh of an object (checked to exist by [`ExportScene::new`]).
+    pub fn mesh(&self, object: &SceneObject) -> &'a Mesh {
+        &self.meshes[&object.id]
+    }
+
+    /// Whether an object is a free body or welded to the world. Objects marked with
+    /// [`ExportScene::with_fixed`] are fixed, and so is anything held by a wall rather than
+    /// standing on something: support `against-wall` with its lowest point more than 1 cm above
+    /// the floor (a painting, a wall shelf). Everything else is free.
+    pub fn dynamics(&self, object: &SceneObject) -> Dynamics {
+        if self.fixed.contains(&object.id) {
+            return Dynamics::Fixed;
+        }
+        let hanging =
+            object.support == RelationKind::AgainstWall && object.world_aabb().min.y > 0.01;
+        if hanging {
+            Dynamics::Fixed
+        } else {
+            Dynamics::Free
+        }
+    }
+}
+
+fn check_mesh(id: &str, mesh: &Mesh) -> Result<(), ExportError> {
+    let invalid = |reason: String| ExportError::InvalidMesh {
+        id: id.to_owned(),
+        reason,
+    };
+    if mesh.parts.iter().all(|p| p.triangles.is_empty()) {
+        return Err(invalid("it has no triangles".into()));
+    }
+    for part in &mesh.parts {
+        if part.material >= mesh.materials.len() {
+            return Err(invalid(format!(
+                "part `{}` uses material {} but the mesh has {} material(s)",
+                part.name,
+                part.material,
+                mesh.materials.len()
+            )));
+        }
+        let n = part.positions.len() as u32;
+        if let Some(t) = part.triangles.iter().find(|t| t.iter().any(|&i| i >= n)) {
+            return Err(invalid(format!(
+                "part `{}` has triangle {t:?} indexing past its {n} vertices",
+                part.name
+            )));
+        }
+        if part.positions.iter().flatten().any(|v| !v.is_finite()) {
+            return Err(invalid(format!(
+                "part `{}` has a non-finite vertex position",
+                part.name
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// An export file format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Format {
+    /// glTF 2.0 binary (`scene.glb`).
+    Glb,
+    /// OpenUSD text layer (`scene.usda`).
+    Usd,
+    /// MuJoCo XML (`scene.mjcf.xml`), meshes inline.
+    Mjcf,
+    /// URDF (`scene.urdf`) with OBJ meshes in `meshes/`.
+    Urdf,
+}
+
+impl Format {
+    /// Every format, in a stable order.
+    pub const ALL: [Format; 4] = [Format::Glb, Format::Usd, Format::Mjcf, Format::Urdf];
+
+    /// The name used on the command line: `glb`, `usd`, `mjcf` or `urdf`.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Format::Glb => "glb",
+            Format::Usd => "usd",
+            Format::Mjcf => "mjcf",
+            Format::Urdf => "urdf",
+        }
+    }
+
+    /// The main file this format writes into an output folder.
+    pub fn file_name(&self) -> &'static str {
+        match self {
+            Format::Glb => "scene.glb",
+            Format::Usd => "scene.usda",
+            Format::Mjcf => "scene.mjcf.xml",
+            Format::Urdf => "scene.urdf",
+        }
+    }
+
+    /// Writes the scene in this format into `dir` (which must exist), each file atomically, and
+    /// returns the path of the main file.
+    pub fn write(&self, export: &ExportScene<'_>, dir: &Path) -> Result<PathBuf, ExportError> {
+        let path = dir.join(self.file_name());
+        match self {
+            Format::Glb => write(&path, &glb::to_glb(export))?,
+            Format::Usd => write(&path, usd::to_usda(export).as_bytes())?,
+            Format::Mjcf => write(&path, mjcf::to_mjcf(export).as_bytes())?,
+            Format::Urdf => {
+                let package = urdf::to_urdf(export, urdf::MESH_DIR);
+                let mesh_dir = dir.join(urdf::MESH_DIR);
+                std::fs::create_dir_all(&mesh_dir).map_err(|source| ExportError::Write {
+                    path: mesh_dir.clone(),
+                    source,
+                })?;
+                for (name, text) in &package.meshes {
+                    write(&mesh_dir.join(name), text.as_bytes())?;
+                }
+                write(&path, package.urdf.as_bytes())?;
+            }
+        }
+        Ok(path)
+    }
+}
+
+impl fmt::Display for Format {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// The error of parsing an unknown format name.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown export format `{0}`: expected one of glb, usd, mjcf, urdf")]
+pub struct UnknownFormat(pub String);
+
+impl FromStr for Format {
+    type Err = UnknownFormat;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.to_ascii_lowercase().as_str() {
+            "glb" | "gltf" => Ok(Format::Glb),
+            "usd" | "usda" => Ok(Format::Usd),
+            "mjcf" | "mujoco" => Ok(Format::Mjcf),
+            "urdf" => Ok(Format::Urdf),
+            _ => Err(UnknownFormat(s.to_owned())),
+        }
+    }
+}
+
+fn write(path: &Path, bytes: &[u8]) -> Result<(), ExportError> {
+    write_file_atomic(path, bytes).map_err(|source| ExportError::Write {
+        path: path.to_owned(),
+        source,
+    })
+}

@@ -1,0 +1,194 @@
+#!/usr/bin/env python3
+"""Checks a scenethesis output folder with the tools that really consume it.
+
+Usage: check_exports.py DIR [--seconds S] [--tolerance M]
+
+DIR must hold scene.json and the exports (scene.glb, scene.usda, scene.mjcf.xml, scene.urdf +
+meshes/). Checks:
+  * glTF: the GLB header and JSON chunk are well formed and there is one node per object and
+    per architecture piece, named by its id.
+  * OpenUSD (pip: usd-core): Usd.Stage.Open succeeds, upAxis is Y, metersPerUnit is 1, every
+    object is an Xform whose world bounding box matches scene.json's world_aabb.
+  * MuJoCo (pip: mujoco): MjModel.from_xml_path loads the MJCF, every body starts where
+    scene.json puts it, and after simulating S seconds (default 2) every free body moved less
+    than M metres (default 0.01) and nothing became NaN.
+  * URDF: the XML parses, every link named by an object id exists, every mesh file exists.
+Exits 1 with one line per failure when anything is wrong.
+"""
+
+import argparse
+import json
+import math
+import struct
+import sys
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+failures = []
+
+
+def fail(msg):
+    failures.append(msg)
+    print(f"FAIL {msg}", flush=True)
+
+
+def ok(msg):
+    print(f"ok   {msg}", flush=True)
+
+
+def architecture_ids(scene):
+    arch = scene["architecture"]
+    return [arch["floor"]["id"]] + [w["id"] for w in arch.get("walls", [])]
+
+
+def check_glb(path, scene):
+    data = path.read_bytes()
+    magic, version, length = struct.unpack_from("<III", data, 0)
+    if magic != 0x46546C67 or version != 2 or length != len(data):
+        fail(f"{path}: bad GLB header (magic {magic:#x}, version {version}, length {length})")
+        return
+    json_len, json_type = struct.unpack_from("<II", data, 12)
+    if json_type != 0x4E4F534A:
+        fail(f"{path}: first chunk is not JSON")
+        return
+    gltf = json.loads(data[20 : 20 + json_len])
+    names = [n.get("name") for n in gltf["nodes"]]
+    expected = architecture_ids(scene) + list(scene["objects"].keys())
+    if names != expected:
+        fail(f"{path}: node names {names} != ids {expected}")
+    else:
+        ok(f"glb: {len(names)} nodes named by id, {len(gltf['materials'])} materials")
+
+
+def check_usd(path, scene, tolerance):
+    from pxr import Usd, UsdGeom
+
+    stage = Usd.Stage.Open(str(path))
+    if stage is None:
+        fail(f"{path}: Usd.Stage.Open returned None")
+        return
+    if UsdGeom.GetStageUpAxis(stage) != UsdGeom.Tokens.y:
+        fail(f"{path}: upAxis is {UsdGeom.GetStageUpAxis(stage)}, expected Y")
+    if UsdGeom.GetStageMetersPerUnit(stage) != 1.0:
+        fail(f"{path}: metersPerUnit is {UsdGeom.GetStageMetersPerUnit(stage)}")
+    by_id = {}
+    for prim in stage.Traverse():
+        attr = prim.GetAttribute("scenethesis:id")
+        if attr and attr.HasValue():
+            by_id[attr.Get()] = prim
+    cache = UsdGeom.BBoxCache(Usd.TimeCode.Default(), [UsdGeom.Tokens.default_])
+    meshes = sum(1 for p in stage.Traverse() if p.IsA(UsdGeom.Mesh))
+    worst = 0.0
+    for oid, obj in scene["objects"].items():
+        prim = by_id.get(oid)
+        if prim is None or not prim.IsA(UsdGeom.Xform):
+            fail(f"{path}: no Xform for object {oid}")
+            continue
+        box = cache.ComputeWorldBound(prim).ComputeAlignedRange()
+        lo, hi = box.GetMin(), box.GetMax()
+        want = obj["world_aabb"]
+        err = max(
+            max(abs(lo[k] - want["min"][k]) for k in range(3)),
+            max(abs(hi[k] - want["max"][k]) for k in range(3)),
+        )
+        worst = max(worst, err)
+        if err > tolerance:
+            fail(f"{path}: {oid} bounds {list(lo)}..{list(hi)} differ from scene.json {want} by {err:.4f} m")
+    ok(f"usd: stage opened, Y up, {len(by_id)} prims with ids, {meshes} meshes, worst bounds error {worst * 1000:.2f} mm")
+
+
+def z_up(p):
+    return (p[0], -p[2], p[1])
+
+
+def check_mjcf(path, scene, seconds, tolerance):
+    import mujoco
+    import numpy as np
+
+    model = mujoco.MjModel.from_xml_path(str(path))
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    free_bodies = []
+    for j in range(model.njnt):
+        if model.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE:
+            free_bodies.append(model.jnt_bodyid[j])
+    names = {mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, b): b for b in range(1, model.nbody)}
+    for oid, obj in scene["objects"].items():
+        b = names.get(oid)
+        if b is None:
+            fail(f"{path}: no body named {oid}")
+            continue
+        want = np.array(z_up(obj["pose"]["translation"]))
+        if np.linalg.norm(data.xpos[b] - want) > 1e-4:
+            fail(f"{path}: body {oid} starts at {data.xpos[b]}, scene.json says {want}")
+    start = {b: data.xpos[b].copy() for b in free_bodies}
+    start_quat = {b: data.xquat[b].copy() for b in free_bodies}
+    steps = int(round(seconds / model.opt.timestep))
+    mujoco.mj_step(model, data, nstep=steps)
+    if not np.all(np.isfinite(data.qpos)):
+        fail(f"{path}: simulation diverged (NaN in qpos)")
+        return
+    moves = []
+    for b in free_bodies:
+        name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, b)
+        d = float(np.linalg.norm(data.xpos[b] - start[b]))
+        q0, q1 = start_quat[b], data.xquat[b]
+        angle = math.degrees(2 * math.acos(min(1.0, abs(float(np.dot(q0, q1))))))
+        moves.append((d, angle, name))
+        if d >= tolerance:
+            fail(f"{path}: {name} moved {d * 100:.2f} cm (turned {angle:.1f} deg) in {seconds} s of simulation")
+    moves.sort(reverse=True)
+    top = ", ".join(f"{n} {d * 1000:.1f} mm" for d, _, n in moves[:3])
+    ok(
+        f"mjcf: loaded {model.nbody - 1} bodies ({len(free_bodies)} free), {model.ngeom} geoms; "
+        f"after {seconds} s largest moves: {top}"
+    )
+
+
+def check_urdf(path, scene):
+    root = ET.parse(path).getroot()
+    links = {l.get("name") for l in root.findall("link")}
+    joints = root.findall("joint")
+    for oid in scene["objects"]:
+        if oid not in links:
+            fail(f"{path}: no link named {oid}")
+    missing = []
+    for mesh in root.iter("mesh"):
+        f = path.parent / mesh.get("filename")
+        if not f.exists():
+            missing.append(str(f))
+    if missing:
+        fail(f"{path}: missing mesh files {missing[:5]}")
+    ok(f"urdf: {len(links)} links, {len(joints)} joints, all mesh files present")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("dir", type=Path)
+    ap.add_argument("--seconds", type=float, default=2.0)
+    ap.add_argument("--tolerance", type=float, default=0.01)
+    args = ap.parse_args()
+    scene = json.loads((args.dir / "scene.json").read_text())
+    checks = [
+        ("scene.glb", lambda p: check_glb(p, scene)),
+        ("scene.usda", lambda p: check_usd(p, scene, args.tolerance)),
+        ("scene.mjcf.xml", lambda p: check_mjcf(p, scene, args.seconds, args.tolerance)),
+        ("scene.urdf", lambda p: check_urdf(p, scene)),
+    ]
+    for name, check in checks:
+        path = args.dir / name
+        if not path.exists():
+            fail(f"{path} does not exist")
+            continue
+        try:
+            check(path)
+        except Exception as e:  # a consumer refusing the file is a failure, not a crash
+            fail(f"{path}: {type(e).__name__}: {e}")
+    if failures:
+        print(f"{len(failures)} export check(s) failed for {args.dir}", file=sys.stderr)
+        sys.exit(1)
+    print(f"all export checks passed for {args.dir}")
+
+
+if __name__ == "__main__":
+    main()

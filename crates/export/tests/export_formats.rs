@@ -1,0 +1,459 @@
+//! Every exporter on a hand-built scene: a table against the back wall with a mug on it, a
+//! crate with a ball inside, a stool under the table and a painting hanging on a wall. The GLB
+//! is parsed back with the `gltf` crate; USD, MJCF and URDF are checked structurally. When
+//! `SCENETHESIS_EXPORT_DIR` is set, the exports are also written there for the Python consumer
+//! check (`crates/export/tests/consumers/check_exports.py`).
+
+use std::collections::BTreeMap;
+use std::f64::consts::FRAC_PI_2;
+
+use nalgebra::{Point3, Vector3};
+use scenethesis_assets::primitives::{cuboid, cylinder, sphere};
+use scenethesis_export::{Dynamics, ExportError, ExportScene, Format};
+use scenethesis_scene_graph::{
+    Aabb, Architecture, AssetRef, Material, Mesh, MeshPart, ParentRef, Pose, RelationKind, Scene,
+    SceneObject,
+};
+
+fn mesh(parts: Vec<MeshPart>, materials: Vec<Material>) -> Mesh {
+    Mesh { parts, materials }
+}
+
+fn table() -> Mesh {
+    let mut parts = vec![cuboid("top", 0, [-0.6, 0.70, -0.4], [0.6, 0.75, 0.4])];
+    for (i, (x, z)) in [(-0.55, -0.35), (0.55, -0.35), (-0.55, 0.35), (0.55, 0.35)]
+        .into_iter()
+        .enumerate()
+    {
+        parts.push(cuboid(
+            &format!("leg_{i}"),
+            0,
+            [x - 0.03, 0.0, z - 0.03],
+            [x + 0.03, 0.70, z + 0.03],
+        ));
+    }
+    mesh(parts, vec![Material::new("oak", [0.55, 0.38, 0.2], 0.6)])
+}
+
+fn mug() -> Mesh {
+    mesh(
+        vec![cylinder("body", 0, [0.0, 0.0], 0.04, 0.0, 0.1, 24)],
+        vec![Material {
+            name: "ceramic".into(),
+            base_color: [0.9, 0.9, 0.85, 1.0],
+            roughness: 0.3,
+            metallic: 0.0,
+        }],
+    )
+}
+
+/// An open crate: a floor and four convex walls, so its interior stays open under per-part
+/// convex hulls.
+fn crate_mesh() -> Mesh {
+    let m = 0;
+    mesh(
+        vec![
+            cuboid("bottom", m, [-0.25, 0.0, -0.2], [0.25, 0.02, 0.2]),
+            cuboid("wall_back", m, [-0.25, 0.02, -0.2], [0.25, 0.3, -0.18]),
+            cuboid("wall_front", m, [-0.25, 0.02, 0.18], [0.25, 0.3, 0.2]),
+            cuboid("wall_left", m, [-0.25, 0.02, -0.18], [-0.23, 0.3, 0.18]),
+            cuboid("wall_right", m, [0.23, 0.02, -0.18], [0.25, 0.3, 0.18]),
+        ],
+        vec![Material {
+            name: "steel".into(),
+            base_color: [0.6, 0.6, 0.62, 1.0],
+            roughness: 0.35,
+            metallic: 1.0,
+        }],
+    )
+}
+
+fn ball() -> Mesh {
+    mesh(
+        vec![sphere("ball", 0, [0.0, 0.08, 0.0], 0.08, 8, 12)],
+        vec![Material::new("rubber_red", [0.8, 0.1, 0.1], 0.9)],
+    )
+}
+
+fn stool() -> Mesh {
+    mesh(
+        vec![
+            cylinder("seat", 0, [0.0, 0.0], 0.15, 0.40, 0.43, 16),
+            cylinder("post", 1, [0.0, 0.0], 0.03, 0.02, 0.40, 12),
+            cylinder("foot", 1, [0.0, 0.0], 0.14, 0.0, 0.02, 16),
+        ],
+        vec![
+            Material::new("oak", [0.55, 0.38, 0.2], 0.6),
+            Material {
+                name: "chrome".into(),
+                base_color: [0.8, 0.8, 0.8, 1.0],
+                roughness: 0.1,
+                metallic: 1.0,
+            },
+        ],
+    )
+}
+
+fn painting() -> Mesh {
+    mesh(
+        vec![
+            cuboid("frame", 0, [-0.4, 0.0, -0.02], [0.4, 0.6, 0.0]),
+            cuboid("canvas", 1, [-0.37, 0.03, 0.0], [0.37, 0.57, 0.005]),
+        ],
+        vec![
+            Material::new("frame_black", [0.05, 0.05, 0.05], 0.5),
+            Material::new("canvas_blue", [0.2, 0.3, 0.7], 0.95),
+        ],
+    )
+}
+
+fn object(
+    id: &str,
+    category: &str,
+    mesh: &Mesh,
+    pose: Pose,
+    parent: ParentRef,
+    support: RelationKind,
+) -> SceneObject {
+    SceneObject {
+        id: id.into(),
+        category: category.into(),
+        asset: AssetRef::Procedural {
+            generator: category.into(),
+            seed: 7,
+        },
+        pose,
+        parent,
+        support,
+        relations: Vec::new(),
+        local_bounds: mesh
+            .bounds()
+            .unwrap_or(Aabb::new(Point3::origin(), Point3::origin())),
+    }
+}
+
+/// The hand-built scene and its meshes.
+fn scene() -> (Scene, BTreeMap<String, Mesh>) {
+    let mut scene = Scene::new(Architecture::rectangular_room(5.0, 4.0, 2.6, 0.9));
+    scene.prompt = "a small test room".into();
+    scene.seed = 3;
+    let meshes = BTreeMap::from([
+        ("table".to_owned(), table()),
+        ("mug".to_owned(), mug()),
+        ("crate".to_owned(), crate_mesh()),
+        ("ball".to_owned(), ball()),
+        ("stool".to_owned(), stool()),
+        ("painting".to_owned(), painting()),
+    ]);
+    let ground = || ParentRef::Ground;
+    scene.objects = vec![
+        object(
+            "table",
+            "table",
+            &meshes["table"],
+            Pose::new(1.0, 0.0, Vector3::new(0.0, 0.0, -1.5)),
+            ground(),
+            RelationKind::AgainstWall,
+        ),
+        object(
+            "mug",
+            "mug",
+            &meshes["mug"],
+            Pose::new(1.0, 0.3, Vector3::new(0.2, 0.75, -1.4)),
+            ParentRef::Object("table".into()),
+            RelationKind::On,
+        ),
+        object(
+            "crate",
+            "crate",
+            &meshes["crate"],
+            Pose::new(1.2, FRAC_PI_2, Vector3::new(1.8, 0.0, 1.0)),
+            ground(),
+            RelationKind::OnFloor,
+        ),
+        object(
+            "ball",
+            "ball",
+            &meshes["ball"],
+            // Inside the crate: its floor is 0.02 × 1.2 = 0.024 high.
+            Pose::new(1.0, 0.0, Vector3::new(1.8, 0.024, 1.0)),
+            ParentRef::Object("crate".into()),
+            RelationKind::Inside,
+        ),
+        object(
+            "stool",
+            "stool",
+            &meshes["stool"],
+            Pose::new(1.0, 0.0, Vector3::new(-0.2, 0.0, -1.4)),
+            ground(),
+            RelationKind::Under,
+        ),
+        object(
+            "painting",
+            "painting",
+            &meshes["painting"],
+            // On the left wall (x = −2.5), facing +x.
+            Pose::new(1.0, FRAC_PI_2, Vector3::new(-2.48, 1.4, 0.0)),
+            ground(),
+            RelationKind::AgainstWall,
+        ),
+    ];
+    scene.anchor = Some("table".into());
+    (scene, meshes)
+}
+
+#[test]
+fn glb_parses_back_with_names_materials_and_transforms() {
+    let (scene, meshes) = scene();
+    let export = ExportScene::new(&scene, &meshes).unwrap();
+    let bytes = scenethesis_export::glb::to_glb(&export);
+    assert_eq!(bytes.len() % 4, 0);
+    let gltf = gltf::Gltf::from_slice(&bytes).expect("GLB must parse");
+    let blob = gltf.blob.as_deref().expect("BIN chunk present");
+
+    let names: Vec<&str> = gltf.nodes().map(|n| n.name().unwrap()).collect();
+    assert_eq!(
+        names,
+        [
+            "floor", "wall_0", "wall_1", "wall_2", "wall_3", "table", "mug", "crate", "ball",
+            "stool", "painting"
+        ]
+    );
+    let root: Vec<usize> = gltf
+        .default_scene()
+        .unwrap()
+        .nodes()
+        .map(|n| n.index())
+        .collect();
+    assert_eq!(root.len(), names.len());
+
+    // Materials: shared `oak`, plus every other distinct one and floor/wall.
+    let mut material_names: Vec<&str> = gltf.materials().map(|m| m.name().unwrap()).collect();
+    material_names.sort();
+    assert_eq!(
+        material_names,
+        [
+            "canvas_blue",
+            "ceramic",
+            "chrome",
+            "floor",
+            "frame_black",
+            "oak",
+            "rubber_red",
+            "steel",
+            "wall"
+        ]
+    );
+    let steel = gltf
+        .materials()
+        .find(|m| m.name() == Some("steel"))
+        .unwrap();
+    let pbr = steel.pbr_metallic_roughness();
+    assert_eq!(pbr.metallic_factor(), 1.0);
+    assert_eq!(pbr.roughness_factor(), 0.35);
+    assert_eq!(pbr.base_color_factor(), [0.6, 0.6, 0.62, 1.0]);
+
+    for node in gltf.nodes() {
+        let name = node.name().unwrap();
+        let mesh = node.mesh().expect("every node has a mesh");
+        let expected_parts = match meshes.get(name) {
+            Some(m) => m.parts.len(),
+            None if name == "wall_2" => 3, // split around the door
+            None => 1,
+        };
+        assert_eq!(mesh.primitives().count(), expected_parts, "{name}");
+        for prim in mesh.primitives() {
+            let reader = prim.reader(|_| Some(blob));
+            let positions: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
+            let normals: Vec<[f32; 3]> = reader.read_normals().unwrap().collect();
+            let indices: Vec<u32> = reader.read_indices().unwrap().into_u32().collect();
+            assert_eq!(positions.len(), normals.len());
+            assert_eq!(indices.len() % 3, 0);
+            assert!(indices.iter().all(|&i| (i as usize) < positions.len()));
+            let bb = prim.bounding_box();
+            for p in &positions {
+                for k in 0..3 {
+                    assert!(bb.min[k] <= p[k] && p[k] <= bb.max[k]);
+                }
+            }
+        }
+        if let Some(object) = scene.object(name) {
+            let (t, r, s) = node.transform().decomposed();
+            let pose = object.pose;
+            assert!((Vector3::from(t).cast::<f64>() - pose.translation).norm() < 1e-6);
+            assert!((s[0] as f64 - pose.scale).abs() < 1e-6 && s[0] == s[1] && s[1] == s[2]);
+            // Quaternion (x, y, z, w) about +Y by yaw.
+            assert!(r[0] == 0.0 && r[2] == 0.0);
+            assert!((r[1] as f64 - (pose.yaw / 2.0).sin()).abs() < 1e-6);
+            let extras = node.extras().as_ref().expect("object nodes carry extras");
+            let extras: serde_json::Value = serde_json::from_str(extras.get()).unwrap();
+            assert_eq!(extras["category"], object.category);
+            assert_eq!(extras["parent"], object.parent.to_string());
+        } else {
+            assert_eq!(node.transform().decomposed().0, [0.0; 3], "{name}");
+        }
+    }
+}
+
+#[test]
+fn glb_places_the_mug_on_the_table_in_world_space() {
+    let (scene, meshes) = scene();
+    let export = ExportScene::new(&scene, &meshes).unwrap();
+    let bytes = scenethesis_export::glb::to_glb(&export);
+    let gltf = gltf::Gltf::from_slice(&bytes).unwrap();
+    let world_min_y = |name: &str| -> f32 {
+        let node = gltf.nodes().find(|n| n.name() == Some(name)).unwrap();
+        let m = nalgebra::Matrix4::from(node.transform().matrix());
+        let blob = gltf.blob.as_deref().unwrap();
+        node.mesh()
+            .unwrap()
+            .primitives()
+            .flat_map(|p| {
+                p.reader(|_| Some(blob))
+                    .read_positions()
+                    .unwrap()
+                    .collect::<Vec<_>>()
+            })
+            .map(|p| (m * nalgebra::Vector4::new(p[0], p[1], p[2], 1.0)).y)
+            .fold(f32::INFINITY, f32::min)
+    };
+    assert!((world_min_y("mug") - 0.75).abs() < 1e-5);
+    assert!(world_min_y("table").abs() < 1e-6);
+    assert!((world_min_y("ball") - 0.024).abs() < 1e-5);
+    assert!((world_min_y("floor") + 0.05).abs() < 1e-6);
+}
+
+#[test]
+fn exports_are_deterministic() {
+    let (scene, meshes) = scene();
+    let export = ExportScene::new(&scene, &meshes).unwrap();
+    let (scene2, meshes2) = self::scene();
+    let export2 = ExportScene::new(&scene2, &meshes2).unwrap();
+    use scenethesis_export::{glb, mjcf, urdf, usd};
+    assert_eq!(glb::to_glb(&export), glb::to_glb(&export2));
+    assert_eq!(usd::to_usda(&export), usd::to_usda(&export2));
+    assert_eq!(mjcf::to_mjcf(&export), mjcf::to_mjcf(&export2));
+    assert_eq!(urdf::to_urdf(&export, "m"), urdf::to_urdf(&export2, "m"));
+}
+
+#[test]
+fn usda_has_stage_metadata_xforms_and_bound_materials() {
+    let (scene, meshes) = scene();
+    let export = ExportScene::new(&scene, &meshes).unwrap();
+    let text = scenethesis_export::usd::to_usda(&export);
+    assert!(text.starts_with("#usda 1.0\n"));
+    assert!(text.contains("upAxis = \"Y\""));
+    assert!(text.contains("metersPerUnit = 1"));
+    assert!(text.contains("defaultPrim = \"World\""));
+    for id in ["floor", "wall_0", "wall_3", "table", "mug", "painting"] {
+        assert!(
+            text.contains(&format!("def Xform \"{id}\"")),
+            "missing Xform {id}"
+        );
+    }
+    // The painting's yaw of 90° becomes rotateY = 90 (degrees).
+    assert!(text.contains("double xformOp:rotateY = 90\n"));
+    let mesh_prims = text.matches("def Mesh ").count();
+    let parts: usize = meshes.values().map(|m| m.parts.len()).sum();
+    assert_eq!(mesh_prims, parts + 1 + 3 + 3); // floor, 3 plain walls, door wall in 3 boxes
+    assert_eq!(
+        text.matches("rel material:binding = </World/Looks/")
+            .count(),
+        mesh_prims
+    );
+    assert!(text.contains("def Material \"steel\""));
+    assert!(text.contains("uniform token info:id = \"UsdPreviewSurface\""));
+    assert_eq!(text.matches('{').count(), text.matches('}').count());
+}
+
+#[test]
+fn mjcf_has_free_bodies_mesh_geoms_and_static_architecture() {
+    let (scene, meshes) = scene();
+    let export = ExportScene::new(&scene, &meshes).unwrap();
+    assert_eq!(
+        export.dynamics(scene.object("painting").unwrap()),
+        Dynamics::Fixed
+    );
+    assert_eq!(
+        export.dynamics(scene.object("table").unwrap()),
+        Dynamics::Free
+    );
+    let xml = scenethesis_export::mjcf::to_mjcf(&export);
+    assert!(xml.contains("<option timestep=\"0.001\" gravity=\"0 0 -9.81\"/>"));
+    assert!(xml.contains("density=\"1000\" friction=\"0.5 0.005 0.0001\""));
+    assert_eq!(xml.matches("<body ").count(), 6);
+    assert_eq!(xml.matches("<freejoint ").count(), 5, "painting is welded");
+    let parts: usize = meshes.values().map(|m| m.parts.len()).sum();
+    assert_eq!(xml.matches("type=\"mesh\"").count(), parts);
+    assert_eq!(xml.matches("<mesh name=").count(), parts);
+    assert_eq!(xml.matches("type=\"plane\"").count(), 1);
+    assert_eq!(xml.matches("type=\"box\"").count(), 3 + 3);
+    // The table stands at scene (0, 0, −1.5): MuJoCo (0, 1.5, 0).
+    assert!(xml.contains("<body name=\"table\" pos=\"0 1.5 0\""));
+    assert!(xml.contains("<mesh name=\"crate_bottom\" scale=\"1.2 1.2 1.2\""));
+}
+
+#[test]
+fn urdf_links_joints_meshes_and_inertia() {
+    let (scene, meshes) = scene();
+    let export = ExportScene::new(&scene, &meshes).unwrap();
+    let package = scenethesis_export::urdf::to_urdf(&export, "meshes");
+    let xml = &package.urdf;
+    assert!(xml.contains("<robot name=\"scenethesis_scene\">"));
+    assert!(xml.contains("<link name=\"world\"/>"));
+    assert_eq!(xml.matches("type=\"floating\"").count(), 5);
+    // Floor and four walls plus the painting are fixed.
+    assert_eq!(xml.matches("type=\"fixed\"").count(), 6);
+    let parts: usize = meshes.values().map(|m| m.parts.len()).sum();
+    assert_eq!(package.meshes.len(), parts);
+    assert_eq!(xml.matches("<mesh filename=\"meshes/").count(), 2 * parts);
+    assert_eq!(xml.matches("<inertial>").count(), 6);
+    let obj = &package.meshes["mug_body.obj"];
+    let vertices = obj.lines().filter(|l| l.starts_with("v ")).count();
+    let faces = obj.lines().filter(|l| l.starts_with("f ")).count();
+    assert_eq!(vertices, meshes["mug"].parts[0].positions.len());
+    assert_eq!(faces, meshes["mug"].parts[0].triangles.len());
+    // The ball: 1000 kg/m³ × a slightly-less-than-sphere volume.
+    let ball_mass = 1000.0 * 4.0 / 3.0 * std::f64::consts::PI * 0.08f64.powi(3);
+    let start = xml.find("<link name=\"ball\">").unwrap();
+    let mass_at = xml[start..].find("<mass value=\"").unwrap() + start + 13;
+    let mass: f64 = xml[mass_at..xml[mass_at..].find('"').unwrap() + mass_at]
+        .parse()
+        .unwrap();
+    assert!(
+        mass < ball_mass && mass > 0.75 * ball_mass,
+        "ball mass {mass}"
+    );
+}
+
+#[test]
+fn missing_and_broken_meshes_are_named() {
+    let (scene, mut meshes) = scene();
+    meshes.remove("mug");
+    let err = ExportScene::new(&scene, &meshes).unwrap_err();
+    assert!(matches!(&err, ExportError::MissingMesh { id } if id == "mug"));
+    assert!(err.to_string().contains("`mug`"));
+    let mut broken = mug();
+    broken.parts[0].triangles.push([0, 1, 9999]);
+    meshes.insert("mug".into(), broken);
+    let err = ExportScene::new(&scene, &meshes).unwrap_err();
+    assert!(matches!(&err, ExportError::InvalidMesh { id, .. } if id == "mug"));
+}
+
+#[test]
+fn formats_write_their_files() {
+    let (scene, meshes) = scene();
+    let export = ExportScene::new(&scene, &meshes).unwrap();
+    let temp = tempfile::tempdir().unwrap();
+    let dir = std::env::var_os("SCENETHESIS_EXPORT_DIR")
+        .map(std::path::PathBuf::from)
+        .unwrap_or_else(|| temp.path().to_owned());
+    std::fs::create_dir_all(&dir).unwrap();
+    for format in Format::ALL {
+        let path = format.write(&export, &dir).unwrap();
+        assert!(path.exists(), "{format} did not write {}", path.display());
+        assert_eq!(format.as_str().parse::<Format>().unwrap(), format);
+    }
+    assert!(dir.join("meshes/table_top.obj").exists());
+    scene.write_json_atomic(&dir.join("scene.json")).unwrap();
+}
