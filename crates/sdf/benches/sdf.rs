@@ -1,0 +1,122 @@
+//! Throughput of exact mesh queries, baked grid lookups, grid baking and scene batches.
+//!
+//! Single-thread figures run on the calling thread (the bake inside a one-thread rayon pool);
+//! the `*_2threads` figures use a two-thread pool.
+
+use std::hint::black_box;
+use std::sync::Arc;
+
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use nalgebra::{Point3, Vector3};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use scenethesis_sdf::{shapes, GridSdf, MeshSdf, Pose, SceneSdf, SignedDistance};
+
+const QUERIES: usize = 100_000;
+
+/// The 10 000-triangle closed bumpy sphere and 100k points in a box 20% larger than it.
+fn setup() -> (MeshSdf, Vec<Point3<f32>>) {
+    let (positions, triangles) = shapes::bumpy_sphere(0.5, 0.15, 100, 51);
+    assert_eq!(triangles.len(), 10_000);
+    let sdf = MeshSdf::new(&positions, &triangles).expect("closed mesh");
+    let (lo, hi) = sdf.local_bounds();
+    let centre = nalgebra::center(&lo, &hi);
+    let half = (hi - lo) * 0.6;
+    let mut rng = ChaCha8Rng::seed_from_u64(42);
+    let points = (0..QUERIES)
+        .map(|_| {
+            centre
+                + Vector3::new(
+                    half.x * (2.0 * rng.random::<f32>() - 1.0),
+                    half.y * (2.0 * rng.random::<f32>() - 1.0),
+                    half.z * (2.0 * rng.random::<f32>() - 1.0),
+                )
+        })
+        .collect();
+    (sdf, points)
+}
+
+fn pool(threads: usize) -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("thread pool")
+}
+
+fn benches(c: &mut Criterion) {
+    let (sdf, points) = setup();
+    let mut group = c.benchmark_group("sdf");
+    group.sample_size(10);
+
+    group.throughput(Throughput::Elements(QUERIES as u64));
+    group.bench_function("mesh_exact_10k_tris_1thread", |b| {
+        b.iter(|| {
+            let mut acc = 0.0f32;
+            for p in &points {
+                acc += sdf.distance(p);
+            }
+            black_box(acc)
+        })
+    });
+    let two = pool(2);
+    group.bench_function("mesh_exact_10k_tris_2threads", |b| {
+        b.iter(|| two.install(|| black_box(sdf.distances(&points))))
+    });
+
+    let one = pool(1);
+    let side = {
+        let (lo, hi) = sdf.local_bounds();
+        (hi - lo).amax()
+    };
+    // 60 cells over the surface + 2 padding cells per side = a 64³-cell grid.
+    let cell = side / 60.0;
+    let grid = one.install(|| GridSdf::bake_with_cell(&sdf, cell));
+    assert_eq!(grid.dims(), [65, 65, 65]);
+    group.bench_function("grid_lookup_1thread", |b| {
+        b.iter(|| {
+            let mut acc = 0.0f32;
+            for p in &points {
+                acc += grid.sample(p);
+            }
+            black_box(acc)
+        })
+    });
+
+    group.throughput(Throughput::Elements(64 * 64 * 64));
+    group.bench_function("grid_bake_64cubed_1thread", |b| {
+        b.iter(|| one.install(|| black_box(GridSdf::bake_with_cell(&sdf, cell))))
+    });
+    group.bench_function("grid_bake_64cubed_2threads", |b| {
+        b.iter(|| two.install(|| black_box(GridSdf::bake_with_cell(&sdf, cell))))
+    });
+
+    // A scene of 40 baked objects on a 5 × 8 layout, batch over 100k points on 2 threads.
+    let grid = Arc::new(grid);
+    let mut scene = SceneSdf::new();
+    for i in 0..40 {
+        let pose = Pose::new(
+            0.5 + 0.02 * i as f64,
+            0.3 * i as f64,
+            nalgebra::Vector3::new((i % 5) as f64 * 1.2, 0.5, (i / 5) as f64 * 1.2),
+        );
+        scene.insert(format!("object_{i:02}"), grid.clone(), pose);
+    }
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let scene_points: Vec<Point3<f32>> = (0..QUERIES)
+        .map(|_| {
+            Point3::new(
+                rng.random::<f32>() * 6.0 - 0.6,
+                rng.random::<f32>() * 1.2,
+                rng.random::<f32>() * 9.6 - 0.6,
+            )
+        })
+        .collect();
+    group.throughput(Throughput::Elements(QUERIES as u64));
+    group.bench_function("scene_40_grids_batch_2threads", |b| {
+        b.iter(|| two.install(|| black_box(scene.distances(&scene_points, &["object_03"]))))
+    });
+    group.finish();
+}
+
+criterion_group!(sdf_benches, benches);
+criterion_main!(sdf_benches);

@@ -1,0 +1,217 @@
+//! A compact bounding volume hierarchy over triangles, built with binned SAH.
+//!
+//! Nodes are 32 bytes. An inner node's two children are stored next to each other
+//! (`index`, `index + 1`), so both child boxes are tested from one cache line; a leaf holds
+//! `count > 0` consecutive triangles starting at `index`.
+
+/// One BVH node (32 bytes).
+#[derive(Debug, Clone, Copy)]
+#[repr(C, align(32))]
+pub(crate) struct Node {
+    /// Box minimum.
+    pub min: [f32; 3],
+    /// Number of triangles for a leaf, 0 for an inner node.
+    pub count: u32,
+    /// Box maximum.
+    pub max: [f32; 3],
+    /// First triangle (leaf) or left child (inner node; right child is `index + 1`).
+    pub index: u32,
+}
+
+impl Node {
+    const EMPTY: Node = Node {
+        min: [f32::INFINITY; 3],
+        count: 0,
+        max: [f32::NEG_INFINITY; 3],
+        index: 0,
+    };
+}
+
+#[derive(Clone, Copy)]
+struct Bounds {
+    min: [f32; 3],
+    max: [f32; 3],
+}
+
+impl Bounds {
+    const EMPTY: Bounds = Bounds {
+        min: [f32::INFINITY; 3],
+        max: [f32::NEG_INFINITY; 3],
+    };
+    fn grow(&mut self, o: &Bounds) {
+        for i in 0..3 {
+            self.min[i] = self.min[i].min(o.min[i]);
+            self.max[i] = self.max[i].max(o.max[i]);
+        }
+    }
+    fn grow_point(&mut self, p: &[f32; 3]) {
+        for i in 0..3 {
+            self.min[i] = self.min[i].min(p[i]);
+            self.max[i] = self.max[i].max(p[i]);
+        }
+    }
+    fn half_area(&self) -> f32 {
+        let d = [
+            (self.max[0] - self.min[0]).max(0.0),
+            (self.max[1] - self.min[1]).max(0.0),
+            (self.max[2] - self.min[2]).max(0.0),
+        ];
+        d[0] * d[1] + d[1] * d[2] + d[2] * d[0]
+    }
+}
+
+const LEAF_SIZE: usize = 4;
+const BINS: usize = 16;
+
+/// Builds a subtree over `items` (triangle ids; reordered in place) whose triangle boxes are
+/// `boxes[id]`, appending nodes to `nodes`. `offset` is where `items[0]` will sit in the final
+/// triangle array. Returns the root's node index.
+pub(crate) fn build(
+    nodes: &mut Vec<Node>,
+    items: &mut [u32],
+    offset: u32,
+    boxes: &[([f32; 3], [f32; 3])],
+) -> u32 {
+    let root = nodes.len() as u32;
+    nodes.push(Node::EMPTY);
+    let centroids: Vec<[f32; 3]> = boxes
+        .iter()
+        .map(|(a, b)| {
+            [
+                0.5 * (a[0] + b[0]),
+                0.5 * (a[1] + b[1]),
+                0.5 * (a[2] + b[2]),
+            ]
+        })
+        .collect();
+    let mut builder = Builder {
+        nodes,
+        boxes,
+        centroids: &centroids,
+    };
+    builder.split(root as usize, items, offset);
+    root
+}
+
+struct Builder<'a> {
+    nodes: &'a mut Vec<Node>,
+    boxes: &'a [([f32; 3], [f32; 3])],
+    centroids: &'a [[f32; 3]],
+}
+
+impl Builder<'_> {
+    fn item_bounds(&self, id: u32) -> Bounds {
+        let (min, max) = self.boxes[id as usize];
+        Bounds { min, max }
+    }
+
+    fn split(&mut self, node: usize, items: &mut [u32], offset: u32) {
+        let mut bounds = Bounds::EMPTY;
+        let mut cbounds = Bounds::EMPTY;
+        for &id in items.iter() {
+            bounds.grow(&self.item_bounds(id));
+            cbounds.grow_point(&self.centroids[id as usize]);
+        }
+        self.nodes[node].min = bounds.min;
+        self.nodes[node].max = bounds.max;
+        let n = items.len();
+        if n <= LEAF_SIZE {
+            self.make_leaf(node, n, offset);
+            return;
+        }
+        // Longest centroid axis.
+        let ext = [
+            cbounds.max[0] - cbounds.min[0],
+            cbounds.max[1] - cbounds.min[1],
+            cbounds.max[2] - cbounds.min[2],
+        ];
+        let axis = if ext[0] >= ext[1] && ext[0] >= ext[2] {
+            0
+        } else if ext[1] >= ext[2] {
+            1
+        } else {
+            2
+        };
+        let mid = if ext[axis] <= 0.0 {
+            n / 2
+        } else {
+            // Binned SAH along `axis`.
+            let scale = BINS as f32 / ext[axis];
+            let bin_of = |c: &[f32; 3]| -> usize {
+                (((c[axis] - cbounds.min[axis]) * scale) as usize).min(BINS - 1)
+            };
+            let mut bin_bounds = [Bounds::EMPTY; BINS];
+            let mut bin_count = [0usize; BINS];
+            for &id in items.iter() {
+                let b = bin_of(&self.centroids[id as usize]);
+                bin_bounds[b].grow(&self.item_bounds(id));
+                bin_count[b] += 1;
+            }
+            let mut right_area = [0.0f32; BINS];
+            let mut acc = Bounds::EMPTY;
+            let mut cnt = 0;
+            let mut right_count = [0usize; BINS];
+            for b in (1..BINS).rev() {
+                acc.grow(&bin_bounds[b]);
+                cnt += bin_count[b];
+                right_area[b] = acc.half_area();
+                right_count[b] = cnt;
+            }
+            let mut best_cost = f32::INFINITY;
+            let mut best_split = 0;
+            let mut left = Bounds::EMPTY;
+            let mut left_count = 0;
+            for b in 0..BINS - 1 {
+                left.grow(&bin_bounds[b]);
+                left_count += bin_count[b];
+                if left_count == 0 || right_count[b + 1] == 0 {
+                    continue;
+                }
+                let cost = left.half_area() * left_count as f32
+                    + right_area[b + 1] * right_count[b + 1] as f32;
+                if cost < best_cost {
+                    best_cost = cost;
+                    best_split = b + 1;
+                }
+            }
+            if best_split == 0 {
+                n / 2
+            } else {
+                // Partition items by bin.
+                let mut i = 0;
+                let mut j = n;
+                while i < j {
+                    if bin_of(&self.centroids[items[i] as usize]) < best_split {
+                        i += 1;
+                    } else {
+                        j -= 1;
+                        items.swap(i, j);
+                    }
+                }
+                i
+            }
+        };
+        let mid = if mid == 0 || mid == n {
+            // Fall back to a median split by centroid.
+            items.sort_unstable_by(|a, b| {
+                self.centroids[*a as usize][axis].total_cmp(&self.centroids[*b as usize][axis])
+            });
+            n / 2
+        } else {
+            mid
+        };
+        let left = self.nodes.len();
+        self.nodes.push(Node::EMPTY);
+        self.nodes.push(Node::EMPTY);
+        self.nodes[node].count = 0;
+        self.nodes[node].index = left as u32;
+        let (l, r) = items.split_at_mut(mid);
+        self.split(left, l, offset);
+        self.split(left + 1, r, offset + mid as u32);
+    }
+
+    fn make_leaf(&mut self, node: usize, n: usize, offset: u32) {
+        self.nodes[node].count = n as u32;
+        self.nodes[node].index = offset;
+    }
+}

@@ -1,0 +1,733 @@
+//! Exact signed distance to a triangle mesh.
+
+use std::collections::HashMap;
+
+use nalgebra::{Point3, Vector3};
+use rayon::prelude::*;
+
+use crate::bvh::{self, Node};
+use crate::geometry::{
+    closest_on_triangle, distance2_to_box, distance2_to_triangle, solid_angle, Feature,
+};
+use crate::{SdfError, SdfQuery, SignedDistance};
+
+type V3 = Vector3<f32>;
+
+const NO_TRIANGLE: u32 = u32::MAX;
+/// Far-field acceptance ratio of the hierarchical winding number: a node whose triangles all lie
+/// within `radius` of its centre is replaced by its dipole when the query is farther than
+/// `WINDING_BETA * radius`.
+const WINDING_BETA: f32 = 3.0;
+
+/// How the sign of one solid of a [`MeshSdf`] is decided.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SignRule {
+    /// A closed, consistently oriented component: the sign comes from the angle-weighted
+    /// pseudo-normal of the closest feature (face, edge or vertex). Exact for closed manifolds
+    /// that do not intersect themselves.
+    PseudoNormal,
+    /// All open (holed) components together: a point is inside where the generalized winding
+    /// number is at least ½, computed hierarchically (exact solid angles near the query,
+    /// first-order dipoles for far BVH nodes). Robust to small holes and cracks; for large
+    /// holes "inside" degrades gracefully toward "mostly enclosed", and meshes that are not
+    /// outward-oriented (CCW seen from outside) come out inside-out.
+    WindingNumber,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Group {
+    root: u32,
+    first_tri: u32,
+    end_tri: u32,
+    min: [f32; 3],
+    max: [f32; 3],
+    rule: SignRule,
+}
+
+impl Group {
+    #[inline]
+    fn contains(&self, p: &[f32; 3]) -> bool {
+        (0..3).all(|i| self.min[i] <= p[i] && p[i] <= self.max[i])
+    }
+    #[inline]
+    fn holds(&self, tri: u32) -> bool {
+        self.first_tri <= tri && tri < self.end_tri
+    }
+}
+
+/// Angle-weighted pseudo-normals of one triangle: face, edges (ab, bc, ca), vertices (a, b, c).
+#[derive(Debug, Clone, Copy, Default)]
+struct PseudoNormals([V3; 7]);
+
+/// First-order far-field summary of a BVH node's triangles for the winding number.
+#[derive(Debug, Clone, Copy, Default)]
+struct Dipole {
+    center: V3,
+    area_normal: V3,
+    radius: f32,
+}
+
+/// The closest triangle found by a search, and whether the query point is inside.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Hit {
+    pub tri: u32,
+    pub distance2: f32,
+    pub inside: bool,
+}
+
+impl Hit {
+    #[inline]
+    pub fn signed_distance(&self) -> f32 {
+        let d = self.distance2.sqrt();
+        if self.inside {
+            -d
+        } else {
+            d
+        }
+    }
+}
+
+/// Exact signed distance field of a triangle mesh, accelerated by a BVH.
+///
+/// The mesh is split into *solids*: every connected, closed and consistently oriented component
+/// (after welding vertices with identical positions) is a solid signed by pseudo-normals
+/// ([`SignRule::PseudoNormal`]); all remaining open components together form one solid signed by
+/// the generalized winding number ([`SignRule::WindingNumber`]). Solids combine as a union: a
+/// point inside any solid is inside, and the field is the minimum of the solids' signed
+/// distances. Outside every solid that is the exact distance to the union's surface; inside, it
+/// is minus the depth within the deepest containing solid (a lower bound on the depth in the
+/// union, exact wherever the nearest surface point is not buried inside another solid).
+///
+/// Queries are `f32`; `MeshSdf` is `Send + Sync` and cheap to share through an `Arc`.
+#[derive(Debug, Clone)]
+pub struct MeshSdf {
+    tris: Vec<[V3; 3]>,
+    nodes: Vec<Node>,
+    groups: Vec<Group>,
+    normals: Vec<PseudoNormals>,
+    dipoles: Vec<Dipole>,
+    min: Point3<f32>,
+    max: Point3<f32>,
+    grad_epsilon: f32,
+}
+
+struct PartInput<'a> {
+    name: String,
+    positions: &'a [[f32; 3]],
+    triangles: &'a [[u32; 3]],
+}
+
+/// A solid before BVH construction: triangle corners plus (for closed solids) pseudo-normals.
+struct SolidInput {
+    tris: Vec<[V3; 3]>,
+    normals: Vec<PseudoNormals>,
+    rule: SignRule,
+}
+
+impl MeshSdf {
+    /// Builds the field of one triangle list: a closed solid, several closed (possibly
+    /// overlapping) components, or an open soup with holes. Triangles are counter-clockwise
+    /// seen from outside.
+    pub fn new(positions: &[[f32; 3]], triangles: &[[u32; 3]]) -> Result<Self, SdfError> {
+        Self::build(&[PartInput {
+            name: "mesh".into(),
+            positions,
+            triangles,
+        }])
+    }
+
+    /// Builds the field of a multi-part asset mesh. Parts may overlap (a table top and its
+    /// legs); the result is their union.
+    pub fn from_mesh(mesh: &scenethesis_scene_graph::Mesh) -> Result<Self, SdfError> {
+        let parts: Vec<PartInput> = mesh
+            .parts
+            .iter()
+            .map(|p| PartInput {
+                name: format!("part `{}`", p.name),
+                positions: &p.positions,
+                triangles: &p.triangles,
+            })
+            .collect();
+        if parts.is_empty() {
+            return Err(SdfError::EmptyMesh {
+                mesh: "mesh with no parts".into(),
+            });
+        }
+        Self::build(&parts)
+    }
+
+    fn build(parts: &[PartInput]) -> Result<Self, SdfError> {
+        let mut solids = Vec::new();
+        let mut soup: Vec<[V3; 3]> = Vec::new();
+        for part in parts {
+            validate(part)?;
+            split_part(part, &mut solids, &mut soup);
+        }
+        if !soup.is_empty() {
+            let normals = soup
+                .iter()
+                .map(|t| {
+                    let mut pn = PseudoNormals::default();
+                    pn.0[0] = face_normal(t);
+                    pn
+                })
+                .collect();
+            solids.push(SolidInput {
+                tris: soup,
+                normals,
+                rule: SignRule::WindingNumber,
+            });
+        }
+        if solids.is_empty() {
+            let name = if parts.len() == 1 {
+                parts[0].name.clone()
+            } else {
+                "mesh".into()
+            };
+            return Err(SdfError::EmptyMesh { mesh: name });
+        }
+
+        let total: usize = solids.iter().map(|s| s.tris.len()).sum();
+        let mut tris = Vec::with_capacity(total);
+        let mut normals = Vec::with_capacity(total);
+        let mut nodes = Vec::with_capacity(2 * total / 3 + solids.len());
+        let mut groups = Vec::with_capacity(solids.len());
+        for solid in &solids {
+            let boxes: Vec<([f32; 3], [f32; 3])> = solid.tris.iter().map(tri_box).collect();
+            let mut order: Vec<u32> = (0..solid.tris.len() as u32).collect();
+            let first = tris.len() as u32;
+            let root = bvh::build(&mut nodes, &mut order, first, &boxes);
+            for &i in &order {
+                tris.push(solid.tris[i as usize]);
+                normals.push(solid.normals[i as usize]);
+            }
+            let r = &nodes[root as usize];
+            groups.push(Group {
+                root,
+                first_tri: first,
+                end_tri: tris.len() as u32,
+                min: r.min,
+                max: r.max,
+                rule: solid.rule,
+            });
+        }
+        let mut min = Point3::from([f32::INFINITY; 3]);
+        let mut max = Point3::from([f32::NEG_INFINITY; 3]);
+        for g in &groups {
+            min = min.inf(&Point3::from(g.min));
+            max = max.sup(&Point3::from(g.max));
+        }
+        let extent = (max - min).amax().max(1e-6);
+        let mut sdf = MeshSdf {
+            tris,
+            nodes,
+            groups,
+            normals,
+            dipoles: Vec::new(),
+            min,
+            max,
+            grad_epsilon: extent * 1e-6,
+        };
+        if sdf
+            .groups
+            .iter()
+            .any(|g| g.rule == SignRule::WindingNumber)
+        {
+            sdf.dipoles = vec![Dipole::default(); sdf.nodes.len()];
+            let roots: Vec<u32> = sdf
+                .groups
+                .iter()
+                .filter(|g| g.rule == SignRule::WindingNumber)
+                .map(|g| g.root)
+                .collect();
+            for root in roots {
+                sdf.fill_dipoles(root);
+            }
+        }
+        Ok(sdf)
+    }
+
+    /// Computes dipoles for the subtree at `node`; returns its triangle range.
+    fn fill_dipoles(&mut self, node: u32) -> (u32, u32) {
+        let n = self.nodes[node as usize];
+        let (first, end) = if n.count > 0 {
+            (n.index, n.index + n.count)
+        } else {
+            let (a, _) = self.fill_dipoles(n.index);
+            let (_, b) = self.fill_dipoles(n.index + 1);
+            (a, b)
+        };
+        let mut area_normal = V3::zeros();
+        let mut weighted = V3::zeros();
+        let mut area_sum = 0.0f32;
+        for t in &self.tris[first as usize..end as usize] {
+            let an = (t[1] - t[0]).cross(&(t[2] - t[0])) * 0.5;
+            let area = an.norm();
+            area_normal += an;
+            weighted += (t[0] + t[1] + t[2]) * (area / 3.0);
+            area_sum += area;
+        }
+        let center = if area_sum > 0.0 {
+            weighted / area_sum
+        } else {
+            (V3::from(n.min) + V3::from(n.max)) * 0.5
+        };
+        let mut radius = 0.0f32;
+        for t in &self.tris[first as usize..end as usize] {
+            for v in t {
+                radius = radius.max((v - center).norm());
+            }
+        }
+        self.dipoles[node as usize] = Dipole {
+            center,
+            area_normal,
+            radius,
+        };
+        (first, end)
+    }
+
+    /// Number of triangles used (degenerate ones are dropped).
+    pub fn triangle_count(&self) -> usize {
+        self.tris.len()
+    }
+
+    /// The sign rule of each solid, closed solids first, then the open soup if any.
+    pub fn sign_rules(&self) -> Vec<SignRule> {
+        self.groups.iter().map(|g| g.rule).collect()
+    }
+
+    /// Exact signed distance, closest surface point and gradient at `p`.
+    pub fn query(&self, p: &Point3<f32>) -> SdfQuery {
+        let hit = self.search(p.coords, NO_TRIANGLE);
+        self.finish(p.coords, &hit)
+    }
+
+    /// Exact signed distance at `p` (negative inside).
+    #[inline]
+    pub fn signed_distance(&self, p: &Point3<f32>) -> f32 {
+        self.search(p.coords, NO_TRIANGLE).signed_distance()
+    }
+
+    /// Whether `p` is inside the solid (inside any of its parts).
+    pub fn contains(&self, p: &Point3<f32>) -> bool {
+        self.search(p.coords, NO_TRIANGLE).inside
+    }
+
+    /// Signed distances of many points, in parallel (rayon).
+    pub fn distances(&self, points: &[Point3<f32>]) -> Vec<f32> {
+        points
+            .par_iter()
+            .map(|p| self.signed_distance(p))
+            .collect()
+    }
+
+    /// Generalized winding number of the whole mesh at `p` (about 1 inside a closed outward
+    /// surface, 0 outside; overlapping parts add up), computed hierarchically.
+    pub fn winding_number(&self, p: &Point3<f32>) -> f32 {
+        let mut total = 0.0;
+        for g in &self.groups {
+            total += match g.rule {
+                SignRule::WindingNumber => self.winding(g.root, p.coords),
+                SignRule::PseudoNormal => self.exact_winding(g, p.coords),
+            };
+        }
+        total
+    }
+
+    fn exact_winding(&self, g: &Group, p: V3) -> f32 {
+        let sum: f32 = self.tris[g.first_tri as usize..g.end_tri as usize]
+            .iter()
+            .map(|t| solid_angle(p, t[0], t[1], t[2]))
+            .sum();
+        sum / (4.0 * std::f32::consts::PI)
+    }
+
+    /// Signed distance with an optional closest-triangle hint (speeds up coherent queries);
+    /// returns the hit so the caller can pass its triangle as the next hint.
+    #[inline]
+    pub(crate) fn search_hinted(&self, p: &Point3<f32>, hint: Option<u32>) -> Hit {
+        self.search(p.coords, hint.unwrap_or(NO_TRIANGLE))
+    }
+
+    fn search(&self, p: V3, hint: u32) -> Hit {
+        let pa = [p.x, p.y, p.z];
+        if self.groups.len() == 1 {
+            let g = &self.groups[0];
+            let (mut d2, mut tri) = self.seed(g, p, hint);
+            self.closest_in(g.root, p, &mut d2, &mut tri);
+            let inside = g.contains(&pa) && self.inside_group(g, p, tri);
+            return Hit {
+                tri,
+                distance2: d2,
+                inside,
+            };
+        }
+        // Solids whose box holds p may contain it: search each fully and sign it.
+        let mut best_d2 = f32::INFINITY;
+        let mut best_tri = NO_TRIANGLE;
+        let mut deepest: Option<(f32, u32)> = None;
+        for g in &self.groups {
+            if !g.contains(&pa) {
+                continue;
+            }
+            let (mut d2, mut tri) = self.seed(g, p, hint);
+            self.closest_in(g.root, p, &mut d2, &mut tri);
+            if self.inside_group(g, p, tri) && deepest.is_none_or(|(dd, _)| d2 > dd) {
+                deepest = Some((d2, tri));
+            }
+            if d2 < best_d2 {
+                best_d2 = d2;
+                best_tri = tri;
+            }
+        }
+        if let Some((d2, tri)) = deepest {
+            return Hit {
+                tri,
+                distance2: d2,
+                inside: true,
+            };
+        }
+        // Outside every solid: the nearest triangle of any solid decides.
+        for g in &self.groups {
+            if g.contains(&pa) || distance2_to_box(&pa, &g.min, &g.max) >= best_d2 {
+                continue;
+            }
+            if best_tri == NO_TRIANGLE && g.holds(hint) {
+                let (d2, tri) = self.seed(g, p, hint);
+                best_d2 = d2;
+                best_tri = tri;
+            }
+            self.closest_in(g.root, p, &mut best_d2, &mut best_tri);
+        }
+        Hit {
+            tri: best_tri,
+            distance2: best_d2,
+            inside: false,
+        }
+    }
+
+    #[inline]
+    fn seed(&self, g: &Group, p: V3, hint: u32) -> (f32, u32) {
+        if g.holds(hint) {
+            let t = &self.tris[hint as usize];
+            (distance2_to_triangle(p, t[0], t[1], t[2]), hint)
+        } else {
+            (f32::INFINITY, NO_TRIANGLE)
+        }
+    }
+
+    #[inline]
+    fn inside_group(&self, g: &Group, p: V3, tri: u32) -> bool {
+        match g.rule {
+            SignRule::PseudoNormal => {
+                let t = &self.tris[tri as usize];
+                let (q, feature) = closest_on_triangle(p, t[0], t[1], t[2]);
+                (p - q).dot(&self.pseudo_normal(tri, feature)) < 0.0
+            }
+            SignRule::WindingNumber => self.winding(g.root, p) >= 0.5,
+        }
+    }
+
+    #[inline]
+    fn pseudo_normal(&self, tri: u32, feature: Feature) -> V3 {
+        let pn = &self.normals[tri as usize].0;
+        match feature {
+            Feature::Face => pn[0],
+            Feature::Edge(e) => pn[1 + e as usize],
+            Feature::Vertex(v) => pn[4 + v as usize],
+        }
+    }
+
+    /// Nearest triangle in the subtree at `root`, improving `(best_d2, best_tri)`.
+    #[inline]
+    fn closest_in(&self, root: u32, p: V3, best_d2: &mut f32, best_tri: &mut u32) {
+        let pa = [p.x, p.y, p.z];
+        let nodes = &self.nodes[..];
+        let mut stack: [(u32, f32); 64] = [(0, 0.0); 64];
+        let mut sp = 0usize;
+        let r = &nodes[root as usize];
+        let mut current = root;
+        if distance2_to_box(&pa, &r.min, &r.max) >= *best_d2 {
+            return;
+        }
+        loop {
+            let n = &nodes[current as usize];
+            if n.count > 0 {
+                let start = n.index as usize;
+                for (k, t) in self.tris[start..start + n.count as usize].iter().enumerate() {
+                    let d2 = distance2_to_triangle(p, t[0], t[1], t[2]);
+                    if d2 < *best_d2 {
+                        *best_d2 = d2;
+                        *best_tri = (start + k) as u32;
+                    }
+                }
+            } else {
+                let l = n.index as usize;
+                let (a, b) = (&nodes[l], &nodes[l + 1]);
+                let da = distance2_to_box(&pa, &a.min, &a.max);
+                let db = distance2_to_box(&pa, &b.min, &b.max);
+                let (near, dn, far, df) = if da <= db {
+                    (l as u32, da, l as u32 + 1, db)
+                } else {
+                    (l as u32 + 1, db, l as u32, da)
+                };
+                if dn < *best_d2 {
+                    if df < *best_d2 && sp < stack.len() {
+                        stack[sp] = (far, df);
+                        sp += 1;
+                    }
+                    current = near;
+                    continue;
+                }
+            }
+            // Pop the next node still closer than the best triangle.
+            let mut next = None;
+            while sp > 0 {
+                sp -= 1;
+                let (node, d) = stack[sp];
+                if d < *best_d2 {
+                    next = Some(node);
+                    break;
+                }
+            }
+            match next {
+                Some(node) => current = node,
+                None => return,
+            }
+        }
+    }
+
+    /// Hierarchical generalized winding number of the subtree at `root`.
+    fn winding(&self, root: u32, p: V3) -> f32 {
+        let mut stack: Vec<u32> = Vec::with_capacity(64);
+        stack.push(root);
+        let mut omega = 0.0f32;
+        while let Some(node) = stack.pop() {
+            let dip = &self.dipoles[node as usize];
+            let r = dip.center - p;
+            let dist = r.norm();
+            if dist > WINDING_BETA * dip.radius {
+                omega += dip.area_normal.dot(&r) / (dist * dist * dist);
+                continue;
+            }
+            let n = &self.nodes[node as usize];
+            if n.count > 0 {
+                let start = n.index as usize;
+                for t in &self.tris[start..start + n.count as usize] {
+                    omega += solid_angle(p, t[0], t[1], t[2]);
+                }
+            } else {
+                stack.push(n.index);
+                stack.push(n.index + 1);
+            }
+        }
+        omega / (4.0 * std::f32::consts::PI)
+    }
+
+    /// Turns a search hit into a full query result.
+    pub(crate) fn finish(&self, p: V3, hit: &Hit) -> SdfQuery {
+        let t = &self.tris[hit.tri as usize];
+        let (q, feature) = closest_on_triangle(p, t[0], t[1], t[2]);
+        let diff = p - q;
+        let len = diff.norm();
+        let sign = if hit.inside { -1.0 } else { 1.0 };
+        let gradient = if len > self.grad_epsilon {
+            diff * (sign / len)
+        } else {
+            let n = self.pseudo_normal(hit.tri, feature);
+            let n = if n.norm_squared() > 0.0 {
+                n
+            } else {
+                self.normals[hit.tri as usize].0[0]
+            };
+            n.try_normalize(0.0).unwrap_or_else(V3::y)
+        };
+        SdfQuery {
+            distance: sign * len,
+            closest_point: Point3::from(q),
+            gradient,
+        }
+    }
+}
+
+impl SignedDistance for MeshSdf {
+    #[inline]
+    fn distance(&self, p: &Point3<f32>) -> f32 {
+        self.signed_distance(p)
+    }
+
+    fn gradient(&self, p: &Point3<f32>) -> Vector3<f32> {
+        self.query(p).gradient
+    }
+
+    fn local_bounds(&self) -> (Point3<f32>, Point3<f32>) {
+        (self.min, self.max)
+    }
+
+    fn distance_and_gradient(&self, p: &Point3<f32>) -> (f32, Vector3<f32>) {
+        let q = self.query(p);
+        (q.distance, q.gradient)
+    }
+}
+
+fn validate(part: &PartInput) -> Result<(), SdfError> {
+    for (index, p) in part.positions.iter().enumerate() {
+        if !p.iter().all(|v| v.is_finite()) {
+            return Err(SdfError::NonFiniteVertex {
+                mesh: part.name.clone(),
+                index,
+                position: *p,
+            });
+        }
+    }
+    let n = part.positions.len();
+    for (triangle, t) in part.triangles.iter().enumerate() {
+        if let Some(&index) = t.iter().find(|&&i| i as usize >= n) {
+            return Err(SdfError::IndexOutOfRange {
+                mesh: part.name.clone(),
+                triangle,
+                index,
+                vertex_count: n,
+            });
+        }
+    }
+    Ok(())
+}
+
+fn face_normal(t: &[V3; 3]) -> V3 {
+    (t[1] - t[0])
+        .cross(&(t[2] - t[0]))
+        .try_normalize(0.0)
+        .unwrap_or_else(V3::zeros)
+}
+
+fn tri_box(t: &[V3; 3]) -> ([f32; 3], [f32; 3]) {
+    let min = t[0].inf(&t[1]).inf(&t[2]);
+    let max = t[0].sup(&t[1]).sup(&t[2]);
+    ([min.x, min.y, min.z], [max.x, max.y, max.z])
+}
+
+fn find(parent: &mut [usize], mut x: usize) -> usize {
+    while parent[x] != x {
+        parent[x] = parent[parent[x]];
+        x = parent[x];
+    }
+    x
+}
+
+/// Welds a part's vertices by position, splits it into edge-connected components and sorts
+/// them into closed solids and open soup.
+fn split_part(part: &PartInput, solids: &mut Vec<SolidInput>, soup: &mut Vec<[V3; 3]>) {
+    let key = |p: &[f32; 3]| p.map(|v| if v == 0.0 { 0u32 } else { v.to_bits() });
+    let mut weld: HashMap<[u32; 3], u32> = HashMap::with_capacity(part.positions.len());
+    let mut welded_pos: Vec<V3> = Vec::with_capacity(part.positions.len());
+    let remap: Vec<u32> = part
+        .positions
+        .iter()
+        .map(|p| {
+            *weld.entry(key(p)).or_insert_with(|| {
+                welded_pos.push(V3::from(*p));
+                welded_pos.len() as u32 - 1
+            })
+        })
+        .collect();
+    let tris: Vec<[u32; 3]> = part
+        .triangles
+        .iter()
+        .map(|t| t.map(|i| remap[i as usize]))
+        .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+        .collect();
+    if tris.is_empty() {
+        return;
+    }
+    // Components over shared undirected edges.
+    let mut parent: Vec<usize> = (0..tris.len()).collect();
+    let mut first_with_edge: HashMap<(u32, u32), usize> = HashMap::with_capacity(tris.len() * 2);
+    for (ti, t) in tris.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            let e = (a.min(b), a.max(b));
+            match first_with_edge.get(&e) {
+                Some(&other) => {
+                    let (ra, rb) = (find(&mut parent, ti), find(&mut parent, other));
+                    if ra != rb {
+                        parent[ra.max(rb)] = ra.min(rb);
+                    }
+                }
+                None => {
+                    first_with_edge.insert(e, ti);
+                }
+            }
+        }
+    }
+    let mut components: Vec<Vec<usize>> = Vec::new();
+    let mut slot_of_root: HashMap<usize, usize> = HashMap::new();
+    for ti in 0..tris.len() {
+        let r = find(&mut parent, ti);
+        let slot = *slot_of_root.entry(r).or_insert_with(|| {
+            components.push(Vec::new());
+            components.len() - 1
+        });
+        components[slot].push(ti);
+    }
+    let corners = |t: &[u32; 3]| t.map(|i| welded_pos[i as usize]);
+    for comp in components {
+        let mut directed: HashMap<(u32, u32), u32> = HashMap::with_capacity(comp.len() * 3);
+        for &ti in &comp {
+            let t = tris[ti];
+            for k in 0..3 {
+                *directed.entry((t[k], t[(k + 1) % 3])).or_default() += 1;
+            }
+        }
+        let closed = directed
+            .iter()
+            .all(|(&(a, b), &c)| c == 1 && directed.get(&(b, a)) == Some(&1));
+        if !closed {
+            soup.extend(comp.iter().map(|&ti| corners(&tris[ti])));
+            continue;
+        }
+        // Angle-weighted pseudo-normals.
+        let mut vertex_n: HashMap<u32, V3> = HashMap::new();
+        let mut edge_n: HashMap<(u32, u32), V3> = HashMap::new();
+        let face_ns: Vec<V3> = comp
+            .iter()
+            .map(|&ti| face_normal(&corners(&tris[ti])))
+            .collect();
+        for (&ti, n) in comp.iter().zip(&face_ns) {
+            let t = tris[ti];
+            let c = corners(&t);
+            for k in 0..3 {
+                let e0 = c[(k + 1) % 3] - c[k];
+                let e1 = c[(k + 2) % 3] - c[k];
+                let angle = e0.angle(&e1);
+                let angle = if angle.is_finite() { angle } else { 0.0 };
+                *vertex_n.entry(t[k]).or_insert_with(V3::zeros) += n * angle;
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                *edge_n.entry((a.min(b), a.max(b))).or_insert_with(V3::zeros) += n;
+            }
+        }
+        let mut solid = SolidInput {
+            tris: Vec::with_capacity(comp.len()),
+            normals: Vec::with_capacity(comp.len()),
+            rule: SignRule::PseudoNormal,
+        };
+        for (&ti, n) in comp.iter().zip(&face_ns) {
+            let t = tris[ti];
+            let e = |k: usize| {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                edge_n[&(a.min(b), a.max(b))]
+            };
+            solid.tris.push(corners(&t));
+            solid.normals.push(PseudoNormals([
+                *n,
+                e(0),
+                e(1),
+                e(2),
+                vertex_n[&t[0]],
+                vertex_n[&t[1]],
+                vertex_n[&t[2]],
+            ]));
+        }
+        solids.push(solid);
+    }
+}
