@@ -92,10 +92,10 @@ impl SignedDistance for PlaneSdf {
         Vector3::y()
     }
 
-    /// Infinite in x and z, flat at y = 0.
+    /// The whole solid half-space: infinite in x and z and downward, up to y = 0.
     fn local_bounds(&self) -> (Point3<f32>, Point3<f32>) {
         (
-            Point3::new(f32::NEG_INFINITY, 0.0, f32::NEG_INFINITY),
+            Point3::new(f32::NEG_INFINITY, f32::NEG_INFINITY, f32::NEG_INFINITY),
             Point3::new(f32::INFINITY, 0.0, f32::INFINITY),
         )
     }

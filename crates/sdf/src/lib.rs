@@ -46,8 +46,9 @@ pub trait SignedDistance: Send + Sync {
     /// solid, toward the nearest surface point inside it).
     fn gradient(&self, p: &Point3<f32>) -> Vector3<f32>;
 
-    /// The box `(min, max)` holding the surface in the field's own frame. Outside this box the
-    /// distance is positive and at least the distance to the box.
+    /// The box `(min, max)` holding the solid (its surface and everything inside) in the field's
+    /// own frame. Outside this box the distance is positive and at least the distance to the
+    /// box; unbounded solids use infinite coordinates.
     fn local_bounds(&self) -> (Point3<f32>, Point3<f32>);
 
     /// Distance and gradient together (implementations override this when sharing work is

@@ -20,13 +20,15 @@ fn default_resolution_follows_object_size() {
     assert!((GridSdf::default_cell_size(0.64) - 0.01).abs() < 1e-6);
     assert!((GridSdf::default_cell_size(2.0) - 0.02).abs() < 1e-6);
     assert!((GridSdf::default_cell_size(10.0) - 10.0 / 256.0).abs() < 1e-6);
-    let sdf = torus_sdf();
+    // A 40 cm torus gets cells under 1 cm.
+    let (p, t) = shapes::torus(0.15, 0.05, 32, 16);
+    let sdf = MeshSdf::new(&p, &t).unwrap();
     let grid = GridSdf::bake(&sdf, None);
-    assert!(grid.cell_size() <= 0.01 + 1e-6, "{}", grid.cell_size());
+    assert!(grid.cell_size() <= 0.01, "{}", grid.cell_size());
     let coarse = GridSdf::bake(&sdf, Some(0.03));
     assert_eq!(coarse.cell_size(), grid.cell_size(), "max_cell only refines");
-    let fine = GridSdf::bake(&sdf, Some(0.005));
-    assert_eq!(fine.cell_size(), 0.005);
+    let fine = GridSdf::bake(&sdf, Some(0.004));
+    assert_eq!(fine.cell_size(), 0.004);
 }
 
 #[test]
