@@ -1,3 +1,30 @@
 //! Planning agents: turn a prompt into a scene plan (objects, anchor, hierarchy, relations) and
-//! a plan into an initial layout, behind `Planner` and `Guide` seams with offline defaults and
-//! online model providers.
+//! a plan into an initial layout, behind the [`Planner`] and [`Guide`] seams with offline
+//! defaults.
+//!
+//! - [`KnowledgePlanner`] plans from scene archetypes kept in data files
+//!   (`knowledge/*.toml`, embedded at build time): room size, object groups with counts, the
+//!   anchor, relation templates and walkway rules, plus what the prompt itself says (objects
+//!   with counts, and spatial phrases as hard constraints).
+//! - [`ProceduralGuide`] lays a [`Plan`] out as a [`scenethesis_scene_graph::Scene`]: a room
+//!   (or open ground), floor objects placed by their relations while one connected walkway
+//!   reaches the door and every object, and children packed onto their parents' support
+//!   surfaces.
+//! - [`relation_holds`] checks a scene relation geometrically.
+//!
+//! An LLM planner and a vision guide implement the same traits.
+#![warn(missing_docs)]
+
+mod guide;
+pub mod knowledge;
+mod plan;
+mod planner;
+mod prompt;
+mod relations;
+mod text;
+
+pub use guide::{AssetLookup, CatalogAssets, DroppedObject, Guide, GuideError, GuidedLayout, NominalAssets, ProceduralGuide, WalkwayReport};
+pub use knowledge::{Knowledge, KnowledgeError};
+pub use plan::{ConstraintTarget, Layer, Plan, PlanConstraint, PlanError, PlanRequest, PlannedObject, Planner, Zone, BACK_WALL, FRONT_WALL, LEFT_WALL, RIGHT_WALL};
+pub use planner::KnowledgePlanner;
+pub use relations::relation_holds;

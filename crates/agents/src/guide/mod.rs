@@ -1,0 +1,106 @@
+//! Stage 2 of the method: a [`Plan`] becomes an initial scene graph with poses.
+
+mod geometry;
+mod lookup;
+mod procedural;
+mod surfaces;
+
+pub use lookup::{CatalogAssets, NominalAssets};
+pub use procedural::ProceduralGuide;
+
+use std::collections::BTreeMap;
+
+use scenethesis_assets::AssetInfo;
+use scenethesis_scene_graph::Scene;
+use serde::{Deserialize, Serialize};
+
+use crate::plan::{Plan, PlannedObject};
+
+/// Where a guide finds each planned object's asset metadata (size, support surfaces, scale
+/// range). Retrieval, the built-in catalog or nominal priors can serve it.
+pub trait AssetLookup {
+    /// The metadata of the asset for `object`, or `None` when nothing fits.
+    fn asset_info(&self, object: &PlannedObject) -> Option<AssetInfo>;
+}
+
+/// Assets already chosen per object id (e.g. by retrieval).
+impl AssetLookup for BTreeMap<String, AssetInfo> {
+    fn asset_info(&self, object: &PlannedObject) -> Option<AssetInfo> {
+        self.get(&object.id).cloned()
+    }
+}
+
+/// An object the guide left out, and why.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct DroppedObject {
+    /// The planned object's id.
+    pub id: String,
+    /// Why it was left out.
+    pub reason: String,
+}
+
+/// How walkable the guided floor is, by the raster rules of the metrics.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct WalkwayReport {
+    /// Largest free component / all free floor, with the robot radius (Walk).
+    pub walk_ratio: f64,
+    /// Whether the door is reachable through a walkway of the plan's aisle width.
+    pub door_reachable: bool,
+    /// Floor objects whose access side the aisle-width walkway does not reach.
+    pub unreachable: Vec<String>,
+}
+
+/// A guided layout: the scene and a report of what happened.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GuidedLayout {
+    /// The scene graph with initial poses; passes [`Scene::validate`].
+    pub scene: Scene,
+    /// Planned objects that did not fit.
+    pub dropped: Vec<DroppedObject>,
+    /// Walkway figures of the final floor.
+    pub walkway: WalkwayReport,
+}
+
+/// Why a plan could not be laid out.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum GuideError {
+    /// The plan names an object the asset lookup cannot provide.
+    #[error("object `{id}` (category `{category}`): no asset metadata available")]
+    MissingAsset {
+        /// The object id.
+        id: String,
+        /// Its category.
+        category: String,
+    },
+    /// The plan is inconsistent (unknown parent, bad room size, …).
+    #[error("invalid plan: {0}")]
+    InvalidPlan(String),
+    /// Nothing could be placed on the floor.
+    #[error("no floor object of the plan fits a {width} × {depth} m floor")]
+    NothingFits {
+        /// Floor width (x).
+        width: f64,
+        /// Floor depth (z).
+        depth: f64,
+    },
+    /// A provider failed (vision guides: image generation, segmentation, depth).
+    #[error("guide provider `{provider}` failed: {message}")]
+    Provider {
+        /// The provider's name.
+        provider: String,
+        /// What went wrong.
+        message: String,
+    },
+}
+
+/// Stage 2: lays out a [`Plan`] as a scene graph rooted at the ground, with initial poses that
+/// the optimizer then makes exact.
+///
+/// The offline [`ProceduralGuide`] places objects by rules; a vision guide implements the same
+/// trait by generating a guidance image for the plan's description, segmenting it, lifting the
+/// masks with depth to 3D boxes and matching them to the planned objects. The same plan,
+/// assets and seed must give the identical scene.
+pub trait Guide {
+    /// Lays out `plan` with the assets' metadata, seeded by `seed`.
+    fn layout(&self, plan: &Plan, assets: &dyn AssetLookup, seed: u64) -> Result<GuidedLayout, GuideError>;
+}

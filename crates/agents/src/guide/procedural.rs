@@ -1,0 +1,820 @@
+//! The offline procedural guide: rule-based floor layout with a walkway check, then children
+//! packed onto their parents' support surfaces.
+
+use std::collections::BTreeMap;
+use std::f64::consts::{FRAC_PI_2, PI};
+
+use nalgebra::Vector3;
+use rand::seq::SliceRandom;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use scenethesis_assets::AssetInfo;
+use scenethesis_scene_graph::{Aabb, Architecture, Environment, ParentRef, Pose, Relation, RelationKind, Scene, SceneObject};
+
+use super::geometry::{Footprint, Raster};
+use super::surfaces::place_children;
+use super::{AssetLookup, DroppedObject, Guide, GuideError, GuidedLayout, WalkwayReport};
+use crate::knowledge::{Knowledge, NominalShape};
+use crate::plan::{Plan, PlannedObject, Zone};
+
+/// Robot radius of the Walk and Reach metrics (0.3 m diameter).
+pub const ROBOT_RADIUS: f64 = 0.15;
+/// Objects whose box centre is at or above this height do not block walking (metrics rule).
+const WALK_HEIGHT: f64 = 1.5;
+/// Minimum share of the free floor the largest walkable component must hold.
+const MIN_WALK: f64 = 0.995;
+/// Door opening width in metres.
+const DOOR_WIDTH: f64 = 0.9;
+/// Centre height of wall-mounted objects.
+const WALL_MOUNT_HEIGHT: f64 = 1.6;
+
+/// Lays out plans by rules: the anchor against its wall or in the middle, storage against the
+/// walls facing into the room, seats facing the anchor, tables in front of it, chairs around
+/// tables, then every floor object accepted only while one connected walkway (at least the
+/// plan's aisle width, ≥ 0.6 m) still reaches the door and the access side of every floor
+/// object, and the robot-radius free floor stays one region. Children are packed onto their
+/// parents' support surfaces (several per shelf when they fit, never overlapping). What does
+/// not fit is dropped and reported.
+#[derive(Debug, Clone)]
+pub struct ProceduralGuide {
+    cell: f64,
+}
+
+impl Default for ProceduralGuide {
+    fn default() -> Self {
+        Self { cell: 0.05 }
+    }
+}
+
+impl ProceduralGuide {
+    /// A guide checking walkways on a raster of `cell` metres (0.05 by default).
+    pub fn with_cell(cell: f64) -> Self {
+        Self { cell: cell.clamp(0.02, 0.2) }
+    }
+}
+
+/// A wall (or, outdoors, an edge of the ground) that objects can back onto.
+#[derive(Debug, Clone)]
+struct Side {
+    id: Option<String>,
+    /// Point on the inner face at the middle of the wall.
+    face: [f64; 2],
+    /// Unit normal into the room.
+    normal: [f64; 2],
+    /// Unit direction along the wall.
+    along: [f64; 2],
+    half_len: f64,
+}
+
+impl Side {
+    fn yaw(&self) -> f64 {
+        self.normal[0].atan2(self.normal[1])
+    }
+
+    fn footprint_at(&self, s: f64, hx: f64, hz: f64) -> Footprint {
+        let gap = 0.01;
+        Footprint {
+            cx: self.face[0] + self.along[0] * s + self.normal[0] * (hz + gap),
+            cz: self.face[1] + self.along[1] * s + self.normal[1] * (hz + gap),
+            yaw: self.yaw(),
+            hx,
+            hz,
+        }
+    }
+
+    fn limit(&self, hx: f64) -> f64 {
+        self.half_len - hx - 0.01
+    }
+}
+
+#[derive(Debug, Clone)]
+struct Candidate {
+    fp: Footprint,
+    wall: Option<String>,
+}
+
+#[derive(Debug, Clone)]
+struct Placed {
+    plan_index: usize,
+    fp: Footprint,
+    height: f64,
+    /// Checked from the front (objects backed onto a wall) rather than from any side.
+    front_access: bool,
+    wall: Option<String>,
+    mounted: bool,
+}
+
+struct FloorState<'a> {
+    raster: Raster,
+    aisle_radius: f64,
+    aisle_base: Vec<bool>,
+    walk_base: Vec<bool>,
+    door_aisle: Option<usize>,
+    door_walk: Option<usize>,
+    door_zone: Option<Footprint>,
+    floor: [f64; 4],
+    placed: Vec<Placed>,
+    plan: &'a Plan,
+}
+
+impl FloorState<'_> {
+    fn inside_floor(&self, fp: &Footprint, margin: f64) -> bool {
+        fp.corners().iter().all(|c| {
+            c[0] >= self.floor[0] + margin - 1e-9
+                && c[0] <= self.floor[2] - margin + 1e-9
+                && c[1] >= self.floor[1] + margin - 1e-9
+                && c[1] <= self.floor[3] - margin + 1e-9
+        })
+    }
+
+    fn collides(&self, fp: &Footprint, gap: f64) -> bool {
+        self.placed.iter().filter(|p| !p.mounted).any(|p| p.fp.overlaps(fp, gap))
+            || self.door_zone.is_some_and(|d| d.overlaps(fp, 0.0))
+    }
+
+    /// Walkway evaluation with an optional extra object: (accepted, walk ratio, door reachable,
+    /// unreachable plan indices).
+    fn evaluate(&self, extra: Option<&Placed>) -> (bool, f64, bool, Vec<usize>) {
+        let r = &self.raster;
+        let mut aisle = self.aisle_base.clone();
+        let mut walk = self.walk_base.clone();
+        if let Some(p) = extra.filter(|p| !p.mounted) {
+            r.stamp(&mut aisle, &p.fp, self.aisle_radius);
+            if p.height / 2.0 < WALK_HEIGHT {
+                r.stamp(&mut walk, &p.fp, ROBOT_RADIUS);
+            }
+        }
+        let (alabels, asizes) = r.components(&aisle);
+        let main = match self.door_aisle {
+            Some(d) => alabels[d],
+            None => (1..asizes.len()).max_by_key(|&l| (asizes[l], usize::MAX - l)).unwrap_or(0) as u32,
+        };
+        let door_ok = main != 0;
+        let mut unreachable = Vec::new();
+        for p in self.placed.iter().chain(extra) {
+            if main == 0 || !self.reachable(p, &alabels, main) {
+                unreachable.push(p.plan_index);
+            }
+        }
+        let (wlabels, wsizes) = r.components(&walk);
+        let total: usize = wsizes.iter().sum();
+        let largest = (1..wsizes.len()).max_by_key(|&l| (wsizes[l], usize::MAX - l)).unwrap_or(0);
+        let ratio = if total == 0 { 0.0 } else { wsizes[largest] as f64 / total as f64 };
+        let door_walk = self.door_walk.is_none_or(|d| wlabels[d] == largest as u32 && largest != 0);
+        let ok = door_ok && unreachable.is_empty() && ratio >= MIN_WALK && door_walk;
+        (ok, ratio, door_ok, unreachable)
+    }
+
+    fn reachable(&self, p: &Placed, labels: &[u32], main: u32) -> bool {
+        let r = &self.raster;
+        let reach = self.aisle_radius + 1.5 * r.cell;
+        let zone = if p.front_access {
+            let depth = reach + r.cell;
+            let centre = p.fp.to_world(0.0, p.fp.hz + depth / 2.0);
+            Footprint { cx: centre[0], cz: centre[1], yaw: p.fp.yaw, hx: (p.fp.hx * 0.8).max(r.cell), hz: depth / 2.0 }
+        } else {
+            Footprint { hx: p.fp.hx + reach, hz: p.fp.hz + reach, ..p.fp }
+        };
+        let mut found = false;
+        r.for_cells_in(&zone, 0.0, |idx| found |= labels[idx] == main);
+        found
+    }
+
+    fn commit(&mut self, p: Placed) {
+        if !p.mounted {
+            self.raster.stamp(&mut self.aisle_base, &p.fp, self.aisle_radius);
+            if p.height / 2.0 < WALK_HEIGHT {
+                self.raster.stamp(&mut self.walk_base, &p.fp, ROBOT_RADIUS);
+            }
+        }
+        self.placed.push(p);
+    }
+
+    fn placed_of(&self, plan_index: usize) -> Option<&Placed> {
+        self.placed.iter().find(|p| p.plan_index == plan_index)
+    }
+
+    fn index_of(&self, id: &str) -> Option<usize> {
+        self.plan.objects.iter().position(|o| o.id == id)
+    }
+}
+
+fn seat_like(category: &str) -> bool {
+    Knowledge::builtin().prior(category).is_some_and(|p| p.shape == NominalShape::Seat)
+        || ["chair", "stool", "bench", "bean_bag", "ottoman", "wheelchair"].iter().any(|w| category.contains(w))
+}
+
+fn yaw_toward(from: [f64; 2], to: [f64; 2]) -> f64 {
+    (to[0] - from[0]).atan2(to[1] - from[1])
+}
+
+fn wrap(yaw: f64) -> f64 {
+    let mut y = yaw % (2.0 * PI);
+    if y > PI {
+        y -= 2.0 * PI;
+    }
+    if y <= -PI {
+        y += 2.0 * PI;
+    }
+    y
+}
+
+impl Guide for ProceduralGuide {
+    fn layout(&self, plan: &Plan, assets: &dyn AssetLookup, seed: u64) -> Result<GuidedLayout, GuideError> {
+        let [width, depth] = plan.room_size;
+        if !(width.is_finite() && depth.is_finite() && width >= 1.5 && depth >= 1.5) {
+            return Err(GuideError::InvalidPlan(format!("room_size {width} × {depth} m: expected at least 1.5 m each way")));
+        }
+        let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x9e37_79b9_7f4a_7c15);
+        let indoor = plan.environment == Environment::Indoor;
+        let architecture = if indoor {
+            Architecture::rectangular_room(width, depth, plan.wall_height.max(2.2), DOOR_WIDTH)
+        } else {
+            Architecture::open_ground(width, depth)
+        };
+        let (hw, hd) = (width / 2.0, depth / 2.0);
+
+        // Metadata for every object.
+        let mut infos: Vec<AssetInfo> = Vec::with_capacity(plan.objects.len());
+        for o in &plan.objects {
+            let info = assets.asset_info(o).ok_or_else(|| GuideError::MissingAsset { id: o.id.clone(), category: o.category.clone() })?;
+            infos.push(info);
+        }
+        for o in &plan.objects {
+            if let ParentRef::Object(p) = &o.parent {
+                if plan.object(p).is_none() {
+                    return Err(GuideError::InvalidPlan(format!("object `{}`: parent `{p}` is not planned", o.id)));
+                }
+            }
+        }
+
+        let sides: Vec<Side> = {
+            let inset = if indoor { 0.0 } else { 0.3 };
+            let (x, z) = (hw - inset, hd - inset);
+            let id = |i: usize| indoor.then(|| format!("wall_{i}"));
+            vec![
+                Side { id: id(0), face: [0.0, -z], normal: [0.0, 1.0], along: [1.0, 0.0], half_len: x },
+                Side { id: id(1), face: [-x, 0.0], normal: [1.0, 0.0], along: [0.0, 1.0], half_len: z },
+                Side { id: id(2), face: [0.0, z], normal: [0.0, -1.0], along: [1.0, 0.0], half_len: x },
+                Side { id: id(3), face: [x, 0.0], normal: [-1.0, 0.0], along: [0.0, 1.0], half_len: z },
+            ]
+        };
+
+        let aisle_radius = (plan.aisle / 2.0).max(0.3);
+        let raster = Raster::new(-hw, -hd, hw, hd, self.cell);
+        let mut aisle_base = raster.floor_mask(aisle_radius);
+        let mut walk_base = raster.floor_mask(ROBOT_RADIUS);
+        let door_zone = indoor.then(|| {
+            let clear = plan.door_clearance.max(0.6);
+            Footprint { cx: 0.0, cz: hd - clear / 2.0, yaw: 0.0, hx: DOOR_WIDTH / 2.0 + 0.2, hz: clear / 2.0 }
+        });
+        let door_cell = |r: f64| if indoor { raster.cell_of(0.0, hd - r - self.cell * 1.5).map(|(i, j)| j * raster.nx + i) } else { None };
+        let (door_aisle, door_walk) = (door_cell(aisle_radius), door_cell(ROBOT_RADIUS));
+        if let (Some(a), Some(w)) = (door_aisle, door_walk) {
+            aisle_base[a] = true;
+            walk_base[w] = true;
+        }
+        let mut state = FloorState {
+            raster,
+            aisle_radius,
+            aisle_base,
+            walk_base,
+            door_aisle,
+            door_walk,
+            door_zone,
+            floor: [-hw, -hd, hw, hd],
+            placed: Vec::new(),
+            plan,
+        };
+
+        // Floor objects in placement order.
+        let class = |i: usize| -> u8 {
+            let o = &plan.objects[i];
+            if o.id == plan.anchor {
+                return 0;
+            }
+            match &o.zone {
+                Zone::Relative => 1,
+                Zone::Corner => 2,
+                Zone::Wall { wall: Some(_) } => 3,
+                Zone::Wall { wall: None } => 4,
+                Zone::Center => 5,
+                Zone::Rows => 6,
+                Zone::Free => 7,
+                Zone::WallMounted => 8,
+                Zone::Supported => 9,
+            }
+        };
+        let mut order: Vec<usize> = (0..plan.objects.len()).filter(|&i| plan.objects[i].parent == ParentRef::Ground).collect();
+        order.sort_by_key(|&i| (class(i), !plan.objects[i].hard, i));
+
+        let mut dropped: Vec<DroppedObject> = Vec::new();
+        let mut attempted = vec![false; plan.objects.len()];
+        let mut pending = order;
+        while !pending.is_empty() {
+            let mut next = Vec::new();
+            let mut progress = false;
+            for &i in &pending {
+                let o = &plan.objects[i];
+                // A relative object waits for its target.
+                if let Some(target) = positional_target(o) {
+                    if let Some(t) = state.index_of(target) {
+                        if !attempted[t] && plan.objects[t].parent == ParentRef::Ground {
+                            next.push(i);
+                            continue;
+                        }
+                    }
+                }
+                attempted[i] = true;
+                progress = true;
+                let candidates = self.candidates(&state, o, &infos[i], &sides, &infos, &mut rng);
+                let mounted = o.zone == Zone::WallMounted;
+                let (hx, hz) = (infos[i].size[0] as f64 / 2.0, infos[i].size[2] as f64 / 2.0);
+                let mut accepted = None;
+                let mut tried = 0;
+                for c in candidates {
+                    if !mounted {
+                        let margin = if indoor { 0.0 } else { 0.3 };
+                        if !state.inside_floor(&c.fp, margin) || state.collides(&c.fp, 0.02) {
+                            continue;
+                        }
+                    } else if !self.mount_ok(&state, &c.fp) {
+                        continue;
+                    }
+                    let p = Placed {
+                        plan_index: i,
+                        fp: c.fp,
+                        height: infos[i].size[1] as f64,
+                        front_access: c.wall.is_some() || matches!(o.zone, Zone::Wall { .. } | Zone::Corner | Zone::WallMounted),
+                        wall: c.wall.clone(),
+                        mounted,
+                    };
+                    tried += 1;
+                    if tried > 160 {
+                        break;
+                    }
+                    if state.evaluate(Some(&p)).0 {
+                        accepted = Some(p);
+                        break;
+                    }
+                }
+                let _ = (hx, hz);
+                match accepted {
+                    Some(p) => state.commit(p),
+                    None => dropped.push(DroppedObject {
+                        id: o.id.clone(),
+                        reason: if tried == 0 {
+                            "no free spot for its footprint".into()
+                        } else {
+                            "every free spot would block the walkway, the door or another object's access".into()
+                        },
+                    }),
+                }
+            }
+            if !progress {
+                // Targets that never get placed: place the waiting ones without them.
+                for &i in &next {
+                    attempted[i] = true;
+                }
+                for &i in &next {
+                    let o = &plan.objects[i];
+                    let candidates = self.free_candidates(&state, &infos[i], &mut rng, None);
+                    let mut ok = false;
+                    for c in candidates.into_iter().take(200) {
+                        if !state.inside_floor(&c.fp, 0.0) || state.collides(&c.fp, 0.02) {
+                            continue;
+                        }
+                        let p = Placed { plan_index: i, fp: c.fp, height: infos[i].size[1] as f64, front_access: false, wall: None, mounted: false };
+                        if state.evaluate(Some(&p)).0 {
+                            state.commit(p);
+                            ok = true;
+                            break;
+                        }
+                    }
+                    if !ok {
+                        dropped.push(DroppedObject { id: o.id.clone(), reason: "its target was not placed and no free spot remained".into() });
+                    }
+                }
+                break;
+            }
+            pending = next;
+        }
+        if state.placed.iter().all(|p| p.mounted) {
+            return Err(GuideError::NothingFits { width, depth });
+        }
+
+        // Poses of ground objects.
+        let mut poses: BTreeMap<usize, Pose> = BTreeMap::new();
+        let mut walls: BTreeMap<usize, String> = BTreeMap::new();
+        for p in &state.placed {
+            let y = if p.mounted { (WALL_MOUNT_HEIGHT - p.height / 2.0).max(0.5) } else { 0.0 };
+            poses.insert(p.plan_index, Pose::new(1.0, wrap(p.fp.yaw), Vector3::new(p.fp.cx, y, p.fp.cz)));
+            if let Some(w) = &p.wall {
+                walls.insert(p.plan_index, w.clone());
+            }
+        }
+
+        // Children on, in and under their parents.
+        let child_drops = place_children(plan, &infos, &mut poses, &mut rng);
+        dropped.extend(child_drops);
+
+        // The scene.
+        let (_, ratio, door_ok, unreachable) = state.evaluate(None);
+        let mut scene = Scene::new(architecture);
+        scene.prompt = plan.prompt.clone();
+        scene.seed = seed;
+        let present: BTreeMap<&str, usize> = poses.keys().map(|&i| (plan.objects[i].id.as_str(), i)).collect();
+        for (i, o) in plan.objects.iter().enumerate() {
+            let Some(pose) = poses.get(&i) else { continue };
+            let info = &infos[i];
+            let [sx, sy, sz] = info.size.map(f64::from);
+            let mut support = o.support;
+            let mut relations: Vec<Relation> = o
+                .relations
+                .iter()
+                .filter(|r| present.contains_key(r.target.as_str()) || scene.architecture.wall(&r.target).is_some() || r.target == scenethesis_scene_graph::GROUND_ID)
+                .cloned()
+                .collect();
+            if o.parent == ParentRef::Ground {
+                match walls.get(&i) {
+                    Some(w) => {
+                        support = RelationKind::AgainstWall;
+                        relations.retain(|r| r.kind != RelationKind::AgainstWall);
+                        relations.insert(0, Relation::new(RelationKind::AgainstWall, w.clone()));
+                    }
+                    None => {
+                        if support == RelationKind::AgainstWall {
+                            support = RelationKind::OnFloor;
+                        }
+                        relations.retain(|r| r.kind != RelationKind::AgainstWall);
+                    }
+                }
+            }
+            scene.objects.push(SceneObject {
+                id: o.id.clone(),
+                category: o.category.clone(),
+                asset: info.source.clone(),
+                pose: *pose,
+                parent: o.parent.clone(),
+                support,
+                relations,
+                local_bounds: Aabb::new(nalgebra::Point3::new(-sx / 2.0, 0.0, -sz / 2.0), nalgebra::Point3::new(sx / 2.0, sy, sz / 2.0)),
+            });
+        }
+        scene.anchor = if present.contains_key(plan.anchor.as_str()) {
+            Some(plan.anchor.clone())
+        } else {
+            scene.objects.iter().find(|o| o.parent == ParentRef::Ground && !o.id.is_empty()).map(|o| o.id.clone())
+        };
+        Ok(GuidedLayout {
+            scene,
+            dropped,
+            walkway: WalkwayReport {
+                walk_ratio: ratio,
+                door_reachable: door_ok,
+                unreachable: unreachable.into_iter().map(|i| plan.objects[i].id.clone()).collect(),
+            },
+        })
+    }
+}
+
+/// The object a relative placement positions against (the first positional relation).
+fn positional_target(o: &PlannedObject) -> Option<&str> {
+    if o.zone != Zone::Relative {
+        return None;
+    }
+    o.relations
+        .iter()
+        .find(|r| !matches!(r.kind, RelationKind::AgainstWall | RelationKind::LeftOf | RelationKind::RightOf))
+        .map(|r| r.target.as_str())
+}
+
+impl ProceduralGuide {
+    fn mount_ok(&self, state: &FloorState<'_>, fp: &Footprint) -> bool {
+        // Not over another mounted object, and free floor in front.
+        if state.placed.iter().filter(|p| p.mounted).any(|p| p.fp.overlaps(fp, 0.1)) {
+            return false;
+        }
+        let front = fp.to_world(0.0, fp.hz + 0.35);
+        let band = Footprint { cx: front[0], cz: front[1], yaw: fp.yaw, hx: fp.hx, hz: 0.35 };
+        !state.placed.iter().filter(|p| !p.mounted).any(|p| p.fp.overlaps(&band, 0.0))
+            && !state.door_zone.is_some_and(|d| d.overlaps(&band, 0.0))
+    }
+
+    fn candidates(
+        &self,
+        state: &FloorState<'_>,
+        o: &PlannedObject,
+        info: &AssetInfo,
+        sides: &[Side],
+        infos: &[AssetInfo],
+        rng: &mut ChaCha8Rng,
+    ) -> Vec<Candidate> {
+        let (hx, hz) = (info.size[0] as f64 / 2.0, info.size[2] as f64 / 2.0);
+        let plan = state.plan;
+        let is_anchor = o.id == plan.anchor;
+        let mut out = Vec::new();
+        if is_anchor && matches!(o.zone, Zone::Wall { .. }) {
+            out.extend(self.anchor_wall_candidates(o, sides, hx, hz, rng));
+            return out;
+        }
+        match &o.zone {
+            Zone::Wall { wall: Some(w) } => {
+                if let Some(side) = sides.iter().find(|s| s.id.as_deref() == Some(w)) {
+                    out.extend(self.wall_candidates(side, hx, hz, rng));
+                }
+            }
+            Zone::Wall { wall: None } => {
+                // Opposite a target: the wall facing it first.
+                let facing = o.relations.iter().find(|r| r.kind == RelationKind::Facing).and_then(|r| state.index_of(&r.target)).and_then(|t| state.placed_of(t));
+                let mut order: Vec<usize> = (0..sides.len()).collect();
+                order.shuffle(rng);
+                if let Some(t) = facing {
+                    let (_, f) = t.fp.axes();
+                    order.sort_by(|&a, &b| {
+                        let da = sides[a].normal[0] * f[0] + sides[a].normal[1] * f[1];
+                        let db = sides[b].normal[0] * f[0] + sides[b].normal[1] * f[1];
+                        da.total_cmp(&db)
+                    });
+                    let side = &sides[order[0]];
+                    let s_t = (t.fp.cx - side.face[0]) * side.along[0] + (t.fp.cz - side.face[1]) * side.along[1];
+                    let lim = side.limit(hx);
+                    if lim > 0.0 {
+                        let mut ss: Vec<f64> = (0..=(2.0 * lim / 0.1) as usize).map(|k| -lim + k as f64 * 0.1).collect();
+                        ss.sort_by(|a, b| (a - s_t).abs().total_cmp(&(b - s_t).abs()));
+                        out.extend(ss.into_iter().map(|s| Candidate { fp: side.footprint_at(s, hx, hz), wall: side.id.clone() }));
+                    }
+                    order.remove(0);
+                }
+                for k in order {
+                    out.extend(self.wall_candidates(&sides[k], hx, hz, rng));
+                }
+            }
+            Zone::Corner => out.extend(self.corner_candidates(sides, hx, hz, rng)),
+            Zone::Center => out.extend(self.center_candidates(state, hx, hz, rng, is_anchor)),
+            Zone::Rows => out.extend(self.row_candidates(state, hx, hz)),
+            Zone::Free => {}
+            Zone::WallMounted => {
+                let mut order: Vec<usize> = (0..sides.len()).collect();
+                order.shuffle(rng);
+                for k in order {
+                    out.extend(self.wall_candidates(&sides[k], hx, (info.size[2] as f64 / 2.0).max(0.005), rng));
+                }
+            }
+            Zone::Relative => out.extend(self.relative_candidates(state, o, hx, hz, infos, rng)),
+            Zone::Supported => {}
+        }
+        if matches!(o.zone, Zone::Free | Zone::Relative | Zone::Center | Zone::Rows) || (is_anchor && out.is_empty()) {
+            let anchor_toward = state.index_of(&plan.anchor).and_then(|a| state.placed_of(a)).map(|p| [p.fp.cx, p.fp.cz]);
+            let facing = seat_like(&o.category).then_some(anchor_toward).flatten();
+            out.extend(self.free_candidates(state, info, rng, facing));
+        }
+        out
+    }
+
+    fn anchor_wall_candidates(&self, o: &PlannedObject, sides: &[Side], hx: f64, hz: f64, rng: &mut ChaCha8Rng) -> Vec<Candidate> {
+        let wall = match &o.zone {
+            Zone::Wall { wall: Some(w) } => w.clone(),
+            _ => "wall_0".to_owned(),
+        };
+        let mut out = Vec::new();
+        let mut order: Vec<&Side> = sides.iter().filter(|s| s.id.as_deref() == Some(wall.as_str())).collect();
+        if o.relations.iter().all(|r| r.kind != RelationKind::AgainstWall) {
+            order.extend(sides.iter().filter(|s| s.id.as_deref() != Some(wall.as_str())));
+        }
+        for side in order {
+            let lim = side.limit(hx);
+            if lim < 0.0 {
+                continue;
+            }
+            let jitter = rng.random_range(-0.25..=0.25) * lim.min(1.2);
+            let mut ss: Vec<f64> = vec![jitter];
+            let mut k = 1.0;
+            while k * 0.1 <= 2.0 * lim {
+                ss.push(jitter + k * 0.1);
+                ss.push(jitter - k * 0.1);
+                k += 1.0;
+            }
+            out.extend(ss.into_iter().filter(|s| s.abs() <= lim).map(|s| Candidate { fp: side.footprint_at(s, hx, hz), wall: side.id.clone() }));
+        }
+        out
+    }
+
+    fn wall_candidates(&self, side: &Side, hx: f64, hz: f64, rng: &mut ChaCha8Rng) -> Vec<Candidate> {
+        let lim = side.limit(hx);
+        if lim < 0.0 {
+            return Vec::new();
+        }
+        let steps = (2.0 * lim / 0.1).floor() as usize;
+        let mut ss: Vec<f64> = (0..=steps).map(|k| -lim + k as f64 * 0.1).collect();
+        ss.push(lim);
+        if rng.random_bool(0.5) {
+            ss.reverse();
+        }
+        ss.into_iter().map(|s| Candidate { fp: side.footprint_at(s, hx, hz), wall: side.id.clone() }).collect()
+    }
+
+    fn corner_candidates(&self, sides: &[Side], hx: f64, hz: f64, rng: &mut ChaCha8Rng) -> Vec<Candidate> {
+        let mut out = Vec::new();
+        let mut options: Vec<(usize, f64)> = (0..sides.len()).flat_map(|k| [(k, -1.0), (k, 1.0)]).collect();
+        options.shuffle(rng);
+        for (k, sign) in options {
+            let side = &sides[k];
+            let lim = side.limit(hx);
+            if lim < 0.0 {
+                continue;
+            }
+            for back in [0.0, 0.1, 0.2] {
+                out.push(Candidate { fp: side.footprint_at(sign * (lim - back), hx, hz), wall: side.id.clone() });
+            }
+        }
+        out
+    }
+
+    fn center_candidates(&self, state: &FloorState<'_>, hx: f64, hz: f64, rng: &mut ChaCha8Rng, anchor: bool) -> Vec<Candidate> {
+        let [x0, z0, x1, z1] = state.floor;
+        let (w, d) = (x1 - x0, z1 - z0);
+        // Long side along the room's long side; flipped at random for variety.
+        let base = if (hx >= hz) == (w >= d) { 0.0 } else { FRAC_PI_2 };
+        let yaw = if rng.random_bool(0.5) { base } else { base + PI };
+        let (cx, cz) = ((x0 + x1) / 2.0 + rng.random_range(-0.2..=0.2), (z0 + z1) / 2.0 - if anchor { 0.1 * d } else { 0.0 } + rng.random_range(-0.2..=0.2));
+        let mut out = vec![];
+        for ring in 0..16 {
+            let radius = ring as f64 * 0.15;
+            let n = if ring == 0 { 1 } else { 8 + ring * 2 };
+            let phase = rng.random_range(0.0..(2.0 * PI));
+            for k in 0..n {
+                let a = phase + k as f64 / n as f64 * 2.0 * PI;
+                for y in [yaw, yaw + FRAC_PI_2] {
+                    out.push(Candidate { fp: Footprint { cx: cx + radius * a.cos(), cz: cz + radius * a.sin(), yaw: y, hx, hz }, wall: None });
+                }
+            }
+        }
+        out
+    }
+
+    fn row_candidates(&self, state: &FloorState<'_>, hx: f64, hz: f64) -> Vec<Candidate> {
+        let [x0, z0, x1, z1] = state.floor;
+        let (sx, sz) = (2.0 * hx + 1.0, 2.0 * hz + 1.5);
+        let (ax0, ax1) = (x0 + 0.9 + hx, x1 - 0.9 - hx);
+        let (az0, az1) = (z0 + 1.9 + hz, z1 - 1.3 - hz);
+        let mut out = Vec::new();
+        if ax1 < ax0 || az1 < az0 {
+            return out;
+        }
+        let cols = ((ax1 - ax0) / sx).floor() as usize + 1;
+        let rows = ((az1 - az0) / sz).floor() as usize + 1;
+        let off_x = (ax1 - ax0 - (cols - 1) as f64 * sx) / 2.0;
+        for r in 0..rows {
+            for c in 0..cols {
+                let fp = Footprint { cx: ax0 + off_x + c as f64 * sx, cz: az0 + r as f64 * sz, yaw: 0.0, hx, hz };
+                out.push(Candidate { fp, wall: None });
+            }
+        }
+        out
+    }
+
+    fn free_candidates(&self, state: &FloorState<'_>, info: &AssetInfo, rng: &mut ChaCha8Rng, face: Option<[f64; 2]>) -> Vec<Candidate> {
+        let (hx, hz) = (info.size[0] as f64 / 2.0, info.size[2] as f64 / 2.0);
+        let [x0, z0, x1, z1] = state.floor;
+        let r = hx.max(hz) + 0.05;
+        let mut out = Vec::new();
+        if x1 - x0 <= 2.0 * r || z1 - z0 <= 2.0 * r {
+            return out;
+        }
+        for _ in 0..240 {
+            let x = rng.random_range(x0 + r..=x1 - r);
+            let z = rng.random_range(z0 + r..=z1 - r);
+            let yaw = match face {
+                Some(t) => yaw_toward([x, z], t),
+                None => rng.random_range(0..4) as f64 * FRAC_PI_2,
+            };
+            out.push(Candidate { fp: Footprint { cx: x, cz: z, yaw, hx, hz }, wall: None });
+        }
+        out
+    }
+
+    fn relative_candidates(&self, state: &FloorState<'_>, o: &PlannedObject, hx: f64, hz: f64, infos: &[AssetInfo], rng: &mut ChaCha8Rng) -> Vec<Candidate> {
+        let _ = infos;
+        let plan = state.plan;
+        let mut out = Vec::new();
+        let Some(target_id) = positional_target(o) else { return out };
+        let Some(ti) = state.index_of(target_id) else { return out };
+        let Some(t) = state.placed_of(ti) else { return out };
+        let kind = o.relations.iter().find(|r| r.target == target_id && !matches!(r.kind, RelationKind::AgainstWall | RelationKind::LeftOf | RelationKind::RightOf)).map(|r| r.kind).unwrap_or(RelationKind::Beside);
+        let side_rel = o.relations.iter().find(|r| matches!(r.kind, RelationKind::LeftOf | RelationKind::RightOf)).map(|r| r.kind);
+        let facing = o.relations.iter().find(|r| r.kind == RelationKind::Facing && r.target != target_id).or_else(|| o.relations.iter().find(|r| r.kind == RelationKind::Facing)).and_then(|r| state.index_of(&r.target)).and_then(|i| state.placed_of(i)).map(|p| [p.fp.cx, p.fp.cz]);
+        let (r_t, f_t) = t.fp.axes();
+        let tc = [t.fp.cx, t.fp.cz];
+        // Which of the objects sharing this relation to the target this one is.
+        let peers: Vec<&PlannedObject> = plan.objects.iter().filter(|p| p.zone == Zone::Relative && positional_target(p) == Some(target_id) && p.relations.iter().any(|r| r.kind == kind && r.target == target_id)).collect();
+        let k = peers.iter().position(|p| p.id == o.id).unwrap_or(0);
+        let n = peers.len().max(1);
+        let seat = seat_like(&o.category);
+        let mk = |c: [f64; 2], yaw: f64| Candidate { fp: Footprint { cx: c[0], cz: c[1], yaw, hx, hz }, wall: None };
+        let add = |a: [f64; 2], s: f64, b: [f64; 2]| [a[0] + s * b[0], a[1] + s * b[1]];
+        match kind {
+            RelationKind::InFrontOf | RelationKind::Behind => {
+                let dir = if kind == RelationKind::InFrontOf { 1.0 } else { -1.0 };
+                let yaw = match facing {
+                    Some(_) => None,
+                    None if seat && kind == RelationKind::InFrontOf => Some(t.fp.yaw + PI),
+                    None => Some(t.fp.yaw),
+                };
+                let base_gap = if seat { 0.06 } else { 0.45 };
+                let lateral = if n > 1 { ((k as f64 + 0.5) / n as f64 * 2.0 - 1.0) * t.fp.hx } else { rng.random_range(-0.05..=0.05) };
+                for gap in [base_gap, base_gap + 0.1, base_gap + 0.25, base_gap + 0.45, base_gap + 0.7] {
+                    for dl in [0.0, 0.2, -0.2, 0.4, -0.4] {
+                        let probe = add(add(tc, dir * (t.fp.hz + gap + hz), f_t), lateral + dl, r_t);
+                        let y = yaw.unwrap_or_else(|| yaw_toward(probe, facing.unwrap_or(tc)));
+                        let fp = Footprint { cx: 0.0, cz: 0.0, yaw: y, hx, hz };
+                        let e = fp.extent_along(f_t);
+                        let c = add(add(tc, dir * (t.fp.hz + gap + e), f_t), lateral + dl, r_t);
+                        out.push(mk(c, y));
+                    }
+                }
+            }
+            RelationKind::Beside | RelationKind::LeftOf | RelationKind::RightOf => {
+                let sides: Vec<f64> = match side_rel.unwrap_or(kind) {
+                    RelationKind::LeftOf => vec![-1.0],
+                    RelationKind::RightOf => vec![1.0],
+                    _ => {
+                        let first = if (k % 2 == 0) == rng.random_bool(0.5) { 1.0 } else { -1.0 };
+                        vec![first, -first]
+                    }
+                };
+                for side in sides {
+                    for gap in [0.05, 0.12, 0.25, 0.4, 0.6, 0.9, 1.3] {
+                        let y = match facing {
+                            Some(f) => {
+                                let probe = add(tc, side * (t.fp.hx + gap + hx), r_t);
+                                yaw_toward(probe, f)
+                            }
+                            None => t.fp.yaw,
+                        };
+                        let fp = Footprint { cx: 0.0, cz: 0.0, yaw: y, hx, hz };
+                        let e_r = fp.extent_along(r_t);
+                        let e_f = fp.extent_along(f_t);
+                        let along_f = if facing.is_some() { 0.0 } else { e_f - t.fp.hz };
+                        let c = add(add(tc, side * (t.fp.hx + gap + e_r), r_t), along_f, f_t);
+                        out.push(mk(c, y));
+                    }
+                }
+            }
+            RelationKind::Facing => {
+                let mut angles: Vec<f64> = vec![];
+                for a in [60.0f64, 72.0, 48.0, 84.0, 36.0, 24.0, 96.0, 12.0, 0.0] {
+                    let s = if (k % 2 == 0) == rng.random_bool(0.5) { 1.0 } else { -1.0 };
+                    angles.push(s * a.to_radians());
+                    if a != 0.0 {
+                        angles.push(-s * a.to_radians());
+                    }
+                }
+                for extra in [0.9, 1.2, 0.7, 1.6, 2.1] {
+                    for &a in &angles {
+                        let (sa, ca) = a.sin_cos();
+                        let dir = [f_t[0] * ca + r_t[0] * sa, f_t[1] * ca + r_t[1] * sa];
+                        let dist = t.fp.extent_along(dir) + hx.max(hz) + extra;
+                        let c = add(tc, dist, dir);
+                        out.push(mk(c, yaw_toward(c, tc)));
+                    }
+                }
+            }
+            RelationKind::Around => {
+                let long_x = t.fp.hx >= t.fp.hz;
+                let mut slots: Vec<([f64; 2], f64)> = Vec::new(); // (local normal, along offset)
+                let along_len = if long_x { t.fp.hx } else { t.fp.hz };
+                let per_side = (((2.0 * along_len) / (2.0 * hx + 0.12)).floor() as usize).max(1);
+                let long_normals: [[f64; 2]; 2] = if long_x { [[0.0, 1.0], [0.0, -1.0]] } else { [[1.0, 0.0], [-1.0, 0.0]] };
+                for m in 0..per_side {
+                    let off = ((m as f64 + 0.5) / per_side as f64 * 2.0 - 1.0) * along_len;
+                    for nrm in long_normals {
+                        slots.push((nrm, off));
+                    }
+                }
+                let short_len = if long_x { t.fp.hz } else { t.fp.hx };
+                if 2.0 * short_len >= 2.0 * hx * 0.8 {
+                    let ends: [[f64; 2]; 2] = if long_x { [[1.0, 0.0], [-1.0, 0.0]] } else { [[0.0, 1.0], [0.0, -1.0]] };
+                    for nrm in ends {
+                        slots.push((nrm, 0.0));
+                    }
+                }
+                // Spread: reorder so consecutive chairs alternate sides.
+                let start = k % slots.len().max(1);
+                let ordered: Vec<([f64; 2], f64)> = slots.iter().cycle().skip(start).take(slots.len()).copied().collect();
+                for gap in [0.04, 0.12, 0.25] {
+                    for (nrm, off) in &ordered {
+                        let (lx, lz) = (nrm[0], nrm[1]);
+                        let half_n = if lx != 0.0 { t.fp.hx } else { t.fp.hz };
+                        let (ox, oz) = if lx != 0.0 { (lx * (half_n + gap + hz), *off) } else { (*off, lz * (half_n + gap + hz)) };
+                        let c = t.fp.to_world(ox, oz);
+                        let toward = t.fp.to_world(if lx != 0.0 { 0.0 } else { ox }, if lx != 0.0 { oz } else { 0.0 });
+                        out.push(mk(c, yaw_toward(c, toward)));
+                    }
+                }
+            }
+            _ => {}
+        }
+        out
+    }
+}

@@ -1,0 +1,240 @@
+//! Children on, in and under their parents' support surfaces.
+
+use std::collections::BTreeMap;
+use std::f64::consts::FRAC_PI_2;
+
+use nalgebra::Point3;
+use rand::seq::SliceRandom;
+use rand::Rng;
+use rand_chacha::ChaCha8Rng;
+use scenethesis_assets::{AssetInfo, SupportSurface, SurfaceKind};
+use scenethesis_scene_graph::{ParentRef, Pose, RelationKind};
+
+use super::DroppedObject;
+use crate::plan::Plan;
+
+/// Gap between neighbours on one surface, in metres.
+const GAP: f64 = 0.015;
+
+/// An axis-aligned rectangle in the parent's asset frame (x0, z0, x1, z1).
+type Rect = [f64; 4];
+
+fn rects_overlap(a: &Rect, b: &Rect) -> bool {
+    a[0] < b[2] + GAP && b[0] < a[2] + GAP && a[1] < b[3] + GAP && b[1] < a[3] + GAP
+}
+
+fn rect_inside(surface: &SupportSurface, r: &Rect) -> bool {
+    [[r[0], r[1]], [r[0], r[3]], [r[2], r[1]], [r[2], r[3]]]
+        .iter()
+        .all(|c| surface.contains(c[0] as f32, c[1] as f32))
+}
+
+fn surface_bounds(surface: &SupportSurface) -> Rect {
+    surface.polygon.iter().fold([f64::MAX, f64::MAX, f64::MIN, f64::MIN], |b, p| {
+        [b[0].min(p[0] as f64), b[1].min(p[1] as f64), b[2].max(p[0] as f64), b[3].max(p[1] as f64)]
+    })
+}
+
+/// The surface kinds a support relation may use, best first.
+fn kinds_for(support: RelationKind) -> &'static [SurfaceKind] {
+    match support {
+        RelationKind::On => &[SurfaceKind::Top, SurfaceKind::Shelf, SurfaceKind::Interior],
+        RelationKind::Inside => &[SurfaceKind::Shelf, SurfaceKind::Interior],
+        RelationKind::Under => &[SurfaceKind::Under],
+        _ => &[],
+    }
+}
+
+/// Places every supported object of `plan` whose parent has a pose, adding its pose to
+/// `poses`; returns the objects that found no room.
+pub(crate) fn place_children(
+    plan: &Plan,
+    infos: &[AssetInfo],
+    poses: &mut BTreeMap<usize, Pose>,
+    rng: &mut ChaCha8Rng,
+) -> Vec<DroppedObject> {
+    let index: BTreeMap<&str, usize> = plan.objects.iter().enumerate().map(|(i, o)| (o.id.as_str(), i)).collect();
+    // Occupied rectangles per (parent, surface index).
+    let mut occupied: BTreeMap<(usize, usize), Vec<Rect>> = BTreeMap::new();
+    // The shelf each parent fills next, chosen at random once.
+    let mut next_shelf: BTreeMap<usize, usize> = BTreeMap::new();
+    let mut dropped = Vec::new();
+    let mut done = vec![false; plan.objects.len()];
+    loop {
+        let mut progress = false;
+        for (i, o) in plan.objects.iter().enumerate() {
+            let ParentRef::Object(parent_id) = &o.parent else { continue };
+            if done[i] {
+                continue;
+            }
+            let Some(&p) = index.get(parent_id.as_str()) else {
+                done[i] = true;
+                dropped.push(DroppedObject { id: o.id.clone(), reason: format!("parent `{parent_id}` is not planned") });
+                continue;
+            };
+            if !done[p] && plan.objects[p].parent != ParentRef::Ground {
+                continue; // the parent is itself waiting
+            }
+            done[i] = true;
+            progress = true;
+            let Some(parent_pose) = poses.get(&p).copied() else {
+                dropped.push(DroppedObject { id: o.id.clone(), reason: format!("parent `{parent_id}` was not placed") });
+                continue;
+            };
+            let parent = &infos[p];
+            let child = &infos[i];
+            let kinds = kinds_for(o.support);
+            let mut surfaces: Vec<usize> = Vec::new();
+            for kind in kinds {
+                let mut of_kind: Vec<usize> = parent.support_surfaces.iter().enumerate().filter(|(_, s)| s.kind == *kind).map(|(k, _)| k).collect();
+                if o.support == RelationKind::Under && *kind == SurfaceKind::Under {
+                    // A low shelf beneath a table top is "under" it too.
+                    let low = parent.size[1] * 0.35;
+                    of_kind.extend(parent.support_surfaces.iter().enumerate().filter(|(_, s)| s.kind == SurfaceKind::Shelf && s.height <= low && parent.support_surfaces.iter().any(|t| t.kind == SurfaceKind::Top && t.height > s.height)).map(|(k, _)| k));
+                }
+                if *kind == SurfaceKind::Shelf && !of_kind.is_empty() {
+                    // Fill shelves from a random one onward, so items cluster.
+                    let start = *next_shelf.entry(p).or_insert_with(|| rng.random_range(0..of_kind.len()));
+                    let n = of_kind.len();
+                    of_kind.rotate_left(start % n);
+                }
+                surfaces.extend(of_kind);
+            }
+            let mut placed = None;
+            'surfaces: for sk in surfaces {
+                let surface = &parent.support_surfaces[sk];
+                let occ = occupied.entry((p, sk)).or_default();
+                let (cw, ch, cd) = (child.size[0] as f64, child.size[1] as f64, child.size[2] as f64);
+                let mut scale = 1.0f64;
+                if let Some(clear) = surface.clearance {
+                    scale = scale.min((clear as f64 - 0.01) / ch);
+                }
+                let b = surface_bounds(surface);
+                for rel_yaw in [0.0, FRAC_PI_2] {
+                    let (w, d) = if rel_yaw == 0.0 { (cw, cd) } else { (cd, cw) };
+                    let fit = ((b[2] - b[0]) * 0.98 / w).min((b[3] - b[1]) * 0.98 / d);
+                    let s = scale.min(fit).min(1.0);
+                    if s < child.scale_range[0] as f64 || s <= 0.0 {
+                        continue;
+                    }
+                    let (hw, hd) = (w * s / 2.0, d * s / 2.0);
+                    if let Some((x, z)) = find_spot(surface, &b, occ, hw, hd, rng) {
+                        occ.push([x - hw, z - hd, x + hw, z + hd]);
+                        let local = Point3::new(x, surface.height as f64, z);
+                        let world = parent_pose.transform_point(&local);
+                        let yaw = parent_pose.yaw + rel_yaw;
+                        placed = Some(Pose::new(s * parent_pose.scale, yaw, world.coords));
+                        // Keep filling this shelf next time.
+                        if surface.kind == SurfaceKind::Shelf {
+                            let shelves: Vec<usize> = parent.support_surfaces.iter().enumerate().filter(|(_, s)| s.kind == SurfaceKind::Shelf).map(|(k, _)| k).collect();
+                            if let Some(pos) = shelves.iter().position(|&k| k == sk) {
+                                next_shelf.insert(p, pos);
+                            }
+                        }
+                        break 'surfaces;
+                    }
+                }
+            }
+            match placed {
+                Some(pose) => {
+                    poses.insert(i, pose);
+                }
+                None => dropped.push(DroppedObject {
+                    id: o.id.clone(),
+                    reason: format!("no room {} `{parent_id}` (its {} surfaces are full or too small)", o.support, kinds.iter().map(|k| format!("{k:?}").to_lowercase()).collect::<Vec<_>>().join("/")),
+                }),
+            }
+        }
+        if !progress {
+            break;
+        }
+    }
+    for (i, o) in plan.objects.iter().enumerate() {
+        if !done[i] && o.parent != ParentRef::Ground {
+            dropped.push(DroppedObject { id: o.id.clone(), reason: "its parent chain does not reach the ground".into() });
+        }
+    }
+    dropped
+}
+
+/// A free centre for a `2hw × 2hd` rectangle on the surface: packed left to right on shelves
+/// and in containers, spread out on tops, centred underneath.
+fn find_spot(surface: &SupportSurface, b: &Rect, occ: &[Rect], hw: f64, hd: f64, rng: &mut ChaCha8Rng) -> Option<(f64, f64)> {
+    let ok = |x: f64, z: f64| {
+        let r = [x - hw, z - hd, x + hw, z + hd];
+        rect_inside(surface, &r) && !occ.iter().any(|o| rects_overlap(o, &r))
+    };
+    let step = 0.01;
+    let xs: Vec<f64> = {
+        let (lo, hi) = (b[0] + hw, b[2] - hw);
+        if hi < lo {
+            return None;
+        }
+        (0..=((hi - lo) / step) as usize).map(|k| lo + k as f64 * step).collect()
+    };
+    let zs: Vec<f64> = {
+        let (lo, hi) = (b[1] + hd, b[3] - hd);
+        if hi < lo {
+            return None;
+        }
+        let mid = (lo + hi) / 2.0;
+        let mut v: Vec<f64> = (0..=((hi - lo) / step) as usize).map(|k| lo + k as f64 * step).collect();
+        v.sort_by(|a, c| (a - mid).abs().total_cmp(&(c - mid).abs()));
+        v
+    };
+    match surface.kind {
+        SurfaceKind::Shelf | SurfaceKind::Interior => {
+            // Front-to-back rows nearest the middle first, left to right within a row.
+            let from_right = rng.random_bool(0.5);
+            for &z in zs.iter().step_by(2) {
+                let iter: Box<dyn Iterator<Item = &f64>> = if from_right { Box::new(xs.iter().rev()) } else { Box::new(xs.iter()) };
+                for &x in iter {
+                    if ok(x, z) {
+                        return Some((x, z));
+                    }
+                }
+            }
+            None
+        }
+        SurfaceKind::Under => {
+            let cx = (b[0] + b[2]) / 2.0;
+            let mut xs = xs;
+            xs.sort_by(|a, c| (a - cx).abs().total_cmp(&(c - cx).abs()));
+            for &z in zs.iter().step_by(2) {
+                for &x in xs.iter().step_by(2) {
+                    if ok(x, z) {
+                        return Some((x, z));
+                    }
+                }
+            }
+            None
+        }
+        SurfaceKind::Top => {
+            // Random samples; keep the one farthest from what is already there.
+            let mut grid: Vec<(f64, f64)> = xs.iter().step_by(2).flat_map(|&x| zs.iter().step_by(2).map(move |&z| (x, z))).collect();
+            grid.shuffle(rng);
+            let mut best: Option<((f64, f64), f64)> = None;
+            let mut seen = 0;
+            for (x, z) in grid {
+                if !ok(x, z) {
+                    continue;
+                }
+                let clearance = occ
+                    .iter()
+                    .map(|o| {
+                        let (ox, oz) = ((o[0] + o[2]) / 2.0, (o[1] + o[3]) / 2.0);
+                        ((ox - x).powi(2) + (oz - z).powi(2)).sqrt()
+                    })
+                    .fold(f64::MAX, f64::min);
+                if best.is_none_or(|(_, c)| clearance > c) {
+                    best = Some(((x, z), clearance));
+                }
+                seen += 1;
+                if seen >= 24 {
+                    break;
+                }
+            }
+            best.map(|(p, _)| p)
+        }
+    }
+}

@@ -1,0 +1,495 @@
+//! The planner's knowledge: scene archetypes, category priors and prompt vocabulary, read from
+//! TOML files embedded at build time (`knowledge/*.toml`) or supplied by the caller.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::sync::OnceLock;
+
+use scenethesis_scene_graph::{Environment, RelationKind};
+use serde::Deserialize;
+
+use crate::text::phrase_stems;
+
+/// The embedded archetype file.
+pub const ARCHETYPES_TOML: &str = include_str!("../knowledge/archetypes.toml");
+/// The embedded category-prior file.
+pub const CATEGORIES_TOML: &str = include_str!("../knowledge/categories.toml");
+/// The embedded vocabulary file.
+pub const VOCABULARY_TOML: &str = include_str!("../knowledge/vocabulary.toml");
+
+/// A knowledge file that cannot be read, naming the file and the entry at fault.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum KnowledgeError {
+    /// The TOML does not parse or does not match the schema.
+    #[error("{file}: {message}")]
+    Parse {
+        /// Which file.
+        file: &'static str,
+        /// The parser's message.
+        message: String,
+    },
+    /// An entry is inconsistent.
+    #[error("{file}: {entry}: {message}")]
+    Invalid {
+        /// Which file.
+        file: &'static str,
+        /// Which archetype, category or phrase.
+        entry: String,
+        /// What is wrong and what was expected.
+        message: String,
+    },
+}
+
+/// How things rest on a category, used for nominal support surfaces.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum NominalShape {
+    /// A seat: a top at seat height over the front part of the footprint.
+    Seat,
+    /// A table: a top at full height and free floor underneath.
+    Table,
+    /// Shelf levels enclosed above (`shelves` of them).
+    Shelves,
+    /// Shelf levels inside plus a top.
+    Cabinet,
+    /// An open container: an interior floor.
+    Container,
+    /// A solid block with a usable top.
+    Solid,
+    /// A bed or lounger: a top at full height.
+    Bed,
+    /// Nothing rests on it.
+    None,
+}
+
+/// Where a category normally goes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Mount {
+    /// Stands on the floor.
+    #[default]
+    Floor,
+    /// Hangs on a wall.
+    Wall,
+    /// Rests on or in another object.
+    Surface,
+    /// Hangs from the ceiling.
+    Ceiling,
+}
+
+/// What a category's prior says about it.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CategoryPrior {
+    /// Nominal extent [x, y, z] in metres.
+    pub size: [f64; 3],
+    /// How things rest on it.
+    pub shape: NominalShape,
+    /// Shelf levels for `shelves` and `cabinet` shapes.
+    #[serde(default)]
+    pub shelves: u32,
+    /// Extra words and phrases for the category.
+    #[serde(default)]
+    pub words: Vec<String>,
+    /// Where a small item goes when the prompt does not say (`on` or `inside`).
+    #[serde(default)]
+    pub rests: Option<ItemRest>,
+    /// Where the category is mounted.
+    #[serde(default)]
+    pub mount: Mount,
+    /// A surface-sized stand-in for when the prompt puts this floor category on or inside
+    /// something.
+    #[serde(default)]
+    pub small: Option<String>,
+}
+
+/// Where a small item goes by default.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ItemRest {
+    /// On a top surface.
+    On,
+    /// Inside a shelf compartment or container.
+    Inside,
+}
+
+/// Where an archetype's anchor stands.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum AnchorPlace {
+    /// Back against the back wall, facing into the room.
+    Wall,
+    /// In the middle of the room.
+    Center,
+}
+
+/// The placement template of an archetype's object group.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Place {
+    /// The anchor.
+    Anchor,
+    /// Back against a wall.
+    Wall,
+    /// In a corner.
+    Corner,
+    /// Near the middle of the room.
+    Center,
+    /// In a grid of rows in the middle of the room.
+    Rows,
+    /// Anywhere with clearance.
+    Free,
+    /// Hanging on a wall above free floor.
+    WallMounted,
+    /// Related to instances of a category on the floor (in-front-of, behind, beside, facing,
+    /// around).
+    Relative(RelationKind, String),
+    /// Against the wall opposite an instance of a category, facing it.
+    Opposite(String),
+    /// Supported by instances of a category (on, inside, under).
+    Support(RelationKind, String),
+}
+
+impl Place {
+    /// Parses a place of the archetype file (`wall`, `in-front-of:sofa`, `on:coffee_table`).
+    pub fn parse(text: &str) -> Option<Place> {
+        let (head, arg) = match text.split_once(':') {
+            Some((h, a)) => (h, Some(a.to_owned())),
+            None => (text, None),
+        };
+        Some(match (head, arg) {
+            ("anchor", None) => Place::Anchor,
+            ("wall", None) => Place::Wall,
+            ("corner", None) => Place::Corner,
+            ("center", None) => Place::Center,
+            ("rows", None) => Place::Rows,
+            ("free", None) => Place::Free,
+            ("wall-mounted", None) => Place::WallMounted,
+            ("opposite", Some(c)) => Place::Opposite(c),
+            ("in-front-of", Some(c)) => Place::Relative(RelationKind::InFrontOf, c),
+            ("behind", Some(c)) => Place::Relative(RelationKind::Behind, c),
+            ("beside", Some(c)) => Place::Relative(RelationKind::Beside, c),
+            ("facing", Some(c)) => Place::Relative(RelationKind::Facing, c),
+            ("around", Some(c)) => Place::Relative(RelationKind::Around, c),
+            ("on", Some(c)) => Place::Support(RelationKind::On, c),
+            ("inside", Some(c)) => Place::Support(RelationKind::Inside, c),
+            ("under", Some(c)) => Place::Support(RelationKind::Under, c),
+            _ => return None,
+        })
+    }
+
+    /// The category this place refers to, if any.
+    pub fn target(&self) -> Option<&str> {
+        match self {
+            Place::Relative(_, c) | Place::Opposite(c) | Place::Support(_, c) => Some(c),
+            _ => None,
+        }
+    }
+}
+
+/// One group of objects of an archetype.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ObjectGroup {
+    /// Category name.
+    pub category: String,
+    /// Fewest objects (per supporting instance for `Support` places).
+    pub min: u32,
+    /// Most objects (per supporting instance for `Support` places).
+    pub max: u32,
+    /// Where they go.
+    pub place: Place,
+}
+
+/// A scene archetype: what a kind of scene holds and how it is arranged.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Archetype {
+    /// Stable name, e.g. `living_room`.
+    pub name: String,
+    /// Names and phrases a prompt may use, as singular word stems.
+    pub phrases: Vec<Vec<String>>,
+    /// Indoor room or outdoor ground.
+    pub environment: Environment,
+    /// Size range [x_min, x_max, z_min, z_max] in metres.
+    pub size: [f64; 4],
+    /// The anchor category.
+    pub anchor: String,
+    /// Where the anchor stands.
+    pub anchor_place: AnchorPlace,
+    /// Minimum walkway width in metres.
+    pub aisle: f64,
+    /// Free depth in front of the door in metres.
+    pub door_clearance: f64,
+    /// The object groups, in planning order.
+    pub objects: Vec<ObjectGroup>,
+}
+
+/// The prompt vocabulary.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Vocabulary {
+    /// Count words.
+    pub counts: BTreeMap<String, u32>,
+    /// Generic nouns and the categories they stand for.
+    pub generic: BTreeMap<String, Vec<String>>,
+    /// Words without object or scene meaning.
+    pub filler: BTreeSet<String>,
+    /// Words that make a prompt a scene description.
+    pub scene_words: BTreeSet<String>,
+    /// The archetype a bare scene description falls back to.
+    pub default_archetype: String,
+    /// Spatial phrases (as word stems) and what they state.
+    pub relations: Vec<(Vec<String>, RelationPhrase)>,
+}
+
+/// What a spatial phrase states.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RelationPhrase {
+    /// The relation kind (`AgainstWall` also for corners).
+    pub kind: RelationKind,
+    /// The phrase places its subject in a corner.
+    pub corner: bool,
+    /// The target is the clause's head object, not a following noun.
+    pub head: bool,
+    /// The subjects go to both sides of the target.
+    pub split: bool,
+    /// A particular wall (`wall_0` … `wall_3`), or `Some("")` for any wall.
+    pub wall: Option<String>,
+}
+
+/// All knowledge of the offline planner.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Knowledge {
+    /// Scene archetypes.
+    pub archetypes: Vec<Archetype>,
+    /// Category priors by category name.
+    pub categories: BTreeMap<String, CategoryPrior>,
+    /// Prompt vocabulary.
+    pub vocabulary: Vocabulary,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ArchetypesFile {
+    archetype: Vec<RawArchetype>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawArchetype {
+    name: String,
+    words: Vec<String>,
+    environment: Environment,
+    size: [f64; 4],
+    anchor: String,
+    anchor_place: AnchorPlace,
+    #[serde(default)]
+    aisle: Option<f64>,
+    #[serde(default)]
+    door_clearance: Option<f64>,
+    objects: Vec<(String, u32, u32, String)>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CategoriesFile {
+    category: BTreeMap<String, CategoryPrior>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct VocabularyFile {
+    counts: BTreeMap<String, u32>,
+    generic: BTreeMap<String, Vec<String>>,
+    filler: WordList,
+    scene_words: SceneWords,
+    relations: BTreeMap<String, String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct WordList {
+    words: Vec<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneWords {
+    default_archetype: String,
+    words: Vec<String>,
+}
+
+const ARCHETYPES_FILE: &str = "knowledge/archetypes.toml";
+const CATEGORIES_FILE: &str = "knowledge/categories.toml";
+const VOCABULARY_FILE: &str = "knowledge/vocabulary.toml";
+
+fn relation_kind(name: &str) -> Option<RelationKind> {
+    RelationKind::ALL.into_iter().find(|k| k.as_str() == name)
+}
+
+impl Knowledge {
+    /// The knowledge embedded in this build (parsed once).
+    ///
+    /// # Panics
+    /// Never in a released build: the embedded files are checked by this crate's tests.
+    pub fn builtin() -> &'static Knowledge {
+        static BUILTIN: OnceLock<Knowledge> = OnceLock::new();
+        BUILTIN.get_or_init(|| {
+            Knowledge::from_toml(ARCHETYPES_TOML, CATEGORIES_TOML, VOCABULARY_TOML)
+                .unwrap_or_else(|e| panic!("embedded knowledge is broken: {e}"))
+        })
+    }
+
+    /// Reads and checks knowledge from the text of the three files.
+    pub fn from_toml(
+        archetypes: &str,
+        categories: &str,
+        vocabulary: &str,
+    ) -> Result<Knowledge, KnowledgeError> {
+        let parse_err = |file: &'static str| {
+            move |e: toml::de::Error| KnowledgeError::Parse {
+                file,
+                message: e.to_string(),
+            }
+        };
+        let cats: CategoriesFile = toml::from_str(categories).map_err(parse_err(CATEGORIES_FILE))?;
+        let arch: ArchetypesFile = toml::from_str(archetypes).map_err(parse_err(ARCHETYPES_FILE))?;
+        let voc: VocabularyFile = toml::from_str(vocabulary).map_err(parse_err(VOCABULARY_FILE))?;
+        let invalid = |file: &'static str, entry: &str, message: String| KnowledgeError::Invalid {
+            file,
+            entry: entry.to_owned(),
+            message,
+        };
+
+        for (name, prior) in &cats.category {
+            if prior.size.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
+                return Err(invalid(CATEGORIES_FILE, name, "size must be three positive numbers".into()));
+            }
+            if matches!(prior.shape, NominalShape::Shelves | NominalShape::Cabinet) && prior.shelves == 0 {
+                return Err(invalid(CATEGORIES_FILE, name, "shape needs `shelves` ≥ 1".into()));
+            }
+        }
+        let known = |c: &str| cats.category.contains_key(c);
+        for (name, prior) in &cats.category {
+            if let Some(small) = prior.small.as_deref().filter(|s| !known(s)) {
+                return Err(invalid(CATEGORIES_FILE, name, format!("`small` names unknown category `{small}`")));
+            }
+        }
+
+        let mut archetypes = Vec::new();
+        let mut names = BTreeSet::new();
+        for raw in arch.archetype {
+            let entry = raw.name.clone();
+            if !names.insert(raw.name.clone()) {
+                return Err(invalid(ARCHETYPES_FILE, &entry, "archetype name used twice".into()));
+            }
+            let [x0, x1, z0, z1] = raw.size;
+            if !(x0 > 0.0 && x0 <= x1 && z0 > 0.0 && z0 <= z1) {
+                return Err(invalid(ARCHETYPES_FILE, &entry, "size must be [x_min, x_max, z_min, z_max] with 0 < min ≤ max".into()));
+            }
+            let mut seen: BTreeSet<String> = BTreeSet::new();
+            let mut objects = Vec::new();
+            for (category, min, max, place_text) in raw.objects {
+                let place = Place::parse(&place_text).ok_or_else(|| {
+                    invalid(ARCHETYPES_FILE, &entry, format!("object `{category}`: unknown place `{place_text}`"))
+                })?;
+                if !known(&category) {
+                    return Err(invalid(ARCHETYPES_FILE, &entry, format!("unknown category `{category}` (not in {CATEGORIES_FILE})")));
+                }
+                if min > max {
+                    return Err(invalid(ARCHETYPES_FILE, &entry, format!("object `{category}`: min count {min} > max {max}")));
+                }
+                if let Some(target) = place.target() {
+                    if !seen.contains(target) {
+                        return Err(invalid(ARCHETYPES_FILE, &entry, format!("object `{category}`: place `{place_text}` refers to `{target}`, which is not planned earlier in the list")));
+                    }
+                }
+                seen.insert(category.clone());
+                objects.push(ObjectGroup { category, min, max, place });
+            }
+            if !objects.iter().any(|g| g.place == Place::Anchor && g.category == raw.anchor) {
+                return Err(invalid(ARCHETYPES_FILE, &entry, format!("anchor `{}` has no group with place `anchor`", raw.anchor)));
+            }
+            archetypes.push(Archetype {
+                phrases: raw.words.iter().chain(std::iter::once(&raw.name.replace('_', " "))).map(|w| phrase_stems(w)).filter(|p| !p.is_empty()).collect(),
+                name: raw.name,
+                environment: raw.environment,
+                size: raw.size,
+                anchor: raw.anchor,
+                anchor_place: raw.anchor_place,
+                aisle: raw.aisle.unwrap_or(0.6).max(0.6),
+                door_clearance: raw.door_clearance.unwrap_or(1.0).max(0.6),
+                objects,
+            });
+        }
+
+        for (word, list) in &voc.generic {
+            if let Some(bad) = list.iter().find(|c| !known(c)) {
+                return Err(invalid(VOCABULARY_FILE, word, format!("generic noun lists unknown category `{bad}`")));
+            }
+        }
+        if !archetypes.iter().any(|a| a.name == voc.scene_words.default_archetype) {
+            return Err(invalid(VOCABULARY_FILE, "scene_words", format!("default_archetype `{}` is not an archetype", voc.scene_words.default_archetype)));
+        }
+        let mut relations = Vec::new();
+        for (phrase, value) in &voc.relations {
+            let (kind_text, modifier) = match value.split_once('/') {
+                Some((k, m)) => (k, Some(m)),
+                None => (value.as_str(), None),
+            };
+            let corner = kind_text == "corner";
+            let kind = if corner { Some(RelationKind::AgainstWall) } else { relation_kind(kind_text) };
+            let kind = kind.ok_or_else(|| invalid(VOCABULARY_FILE, phrase, format!("unknown relation kind `{kind_text}`")))?;
+            let mut rp = RelationPhrase { kind, corner, head: false, split: false, wall: None };
+            match modifier {
+                None => {}
+                Some("head") => rp.head = true,
+                Some("split") => rp.split = true,
+                Some("any") => rp.wall = Some(String::new()),
+                Some(w) if w.starts_with("wall_") => rp.wall = Some(w.to_owned()),
+                Some(other) => return Err(invalid(VOCABULARY_FILE, phrase, format!("unknown modifier `{other}`"))),
+            }
+            relations.push((phrase_stems(phrase), rp));
+        }
+        // Longest phrases first, so "in front of" wins over "in".
+        relations.sort_by(|a, b| b.0.len().cmp(&a.0.len()).then(a.0.cmp(&b.0)));
+
+        Ok(Knowledge {
+            archetypes,
+            categories: cats.category,
+            vocabulary: Vocabulary {
+                counts: voc.counts,
+                generic: voc.generic,
+                filler: voc.filler.words.into_iter().collect(),
+                scene_words: voc.scene_words.words.iter().flat_map(|w| phrase_stems(w)).collect(),
+                default_archetype: voc.scene_words.default_archetype,
+                relations,
+            },
+        })
+    }
+
+    /// The archetype with this name.
+    pub fn archetype(&self, name: &str) -> Option<&Archetype> {
+        self.archetypes.iter().find(|a| a.name == name)
+    }
+
+    /// The prior of a category.
+    pub fn prior(&self, category: &str) -> Option<&CategoryPrior> {
+        self.categories.get(category)
+    }
+
+    /// Every category named by the knowledge files.
+    pub fn category_names(&self) -> impl Iterator<Item = &str> {
+        self.categories.keys().map(String::as_str)
+    }
+
+    /// The phrases (as word stems) that name each category: its name and its words.
+    pub fn category_phrases(&self) -> Vec<(Vec<String>, String)> {
+        let mut out = Vec::new();
+        for (name, prior) in &self.categories {
+            out.push((phrase_stems(&name.replace('_', " ")), name.clone()));
+            for w in &prior.words {
+                out.push((phrase_stems(w), name.clone()));
+            }
+        }
+        out.retain(|(p, _)| !p.is_empty());
+        out.sort_by(|a, b| b.0.len().cmp(&a.0.len()).then(a.cmp(b)));
+        out
+    }
+}

@@ -1,0 +1,236 @@
+//! The plan: what a [`Planner`] makes of a prompt, and what a [`crate::Guide`] lays out.
+
+use std::collections::BTreeSet;
+
+use scenethesis_scene_graph::{Environment, ParentRef, Relation, RelationKind};
+use serde::{Deserialize, Serialize};
+
+/// Id of the back wall of a planned room (−z); the anchor's wall by default.
+pub const BACK_WALL: &str = "wall_0";
+/// Id of the left wall (−x, seen from the door looking at the back wall).
+pub const LEFT_WALL: &str = "wall_1";
+/// Id of the front wall (+z), which holds the door.
+pub const FRONT_WALL: &str = "wall_2";
+/// Id of the right wall (+x, seen from the door looking at the back wall).
+pub const RIGHT_WALL: &str = "wall_3";
+
+/// What a planner is asked for.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct PlanRequest {
+    /// The user's text prompt, simple ("a gym room") or detailed.
+    pub prompt: String,
+    /// The categories the asset library can provide; the plan uses only these.
+    pub available_categories: BTreeSet<String>,
+    /// Seed for every choice the planner makes.
+    pub seed: u64,
+}
+
+impl PlanRequest {
+    /// A request for `prompt` over the given categories.
+    pub fn new<I, S>(prompt: impl Into<String>, available_categories: I, seed: u64) -> Self
+    where
+        I: IntoIterator<Item = S>,
+        S: Into<String>,
+    {
+        Self {
+            prompt: prompt.into(),
+            available_categories: available_categories.into_iter().map(Into::into).collect(),
+            seed,
+        }
+    }
+}
+
+/// Depth layer of an object in the scene's spatial hierarchy.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Layer {
+    /// Against the walls, behind everything else (shelves, cabinets).
+    Background,
+    /// The anchor and its group.
+    Middle,
+    /// Nearest the viewer (seats facing the anchor, free-standing small things).
+    Foreground,
+}
+
+/// Where on the floor a ground object goes, before any exact pose exists.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(tag = "zone", rename_all = "kebab-case")]
+pub enum Zone {
+    /// Back against a wall; `wall` names one (`wall_0` …) or `None` for any wall.
+    Wall {
+        /// A particular wall id, or any wall.
+        wall: Option<String>,
+    },
+    /// In a corner, back against one of its walls.
+    Corner,
+    /// Near the middle of the room.
+    Center,
+    /// In a grid of rows in the middle of the room, facing the back wall.
+    Rows,
+    /// Anywhere with clearance.
+    Free,
+    /// Hanging on a wall, above free floor.
+    WallMounted,
+    /// Positioned by its spatial relations (in front of, beside, around, facing …).
+    Relative,
+    /// Resting on, in or under its parent object (not on the floor).
+    Supported,
+}
+
+/// One object of the plan.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PlannedObject {
+    /// Stable id, e.g. `sofa_0`, `book_3`.
+    pub id: String,
+    /// Category name from the available categories.
+    pub category: String,
+    /// Depth layer.
+    pub layer: Layer,
+    /// How the object rests on its parent (`on-floor`, `against-wall`, `on`, `inside`, `under`).
+    pub support: RelationKind,
+    /// The ground or the supporting object's id.
+    pub parent: ParentRef,
+    /// Where a ground object goes.
+    pub zone: Zone,
+    /// Further relations to other planned objects or walls (in-front-of, beside, facing, …).
+    pub relations: Vec<Relation>,
+    /// Whether the prompt stated this object's support or relations (hard constraints).
+    pub hard: bool,
+}
+
+/// What a hard constraint refers to.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(tag = "kind", content = "id", rename_all = "kebab-case")]
+pub enum ConstraintTarget {
+    /// A planned object.
+    Object(String),
+    /// A particular wall.
+    Wall(String),
+    /// Any wall.
+    AnyWall,
+    /// A corner of the room.
+    Corner,
+}
+
+/// A relation the prompt states explicitly; the layout must satisfy it.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct PlanConstraint {
+    /// The planned object it constrains.
+    pub subject: String,
+    /// The relation kind (`against-wall` for walls and corners).
+    pub kind: RelationKind,
+    /// What it relates to.
+    pub target: ConstraintTarget,
+    /// The prompt words that stated it.
+    pub phrase: String,
+}
+
+/// A scene plan: objects, anchor, hierarchy and relations.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Plan {
+    /// The prompt the plan was made from.
+    pub prompt: String,
+    /// The detected scene type (an archetype name), or `custom` for a blend of archetypes.
+    pub scene_type: String,
+    /// The archetypes the plan draws on, best match first.
+    pub archetypes: Vec<String>,
+    /// Indoor room or outdoor ground.
+    pub environment: Environment,
+    /// Room (or ground) size [x, z] in metres.
+    pub room_size: [f64; 2],
+    /// Wall height in metres (indoor).
+    pub wall_height: f64,
+    /// Minimum walkway width in metres (≥ 0.6).
+    pub aisle: f64,
+    /// Free depth in front of the door in metres.
+    pub door_clearance: f64,
+    /// Id of the anchor object (always a ground object of the plan).
+    pub anchor: String,
+    /// The objects: ground objects first (anchor first), then supported ones, parents before
+    /// children.
+    pub objects: Vec<PlannedObject>,
+    /// The relations the prompt states, as hard constraints.
+    pub constraints: Vec<PlanConstraint>,
+    /// The up-sampled prompt: the scene's background, middle ground and foreground in words.
+    pub description: String,
+    /// What the planner substituted or left out, and why.
+    pub notes: Vec<String>,
+}
+
+impl Plan {
+    /// The planned object with this id.
+    pub fn object(&self, id: &str) -> Option<&PlannedObject> {
+        self.objects.iter().find(|o| o.id == id)
+    }
+
+    /// The distinct categories of the plan, sorted.
+    pub fn categories(&self) -> BTreeSet<&str> {
+        self.objects.iter().map(|o| o.category.as_str()).collect()
+    }
+
+    /// The distinct relation kinds used (supports other than `on-floor`, and relations).
+    pub fn relation_kinds(&self) -> BTreeSet<RelationKind> {
+        self.objects
+            .iter()
+            .flat_map(|o| {
+                std::iter::once(o.support)
+                    .filter(|k| *k != RelationKind::OnFloor)
+                    .chain(o.relations.iter().map(|r| r.kind))
+            })
+            .collect()
+    }
+
+    /// The objects of one layer.
+    pub fn layer(&self, layer: Layer) -> impl Iterator<Item = &PlannedObject> {
+        self.objects.iter().filter(move |o| o.layer == layer)
+    }
+}
+
+/// Why a prompt could not be planned.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PlanError {
+    /// The prompt is empty or only whitespace and punctuation.
+    #[error("the prompt is empty: describe a scene, e.g. \"a cozy living room\"")]
+    EmptyPrompt,
+    /// No word of the prompt names a scene type, an object or a setting.
+    #[error("the prompt \"{prompt}\" names no known scene type, object or setting; try e.g. \"a garage\" or \"a bedroom with a desk\"")]
+    Unintelligible {
+        /// The prompt.
+        prompt: String,
+    },
+    /// The request offers no categories the plan could use.
+    #[error("none of the {available} available categories fits \"{prompt}\"; the plan needs at least one floor object")]
+    NothingAvailable {
+        /// The prompt.
+        prompt: String,
+        /// How many categories were offered.
+        available: usize,
+    },
+    /// A model provider failed (online planners).
+    #[error("planner provider `{provider}` failed: {message}")]
+    Provider {
+        /// The provider's name.
+        provider: String,
+        /// What went wrong.
+        message: String,
+    },
+    /// A provider's answer is not a usable plan (online planners).
+    #[error("planner provider `{provider}` returned an unusable plan: {message}")]
+    InvalidPlan {
+        /// The provider's name.
+        provider: String,
+        /// What is wrong with it.
+        message: String,
+    },
+}
+
+/// Stage 1 of the method: a prompt becomes a [`Plan`].
+///
+/// The offline [`crate::KnowledgePlanner`] reads archetype knowledge; an LLM-backed planner
+/// implements the same trait by prompting a model with the request (prompt and available
+/// categories) and parsing its answer into a [`Plan`] (which is serde-serializable for that
+/// purpose). Implementations must be deterministic for a fixed request and provider.
+pub trait Planner {
+    /// Plans the scene for `request`.
+    fn plan(&self, request: &PlanRequest) -> Result<Plan, PlanError>;
+}

@@ -1,0 +1,89 @@
+//! Geometric checks of scene relations, for tests, the judge and reports.
+
+use nalgebra::Vector2;
+use scenethesis_scene_graph::{Relation, RelationKind, Scene, SceneObject, GROUND_ID};
+
+/// Tolerance for resting contact, in metres.
+const CONTACT: f64 = 0.02;
+
+fn xz(o: &SceneObject) -> Vector2<f64> {
+    let c = o.world_aabb().center();
+    Vector2::new(c.x, c.z)
+}
+
+fn front(o: &SceneObject) -> Vector2<f64> {
+    Vector2::new(o.pose.yaw.sin(), o.pose.yaw.cos())
+}
+
+fn right(o: &SceneObject) -> Vector2<f64> {
+    Vector2::new(o.pose.yaw.cos(), -o.pose.yaw.sin())
+}
+
+fn within_xz(o: &SceneObject, t: &SceneObject) -> bool {
+    let (c, b) = (xz(o), t.world_aabb());
+    b.min.x - CONTACT <= c.x && c.x <= b.max.x + CONTACT && b.min.z - CONTACT <= c.y && c.y <= b.max.z + CONTACT
+}
+
+fn gap_xz(a: &SceneObject, b: &SceneObject) -> f64 {
+    let (a, b) = (a.world_aabb(), b.world_aabb());
+    let dx = (b.min.x - a.max.x).max(a.min.x - b.max.x).max(0.0);
+    let dz = (b.min.z - a.max.z).max(a.min.z - b.max.z).max(0.0);
+    (dx * dx + dz * dz).sqrt()
+}
+
+fn faces(o: &SceneObject, t: &SceneObject) -> bool {
+    let d = xz(t) - xz(o);
+    d.norm() > 1e-9 && front(o).dot(&d.normalize()) >= 50f64.to_radians().cos()
+}
+
+/// Whether `relation` of object `subject` holds in `scene`'s geometry (world boxes and
+/// poses), or `None` if the subject or target does not exist.
+///
+/// Conventions: *left of* / *right of* are seen facing the target's front (left = the target's
+/// local −X); *facing* allows 50° of yaw error; *beside* and *around* need the boxes within
+/// 1 m and 0.6 m; *against-wall* needs the back within 0.1 m of the wall's inner face (target
+/// `ground` means any wall).
+pub fn relation_holds(scene: &Scene, subject: &str, relation: &Relation) -> Option<bool> {
+    let o = scene.object(subject)?;
+    let ob = o.world_aabb();
+    if relation.kind == RelationKind::OnFloor {
+        return Some(ob.min.y.abs() <= CONTACT);
+    }
+    if relation.kind == RelationKind::AgainstWall {
+        let walls: Vec<_> = if relation.target == GROUND_ID {
+            scene.architecture.walls.iter().collect()
+        } else {
+            vec![scene.architecture.wall(&relation.target)?]
+        };
+        return Some(walls.iter().any(|w| {
+            let n = w.inward_normal();
+            let face = w.start + n * (w.thickness / 2.0);
+            let nearest = ob
+                .corners()
+                .iter()
+                .map(|c| (Vector2::new(c.x, c.z) - face.coords).dot(&n))
+                .fold(f64::MAX, f64::min);
+            (-CONTACT..=0.1).contains(&nearest)
+        }));
+    }
+    let t = scene.object(&relation.target)?;
+    let tb = t.world_aabb();
+    let d = xz(o) - xz(t);
+    let t_half = |dir: Vector2<f64>| {
+        let s = t.local_bounds.size() * t.pose.scale / 2.0;
+        s.x * right(t).dot(&dir).abs() + s.z * front(t).dot(&dir).abs()
+    };
+    Some(match relation.kind {
+        RelationKind::On => within_xz(o, t) && ob.min.y >= tb.min.y + CONTACT && ob.min.y <= tb.max.y + CONTACT,
+        RelationKind::Inside => within_xz(o, t) && ob.min.y >= tb.min.y - CONTACT && ob.min.y < tb.max.y - CONTACT,
+        RelationKind::Under => within_xz(o, t) && ob.max.y <= tb.max.y + CONTACT && ob.min.y <= tb.min.y + 0.35 * (tb.max.y - tb.min.y),
+        RelationKind::InFrontOf => d.dot(&front(t)) > 0.0 && d.dot(&right(t)).abs() <= t_half(right(t)) + 0.5,
+        RelationKind::Behind => d.dot(&front(t)) < 0.0 && d.dot(&right(t)).abs() <= t_half(right(t)) + 0.5,
+        RelationKind::Beside => gap_xz(o, t) <= 1.0,
+        RelationKind::LeftOf => d.dot(&right(t)) < 0.0,
+        RelationKind::RightOf => d.dot(&right(t)) > 0.0,
+        RelationKind::Facing => faces(o, t),
+        RelationKind::Around => gap_xz(o, t) <= 0.6 && faces(o, t),
+        RelationKind::OnFloor | RelationKind::AgainstWall => unreachable!("handled above"),
+    })
+}
