@@ -348,8 +348,10 @@ impl Knowledge {
                 message: e.to_string(),
             }
         };
-        let cats: CategoriesFile = toml::from_str(categories).map_err(parse_err(CATEGORIES_FILE))?;
-        let arch: ArchetypesFile = toml::from_str(archetypes).map_err(parse_err(ARCHETYPES_FILE))?;
+        let cats: CategoriesFile =
+            toml::from_str(categories).map_err(parse_err(CATEGORIES_FILE))?;
+        let arch: ArchetypesFile =
+            toml::from_str(archetypes).map_err(parse_err(ARCHETYPES_FILE))?;
         let voc: VocabularyFile = toml::from_str(vocabulary).map_err(parse_err(VOCABULARY_FILE))?;
         let invalid = |file: &'static str, entry: &str, message: String| KnowledgeError::Invalid {
             file,
@@ -359,16 +361,30 @@ impl Knowledge {
 
         for (name, prior) in &cats.category {
             if prior.size.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
-                return Err(invalid(CATEGORIES_FILE, name, "size must be three positive numbers".into()));
+                return Err(invalid(
+                    CATEGORIES_FILE,
+                    name,
+                    "size must be three positive numbers".into(),
+                ));
             }
-            if matches!(prior.shape, NominalShape::Shelves | NominalShape::Cabinet) && prior.shelves == 0 {
-                return Err(invalid(CATEGORIES_FILE, name, "shape needs `shelves` ≥ 1".into()));
+            if matches!(prior.shape, NominalShape::Shelves | NominalShape::Cabinet)
+                && prior.shelves == 0
+            {
+                return Err(invalid(
+                    CATEGORIES_FILE,
+                    name,
+                    "shape needs `shelves` ≥ 1".into(),
+                ));
             }
         }
         let known = |c: &str| cats.category.contains_key(c);
         for (name, prior) in &cats.category {
             if let Some(small) = prior.small.as_deref().filter(|s| !known(s)) {
-                return Err(invalid(CATEGORIES_FILE, name, format!("`small` names unknown category `{small}`")));
+                return Err(invalid(
+                    CATEGORIES_FILE,
+                    name,
+                    format!("`small` names unknown category `{small}`"),
+                ));
             }
         }
 
@@ -377,23 +393,43 @@ impl Knowledge {
         for raw in arch.archetype {
             let entry = raw.name.clone();
             if !names.insert(raw.name.clone()) {
-                return Err(invalid(ARCHETYPES_FILE, &entry, "archetype name used twice".into()));
+                return Err(invalid(
+                    ARCHETYPES_FILE,
+                    &entry,
+                    "archetype name used twice".into(),
+                ));
             }
             let [x0, x1, z0, z1] = raw.size;
             if !(x0 > 0.0 && x0 <= x1 && z0 > 0.0 && z0 <= z1) {
-                return Err(invalid(ARCHETYPES_FILE, &entry, "size must be [x_min, x_max, z_min, z_max] with 0 < min ≤ max".into()));
+                return Err(invalid(
+                    ARCHETYPES_FILE,
+                    &entry,
+                    "size must be [x_min, x_max, z_min, z_max] with 0 < min ≤ max".into(),
+                ));
             }
             let mut seen: BTreeSet<String> = BTreeSet::new();
             let mut objects = Vec::new();
             for (category, min, max, place_text) in raw.objects {
                 let place = Place::parse(&place_text).ok_or_else(|| {
-                    invalid(ARCHETYPES_FILE, &entry, format!("object `{category}`: unknown place `{place_text}`"))
+                    invalid(
+                        ARCHETYPES_FILE,
+                        &entry,
+                        format!("object `{category}`: unknown place `{place_text}`"),
+                    )
                 })?;
                 if !known(&category) {
-                    return Err(invalid(ARCHETYPES_FILE, &entry, format!("unknown category `{category}` (not in {CATEGORIES_FILE})")));
+                    return Err(invalid(
+                        ARCHETYPES_FILE,
+                        &entry,
+                        format!("unknown category `{category}` (not in {CATEGORIES_FILE})"),
+                    ));
                 }
                 if min > max {
-                    return Err(invalid(ARCHETYPES_FILE, &entry, format!("object `{category}`: min count {min} > max {max}")));
+                    return Err(invalid(
+                        ARCHETYPES_FILE,
+                        &entry,
+                        format!("object `{category}`: min count {min} > max {max}"),
+                    ));
                 }
                 if let Some(target) = place.target() {
                     if !seen.contains(target) {
@@ -401,13 +437,31 @@ impl Knowledge {
                     }
                 }
                 seen.insert(category.clone());
-                objects.push(ObjectGroup { category, min, max, place });
+                objects.push(ObjectGroup {
+                    category,
+                    min,
+                    max,
+                    place,
+                });
             }
-            if !objects.iter().any(|g| g.place == Place::Anchor && g.category == raw.anchor) {
-                return Err(invalid(ARCHETYPES_FILE, &entry, format!("anchor `{}` has no group with place `anchor`", raw.anchor)));
+            if !objects
+                .iter()
+                .any(|g| g.place == Place::Anchor && g.category == raw.anchor)
+            {
+                return Err(invalid(
+                    ARCHETYPES_FILE,
+                    &entry,
+                    format!("anchor `{}` has no group with place `anchor`", raw.anchor),
+                ));
             }
             archetypes.push(Archetype {
-                phrases: raw.words.iter().chain(std::iter::once(&raw.name.replace('_', " "))).map(|w| phrase_stems(w)).filter(|p| !p.is_empty()).collect(),
+                phrases: raw
+                    .words
+                    .iter()
+                    .chain(std::iter::once(&raw.name.replace('_', " ")))
+                    .map(|w| phrase_stems(w))
+                    .filter(|p| !p.is_empty())
+                    .collect(),
                 name: raw.name,
                 environment: raw.environment,
                 size: raw.size,
@@ -421,11 +475,25 @@ impl Knowledge {
 
         for (word, list) in &voc.generic {
             if let Some(bad) = list.iter().find(|c| !known(c)) {
-                return Err(invalid(VOCABULARY_FILE, word, format!("generic noun lists unknown category `{bad}`")));
+                return Err(invalid(
+                    VOCABULARY_FILE,
+                    word,
+                    format!("generic noun lists unknown category `{bad}`"),
+                ));
             }
         }
-        if !archetypes.iter().any(|a| a.name == voc.scene_words.default_archetype) {
-            return Err(invalid(VOCABULARY_FILE, "scene_words", format!("default_archetype `{}` is not an archetype", voc.scene_words.default_archetype)));
+        if !archetypes
+            .iter()
+            .any(|a| a.name == voc.scene_words.default_archetype)
+        {
+            return Err(invalid(
+                VOCABULARY_FILE,
+                "scene_words",
+                format!(
+                    "default_archetype `{}` is not an archetype",
+                    voc.scene_words.default_archetype
+                ),
+            ));
         }
         let mut relations = Vec::new();
         for (phrase, value) in &voc.relations {
@@ -434,16 +502,38 @@ impl Knowledge {
                 None => (value.as_str(), None),
             };
             let corner = kind_text == "corner";
-            let kind = if corner { Some(RelationKind::AgainstWall) } else { relation_kind(kind_text) };
-            let kind = kind.ok_or_else(|| invalid(VOCABULARY_FILE, phrase, format!("unknown relation kind `{kind_text}`")))?;
-            let mut rp = RelationPhrase { kind, corner, head: false, split: false, wall: None };
+            let kind = if corner {
+                Some(RelationKind::AgainstWall)
+            } else {
+                relation_kind(kind_text)
+            };
+            let kind = kind.ok_or_else(|| {
+                invalid(
+                    VOCABULARY_FILE,
+                    phrase,
+                    format!("unknown relation kind `{kind_text}`"),
+                )
+            })?;
+            let mut rp = RelationPhrase {
+                kind,
+                corner,
+                head: false,
+                split: false,
+                wall: None,
+            };
             match modifier {
                 None => {}
                 Some("head") => rp.head = true,
                 Some("split") => rp.split = true,
                 Some("any") => rp.wall = Some(String::new()),
                 Some(w) if w.starts_with("wall_") => rp.wall = Some(w.to_owned()),
-                Some(other) => return Err(invalid(VOCABULARY_FILE, phrase, format!("unknown modifier `{other}`"))),
+                Some(other) => {
+                    return Err(invalid(
+                        VOCABULARY_FILE,
+                        phrase,
+                        format!("unknown modifier `{other}`"),
+                    ))
+                }
             }
             relations.push((phrase_stems(phrase), rp));
         }
@@ -457,7 +547,12 @@ impl Knowledge {
                 counts: voc.counts,
                 generic: voc.generic,
                 filler: voc.filler.words.into_iter().collect(),
-                scene_words: voc.scene_words.words.iter().flat_map(|w| phrase_stems(w)).collect(),
+                scene_words: voc
+                    .scene_words
+                    .words
+                    .iter()
+                    .flat_map(|w| phrase_stems(w))
+                    .collect(),
                 default_archetype: voc.scene_words.default_archetype,
                 relations,
             },

@@ -23,8 +23,14 @@ mod prompt;
 mod relations;
 mod text;
 
-pub use guide::{AssetLookup, CatalogAssets, DroppedObject, Guide, GuideError, GuidedLayout, NominalAssets, ProceduralGuide, WalkwayReport};
+pub use guide::{
+    AssetLookup, CatalogAssets, DroppedObject, Guide, GuideError, GuidedLayout, NominalAssets,
+    ProceduralGuide, WalkwayReport,
+};
 pub use knowledge::{Knowledge, KnowledgeError};
-pub use plan::{ConstraintTarget, Layer, Plan, PlanConstraint, PlanError, PlanRequest, PlannedObject, Planner, Zone, BACK_WALL, FRONT_WALL, LEFT_WALL, RIGHT_WALL};
+pub use plan::{
+    ConstraintTarget, Layer, Plan, PlanConstraint, PlanError, PlanRequest, PlannedObject, Planner,
+    Zone, BACK_WALL, FRONT_WALL, LEFT_WALL, RIGHT_WALL,
+};
 pub use planner::KnowledgePlanner;
 pub use relations::relation_holds;

@@ -6,7 +6,9 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use scenethesis_scene_graph::{Environment, ParentRef, Relation, RelationKind};
 
-use crate::knowledge::{AnchorPlace, Archetype, Knowledge, Mount, NominalShape, ObjectGroup, Place};
+use crate::knowledge::{
+    AnchorPlace, Archetype, Knowledge, Mount, NominalShape, ObjectGroup, Place,
+};
 use crate::plan::*;
 use crate::prompt::{analyze, Analysis, StatedTarget};
 
@@ -54,7 +56,9 @@ enum DraftPlace {
 impl KnowledgePlanner {
     /// A planner over the embedded knowledge files.
     pub fn new() -> Self {
-        Self { knowledge: Knowledge::builtin().clone() }
+        Self {
+            knowledge: Knowledge::builtin().clone(),
+        }
     }
 
     /// A planner over caller-supplied knowledge.
@@ -99,7 +103,9 @@ impl KnowledgePlanner {
                 .map(|m| m.archetype)
                 .collect();
             // Two archetypes named equally strongly ("an alchemy workshop") blend.
-            let rival = scenes.get(1).is_some_and(|m| m.phrase && m.phrase_len == best.phrase_len);
+            let rival = scenes
+                .get(1)
+                .is_some_and(|m| m.phrase && m.phrase_len == best.phrase_len);
             if best.phrase && ties.len() == 1 && !rival {
                 return Some((vec![best.archetype], false));
             }
@@ -108,13 +114,27 @@ impl KnowledgePlanner {
             return Some((chosen, true));
         }
         // No scene words: the archetypes holding most of the mentioned categories.
-        let mentioned: BTreeSet<&str> = analysis.mentions.iter().map(|m| m.category.as_str()).collect();
+        let mentioned: BTreeSet<&str> = analysis
+            .mentions
+            .iter()
+            .map(|m| m.category.as_str())
+            .collect();
         if !mentioned.is_empty() {
             let mut ranked: Vec<(usize, usize)> = knowledge
                 .archetypes
                 .iter()
                 .enumerate()
-                .map(|(i, a)| (a.objects.iter().filter(|g| mentioned.contains(g.category.as_str())).map(|g| &g.category).collect::<BTreeSet<_>>().len(), i))
+                .map(|(i, a)| {
+                    (
+                        a.objects
+                            .iter()
+                            .filter(|g| mentioned.contains(g.category.as_str()))
+                            .map(|g| &g.category)
+                            .collect::<BTreeSet<_>>()
+                            .len(),
+                        i,
+                    )
+                })
                 .filter(|(n, _)| *n > 0)
                 .collect();
             ranked.sort_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
@@ -123,7 +143,10 @@ impl KnowledgePlanner {
             }
         }
         if analysis.scene_words || !analysis.mentions.is_empty() {
-            let default = knowledge.archetypes.iter().position(|a| a.name == knowledge.vocabulary.default_archetype)?;
+            let default = knowledge
+                .archetypes
+                .iter()
+                .position(|a| a.name == knowledge.vocabulary.default_archetype)?;
             return Some((vec![default], !analysis.mentions.is_empty()));
         }
         None
@@ -139,10 +162,13 @@ impl Planner for KnowledgePlanner {
             return Err(PlanError::EmptyPrompt);
         }
         let analysis = analyze(prompt, knowledge, available);
-        let (chosen, blended) = self
-            .choose_archetypes(&analysis)
-            .ok_or_else(|| PlanError::Unintelligible { prompt: prompt.to_owned() })?;
-        let archetypes: Vec<&Archetype> = chosen.iter().map(|&i| &knowledge.archetypes[i]).collect();
+        let (chosen, blended) =
+            self.choose_archetypes(&analysis)
+                .ok_or_else(|| PlanError::Unintelligible {
+                    prompt: prompt.to_owned(),
+                })?;
+        let archetypes: Vec<&Archetype> =
+            chosen.iter().map(|&i| &knowledge.archetypes[i]).collect();
         let primary = archetypes[0];
         let mut rng = ChaCha8Rng::seed_from_u64(request.seed ^ 0x5ce7_e515_9a11_0001);
         let mut notes = Vec::new();
@@ -173,20 +199,42 @@ impl Planner for KnowledgePlanner {
             match self.substitute(&m.category, available) {
                 Some(c) => {
                     if c != m.category {
-                        notes.push(format!("\"{}\": `{}` is not available, using `{c}`", m.words, m.category));
+                        notes.push(format!(
+                            "\"{}\": `{}` is not available, using `{c}`",
+                            m.words, m.category
+                        ));
                     }
-                    let g = groups.iter().enumerate().position(|(gi, g)| g.category == c && !group_consumed[gi] && !mention_group.contains(&Some(gi)));
+                    let g = groups.iter().enumerate().position(|(gi, g)| {
+                        g.category == c && !group_consumed[gi] && !mention_group.contains(&Some(gi))
+                    });
                     mention_group[mi] = g;
                     mention_category[mi] = Some(c);
                 }
-                None => notes.push(format!("\"{}\": `{}` is not available and has no substitute; left out", m.words, m.category)),
+                None => notes.push(format!(
+                    "\"{}\": `{}` is not available and has no substitute; left out",
+                    m.words, m.category
+                )),
             }
         }
 
-        let add = |drafts: &mut Vec<Draft>, by_category: &mut BTreeMap<String, Vec<usize>>, category: &str, place: DraftPlace, hard: bool| {
+        let add = |drafts: &mut Vec<Draft>,
+                   by_category: &mut BTreeMap<String, Vec<usize>>,
+                   category: &str,
+                   place: DraftPlace,
+                   hard: bool| {
             let idx = drafts.len();
-            drafts.push(Draft { category: category.to_owned(), place, hard, extra: Vec::new(), wall: None, constraints: Vec::new() });
-            by_category.entry(category.to_owned()).or_default().push(idx);
+            drafts.push(Draft {
+                category: category.to_owned(),
+                place,
+                hard,
+                extra: Vec::new(),
+                wall: None,
+                constraints: Vec::new(),
+            });
+            by_category
+                .entry(category.to_owned())
+                .or_default()
+                .push(idx);
             idx
         };
 
@@ -199,8 +247,15 @@ impl Planner for KnowledgePlanner {
                 notes.push(format!("`{}` is not available; left out", group.category));
                 continue;
             };
-            if category != group.category && !notes.iter().any(|n| n.starts_with(&format!("`{}`", group.category))) {
-                notes.push(format!("`{}` is not available, using `{category}`", group.category));
+            if category != group.category
+                && !notes
+                    .iter()
+                    .any(|n| n.starts_with(&format!("`{}`", group.category)))
+            {
+                notes.push(format!(
+                    "`{}` is not available, using `{category}`",
+                    group.category
+                ));
             }
             let mention = mention_group.iter().position(|g| *g == Some(gi));
             let count_for = |rng: &mut ChaCha8Rng| rng.random_range(group.min..=group.max);
@@ -221,9 +276,19 @@ impl Planner for KnowledgePlanner {
                             continue; // placed from the prompt's own relations below
                         }
                         let m = &analysis.mentions[mi];
-                        let total = if m.explicit_count { m.count } else { count_for(&mut rng).max(m.count) * parents.len() as u32 };
+                        let total = if m.explicit_count {
+                            m.count
+                        } else {
+                            count_for(&mut rng).max(m.count) * parents.len() as u32
+                        };
                         for k in 0..total as usize {
-                            let d = add(&mut drafts, &mut by_category, &category, DraftPlace::Support(*kind, parents[k % parents.len()]), false);
+                            let d = add(
+                                &mut drafts,
+                                &mut by_category,
+                                &category,
+                                DraftPlace::Support(*kind, parents[k % parents.len()]),
+                                false,
+                            );
                             mention_drafts[mi].push(d);
                         }
                         group_consumed[gi] = true;
@@ -231,7 +296,13 @@ impl Planner for KnowledgePlanner {
                     }
                     for &p in &parents {
                         for _ in 0..count_for(&mut rng) {
-                            add(&mut drafts, &mut by_category, &category, DraftPlace::Support(*kind, p), false);
+                            add(
+                                &mut drafts,
+                                &mut by_category,
+                                &category,
+                                DraftPlace::Support(*kind, p),
+                                false,
+                            );
                         }
                     }
                 }
@@ -239,12 +310,21 @@ impl Planner for KnowledgePlanner {
                     let count = match mention {
                         Some(mi) => {
                             let m = &analysis.mentions[mi];
-                            if m.explicit_count { m.count } else { count_for(&mut rng).max(m.count) }
+                            if m.explicit_count {
+                                m.count
+                            } else {
+                                count_for(&mut rng).max(m.count)
+                            }
                         }
                         None => count_for(&mut rng),
                     };
                     let place = match place {
-                        Place::Anchor if Some(&category) == anchor_category.as_ref() && !by_category.contains_key(&category) => DraftPlace::Anchor,
+                        Place::Anchor
+                            if Some(&category) == anchor_category.as_ref()
+                                && !by_category.contains_key(&category) =>
+                        {
+                            DraftPlace::Anchor
+                        }
                         Place::Anchor => DraftPlace::Zone(Zone::Center),
                         Place::Wall => DraftPlace::Zone(Zone::Wall { wall: None }),
                         Place::Corner => DraftPlace::Zone(Zone::Corner),
@@ -253,11 +333,20 @@ impl Planner for KnowledgePlanner {
                         Place::Free => DraftPlace::Zone(Zone::Free),
                         Place::WallMounted => DraftPlace::Zone(Zone::WallMounted),
                         Place::Relative(kind, t) | Place::Support(kind, t) => {
-                            match self.substitute(t, available).and_then(|t| by_category.get(&t).cloned()) {
+                            match self
+                                .substitute(t, available)
+                                .and_then(|t| by_category.get(&t).cloned())
+                            {
                                 Some(targets) => {
                                     // Spread over the target's instances.
                                     for k in 0..count as usize {
-                                        let d = add(&mut drafts, &mut by_category, &category, DraftPlace::Relative(*kind, targets[k % targets.len()]), hard);
+                                        let d = add(
+                                            &mut drafts,
+                                            &mut by_category,
+                                            &category,
+                                            DraftPlace::Relative(*kind, targets[k % targets.len()]),
+                                            hard,
+                                        );
                                         if let Some(mi) = mention {
                                             mention_drafts[mi].push(d);
                                         }
@@ -268,13 +357,20 @@ impl Planner for KnowledgePlanner {
                                 None => DraftPlace::Zone(Zone::Free),
                             }
                         }
-                        Place::Opposite(t) => match self.substitute(t, available).and_then(|t| by_category.get(&t).and_then(|v| v.first().copied())) {
+                        Place::Opposite(t) => match self
+                            .substitute(t, available)
+                            .and_then(|t| by_category.get(&t).and_then(|v| v.first().copied()))
+                        {
                             Some(target) => DraftPlace::Opposite(target),
                             None => DraftPlace::Zone(Zone::Wall { wall: None }),
                         },
                     };
                     for k in 0..count {
-                        let p = if k > 0 && place == DraftPlace::Anchor { DraftPlace::Zone(Zone::Center) } else { place.clone() };
+                        let p = if k > 0 && place == DraftPlace::Anchor {
+                            DraftPlace::Zone(Zone::Center)
+                        } else {
+                            place.clone()
+                        };
                         let d = add(&mut drafts, &mut by_category, &category, p, hard);
                         if let Some(mi) = mention {
                             mention_drafts[mi].push(d);
@@ -290,17 +386,26 @@ impl Planner for KnowledgePlanner {
             if !mention_drafts[mi].is_empty() {
                 continue;
             }
-            let Some(category) = mention_category[mi].clone() else { continue };
+            let Some(category) = mention_category[mi].clone() else {
+                continue;
+            };
             let prior = knowledge.prior(&category);
             let count = if m.explicit_count {
                 m.count
             } else if let Some(g) = mention_group[mi] {
-                rng.random_range(groups[g].min.max(1)..=groups[g].max.max(1)).max(m.count)
+                rng.random_range(groups[g].min.max(1)..=groups[g].max.max(1))
+                    .max(m.count)
             } else {
                 m.count.max(3)
             };
             for _ in 0..count {
-                let d = add(&mut drafts, &mut by_category, &category, DraftPlace::Zone(Zone::Free), false);
+                let d = add(
+                    &mut drafts,
+                    &mut by_category,
+                    &category,
+                    DraftPlace::Zone(Zone::Free),
+                    false,
+                );
                 mention_drafts[mi].push(d);
             }
             if stated_for(mi).next().is_none() {
@@ -310,18 +415,23 @@ impl Planner for KnowledgePlanner {
                 for &d in &mention_drafts[mi] {
                     drafts[d].place = match (mount, shape) {
                         (Mount::Surface, _) => {
-                            let inside = prior.and_then(|p| p.rests) == Some(crate::knowledge::ItemRest::Inside);
+                            let inside = prior.and_then(|p| p.rests)
+                                == Some(crate::knowledge::ItemRest::Inside);
                             match self.default_parent(&drafts, inside) {
                                 Some((kind, p)) => DraftPlace::Support(kind, p),
                                 None => DraftPlace::Zone(Zone::Free),
                             }
                         }
                         (Mount::Wall, _) => DraftPlace::Zone(Zone::WallMounted),
-                        (_, NominalShape::Shelves | NominalShape::Cabinet) => DraftPlace::Zone(Zone::Wall { wall: None }),
-                        (_, NominalShape::Seat) => match drafts.iter().position(|d| d.place == DraftPlace::Anchor) {
-                            Some(a) if a != d => DraftPlace::Relative(RelationKind::Facing, a),
-                            _ => DraftPlace::Zone(Zone::Free),
-                        },
+                        (_, NominalShape::Shelves | NominalShape::Cabinet) => {
+                            DraftPlace::Zone(Zone::Wall { wall: None })
+                        }
+                        (_, NominalShape::Seat) => {
+                            match drafts.iter().position(|d| d.place == DraftPlace::Anchor) {
+                                Some(a) if a != d => DraftPlace::Relative(RelationKind::Facing, a),
+                                _ => DraftPlace::Zone(Zone::Free),
+                            }
+                        }
                         _ => DraftPlace::Zone(Zone::Free),
                     };
                 }
@@ -338,7 +448,11 @@ impl Planner for KnowledgePlanner {
                 match &s.target {
                     StatedTarget::Corner => {
                         drafts[d].place = DraftPlace::Zone(Zone::Corner);
-                        drafts[d].constraints.push((RelationKind::AgainstWall, ConstraintTarget::Corner, s.words.clone()));
+                        drafts[d].constraints.push((
+                            RelationKind::AgainstWall,
+                            ConstraintTarget::Corner,
+                            s.words.clone(),
+                        ));
                     }
                     StatedTarget::Wall(w) => {
                         let wall = (!w.is_empty()).then(|| w.clone());
@@ -346,8 +460,14 @@ impl Planner for KnowledgePlanner {
                             drafts[d].place = DraftPlace::Zone(Zone::Wall { wall: wall.clone() });
                         }
                         drafts[d].wall = wall.clone();
-                        let target = wall.map(ConstraintTarget::Wall).unwrap_or(ConstraintTarget::AnyWall);
-                        drafts[d].constraints.push((RelationKind::AgainstWall, target, s.words.clone()));
+                        let target = wall
+                            .map(ConstraintTarget::Wall)
+                            .unwrap_or(ConstraintTarget::AnyWall);
+                        drafts[d].constraints.push((
+                            RelationKind::AgainstWall,
+                            target,
+                            s.words.clone(),
+                        ));
                     }
                     StatedTarget::Mention(t) => {
                         let targets = &mention_drafts[*t];
@@ -363,7 +483,12 @@ impl Planner for KnowledgePlanner {
                         match kind {
                             RelationKind::On | RelationKind::Inside | RelationKind::Under => {
                                 let prior = knowledge.prior(&drafts[d].category);
-                                let small = prior.filter(|p| p.mount == Mount::Floor && kind != RelationKind::Under).and_then(|p| p.small.clone()).filter(|c| available.contains(c));
+                                let small = prior
+                                    .filter(|p| {
+                                        p.mount == Mount::Floor && kind != RelationKind::Under
+                                    })
+                                    .and_then(|p| p.small.clone())
+                                    .filter(|c| available.contains(c));
                                 if let Some(small) = small {
                                     if k == 0 {
                                         notes.push(format!("\"{}\" {} \"{}\": a `{}` does not fit there, using the smaller `{small}`", analysis.mentions[s.subject].words, s.words, analysis.mentions[*t].words, drafts[d].category));
@@ -375,7 +500,12 @@ impl Planner for KnowledgePlanner {
                             RelationKind::Facing => {
                                 if matches!(drafts[d].place, DraftPlace::Relative(..)) {
                                     drafts[d].extra.push((kind, target));
-                                } else if !matches!(drafts[d].place, DraftPlace::Anchor | DraftPlace::Zone(Zone::Wall { .. }) | DraftPlace::Zone(Zone::Corner)) {
+                                } else if !matches!(
+                                    drafts[d].place,
+                                    DraftPlace::Anchor
+                                        | DraftPlace::Zone(Zone::Wall { .. })
+                                        | DraftPlace::Zone(Zone::Corner)
+                                ) {
                                     drafts[d].place = DraftPlace::Relative(kind, target);
                                 } else {
                                     drafts[d].extra.push((kind, target));
@@ -385,7 +515,14 @@ impl Planner for KnowledgePlanner {
                                 let mut kind = kind;
                                 if s.phrase.split {
                                     let n = split_seen.entry((s.subject, target)).or_default();
-                                    drafts[d].extra.push((if *n % 2 == 0 { RelationKind::LeftOf } else { RelationKind::RightOf }, target));
+                                    drafts[d].extra.push((
+                                        if *n % 2 == 0 {
+                                            RelationKind::LeftOf
+                                        } else {
+                                            RelationKind::RightOf
+                                        },
+                                        target,
+                                    ));
                                     *n += 1;
                                     kind = RelationKind::Beside;
                                 }
@@ -396,7 +533,11 @@ impl Planner for KnowledgePlanner {
                                 }
                             }
                         }
-                        drafts[d].constraints.push((kind, ConstraintTarget::Object(String::new()), format!("{}#{target}", s.words)));
+                        drafts[d].constraints.push((
+                            kind,
+                            ConstraintTarget::Object(String::new()),
+                            format!("{}#{target}", s.words),
+                        ));
                     }
                 }
             }
@@ -411,12 +552,25 @@ impl Planner for KnowledgePlanner {
                 drafts
                     .iter()
                     .enumerate()
-                    .filter(|(_, d)| matches!(d.place, DraftPlace::Zone(_) | DraftPlace::Relative(..)))
-                    .filter(|(_, d)| knowledge.prior(&d.category).is_some_and(|p| p.mount == Mount::Floor))
-                    .max_by(|a, b| footprint(knowledge, &a.1.category).total_cmp(&footprint(knowledge, &b.1.category)).then(b.0.cmp(&a.0)))
+                    .filter(|(_, d)| {
+                        matches!(d.place, DraftPlace::Zone(_) | DraftPlace::Relative(..))
+                    })
+                    .filter(|(_, d)| {
+                        knowledge
+                            .prior(&d.category)
+                            .is_some_and(|p| p.mount == Mount::Floor)
+                    })
+                    .max_by(|a, b| {
+                        footprint(knowledge, &a.1.category)
+                            .total_cmp(&footprint(knowledge, &b.1.category))
+                            .then(b.0.cmp(&a.0))
+                    })
                     .map(|(i, _)| i)
             })
-            .ok_or_else(|| PlanError::NothingAvailable { prompt: prompt.to_owned(), available: available.len() })?;
+            .ok_or_else(|| PlanError::NothingAvailable {
+                prompt: prompt.to_owned(),
+                available: available.len(),
+            })?;
         if drafts[anchor].place != DraftPlace::Anchor {
             drafts[anchor].place = DraftPlace::Anchor;
         }
@@ -461,33 +615,81 @@ impl Planner for KnowledgePlanner {
             let draft = &drafts[d];
             let (zone, support, parent, mut relations) = match &draft.place {
                 DraftPlace::Anchor => {
-                    let wall = draft.wall.clone().or_else(|| (primary.anchor_place == AnchorPlace::Wall && indoor).then(|| BACK_WALL.to_owned()));
+                    let wall = draft.wall.clone().or_else(|| {
+                        (primary.anchor_place == AnchorPlace::Wall && indoor)
+                            .then(|| BACK_WALL.to_owned())
+                    });
                     match wall {
-                        Some(w) if indoor => (Zone::Wall { wall: Some(w.clone()) }, RelationKind::AgainstWall, ParentRef::Ground, vec![Relation::new(RelationKind::AgainstWall, w)]),
-                        _ => (Zone::Center, RelationKind::OnFloor, ParentRef::Ground, vec![]),
+                        Some(w) if indoor => (
+                            Zone::Wall {
+                                wall: Some(w.clone()),
+                            },
+                            RelationKind::AgainstWall,
+                            ParentRef::Ground,
+                            vec![Relation::new(RelationKind::AgainstWall, w)],
+                        ),
+                        _ => (
+                            Zone::Center,
+                            RelationKind::OnFloor,
+                            ParentRef::Ground,
+                            vec![],
+                        ),
                     }
                 }
                 DraftPlace::Zone(zone) => {
-                    let against = indoor && matches!(zone, Zone::Wall { .. } | Zone::Corner | Zone::WallMounted);
+                    let against = indoor
+                        && matches!(zone, Zone::Wall { .. } | Zone::Corner | Zone::WallMounted);
                     let mut rel = vec![];
                     if let (true, Zone::Wall { wall: Some(w) }) = (indoor, zone) {
                         rel.push(Relation::new(RelationKind::AgainstWall, w.clone()));
                     }
-                    let zone = if indoor || !matches!(zone, Zone::WallMounted) { zone.clone() } else { Zone::Free };
-                    (zone, if against { RelationKind::AgainstWall } else { RelationKind::OnFloor }, ParentRef::Ground, rel)
+                    let zone = if indoor || !matches!(zone, Zone::WallMounted) {
+                        zone.clone()
+                    } else {
+                        Zone::Free
+                    };
+                    (
+                        zone,
+                        if against {
+                            RelationKind::AgainstWall
+                        } else {
+                            RelationKind::OnFloor
+                        },
+                        ParentRef::Ground,
+                        rel,
+                    )
                 }
                 DraftPlace::Relative(kind, t) => {
                     let mut rel = vec![Relation::new(*kind, ids[*t].clone())];
                     if *kind == RelationKind::Around {
                         rel.push(Relation::new(RelationKind::Facing, ids[*t].clone()));
                     }
-                    (Zone::Relative, RelationKind::OnFloor, ParentRef::Ground, rel)
+                    (
+                        Zone::Relative,
+                        RelationKind::OnFloor,
+                        ParentRef::Ground,
+                        rel,
+                    )
                 }
                 DraftPlace::Opposite(t) => {
-                    let support = if indoor { RelationKind::AgainstWall } else { RelationKind::OnFloor };
-                    (Zone::Wall { wall: None }, support, ParentRef::Ground, vec![Relation::new(RelationKind::Facing, ids[*t].clone())])
+                    let support = if indoor {
+                        RelationKind::AgainstWall
+                    } else {
+                        RelationKind::OnFloor
+                    };
+                    (
+                        Zone::Wall { wall: None },
+                        support,
+                        ParentRef::Ground,
+                        vec![Relation::new(RelationKind::Facing, ids[*t].clone())],
+                    )
                 }
-                DraftPlace::Support(kind, p) => (Zone::Supported, *kind, ParentRef::Object(ids[*p].clone()), vec![]),
+                DraftPlace::Support(kind, p) => (
+                    Zone::Supported,
+                    *kind,
+                    ParentRef::Object(ids[*p].clone()),
+                    vec![],
+                ),
             };
             for (kind, t) in &draft.extra {
                 let r = Relation::new(*kind, ids[*t].clone());
@@ -497,9 +699,20 @@ impl Planner for KnowledgePlanner {
             }
             let layer = match (&draft.place, &zone) {
                 (DraftPlace::Anchor, _) => Layer::Middle,
-                (DraftPlace::Support(_, p), _) => layers.get(p).copied().unwrap_or(Layer::Middle),
+                // Small things on the anchor group come forward; on storage they stay back.
+                (DraftPlace::Support(_, p), _) => {
+                    match layers.get(p).copied().unwrap_or(Layer::Middle) {
+                        Layer::Background => Layer::Background,
+                        _ => Layer::Foreground,
+                    }
+                }
+                (_, Zone::Center) if !matches!(primary.anchor_place, AnchorPlace::Center) => {
+                    Layer::Foreground
+                }
                 (_, Zone::Wall { .. } | Zone::Corner | Zone::WallMounted) => Layer::Background,
-                (DraftPlace::Relative(RelationKind::InFrontOf | RelationKind::Facing, _), _) => Layer::Foreground,
+                (DraftPlace::Relative(RelationKind::InFrontOf | RelationKind::Facing, _), _) => {
+                    Layer::Foreground
+                }
                 (_, Zone::Free) => Layer::Foreground,
                 _ => Layer::Middle,
             };
@@ -513,7 +726,12 @@ impl Planner for KnowledgePlanner {
                     }
                     other => (other.clone(), words.clone()),
                 };
-                constraints.push(PlanConstraint { subject: ids[d].clone(), kind: *kind, target, phrase });
+                constraints.push(PlanConstraint {
+                    subject: ids[d].clone(),
+                    kind: *kind,
+                    target,
+                    phrase,
+                });
             }
             objects.push(PlannedObject {
                 id: ids[d].clone(),
@@ -528,7 +746,14 @@ impl Planner for KnowledgePlanner {
         }
 
         // Room size: the archetype's range, grown when the floor objects need more room.
-        let size_range = archetypes.iter().fold(primary.size, |acc, a| [acc[0].max(a.size[0]), acc[1].max(a.size[1]), acc[2].max(a.size[2]), acc[3].max(a.size[3])]);
+        let size_range = archetypes.iter().fold(primary.size, |acc, a| {
+            [
+                acc[0].max(a.size[0]),
+                acc[1].max(a.size[1]),
+                acc[2].max(a.size[2]),
+                acc[3].max(a.size[3]),
+            ]
+        });
         let mut x = rng.random_range(size_range[0]..=size_range[1]);
         let mut z = rng.random_range(size_range[2]..=size_range[3]);
         let need: f64 = objects
@@ -542,15 +767,27 @@ impl Planner for KnowledgePlanner {
             x *= grow;
             z *= grow;
         }
-        let tallest = objects.iter().filter_map(|o| knowledge.prior(&o.category)).map(|p| p.size[1]).filter(|h| *h < 4.0).fold(0.0, f64::max);
+        let tallest = objects
+            .iter()
+            .filter_map(|o| knowledge.prior(&o.category))
+            .map(|p| p.size[1])
+            .filter(|h| *h < 4.0)
+            .fold(0.0, f64::max);
         let wall_height = if tallest > 2.3 { 3.4 } else { 2.8 };
         let aisle = archetypes.iter().map(|a| a.aisle).fold(0.6, f64::max);
-        let door_clearance = archetypes.iter().map(|a| a.door_clearance).fold(0.6, f64::max);
+        let door_clearance = archetypes
+            .iter()
+            .map(|a| a.door_clearance)
+            .fold(0.6, f64::max);
 
         let description = describe(&objects, &ids[anchor], knowledge);
         Ok(Plan {
             prompt: prompt.to_owned(),
-            scene_type: if blended { "custom".into() } else { primary.name.clone() },
+            scene_type: if blended {
+                "custom".into()
+            } else {
+                primary.name.clone()
+            },
             archetypes: archetypes.iter().map(|a| a.name.clone()).collect(),
             environment,
             room_size: [round_cm(x), round_cm(z)],
@@ -572,16 +809,35 @@ impl KnowledgePlanner {
         let shape_of = |d: &Draft| self.knowledge.prior(&d.category).map(|p| p.shape);
         let floor = |d: &Draft| !matches!(d.place, DraftPlace::Support(..));
         if inside {
-            if let Some(i) = drafts.iter().position(|d| floor(d) && matches!(shape_of(d), Some(NominalShape::Shelves | NominalShape::Cabinet))) {
+            if let Some(i) = drafts.iter().position(|d| {
+                floor(d)
+                    && matches!(
+                        shape_of(d),
+                        Some(NominalShape::Shelves | NominalShape::Cabinet)
+                    )
+            }) {
                 return Some((RelationKind::Inside, i));
             }
         }
         drafts
             .iter()
             .position(|d| floor(d) && matches!(shape_of(d), Some(NominalShape::Table)))
-            .or_else(|| drafts.iter().position(|d| floor(d) && matches!(shape_of(d), Some(NominalShape::Solid | NominalShape::Cabinet | NominalShape::Bed))))
+            .or_else(|| {
+                drafts.iter().position(|d| {
+                    floor(d)
+                        && matches!(
+                            shape_of(d),
+                            Some(NominalShape::Solid | NominalShape::Cabinet | NominalShape::Bed)
+                        )
+                })
+            })
             .map(|i| (RelationKind::On, i))
-            .or_else(|| drafts.iter().position(|d| floor(d) && matches!(shape_of(d), Some(NominalShape::Shelves))).map(|i| (RelationKind::Inside, i)))
+            .or_else(|| {
+                drafts
+                    .iter()
+                    .position(|d| floor(d) && matches!(shape_of(d), Some(NominalShape::Shelves)))
+                    .map(|i| (RelationKind::Inside, i))
+            })
     }
 }
 
@@ -601,7 +857,10 @@ fn break_support_cycles(drafts: &mut [Draft]) {
 }
 
 fn footprint(knowledge: &Knowledge, category: &str) -> f64 {
-    knowledge.prior(category).map(|p| p.size[0] * p.size[2]).unwrap_or(0.25)
+    knowledge
+        .prior(category)
+        .map(|p| p.size[0] * p.size[2])
+        .unwrap_or(0.25)
 }
 
 fn round_cm(v: f64) -> f64 {
@@ -612,16 +871,32 @@ fn round_cm(v: f64) -> f64 {
 fn describe(objects: &[PlannedObject], anchor: &str, knowledge: &Knowledge) -> String {
     let _ = knowledge;
     let mut parts = Vec::new();
-    for (layer, title) in [(Layer::Background, "Background"), (Layer::Middle, "Middle ground"), (Layer::Foreground, "Foreground")] {
+    for (layer, title) in [
+        (Layer::Background, "Background"),
+        (Layer::Middle, "Middle ground"),
+        (Layer::Foreground, "Foreground"),
+    ] {
         let mut phrases: BTreeMap<String, usize> = BTreeMap::new();
         let mut order: Vec<String> = Vec::new();
         for o in objects.iter().filter(|o| o.layer == layer) {
             let how = if o.id == anchor {
-                format!("{} (the anchor{})", o.category, if matches!(o.zone, Zone::Wall { .. }) { ", against the back wall" } else { ", in the middle" })
+                format!(
+                    "{} (the anchor{})",
+                    o.category,
+                    if matches!(o.zone, Zone::Wall { .. }) {
+                        ", against the back wall"
+                    } else {
+                        ", in the middle"
+                    }
+                )
             } else {
                 match (&o.parent, o.support, o.relations.first()) {
-                    (ParentRef::Object(p), kind, _) => format!("{} {} {}", o.category, kind, strip_index(p)),
-                    (_, _, Some(r)) if r.kind != RelationKind::AgainstWall => format!("{} {} {}", o.category, r.kind, strip_index(&r.target)),
+                    (ParentRef::Object(p), kind, _) => {
+                        format!("{} {} {}", o.category, kind, strip_index(p))
+                    }
+                    (_, _, Some(r)) if r.kind != RelationKind::AgainstWall => {
+                        format!("{} {} {}", o.category, r.kind, strip_index(&r.target))
+                    }
                     _ => match &o.zone {
                         Zone::Wall { .. } => format!("{} against a wall", o.category),
                         Zone::Corner => format!("{} in a corner", o.category),
@@ -640,7 +915,13 @@ fn describe(objects: &[PlannedObject], anchor: &str, knowledge: &Knowledge) -> S
         if order.is_empty() {
             continue;
         }
-        let text: Vec<String> = order.iter().map(|p| match phrases[p] { 1 => p.replace('_', " "), n => format!("{n} × {}", p.replace('_', " ")) }).collect();
+        let text: Vec<String> = order
+            .iter()
+            .map(|p| match phrases[p] {
+                1 => p.replace('_', " "),
+                n => format!("{n} × {}", p.replace('_', " ")),
+            })
+            .collect();
         parts.push(format!("{title}: {}.", text.join("; ")));
     }
     parts.join(" ")

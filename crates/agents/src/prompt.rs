@@ -82,11 +82,17 @@ enum Item {
 }
 
 /// Reads `prompt`. `available` restricts how generic nouns resolve.
-pub(crate) fn analyze(prompt: &str, knowledge: &Knowledge, available: &BTreeSet<String>) -> Analysis {
+pub(crate) fn analyze(
+    prompt: &str,
+    knowledge: &Knowledge,
+    available: &BTreeSet<String>,
+) -> Analysis {
     let tokens = tokenize(prompt);
     let stems: Vec<Option<&str>> = tokens.iter().map(Token::stem).collect();
     let mut out = Analysis {
-        any_word: stems.iter().any(|s| s.is_some_and(|w| w.chars().any(char::is_alphabetic))),
+        any_word: stems
+            .iter()
+            .any(|s| s.is_some_and(|w| w.chars().any(char::is_alphabetic))),
         ..Analysis::default()
     };
     let voc = &knowledge.vocabulary;
@@ -95,7 +101,10 @@ pub(crate) fn analyze(prompt: &str, knowledge: &Knowledge, available: &BTreeSet<
     // 1. Scene type: whole phrases, then shared words.
     let matches_at = |i: usize, phrase: &[String]| {
         phrase.len() <= stems.len() - i
-            && phrase.iter().enumerate().all(|(k, w)| stems[i + k] == Some(w.as_str()))
+            && phrase
+                .iter()
+                .enumerate()
+                .all(|(k, w)| stems[i + k] == Some(w.as_str()))
     };
     let mut consumed = vec![false; tokens.len()];
     let mut phrase_spans: Vec<(usize, usize, usize)> = Vec::new(); // (archetype, start, len)
@@ -123,14 +132,25 @@ pub(crate) fn analyze(prompt: &str, knowledge: &Knowledge, available: &BTreeSet<
             .count();
         score += 3.0 * shared as f64;
         if score > 0.0 {
-            out.scenes.push(SceneMatch { archetype: ai, score, phrase: phrase_hit, phrase_len: best_len });
+            out.scenes.push(SceneMatch {
+                archetype: ai,
+                score,
+                phrase: phrase_hit,
+                phrase_len: best_len,
+            });
         }
     }
-    out.scenes.sort_by(|a, b| b.score.total_cmp(&a.score).then(a.archetype.cmp(&b.archetype)));
+    out.scenes.sort_by(|a, b| {
+        b.score
+            .total_cmp(&a.score)
+            .then(a.archetype.cmp(&b.archetype))
+    });
     if let Some(best) = out.scenes.first() {
         for &(ai, start, len) in &phrase_spans {
             if ai == best.archetype {
-                consumed[start..start + len].iter_mut().for_each(|c| *c = true);
+                consumed[start..start + len]
+                    .iter_mut()
+                    .for_each(|c| *c = true);
             }
         }
     }
@@ -138,7 +158,12 @@ pub(crate) fn analyze(prompt: &str, knowledge: &Knowledge, available: &BTreeSet<
         .scenes
         .iter()
         .take(2)
-        .flat_map(|m| knowledge.archetypes[m.archetype].objects.iter().map(|g| g.category.as_str()))
+        .flat_map(|m| {
+            knowledge.archetypes[m.archetype]
+                .objects
+                .iter()
+                .map(|g| g.category.as_str())
+        })
         .collect();
 
     // 2. Items: mentions, relation phrases, pronouns and joints.
@@ -187,7 +212,9 @@ pub(crate) fn analyze(prompt: &str, knowledge: &Knowledge, available: &BTreeSet<
             let last = i + phrase.len() - 1;
             let plural = matches!(&tokens[last], Token::Word { plural: true, .. });
             let words = phrase.join(" ");
-            push_mention(&mut out, &mut items, category, count, plural, definite, words);
+            push_mention(
+                &mut out, &mut items, category, count, plural, definite, words,
+            );
             count = None;
             definite = false;
             i += phrase.len();
@@ -196,19 +223,39 @@ pub(crate) fn analyze(prompt: &str, knowledge: &Knowledge, available: &BTreeSet<
         if let Some(list) = voc.generic.get(word) {
             let plural = matches!(&tokens[i], Token::Word { plural: true, .. });
             let usable: Vec<&String> = list.iter().filter(|c| available.contains(*c)).collect();
-            let earlier = out.mentions.iter().rposition(|m| list.contains(&m.category));
+            let earlier = out
+                .mentions
+                .iter()
+                .rposition(|m| list.contains(&m.category));
             if definite && earlier.is_some() {
                 items.push(Item::Mention(earlier.unwrap_or_default()));
             } else if plural && count.is_none() && usable.len() > 1 {
                 // "toys": several categories of the list, preferring the scene's own.
-                let mut chosen: Vec<&String> = usable.iter().copied().filter(|c| scene_categories.contains(c.as_str())).collect();
-                chosen.extend(usable.iter().copied().filter(|c| !scene_categories.contains(c.as_str())));
+                let mut chosen: Vec<&String> = usable
+                    .iter()
+                    .copied()
+                    .filter(|c| scene_categories.contains(c.as_str()))
+                    .collect();
+                chosen.extend(
+                    usable
+                        .iter()
+                        .copied()
+                        .filter(|c| !scene_categories.contains(c.as_str())),
+                );
                 chosen.truncate(3);
                 for (k, c) in chosen.into_iter().enumerate() {
                     if k > 0 {
                         items.push(Item::And);
                     }
-                    push_mention(&mut out, &mut items, c, Some(2), true, false, word.to_owned());
+                    push_mention(
+                        &mut out,
+                        &mut items,
+                        c,
+                        Some(2),
+                        true,
+                        false,
+                        word.to_owned(),
+                    );
                 }
             } else if let Some(c) = usable
                 .iter()
@@ -216,7 +263,15 @@ pub(crate) fn analyze(prompt: &str, knowledge: &Knowledge, available: &BTreeSet<
                 .or(usable.first())
             {
                 let c = (*c).clone();
-                push_mention(&mut out, &mut items, &c, count, plural, definite, word.to_owned());
+                push_mention(
+                    &mut out,
+                    &mut items,
+                    &c,
+                    count,
+                    plural,
+                    definite,
+                    word.to_owned(),
+                );
             }
             count = None;
             definite = false;
@@ -292,37 +347,63 @@ fn read_relations(out: &mut Analysis, items: &[Item], knowledge: &Knowledge) {
     let mut pending: Option<(RelationPhrase, String, Vec<usize>)> = None;
     let mut seen: Vec<usize> = Vec::new();
 
-    let emit = |out: &mut Analysis, subjects: &[usize], phrase: &RelationPhrase, target: StatedTarget, words: &str| {
+    let emit = |out: &mut Analysis,
+                subjects: &[usize],
+                phrase: &RelationPhrase,
+                target: StatedTarget,
+                words: &str| {
         for &s in subjects {
             if StatedTarget::Mention(s) == target {
                 continue;
             }
-            out.stated.push(Stated { subject: s, phrase: phrase.clone(), target: target.clone(), words: words.to_owned() });
+            out.stated.push(Stated {
+                subject: s,
+                phrase: phrase.clone(),
+                target: target.clone(),
+                words: words.to_owned(),
+            });
         }
     };
 
     let finish_clause = |out: &mut Analysis,
-                             in_with: bool,
-                             with_related: bool,
-                             with_parent: Option<usize>,
-                             with_members: &[usize]| {
+                         in_with: bool,
+                         with_related: bool,
+                         with_parent: Option<usize>,
+                         with_members: &[usize]| {
         if !in_with || with_related {
             return;
         }
         let Some(parent) = with_parent else { return };
         let parent_cat = out.mentions[parent].category.clone();
-        let Some(prior) = knowledge.prior(&parent_cat) else { return };
+        let Some(prior) = knowledge.prior(&parent_cat) else {
+            return;
+        };
         use crate::knowledge::{Mount, NominalShape};
         let kind = match prior.shape {
-            NominalShape::Shelves | NominalShape::Container => scenethesis_scene_graph::RelationKind::Inside,
+            NominalShape::Shelves | NominalShape::Container => {
+                scenethesis_scene_graph::RelationKind::Inside
+            }
             NominalShape::None => return,
             _ => scenethesis_scene_graph::RelationKind::On,
         };
         for &m in with_members {
-            let small = knowledge.prior(&out.mentions[m].category).is_some_and(|p| p.mount == Mount::Surface);
+            let small = knowledge
+                .prior(&out.mentions[m].category)
+                .is_some_and(|p| p.mount == Mount::Surface);
             if small && m != parent {
-                let phrase = RelationPhrase { kind, corner: false, head: false, split: false, wall: None };
-                out.stated.push(Stated { subject: m, phrase, target: StatedTarget::Mention(parent), words: "with".into() });
+                let phrase = RelationPhrase {
+                    kind,
+                    corner: false,
+                    head: false,
+                    split: false,
+                    wall: None,
+                };
+                out.stated.push(Stated {
+                    subject: m,
+                    phrase,
+                    target: StatedTarget::Mention(parent),
+                    words: "with".into(),
+                });
             }
         }
     };
@@ -364,7 +445,11 @@ fn read_relations(out: &mut Analysis, items: &[Item], knowledge: &Knowledge) {
                 pending = None;
             }
             Item::Rel(phrase, words) => {
-                let subjects = if group.is_empty() { last_subjects.clone() } else { group.clone() };
+                let subjects = if group.is_empty() {
+                    last_subjects.clone()
+                } else {
+                    group.clone()
+                };
                 if subjects.is_empty() {
                     continue;
                 }
@@ -373,7 +458,10 @@ fn read_relations(out: &mut Analysis, items: &[Item], knowledge: &Knowledge) {
                 } else if let Some(w) = &phrase.wall {
                     Some(StatedTarget::Wall(w.clone()))
                 } else if phrase.head {
-                    with_parent.or(head).filter(|h| !subjects.contains(h)).map(StatedTarget::Mention)
+                    with_parent
+                        .or(head)
+                        .filter(|h| !subjects.contains(h))
+                        .map(StatedTarget::Mention)
                 } else {
                     None
                 };
@@ -394,7 +482,13 @@ fn read_relations(out: &mut Analysis, items: &[Item], knowledge: &Knowledge) {
             Item::Pronoun { possessive } => {
                 if let Some((phrase, words, subjects)) = pending.take() {
                     if let Some(&target) = seen.iter().rev().find(|m| !subjects.contains(m)) {
-                        emit(out, &subjects, &phrase, StatedTarget::Mention(target), &words);
+                        emit(
+                            out,
+                            &subjects,
+                            &phrase,
+                            StatedTarget::Mention(target),
+                            &words,
+                        );
                         if in_with && subjects.iter().all(|s| with_members.contains(s)) {
                             with_related = true;
                         }

@@ -21,7 +21,10 @@ fn right(o: &SceneObject) -> Vector2<f64> {
 
 fn within_xz(o: &SceneObject, t: &SceneObject) -> bool {
     let (c, b) = (xz(o), t.world_aabb());
-    b.min.x - CONTACT <= c.x && c.x <= b.max.x + CONTACT && b.min.z - CONTACT <= c.y && c.y <= b.max.z + CONTACT
+    b.min.x - CONTACT <= c.x
+        && c.x <= b.max.x + CONTACT
+        && b.min.z - CONTACT <= c.y
+        && c.y <= b.max.z + CONTACT
 }
 
 fn gap_xz(a: &SceneObject, b: &SceneObject) -> f64 {
@@ -74,11 +77,23 @@ pub fn relation_holds(scene: &Scene, subject: &str, relation: &Relation) -> Opti
         s.x * right(t).dot(&dir).abs() + s.z * front(t).dot(&dir).abs()
     };
     Some(match relation.kind {
-        RelationKind::On => within_xz(o, t) && ob.min.y >= tb.min.y + CONTACT && ob.min.y <= tb.max.y + CONTACT,
-        RelationKind::Inside => within_xz(o, t) && ob.min.y >= tb.min.y - CONTACT && ob.min.y < tb.max.y - CONTACT,
-        RelationKind::Under => within_xz(o, t) && ob.max.y <= tb.max.y + CONTACT && ob.min.y <= tb.min.y + 0.35 * (tb.max.y - tb.min.y),
-        RelationKind::InFrontOf => d.dot(&front(t)) > 0.0 && d.dot(&right(t)).abs() <= t_half(right(t)) + 0.5,
-        RelationKind::Behind => d.dot(&front(t)) < 0.0 && d.dot(&right(t)).abs() <= t_half(right(t)) + 0.5,
+        RelationKind::On => {
+            within_xz(o, t) && ob.min.y > tb.min.y + 1e-3 && ob.min.y <= tb.max.y + CONTACT
+        }
+        RelationKind::Inside => {
+            within_xz(o, t) && ob.min.y >= tb.min.y - CONTACT && ob.min.y < tb.max.y - CONTACT
+        }
+        RelationKind::Under => {
+            within_xz(o, t)
+                && ob.max.y <= tb.max.y + CONTACT
+                && ob.min.y <= tb.min.y + 0.35 * (tb.max.y - tb.min.y)
+        }
+        RelationKind::InFrontOf => {
+            d.dot(&front(t)) > 0.0 && d.dot(&right(t)).abs() <= t_half(right(t)) + 0.5
+        }
+        RelationKind::Behind => {
+            d.dot(&front(t)) < 0.0 && d.dot(&right(t)).abs() <= t_half(right(t)) + 0.5
+        }
         RelationKind::Beside => gap_xz(o, t) <= 1.0,
         RelationKind::LeftOf => d.dot(&right(t)) < 0.0,
         RelationKind::RightOf => d.dot(&right(t)) > 0.0,

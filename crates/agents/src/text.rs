@@ -55,7 +55,9 @@ pub(crate) fn tokenize(text: &str) -> Vec<Token> {
             word.push(ch);
         } else {
             flush(&mut word, &mut tokens);
-            if matches!(ch, ',' | '.' | ';' | ':' | '!' | '?' | '\n') && tokens.last() != Some(&Token::Break) {
+            if matches!(ch, ',' | '.' | ';' | ':' | '!' | '?' | '\n')
+                && tokens.last() != Some(&Token::Break)
+            {
                 tokens.push(Token::Break);
             }
         }
@@ -144,6 +146,9 @@ mod tests {
     fn tokenize_splits_hyphens_possessives_and_breaks() {
         let t = tokenize("A children's three-seat Sofa, café.");
         let stems: Vec<_> = t.iter().map(|t| t.stem().unwrap_or("|")).collect();
-        assert_eq!(stems, ["a", "child", "three", "seat", "sofa", "|", "cafe", "|"]);
+        assert_eq!(
+            stems,
+            ["a", "child", "three", "seat", "sofa", "|", "cafe", "|"]
+        );
     }
 }

@@ -5,33 +5,78 @@ mod common;
 use std::collections::BTreeSet;
 
 use common::{available, plan, BENCHMARK, DETAILED};
-use scenethesis_agents::{ConstraintTarget, Knowledge, KnowledgePlanner, Layer, Plan, PlanError, PlanRequest, Planner, BACK_WALL};
+use scenethesis_agents::{
+    ConstraintTarget, Knowledge, KnowledgePlanner, Layer, Plan, PlanError, PlanRequest, Planner,
+    BACK_WALL,
+};
 use scenethesis_scene_graph::{Environment, ParentRef, RelationKind};
 
 #[test]
 fn knowledge_holds_at_least_30_archetypes_including_the_papers_categories() {
     let k = Knowledge::builtin();
-    assert!(k.archetypes.len() >= 30, "{} archetypes", k.archetypes.len());
+    assert!(
+        k.archetypes.len() >= 30,
+        "{} archetypes",
+        k.archetypes.len()
+    );
     for name in [
-        "living_room", "playroom", "garage", "warehouse", "bookstore", "convenience_store", "museum", "piano_showroom", "gym", "billiard_club",
-        "hospital_ward", "laboratory", "bedroom", "kitchen", "dining_room", "office", "classroom", "library", "cafe", "restaurant", "bakery",
-        "bathroom", "art_studio", "workshop", "beach", "park", "campsite", "street_cafe", "backyard",
+        "living_room",
+        "playroom",
+        "garage",
+        "warehouse",
+        "bookstore",
+        "convenience_store",
+        "museum",
+        "piano_showroom",
+        "gym",
+        "billiard_club",
+        "hospital_ward",
+        "laboratory",
+        "bedroom",
+        "kitchen",
+        "dining_room",
+        "office",
+        "classroom",
+        "library",
+        "cafe",
+        "restaurant",
+        "bakery",
+        "bathroom",
+        "art_studio",
+        "workshop",
+        "beach",
+        "park",
+        "campsite",
+        "street_cafe",
+        "backyard",
     ] {
         assert!(k.archetype(name).is_some(), "missing archetype {name}");
     }
     for a in &k.archetypes {
-        let floor = a.objects.iter().filter(|g| !matches!(g.place, scenethesis_agents::knowledge::Place::Support(..))).count();
+        let floor = a
+            .objects
+            .iter()
+            .filter(|g| !matches!(g.place, scenethesis_agents::knowledge::Place::Support(..)))
+            .count();
         assert!(floor >= 5, "{}: only {floor} floor groups", a.name);
         assert!(a.size[0] >= 3.0 && a.aisle >= 0.6, "{}", a.name);
     }
 }
 
 fn doc_categories() -> BTreeSet<String> {
-    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/asset-categories.md")).expect("docs/asset-categories.md");
+    let doc = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../docs/asset-categories.md"
+    ))
+    .expect("docs/asset-categories.md");
     doc.lines()
         .filter(|l| l.starts_with('|') && !l.contains("---") && !l.contains("| group"))
         .filter_map(|l| l.split('|').nth(2))
-        .flat_map(|cell| cell.split(',').map(|c| c.trim().to_owned()).collect::<Vec<_>>())
+        .flat_map(|cell| {
+            cell.split(',')
+                .map(|c| c.trim().to_owned())
+                .collect::<Vec<_>>()
+        })
         .filter(|c| !c.is_empty())
         .collect()
 }
@@ -42,10 +87,18 @@ fn every_knowledge_category_is_a_documented_library_category() {
     assert!(doc.len() > 100, "parsed {} categories", doc.len());
     let k = Knowledge::builtin();
     let known: BTreeSet<String> = k.category_names().map(str::to_owned).collect();
-    assert_eq!(known, doc, "knowledge/categories.toml must list exactly the documented categories");
+    assert_eq!(
+        known, doc,
+        "knowledge/categories.toml must list exactly the documented categories"
+    );
     for a in &k.archetypes {
         for g in &a.objects {
-            assert!(doc.contains(&g.category), "{}: `{}` is not documented", a.name, g.category);
+            assert!(
+                doc.contains(&g.category),
+                "{}: `{}` is not documented",
+                a.name,
+                g.category
+            );
         }
     }
 }
@@ -54,7 +107,10 @@ fn every_knowledge_category_is_a_documented_library_category() {
 fn every_knowledge_category_exists_in_the_asset_registry() {
     let registry: BTreeSet<String> = available().into_iter().collect();
     for name in Knowledge::builtin().category_names() {
-        assert!(registry.contains(name), "`{name}` has no generator in scenethesis_assets::catalog");
+        assert!(
+            registry.contains(name),
+            "`{name}` has no generator in scenethesis_assets::catalog"
+        );
     }
 }
 
@@ -64,13 +120,19 @@ fn benchmark_prompts_plan_their_key_categories() {
         let plan = plan(prompt, 0);
         let cats = plan.categories();
         for c in *expected {
-            assert!(cats.contains(c), "{prompt}: plan lacks `{c}` (has {cats:?})");
+            assert!(
+                cats.contains(c),
+                "{prompt}: plan lacks `{c}` (has {cats:?})"
+            );
         }
         let anchor = plan.object(&plan.anchor).expect("anchor planned");
         assert_eq!(anchor.parent, ParentRef::Ground, "{prompt}");
         assert_eq!(plan.objects[0].id, plan.anchor, "{prompt}: anchor first");
     }
-    assert_eq!(plan("a peaceful beach during sunset", 0).environment, Environment::Outdoor);
+    assert_eq!(
+        plan("a peaceful beach during sunset", 0).environment,
+        Environment::Outdoor
+    );
     assert_eq!(plan("a garage", 0).environment, Environment::Indoor);
     assert_eq!(plan("a gym room", 0).scene_type, "gym");
     assert_eq!(plan("a piano showroom", 0).scene_type, "piano_showroom");
@@ -78,10 +140,21 @@ fn benchmark_prompts_plan_their_key_categories() {
 
 fn assert_simple_plan_is_rich(prompt: &str, plan: &Plan) {
     let cats = plan.categories();
-    assert!(cats.len() >= 15, "{prompt}: {} categories {cats:?}", cats.len());
-    assert!(plan.objects.len() >= 20, "{prompt}: {} objects", plan.objects.len());
+    assert!(
+        cats.len() >= 15,
+        "{prompt}: {} categories {cats:?}",
+        cats.len()
+    );
+    assert!(
+        plan.objects.len() >= 20,
+        "{prompt}: {} objects",
+        plan.objects.len()
+    );
     for layer in [Layer::Background, Layer::Middle, Layer::Foreground] {
-        assert!(plan.layer(layer).next().is_some(), "{prompt}: empty {layer:?} layer");
+        assert!(
+            plan.layer(layer).next().is_some(),
+            "{prompt}: empty {layer:?} layer"
+        );
     }
     let kinds = plan.relation_kinds();
     assert!(kinds.contains(&RelationKind::On), "{prompt}: {kinds:?}");
@@ -89,11 +162,20 @@ fn assert_simple_plan_is_rich(prompt: &str, plan: &Plan) {
     // Every parent exists and comes first.
     for (i, o) in plan.objects.iter().enumerate() {
         if let ParentRef::Object(p) = &o.parent {
-            let pi = plan.objects.iter().position(|x| &x.id == p).unwrap_or_else(|| panic!("{prompt}: {} has unknown parent {p}", o.id));
+            let pi = plan
+                .objects
+                .iter()
+                .position(|x| &x.id == p)
+                .unwrap_or_else(|| panic!("{prompt}: {} has unknown parent {p}", o.id));
             assert!(pi < i, "{prompt}: parent {p} after child {}", o.id);
         }
         for r in &o.relations {
-            assert!(r.target.starts_with("wall_") || plan.object(&r.target).is_some(), "{prompt}: {} relation to unknown {}", o.id, r.target);
+            assert!(
+                r.target.starts_with("wall_") || plan.object(&r.target).is_some(),
+                "{prompt}: {} relation to unknown {}",
+                o.id,
+                r.target
+            );
         }
     }
 }
@@ -107,47 +189,124 @@ fn simple_prompts_yield_rich_layered_plans_with_on_inside_and_under() {
             assert!(cats >= 12, "{prompt}: {cats}");
         } else {
             assert_simple_plan_is_rich(prompt, &plan);
-            assert!(plan.relation_kinds().contains(&RelationKind::Inside), "{prompt}: no inside relation");
+            assert!(
+                plan.relation_kinds().contains(&RelationKind::Inside),
+                "{prompt}: no inside relation"
+            );
         }
     }
-    for prompt in ["a cozy living room with reading materials", "a children's playroom", "a garage", "a gym room", "a chemistry laboratory", "a bookstore", "a warehouse", "a museum gallery", "a billiard club", "a piano showroom", "a convenience store"] {
-        assert!(plan(prompt, 2).relation_kinds().contains(&RelationKind::Under), "{prompt}: no under relation");
+    for prompt in [
+        "a cozy living room with reading materials",
+        "a children's playroom",
+        "a garage",
+        "a gym room",
+        "a chemistry laboratory",
+        "a bookstore",
+        "a warehouse",
+        "a museum gallery",
+        "a billiard club",
+        "a piano showroom",
+        "a convenience store",
+    ] {
+        assert!(
+            plan(prompt, 2)
+                .relation_kinds()
+                .contains(&RelationKind::Under),
+            "{prompt}: no under relation"
+        );
     }
 }
 
 #[test]
 fn detailed_prompt_relations_become_hard_constraints() {
     let plan = &plan(DETAILED, 0);
-    let find = |subject_cat: &str, kind: RelationKind, target: &dyn Fn(&ConstraintTarget) -> bool| {
-        plan.constraints.iter().filter(|c| plan.object(&c.subject).is_some_and(|o| o.category == subject_cat) && c.kind == kind && target(&c.target)).count()
-    };
+    let find =
+        |subject_cat: &str, kind: RelationKind, target: &dyn Fn(&ConstraintTarget) -> bool| {
+            plan.constraints
+                .iter()
+                .filter(|c| {
+                    plan.object(&c.subject)
+                        .is_some_and(|o| o.category == subject_cat)
+                        && c.kind == kind
+                        && target(&c.target)
+                })
+                .count()
+        };
     let obj = |cat: &'static str| move |t: &ConstraintTarget| matches!(t, ConstraintTarget::Object(id) if plan.object(id).is_some_and(|o| o.category == cat));
-    assert_eq!(find("sofa", RelationKind::AgainstWall, &|t| *t == ConstraintTarget::Wall(BACK_WALL.into())), 1);
-    assert_eq!(find("coffee_table", RelationKind::InFrontOf, &obj("sofa")), 1);
-    assert_eq!(find("mug", RelationKind::On, &obj("coffee_table")), 2, "two mugs on top");
+    assert_eq!(
+        find("sofa", RelationKind::AgainstWall, &|t| *t
+            == ConstraintTarget::Wall(BACK_WALL.into())),
+        1
+    );
+    assert_eq!(
+        find("coffee_table", RelationKind::InFrontOf, &obj("sofa")),
+        1
+    );
+    assert_eq!(
+        find("mug", RelationKind::On, &obj("coffee_table")),
+        2,
+        "two mugs on top"
+    );
     assert_eq!(find("vase", RelationKind::On, &obj("coffee_table")), 1);
-    assert_eq!(find("armchair", RelationKind::Beside, &obj("coffee_table")), 2);
+    assert_eq!(
+        find("armchair", RelationKind::Beside, &obj("coffee_table")),
+        2
+    );
     assert_eq!(find("armchair", RelationKind::Facing, &obj("sofa")), 2);
-    assert_eq!(find("bookshelf", RelationKind::AgainstWall, &|t| *t == ConstraintTarget::Corner), 1);
+    assert_eq!(
+        find("bookshelf", RelationKind::AgainstWall, &|t| *t
+            == ConstraintTarget::Corner),
+        1
+    );
     assert!(find("book", RelationKind::Inside, &obj("bookshelf")) >= 2);
     // The plant inside the shelves becomes a surface-sized stand-in, and says so.
     assert_eq!(find("vase", RelationKind::Inside, &obj("bookshelf")), 1);
-    assert!(plan.notes.iter().any(|n| n.contains("plant")), "{:?}", plan.notes);
+    assert!(
+        plan.notes.iter().any(|n| n.contains("plant")),
+        "{:?}",
+        plan.notes
+    );
     assert_eq!(find("floor_lamp", RelationKind::Beside, &obj("sofa")), 1);
     // Exactly the stated counts.
-    assert_eq!(plan.objects.iter().filter(|o| o.category == "armchair").count(), 2);
-    assert_eq!(plan.objects.iter().filter(|o| o.category == "mug").count(), 2);
-    assert_eq!(plan.objects.iter().filter(|o| o.category == "sofa").count(), 1);
+    assert_eq!(
+        plan.objects
+            .iter()
+            .filter(|o| o.category == "armchair")
+            .count(),
+        2
+    );
+    assert_eq!(
+        plan.objects.iter().filter(|o| o.category == "mug").count(),
+        2
+    );
+    assert_eq!(
+        plan.objects.iter().filter(|o| o.category == "sofa").count(),
+        1
+    );
     // The two armchairs go to opposite sides of the table.
-    let sides: BTreeSet<RelationKind> = plan.objects.iter().filter(|o| o.category == "armchair").flat_map(|o| o.relations.iter().map(|r| r.kind)).filter(|k| matches!(k, RelationKind::LeftOf | RelationKind::RightOf)).collect();
+    let sides: BTreeSet<RelationKind> = plan
+        .objects
+        .iter()
+        .filter(|o| o.category == "armchair")
+        .flat_map(|o| o.relations.iter().map(|r| r.kind))
+        .filter(|k| matches!(k, RelationKind::LeftOf | RelationKind::RightOf))
+        .collect();
     assert_eq!(sides.len(), 2);
     // Constraint subjects are hard and carry the relation in the plan.
     for c in &plan.constraints {
         let o = plan.object(&c.subject).unwrap();
         assert!(o.hard, "{}", c.subject);
         if let ConstraintTarget::Object(t) = &c.target {
-            let in_plan = o.relations.iter().any(|r| r.kind == c.kind && &r.target == t) || (o.support == c.kind && o.parent == ParentRef::Object(t.clone()));
-            assert!(in_plan, "{} {} {t} missing from the plan object", c.subject, c.kind);
+            let in_plan = o
+                .relations
+                .iter()
+                .any(|r| r.kind == c.kind && &r.target == t)
+                || (o.support == c.kind && o.parent == ParentRef::Object(t.clone()));
+            assert!(
+                in_plan,
+                "{} {} {t} missing from the plan object",
+                c.subject, c.kind
+            );
         }
     }
     assert_eq!(plan.anchor, "sofa_0");
@@ -155,16 +314,47 @@ fn detailed_prompt_relations_become_hard_constraints() {
 
 #[test]
 fn counts_and_relations_are_read_from_free_prompts() {
-    let plan = plan("a bedroom with two armchairs, a few books on the desk and a teddy bear under the bed", 0);
+    let plan = plan(
+        "a bedroom with two armchairs, a few books on the desk and a teddy bear under the bed",
+        0,
+    );
     assert_eq!(plan.scene_type, "bedroom");
-    assert_eq!(plan.objects.iter().filter(|o| o.category == "armchair").count(), 2);
-    let books_on_desk = plan.objects.iter().filter(|o| o.category == "book" && o.support == RelationKind::On && plan.object(o.parent.object_id().unwrap_or("")).is_some_and(|p| p.category == "desk")).count();
+    assert_eq!(
+        plan.objects
+            .iter()
+            .filter(|o| o.category == "armchair")
+            .count(),
+        2
+    );
+    let books_on_desk = plan
+        .objects
+        .iter()
+        .filter(|o| {
+            o.category == "book"
+                && o.support == RelationKind::On
+                && plan
+                    .object(o.parent.object_id().unwrap_or(""))
+                    .is_some_and(|p| p.category == "desk")
+        })
+        .count();
     assert_eq!(books_on_desk, 3, "a few books on the desk");
-    assert!(plan.objects.iter().any(|o| o.category == "teddy_bear" && o.support == RelationKind::Under));
+    assert!(plan
+        .objects
+        .iter()
+        .any(|o| o.category == "teddy_bear" && o.support == RelationKind::Under));
 
     let plan = plan_with("an office with 3 plants in the corners, a laptop to the left of the monitor and a whiteboard");
-    assert_eq!(plan.objects.iter().filter(|o| o.category == "plant").count(), 3);
-    assert!(plan.constraints.iter().any(|c| c.kind == RelationKind::LeftOf));
+    assert_eq!(
+        plan.objects
+            .iter()
+            .filter(|o| o.category == "plant")
+            .count(),
+        3
+    );
+    assert!(plan
+        .constraints
+        .iter()
+        .any(|c| c.kind == RelationKind::LeftOf));
     assert!(plan.categories().contains("whiteboard"));
 }
 
@@ -174,18 +364,36 @@ fn plan_with(prompt: &str) -> Plan {
 
 #[test]
 fn unknown_scene_types_fall_back_to_the_nearest_archetypes_and_keep_every_mention() {
-    let plan = plan("a wizard's alchemy workshop with a cauldron, three potions and a spellbook", 0);
+    let plan = plan(
+        "a wizard's alchemy workshop with a cauldron, three potions and a spellbook",
+        0,
+    );
     assert_eq!(plan.scene_type, "custom");
-    assert!(plan.archetypes.contains(&"laboratory".to_owned()) && plan.archetypes.contains(&"workshop".to_owned()), "{:?}", plan.archetypes);
+    assert!(
+        plan.archetypes.contains(&"laboratory".to_owned())
+            && plan.archetypes.contains(&"workshop".to_owned()),
+        "{:?}",
+        plan.archetypes
+    );
     let cats = plan.categories();
     for c in ["bowl", "bottle", "book", "workbench", "lab_bench"] {
         assert!(cats.contains(c), "missing {c}: {cats:?}");
     }
-    assert!(plan.objects.iter().filter(|o| o.category == "bottle").count() >= 3);
+    assert!(
+        plan.objects
+            .iter()
+            .filter(|o| o.category == "bottle")
+            .count()
+            >= 3
+    );
 
     // Only objects, no scene words: the archetypes that hold them.
     let plan = plan_with("a treadmill and some dumbbells");
-    assert!(plan.archetypes.contains(&"gym".to_owned()), "{:?}", plan.archetypes);
+    assert!(
+        plan.archetypes.contains(&"gym".to_owned()),
+        "{:?}",
+        plan.archetypes
+    );
     // Only a mood: the default archetype.
     let plan = plan_with("somewhere cozy and quiet");
     assert!(!plan.objects.is_empty());
@@ -196,30 +404,50 @@ fn empty_and_meaningless_prompts_are_clear_errors() {
     let planner = KnowledgePlanner::new();
     let request = |p: &str| PlanRequest::new(p, available(), 0);
     assert_eq!(planner.plan(&request("")), Err(PlanError::EmptyPrompt));
-    assert_eq!(planner.plan(&request("  ,.;  ")), Err(PlanError::EmptyPrompt));
+    assert_eq!(
+        planner.plan(&request("  ,.;  ")),
+        Err(PlanError::EmptyPrompt)
+    );
     match planner.plan(&request("xqzt vbnm plorf")) {
         Err(PlanError::Unintelligible { prompt }) => assert_eq!(prompt, "xqzt vbnm plorf"),
         other => panic!("expected Unintelligible, got {other:?}"),
     }
-    let err = planner.plan(&request("xqzt vbnm plorf")).unwrap_err().to_string();
+    let err = planner
+        .plan(&request("xqzt vbnm plorf"))
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("xqzt") && err.contains("try"), "{err}");
     let none = PlanRequest::new("a garage", Vec::<String>::new(), 0);
-    assert!(matches!(planner.plan(&none), Err(PlanError::NothingAvailable { .. })));
+    assert!(matches!(
+        planner.plan(&none),
+        Err(PlanError::NothingAvailable { .. })
+    ));
 }
 
 #[test]
 fn unavailable_categories_are_substituted_or_left_out() {
     let mut cats = available();
     cats.retain(|c| c != "bookshelf" && c != "television");
-    let plan = KnowledgePlanner::new().plan(&PlanRequest::new("a cozy living room", cats, 0)).unwrap();
+    let plan = KnowledgePlanner::new()
+        .plan(&PlanRequest::new("a cozy living room", cats, 0))
+        .unwrap();
     let have = plan.categories();
     assert!(!have.contains("bookshelf") && !have.contains("television"));
-    assert!(have.contains("shelving_unit"), "bookshelf → shelving unit: {have:?}");
-    assert!(plan.notes.iter().any(|n| n.contains("television")), "{:?}", plan.notes);
+    assert!(
+        have.contains("shelving_unit"),
+        "bookshelf → shelving unit: {have:?}"
+    );
+    assert!(
+        plan.notes.iter().any(|n| n.contains("television")),
+        "{:?}",
+        plan.notes
+    );
     // User-imported categories count once they are available.
     let mut cats = available();
     cats.push("gramophone".into());
-    assert!(KnowledgePlanner::new().plan(&PlanRequest::new("a music room", cats, 0)).is_ok());
+    assert!(KnowledgePlanner::new()
+        .plan(&PlanRequest::new("a music room", cats, 0))
+        .is_ok());
 }
 
 #[test]
@@ -227,8 +455,16 @@ fn plans_are_deterministic_per_seed_and_vary_across_seeds() {
     let a = plan("a cozy living room with reading materials", 5);
     let b = plan("a cozy living room with reading materials", 5);
     assert_eq!(a, b);
-    let variants: BTreeSet<String> = (0..6).map(|s| serde_json::to_string(&plan("a cozy living room with reading materials", s)).unwrap()).collect();
-    assert!(variants.len() >= 5, "only {} distinct plans", variants.len());
+    let variants: BTreeSet<String> = (0..6)
+        .map(|s| {
+            serde_json::to_string(&plan("a cozy living room with reading materials", s)).unwrap()
+        })
+        .collect();
+    assert!(
+        variants.len() >= 5,
+        "only {} distinct plans",
+        variants.len()
+    );
 }
 
 #[test]
@@ -237,5 +473,9 @@ fn plans_round_trip_through_json_for_llm_providers() {
     let json = serde_json::to_string_pretty(&p).unwrap();
     let back: Plan = serde_json::from_str(&json).unwrap();
     assert_eq!(back, p);
-    assert!(p.description.contains("Background") && p.description.contains("Foreground"), "{}", p.description);
+    assert!(
+        p.description.contains("Background") && p.description.contains("Foreground"),
+        "{}",
+        p.description
+    );
 }

@@ -21,7 +21,10 @@ impl Footprint {
     /// World (x, z) of a point given in the footprint's local frame.
     pub fn to_world(&self, lx: f64, lz: f64) -> [f64; 2] {
         let (r, f) = self.axes();
-        [self.cx + r[0] * lx + f[0] * lz, self.cz + r[1] * lx + f[1] * lz]
+        [
+            self.cx + r[0] * lx + f[0] * lz,
+            self.cz + r[1] * lx + f[1] * lz,
+        ]
     }
 
     /// Local coordinates of a world (x, z) point.
@@ -44,7 +47,8 @@ impl Footprint {
     /// Half extent of the footprint along a world unit direction.
     pub fn extent_along(&self, dir: [f64; 2]) -> f64 {
         let (r, f) = self.axes();
-        self.hx * (r[0] * dir[0] + r[1] * dir[1]).abs() + self.hz * (f[0] * dir[0] + f[1] * dir[1]).abs()
+        self.hx * (r[0] * dir[0] + r[1] * dir[1]).abs()
+            + self.hz * (f[0] * dir[0] + f[1] * dir[1]).abs()
     }
 
     /// Whether the two rectangles, each grown by `gap / 2`, overlap (separating axes).
@@ -90,29 +94,45 @@ impl Raster {
     pub fn new(x0: f64, z0: f64, x1: f64, z1: f64, cell: f64) -> Self {
         let nx = ((x1 - x0) / cell).ceil().max(1.0) as usize;
         let nz = ((z1 - z0) / cell).ceil().max(1.0) as usize;
-        Self { x0, z0, cell, nx, nz }
+        Self {
+            x0,
+            z0,
+            cell,
+            nx,
+            nz,
+        }
     }
 
     /// Centre of cell (i, j).
     pub fn center(&self, i: usize, j: usize) -> [f64; 2] {
-        [self.x0 + (i as f64 + 0.5) * self.cell, self.z0 + (j as f64 + 0.5) * self.cell]
+        [
+            self.x0 + (i as f64 + 0.5) * self.cell,
+            self.z0 + (j as f64 + 0.5) * self.cell,
+        ]
     }
 
     /// The cell holding a world point, if on the raster.
     pub fn cell_of(&self, x: f64, z: f64) -> Option<(usize, usize)> {
         let i = ((x - self.x0) / self.cell).floor();
         let j = ((z - self.z0) / self.cell).floor();
-        (i >= 0.0 && j >= 0.0 && (i as usize) < self.nx && (j as usize) < self.nz).then(|| (i as usize, j as usize))
+        (i >= 0.0 && j >= 0.0 && (i as usize) < self.nx && (j as usize) < self.nz)
+            .then(|| (i as usize, j as usize))
     }
 
     /// Free cells of the floor eroded by `inset` (all true inside, false near the border).
     pub fn floor_mask(&self, inset: f64) -> Vec<bool> {
-        let (x1, z1) = (self.x0 + self.nx as f64 * self.cell, self.z0 + self.nz as f64 * self.cell);
+        let (x1, z1) = (
+            self.x0 + self.nx as f64 * self.cell,
+            self.z0 + self.nz as f64 * self.cell,
+        );
         let mut mask = vec![false; self.nx * self.nz];
         for j in 0..self.nz {
             for i in 0..self.nx {
                 let [x, z] = self.center(i, j);
-                mask[j * self.nx + i] = x >= self.x0 + inset && x <= x1 - inset && z >= self.z0 + inset && z <= z1 - inset;
+                mask[j * self.nx + i] = x >= self.x0 + inset
+                    && x <= x1 - inset
+                    && z >= self.z0 + inset
+                    && z <= z1 - inset;
             }
         }
         mask
@@ -188,8 +208,20 @@ mod tests {
 
     #[test]
     fn rotated_rectangles_overlap_by_separating_axes() {
-        let a = Footprint { cx: 0.0, cz: 0.0, yaw: 0.0, hx: 1.0, hz: 0.5 };
-        let b = Footprint { cx: 1.6, cz: 0.0, yaw: std::f64::consts::FRAC_PI_4, hx: 0.5, hz: 0.5 };
+        let a = Footprint {
+            cx: 0.0,
+            cz: 0.0,
+            yaw: 0.0,
+            hx: 1.0,
+            hz: 0.5,
+        };
+        let b = Footprint {
+            cx: 1.6,
+            cz: 0.0,
+            yaw: std::f64::consts::FRAC_PI_4,
+            hx: 0.5,
+            hz: 0.5,
+        };
         assert!(a.overlaps(&b, 0.0), "diamond corner reaches x = 0.89 < 1");
         let c = Footprint { cx: 1.8, ..b };
         assert!(!c.overlaps(&a, 0.0));
@@ -201,7 +233,13 @@ mod tests {
     fn components_split_by_a_wall_of_cells() {
         let r = Raster::new(0.0, 0.0, 1.0, 1.0, 0.1);
         let mut mask = r.floor_mask(0.0);
-        let wall = Footprint { cx: 0.5, cz: 0.5, yaw: 0.0, hx: 0.05, hz: 0.6 };
+        let wall = Footprint {
+            cx: 0.5,
+            cz: 0.5,
+            yaw: 0.0,
+            hx: 0.05,
+            hz: 0.6,
+        };
         r.stamp(&mut mask, &wall, 0.0);
         let (_, sizes) = r.components(&mask);
         assert_eq!(sizes.len(), 3, "two components: {sizes:?}");

@@ -102,5 +102,10 @@ pub enum GuideError {
 /// assets and seed must give the identical scene.
 pub trait Guide {
     /// Lays out `plan` with the assets' metadata, seeded by `seed`.
-    fn layout(&self, plan: &Plan, assets: &dyn AssetLookup, seed: u64) -> Result<GuidedLayout, GuideError>;
+    fn layout(
+        &self,
+        plan: &Plan,
+        assets: &dyn AssetLookup,
+        seed: u64,
+    ) -> Result<GuidedLayout, GuideError>;
 }

@@ -9,7 +9,9 @@ use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use scenethesis_assets::AssetInfo;
-use scenethesis_scene_graph::{Aabb, Architecture, Environment, ParentRef, Pose, Relation, RelationKind, Scene, SceneObject};
+use scenethesis_scene_graph::{
+    Aabb, Architecture, Environment, ParentRef, Pose, Relation, RelationKind, Scene, SceneObject,
+};
 
 use super::geometry::{Footprint, Raster};
 use super::surfaces::place_children;
@@ -49,7 +51,9 @@ impl Default for ProceduralGuide {
 impl ProceduralGuide {
     /// A guide checking walkways on a raster of `cell` metres (0.05 by default).
     pub fn with_cell(cell: f64) -> Self {
-        Self { cell: cell.clamp(0.02, 0.2) }
+        Self {
+            cell: cell.clamp(0.02, 0.2),
+        }
     }
 }
 
@@ -128,7 +132,10 @@ impl FloorState<'_> {
     }
 
     fn collides(&self, fp: &Footprint, gap: f64) -> bool {
-        self.placed.iter().filter(|p| !p.mounted).any(|p| p.fp.overlaps(fp, gap))
+        self.placed
+            .iter()
+            .filter(|p| !p.mounted)
+            .any(|p| p.fp.overlaps(fp, gap))
             || self.door_zone.is_some_and(|d| d.overlaps(fp, 0.0))
     }
 
@@ -147,7 +154,9 @@ impl FloorState<'_> {
         let (alabels, asizes) = r.components(&aisle);
         let main = match self.door_aisle {
             Some(d) => alabels[d],
-            None => (1..asizes.len()).max_by_key(|&l| (asizes[l], usize::MAX - l)).unwrap_or(0) as u32,
+            None => (1..asizes.len())
+                .max_by_key(|&l| (asizes[l], usize::MAX - l))
+                .unwrap_or(0) as u32,
         };
         let door_ok = main != 0;
         let mut unreachable = Vec::new();
@@ -158,9 +167,17 @@ impl FloorState<'_> {
         }
         let (wlabels, wsizes) = r.components(&walk);
         let total: usize = wsizes.iter().sum();
-        let largest = (1..wsizes.len()).max_by_key(|&l| (wsizes[l], usize::MAX - l)).unwrap_or(0);
-        let ratio = if total == 0 { 0.0 } else { wsizes[largest] as f64 / total as f64 };
-        let door_walk = self.door_walk.is_none_or(|d| wlabels[d] == largest as u32 && largest != 0);
+        let largest = (1..wsizes.len())
+            .max_by_key(|&l| (wsizes[l], usize::MAX - l))
+            .unwrap_or(0);
+        let ratio = if total == 0 {
+            0.0
+        } else {
+            wsizes[largest] as f64 / total as f64
+        };
+        let door_walk = self
+            .door_walk
+            .is_none_or(|d| wlabels[d] == largest as u32 && largest != 0);
         let ok = door_ok && unreachable.is_empty() && ratio >= MIN_WALK && door_walk;
         (ok, ratio, door_ok, unreachable)
     }
@@ -171,9 +188,19 @@ impl FloorState<'_> {
         let zone = if p.front_access {
             let depth = reach + r.cell;
             let centre = p.fp.to_world(0.0, p.fp.hz + depth / 2.0);
-            Footprint { cx: centre[0], cz: centre[1], yaw: p.fp.yaw, hx: (p.fp.hx * 0.8).max(r.cell), hz: depth / 2.0 }
+            Footprint {
+                cx: centre[0],
+                cz: centre[1],
+                yaw: p.fp.yaw,
+                hx: (p.fp.hx * 0.8).max(r.cell),
+                hz: depth / 2.0,
+            }
         } else {
-            Footprint { hx: p.fp.hx + reach, hz: p.fp.hz + reach, ..p.fp }
+            Footprint {
+                hx: p.fp.hx + reach,
+                hz: p.fp.hz + reach,
+                ..p.fp
+            }
         };
         let mut found = false;
         r.for_cells_in(&zone, 0.0, |idx| found |= labels[idx] == main);
@@ -182,7 +209,8 @@ impl FloorState<'_> {
 
     fn commit(&mut self, p: Placed) {
         if !p.mounted {
-            self.raster.stamp(&mut self.aisle_base, &p.fp, self.aisle_radius);
+            self.raster
+                .stamp(&mut self.aisle_base, &p.fp, self.aisle_radius);
             if p.height / 2.0 < WALK_HEIGHT {
                 self.raster.stamp(&mut self.walk_base, &p.fp, ROBOT_RADIUS);
             }
@@ -200,8 +228,19 @@ impl FloorState<'_> {
 }
 
 fn seat_like(category: &str) -> bool {
-    Knowledge::builtin().prior(category).is_some_and(|p| p.shape == NominalShape::Seat)
-        || ["chair", "stool", "bench", "bean_bag", "ottoman", "wheelchair"].iter().any(|w| category.contains(w))
+    Knowledge::builtin()
+        .prior(category)
+        .is_some_and(|p| p.shape == NominalShape::Seat)
+        || [
+            "chair",
+            "stool",
+            "bench",
+            "bean_bag",
+            "ottoman",
+            "wheelchair",
+        ]
+        .iter()
+        .any(|w| category.contains(w))
 }
 
 fn yaw_toward(from: [f64; 2], to: [f64; 2]) -> f64 {
@@ -220,10 +259,17 @@ fn wrap(yaw: f64) -> f64 {
 }
 
 impl Guide for ProceduralGuide {
-    fn layout(&self, plan: &Plan, assets: &dyn AssetLookup, seed: u64) -> Result<GuidedLayout, GuideError> {
+    fn layout(
+        &self,
+        plan: &Plan,
+        assets: &dyn AssetLookup,
+        seed: u64,
+    ) -> Result<GuidedLayout, GuideError> {
         let [width, depth] = plan.room_size;
         if !(width.is_finite() && depth.is_finite() && width >= 1.5 && depth >= 1.5) {
-            return Err(GuideError::InvalidPlan(format!("room_size {width} × {depth} m: expected at least 1.5 m each way")));
+            return Err(GuideError::InvalidPlan(format!(
+                "room_size {width} × {depth} m: expected at least 1.5 m each way"
+            )));
         }
         let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x9e37_79b9_7f4a_7c15);
         let indoor = plan.environment == Environment::Indoor;
@@ -237,13 +283,21 @@ impl Guide for ProceduralGuide {
         // Metadata for every object.
         let mut infos: Vec<AssetInfo> = Vec::with_capacity(plan.objects.len());
         for o in &plan.objects {
-            let info = assets.asset_info(o).ok_or_else(|| GuideError::MissingAsset { id: o.id.clone(), category: o.category.clone() })?;
+            let info = assets
+                .asset_info(o)
+                .ok_or_else(|| GuideError::MissingAsset {
+                    id: o.id.clone(),
+                    category: o.category.clone(),
+                })?;
             infos.push(info);
         }
         for o in &plan.objects {
             if let ParentRef::Object(p) = &o.parent {
                 if plan.object(p).is_none() {
-                    return Err(GuideError::InvalidPlan(format!("object `{}`: parent `{p}` is not planned", o.id)));
+                    return Err(GuideError::InvalidPlan(format!(
+                        "object `{}`: parent `{p}` is not planned",
+                        o.id
+                    )));
                 }
             }
         }
@@ -253,10 +307,34 @@ impl Guide for ProceduralGuide {
             let (x, z) = (hw - inset, hd - inset);
             let id = |i: usize| indoor.then(|| format!("wall_{i}"));
             vec![
-                Side { id: id(0), face: [0.0, -z], normal: [0.0, 1.0], along: [1.0, 0.0], half_len: x },
-                Side { id: id(1), face: [-x, 0.0], normal: [1.0, 0.0], along: [0.0, 1.0], half_len: z },
-                Side { id: id(2), face: [0.0, z], normal: [0.0, -1.0], along: [1.0, 0.0], half_len: x },
-                Side { id: id(3), face: [x, 0.0], normal: [-1.0, 0.0], along: [0.0, 1.0], half_len: z },
+                Side {
+                    id: id(0),
+                    face: [0.0, -z],
+                    normal: [0.0, 1.0],
+                    along: [1.0, 0.0],
+                    half_len: x,
+                },
+                Side {
+                    id: id(1),
+                    face: [-x, 0.0],
+                    normal: [1.0, 0.0],
+                    along: [0.0, 1.0],
+                    half_len: z,
+                },
+                Side {
+                    id: id(2),
+                    face: [0.0, z],
+                    normal: [0.0, -1.0],
+                    along: [1.0, 0.0],
+                    half_len: x,
+                },
+                Side {
+                    id: id(3),
+                    face: [x, 0.0],
+                    normal: [-1.0, 0.0],
+                    along: [0.0, 1.0],
+                    half_len: z,
+                },
             ]
         };
 
@@ -266,9 +344,23 @@ impl Guide for ProceduralGuide {
         let mut walk_base = raster.floor_mask(ROBOT_RADIUS);
         let door_zone = indoor.then(|| {
             let clear = plan.door_clearance.max(0.6);
-            Footprint { cx: 0.0, cz: hd - clear / 2.0, yaw: 0.0, hx: DOOR_WIDTH / 2.0 + 0.2, hz: clear / 2.0 }
+            Footprint {
+                cx: 0.0,
+                cz: hd - clear / 2.0,
+                yaw: 0.0,
+                hx: DOOR_WIDTH / 2.0 + 0.2,
+                hz: clear / 2.0,
+            }
         });
-        let door_cell = |r: f64| if indoor { raster.cell_of(0.0, hd - r - self.cell * 1.5).map(|(i, j)| j * raster.nx + i) } else { None };
+        let door_cell = |r: f64| {
+            if indoor {
+                raster
+                    .cell_of(0.0, hd - r - self.cell * 1.5)
+                    .map(|(i, j)| j * raster.nx + i)
+            } else {
+                None
+            }
+        };
         let (door_aisle, door_walk) = (door_cell(aisle_radius), door_cell(ROBOT_RADIUS));
         if let (Some(a), Some(w)) = (door_aisle, door_walk) {
             aisle_base[a] = true;
@@ -305,7 +397,9 @@ impl Guide for ProceduralGuide {
                 Zone::Supported => 9,
             }
         };
-        let mut order: Vec<usize> = (0..plan.objects.len()).filter(|&i| plan.objects[i].parent == ParentRef::Ground).collect();
+        let mut order: Vec<usize> = (0..plan.objects.len())
+            .filter(|&i| plan.objects[i].parent == ParentRef::Ground)
+            .collect();
         order.sort_by_key(|&i| (class(i), !plan.objects[i].hard, i));
 
         let mut dropped: Vec<DroppedObject> = Vec::new();
@@ -345,7 +439,11 @@ impl Guide for ProceduralGuide {
                         plan_index: i,
                         fp: c.fp,
                         height: infos[i].size[1] as f64,
-                        front_access: c.wall.is_some() || matches!(o.zone, Zone::Wall { .. } | Zone::Corner | Zone::WallMounted),
+                        front_access: c.wall.is_some()
+                            || matches!(
+                                o.zone,
+                                Zone::Wall { .. } | Zone::Corner | Zone::WallMounted
+                            ),
                         wall: c.wall.clone(),
                         mounted,
                     };
@@ -384,7 +482,14 @@ impl Guide for ProceduralGuide {
                         if !state.inside_floor(&c.fp, 0.0) || state.collides(&c.fp, 0.02) {
                             continue;
                         }
-                        let p = Placed { plan_index: i, fp: c.fp, height: infos[i].size[1] as f64, front_access: false, wall: None, mounted: false };
+                        let p = Placed {
+                            plan_index: i,
+                            fp: c.fp,
+                            height: infos[i].size[1] as f64,
+                            front_access: false,
+                            wall: None,
+                            mounted: false,
+                        };
                         if state.evaluate(Some(&p)).0 {
                             state.commit(p);
                             ok = true;
@@ -392,7 +497,10 @@ impl Guide for ProceduralGuide {
                         }
                     }
                     if !ok {
-                        dropped.push(DroppedObject { id: o.id.clone(), reason: "its target was not placed and no free spot remained".into() });
+                        dropped.push(DroppedObject {
+                            id: o.id.clone(),
+                            reason: "its target was not placed and no free spot remained".into(),
+                        });
                     }
                 }
                 break;
@@ -407,8 +515,15 @@ impl Guide for ProceduralGuide {
         let mut poses: BTreeMap<usize, Pose> = BTreeMap::new();
         let mut walls: BTreeMap<usize, String> = BTreeMap::new();
         for p in &state.placed {
-            let y = if p.mounted { (WALL_MOUNT_HEIGHT - p.height / 2.0).max(0.5) } else { 0.0 };
-            poses.insert(p.plan_index, Pose::new(1.0, wrap(p.fp.yaw), Vector3::new(p.fp.cx, y, p.fp.cz)));
+            let y = if p.mounted {
+                (WALL_MOUNT_HEIGHT - p.height / 2.0).max(0.5)
+            } else {
+                0.0
+            };
+            poses.insert(
+                p.plan_index,
+                Pose::new(1.0, wrap(p.fp.yaw), Vector3::new(p.fp.cx, y, p.fp.cz)),
+            );
             if let Some(w) = &p.wall {
                 walls.insert(p.plan_index, w.clone());
             }
@@ -423,7 +538,10 @@ impl Guide for ProceduralGuide {
         let mut scene = Scene::new(architecture);
         scene.prompt = plan.prompt.clone();
         scene.seed = seed;
-        let present: BTreeMap<&str, usize> = poses.keys().map(|&i| (plan.objects[i].id.as_str(), i)).collect();
+        let present: BTreeMap<&str, usize> = poses
+            .keys()
+            .map(|&i| (plan.objects[i].id.as_str(), i))
+            .collect();
         for (i, o) in plan.objects.iter().enumerate() {
             let Some(pose) = poses.get(&i) else { continue };
             let info = &infos[i];
@@ -432,7 +550,11 @@ impl Guide for ProceduralGuide {
             let mut relations: Vec<Relation> = o
                 .relations
                 .iter()
-                .filter(|r| present.contains_key(r.target.as_str()) || scene.architecture.wall(&r.target).is_some() || r.target == scenethesis_scene_graph::GROUND_ID)
+                .filter(|r| {
+                    present.contains_key(r.target.as_str())
+                        || scene.architecture.wall(&r.target).is_some()
+                        || r.target == scenethesis_scene_graph::GROUND_ID
+                })
                 .cloned()
                 .collect();
             if o.parent == ParentRef::Ground {
@@ -458,13 +580,20 @@ impl Guide for ProceduralGuide {
                 parent: o.parent.clone(),
                 support,
                 relations,
-                local_bounds: Aabb::new(nalgebra::Point3::new(-sx / 2.0, 0.0, -sz / 2.0), nalgebra::Point3::new(sx / 2.0, sy, sz / 2.0)),
+                local_bounds: Aabb::new(
+                    nalgebra::Point3::new(-sx / 2.0, 0.0, -sz / 2.0),
+                    nalgebra::Point3::new(sx / 2.0, sy, sz / 2.0),
+                ),
             });
         }
         scene.anchor = if present.contains_key(plan.anchor.as_str()) {
             Some(plan.anchor.clone())
         } else {
-            scene.objects.iter().find(|o| o.parent == ParentRef::Ground && !o.id.is_empty()).map(|o| o.id.clone())
+            scene
+                .objects
+                .iter()
+                .find(|o| o.parent == ParentRef::Ground && !o.id.is_empty())
+                .map(|o| o.id.clone())
         };
         Ok(GuidedLayout {
             scene,
@@ -472,7 +601,10 @@ impl Guide for ProceduralGuide {
             walkway: WalkwayReport {
                 walk_ratio: ratio,
                 door_reachable: door_ok,
-                unreachable: unreachable.into_iter().map(|i| plan.objects[i].id.clone()).collect(),
+                unreachable: unreachable
+                    .into_iter()
+                    .map(|i| plan.objects[i].id.clone())
+                    .collect(),
             },
         })
     }
@@ -485,19 +617,39 @@ fn positional_target(o: &PlannedObject) -> Option<&str> {
     }
     o.relations
         .iter()
-        .find(|r| !matches!(r.kind, RelationKind::AgainstWall | RelationKind::LeftOf | RelationKind::RightOf))
+        .find(|r| {
+            !matches!(
+                r.kind,
+                RelationKind::AgainstWall | RelationKind::LeftOf | RelationKind::RightOf
+            )
+        })
         .map(|r| r.target.as_str())
 }
 
 impl ProceduralGuide {
     fn mount_ok(&self, state: &FloorState<'_>, fp: &Footprint) -> bool {
         // Not over another mounted object, and free floor in front.
-        if state.placed.iter().filter(|p| p.mounted).any(|p| p.fp.overlaps(fp, 0.1)) {
+        if state
+            .placed
+            .iter()
+            .filter(|p| p.mounted)
+            .any(|p| p.fp.overlaps(fp, 0.1))
+        {
             return false;
         }
         let front = fp.to_world(0.0, fp.hz + 0.35);
-        let band = Footprint { cx: front[0], cz: front[1], yaw: fp.yaw, hx: fp.hx, hz: 0.35 };
-        !state.placed.iter().filter(|p| !p.mounted).any(|p| p.fp.overlaps(&band, 0.0))
+        let band = Footprint {
+            cx: front[0],
+            cz: front[1],
+            yaw: fp.yaw,
+            hx: fp.hx,
+            hz: 0.35,
+        };
+        !state
+            .placed
+            .iter()
+            .filter(|p| !p.mounted)
+            .any(|p| p.fp.overlaps(&band, 0.0))
             && !state.door_zone.is_some_and(|d| d.overlaps(&band, 0.0))
     }
 
@@ -526,7 +678,12 @@ impl ProceduralGuide {
             }
             Zone::Wall { wall: None } => {
                 // Opposite a target: the wall facing it first.
-                let facing = o.relations.iter().find(|r| r.kind == RelationKind::Facing).and_then(|r| state.index_of(&r.target)).and_then(|t| state.placed_of(t));
+                let facing = o
+                    .relations
+                    .iter()
+                    .find(|r| r.kind == RelationKind::Facing)
+                    .and_then(|r| state.index_of(&r.target))
+                    .and_then(|t| state.placed_of(t));
                 let mut order: Vec<usize> = (0..sides.len()).collect();
                 order.shuffle(rng);
                 if let Some(t) = facing {
@@ -537,12 +694,18 @@ impl ProceduralGuide {
                         da.total_cmp(&db)
                     });
                     let side = &sides[order[0]];
-                    let s_t = (t.fp.cx - side.face[0]) * side.along[0] + (t.fp.cz - side.face[1]) * side.along[1];
+                    let s_t = (t.fp.cx - side.face[0]) * side.along[0]
+                        + (t.fp.cz - side.face[1]) * side.along[1];
                     let lim = side.limit(hx);
                     if lim > 0.0 {
-                        let mut ss: Vec<f64> = (0..=(2.0 * lim / 0.1) as usize).map(|k| -lim + k as f64 * 0.1).collect();
+                        let mut ss: Vec<f64> = (0..=(2.0 * lim / 0.1) as usize)
+                            .map(|k| -lim + k as f64 * 0.1)
+                            .collect();
                         ss.sort_by(|a, b| (a - s_t).abs().total_cmp(&(b - s_t).abs()));
-                        out.extend(ss.into_iter().map(|s| Candidate { fp: side.footprint_at(s, hx, hz), wall: side.id.clone() }));
+                        out.extend(ss.into_iter().map(|s| Candidate {
+                            fp: side.footprint_at(s, hx, hz),
+                            wall: side.id.clone(),
+                        }));
                     }
                     order.remove(0);
                 }
@@ -558,29 +721,58 @@ impl ProceduralGuide {
                 let mut order: Vec<usize> = (0..sides.len()).collect();
                 order.shuffle(rng);
                 for k in order {
-                    out.extend(self.wall_candidates(&sides[k], hx, (info.size[2] as f64 / 2.0).max(0.005), rng));
+                    out.extend(self.wall_candidates(
+                        &sides[k],
+                        hx,
+                        (info.size[2] as f64 / 2.0).max(0.005),
+                        rng,
+                    ));
                 }
             }
             Zone::Relative => out.extend(self.relative_candidates(state, o, hx, hz, infos, rng)),
             Zone::Supported => {}
         }
-        if matches!(o.zone, Zone::Free | Zone::Relative | Zone::Center | Zone::Rows) || (is_anchor && out.is_empty()) {
-            let anchor_toward = state.index_of(&plan.anchor).and_then(|a| state.placed_of(a)).map(|p| [p.fp.cx, p.fp.cz]);
+        if matches!(
+            o.zone,
+            Zone::Free | Zone::Relative | Zone::Center | Zone::Rows
+        ) || (is_anchor && out.is_empty())
+        {
+            let anchor_toward = state
+                .index_of(&plan.anchor)
+                .and_then(|a| state.placed_of(a))
+                .map(|p| [p.fp.cx, p.fp.cz]);
             let facing = seat_like(&o.category).then_some(anchor_toward).flatten();
             out.extend(self.free_candidates(state, info, rng, facing));
         }
         out
     }
 
-    fn anchor_wall_candidates(&self, o: &PlannedObject, sides: &[Side], hx: f64, hz: f64, rng: &mut ChaCha8Rng) -> Vec<Candidate> {
+    fn anchor_wall_candidates(
+        &self,
+        o: &PlannedObject,
+        sides: &[Side],
+        hx: f64,
+        hz: f64,
+        rng: &mut ChaCha8Rng,
+    ) -> Vec<Candidate> {
         let wall = match &o.zone {
             Zone::Wall { wall: Some(w) } => w.clone(),
             _ => "wall_0".to_owned(),
         };
         let mut out = Vec::new();
-        let mut order: Vec<&Side> = sides.iter().filter(|s| s.id.as_deref() == Some(wall.as_str())).collect();
-        if o.relations.iter().all(|r| r.kind != RelationKind::AgainstWall) {
-            order.extend(sides.iter().filter(|s| s.id.as_deref() != Some(wall.as_str())));
+        let mut order: Vec<&Side> = sides
+            .iter()
+            .filter(|s| s.id.as_deref() == Some(wall.as_str()))
+            .collect();
+        if o.relations
+            .iter()
+            .all(|r| r.kind != RelationKind::AgainstWall)
+        {
+            order.extend(
+                sides
+                    .iter()
+                    .filter(|s| s.id.as_deref() != Some(wall.as_str())),
+            );
         }
         for side in order {
             let lim = side.limit(hx);
@@ -595,12 +787,25 @@ impl ProceduralGuide {
                 ss.push(jitter - k * 0.1);
                 k += 1.0;
             }
-            out.extend(ss.into_iter().filter(|s| s.abs() <= lim).map(|s| Candidate { fp: side.footprint_at(s, hx, hz), wall: side.id.clone() }));
+            out.extend(
+                ss.into_iter()
+                    .filter(|s| s.abs() <= lim)
+                    .map(|s| Candidate {
+                        fp: side.footprint_at(s, hx, hz),
+                        wall: side.id.clone(),
+                    }),
+            );
         }
         out
     }
 
-    fn wall_candidates(&self, side: &Side, hx: f64, hz: f64, rng: &mut ChaCha8Rng) -> Vec<Candidate> {
+    fn wall_candidates(
+        &self,
+        side: &Side,
+        hx: f64,
+        hz: f64,
+        rng: &mut ChaCha8Rng,
+    ) -> Vec<Candidate> {
         let lim = side.limit(hx);
         if lim < 0.0 {
             return Vec::new();
@@ -611,12 +816,25 @@ impl ProceduralGuide {
         if rng.random_bool(0.5) {
             ss.reverse();
         }
-        ss.into_iter().map(|s| Candidate { fp: side.footprint_at(s, hx, hz), wall: side.id.clone() }).collect()
+        ss.into_iter()
+            .map(|s| Candidate {
+                fp: side.footprint_at(s, hx, hz),
+                wall: side.id.clone(),
+            })
+            .collect()
     }
 
-    fn corner_candidates(&self, sides: &[Side], hx: f64, hz: f64, rng: &mut ChaCha8Rng) -> Vec<Candidate> {
+    fn corner_candidates(
+        &self,
+        sides: &[Side],
+        hx: f64,
+        hz: f64,
+        rng: &mut ChaCha8Rng,
+    ) -> Vec<Candidate> {
         let mut out = Vec::new();
-        let mut options: Vec<(usize, f64)> = (0..sides.len()).flat_map(|k| [(k, -1.0), (k, 1.0)]).collect();
+        let mut options: Vec<(usize, f64)> = (0..sides.len())
+            .flat_map(|k| [(k, -1.0), (k, 1.0)])
+            .collect();
         options.shuffle(rng);
         for (k, sign) in options {
             let side = &sides[k];
@@ -625,19 +843,40 @@ impl ProceduralGuide {
                 continue;
             }
             for back in [0.0, 0.1, 0.2] {
-                out.push(Candidate { fp: side.footprint_at(sign * (lim - back), hx, hz), wall: side.id.clone() });
+                out.push(Candidate {
+                    fp: side.footprint_at(sign * (lim - back), hx, hz),
+                    wall: side.id.clone(),
+                });
             }
         }
         out
     }
 
-    fn center_candidates(&self, state: &FloorState<'_>, hx: f64, hz: f64, rng: &mut ChaCha8Rng, anchor: bool) -> Vec<Candidate> {
+    fn center_candidates(
+        &self,
+        state: &FloorState<'_>,
+        hx: f64,
+        hz: f64,
+        rng: &mut ChaCha8Rng,
+        anchor: bool,
+    ) -> Vec<Candidate> {
         let [x0, z0, x1, z1] = state.floor;
         let (w, d) = (x1 - x0, z1 - z0);
         // Long side along the room's long side; flipped at random for variety.
-        let base = if (hx >= hz) == (w >= d) { 0.0 } else { FRAC_PI_2 };
-        let yaw = if rng.random_bool(0.5) { base } else { base + PI };
-        let (cx, cz) = ((x0 + x1) / 2.0 + rng.random_range(-0.2..=0.2), (z0 + z1) / 2.0 - if anchor { 0.1 * d } else { 0.0 } + rng.random_range(-0.2..=0.2));
+        let base = if (hx >= hz) == (w >= d) {
+            0.0
+        } else {
+            FRAC_PI_2
+        };
+        let yaw = if rng.random_bool(0.5) {
+            base
+        } else {
+            base + PI
+        };
+        let (cx, cz) = (
+            (x0 + x1) / 2.0 + rng.random_range(-0.2..=0.2),
+            (z0 + z1) / 2.0 - if anchor { 0.1 * d } else { 0.0 } + rng.random_range(-0.2..=0.2),
+        );
         let mut out = vec![];
         for ring in 0..16 {
             let radius = ring as f64 * 0.15;
@@ -646,7 +885,16 @@ impl ProceduralGuide {
             for k in 0..n {
                 let a = phase + k as f64 / n as f64 * 2.0 * PI;
                 for y in [yaw, yaw + FRAC_PI_2] {
-                    out.push(Candidate { fp: Footprint { cx: cx + radius * a.cos(), cz: cz + radius * a.sin(), yaw: y, hx, hz }, wall: None });
+                    out.push(Candidate {
+                        fp: Footprint {
+                            cx: cx + radius * a.cos(),
+                            cz: cz + radius * a.sin(),
+                            yaw: y,
+                            hx,
+                            hz,
+                        },
+                        wall: None,
+                    });
                 }
             }
         }
@@ -667,14 +915,26 @@ impl ProceduralGuide {
         let off_x = (ax1 - ax0 - (cols - 1) as f64 * sx) / 2.0;
         for r in 0..rows {
             for c in 0..cols {
-                let fp = Footprint { cx: ax0 + off_x + c as f64 * sx, cz: az0 + r as f64 * sz, yaw: 0.0, hx, hz };
+                let fp = Footprint {
+                    cx: ax0 + off_x + c as f64 * sx,
+                    cz: az0 + r as f64 * sz,
+                    yaw: 0.0,
+                    hx,
+                    hz,
+                };
                 out.push(Candidate { fp, wall: None });
             }
         }
         out
     }
 
-    fn free_candidates(&self, state: &FloorState<'_>, info: &AssetInfo, rng: &mut ChaCha8Rng, face: Option<[f64; 2]>) -> Vec<Candidate> {
+    fn free_candidates(
+        &self,
+        state: &FloorState<'_>,
+        info: &AssetInfo,
+        rng: &mut ChaCha8Rng,
+        face: Option<[f64; 2]>,
+    ) -> Vec<Candidate> {
         let (hx, hz) = (info.size[0] as f64 / 2.0, info.size[2] as f64 / 2.0);
         let [x0, z0, x1, z1] = state.floor;
         let r = hx.max(hz) + 0.05;
@@ -689,45 +949,130 @@ impl ProceduralGuide {
                 Some(t) => yaw_toward([x, z], t),
                 None => rng.random_range(0..4) as f64 * FRAC_PI_2,
             };
-            out.push(Candidate { fp: Footprint { cx: x, cz: z, yaw, hx, hz }, wall: None });
+            out.push(Candidate {
+                fp: Footprint {
+                    cx: x,
+                    cz: z,
+                    yaw,
+                    hx,
+                    hz,
+                },
+                wall: None,
+            });
         }
         out
     }
 
-    fn relative_candidates(&self, state: &FloorState<'_>, o: &PlannedObject, hx: f64, hz: f64, infos: &[AssetInfo], rng: &mut ChaCha8Rng) -> Vec<Candidate> {
+    fn relative_candidates(
+        &self,
+        state: &FloorState<'_>,
+        o: &PlannedObject,
+        hx: f64,
+        hz: f64,
+        infos: &[AssetInfo],
+        rng: &mut ChaCha8Rng,
+    ) -> Vec<Candidate> {
         let _ = infos;
         let plan = state.plan;
         let mut out = Vec::new();
-        let Some(target_id) = positional_target(o) else { return out };
-        let Some(ti) = state.index_of(target_id) else { return out };
-        let Some(t) = state.placed_of(ti) else { return out };
-        let kind = o.relations.iter().find(|r| r.target == target_id && !matches!(r.kind, RelationKind::AgainstWall | RelationKind::LeftOf | RelationKind::RightOf)).map(|r| r.kind).unwrap_or(RelationKind::Beside);
-        let side_rel = o.relations.iter().find(|r| matches!(r.kind, RelationKind::LeftOf | RelationKind::RightOf)).map(|r| r.kind);
-        let facing = o.relations.iter().find(|r| r.kind == RelationKind::Facing && r.target != target_id).or_else(|| o.relations.iter().find(|r| r.kind == RelationKind::Facing)).and_then(|r| state.index_of(&r.target)).and_then(|i| state.placed_of(i)).map(|p| [p.fp.cx, p.fp.cz]);
+        let Some(target_id) = positional_target(o) else {
+            return out;
+        };
+        let Some(ti) = state.index_of(target_id) else {
+            return out;
+        };
+        let Some(t) = state.placed_of(ti) else {
+            return out;
+        };
+        let kind = o
+            .relations
+            .iter()
+            .find(|r| {
+                r.target == target_id
+                    && !matches!(
+                        r.kind,
+                        RelationKind::AgainstWall | RelationKind::LeftOf | RelationKind::RightOf
+                    )
+            })
+            .map(|r| r.kind)
+            .unwrap_or(RelationKind::Beside);
+        let side_rel = o
+            .relations
+            .iter()
+            .find(|r| matches!(r.kind, RelationKind::LeftOf | RelationKind::RightOf))
+            .map(|r| r.kind);
+        let facing = o
+            .relations
+            .iter()
+            .find(|r| r.kind == RelationKind::Facing && r.target != target_id)
+            .or_else(|| o.relations.iter().find(|r| r.kind == RelationKind::Facing))
+            .and_then(|r| state.index_of(&r.target))
+            .and_then(|i| state.placed_of(i))
+            .map(|p| [p.fp.cx, p.fp.cz]);
         let (r_t, f_t) = t.fp.axes();
         let tc = [t.fp.cx, t.fp.cz];
         // Which of the objects sharing this relation to the target this one is.
-        let peers: Vec<&PlannedObject> = plan.objects.iter().filter(|p| p.zone == Zone::Relative && positional_target(p) == Some(target_id) && p.relations.iter().any(|r| r.kind == kind && r.target == target_id)).collect();
+        let peers: Vec<&PlannedObject> = plan
+            .objects
+            .iter()
+            .filter(|p| {
+                p.zone == Zone::Relative
+                    && positional_target(p) == Some(target_id)
+                    && p.relations
+                        .iter()
+                        .any(|r| r.kind == kind && r.target == target_id)
+            })
+            .collect();
         let k = peers.iter().position(|p| p.id == o.id).unwrap_or(0);
         let n = peers.len().max(1);
         let seat = seat_like(&o.category);
-        let mk = |c: [f64; 2], yaw: f64| Candidate { fp: Footprint { cx: c[0], cz: c[1], yaw, hx, hz }, wall: None };
+        let mk = |c: [f64; 2], yaw: f64| Candidate {
+            fp: Footprint {
+                cx: c[0],
+                cz: c[1],
+                yaw,
+                hx,
+                hz,
+            },
+            wall: None,
+        };
         let add = |a: [f64; 2], s: f64, b: [f64; 2]| [a[0] + s * b[0], a[1] + s * b[1]];
         match kind {
             RelationKind::InFrontOf | RelationKind::Behind => {
-                let dir = if kind == RelationKind::InFrontOf { 1.0 } else { -1.0 };
+                let dir = if kind == RelationKind::InFrontOf {
+                    1.0
+                } else {
+                    -1.0
+                };
                 let yaw = match facing {
                     Some(_) => None,
                     None if seat && kind == RelationKind::InFrontOf => Some(t.fp.yaw + PI),
                     None => Some(t.fp.yaw),
                 };
                 let base_gap = if seat { 0.06 } else { 0.45 };
-                let lateral = if n > 1 { ((k as f64 + 0.5) / n as f64 * 2.0 - 1.0) * t.fp.hx } else { rng.random_range(-0.05..=0.05) };
-                for gap in [base_gap, base_gap + 0.1, base_gap + 0.25, base_gap + 0.45, base_gap + 0.7] {
+                let lateral = if n > 1 {
+                    ((k as f64 + 0.5) / n as f64 * 2.0 - 1.0) * t.fp.hx
+                } else {
+                    rng.random_range(-0.05..=0.05)
+                };
+                for gap in [
+                    base_gap,
+                    base_gap + 0.1,
+                    base_gap + 0.25,
+                    base_gap + 0.45,
+                    base_gap + 0.7,
+                ] {
                     for dl in [0.0, 0.2, -0.2, 0.4, -0.4] {
-                        let probe = add(add(tc, dir * (t.fp.hz + gap + hz), f_t), lateral + dl, r_t);
+                        let probe =
+                            add(add(tc, dir * (t.fp.hz + gap + hz), f_t), lateral + dl, r_t);
                         let y = yaw.unwrap_or_else(|| yaw_toward(probe, facing.unwrap_or(tc)));
-                        let fp = Footprint { cx: 0.0, cz: 0.0, yaw: y, hx, hz };
+                        let fp = Footprint {
+                            cx: 0.0,
+                            cz: 0.0,
+                            yaw: y,
+                            hx,
+                            hz,
+                        };
                         let e = fp.extent_along(f_t);
                         let c = add(add(tc, dir * (t.fp.hz + gap + e), f_t), lateral + dl, r_t);
                         out.push(mk(c, y));
@@ -739,7 +1084,11 @@ impl ProceduralGuide {
                     RelationKind::LeftOf => vec![-1.0],
                     RelationKind::RightOf => vec![1.0],
                     _ => {
-                        let first = if (k % 2 == 0) == rng.random_bool(0.5) { 1.0 } else { -1.0 };
+                        let first = if (k % 2 == 0) == rng.random_bool(0.5) {
+                            1.0
+                        } else {
+                            -1.0
+                        };
                         vec![first, -first]
                     }
                 };
@@ -752,7 +1101,13 @@ impl ProceduralGuide {
                             }
                             None => t.fp.yaw,
                         };
-                        let fp = Footprint { cx: 0.0, cz: 0.0, yaw: y, hx, hz };
+                        let fp = Footprint {
+                            cx: 0.0,
+                            cz: 0.0,
+                            yaw: y,
+                            hx,
+                            hz,
+                        };
                         let e_r = fp.extent_along(r_t);
                         let e_f = fp.extent_along(f_t);
                         let along_f = if facing.is_some() { 0.0 } else { e_f - t.fp.hz };
@@ -764,7 +1119,11 @@ impl ProceduralGuide {
             RelationKind::Facing => {
                 let mut angles: Vec<f64> = vec![];
                 for a in [60.0f64, 72.0, 48.0, 84.0, 36.0, 24.0, 96.0, 12.0, 0.0] {
-                    let s = if (k % 2 == 0) == rng.random_bool(0.5) { 1.0 } else { -1.0 };
+                    let s = if (k % 2 == 0) == rng.random_bool(0.5) {
+                        1.0
+                    } else {
+                        -1.0
+                    };
                     angles.push(s * a.to_radians());
                     if a != 0.0 {
                         angles.push(-s * a.to_radians());
@@ -785,7 +1144,11 @@ impl ProceduralGuide {
                 let mut slots: Vec<([f64; 2], f64)> = Vec::new(); // (local normal, along offset)
                 let along_len = if long_x { t.fp.hx } else { t.fp.hz };
                 let per_side = (((2.0 * along_len) / (2.0 * hx + 0.12)).floor() as usize).max(1);
-                let long_normals: [[f64; 2]; 2] = if long_x { [[0.0, 1.0], [0.0, -1.0]] } else { [[1.0, 0.0], [-1.0, 0.0]] };
+                let long_normals: [[f64; 2]; 2] = if long_x {
+                    [[0.0, 1.0], [0.0, -1.0]]
+                } else {
+                    [[1.0, 0.0], [-1.0, 0.0]]
+                };
                 for m in 0..per_side {
                     let off = ((m as f64 + 0.5) / per_side as f64 * 2.0 - 1.0) * along_len;
                     for nrm in long_normals {
@@ -794,21 +1157,38 @@ impl ProceduralGuide {
                 }
                 let short_len = if long_x { t.fp.hz } else { t.fp.hx };
                 if 2.0 * short_len >= 2.0 * hx * 0.8 {
-                    let ends: [[f64; 2]; 2] = if long_x { [[1.0, 0.0], [-1.0, 0.0]] } else { [[0.0, 1.0], [0.0, -1.0]] };
+                    let ends: [[f64; 2]; 2] = if long_x {
+                        [[1.0, 0.0], [-1.0, 0.0]]
+                    } else {
+                        [[0.0, 1.0], [0.0, -1.0]]
+                    };
                     for nrm in ends {
                         slots.push((nrm, 0.0));
                     }
                 }
                 // Spread: reorder so consecutive chairs alternate sides.
                 let start = k % slots.len().max(1);
-                let ordered: Vec<([f64; 2], f64)> = slots.iter().cycle().skip(start).take(slots.len()).copied().collect();
+                let ordered: Vec<([f64; 2], f64)> = slots
+                    .iter()
+                    .cycle()
+                    .skip(start)
+                    .take(slots.len())
+                    .copied()
+                    .collect();
                 for gap in [0.04, 0.12, 0.25] {
                     for (nrm, off) in &ordered {
                         let (lx, lz) = (nrm[0], nrm[1]);
                         let half_n = if lx != 0.0 { t.fp.hx } else { t.fp.hz };
-                        let (ox, oz) = if lx != 0.0 { (lx * (half_n + gap + hz), *off) } else { (*off, lz * (half_n + gap + hz)) };
+                        let (ox, oz) = if lx != 0.0 {
+                            (lx * (half_n + gap + hz), *off)
+                        } else {
+                            (*off, lz * (half_n + gap + hz))
+                        };
                         let c = t.fp.to_world(ox, oz);
-                        let toward = t.fp.to_world(if lx != 0.0 { 0.0 } else { ox }, if lx != 0.0 { oz } else { 0.0 });
+                        let toward = t.fp.to_world(
+                            if lx != 0.0 { 0.0 } else { ox },
+                            if lx != 0.0 { oz } else { 0.0 },
+                        );
                         out.push(mk(c, yaw_toward(c, toward)));
                     }
                 }

@@ -30,9 +30,17 @@ fn rect_inside(surface: &SupportSurface, r: &Rect) -> bool {
 }
 
 fn surface_bounds(surface: &SupportSurface) -> Rect {
-    surface.polygon.iter().fold([f64::MAX, f64::MAX, f64::MIN, f64::MIN], |b, p| {
-        [b[0].min(p[0] as f64), b[1].min(p[1] as f64), b[2].max(p[0] as f64), b[3].max(p[1] as f64)]
-    })
+    surface
+        .polygon
+        .iter()
+        .fold([f64::MAX, f64::MAX, f64::MIN, f64::MIN], |b, p| {
+            [
+                b[0].min(p[0] as f64),
+                b[1].min(p[1] as f64),
+                b[2].max(p[0] as f64),
+                b[3].max(p[1] as f64),
+            ]
+        })
 }
 
 /// The surface kinds a support relation may use, best first.
@@ -53,7 +61,12 @@ pub(crate) fn place_children(
     poses: &mut BTreeMap<usize, Pose>,
     rng: &mut ChaCha8Rng,
 ) -> Vec<DroppedObject> {
-    let index: BTreeMap<&str, usize> = plan.objects.iter().enumerate().map(|(i, o)| (o.id.as_str(), i)).collect();
+    let index: BTreeMap<&str, usize> = plan
+        .objects
+        .iter()
+        .enumerate()
+        .map(|(i, o)| (o.id.as_str(), i))
+        .collect();
     // Occupied rectangles per (parent, surface index).
     let mut occupied: BTreeMap<(usize, usize), Vec<Rect>> = BTreeMap::new();
     // The shelf each parent fills next, chosen at random once.
@@ -63,13 +76,18 @@ pub(crate) fn place_children(
     loop {
         let mut progress = false;
         for (i, o) in plan.objects.iter().enumerate() {
-            let ParentRef::Object(parent_id) = &o.parent else { continue };
+            let ParentRef::Object(parent_id) = &o.parent else {
+                continue;
+            };
             if done[i] {
                 continue;
             }
             let Some(&p) = index.get(parent_id.as_str()) else {
                 done[i] = true;
-                dropped.push(DroppedObject { id: o.id.clone(), reason: format!("parent `{parent_id}` is not planned") });
+                dropped.push(DroppedObject {
+                    id: o.id.clone(),
+                    reason: format!("parent `{parent_id}` is not planned"),
+                });
                 continue;
             };
             if !done[p] && plan.objects[p].parent != ParentRef::Ground {
@@ -78,7 +96,10 @@ pub(crate) fn place_children(
             done[i] = true;
             progress = true;
             let Some(parent_pose) = poses.get(&p).copied() else {
-                dropped.push(DroppedObject { id: o.id.clone(), reason: format!("parent `{parent_id}` was not placed") });
+                dropped.push(DroppedObject {
+                    id: o.id.clone(),
+                    reason: format!("parent `{parent_id}` was not placed"),
+                });
                 continue;
             };
             let parent = &infos[p];
@@ -86,15 +107,37 @@ pub(crate) fn place_children(
             let kinds = kinds_for(o.support);
             let mut surfaces: Vec<usize> = Vec::new();
             for kind in kinds {
-                let mut of_kind: Vec<usize> = parent.support_surfaces.iter().enumerate().filter(|(_, s)| s.kind == *kind).map(|(k, _)| k).collect();
+                let mut of_kind: Vec<usize> = parent
+                    .support_surfaces
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, s)| s.kind == *kind)
+                    .map(|(k, _)| k)
+                    .collect();
                 if o.support == RelationKind::Under && *kind == SurfaceKind::Under {
                     // A low shelf beneath a table top is "under" it too.
                     let low = parent.size[1] * 0.35;
-                    of_kind.extend(parent.support_surfaces.iter().enumerate().filter(|(_, s)| s.kind == SurfaceKind::Shelf && s.height <= low && parent.support_surfaces.iter().any(|t| t.kind == SurfaceKind::Top && t.height > s.height)).map(|(k, _)| k));
+                    of_kind.extend(
+                        parent
+                            .support_surfaces
+                            .iter()
+                            .enumerate()
+                            .filter(|(_, s)| {
+                                s.kind == SurfaceKind::Shelf
+                                    && s.height <= low
+                                    && parent
+                                        .support_surfaces
+                                        .iter()
+                                        .any(|t| t.kind == SurfaceKind::Top && t.height > s.height)
+                            })
+                            .map(|(k, _)| k),
+                    );
                 }
                 if *kind == SurfaceKind::Shelf && !of_kind.is_empty() {
                     // Fill shelves from a random one onward, so items cluster.
-                    let start = *next_shelf.entry(p).or_insert_with(|| rng.random_range(0..of_kind.len()));
+                    let start = *next_shelf
+                        .entry(p)
+                        .or_insert_with(|| rng.random_range(0..of_kind.len()));
                     let n = of_kind.len();
                     of_kind.rotate_left(start % n);
                 }
@@ -104,7 +147,11 @@ pub(crate) fn place_children(
             'surfaces: for sk in surfaces {
                 let surface = &parent.support_surfaces[sk];
                 let occ = occupied.entry((p, sk)).or_default();
-                let (cw, ch, cd) = (child.size[0] as f64, child.size[1] as f64, child.size[2] as f64);
+                let (cw, ch, cd) = (
+                    child.size[0] as f64,
+                    child.size[1] as f64,
+                    child.size[2] as f64,
+                );
                 let mut scale = 1.0f64;
                 if let Some(clear) = surface.clearance {
                     scale = scale.min((clear as f64 - 0.01) / ch);
@@ -126,7 +173,13 @@ pub(crate) fn place_children(
                         placed = Some(Pose::new(s * parent_pose.scale, yaw, world.coords));
                         // Keep filling this shelf next time.
                         if surface.kind == SurfaceKind::Shelf {
-                            let shelves: Vec<usize> = parent.support_surfaces.iter().enumerate().filter(|(_, s)| s.kind == SurfaceKind::Shelf).map(|(k, _)| k).collect();
+                            let shelves: Vec<usize> = parent
+                                .support_surfaces
+                                .iter()
+                                .enumerate()
+                                .filter(|(_, s)| s.kind == SurfaceKind::Shelf)
+                                .map(|(k, _)| k)
+                                .collect();
                             if let Some(pos) = shelves.iter().position(|&k| k == sk) {
                                 next_shelf.insert(p, pos);
                             }
@@ -141,7 +194,15 @@ pub(crate) fn place_children(
                 }
                 None => dropped.push(DroppedObject {
                     id: o.id.clone(),
-                    reason: format!("no room {} `{parent_id}` (its {} surfaces are full or too small)", o.support, kinds.iter().map(|k| format!("{k:?}").to_lowercase()).collect::<Vec<_>>().join("/")),
+                    reason: format!(
+                        "no room {} `{parent_id}` (its {} surfaces are full or too small)",
+                        o.support,
+                        kinds
+                            .iter()
+                            .map(|k| format!("{k:?}").to_lowercase())
+                            .collect::<Vec<_>>()
+                            .join("/")
+                    ),
                 }),
             }
         }
@@ -151,7 +212,10 @@ pub(crate) fn place_children(
     }
     for (i, o) in plan.objects.iter().enumerate() {
         if !done[i] && o.parent != ParentRef::Ground {
-            dropped.push(DroppedObject { id: o.id.clone(), reason: "its parent chain does not reach the ground".into() });
+            dropped.push(DroppedObject {
+                id: o.id.clone(),
+                reason: "its parent chain does not reach the ground".into(),
+            });
         }
     }
     dropped
@@ -159,7 +223,14 @@ pub(crate) fn place_children(
 
 /// A free centre for a `2hw × 2hd` rectangle on the surface: packed left to right on shelves
 /// and in containers, spread out on tops, centred underneath.
-fn find_spot(surface: &SupportSurface, b: &Rect, occ: &[Rect], hw: f64, hd: f64, rng: &mut ChaCha8Rng) -> Option<(f64, f64)> {
+fn find_spot(
+    surface: &SupportSurface,
+    b: &Rect,
+    occ: &[Rect],
+    hw: f64,
+    hd: f64,
+    rng: &mut ChaCha8Rng,
+) -> Option<(f64, f64)> {
     let ok = |x: f64, z: f64| {
         let r = [x - hw, z - hd, x + hw, z + hd];
         rect_inside(surface, &r) && !occ.iter().any(|o| rects_overlap(o, &r))
@@ -170,7 +241,9 @@ fn find_spot(surface: &SupportSurface, b: &Rect, occ: &[Rect], hw: f64, hd: f64,
         if hi < lo {
             return None;
         }
-        (0..=((hi - lo) / step) as usize).map(|k| lo + k as f64 * step).collect()
+        (0..=((hi - lo) / step) as usize)
+            .map(|k| lo + k as f64 * step)
+            .collect()
     };
     let zs: Vec<f64> = {
         let (lo, hi) = (b[1] + hd, b[3] - hd);
@@ -178,7 +251,9 @@ fn find_spot(surface: &SupportSurface, b: &Rect, occ: &[Rect], hw: f64, hd: f64,
             return None;
         }
         let mid = (lo + hi) / 2.0;
-        let mut v: Vec<f64> = (0..=((hi - lo) / step) as usize).map(|k| lo + k as f64 * step).collect();
+        let mut v: Vec<f64> = (0..=((hi - lo) / step) as usize)
+            .map(|k| lo + k as f64 * step)
+            .collect();
         v.sort_by(|a, c| (a - mid).abs().total_cmp(&(c - mid).abs()));
         v
     };
@@ -187,7 +262,11 @@ fn find_spot(surface: &SupportSurface, b: &Rect, occ: &[Rect], hw: f64, hd: f64,
             // Front-to-back rows nearest the middle first, left to right within a row.
             let from_right = rng.random_bool(0.5);
             for &z in zs.iter().step_by(2) {
-                let iter: Box<dyn Iterator<Item = &f64>> = if from_right { Box::new(xs.iter().rev()) } else { Box::new(xs.iter()) };
+                let iter: Box<dyn Iterator<Item = &f64>> = if from_right {
+                    Box::new(xs.iter().rev())
+                } else {
+                    Box::new(xs.iter())
+                };
                 for &x in iter {
                     if ok(x, z) {
                         return Some((x, z));
@@ -211,7 +290,11 @@ fn find_spot(surface: &SupportSurface, b: &Rect, occ: &[Rect], hw: f64, hd: f64,
         }
         SurfaceKind::Top => {
             // Random samples; keep the one farthest from what is already there.
-            let mut grid: Vec<(f64, f64)> = xs.iter().step_by(2).flat_map(|&x| zs.iter().step_by(2).map(move |&z| (x, z))).collect();
+            let mut grid: Vec<(f64, f64)> = xs
+                .iter()
+                .step_by(2)
+                .flat_map(|&x| zs.iter().step_by(2).map(move |&z| (x, z)))
+                .collect();
             grid.shuffle(rng);
             let mut best: Option<((f64, f64), f64)> = None;
             let mut seen = 0;
