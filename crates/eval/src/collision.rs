@@ -1,0 +1,273 @@
+//! Collision: penetration depths between objects' real triangle meshes, both directions, and
+//! penetration of the floor and walls.
+
+use nalgebra::Point3;
+use rayon::prelude::*;
+use scenethesis_scene_graph::{Aabb, Mesh};
+use scenethesis_sdf::MeshSdf;
+use serde::{Deserialize, Serialize};
+
+use crate::raster::wall_pieces;
+use crate::scene::EvalScene;
+
+/// A pair (or an object and the architecture) collides when the penetration exceeds this (m).
+pub const PENETRATION_TOLERANCE: f64 = 0.001;
+/// Minimum number of area-uniform surface samples per object.
+pub const MIN_SAMPLES: usize = 2000;
+/// Surface samples per square metre (one per cm²).
+pub const SAMPLES_PER_M2: f64 = 10_000.0;
+
+/// Two objects that interpenetrate by more than [`PENETRATION_TOLERANCE`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CollidingPair {
+    /// First object id (earlier in scene order).
+    pub a: String,
+    /// Second object id.
+    pub b: String,
+    /// Penetration depth (m): the deepest point of either surface inside the other mesh.
+    pub depth: f64,
+}
+
+/// An object that sinks into the floor or a wall by more than [`PENETRATION_TOLERANCE`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ArchPenetration {
+    /// Object id.
+    pub object: String,
+    /// Id of the floor or wall it penetrates.
+    pub architecture: String,
+    /// Penetration depth (m).
+    pub depth: f64,
+}
+
+/// The collision results of one scene.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+pub struct CollisionReport {
+    /// Colliding pairs, in scene order of (a, b).
+    pub pairs: Vec<CollidingPair>,
+    /// Objects in at least one colliding pair, in scene order.
+    pub colliding_objects: Vec<String>,
+    /// Penetrations of the floor and walls, in scene order.
+    pub architecture: Vec<ArchPenetration>,
+    /// Object pairs whose boxes overlap and were tested with the meshes.
+    pub pairs_tested: usize,
+}
+
+/// One part of an object with its exact signed distance field.
+struct PartField {
+    bounds: Aabb,
+    sdf: MeshSdf,
+}
+
+/// What the collision test needs of one object.
+struct Prepared {
+    bounds: Option<Aabb>,
+    /// Vertices plus area-uniform surface samples, world coordinates.
+    points: Vec<Point3<f32>>,
+}
+
+/// Surface area of a mesh in m².
+pub fn surface_area(mesh: &Mesh) -> f64 {
+    mesh.parts
+        .iter()
+        .flat_map(|p| {
+            p.triangles.iter().map(move |t| {
+                let [a, b, c] = p.triangle_f64(t);
+                (b - a).cross(&(c - a)).norm() / 2.0
+            })
+        })
+        .sum()
+}
+
+trait TriangleF64 {
+    fn triangle_f64(&self, t: &[u32; 3]) -> [nalgebra::Point3<f64>; 3];
+}
+
+impl TriangleF64 for scenethesis_scene_graph::MeshPart {
+    fn triangle_f64(&self, t: &[u32; 3]) -> [nalgebra::Point3<f64>; 3] {
+        t.map(|i| Point3::from(self.positions[i as usize]).cast::<f64>())
+    }
+}
+
+/// The number of surface samples for a mesh: one per cm², at least [`MIN_SAMPLES`].
+pub fn sample_count(mesh: &Mesh) -> usize {
+    ((surface_area(mesh) * SAMPLES_PER_M2).ceil() as usize).max(MIN_SAMPLES)
+}
+
+/// The test points of a mesh: its vertices and area-uniform surface samples.
+pub fn test_points(mesh: &Mesh, seed: u64) -> Vec<Point3<f32>> {
+    let mut points: Vec<Point3<f32>> = mesh
+        .parts
+        .iter()
+        .flat_map(|p| p.positions.iter().map(|&v| Point3::from(v)))
+        .collect();
+    if mesh.triangle_count() > 0 {
+        points.extend(scenethesis_sdf::sampling::surface_points(
+            mesh,
+            sample_count(mesh),
+            seed,
+        ));
+    }
+    points
+}
+
+fn part_fields(mesh: &Mesh) -> Vec<PartField> {
+    mesh.parts
+        .iter()
+        .filter(|p| !p.triangles.is_empty())
+        .filter_map(|p| {
+            // A part without a usable triangle (degenerate) has no inside to penetrate.
+            let sdf = MeshSdf::new(&p.positions, &p.triangles).ok()?;
+            let corners: Vec<Point3<f64>> = p
+                .positions
+                .iter()
+                .map(|&v| Point3::from(v).cast::<f64>())
+                .collect();
+            Some(PartField {
+                bounds: Aabb::from_points(corners.iter())?,
+                sdf,
+            })
+        })
+        .collect()
+}
+
+fn boxes_touch(a: &Aabb, b: &Aabb) -> bool {
+    (0..3).all(|i| a.min[i] <= b.max[i] && b.min[i] <= a.max[i])
+}
+
+/// The deepest penetration (m, ≥ 0) of any of `points` inside the parts of another object.
+fn penetration(points: &[Point3<f32>], fields: &[PartField]) -> f64 {
+    let mut deepest = 0.0f64;
+    for field in fields {
+        for p in points {
+            let q = p.cast::<f64>();
+            if !field.bounds.contains_point(&q) {
+                continue;
+            }
+            let depth = -(field.sdf.signed_distance(p) as f64);
+            if depth > deepest {
+                deepest = depth;
+            }
+        }
+    }
+    deepest
+}
+
+/// Tests every pair of objects whose boxes touch with their real meshes (both directions) and
+/// every object against the floor and walls.
+pub fn collisions(scene: &EvalScene) -> CollisionReport {
+    let objects = &scene.objects;
+    let prepared: Vec<Prepared> = objects
+        .par_iter()
+        .enumerate()
+        .map(|(k, o)| Prepared {
+            bounds: o.mesh.bounds(),
+            points: test_points(&o.mesh, 0x5eed_0000 + k as u64),
+        })
+        .collect();
+    let mut candidates = Vec::new();
+    for i in 0..objects.len() {
+        for j in i + 1..objects.len() {
+            if let (Some(a), Some(b)) = (&prepared[i].bounds, &prepared[j].bounds) {
+                if boxes_touch(a, b) {
+                    candidates.push((i, j));
+                }
+            }
+        }
+    }
+    let mut involved = vec![false; objects.len()];
+    for &(i, j) in &candidates {
+        involved[i] = true;
+        involved[j] = true;
+    }
+    let fields: Vec<Vec<PartField>> = objects
+        .par_iter()
+        .zip(&involved)
+        .map(|(o, &needed)| {
+            if needed {
+                part_fields(&o.mesh)
+            } else {
+                Vec::new()
+            }
+        })
+        .collect();
+    let depths: Vec<f64> = candidates
+        .par_iter()
+        .map(|&(i, j)| {
+            let ab = penetration(&prepared[i].points, &fields[j]);
+            let ba = penetration(&prepared[j].points, &fields[i]);
+            ab.max(ba)
+        })
+        .collect();
+    let mut report = CollisionReport {
+        pairs_tested: candidates.len(),
+        ..Default::default()
+    };
+    let mut colliding = vec![false; objects.len()];
+    for (&(i, j), &depth) in candidates.iter().zip(&depths) {
+        if depth > PENETRATION_TOLERANCE {
+            colliding[i] = true;
+            colliding[j] = true;
+            report.pairs.push(CollidingPair {
+                a: objects[i].id.clone(),
+                b: objects[j].id.clone(),
+                depth,
+            });
+        }
+    }
+    report.colliding_objects = objects
+        .iter()
+        .zip(&colliding)
+        .filter(|(_, &c)| c)
+        .map(|(o, _)| o.id.clone())
+        .collect();
+
+    // Floor and walls.
+    let walls = wall_pieces(scene);
+    for (object, prep) in objects.iter().zip(&prepared) {
+        let floor_depth = prep
+            .points
+            .iter()
+            .map(|p| -(p.y as f64))
+            .fold(0.0, f64::max);
+        if floor_depth > PENETRATION_TOLERANCE {
+            report.architecture.push(ArchPenetration {
+                object: object.id.clone(),
+                architecture: scene.architecture.floor.id.clone(),
+                depth: floor_depth,
+            });
+        }
+        let mut per_wall: Vec<(&str, f64)> = Vec::new();
+        for piece in &walls {
+            let (rect, height, id) = (&piece.rect, piece.height, piece.wall.as_str());
+            let mut deepest = 0.0f64;
+            for p in &prep.points {
+                let (x, y, z) = (p.x as f64, p.y as f64, p.z as f64);
+                if y <= 0.0 || y >= height {
+                    continue;
+                }
+                let (dx, dz) = (x - rect.center[0], z - rect.center[1]);
+                let u = dx * rect.axis[0] + dz * rect.axis[1];
+                let v = -dx * rect.axis[1] + dz * rect.axis[0];
+                let inside = (rect.half[0] - u.abs())
+                    .min(rect.half[1] - v.abs())
+                    .min(y)
+                    .min(height - y);
+                deepest = deepest.max(inside);
+            }
+            if deepest > PENETRATION_TOLERANCE {
+                match per_wall.iter_mut().find(|(w, _)| *w == id) {
+                    Some(entry) => entry.1 = entry.1.max(deepest),
+                    None => per_wall.push((id, deepest)),
+                }
+            }
+        }
+        for (id, depth) in per_wall {
+            report.architecture.push(ArchPenetration {
+                object: object.id.clone(),
+                architecture: id.to_owned(),
+                depth,
+            });
+        }
+    }
+    report
+}

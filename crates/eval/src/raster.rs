@@ -1,0 +1,360 @@
+//! Walk and Reach: a top-down raster of the floor, eroded by a round robot, with object
+//! footprints removed, split into 8-connected walkable components.
+
+use serde::{Deserialize, Serialize};
+
+use crate::scene::{EvalObject, EvalScene};
+
+/// Raster resolution in pixels along each side.
+pub const RASTER_SIZE: usize = 256;
+/// Margin (m) added on every side of the floor's bounding square.
+pub const RASTER_MARGIN: f64 = 0.2;
+/// Robot radius (m): half of its 0.3 m diameter.
+pub const ROBOT_RADIUS: f64 = 0.15;
+/// For Walk, only objects whose bounding-box centre is below this height (m) are obstacles.
+pub const WALK_HEIGHT_LIMIT: f64 = 1.5;
+
+/// The Walk and Reach results of one scene.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct WalkReach {
+    /// Largest walkable component / all walkable area (objects below 1.5 m are obstacles);
+    /// 0 when nothing is walkable.
+    pub walk: f64,
+    /// Reach over the floor-standing objects (parent = ground); `None` when there are none.
+    pub reach_floor: Option<f64>,
+    /// Reach over every object; `None` for a scene without objects.
+    pub reach_all: Option<f64>,
+    /// Walkable area (m²) of the Walk raster.
+    pub walkable_area: f64,
+    /// Number of walkable components of the Walk raster.
+    pub walk_components: usize,
+    /// Floor-standing objects that touch no walkable component of the Reach raster.
+    pub unreachable_floor_objects: Vec<String>,
+}
+
+/// A rectangle on the floor plane with its own axes, in (x, z).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FloorRect {
+    /// Centre (x, z).
+    pub center: [f64; 2],
+    /// Unit direction of the first axis (x, z); the second is its perpendicular.
+    pub axis: [f64; 2],
+    /// Half extents along the first and second axes.
+    pub half: [f64; 2],
+}
+
+impl FloorRect {
+    /// Euclidean distance from the (x, z) point to the rectangle (0 inside).
+    pub fn distance(&self, x: f64, z: f64) -> f64 {
+        let (dx, dz) = (x - self.center[0], z - self.center[1]);
+        let u = dx * self.axis[0] + dz * self.axis[1];
+        let v = -dx * self.axis[1] + dz * self.axis[0];
+        let qu = (u.abs() - self.half[0]).max(0.0);
+        let qv = (v.abs() - self.half[1]).max(0.0);
+        qu.hypot(qv)
+    }
+
+    /// The (x, z) box around the rectangle grown by `r`: (min x, min z, max x, max z).
+    fn bounds(&self, r: f64) -> [f64; 4] {
+        let (a, b) = (self.axis, [-self.axis[1], self.axis[0]]);
+        let ex = (a[0] * self.half[0]).abs() + (b[0] * self.half[1]).abs() + r;
+        let ez = (a[1] * self.half[0]).abs() + (b[1] * self.half[1]).abs() + r;
+        [
+            self.center[0] - ex,
+            self.center[1] - ez,
+            self.center[0] + ex,
+            self.center[1] + ez,
+        ]
+    }
+}
+
+/// An object's footprint: the box of its mesh in its own (yawed) frame, projected on the floor.
+pub fn footprint(object: &EvalObject) -> Option<FloorRect> {
+    let (s, c) = object.yaw.sin_cos();
+    // World → object frame: x_l = c·x − s·z, z_l = s·x + c·z.
+    let mut lo = [f64::INFINITY; 2];
+    let mut hi = [f64::NEG_INFINITY; 2];
+    for p in object.mesh.parts.iter().flat_map(|p| p.positions.iter()) {
+        let (x, z) = (p[0] as f64, p[2] as f64);
+        let l = [c * x - s * z, s * x + c * z];
+        for k in 0..2 {
+            lo[k] = lo[k].min(l[k]);
+            hi[k] = hi[k].max(l[k]);
+        }
+    }
+    if !lo[0].is_finite() {
+        return None;
+    }
+    let (cu, cv) = ((lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0);
+    // Object frame → world: x = c·u + s·v, z = −s·u + c·v.
+    Some(FloorRect {
+        center: [c * cu + s * cv, -s * cu + c * cv],
+        axis: [c, -s],
+        half: [(hi[0] - lo[0]) / 2.0, (hi[1] - lo[1]) / 2.0],
+    })
+}
+
+/// A piece of wall between door openings, standing on the floor.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WallPiece {
+    /// Id of the wall it belongs to.
+    pub wall: String,
+    /// Its rectangle on the floor plane (length along the wall, thickness across).
+    pub rect: FloorRect,
+    /// Its height (m).
+    pub height: f64,
+}
+
+/// The wall pieces standing on the floor: each wall's rectangle minus its door openings.
+pub fn wall_pieces(scene: &EvalScene) -> Vec<WallPiece> {
+    let arch = &scene.architecture;
+    let mut out = Vec::new();
+    for wall in &arch.walls {
+        let len = wall.length();
+        if len <= 0.0 {
+            continue;
+        }
+        let d = wall.direction();
+        let t = wall.thickness / 2.0;
+        let mut gaps: Vec<(f64, f64)> = arch
+            .doors
+            .iter()
+            .filter(|door| door.wall == wall.id)
+            .map(|door| {
+                (
+                    door.offset - door.width / 2.0,
+                    door.offset + door.width / 2.0,
+                )
+            })
+            .collect();
+        gaps.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut start = -t;
+        let mut pieces = Vec::new();
+        for (g0, g1) in gaps {
+            if g0 > start {
+                pieces.push((start, g0));
+            }
+            start = start.max(g1);
+        }
+        if len + t > start {
+            pieces.push((start, len + t));
+        }
+        for (s0, s1) in pieces {
+            let mid = (s0 + s1) / 2.0;
+            out.push(WallPiece {
+                wall: wall.id.clone(),
+                rect: FloorRect {
+                    center: [wall.start.x + d.x * mid, wall.start.y + d.y * mid],
+                    axis: [d.x, d.y],
+                    half: [(s1 - s0) / 2.0, t],
+                },
+                height: wall.height,
+            });
+        }
+    }
+    out
+}
+
+/// The pixel grid over the floor's bounding square plus the margin.
+#[derive(Debug, Clone, Copy)]
+struct Grid {
+    origin: [f64; 2],
+    pixel: f64,
+}
+
+impl Grid {
+    fn center(&self, i: usize, j: usize) -> (f64, f64) {
+        (
+            self.origin[0] + (i as f64 + 0.5) * self.pixel,
+            self.origin[1] + (j as f64 + 0.5) * self.pixel,
+        )
+    }
+
+    /// Pixel index range covering the (x, z) box, clamped to the grid.
+    fn range(&self, b: [f64; 4]) -> (std::ops::Range<usize>, std::ops::Range<usize>) {
+        let to = |v: f64, o: f64| ((v - o) / self.pixel).floor();
+        let clamp = |v: f64| v.clamp(0.0, RASTER_SIZE as f64) as usize;
+        let i0 = clamp(to(b[0], self.origin[0]));
+        let i1 = clamp(to(b[2], self.origin[0]) + 1.0);
+        let j0 = clamp(to(b[1], self.origin[1]));
+        let j1 = clamp(to(b[3], self.origin[1]) + 1.0);
+        (i0..i1, j0..j1)
+    }
+}
+
+/// Computes Walk and Reach exactly as `metrics.md` defines them.
+pub fn walk_and_reach(scene: &EvalScene) -> WalkReach {
+    let floor = &scene.architecture.floor;
+    let ext = floor.extent();
+    let side = ext.x.max(ext.y).max(0.0) + 2.0 * RASTER_MARGIN;
+    let center = nalgebra::center(&floor.min, &floor.max);
+    let grid = Grid {
+        origin: [center.x - side / 2.0, center.y - side / 2.0],
+        pixel: side / RASTER_SIZE as f64,
+    };
+    let n = RASTER_SIZE;
+    let r = ROBOT_RADIUS;
+    // The floor eroded by the robot, minus the walls grown by the robot.
+    let walls = wall_pieces(scene);
+    let mut free = vec![false; n * n];
+    for j in 0..n {
+        for i in 0..n {
+            let (x, z) = grid.center(i, j);
+            let inside = x - floor.min.x >= r
+                && floor.max.x - x >= r
+                && z - floor.min.y >= r
+                && floor.max.y - z >= r;
+            free[j * n + i] = inside && walls.iter().all(|w| w.rect.distance(x, z) > r);
+        }
+    }
+    // Each object's footprint grown by the robot radius, as pixel indices.
+    let grown: Vec<Vec<usize>> = scene
+        .objects
+        .iter()
+        .map(|o| match footprint(o) {
+            Some(rect) => {
+                let (is, js) = grid.range(rect.bounds(r));
+                let mut px = Vec::new();
+                for j in js {
+                    for i in is.clone() {
+                        let (x, z) = grid.center(i, j);
+                        if rect.distance(x, z) <= r {
+                            px.push(j * n + i);
+                        }
+                    }
+                }
+                px
+            }
+            None => Vec::new(),
+        })
+        .collect();
+
+    // Walk: only objects whose box centre is below the height limit are obstacles.
+    let mut walkable = free.clone();
+    for (o, px) in scene.objects.iter().zip(&grown) {
+        if o.aabb().center().y < WALK_HEIGHT_LIMIT {
+            for &p in px {
+                walkable[p] = false;
+            }
+        }
+    }
+    let (_, areas) = components(&walkable);
+    let total: usize = areas.iter().sum();
+    let walk = if total == 0 {
+        0.0
+    } else {
+        *areas.iter().max().unwrap_or(&0) as f64 / total as f64
+    };
+
+    // Reach: every object is an obstacle.
+    let mut reach_free = free;
+    for px in &grown {
+        for &p in px {
+            reach_free[p] = false;
+        }
+    }
+    let (reach_labels, reach_areas) = components(&reach_free);
+    let reach_total: usize = reach_areas.iter().sum();
+    let touched: Vec<Vec<usize>> = grown
+        .iter()
+        .map(|px| touched_components(px, &reach_labels))
+        .collect();
+    let reach_over = |members: &[usize]| -> Option<f64> {
+        if members.is_empty() {
+            return None;
+        }
+        if reach_total == 0 {
+            return Some(0.0);
+        }
+        let mut count = vec![0usize; reach_areas.len()];
+        for &m in members {
+            for &c in &touched[m] {
+                count[c] += 1;
+            }
+        }
+        Some(
+            count
+                .iter()
+                .zip(&reach_areas)
+                .map(|(&k, &a)| k as f64 / members.len() as f64 * a as f64 / reach_total as f64)
+                .sum(),
+        )
+    };
+    let floor_members: Vec<usize> = (0..scene.objects.len())
+        .filter(|&k| scene.objects[k].on_ground())
+        .collect();
+    let all_members: Vec<usize> = (0..scene.objects.len()).collect();
+    let unreachable_floor_objects = floor_members
+        .iter()
+        .filter(|&&k| touched[k].is_empty())
+        .map(|&k| scene.objects[k].id.clone())
+        .collect();
+    WalkReach {
+        walk,
+        reach_floor: reach_over(&floor_members),
+        reach_all: reach_over(&all_members),
+        walkable_area: total as f64 * grid.pixel * grid.pixel,
+        walk_components: areas.len(),
+        unreachable_floor_objects,
+    }
+}
+
+const NO_LABEL: u32 = u32::MAX;
+
+/// 8-connected component labels of the set pixels and each component's pixel count.
+fn components(mask: &[bool]) -> (Vec<u32>, Vec<usize>) {
+    let n = RASTER_SIZE;
+    let mut labels = vec![NO_LABEL; mask.len()];
+    let mut areas = Vec::new();
+    let mut stack = Vec::new();
+    for start in 0..mask.len() {
+        if !mask[start] || labels[start] != NO_LABEL {
+            continue;
+        }
+        let label = areas.len() as u32;
+        let mut area = 0;
+        labels[start] = label;
+        stack.push(start);
+        while let Some(p) = stack.pop() {
+            area += 1;
+            let (i, j) = ((p % n) as isize, (p / n) as isize);
+            for dj in -1..=1 {
+                for di in -1..=1 {
+                    let (a, b) = (i + di, j + dj);
+                    if a < 0 || b < 0 || a >= n as isize || b >= n as isize {
+                        continue;
+                    }
+                    let q = b as usize * n + a as usize;
+                    if mask[q] && labels[q] == NO_LABEL {
+                        labels[q] = label;
+                        stack.push(q);
+                    }
+                }
+            }
+        }
+        areas.push(area);
+    }
+    (labels, areas)
+}
+
+/// The components a pixel set touches once dilated by one pixel (8-neighbourhood), sorted.
+fn touched_components(pixels: &[usize], labels: &[u32]) -> Vec<usize> {
+    let n = RASTER_SIZE as isize;
+    let mut out = std::collections::BTreeSet::new();
+    for &p in pixels {
+        let (i, j) = ((p as isize) % n, (p as isize) / n);
+        for dj in -1..=1 {
+            for di in -1..=1 {
+                let (a, b) = (i + di, j + dj);
+                if a < 0 || b < 0 || a >= n || b >= n {
+                    continue;
+                }
+                let l = labels[(b * n + a) as usize];
+                if l != NO_LABEL {
+                    out.insert(l as usize);
+                }
+            }
+        }
+    }
+    out.into_iter().collect()
+}

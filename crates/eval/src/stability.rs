@@ -1,0 +1,274 @@
+//! Stability: the whole scene simulated at once with rapier, each object one free rigid body
+//! made of convex pieces, and the objects that move or turn reported.
+
+use std::collections::HashMap;
+use std::hash::{Hash, Hasher};
+use std::sync::{Arc, Mutex};
+
+use rapier3d::glamx::{Pose3, Quat, Vec3};
+use rapier3d::parry::transformation::vhacd::VHACDParameters;
+use rapier3d::prelude::*;
+use scenethesis_scene_graph::MeshPart;
+use serde::{Deserialize, Serialize};
+
+use crate::raster::{wall_pieces, WallPiece};
+use crate::scene::EvalScene;
+
+/// Simulated time in seconds.
+pub const SIM_DURATION: f64 = 2.0;
+/// Time step in seconds.
+pub const SIM_STEP: f64 = 0.001;
+/// Gravity in m/s² (pointing down, −Y).
+pub const GRAVITY: f64 = 9.81;
+/// Density of every object in kg/m³.
+pub const DENSITY: f64 = 1000.0;
+/// Friction coefficient of every surface.
+pub const FRICTION: f64 = 0.5;
+/// An object is unstable if its centre of mass moves more than this (m).
+pub const MAX_DISPLACEMENT: f64 = 0.01;
+/// An object is unstable if it turns by more than this (rad).
+pub const MAX_ROTATION: f64 = 0.1;
+
+/// An object that moved, turned or blew up during the simulation.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct UnstableObject {
+    /// Object id.
+    pub id: String,
+    /// Distance its centre of mass moved (m); 0 when `non_finite`.
+    pub displacement: f64,
+    /// Angle it turned by (rad); 0 when `non_finite`.
+    pub rotation: f64,
+    /// Its state became NaN or infinite.
+    pub non_finite: bool,
+}
+
+/// The stability results of one scene.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+pub struct StabilityReport {
+    /// Objects simulated as free bodies (the denominator of Inst-O).
+    pub tested: usize,
+    /// Wall- or ceiling-mounted objects, welded in place and excluded.
+    pub welded: Vec<String>,
+    /// Objects without any volume to simulate (no triangles or a flat mesh), excluded.
+    pub skipped: Vec<String>,
+    /// The unstable objects, in scene order.
+    pub unstable: Vec<UnstableObject>,
+}
+
+/// Convex collision pieces of one mesh part, each with its pose in the part's frame.
+type Pieces = Arc<Vec<(Pose3, SharedShape)>>;
+
+/// Convex decompositions already computed, keyed by the part's exact geometry. Keep one across
+/// evaluations of similar scenes to decompose each non-convex part once.
+#[derive(Debug, Default, Clone)]
+pub struct DecompositionCache {
+    map: Arc<Mutex<HashMap<u64, Pieces>>>,
+}
+
+impl DecompositionCache {
+    /// An empty cache.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Number of decompositions held.
+    pub fn len(&self) -> usize {
+        self.map.lock().map(|m| m.len()).unwrap_or(0)
+    }
+
+    /// Whether the cache is empty.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The convex collision pieces of a part: the convex hull of the part when the part is
+    /// convex (procedural parts are), otherwise its VHACD decomposition (computed once per
+    /// distinct geometry), so that cavities stay open. Empty for a flat or empty part.
+    pub fn pieces(&self, part: &MeshPart) -> Pieces {
+        let points: Vec<Vec3> = part.positions.iter().map(|&p| Vec3::from(p)).collect();
+        if is_convex(part) {
+            return Arc::new(
+                SharedShape::convex_hull(&points)
+                    .map(|s| vec![(Pose3::IDENTITY, s)])
+                    .unwrap_or_default(),
+            );
+        }
+        let key = geometry_hash(part);
+        if let Some(found) = self.map.lock().ok().and_then(|m| m.get(&key).cloned()) {
+            return found;
+        }
+        let params = VHACDParameters {
+            resolution: 32,
+            ..Default::default()
+        };
+        let pieces = if part.triangles.is_empty() || points.len() < 4 {
+            Vec::new()
+        } else {
+            let compound =
+                SharedShape::convex_decomposition_with_params(&points, &part.triangles, &params);
+            compound
+                .as_compound()
+                .map(|c| c.shapes().to_vec())
+                .unwrap_or_default()
+        };
+        let pieces = Arc::new(pieces);
+        if let Ok(mut m) = self.map.lock() {
+            m.insert(key, pieces.clone());
+        }
+        pieces
+    }
+}
+
+fn geometry_hash(part: &MeshPart) -> u64 {
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    for p in &part.positions {
+        p.map(f32::to_bits).hash(&mut h);
+    }
+    part.triangles.hash(&mut h);
+    h.finish()
+}
+
+/// Whether every vertex lies on the inner side of every face plane (within 0.1 mm), i.e. the
+/// part is a convex solid (with outward faces).
+pub fn is_convex(part: &MeshPart) -> bool {
+    let pts: Vec<Vec3> = part.positions.iter().map(|&p| Vec3::from(p)).collect();
+    if pts.len() < 4 {
+        return false;
+    }
+    part.triangles.iter().all(|t| {
+        let [a, b, c] = t.map(|i| pts[i as usize]);
+        let n = (b - a).cross(c - a);
+        let len = n.length();
+        if len < 1e-12 {
+            return true;
+        }
+        let n = n / len;
+        pts.iter().all(|p| n.dot(*p - a) <= 1e-4)
+    })
+}
+
+/// Simulates the scene for [`SIM_DURATION`] and reports which objects are unstable.
+pub fn simulate(scene: &EvalScene, cache: &DecompositionCache) -> StabilityReport {
+    let mut world = PhysicsWorld::new();
+    world.gravity = Vec3::new(0.0, -GRAVITY as f32, 0.0);
+    world.integration_parameters.dt = SIM_STEP as f32;
+
+    let material = |b: ColliderBuilder| {
+        b.friction(FRICTION as f32)
+            .restitution(0.0)
+            .density(DENSITY as f32)
+    };
+    // Static floor (a slab whose top is y = 0, well beyond the floor rectangle) and walls.
+    let floor = &scene.architecture.floor;
+    let floor_center = [
+        (floor.min.x + floor.max.x) / 2.0,
+        (floor.min.y + floor.max.y) / 2.0,
+    ];
+    // Half extents of the slab: the floor rectangle plus 10 m on every side.
+    let floor_half = [
+        (floor.max.x - floor.min.x) / 2.0 + 10.0,
+        (floor.max.y - floor.min.y) / 2.0 + 10.0,
+    ];
+    world.insert(
+        RigidBodyBuilder::fixed().translation(Vec3::new(
+            floor_center[0] as f32,
+            -1.0,
+            floor_center[1] as f32,
+        )),
+        material(ColliderBuilder::cuboid(
+            floor_half[0] as f32,
+            1.0,
+            floor_half[1] as f32,
+        )),
+    );
+    for WallPiece {
+        rect: piece,
+        height,
+        ..
+    } in wall_pieces(scene)
+    {
+        let angle = (-piece.axis[1]).atan2(piece.axis[0]) as f32;
+        let pose = Pose3::from_parts(
+            Vec3::new(
+                piece.center[0] as f32,
+                height as f32 / 2.0,
+                piece.center[1] as f32,
+            ),
+            Quat::from_rotation_y(angle),
+        );
+        world.insert(
+            RigidBodyBuilder::fixed().pose(pose),
+            material(ColliderBuilder::cuboid(
+                piece.half[0] as f32,
+                height as f32 / 2.0,
+                piece.half[1] as f32,
+            )),
+        );
+    }
+
+    let mut report = StabilityReport::default();
+    let mut bodies = Vec::new();
+    for object in &scene.objects {
+        let shapes: Vec<(Pose3, SharedShape)> = object
+            .mesh
+            .parts
+            .iter()
+            .flat_map(|part| cache.pieces(part).iter().cloned().collect::<Vec<_>>())
+            .collect();
+        if shapes.is_empty() {
+            report.skipped.push(object.id.clone());
+            continue;
+        }
+        let builder = if object.welded {
+            report.welded.push(object.id.clone());
+            RigidBodyBuilder::fixed()
+        } else {
+            RigidBodyBuilder::dynamic()
+        };
+        let handle = world.bodies.insert(builder);
+        for (pose, shape) in shapes {
+            world.colliders.insert_with_parent(
+                material(ColliderBuilder::new(shape).position(pose)),
+                handle,
+                &mut world.bodies,
+            );
+        }
+        if !object.welded {
+            bodies.push((object.id.clone(), handle));
+        }
+    }
+    report.tested = bodies.len();
+
+    let steps = (SIM_DURATION / SIM_STEP).round() as usize;
+    for _ in 0..steps {
+        world.step();
+        if world.islands.active_bodies().next().is_none() {
+            break;
+        }
+    }
+
+    for (id, handle) in bodies {
+        let body = &world.bodies[handle];
+        let local_com = body.local_center_of_mass();
+        let pose = body.position();
+        let moved = pose.transform_point(local_com) - local_com;
+        let rotation = quat_angle(pose.rotation);
+        let non_finite = !pose.is_finite() || !moved.is_finite() || !rotation.is_finite();
+        let displacement = moved.length() as f64;
+        let rotation = rotation as f64;
+        if non_finite || displacement > MAX_DISPLACEMENT || rotation > MAX_ROTATION {
+            report.unstable.push(UnstableObject {
+                id,
+                displacement: if non_finite { 0.0 } else { displacement },
+                rotation: if non_finite { 0.0 } else { rotation },
+                non_finite,
+            });
+        }
+    }
+    report
+}
+
+/// The rotation angle of a unit quaternion, in [0, π].
+fn quat_angle(q: Quat) -> f32 {
+    2.0 * q.w.abs().min(1.0).acos()
+}
