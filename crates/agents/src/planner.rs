@@ -266,10 +266,8 @@ impl Planner for KnowledgePlanner {
                         .substitute(target, available)
                         .and_then(|t| by_category.get(&t).cloned())
                         .unwrap_or_default();
-                    if parents.is_empty() {
-                        if mention.is_none() {
-                            continue;
-                        }
+                    if parents.is_empty() && mention.is_none() {
+                        continue;
                     }
                     if let Some(mi) = mention {
                         if stated_for(mi).next().is_some() || parents.is_empty() {

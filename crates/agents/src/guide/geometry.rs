@@ -19,7 +19,7 @@ impl Footprint {
     }
 
     /// World (x, z) of a point given in the footprint's local frame.
-    pub fn to_world(&self, lx: f64, lz: f64) -> [f64; 2] {
+    pub fn to_world(self, lx: f64, lz: f64) -> [f64; 2] {
         let (r, f) = self.axes();
         [
             self.cx + r[0] * lx + f[0] * lz,
@@ -28,7 +28,7 @@ impl Footprint {
     }
 
     /// Local coordinates of a world (x, z) point.
-    pub fn to_local(&self, x: f64, z: f64) -> [f64; 2] {
+    pub fn to_local(self, x: f64, z: f64) -> [f64; 2] {
         let (r, f) = self.axes();
         let (dx, dz) = (x - self.cx, z - self.cz);
         [dx * r[0] + dz * r[1], dx * f[0] + dz * f[1]]
@@ -116,7 +116,7 @@ impl Raster {
         let i = ((x - self.x0) / self.cell).floor();
         let j = ((z - self.z0) / self.cell).floor();
         (i >= 0.0 && j >= 0.0 && (i as usize) < self.nx && (j as usize) < self.nz)
-            .then(|| (i as usize, j as usize))
+            .then_some((i as usize, j as usize))
     }
 
     /// Free cells of the floor eroded by `inset` (all true inside, false near the border).
