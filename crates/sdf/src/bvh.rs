@@ -60,7 +60,7 @@ impl Bounds {
     }
 }
 
-const LEAF_SIZE: usize = 4;
+const LEAF_SIZE: usize = 8;
 const BINS: usize = 16;
 
 /// Builds a subtree over `items` (triangle ids; reordered in place) whose triangle boxes are
@@ -214,4 +214,89 @@ impl Builder<'_> {
         self.nodes[node].count = n as u32;
         self.nodes[node].index = offset;
     }
+}
+
+/// A 4-wide node for closest-point queries: the boxes of up to four children side by side
+/// (structure of arrays, 128 bytes), so one node visit tests four boxes at once.
+#[derive(Debug, Clone, Copy)]
+#[repr(C, align(64))]
+pub(crate) struct Node4 {
+    pub min: [[f32; 4]; 3],
+    pub max: [[f32; 4]; 3],
+    /// Inner child: index into the 4-wide node array; leaf child: first triangle.
+    pub child: [u32; 4],
+    /// Triangle count of a leaf child, 0 for an inner child.
+    pub count: [u32; 4],
+}
+
+impl Node4 {
+    const EMPTY: Node4 = Node4 {
+        min: [[f32::INFINITY; 4]; 3],
+        max: [[f32::NEG_INFINITY; 4]; 3],
+        child: [0; 4],
+        count: [0; 4],
+    };
+
+    /// Squared distances from `p` to the four child boxes (infinite for empty lanes).
+    #[inline(always)]
+    pub fn distances2(&self, p: &[f32; 3]) -> [f32; 4] {
+        let mut d2 = [0.0f32; 4];
+        for axis in 0..3 {
+            for lane in 0..4 {
+                let d = (self.min[axis][lane] - p[axis])
+                    .max(p[axis] - self.max[axis][lane])
+                    .max(0.0);
+                d2[lane] += d * d;
+            }
+        }
+        d2
+    }
+}
+
+/// Collapses the binary subtree at `node` (an inner node) into 4-wide nodes appended to
+/// `out`; returns the index of its 4-wide root.
+pub(crate) fn collapse(bin: &[Node], node: u32, out: &mut Vec<Node4>) -> u32 {
+    let n = &bin[node as usize];
+    debug_assert_eq!(n.count, 0);
+    let mut kids: Vec<u32> = vec![n.index, n.index + 1];
+    while kids.len() < 4 {
+        let area = |k: u32| {
+            let b = &bin[k as usize];
+            Bounds {
+                min: b.min,
+                max: b.max,
+            }
+            .half_area()
+        };
+        let pick = kids
+            .iter()
+            .enumerate()
+            .filter(|(_, &k)| bin[k as usize].count == 0)
+            .max_by(|a, b| area(*a.1).total_cmp(&area(*b.1)))
+            .map(|(i, &k)| (i, k));
+        let Some((i, k)) = pick else { break };
+        kids.remove(i);
+        let inner = &bin[k as usize];
+        kids.push(inner.index);
+        kids.push(inner.index + 1);
+    }
+    let me = out.len();
+    out.push(Node4::EMPTY);
+    let mut wide = Node4::EMPTY;
+    for (lane, &k) in kids.iter().enumerate() {
+        let b = &bin[k as usize];
+        for axis in 0..3 {
+            wide.min[axis][lane] = b.min[axis];
+            wide.max[axis][lane] = b.max[axis];
+        }
+        if b.count > 0 {
+            wide.child[lane] = b.index;
+            wide.count[lane] = b.count;
+        } else {
+            wide.child[lane] = collapse(bin, k, out);
+            wide.count[lane] = 0;
+        }
+    }
+    out[me] = wide;
+    me as u32
 }

@@ -5,7 +5,7 @@ use std::collections::HashMap;
 use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
 
-use crate::bvh::{self, Node};
+use crate::bvh::{self, Node, Node4};
 use crate::geometry::{
     closest_on_triangle, distance2_to_box, distance2_to_triangle, solid_angle, Feature,
 };
@@ -37,6 +37,8 @@ pub enum SignRule {
 #[derive(Debug, Clone, Copy)]
 struct Group {
     root: u32,
+    /// Entry of the 4-wide tree: (4-wide node, 0) or, for a one-leaf group, (first, count).
+    wide_root: (u32, u32),
     first_tri: u32,
     end_tri: u32,
     min: [f32; 3],
@@ -102,7 +104,10 @@ impl Hit {
 #[derive(Debug, Clone)]
 pub struct MeshSdf {
     tris: Vec<[V3; 3]>,
+    /// Per triangle: unit normal and offset (`n · a`), a cheap lower bound for leaf tests.
+    planes: Vec<[f32; 4]>,
     nodes: Vec<Node>,
+    wide: Vec<Node4>,
     groups: Vec<Group>,
     normals: Vec<PseudoNormals>,
     dipoles: Vec<Dipole>,
@@ -192,6 +197,7 @@ impl MeshSdf {
         let mut normals = Vec::with_capacity(total);
         let mut nodes = Vec::with_capacity(2 * total / 3 + solids.len());
         let mut groups = Vec::with_capacity(solids.len());
+        let mut wide = Vec::new();
         for solid in &solids {
             let boxes: Vec<([f32; 3], [f32; 3])> = solid.tris.iter().map(tri_box).collect();
             let mut order: Vec<u32> = (0..solid.tris.len() as u32).collect();
@@ -202,8 +208,15 @@ impl MeshSdf {
                 normals.push(solid.normals[i as usize]);
             }
             let r = &nodes[root as usize];
+            let wide_root = if r.count > 0 {
+                (r.index, r.count)
+            } else {
+                (bvh::collapse(&nodes, root, &mut wide), 0)
+            };
+            let r = &nodes[root as usize];
             groups.push(Group {
                 root,
+                wide_root,
                 first_tri: first,
                 end_tri: tris.len() as u32,
                 min: r.min,
@@ -218,9 +231,18 @@ impl MeshSdf {
             max = max.sup(&Point3::from(g.max));
         }
         let extent = (max - min).amax().max(1e-6);
+        let planes = tris
+            .iter()
+            .map(|t| {
+                let n = face_normal(t);
+                [n.x, n.y, n.z, n.dot(&t[0])]
+            })
+            .collect();
         let mut sdf = MeshSdf {
             tris,
+            planes,
             nodes,
+            wide,
             groups,
             normals,
             dipoles: Vec::new(),
@@ -228,11 +250,7 @@ impl MeshSdf {
             max,
             grad_epsilon: extent * 1e-6,
         };
-        if sdf
-            .groups
-            .iter()
-            .any(|g| g.rule == SignRule::WindingNumber)
-        {
+        if sdf.groups.iter().any(|g| g.rule == SignRule::WindingNumber) {
             sdf.dipoles = vec![Dipole::default(); sdf.nodes.len()];
             let roots: Vec<u32> = sdf
                 .groups
@@ -315,10 +333,7 @@ impl MeshSdf {
 
     /// Signed distances of many points, in parallel (rayon).
     pub fn distances(&self, points: &[Point3<f32>]) -> Vec<f32> {
-        points
-            .par_iter()
-            .map(|p| self.signed_distance(p))
-            .collect()
+        points.par_iter().map(|p| self.signed_distance(p)).collect()
     }
 
     /// Generalized winding number of the whole mesh at `p` (about 1 inside a closed outward
@@ -354,7 +369,7 @@ impl MeshSdf {
         if self.groups.len() == 1 {
             let g = &self.groups[0];
             let (mut d2, mut tri) = self.seed(g, p, hint);
-            self.closest_in(g.root, p, &mut d2, &mut tri);
+            self.closest_in(g, p, &mut d2, &mut tri);
             let inside = g.contains(&pa) && self.inside_group(g, p, tri);
             return Hit {
                 tri,
@@ -371,7 +386,7 @@ impl MeshSdf {
                 continue;
             }
             let (mut d2, mut tri) = self.seed(g, p, hint);
-            self.closest_in(g.root, p, &mut d2, &mut tri);
+            self.closest_in(g, p, &mut d2, &mut tri);
             if self.inside_group(g, p, tri) && deepest.is_none_or(|(dd, _)| d2 > dd) {
                 deepest = Some((d2, tri));
             }
@@ -397,7 +412,7 @@ impl MeshSdf {
                 best_d2 = d2;
                 best_tri = tri;
             }
-            self.closest_in(g.root, p, &mut best_d2, &mut best_tri);
+            self.closest_in(g, p, &mut best_d2, &mut best_tri);
         }
         Hit {
             tri: best_tri,
@@ -438,61 +453,84 @@ impl MeshSdf {
         }
     }
 
-    /// Nearest triangle in the subtree at `root`, improving `(best_d2, best_tri)`.
+    /// Nearest triangle of group `g`, improving `(best_d2, best_tri)`.
     #[inline]
-    fn closest_in(&self, root: u32, p: V3, best_d2: &mut f32, best_tri: &mut u32) {
+    fn closest_in(&self, g: &Group, p: V3, best_d2: &mut f32, best_tri: &mut u32) {
         let pa = [p.x, p.y, p.z];
-        let nodes = &self.nodes[..];
-        let mut stack: [(u32, f32); 64] = [(0, 0.0); 64];
-        let mut sp = 0usize;
-        let r = &nodes[root as usize];
-        let mut current = root;
-        if distance2_to_box(&pa, &r.min, &r.max) >= *best_d2 {
-            return;
+        let d = distance2_to_box(&pa, &g.min, &g.max);
+        if d < *best_d2 {
+            self.closest_from(g.wide_root, d, p, best_d2, best_tri);
         }
-        loop {
-            let n = &nodes[current as usize];
-            if n.count > 0 {
-                let start = n.index as usize;
-                for (k, t) in self.tris[start..start + n.count as usize].iter().enumerate() {
+    }
+
+    /// Depth-first, nearest-first search of the 4-wide tree from `entry` (node, 0) or
+    /// (first triangle, count).
+    fn closest_from(
+        &self,
+        entry: (u32, u32),
+        d: f32,
+        p: V3,
+        best_d2: &mut f32,
+        best_tri: &mut u32,
+    ) {
+        const CAP: usize = 128;
+        let pa = [p.x, p.y, p.z];
+        let mut stack: [(f32, u32, u32); CAP] = [(0.0, 0, 0); CAP];
+        stack[0] = (d, entry.0, entry.1);
+        let mut sp = 1usize;
+        while sp > 0 {
+            sp -= 1;
+            let (d, index, count) = stack[sp];
+            if d >= *best_d2 {
+                continue;
+            }
+            if count > 0 {
+                let start = index as usize;
+                let end = start + count as usize;
+                for (k, (t, pl)) in self.tris[start..end]
+                    .iter()
+                    .zip(&self.planes[start..end])
+                    .enumerate()
+                {
+                    let h = pl[0] * p.x + pl[1] * p.y + pl[2] * p.z - pl[3];
+                    if h * h >= *best_d2 {
+                        continue;
+                    }
                     let d2 = distance2_to_triangle(p, t[0], t[1], t[2]);
                     if d2 < *best_d2 {
                         *best_d2 = d2;
                         *best_tri = (start + k) as u32;
                     }
                 }
-            } else {
-                let l = n.index as usize;
-                let (a, b) = (&nodes[l], &nodes[l + 1]);
-                let da = distance2_to_box(&pa, &a.min, &a.max);
-                let db = distance2_to_box(&pa, &b.min, &b.max);
-                let (near, dn, far, df) = if da <= db {
-                    (l as u32, da, l as u32 + 1, db)
-                } else {
-                    (l as u32 + 1, db, l as u32, da)
-                };
-                if dn < *best_d2 {
-                    if df < *best_d2 && sp < stack.len() {
-                        stack[sp] = (far, df);
+                continue;
+            }
+            let n = &self.wide[index as usize];
+            let ds = n.distances2(&pa);
+            // Push farthest first so the nearest child is searched next.
+            let mut order = [0usize, 1, 2, 3];
+            for i in 1..4 {
+                let mut j = i;
+                while j > 0 && ds[order[j - 1]] < ds[order[j]] {
+                    order.swap(j - 1, j);
+                    j -= 1;
+                }
+            }
+            for &lane in &order {
+                if ds[lane] < *best_d2 {
+                    if sp == CAP {
+                        // Pathologically deep tree: search this child recursively.
+                        self.closest_from(
+                            (n.child[lane], n.count[lane]),
+                            ds[lane],
+                            p,
+                            best_d2,
+                            best_tri,
+                        );
+                    } else {
+                        stack[sp] = (ds[lane], n.child[lane], n.count[lane]);
                         sp += 1;
                     }
-                    current = near;
-                    continue;
                 }
-            }
-            // Pop the next node still closer than the best triangle.
-            let mut next = None;
-            while sp > 0 {
-                sp -= 1;
-                let (node, d) = stack[sp];
-                if d < *best_d2 {
-                    next = Some(node);
-                    break;
-                }
-            }
-            match next {
-                Some(node) => current = node,
-                None => return,
             }
         }
     }

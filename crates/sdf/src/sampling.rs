@@ -189,7 +189,9 @@ mod tests {
             1,
         );
         assert_eq!(pts.len(), 200);
-        assert!(pts.iter().all(|p| p.y >= 0.0 && p.y <= 0.05 && p.x.abs() <= 1.0 && p.z.abs() <= 2.0));
+        assert!(pts
+            .iter()
+            .all(|p| p.y >= 0.0 && p.y <= 0.05 && p.x.abs() <= 1.0 && p.z.abs() <= 2.0));
     }
 
     #[test]

@@ -231,7 +231,8 @@ impl SceneSdf {
     /// (`f32::INFINITY` when none is left).
     pub fn distance(&self, p: &Point3<f32>, exclude: &[&str]) -> f32 {
         let mask = self.mask(exclude);
-        self.nearest_masked(p, &mask).map_or(f32::INFINITY, |(_, d)| d)
+        self.nearest_masked(p, &mask)
+            .map_or(f32::INFINITY, |(_, d)| d)
     }
 
     /// The object closest to `p` (smallest signed distance) among those not excluded, with its
@@ -277,7 +278,10 @@ impl SceneSdf {
         points
             .par_iter()
             .with_min_len(256)
-            .map(|p| self.nearest_masked(p, &mask).map_or(f32::INFINITY, |(_, d)| d))
+            .map(|p| {
+                self.nearest_masked(p, &mask)
+                    .map_or(f32::INFINITY, |(_, d)| d)
+            })
             .collect()
     }
 

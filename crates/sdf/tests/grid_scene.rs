@@ -5,8 +5,7 @@ use std::sync::Arc;
 use nalgebra::{Point3, Vector3};
 use proptest::prelude::*;
 use scenethesis_sdf::{
-    sampling, shapes, BoxSdf, GridSdf, MeshSdf, PlaneSdf, Pose, SceneSdf, SignedDistance,
-    SphereSdf,
+    sampling, shapes, BoxSdf, GridSdf, MeshSdf, PlaneSdf, Pose, SceneSdf, SignedDistance, SphereSdf,
 };
 
 fn torus_sdf() -> MeshSdf {
@@ -26,7 +25,11 @@ fn default_resolution_follows_object_size() {
     let grid = GridSdf::bake(&sdf, None);
     assert!(grid.cell_size() <= 0.01, "{}", grid.cell_size());
     let coarse = GridSdf::bake(&sdf, Some(0.03));
-    assert_eq!(coarse.cell_size(), grid.cell_size(), "max_cell only refines");
+    assert_eq!(
+        coarse.cell_size(),
+        grid.cell_size(),
+        "max_cell only refines"
+    );
     let fine = GridSdf::bake(&sdf, Some(0.004));
     assert_eq!(fine.cell_size(), 0.004);
 }
@@ -34,8 +37,14 @@ fn default_resolution_follows_object_size() {
 #[test]
 fn bake_is_deterministic_across_thread_counts() {
     let sdf = torus_sdf();
-    let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
-    let two = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let two = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
     let a = one.install(|| GridSdf::bake_with_cell(&sdf, 0.02));
     let b = two.install(|| GridSdf::bake_with_cell(&sdf, 0.02));
     assert_eq!(a.values(), b.values());
@@ -151,7 +160,13 @@ fn set_pose_moves_without_rebaking_and_batches_match() {
         .is_err());
 
     let points: Vec<Point3<f32>> = (0..500)
-        .map(|i| Point3::new((i % 10) as f32 * 0.4 - 2.0, (i / 100) as f32 * 0.3, ((i / 10) % 10) as f32 * 0.4 - 2.0))
+        .map(|i| {
+            Point3::new(
+                (i % 10) as f32 * 0.4 - 2.0,
+                (i / 100) as f32 * 0.3,
+                ((i / 10) % 10) as f32 * 0.4 - 2.0,
+            )
+        })
         .collect();
     let batch = scene.distances(&points, &["a"]);
     for (p, d) in points.iter().zip(&batch) {
@@ -181,8 +196,16 @@ fn penetrating_surface_points_cluster_per_contact() {
     let points = sampling::surface_points(&mesh, 2000, 3);
     let mut scene = SceneSdf::new();
     let block: Arc<dyn SignedDistance> = Arc::new(BoxSdf::new(Vector3::new(0.1, 0.5, 0.5)));
-    scene.insert("left", block.clone(), Pose::new(1.0, 0.0, Vector3::new(-0.8, -0.48, 0.0)));
-    scene.insert("right", block, Pose::new(1.0, 0.0, Vector3::new(0.8, -0.48, 0.0)));
+    scene.insert(
+        "left",
+        block.clone(),
+        Pose::new(1.0, 0.0, Vector3::new(-0.8, -0.48, 0.0)),
+    );
+    scene.insert(
+        "right",
+        block,
+        Pose::new(1.0, 0.0, Vector3::new(0.8, -0.48, 0.0)),
+    );
     let d = scene.distances(&points, &[]);
     let clusters = sampling::negative_clusters(&points, &d, 0.05);
     assert_eq!(clusters.len(), 2);

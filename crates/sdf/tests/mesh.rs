@@ -10,7 +10,11 @@ fn cube_sdf(h: Vector3<f32>) -> MeshSdf {
     MeshSdf::new(&p, &t).unwrap()
 }
 
-fn part(name: &str, (positions, triangles): shapes::TriangleMesh, offset: Vector3<f32>) -> MeshPart {
+fn part(
+    name: &str,
+    (positions, triangles): shapes::TriangleMesh,
+    offset: Vector3<f32>,
+) -> MeshPart {
     MeshPart {
         name: name.into(),
         material: 0,
@@ -26,7 +30,8 @@ fn part(name: &str, (positions, triangles): shapes::TriangleMesh, offset: Vector
 fn brute_winding(positions: &[[f32; 3]], triangles: &[[u32; 3]], p: &Point3<f32>) -> f64 {
     let mut sum = 0.0f64;
     for t in triangles {
-        let [a, b, c] = t.map(|i| Vector3::from(positions[i as usize]).cast::<f64>() - p.coords.cast::<f64>());
+        let [a, b, c] =
+            t.map(|i| Vector3::from(positions[i as usize]).cast::<f64>() - p.coords.cast::<f64>());
         let (la, lb, lc) = (a.norm(), b.norm(), c.norm());
         let det = a.dot(&b.cross(&c));
         let den = la * lb * lc + a.dot(&b) * lc + a.dot(&c) * lb + b.dot(&c) * la;
@@ -42,7 +47,10 @@ fn table() -> Mesh {
         shapes::cuboid(Vector3::new(0.6, 0.03, 0.4)),
         Vector3::new(0.0, 0.72, 0.0),
     )];
-    for (i, (x, z)) in [(-0.5, -0.3), (0.5, -0.3), (-0.5, 0.3), (0.5, 0.3)].iter().enumerate() {
+    for (i, (x, z)) in [(-0.5, -0.3), (0.5, -0.3), (-0.5, 0.3), (0.5, 0.3)]
+        .iter()
+        .enumerate()
+    {
         parts.push(part(
             &format!("leg_{i}"),
             shapes::cuboid(Vector3::new(0.03, 0.37, 0.03)),
@@ -107,8 +115,11 @@ fn mesh_with_small_hole_keeps_its_inside() {
 fn bad_input_is_rejected_with_context() {
     let err = MeshSdf::new(&[[0.0; 3]; 3], &[[0, 1, 5]]).unwrap_err();
     assert!(err.to_string().contains("vertex 5"), "{err}");
-    let err = MeshSdf::new(&[[0.0; 3], [1.0, 0.0, 0.0], [f32::NAN, 0.0, 0.0]], &[[0, 1, 2]])
-        .unwrap_err();
+    let err = MeshSdf::new(
+        &[[0.0; 3], [1.0, 0.0, 0.0], [f32::NAN, 0.0, 0.0]],
+        &[[0, 1, 2]],
+    )
+    .unwrap_err();
     assert!(err.to_string().contains("non-finite"), "{err}");
     assert!(MeshSdf::new(&[[0.0; 3]; 3], &[[0, 0, 1]]).is_err());
 }
