@@ -10,6 +10,7 @@
 
 pub mod catalog;
 mod furniture;
+pub mod import;
 mod info;
 mod items;
 mod outdoor;

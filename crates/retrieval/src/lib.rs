@@ -1,2 +1,22 @@
 //! Asset retrieval: an index over built-in and user-supplied assets that ranks candidates for a
 //! text query by category, synonyms and semantic similarity.
+//!
+//! Ranking stages, best first:
+//! 1. the query names a category exactly (`"coffee table"`, `"coffee_tables"`);
+//! 2. the query is a synonym: the category's own synonyms, the imported asset's synonyms, or the
+//!    built-in alias table ([`ALIASES`]: couch → sofa, bookcase → bookshelf, TV → television, …);
+//! 3. fuzzy word match: overlap of the query's words with a name's words, tolerant of typos
+//!    (edit distance), and with single aliased words replaced (`"big tv"` → `big television`);
+//! 4. when a [`TextEmbedder`] is attached, cosine similarity of embeddings lifts candidates the
+//!    lexical stages missed (`"somewhere to sleep"` → bed).
+//!
+//! Every query is normalised first (case, `_`/`-`, plurals). Candidates that score the same are
+//! ordered by the search seed, and a built-in category's candidate carries a procedural seed
+//! derived from the search seed, so different seeds give varied but reproducible scenes.
+
+#![warn(missing_docs)]
+
+mod index;
+pub mod text;
+
+pub use index::{AssetIndex, Candidate, EmbedError, MatchReason, TextEmbedder, ALIASES};

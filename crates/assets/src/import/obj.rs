@@ -1,0 +1,269 @@
+//! Wavefront OBJ loading: `v` and `f` records (polygons fan-triangulated, `v/vt/vn` forms,
+//! negative indices), one part per object/group and material run, and diffuse colours (`Kd`),
+//! shininess (`Ns`) and opacity (`d`) from `mtllib` files when present.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use scenethesis_scene_graph::{Material, Mesh, MeshPart};
+
+use super::MeshLoadError;
+
+/// Loads an `.obj` file (and the `.mtl` files it names, if they can be read).
+pub(super) fn load(path: &Path) -> Result<Mesh, MeshLoadError> {
+    let bytes = std::fs::read(path)?;
+    let text = String::from_utf8_lossy(&bytes);
+    let base = path.parent().unwrap_or_else(|| Path::new("."));
+    parse(&text, |name| std::fs::read_to_string(base.join(name)).ok())
+}
+
+/// Parses OBJ text; `read_mtl` returns the text of a material library by its file name.
+pub(super) fn parse(
+    text: &str,
+    read_mtl: impl Fn(&str) -> Option<String>,
+) -> Result<Mesh, MeshLoadError> {
+    let mut vertices: Vec<[f32; 3]> = Vec::new();
+    let mut library: BTreeMap<String, Material> = BTreeMap::new();
+    let mut mesh = Mesh::default();
+    let mut material_index: BTreeMap<String, usize> = BTreeMap::new();
+    let mut group = String::from("mesh");
+    let mut current_material = String::new();
+    // Global-index triangles of the part being filled.
+    let mut pending: Vec<[u32; 3]> = Vec::new();
+
+    let flush = |mesh: &mut Mesh,
+                 pending: &mut Vec<[u32; 3]>,
+                 vertices: &[[f32; 3]],
+                 group: &str,
+                 material: &str,
+                 library: &BTreeMap<String, Material>,
+                 material_index: &mut BTreeMap<String, usize>| {
+        if pending.is_empty() {
+            return;
+        }
+        let m = *material_index
+            .entry(material.to_owned())
+            .or_insert_with(|| {
+                let mat = library.get(material).cloned().unwrap_or_else(|| {
+                    Material::new(
+                        if material.is_empty() {
+                            "default"
+                        } else {
+                            material
+                        },
+                        [0.7, 0.7, 0.7],
+                        0.7,
+                    )
+                });
+                mesh.materials.push(mat);
+                mesh.materials.len() - 1
+            });
+        let mut local: std::collections::HashMap<u32, u32> = std::collections::HashMap::new();
+        let mut positions = Vec::new();
+        let triangles = std::mem::take(pending)
+            .into_iter()
+            .map(|t| {
+                t.map(|i| {
+                    *local.entry(i).or_insert_with(|| {
+                        positions.push(vertices[i as usize]);
+                        positions.len() as u32 - 1
+                    })
+                })
+            })
+            .collect();
+        let part = MeshPart {
+            name: if material.is_empty() {
+                group.to_owned()
+            } else {
+                format!("{group}_{material}")
+            },
+            material: m,
+            positions,
+            triangles,
+        };
+        mesh.parts.push(part);
+    };
+
+    for (n, raw) in text.lines().enumerate() {
+        let line = raw.split('#').next().unwrap_or("").trim();
+        let mut fields = line.split_whitespace();
+        let Some(tag) = fields.next() else { continue };
+        let err = |message: String| MeshLoadError::Obj {
+            line: n + 1,
+            message,
+        };
+        match tag {
+            "v" => {
+                let mut p = [0.0f32; 3];
+                for c in &mut p {
+                    let f = fields
+                        .next()
+                        .ok_or_else(|| err("vertex needs three coordinates".into()))?;
+                    *c = f
+                        .parse()
+                        .map_err(|_| err(format!("bad coordinate `{f}`")))?;
+                    if !c.is_finite() {
+                        return Err(err(format!("coordinate `{f}` is not finite")));
+                    }
+                }
+                vertices.push(p);
+            }
+            "f" => {
+                let mut face = Vec::new();
+                for token in fields {
+                    let first = token.split('/').next().unwrap_or("");
+                    let i: i64 = first
+                        .parse()
+                        .map_err(|_| err(format!("bad face index `{token}`")))?;
+                    let count = vertices.len() as i64;
+                    let resolved = if i > 0 { i - 1 } else { count + i };
+                    if i == 0 || resolved < 0 || resolved >= count {
+                        return Err(err(format!(
+                            "face index {i} out of range ({count} vertices so far)"
+                        )));
+                    }
+                    face.push(resolved as u32);
+                }
+                if face.len() < 3 {
+                    return Err(err("a face needs at least three vertices".into()));
+                }
+                for k in 1..face.len() - 1 {
+                    let t = [face[0], face[k], face[k + 1]];
+                    if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
+                        pending.push(t);
+                    }
+                }
+            }
+            "o" | "g" => {
+                flush(
+                    &mut mesh,
+                    &mut pending,
+                    &vertices,
+                    &group,
+                    &current_material,
+                    &library,
+                    &mut material_index,
+                );
+                group = fields.collect::<Vec<_>>().join("_");
+                if group.is_empty() {
+                    group = "mesh".into();
+                }
+            }
+            "usemtl" => {
+                flush(
+                    &mut mesh,
+                    &mut pending,
+                    &vertices,
+                    &group,
+                    &current_material,
+                    &library,
+                    &mut material_index,
+                );
+                current_material = fields.collect::<Vec<_>>().join(" ");
+            }
+            "mtllib" => {
+                let name = line["mtllib".len()..].trim();
+                if let Some(text) = read_mtl(name) {
+                    parse_mtl(&text, &mut library);
+                }
+            }
+            _ => {} // vt, vn, s, l, p and the rest carry nothing we keep.
+        }
+    }
+    flush(
+        &mut mesh,
+        &mut pending,
+        &vertices,
+        &group,
+        &current_material,
+        &library,
+        &mut material_index,
+    );
+    if mesh.triangle_count() == 0 {
+        return Err(MeshLoadError::Empty);
+    }
+    Ok(mesh)
+}
+
+/// Reads `newmtl` blocks: `Kd` (diffuse colour), `Ns` (shininess → roughness), `d`/`Tr`
+/// (opacity) and `Pm` (metalness, PBR extension).
+fn parse_mtl(text: &str, library: &mut BTreeMap<String, Material>) {
+    let mut current: Option<String> = None;
+    for raw in text.lines() {
+        let line = raw.split('#').next().unwrap_or("").trim();
+        let mut fields = line.split_whitespace();
+        let Some(tag) = fields.next() else { continue };
+        let nums: Vec<f32> = fields.clone().filter_map(|f| f.parse().ok()).collect();
+        if tag == "newmtl" {
+            let name = fields.collect::<Vec<_>>().join(" ");
+            library.insert(
+                name.clone(),
+                Material::new(name.clone(), [0.7, 0.7, 0.7], 0.7),
+            );
+            current = Some(name);
+            continue;
+        }
+        let Some(m) = current.as_ref().and_then(|n| library.get_mut(n)) else {
+            continue;
+        };
+        match (tag, nums.as_slice()) {
+            ("Kd", [r, g, b, ..]) => {
+                m.base_color[..3].copy_from_slice(&[*r, *g, *b].map(|c| c.clamp(0.0, 1.0)))
+            }
+            ("Ns", [ns, ..]) => m.roughness = (2.0 / (ns.max(0.0) + 2.0)).sqrt().clamp(0.0, 1.0),
+            ("d", [d, ..]) => m.base_color[3] = d.clamp(0.0, 1.0),
+            ("Tr", [t, ..]) => m.base_color[3] = (1.0 - t).clamp(0.0, 1.0),
+            ("Pr", [r, ..]) => m.roughness = r.clamp(0.0, 1.0),
+            ("Pm", [p, ..]) => m.metallic = p.clamp(0.0, 1.0),
+            _ => {}
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quads_negative_indices_groups_and_materials() {
+        let obj = "mtllib box.mtl\n\
+                   o cube\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n\
+                   usemtl red\nf -4 -1 -2 -3\n\
+                   usemtl blue\nf 1/1/1 2/2/2 3/3/3\n";
+        let mtl = "newmtl red\nKd 0.9 0.1 0.1\nNs 48\nnewmtl blue\nKd 0.1 0.1 0.9\nd 0.5\n";
+        let mesh = parse(obj, |name| (name == "box.mtl").then(|| mtl.to_string())).unwrap();
+        assert_eq!(mesh.parts.len(), 2);
+        assert_eq!(
+            mesh.parts[0].triangles.len(),
+            2,
+            "a quad becomes two triangles"
+        );
+        assert_eq!(mesh.parts[0].name, "cube_red");
+        let red = &mesh.materials[mesh.parts[0].material];
+        assert_eq!(red.base_color, [0.9, 0.1, 0.1, 1.0]);
+        assert!((red.roughness - 0.2).abs() < 1e-6);
+        assert_eq!(mesh.materials[mesh.parts[1].material].base_color[3], 0.5);
+        // The negative indices −4 −1 −2 −3 are vertices 0 3 2 1.
+        let p = &mesh.parts[0];
+        let first: Vec<[f32; 3]> = p.triangles[0]
+            .iter()
+            .map(|&i| p.positions[i as usize])
+            .collect();
+        assert_eq!(
+            first,
+            vec![[0.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0]]
+        );
+    }
+
+    #[test]
+    fn malformed_lines_name_the_line() {
+        let e = parse("v 0 0 0\nv 1 0 0\nf 1 2 7\n", |_| None).unwrap_err();
+        assert!(matches!(e, MeshLoadError::Obj { line: 3, .. }), "{e}");
+        let e = parse("v 0 zero 0\n", |_| None).unwrap_err();
+        assert!(e.to_string().contains("line 1"), "{e}");
+        assert!(matches!(
+            parse("v 0 0 0\n", |_| None),
+            Err(MeshLoadError::Empty)
+        ));
+    }
+}

@@ -1,0 +1,498 @@
+//! The asset index and its ranking.
+
+use std::collections::BTreeMap;
+use std::fmt;
+
+use scenethesis_assets::{AssetInfo, Placement};
+use scenethesis_scene_graph::AssetRef;
+
+use crate::text::{normalise, overlap_score, words};
+
+/// Common names that differ from the canonical category, as (alias, category). Categories'
+/// own synonyms are matched as well; this table catches everyday words for built-in and
+/// imported categories alike, whoever supplied the synonyms.
+pub const ALIASES: &[(&str, &str)] = &[
+    ("couch", "sofa"),
+    ("settee", "sofa"),
+    ("loveseat", "sofa"),
+    ("love seat", "sofa"),
+    ("sectional", "sofa"),
+    ("divan", "sofa"),
+    ("bookcase", "bookshelf"),
+    ("book case", "bookshelf"),
+    ("book shelf", "bookshelf"),
+    ("tv", "television"),
+    ("tv set", "television"),
+    ("telly", "television"),
+    ("fridge", "refrigerator"),
+    ("icebox", "refrigerator"),
+    ("freezer", "chest_freezer"),
+    ("tv unit", "tv_stand"),
+    ("tv cabinet", "tv_stand"),
+    ("media console", "tv_stand"),
+    ("bedside table", "nightstand"),
+    ("night stand", "nightstand"),
+    ("end table", "side_table"),
+    ("closet", "wardrobe"),
+    ("armoire", "wardrobe"),
+    ("chest of drawers", "dresser"),
+    ("bureau", "dresser"),
+    ("footstool", "ottoman"),
+    ("pouf", "ottoman"),
+    ("recliner", "armchair"),
+    ("easy chair", "armchair"),
+    ("desk chair", "office_chair"),
+    ("swivel chair", "office_chair"),
+    ("barstool", "bar_stool"),
+    ("worktop", "kitchen_counter"),
+    ("countertop", "kitchen_counter"),
+    ("cooker", "stove"),
+    ("range", "stove"),
+    ("oven", "stove"),
+    ("washbasin", "sink"),
+    ("basin", "sink"),
+    ("houseplant", "plant"),
+    ("potted plant", "plant"),
+    ("pot plant", "plant"),
+    ("carpet", "rug"),
+    ("mat", "rug"),
+    ("cot", "bed"),
+    ("mattress", "bed"),
+    ("garbage can", "trash_can"),
+    ("trash bin", "trash_can"),
+    ("wastebasket", "trash_can"),
+    ("dustbin", "trash_can"),
+    ("pail", "bucket"),
+    ("carton", "box"),
+    ("pillow", "cushion"),
+    ("tumbler", "cup"),
+    ("teacup", "cup"),
+    ("dish", "plate"),
+    ("notebook computer", "laptop"),
+    ("computer screen", "monitor"),
+    ("display", "monitor"),
+    ("statue", "sculpture"),
+    ("parasol", "beach_umbrella"),
+    ("sun lounger", "beach_lounger"),
+    ("deck chair", "beach_lounger"),
+    ("rucksack", "backpack"),
+    ("boulder", "rock"),
+    ("stone", "rock"),
+    ("light fixture", "pendant_lamp"),
+    ("chandelier", "pendant_lamp"),
+    ("standing lamp", "floor_lamp"),
+    ("desk lamp", "table_lamp"),
+    ("artwork", "painting"),
+    ("picture", "painting"),
+    ("poster", "painting"),
+    ("blackboard", "whiteboard"),
+    ("chalkboard", "whiteboard"),
+    ("wall mirror", "mirror"),
+    ("floating shelf", "wall_shelf"),
+    ("piano", "upright_piano"),
+    ("treadmill machine", "treadmill"),
+    ("stationary bike", "exercise_bike"),
+    ("exercise bicycle", "exercise_bike"),
+    ("shelf", "shelving_unit"),
+    ("shelves", "shelving_unit"),
+];
+
+/// Why a candidate matched.
+#[derive(Debug, Clone, PartialEq)]
+pub enum MatchReason {
+    /// The query is the category name.
+    ExactCategory,
+    /// The query is this synonym or alias of the category.
+    Synonym(String),
+    /// The query's words overlap this name's words (after typo-tolerant matching).
+    Fuzzy(String),
+    /// The attached embedder found the query close to the category (cosine similarity).
+    Semantic(f32),
+}
+
+impl fmt::Display for MatchReason {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            MatchReason::ExactCategory => write!(f, "exact category"),
+            MatchReason::Synonym(s) => write!(f, "synonym \"{s}\""),
+            MatchReason::Fuzzy(s) => write!(f, "word match with \"{s}\""),
+            MatchReason::Semantic(c) => write!(f, "semantic similarity {c:.3}"),
+        }
+    }
+}
+
+/// One ranked result of [`AssetIndex::search`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Candidate {
+    /// The asset to use: a procedural generator with a seed, or an imported file.
+    pub asset: AssetRef,
+    /// Its category.
+    pub category: String,
+    /// Where it is normally placed.
+    pub placement: Placement,
+    /// Score in [0, 1]; higher is better.
+    pub score: f32,
+    /// Why it matched.
+    pub reason: MatchReason,
+}
+
+/// Why an embedder failed.
+#[derive(Debug, thiserror::Error)]
+pub enum EmbedError {
+    /// The embedding model or service failed.
+    #[error("text embedding failed: {0}")]
+    Failed(String),
+    /// The embedder returned the wrong number of vectors.
+    #[error("embedder returned {got} vectors for {expected} texts")]
+    Count {
+        /// Texts sent.
+        expected: usize,
+        /// Vectors received.
+        got: usize,
+    },
+}
+
+/// Turns texts into vectors whose cosine similarity reflects meaning; the seam for a semantic
+/// model (a later stage implements it with a real sentence-embedding model).
+pub trait TextEmbedder {
+    /// One vector per text, all of the same length.
+    fn embed(&self, texts: &[&str]) -> Result<Vec<Vec<f32>>, EmbedError>;
+}
+
+/// A group of assets sharing one category, with the names it answers to.
+#[derive(Debug, Clone)]
+struct Entry {
+    category: String,
+    placement: Placement,
+    /// Normalised names: the category first, then synonyms and aliases, each with its words.
+    names: Vec<(String, Vec<String>)>,
+    /// Whether a built-in generator exists for the category.
+    builtin: bool,
+    /// Imported assets of this category.
+    imported: Vec<AssetRef>,
+}
+
+/// Index over the built-in categories and imported assets; answers text queries with ranked
+/// [`Candidate`]s.
+pub struct AssetIndex {
+    entries: Vec<Entry>,
+    by_category: BTreeMap<String, usize>,
+    embedder: Option<Box<dyn TextEmbedder + Send + Sync>>,
+    entry_vectors: Vec<Vec<f32>>,
+    /// [`ALIASES`] with normalised aliases.
+    aliases: Vec<(String, &'static str)>,
+}
+
+impl fmt::Debug for AssetIndex {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("AssetIndex")
+            .field("categories", &self.entries.len())
+            .field("semantic", &self.embedder.is_some())
+            .finish()
+    }
+}
+
+/// Scores of the ranking stages.
+const EXACT: f32 = 1.0;
+const SYNONYM: f32 = 0.95;
+const FUZZY_WEIGHT: f32 = 0.85;
+const ALIASED_FUZZY_WEIGHT: f32 = 0.8;
+const SEMANTIC_WEIGHT: f32 = 0.85;
+/// Candidates scoring below this are not returned.
+const MIN_SCORE: f32 = 0.3;
+/// Imported assets rank just above the built-in generator of the same category: the user
+/// brought them for a reason.
+const IMPORTED_BONUS: f32 = 0.01;
+
+impl AssetIndex {
+    /// An index of every built-in category.
+    pub fn builtin() -> Self {
+        let mut index = Self::empty();
+        for c in scenethesis_assets::catalog::categories() {
+            let i = index.entry(c.name, c.placement);
+            index.entries[i].builtin = true;
+            for s in c.synonyms {
+                index.add_name(i, s);
+            }
+        }
+        index
+    }
+
+    /// An index of built-in categories plus the given imported assets.
+    pub fn with_imported<'a>(assets: impl IntoIterator<Item = &'a AssetInfo>) -> Self {
+        let mut index = Self::builtin();
+        for info in assets {
+            index.add_imported(info);
+        }
+        index
+    }
+
+    /// An index with nothing in it.
+    pub fn empty() -> Self {
+        Self {
+            entries: Vec::new(),
+            by_category: BTreeMap::new(),
+            embedder: None,
+            entry_vectors: Vec::new(),
+            aliases: ALIASES.iter().map(|(a, c)| (normalise(a), *c)).collect(),
+        }
+    }
+
+    /// Adds an imported asset (its `source`, category and synonyms are used). Call
+    /// [`AssetIndex::set_embedder`] again afterwards if one is attached, to embed new categories.
+    pub fn add_imported(&mut self, info: &AssetInfo) {
+        let i = self.entry(&info.category, info.placement);
+        for s in &info.synonyms {
+            self.add_name(i, s);
+        }
+        self.entries[i].imported.push(info.source.clone());
+    }
+
+    /// Number of categories in the index.
+    pub fn len(&self) -> usize {
+        self.entries.len()
+    }
+
+    /// Whether the index holds no category.
+    pub fn is_empty(&self) -> bool {
+        self.entries.is_empty()
+    }
+
+    /// The categories in the index, in insertion order.
+    pub fn categories(&self) -> impl Iterator<Item = &str> {
+        self.entries.iter().map(|e| e.category.as_str())
+    }
+
+    /// Attaches a semantic embedder and embeds every category's description once
+    /// (`"sofa: couch, settee"`). Later searches re-rank by cosine similarity to the query.
+    pub fn set_embedder(
+        &mut self,
+        embedder: Box<dyn TextEmbedder + Send + Sync>,
+    ) -> Result<(), EmbedError> {
+        let texts: Vec<String> = self.entries.iter().map(describe).collect();
+        let refs: Vec<&str> = texts.iter().map(String::as_str).collect();
+        let vectors = embedder.embed(&refs)?;
+        if vectors.len() != refs.len() {
+            return Err(EmbedError::Count {
+                expected: refs.len(),
+                got: vectors.len(),
+            });
+        }
+        self.entry_vectors = vectors;
+        self.embedder = Some(embedder);
+        Ok(())
+    }
+
+    /// The best `limit` candidates for `query`, best first. Equal scores are ordered by `seed`,
+    /// and built-in candidates carry a procedural seed derived from it. If an attached
+    /// embedder fails on the query, the lexical ranking is returned (and a warning logged).
+    pub fn search(&self, query: &str, limit: usize, seed: u64) -> Vec<Candidate> {
+        match self.try_search(query, limit, seed) {
+            Ok(c) => c,
+            Err(e) => {
+                tracing::warn!("semantic stage skipped for {query:?}: {e}");
+                self.rank(query, limit, seed, None)
+            }
+        }
+    }
+
+    /// Like [`AssetIndex::search`], but reports an embedder failure instead of falling back.
+    pub fn try_search(
+        &self,
+        query: &str,
+        limit: usize,
+        seed: u64,
+    ) -> Result<Vec<Candidate>, EmbedError> {
+        let semantic = match &self.embedder {
+            Some(embedder) if !self.entry_vectors.is_empty() => {
+                let v = embedder.embed(&[query])?;
+                let q = v.into_iter().next().ok_or(EmbedError::Count {
+                    expected: 1,
+                    got: 0,
+                })?;
+                Some(
+                    self.entry_vectors
+                        .iter()
+                        .map(|e| cosine(&q, e))
+                        .collect::<Vec<f32>>(),
+                )
+            }
+            _ => None,
+        };
+        Ok(self.rank(query, limit, seed, semantic.as_deref()))
+    }
+
+    fn rank(
+        &self,
+        query: &str,
+        limit: usize,
+        seed: u64,
+        semantic: Option<&[f32]>,
+    ) -> Vec<Candidate> {
+        let q = normalise(query);
+        let q_words = words(query);
+        // Each query word that is an alias, replaced by its category's words.
+        let aliased: Vec<String> = q_words
+            .iter()
+            .flat_map(|w| match self.alias_of(w) {
+                Some(category) => words(category),
+                None => vec![w.clone()],
+            })
+            .collect();
+        let mut scored: Vec<(f32, MatchReason, usize)> = Vec::new();
+        for (i, entry) in self.entries.iter().enumerate() {
+            let (mut score, mut reason) = lexical(entry, &q, &q_words, &aliased);
+            if let Some(sims) = semantic {
+                let s = sims.get(i).copied().unwrap_or(0.0);
+                if score < SYNONYM && SEMANTIC_WEIGHT * s > score {
+                    score = SEMANTIC_WEIGHT * s;
+                    reason = MatchReason::Semantic(s);
+                }
+            }
+            if score >= MIN_SCORE {
+                scored.push((score, reason, i));
+            }
+        }
+        let mut candidates: Vec<(Candidate, u64)> = Vec::new();
+        for (score, reason, i) in scored {
+            let entry = &self.entries[i];
+            let category_seed = mix(seed ^ fnv(&entry.category));
+            if entry.builtin {
+                candidates.push((
+                    Candidate {
+                        asset: AssetRef::Procedural {
+                            generator: entry.category.clone(),
+                            seed: category_seed,
+                        },
+                        category: entry.category.clone(),
+                        placement: entry.placement,
+                        score,
+                        reason: reason.clone(),
+                    },
+                    category_seed,
+                ));
+            }
+            for asset in &entry.imported {
+                let tie = mix(seed ^ fnv(&asset.to_string()));
+                candidates.push((
+                    Candidate {
+                        asset: asset.clone(),
+                        category: entry.category.clone(),
+                        placement: entry.placement,
+                        score: (score + IMPORTED_BONUS).min(1.0),
+                        reason: reason.clone(),
+                    },
+                    tie,
+                ));
+            }
+        }
+        candidates.sort_by(|(a, ta), (b, tb)| b.score.total_cmp(&a.score).then(ta.cmp(tb)));
+        candidates.truncate(limit);
+        candidates.into_iter().map(|(c, _)| c).collect()
+    }
+
+    /// The entry for `category`, created if new.
+    fn entry(&mut self, category: &str, placement: Placement) -> usize {
+        if let Some(&i) = self.by_category.get(category) {
+            return i;
+        }
+        self.entries.push(Entry {
+            category: category.to_owned(),
+            placement,
+            names: Vec::new(),
+            builtin: false,
+            imported: Vec::new(),
+        });
+        let i = self.entries.len() - 1;
+        self.by_category.insert(category.to_owned(), i);
+        self.add_name(i, category);
+        for (alias, target) in ALIASES {
+            if *target == category {
+                self.add_name(i, alias);
+            }
+        }
+        i
+    }
+
+    /// The category a normalised alias stands for.
+    fn alias_of(&self, word: &str) -> Option<&'static str> {
+        self.aliases
+            .iter()
+            .find(|(alias, _)| alias == word)
+            .map(|(_, c)| *c)
+    }
+
+    fn add_name(&mut self, i: usize, name: &str) {
+        let n = normalise(name);
+        if !n.is_empty() && !self.entries[i].names.iter().any(|(m, _)| *m == n) {
+            let w = words(&n);
+            self.entries[i].names.push((n, w));
+        }
+    }
+}
+
+/// The lexical score of one entry: exact, synonym, fuzzy or aliased fuzzy.
+fn lexical(entry: &Entry, q: &str, q_words: &[String], aliased: &[String]) -> (f32, MatchReason) {
+    let mut best = (0.0f32, MatchReason::Fuzzy(String::new()));
+    for (k, (name, name_words)) in entry.names.iter().enumerate() {
+        if name == q {
+            return if k == 0 {
+                (EXACT, MatchReason::ExactCategory)
+            } else {
+                (SYNONYM, MatchReason::Synonym(name.clone()))
+            };
+        }
+        let direct = FUZZY_WEIGHT * overlap_score(q_words, name_words);
+        let via_alias = ALIASED_FUZZY_WEIGHT * overlap_score(aliased, name_words);
+        let s = direct.max(via_alias);
+        if s > best.0 {
+            best = (s, MatchReason::Fuzzy(name.clone()));
+        }
+    }
+    best
+}
+
+/// The text embedded for an entry: its category and names.
+fn describe(entry: &Entry) -> String {
+    let names: Vec<&str> = entry
+        .names
+        .iter()
+        .skip(1)
+        .map(|(n, _)| n.as_str())
+        .collect();
+    if names.is_empty() {
+        normalise(&entry.category)
+    } else {
+        format!("{}: {}", normalise(&entry.category), names.join(", "))
+    }
+}
+
+fn cosine(a: &[f32], b: &[f32]) -> f32 {
+    let n = a.len().min(b.len());
+    let dot: f32 = (0..n).map(|i| a[i] * b[i]).sum();
+    let na = a.iter().map(|x| x * x).sum::<f32>().sqrt();
+    let nb = b.iter().map(|x| x * x).sum::<f32>().sqrt();
+    if na == 0.0 || nb == 0.0 {
+        0.0
+    } else {
+        (dot / (na * nb)).clamp(-1.0, 1.0)
+    }
+}
+
+/// FNV-1a hash of a string (stable across platforms and runs).
+fn fnv(s: &str) -> u64 {
+    s.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
+        (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3)
+    })
+}
+
+/// SplitMix64 finaliser: spreads nearby seeds over the whole range.
+fn mix(mut z: u64) -> u64 {
+    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,162 @@
+//! Text normalisation and fuzzy word matching.
+
+/// Lower-cases, turns `_`, `-` and punctuation into spaces, and reduces every word to its
+/// singular form: `"Coffee_Tables!"` → `["coffee", "table"]`.
+pub fn words(text: &str) -> Vec<String> {
+    text.to_lowercase()
+        .split(|c: char| !c.is_alphanumeric())
+        .filter(|w| !w.is_empty())
+        .map(singular)
+        .collect()
+}
+
+/// The words of `text` joined by single spaces (see [`words`]).
+pub fn normalise(text: &str) -> String {
+    words(text).join(" ")
+}
+
+/// An English singular for common plural endings (`shelves` → `shelf`, `boxes` → `box`,
+/// `bodies` → `body`, `chairs` → `chair`); words that only look plural are kept.
+pub fn singular(word: &str) -> String {
+    const KEEP: &[&str] = &[
+        "glass", "grass", "bus", "cactus", "canvas", "chess", "dress", "gas", "lens", "mattress",
+        "news", "series", "species", "stairs", "tennis", "chassis", "compass", "pants", "jeans",
+        "glasses", "scissors", "trousers", "shorts", "goods", "this", "plus", "bonus",
+    ];
+    const IRREGULAR: &[(&str, &str)] = &[
+        ("knives", "knife"),
+        ("leaves", "leaf"),
+        ("loaves", "loaf"),
+        ("people", "person"),
+        ("children", "child"),
+        ("men", "man"),
+        ("women", "woman"),
+        ("mice", "mouse"),
+        ("feet", "foot"),
+        ("teeth", "tooth"),
+        ("geese", "goose"),
+        ("dice", "die"),
+    ];
+    if word.len() <= 3 || KEEP.contains(&word) {
+        return word.to_owned();
+    }
+    if let Some((_, s)) = IRREGULAR.iter().find(|(p, _)| *p == word) {
+        return (*s).to_owned();
+    }
+    if let Some(stem) = word.strip_suffix("ies") {
+        return format!("{stem}y");
+    }
+    if let Some(stem) = word.strip_suffix("ves") {
+        // shelves → shelf, wolves → wolf; but not "curves" → "curf".
+        if stem.ends_with('l') || stem.ends_with("ar") {
+            return format!("{stem}f");
+        }
+    }
+    for suffix in ["ches", "shes", "xes", "sses", "zzes"] {
+        if let Some(stem) = word.strip_suffix(suffix) {
+            return format!("{stem}{}", &suffix[..suffix.len() - 2]);
+        }
+    }
+    if word.ends_with('s')
+        && !word.ends_with("ss")
+        && !word.ends_with("us")
+        && !word.ends_with("is")
+    {
+        return word[..word.len() - 1].to_owned();
+    }
+    word.to_owned()
+}
+
+/// Levenshtein distance between two words, counted in characters.
+pub fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let above = row[j + 1];
+            row[j + 1] = (above + 1)
+                .min(row[j] + 1)
+                .min(diagonal + usize::from(ca != cb));
+            diagonal = above;
+        }
+    }
+    row[b.len()]
+}
+
+/// Similarity of two words in [0, 1]: 1 when equal, `1 − distance / longer length` when that is
+/// at least 0.75 (a typo or two in a long word), else 0.
+pub fn word_similarity(a: &str, b: &str) -> f32 {
+    if a == b {
+        return 1.0;
+    }
+    let longer = a.chars().count().max(b.chars().count());
+    if longer < 4 {
+        return 0.0;
+    }
+    let s = 1.0 - edit_distance(a, b) as f32 / longer as f32;
+    if s >= 0.75 {
+        s
+    } else {
+        0.0
+    }
+}
+
+/// How well a query's words cover a name's words: 0.7 × the name's words found in the query plus
+/// 0.3 × the query's words found in the name, each word matched by [`word_similarity`].
+pub fn overlap_score(query: &[String], name: &[String]) -> f32 {
+    if query.is_empty() || name.is_empty() {
+        return 0.0;
+    }
+    let best = |w: &String, others: &[String]| {
+        others
+            .iter()
+            .map(|o| word_similarity(w, o))
+            .fold(0.0f32, f32::max)
+    };
+    let recall = name.iter().map(|w| best(w, query)).sum::<f32>() / name.len() as f32;
+    let precision = query.iter().map(|w| best(w, name)).sum::<f32>() / query.len() as f32;
+    0.7 * recall + 0.3 * precision
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn words_are_lowercase_singular_and_split_on_separators() {
+        assert_eq!(words("Coffee_Tables!"), vec!["coffee", "table"]);
+        assert_eq!(words("book-shelves"), vec!["book", "shelf"]);
+        assert_eq!(words("two wine glasses"), vec!["two", "wine", "glasses"]);
+        assert_eq!(normalise("BOXES  of  Toys"), "box of toy");
+        assert_eq!(singular("bodies"), "body");
+        assert_eq!(singular("benches"), "bench");
+        assert_eq!(singular("glass"), "glass");
+        assert_eq!(singular("cactus"), "cactus");
+        assert_eq!(singular("tv"), "tv");
+    }
+
+    #[test]
+    fn edit_distance_and_similarity() {
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+        assert_eq!(edit_distance("", "abc"), 3);
+        assert_eq!(word_similarity("bookshelf", "bookshelf"), 1.0);
+        assert!(word_similarity("bookshelf", "bookshelv") > 0.85);
+        assert_eq!(word_similarity("chair", "armchair"), 0.0);
+        assert_eq!(
+            word_similarity("cat", "car"),
+            0.0,
+            "short words need an exact match"
+        );
+    }
+
+    #[test]
+    fn overlap_prefers_the_name_the_query_covers() {
+        let q = words("red wooden chair");
+        let chair = overlap_score(&q, &words("chair"));
+        let dining = overlap_score(&q, &words("dining chair"));
+        assert!(chair > dining, "{chair} vs {dining}");
+        assert_eq!(overlap_score(&q, &words("lamp")), 0.0);
+    }
+}
