@@ -125,15 +125,16 @@ impl KnowledgePlanner {
                 .iter()
                 .enumerate()
                 .map(|(i, a)| {
-                    (
-                        a.objects
-                            .iter()
-                            .filter(|g| mentioned.contains(g.category.as_str()))
-                            .map(|g| &g.category)
-                            .collect::<BTreeSet<_>>()
-                            .len(),
-                        i,
-                    )
+                    let held = a
+                        .objects
+                        .iter()
+                        .filter(|g| mentioned.contains(g.category.as_str()))
+                        .map(|g| &g.category)
+                        .collect::<BTreeSet<_>>()
+                        .len();
+                    // An archetype anchored on a mentioned object fits best.
+                    let anchored = held > 0 && mentioned.contains(a.anchor.as_str());
+                    (2 * held + usize::from(anchored), i)
                 })
                 .filter(|(n, _)| *n > 0)
                 .collect();

@@ -73,9 +73,14 @@ pub(crate) fn place_children(
     let mut next_shelf: BTreeMap<usize, usize> = BTreeMap::new();
     let mut dropped = Vec::new();
     let mut done = vec![false; plan.objects.len()];
+    // Largest first, so a small item never blocks a big one on a shared surface.
+    let area = |i: usize| -(infos[i].size[0] as f64 * infos[i].size[2] as f64);
+    let mut order: Vec<usize> = (0..plan.objects.len()).collect();
+    order.sort_by(|&a, &b| area(a).total_cmp(&area(b)).then(a.cmp(&b)));
     loop {
         let mut progress = false;
-        for (i, o) in plan.objects.iter().enumerate() {
+        for &i in &order {
+            let o = &plan.objects[i];
             let ParentRef::Object(parent_id) = &o.parent else {
                 continue;
             };
@@ -160,31 +165,34 @@ pub(crate) fn place_children(
                 for rel_yaw in [0.0, FRAC_PI_2] {
                     let (w, d) = if rel_yaw == 0.0 { (cw, cd) } else { (cd, cw) };
                     let fit = ((b[2] - b[0]) * 0.98 / w).min((b[3] - b[1]) * 0.98 / d);
-                    let s = scale.min(fit).min(1.0);
-                    if s < child.scale_range[0] as f64 || s <= 0.0 {
-                        continue;
-                    }
-                    let (hw, hd) = (w * s / 2.0, d * s / 2.0);
-                    if let Some((x, z)) = find_spot(surface, &b, occ, hw, hd, rng) {
-                        occ.push([x - hw, z - hd, x + hw, z + hd]);
-                        let local = Point3::new(x, surface.height as f64, z);
-                        let world = parent_pose.transform_point(&local);
-                        let yaw = parent_pose.yaw + rel_yaw;
-                        placed = Some(Pose::new(s * parent_pose.scale, yaw, world.coords));
-                        // Keep filling this shelf next time.
-                        if surface.kind == SurfaceKind::Shelf {
-                            let shelves: Vec<usize> = parent
-                                .support_surfaces
-                                .iter()
-                                .enumerate()
-                                .filter(|(_, s)| s.kind == SurfaceKind::Shelf)
-                                .map(|(k, _)| k)
-                                .collect();
-                            if let Some(pos) = shelves.iter().position(|&k| k == sk) {
-                                next_shelf.insert(p, pos);
+                    let largest = scale.min(fit).min(1.0);
+                    let smallest = child.scale_range[0] as f64;
+                    // The natural size first, then a little smaller within the scale range.
+                    let tries = [largest, largest * 0.92, largest * 0.85];
+                    for s in tries.into_iter().filter(|s| *s >= smallest && *s > 0.0) {
+                        let (hw, hd) = (w * s / 2.0, d * s / 2.0);
+                        let round = (w - d).abs() <= 0.15 * w.max(d);
+                        if let Some((x, z)) = find_spot(surface, &b, occ, hw, hd, round, rng) {
+                            occ.push([x - hw, z - hd, x + hw, z + hd]);
+                            let local = Point3::new(x, surface.height as f64, z);
+                            let world = parent_pose.transform_point(&local);
+                            let yaw = parent_pose.yaw + rel_yaw;
+                            placed = Some(Pose::new(s * parent_pose.scale, yaw, world.coords));
+                            // Keep filling this shelf next time.
+                            if surface.kind == SurfaceKind::Shelf {
+                                let shelves: Vec<usize> = parent
+                                    .support_surfaces
+                                    .iter()
+                                    .enumerate()
+                                    .filter(|(_, s)| s.kind == SurfaceKind::Shelf)
+                                    .map(|(k, _)| k)
+                                    .collect();
+                                if let Some(pos) = shelves.iter().position(|&k| k == sk) {
+                                    next_shelf.insert(p, pos);
+                                }
                             }
+                            break 'surfaces;
                         }
-                        break 'surfaces;
                     }
                 }
             }
@@ -229,11 +237,26 @@ fn find_spot(
     occ: &[Rect],
     hw: f64,
     hd: f64,
+    round: bool,
     rng: &mut ChaCha8Rng,
 ) -> Option<(f64, f64)> {
+    // A round item (about as wide as deep) in a container only needs its inscribed circle
+    // on the container's floor.
+    let circle_inside = |x: f64, z: f64| {
+        let radius = hw.max(hd);
+        (0..12).all(|k| {
+            let a = k as f64 * std::f64::consts::PI / 6.0;
+            surface.contains((x + radius * a.cos()) as f32, (z + radius * a.sin()) as f32)
+        })
+    };
     let ok = |x: f64, z: f64| {
         let r = [x - hw, z - hd, x + hw, z + hd];
-        rect_inside(surface, &r) && !occ.iter().any(|o| rects_overlap(o, &r))
+        let inside = if round && surface.kind == SurfaceKind::Interior {
+            circle_inside(x, z)
+        } else {
+            rect_inside(surface, &r)
+        };
+        inside && !occ.iter().any(|o| rects_overlap(o, &r))
     };
     let step = 0.01;
     let xs: Vec<f64> = {
@@ -241,9 +264,12 @@ fn find_spot(
         if hi < lo {
             return None;
         }
-        (0..=((hi - lo) / step) as usize)
+        let mut v: Vec<f64> = (0..=((hi - lo) / step) as usize)
             .map(|k| lo + k as f64 * step)
-            .collect()
+            .collect();
+        v.push((lo + hi) / 2.0);
+        v.sort_by(f64::total_cmp);
+        v
     };
     let zs: Vec<f64> = {
         let (lo, hi) = (b[1] + hd, b[3] - hd);
@@ -254,6 +280,7 @@ fn find_spot(
         let mut v: Vec<f64> = (0..=((hi - lo) / step) as usize)
             .map(|k| lo + k as f64 * step)
             .collect();
+        v.push(mid);
         v.sort_by(|a, c| (a - mid).abs().total_cmp(&(c - mid).abs()));
         v
     };
