@@ -86,16 +86,8 @@ impl PoseAlignment {
                 out.push(w2 * (v - c.target_pixel.y));
                 if let Some(j) = jacobian.as_deref_mut() {
                     // u = cx + fx·x/(−z), v = cy + fy·y/z in the camera frame.
-                    let du = Vector3::new(
-                        k.fx / depth,
-                        0.0,
-                        k.fx * local.x / (depth * depth),
-                    );
-                    let dv = Vector3::new(
-                        0.0,
-                        -k.fy / depth,
-                        -k.fy * local.y / (depth * depth),
-                    );
+                    let du = Vector3::new(k.fx / depth, 0.0, k.fx * local.x / (depth * depth));
+                    let dv = Vector3::new(0.0, -k.fy / depth, -k.fy * local.y / (depth * depth));
                     let mut ju = PoseVector::zeros();
                     let mut jv = PoseVector::zeros();
                     for (col, d) in dx.iter().enumerate() {

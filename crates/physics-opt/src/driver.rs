@@ -95,11 +95,11 @@ pub fn optimize_scene(
         }
     }
     let room = RoomBounds::of(&scene.architecture);
-    let mut grid = Obstacles::new();
-    let mut exact = Obstacles::new();
+    let mut grid = Obstacles::new(false);
+    let mut exact = Obstacles::new(true);
     for (id, field, pose) in architecture_fields(&scene.architecture) {
-        grid.insert(&id, field.clone(), pose, true);
-        exact.insert(&id, field, pose, true);
+        grid.insert(&id, field.clone(), pose, true, &[]);
+        exact.insert(&id, field, pose, true, &[]);
     }
     let mut finals: BTreeMap<&str, Pose> = BTreeMap::new();
     let mut reports: Vec<ObjectReport> = Vec::with_capacity(order.len());
@@ -141,8 +141,9 @@ pub fn optimize_scene(
                 polished = true;
             }
         }
-        grid.insert(&object.id, asset.grid_field(), pose, false);
-        exact.insert(&object.id, asset.exact_field(), pose, false);
+        let samples = asset.surface_points();
+        grid.insert(&object.id, asset.grid_field(), pose, false, samples);
+        exact.insert(&object.id, asset.exact_field(), pose, false, samples);
         finals.insert(&object.id, pose);
         reports.push(ObjectReport {
             id: object.id.clone(),
@@ -228,7 +229,11 @@ fn resolve_support(
 fn carry(before: &Pose, after: &Pose, child: &Pose) -> Pose {
     let local = unrotate_y(before.yaw, &(child.translation - before.translation)) / before.scale;
     let translation = after.translation + rotate_y(after.yaw, &(local * after.scale));
-    Pose::new(child.scale, child.yaw + (after.yaw - before.yaw), translation)
+    Pose::new(
+        child.scale,
+        child.yaw + (after.yaw - before.yaw),
+        translation,
+    )
 }
 
 /// The architecture as posed box fields: a floor slab under the floor rectangle (reaching a
@@ -279,7 +284,11 @@ mod tests {
     #[test]
     fn carried_child_keeps_its_place_relative_to_the_parent() {
         let before = Pose::new(1.0, 0.0, Vector3::new(0.0, 0.0, 0.0));
-        let after = Pose::new(1.0, std::f64::consts::FRAC_PI_2, Vector3::new(1.0, 0.0, 0.0));
+        let after = Pose::new(
+            1.0,
+            std::f64::consts::FRAC_PI_2,
+            Vector3::new(1.0, 0.0, 0.0),
+        );
         let child = Pose::new(0.8, 0.1, Vector3::new(0.0, 0.75, 0.3));
         let moved = carry(&before, &after, &child);
         // +Z turns toward +X under a quarter-turn yaw.

@@ -7,8 +7,9 @@ use scenethesis_scene_graph::{Aabb, Architecture, Pose};
 use serde::{Deserialize, Serialize};
 
 use crate::alignment::PoseAlignment;
+use crate::obstacles::box_distance;
 use crate::obstacles::Obstacles;
-use crate::params::{world_point, PoseVector, SCALE, TX, TY, TZ};
+use crate::params::{rotate_y, unrotate_y, world_point, PoseVector, SCALE, TX, TY, TZ};
 use crate::prepare::PreparedAsset;
 use crate::support::Support;
 
@@ -31,7 +32,8 @@ pub struct LossSettings {
     pub weight_translation: f64,
     /// Weight λ_cS of the scale collision loss.
     pub weight_scale: f64,
-    /// Weight λ_s of the stability loss.
+    /// Weight λ_s of the stability loss; the default σ² makes a unit learning rate move a
+    /// resting object by about its gap, whatever σ is.
     pub weight_stability: f64,
     /// Two penetrating points belong to the same cluster when they are closer than this many
     /// mean sample spacings on the asset surface.
@@ -47,7 +49,7 @@ impl Default for LossSettings {
             weight_pose: 1.0,
             weight_translation: 1.0,
             weight_scale: 1.0,
-            weight_stability: 1.0,
+            weight_stability: 0.01,
             cluster_link_spacings: 2.5,
         }
     }
@@ -115,19 +117,27 @@ pub enum Stage {
     Physics,
 }
 
-/// One surface point closer to an obstacle than the collision margin.
+/// A penetration between the object and an obstacle, found from either side: one of the
+/// object's surface points inside (or within the margin of) an obstacle, or one of an already
+/// placed object's surface points inside the object.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Contact {
-    /// Index of the point in [`PreparedAsset::surface_points`].
-    pub sample: usize,
-    /// The point in world coordinates.
+    /// The contact point in the object's asset frame (scale 1), for clustering.
+    pub local: Point3<f64>,
+    /// The contact point in world coordinates.
     pub world: Point3<f64>,
-    /// Its signed distance to the nearest obstacle (negative inside).
+    /// Signed distance between the point and the other body (negative inside).
     pub distance: f64,
     /// How much it violates the margin: `margin − distance` (positive).
     pub violation: f64,
-    /// Index of the nearest obstacle in the [`Obstacles`].
+    /// Index of the obstacle in the [`Obstacles`].
     pub obstacle: usize,
+    /// Unit direction in which moving the object separates this contact fastest: the
+    /// obstacle's outward gradient for the object's own points, minus the object's gradient
+    /// for an obstacle's points inside the object.
+    pub push: Vector3<f64>,
+    /// Whether the point belongs to the obstacle (found inside the object).
+    pub foreign: bool,
 }
 
 /// The collision state of an object at a pose.
@@ -217,7 +227,10 @@ impl ObjectProblem<'_> {
         world_point(pose, &self.asset.centroid())
     }
 
-    /// The surface points closer than the collision margin to an obstacle, clustered.
+    /// The contacts closer than the collision margin, checked in both directions (the
+    /// object's samples against the obstacles, and nearby obstacles' samples against the
+    /// object's own field), clustered. Contacts of the bottom with the support surface are
+    /// left out of the clusters: the stability term, not the scale, answers them.
     pub fn collision(&self, pose: &Pose) -> CollisionState {
         let margin = self.settings.collision_margin;
         let mut contacts = Vec::new();
@@ -227,13 +240,12 @@ impl ObjectProblem<'_> {
         if near.is_empty() {
             return CollisionState::default();
         }
-        for (sample, local) in self.asset.surface_points().iter().enumerate() {
+        for local in self.asset.surface_points() {
             let world = world_point(pose, local);
             let mut best: Option<(usize, f64)> = None;
             for &index in &near {
                 let b = self.obstacles.bounds(index);
-                let outside = crate::obstacles::box_distance(b, &world);
-                if outside >= margin {
+                if box_distance(b, &world) >= margin {
                     continue;
                 }
                 let d = self.obstacles.distance_to(index, &world);
@@ -243,24 +255,81 @@ impl ObjectProblem<'_> {
             }
             if let Some((obstacle, distance)) = best {
                 contacts.push(Contact {
-                    sample,
+                    local: *local,
                     world,
                     distance,
                     violation: margin - distance,
                     obstacle,
+                    push: self.obstacles.gradient_of(obstacle, &world),
+                    foreign: false,
                 });
             }
         }
-        let clusters = self
+        let own = if self.obstacles.is_exact() {
+            self.asset.exact_field()
+        } else {
+            self.asset.grid_field()
+        };
+        let grown = Aabb::new(
+            region.min - Vector3::repeat(margin),
+            region.max + Vector3::repeat(margin),
+        );
+        for &index in &near {
+            for world in self.obstacles.samples(index) {
+                if !grown.contains_point(world) {
+                    continue;
+                }
+                let local_scaled = unrotate_y(pose.yaw, &(world.coords - pose.translation));
+                let local = Point3::from(local_scaled / pose.scale);
+                let (d, g) = own.distance_and_gradient(&local.cast::<f32>());
+                let distance = d as f64 * pose.scale;
+                if distance >= margin {
+                    continue;
+                }
+                let push = -rotate_y(pose.yaw, &g.cast::<f64>());
+                contacts.push(Contact {
+                    local,
+                    world: *world,
+                    distance,
+                    violation: margin - distance,
+                    obstacle: index,
+                    push: push.try_normalize(1e-12).unwrap_or_else(Vector3::y),
+                    foreign: true,
+                });
+            }
+        }
+        let band = self
+            .support
+            .plane()
+            .map(|plane| plane.height + self.settings.support_clearance + 2.0 * margin + 0.005);
+        let clustered: Vec<Contact> = contacts
+            .iter()
+            .filter(|c| band.is_none_or(|top| c.world.y > top))
+            .copied()
+            .collect();
+        let mut clusters = self
             .asset
-            .cluster(&contacts, self.settings.cluster_link_spacings);
+            .cluster(&clustered, self.settings.cluster_link_spacings);
+        // Map cluster members back to indices into `contacts`.
+        if clustered.len() != contacts.len() {
+            let index: Vec<usize> = contacts
+                .iter()
+                .enumerate()
+                .filter(|(_, c)| band.is_none_or(|top| c.world.y > top))
+                .map(|(i, _)| i)
+                .collect();
+            for cluster in &mut clusters {
+                for member in cluster.iter_mut() {
+                    *member = index[*member];
+                }
+            }
+        }
         CollisionState { contacts, clusters }
     }
 
-    /// The outward unit normal of the obstacle at a contact (the direction that increases the
-    /// contact's distance fastest).
+    /// The direction in which moving the object separates a contact fastest.
     pub fn obstacle_normal(&self, contact: &Contact) -> Vector3<f64> {
-        self.obstacles.gradient_of(contact.obstacle, &contact.world)
+        contact.push
     }
 
     /// The stability residuals `d_i − clearance` of the bottom points, with the vertical
@@ -317,7 +386,11 @@ impl ObjectProblem<'_> {
                     let mut push = Vector3::zeros();
                     for c in &state.contacts {
                         let u = centroid - c.world;
-                        let dir = if u.norm() > 1e-9 { u.normalize() } else { Vector3::y() };
+                        let dir = if u.norm() > 1e-9 {
+                            u.normalize()
+                        } else {
+                            Vector3::y()
+                        };
                         push += dir * c.violation;
                         losses.translation += c.violation * c.violation / n;
                     }
@@ -401,8 +474,7 @@ impl ObjectProblem<'_> {
     pub fn resting_height(&self, pose: &Pose) -> Option<f64> {
         let plane = self.support.plane()?;
         Some(
-            plane.height + self.settings.support_clearance
-                - pose.scale * self.asset.bounds().min.y,
+            plane.height + self.settings.support_clearance - pose.scale * self.asset.bounds().min.y,
         )
     }
 }

@@ -18,22 +18,38 @@ pub struct Obstacles {
     ids: Vec<String>,
     bounds: Vec<Aabb>,
     architecture: Vec<bool>,
+    points: Vec<Vec<Point3<f64>>>,
+    exact: bool,
 }
 
 impl Obstacles {
-    /// An empty set.
-    pub fn new() -> Self {
-        Self::default()
+    /// An empty set. `exact` says whether its fields are exact mesh fields (objects optimized
+    /// against it then use their own exact field too) or baked grids.
+    pub fn new(exact: bool) -> Self {
+        Self {
+            exact,
+            ..Self::default()
+        }
+    }
+
+    /// Whether the fields are exact (rather than baked grids).
+    pub fn is_exact(&self) -> bool {
+        self.exact
     }
 
     /// Adds (or re-places) the field `id` with `pose`. `architecture` marks floors and walls.
+    /// `samples` are surface points of the object in its own frame: they are posed and kept so
+    /// that an object optimized later can test them against its own field (penetration is
+    /// checked in both directions).
     pub fn insert(
         &mut self,
         id: &str,
         field: Arc<dyn SignedDistance>,
         pose: Pose,
         architecture: bool,
+        samples: &[Point3<f64>],
     ) {
+        let world: Vec<Point3<f64>> = samples.iter().map(|p| world_point(&pose, p)).collect();
         self.scene.insert(id, field, pose);
         let (lo, hi) = self
             .scene
@@ -44,11 +60,13 @@ impl Obstacles {
             Some(i) => {
                 self.bounds[i] = bounds;
                 self.architecture[i] = architecture;
+                self.points[i] = world;
             }
             None => {
                 self.ids.push(id.to_owned());
                 self.bounds.push(bounds);
                 self.architecture.push(architecture);
+                self.points.push(world);
             }
         }
     }
@@ -86,6 +104,11 @@ impl Obstacles {
     /// The world bounding box of field `index`.
     pub fn bounds(&self, index: usize) -> &Aabb {
         &self.bounds[index]
+    }
+
+    /// The posed surface samples of field `index` (empty for architecture).
+    pub fn samples(&self, index: usize) -> &[Point3<f64>] {
+        &self.points[index]
     }
 
     /// The signed distance from world point `p` to field `index`.

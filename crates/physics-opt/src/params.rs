@@ -78,9 +78,12 @@ mod tests {
             let mut b = v;
             a[k] += h;
             b[k] -= h;
-            let fd = (world_point(&from_vector(&a), &p) - world_point(&from_vector(&b), &p))
-                / (2.0 * h);
-            assert!((fd - column).norm() < 1e-6, "column {k}: {fd:?} vs {column:?}");
+            let fd =
+                (world_point(&from_vector(&a), &p) - world_point(&from_vector(&b), &p)) / (2.0 * h);
+            assert!(
+                (fd - column).norm() < 1e-6,
+                "column {k}: {fd:?} vs {column:?}"
+            );
         }
         let w = Vector3::new(0.2, 0.1, 0.9);
         assert!((unrotate_y(0.7, &rotate_y(0.7, &w)) - w).norm() < 1e-12);

@@ -16,12 +16,23 @@ use crate::PhysicsOptError;
 /// How densely to sample an asset.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PrepareSettings {
-    /// Surface samples used by the collision losses (the paper uses n = 400).
+    /// Least number of surface samples used by the collision losses (the paper uses n = 400).
     pub surface_samples: usize,
+    /// Largest mean spacing of the collision samples, metres: big assets get more than
+    /// `surface_samples` so that thin parts (a 4 cm table top) cannot slip between them.
+    pub surface_spacing: f64,
+    /// Upper limit of the collision samples.
+    pub max_surface_samples: usize,
     /// Samples on the bottom face of the bounding box used by the stability loss.
     pub bottom_samples: usize,
-    /// Surface samples (besides every vertex) used to check the post-conditions.
+    /// Least number of surface samples (besides every vertex) used to check the
+    /// post-conditions.
     pub check_samples: usize,
+    /// Largest mean spacing of the check samples, metres (the collision metric uses about one
+    /// sample per cm²).
+    pub check_spacing: f64,
+    /// Upper limit of the check samples.
+    pub max_check_samples: usize,
     /// Largest cell edge of the baked grid in metres (`None`: the grid's default, at most
     /// 2 cm and at most 1/64 of the longest side).
     pub grid_cell: Option<f32>,
@@ -33,8 +44,12 @@ impl Default for PrepareSettings {
     fn default() -> Self {
         Self {
             surface_samples: 400,
+            surface_spacing: 0.02,
+            max_surface_samples: 6000,
             bottom_samples: 32,
             check_samples: 2000,
+            check_spacing: 0.01,
+            max_check_samples: 12000,
             grid_cell: None,
             seed: 0x5ce7_e515,
         }
@@ -93,8 +108,18 @@ impl PreparedAsset {
         })?;
         let grid = GridSdf::bake(&exact, settings.grid_cell);
         let to64 = |p: &Point3<f32>| p.cast::<f64>();
+        let area = surface_area(mesh);
+        let count = |least: usize, spacing: f64, most: usize| {
+            let by_area = (area / (spacing * spacing).max(1e-12)).ceil() as usize;
+            by_area.clamp(least, most.max(least))
+        };
+        let surface_count = count(
+            settings.surface_samples,
+            settings.surface_spacing,
+            settings.max_surface_samples,
+        );
         let surface: Vec<Point3<f64>> =
-            sampling::surface_points(mesh, settings.surface_samples, settings.seed)
+            sampling::surface_points(mesh, surface_count, settings.seed)
                 .iter()
                 .map(to64)
                 .collect();
@@ -103,6 +128,25 @@ impl PreparedAsset {
                 asset: name.to_owned(),
             });
         }
+        let sample_spacing = (area / surface.len() as f64).sqrt();
+        let centroid = Point3::from(
+            surface
+                .iter()
+                .fold(Vector3::zeros(), |acc, p| acc + p.coords)
+                / surface.len() as f64,
+        );
+        let mut surface = surface;
+        // Corners are where thin penetrations hide between random samples: add the vertices
+        // (evenly thinned to at most as many as the samples).
+        let vertex_count = mesh.vertex_count().max(1);
+        let stride = vertex_count.div_ceil(surface_count.max(1)).max(1);
+        surface.extend(
+            mesh.parts
+                .iter()
+                .flat_map(|p| p.positions.iter())
+                .step_by(stride)
+                .map(|p| Point3::from(*p).cast::<f64>()),
+        );
         let (lo, hi) = (bounds.min.cast::<f32>(), bounds.max.cast::<f32>());
         let bottom = sampling::bottom_points(
             lo,
@@ -114,21 +158,25 @@ impl PreparedAsset {
         .iter()
         .map(to64)
         .collect();
-        let mut check: Vec<Point3<f64>> =
-            sampling::surface_points(mesh, settings.check_samples, settings.seed ^ 0xc4)
-                .iter()
-                .map(to64)
-                .collect();
+        let mut check: Vec<Point3<f64>> = sampling::surface_points(
+            mesh,
+            count(
+                settings.check_samples,
+                settings.check_spacing,
+                settings.max_check_samples,
+            ),
+            settings.seed ^ 0xc4,
+        )
+        .iter()
+        .map(to64)
+        .collect();
         for part in &mesh.parts {
-            check.extend(part.positions.iter().map(|p| Point3::from(*p).cast::<f64>()));
+            check.extend(
+                part.positions
+                    .iter()
+                    .map(|p| Point3::from(*p).cast::<f64>()),
+            );
         }
-        let centroid = Point3::from(
-            surface
-                .iter()
-                .fold(Vector3::zeros(), |acc, p| acc + p.coords)
-                / surface.len() as f64,
-        );
-        let sample_spacing = (surface_area(mesh) / surface.len() as f64).sqrt();
         Ok(Self {
             exact: Arc::new(exact),
             grid: Arc::new(grid),
@@ -167,7 +215,8 @@ impl PreparedAsset {
         self.grid.clone()
     }
 
-    /// Surface samples for the collision losses, asset frame.
+    /// Surface samples for the collision losses (area-uniform samples plus the mesh's
+    /// vertices), asset frame.
     pub fn surface_points(&self) -> &[Point3<f64>] {
         &self.surface_points
     }
@@ -215,10 +264,7 @@ impl PreparedAsset {
     /// Groups contacts into clusters of surface samples closer than `link_spacings` mean
     /// spacings to each other (the paper's `N_cluster`: separate penetration regions).
     pub fn cluster(&self, contacts: &[Contact], link_spacings: f64) -> Vec<Vec<usize>> {
-        let points: Vec<Point3<f32>> = contacts
-            .iter()
-            .map(|c| self.surface_points[c.sample].cast::<f32>())
-            .collect();
+        let points: Vec<Point3<f32>> = contacts.iter().map(|c| c.local.cast::<f32>()).collect();
         let distances = vec![-1.0f32; points.len()];
         sampling::negative_clusters(
             &points,

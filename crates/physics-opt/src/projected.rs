@@ -94,11 +94,7 @@ impl ProjectedGaussNewton {
         let mut lambda = self.damping;
         let mut jac = Vec::new();
         let mut iterations = 0;
-        let mut cost: f64 = alignment
-            .residuals(&pose, None)
-            .iter()
-            .map(|r| r * r)
-            .sum();
+        let mut cost: f64 = alignment.residuals(&pose, None).iter().map(|r| r * r).sum();
         while iterations < self.alignment_iterations {
             iterations += 1;
             let r = alignment.residuals(&pose, Some(&mut jac));
@@ -223,7 +219,7 @@ impl ProjectedGaussNewton {
         let mut constraints = Vec::with_capacity(state.contacts.len());
         let mut pressing_down: Option<f64> = None;
         for c in &state.contacts {
-            let mut n = problem.obstacle_normal(c);
+            let mut n = c.push;
             let toward_centroid = centroid - c.world;
             if toward_centroid.norm() > 1e-9 && n.dot(&toward_centroid.normalize()) < -0.2 {
                 n = toward_centroid.normalize();
@@ -235,10 +231,7 @@ impl ProjectedGaussNewton {
             }
             let h = horizontal(&n);
             if h.norm() >= self.min_horizontal_normal {
-                constraints.push(Constraint {
-                    normal: h,
-                    depth,
-                });
+                constraints.push(Constraint { normal: h, depth });
             } else if n.y < 0.0 {
                 let height = (c.world.y - base_y).max(1e-6);
                 let factor = ((height - depth) / height).max(0.0);
@@ -341,7 +334,10 @@ mod tests {
         ];
         let (d, ok) = solve_min_norm(&cs);
         assert!(ok);
-        assert!(d.x >= 0.1 - 1e-6 && (d.x + d.z) / 2f64.sqrt() >= 0.1 - 1e-6, "{d:?}");
+        assert!(
+            d.x >= 0.1 - 1e-6 && (d.x + d.z) / 2f64.sqrt() >= 0.1 - 1e-6,
+            "{d:?}"
+        );
         assert!(d.norm() < 0.1 * 1.1, "not minimal: {d:?}");
         let opposed = [
             Constraint {

@@ -218,7 +218,11 @@ mod tests {
 
     #[test]
     fn picks_the_compartment_nearest_in_height_and_places_it() {
-        let pose = Pose::new(1.0, std::f64::consts::FRAC_PI_2, Vector3::new(1.0, 0.0, 0.0));
+        let pose = Pose::new(
+            1.0,
+            std::f64::consts::FRAC_PI_2,
+            Vector3::new(1.0, 0.0, 0.0),
+        );
         let s = shelf_surfaces();
         let foot = Point3::new(1.0, 0.47, 0.1);
         let plane = choose_surface("shelf", &pose, &s, RelationKind::Inside, &foot).unwrap();

@@ -1,0 +1,491 @@
+//! Hand-built scenes with known answers, solved by both optimizers.
+
+mod support;
+
+use std::sync::Arc;
+
+use nalgebra::{Point3, Vector3};
+use scenethesis_physics_opt::{
+    optimize_scene, Correspondence, Issue, OptimizeSettings, Optimizer, Placement, PoseAlignment,
+    ProjectedGaussNewton, SceneProblem, Sgd,
+};
+use scenethesis_scene_graph::{Camera, Intrinsics, Pose, RelationKind};
+use support::*;
+
+fn optimizers() -> Vec<Box<dyn Optimizer>> {
+    vec![
+        Box::new(Sgd::default()),
+        Box::new(ProjectedGaussNewton::default()),
+    ]
+}
+
+fn run(problem: &SceneProblem, optimizer: &dyn Optimizer) -> Placement {
+    optimize_scene(problem, optimizer, &OptimizeSettings::default()).unwrap()
+}
+
+fn assert_all_ok(placement: &Placement) {
+    let failures: Vec<String> = placement
+        .objects
+        .iter()
+        .filter(|o| !o.is_ok() || o.penetration > 0.001)
+        .map(|o| {
+            format!(
+                "{o} (iterations {}, polished {}, pose {:?})",
+                o.physics_iterations, o.polished, o.pose
+            )
+        })
+        .collect();
+    assert!(
+        failures.is_empty(),
+        "[{}] {failures:#?}",
+        placement.optimizer
+    );
+}
+
+fn gap(placement: &Placement, id: &str) -> f64 {
+    placement.object(id).unwrap().support_gap.unwrap()
+}
+
+#[test]
+fn two_interpenetrating_boxes_are_pushed_apart() {
+    let b = Arc::new(boxed([0.5, 0.5, 0.5], [0.9, 1.1]));
+    let problem = problem(
+        "box_a",
+        vec![
+            (
+                object(
+                    "box_a",
+                    None,
+                    RelationKind::OnFloor,
+                    &b,
+                    at(0.0, 0.0, 0.0, 0.0),
+                ),
+                b.clone(),
+            ),
+            (
+                object(
+                    "box_b",
+                    None,
+                    RelationKind::OnFloor,
+                    &b,
+                    at(0.4, 0.0, 0.05, 0.0),
+                ),
+                b.clone(),
+            ),
+        ],
+    );
+    for opt in optimizers() {
+        let placement = run(&problem, opt.as_ref());
+        assert_all_ok(&placement);
+        let a = placement.pose("box_a").unwrap();
+        let bp = placement.pose("box_b").unwrap();
+        // The anchor goes first and has nothing to avoid; the second box moves away from it.
+        assert!(
+            a.translation.xz().norm() < 1e-3,
+            "[{}] {a:?}",
+            placement.optimizer
+        );
+        let ax = a.translation.x + 0.25 * a.scale;
+        let bx = bp.translation.x - 0.25 * bp.scale;
+        assert!(
+            bx - ax >= 0.0
+                || (bp.translation.z - a.translation.z).abs() >= 0.25 * (a.scale + bp.scale),
+            "[{}] boxes still overlap: {a:?} {bp:?}",
+            placement.optimizer
+        );
+        for id in ["box_a", "box_b"] {
+            let g = gap(&placement, id);
+            assert!(
+                (0.0..=0.002).contains(&g),
+                "[{}] {id} gap {g}",
+                placement.optimizer
+            );
+        }
+    }
+}
+
+#[test]
+fn book_sunk_into_table_is_lifted_onto_it() {
+    let table = Arc::new(table());
+    let book = Arc::new(book());
+    let problem = problem(
+        "table",
+        vec![
+            (
+                object(
+                    "table",
+                    None,
+                    RelationKind::OnFloor,
+                    &table,
+                    at(0.0, 0.0, 0.0, 0.0),
+                ),
+                table.clone(),
+            ),
+            (
+                object(
+                    "book",
+                    Some("table"),
+                    RelationKind::On,
+                    &book,
+                    at(0.1, TABLE_TOP - 0.02, 0.05, 0.3),
+                ),
+                book.clone(),
+            ),
+        ],
+    );
+    for opt in optimizers() {
+        let placement = run(&problem, opt.as_ref());
+        assert_all_ok(&placement);
+        let g = gap(&placement, "book");
+        assert!(
+            (0.0..=0.002).contains(&g),
+            "[{}] gap {g}",
+            placement.optimizer
+        );
+        let p = placement.pose("book").unwrap();
+        assert!(
+            (p.translation.xz() - nalgebra::Vector2::new(0.1, 0.05)).norm() < 0.01,
+            "[{}] {p:?}",
+            placement.optimizer
+        );
+        assert_eq!(p.yaw, 0.3);
+    }
+}
+
+#[test]
+fn cup_floating_above_table_is_lowered_onto_it() {
+    let table = Arc::new(table());
+    let cup = Arc::new(cup());
+    let problem = problem(
+        "table",
+        vec![
+            (
+                object(
+                    "table",
+                    None,
+                    RelationKind::OnFloor,
+                    &table,
+                    at(0.0, 0.0, 0.0, 0.0),
+                ),
+                table.clone(),
+            ),
+            (
+                object(
+                    "cup",
+                    Some("table"),
+                    RelationKind::On,
+                    &cup,
+                    at(-0.2, TABLE_TOP + 0.05, 0.1, 0.0),
+                ),
+                cup.clone(),
+            ),
+        ],
+    );
+    for opt in optimizers() {
+        let placement = run(&problem, opt.as_ref());
+        assert_all_ok(&placement);
+        let g = gap(&placement, "cup");
+        assert!(
+            (0.0..=0.002).contains(&g),
+            "[{}] gap {g}",
+            placement.optimizer
+        );
+        let p = placement.pose("cup").unwrap();
+        assert!((p.translation.xz() - nalgebra::Vector2::new(-0.2, 0.1)).norm() < 0.005);
+    }
+}
+
+#[test]
+fn box_in_a_shelf_compartment_stays_in_it() {
+    let shelf = Arc::new(shelf());
+    let item = Arc::new(boxed([0.3, 0.25, 0.2], [0.8, 1.2]));
+    let start = at(0.05, SHELF_BOARDS[1] + 0.001, 0.0, 0.0);
+    let problem = problem(
+        "shelf",
+        vec![
+            (
+                object(
+                    "shelf",
+                    None,
+                    RelationKind::AgainstWall,
+                    &shelf,
+                    at(0.0, 0.0, -1.8, 0.0),
+                ),
+                shelf.clone(),
+            ),
+            (
+                object(
+                    "item",
+                    Some("shelf"),
+                    RelationKind::Inside,
+                    &item,
+                    Pose {
+                        translation: start.translation + Vector3::new(0.0, 0.0, -1.8),
+                        ..start
+                    },
+                ),
+                item.clone(),
+            ),
+        ],
+    );
+    for opt in optimizers() {
+        let placement = run(&problem, opt.as_ref());
+        assert_all_ok(&placement);
+        let report = placement.object("item").unwrap();
+        let moved = (report.pose.translation - report.initial_pose.translation).norm();
+        assert!(moved < 0.002, "[{}] moved {moved}", placement.optimizer);
+        assert_eq!(report.support.plane().unwrap().surface, "shelf_1");
+        assert!((report.pose.scale - 1.0).abs() < 1e-9);
+    }
+}
+
+#[test]
+fn box_too_wide_for_its_compartment_shrinks_to_fit() {
+    let shelf = Arc::new(shelf());
+    // 0.80 m wide, the compartment is 0.76 m: it touches both side boards (two clusters).
+    let item = Arc::new(boxed([0.8, 0.2, 0.2], [0.85, 1.1]));
+    let problem = problem(
+        "shelf",
+        vec![
+            (
+                object(
+                    "shelf",
+                    None,
+                    RelationKind::AgainstWall,
+                    &shelf,
+                    at(0.0, 0.0, -1.8, 0.0),
+                ),
+                shelf.clone(),
+            ),
+            (
+                object(
+                    "item",
+                    Some("shelf"),
+                    RelationKind::Inside,
+                    &item,
+                    at(0.0, SHELF_BOARDS[1], -1.8, 0.0),
+                ),
+                item.clone(),
+            ),
+        ],
+    );
+    for opt in optimizers() {
+        let placement = run(&problem, opt.as_ref());
+        assert_all_ok(&placement);
+        let p = placement.pose("item").unwrap();
+        assert!(
+            p.scale < 0.95 && p.scale >= 0.85,
+            "[{}] {p:?}",
+            placement.optimizer
+        );
+        assert!((p.translation.x).abs() < 0.02);
+    }
+}
+
+#[test]
+fn object_that_cannot_fit_is_reported_with_what_it_hits() {
+    let shelf = Arc::new(shelf());
+    // 1.0 m wide and may shrink only to 0.95: it cannot fit the 0.76 m compartment.
+    let item = Arc::new(boxed([1.0, 0.2, 0.2], [0.95, 1.05]));
+    let problem = problem(
+        "shelf",
+        vec![
+            (
+                object(
+                    "shelf",
+                    None,
+                    RelationKind::AgainstWall,
+                    &shelf,
+                    at(0.0, 0.0, -1.8, 0.0),
+                ),
+                shelf.clone(),
+            ),
+            (
+                object(
+                    "item",
+                    Some("shelf"),
+                    RelationKind::Inside,
+                    &item,
+                    at(0.0, SHELF_BOARDS[1], -1.8, 0.0),
+                ),
+                item.clone(),
+            ),
+        ],
+    );
+    for opt in optimizers() {
+        let placement = run(&problem, opt.as_ref());
+        assert!(!placement.is_ok());
+        let failed: Vec<_> = placement.failures().map(|o| o.id.as_str()).collect();
+        assert!(
+            failed.contains(&"item"),
+            "[{}] {failed:?}",
+            placement.optimizer
+        );
+        let report = placement.object("item").unwrap();
+        assert!(
+            report.issues.iter().any(|i| matches!(i, Issue::Collision { with, depth } if with == "shelf" && *depth > 0.001)),
+            "[{}] {report}",
+            placement.optimizer
+        );
+        assert!(report.to_string().contains("penetrates `shelf`"));
+    }
+}
+
+#[test]
+fn object_through_a_wall_is_brought_inside_the_room() {
+    let b = Arc::new(boxed([0.6, 0.8, 0.6], [0.9, 1.1]));
+    // The room spans x in [-3, 3]; this box sticks 0.2 m into the wall at +x.
+    let problem = problem(
+        "box",
+        vec![(
+            object(
+                "box",
+                None,
+                RelationKind::AgainstWall,
+                &b,
+                at(2.9, 0.0, 0.0, 0.0),
+            ),
+            b.clone(),
+        )],
+    );
+    for opt in optimizers() {
+        let placement = run(&problem, opt.as_ref());
+        assert_all_ok(&placement);
+        let p = placement.pose("box").unwrap();
+        assert!(
+            p.translation.x + 0.3 * p.scale <= 3.0,
+            "[{}] {p:?}",
+            placement.optimizer
+        );
+        assert!(
+            p.translation.x > 2.6,
+            "[{}] moved too far: {p:?}",
+            placement.optimizer
+        );
+    }
+}
+
+#[test]
+fn children_follow_their_parent_when_it_moves() {
+    let table = Arc::new(table());
+    let cup = Arc::new(cup());
+    // The table pokes 0.1 m into the +x wall; the cup sits on its right end.
+    let problem = problem(
+        "table",
+        vec![
+            (
+                object(
+                    "table",
+                    None,
+                    RelationKind::OnFloor,
+                    &table,
+                    at(2.5, 0.0, 0.0, 0.0),
+                ),
+                table.clone(),
+            ),
+            (
+                object(
+                    "cup",
+                    Some("table"),
+                    RelationKind::On,
+                    &cup,
+                    at(3.0, TABLE_TOP, 0.0, 0.0),
+                ),
+                cup.clone(),
+            ),
+        ],
+    );
+    for opt in optimizers() {
+        let placement = run(&problem, opt.as_ref());
+        assert_all_ok(&placement);
+        let t = placement.pose("table").unwrap();
+        let c = placement.pose("cup").unwrap();
+        assert!(
+            t.translation.x <= 2.4 + 1e-6,
+            "[{}] {t:?}",
+            placement.optimizer
+        );
+        assert!(
+            ((c.translation.x - t.translation.x) - 0.5).abs() < 0.01,
+            "[{}] {c:?}",
+            placement.optimizer
+        );
+    }
+}
+
+#[test]
+fn alignment_recovers_a_pose_from_synthetic_correspondences() {
+    let b = Arc::new(boxed([0.6, 0.5, 0.4], [0.7, 1.3]));
+    let truth = Pose::new(1.1, 0.35, Vector3::new(0.3, 0.0, -0.2));
+    let camera = Camera::look_at(
+        Intrinsics::from_vertical_fov(640, 480, 1.0),
+        Point3::new(1.5, 1.8, 2.5),
+        Point3::new(0.0, 0.3, 0.0),
+        Vector3::y(),
+    );
+    let correspondences: Vec<Correspondence> = b
+        .surface_points()
+        .iter()
+        .step_by(8)
+        .map(|p| {
+            let x = truth.transform_point(p);
+            Correspondence {
+                asset_point: *p,
+                target_pixel: camera.project(&x).unwrap().pixel,
+                target_point: Some(x),
+                confidence: 0.9,
+            }
+        })
+        .collect();
+    // Start 8 cm off, 0.25 rad turned and 10 % too small.
+    let start = Pose::new(1.0, 0.1, Vector3::new(0.36, 0.0, -0.14));
+    let mut problem = problem(
+        "box",
+        vec![(
+            object("box", None, RelationKind::OnFloor, &b, start),
+            b.clone(),
+        )],
+    );
+    problem.set_alignment("box", PoseAlignment::new(camera, correspondences));
+    for opt in optimizers() {
+        let placement = run(&problem, opt.as_ref());
+        assert_all_ok(&placement);
+        let report = placement.object("box").unwrap();
+        assert!(report.alignment_iterations > 0);
+        let p = report.pose;
+        assert!(
+            (p.scale - truth.scale).abs() < 0.01,
+            "[{}] {p:?}",
+            placement.optimizer
+        );
+        assert!(
+            (p.yaw - truth.yaw).abs() < 0.01,
+            "[{}] {p:?}",
+            placement.optimizer
+        );
+        assert!(
+            (p.translation.xz() - truth.translation.xz()).norm() < 0.005,
+            "[{}] {p:?}",
+            placement.optimizer
+        );
+    }
+}
+
+#[test]
+fn same_problem_gives_bit_identical_poses() {
+    let problem = thirty_object_room(7);
+    let opt = ProjectedGaussNewton::default();
+    let a = run(&problem, &opt);
+    let b = run(&problem, &opt);
+    assert_eq!(a, b);
+}
+
+#[test]
+fn thirty_object_room_meets_every_post_condition() {
+    let problem = thirty_object_room(3);
+    for opt in optimizers() {
+        let placement = run(&problem, opt.as_ref());
+        assert_eq!(placement.objects.len(), 30);
+        assert_all_ok(&placement);
+    }
+}
