@@ -161,29 +161,83 @@ fn surface(
     if poly_area < search.min_area as f64 * 0.5 {
         return None;
     }
+    // Probe a grid over the polygon: a sample is blocked when geometry stands on it (a vertical
+    // ray hits within `min_clearance`) or hugs it (a wall within `wall_gap` sideways, which also
+    // catches samples inside walls that overlap the floor). Free samples give the clearance.
+    let nearby: Vec<[V; 3]> = {
+        let (lo, hi) = polygon
+            .iter()
+            .fold(([f64::MAX; 2], [f64::MIN; 2]), |(lo, hi), p| {
+                (
+                    [lo[0].min(p[0]), lo[1].min(p[1])],
+                    [hi[0].max(p[0]), hi[1].max(p[1])],
+                )
+            });
+        let reach = 0.05;
+        triangles
+            .iter()
+            .filter(|t| {
+                t.iter().any(|v| v.y > height + 1e-4)
+                    && t.iter().any(|v| v.x >= lo[0] - reach)
+                    && t.iter().any(|v| v.x <= hi[0] + reach)
+                    && t.iter().any(|v| v.z >= lo[1] - reach)
+                    && t.iter().any(|v| v.z <= hi[1] + reach)
+            })
+            .copied()
+            .collect()
+    };
+    let wall_gap = (search.margin as f64).max(0.015);
+    let (lo, hi) = polygon
+        .iter()
+        .fold(([f64::MAX; 2], [f64::MIN; 2]), |(lo, hi), p| {
+            (
+                [lo[0].min(p[0]), lo[1].min(p[1])],
+                [hi[0].max(p[0]), hi[1].max(p[1])],
+            )
+        });
+    let grid = 9;
+    let mut free = Vec::new();
+    let mut blocked = 0;
+    let mut clearance: Option<f64> = None;
+    for gx in 0..grid {
+        for gz in 0..grid {
+            let x = lo[0] + (hi[0] - lo[0]) * (gx as f64 + 0.5) / grid as f64;
+            let z = lo[1] + (hi[1] - lo[1]) * (gz as f64 + 0.5) / grid as f64;
+            if !inside(&polygon, [x, z]) {
+                continue;
+            }
+            let origin = V::new(x, height + 1e-3, z);
+            let above = cast(&origin, &V::y(), &nearby);
+            let side = V::new(x, height + 5e-3, z);
+            let hugged = [V::x(), -V::x(), V::z(), -V::z()]
+                .iter()
+                .any(|d| cast(&side, d, &nearby).is_some_and(|t| t < wall_gap));
+            if hugged || above.is_some_and(|t| t < search.min_clearance as f64) {
+                blocked += 1;
+                continue;
+            }
+            if let Some(t) = above {
+                clearance = Some(clearance.map_or(t, |c: f64| c.min(t)));
+            }
+            free.push([x, z]);
+        }
+    }
+    if free.is_empty() {
+        return None;
+    }
+    let polygon = if blocked == 0 {
+        polygon
+    } else {
+        let hull = convex_hull_2d(&free);
+        if hull.len() < 3 || shoelace(&hull).abs() / 2.0 < search.min_area as f64 * 0.5 {
+            return None;
+        }
+        hull
+    };
     let centroid = polygon
         .iter()
         .fold([0.0, 0.0], |c, p| [c[0] + p[0], c[1] + p[1]])
         .map(|c| c / polygon.len() as f64);
-    // Clearance: vertical rays from the centroid and from points part-way to each corner.
-    let mut samples = vec![centroid];
-    for p in &polygon {
-        samples.push([
-            centroid[0] + (p[0] - centroid[0]) * 0.8,
-            centroid[1] + (p[1] - centroid[1]) * 0.8,
-        ]);
-    }
-    let up = V::y();
-    let mut clearance: Option<f64> = None;
-    for s in &samples {
-        let origin = V::new(s[0], height + 1e-3, s[1]);
-        if let Some(t) = cast(&origin, &up, triangles) {
-            clearance = Some(clearance.map_or(t, |c: f64| c.min(t)));
-        }
-    }
-    if clearance.is_some_and(|c| c < search.min_clearance as f64) {
-        return None;
-    }
     let kind = match clearance {
         Some(_) => SurfaceKind::Shelf,
         None => {
@@ -205,6 +259,23 @@ fn surface(
         height: height as f32,
         clearance: clearance.map(|c| (c + 1e-3) as f32),
     })
+}
+
+/// Whether an (x, z) point lies inside a convex polygon (either winding) or on its border.
+fn inside(poly: &[[f64; 2]], p: [f64; 2]) -> bool {
+    let n = poly.len();
+    let mut sign = 0.0f64;
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[(i + 1) % n]);
+        let c = (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+        if c.abs() > 1e-12 {
+            if sign != 0.0 && c.signum() != sign {
+                return false;
+            }
+            sign = c.signum();
+        }
+    }
+    true
 }
 
 /// Distance along `dir` from `origin` to the nearest triangle hit (either side), if any.
@@ -381,13 +452,13 @@ mod tests {
             .find(|s| (s.height - 0.74).abs() < 1e-4)
             .expect("upper board");
         assert_eq!(high.kind, SurfaceKind::Top);
-        // An open box: floor and four walls.
+        // An open box: floor and four 3 cm walls standing through it.
         let open = mesh(vec![
             cuboid("floor", 0, [-0.2, 0.0, -0.2], [0.2, 0.02, 0.2]),
-            cuboid("w0", 0, [-0.2, 0.0, -0.2], [0.2, 0.3, -0.19]),
-            cuboid("w1", 0, [-0.2, 0.0, 0.19], [0.2, 0.3, 0.2]),
-            cuboid("w2", 0, [-0.2, 0.0, -0.2], [-0.19, 0.3, 0.2]),
-            cuboid("w3", 0, [0.19, 0.0, -0.2], [0.2, 0.3, 0.2]),
+            cuboid("w0", 0, [-0.2, 0.0, -0.2], [0.2, 0.3, -0.17]),
+            cuboid("w1", 0, [-0.2, 0.0, 0.17], [0.2, 0.3, 0.2]),
+            cuboid("w2", 0, [-0.2, 0.0, -0.2], [-0.17, 0.3, 0.2]),
+            cuboid("w3", 0, [0.17, 0.0, -0.2], [0.2, 0.3, 0.2]),
         ]);
         let s = find_support_surfaces(&open, &SurfaceSearch::default());
         let floor = s
@@ -396,6 +467,19 @@ mod tests {
             .expect("inner floor");
         assert_eq!(floor.kind, SurfaceKind::Interior);
         assert!(floor.clearance.is_none());
+        assert!(
+            floor
+                .polygon
+                .iter()
+                .all(|p| p[0].abs() < 0.17 && p[1].abs() < 0.17),
+            "the interior stops at the walls: {:?}",
+            floor.polygon
+        );
+        assert!(
+            floor.area() > 0.5 * 0.34 * 0.34 * 0.5,
+            "area {}",
+            floor.area()
+        );
     }
 
     #[test]
