@@ -1,8 +1,12 @@
-//! A compact bounding volume hierarchy over triangles, built with binned SAH.
+//! Bounding volume hierarchies over triangles.
 //!
-//! Nodes are 32 bytes. An inner node's two children are stored next to each other
-//! (`index`, `index + 1`), so both child boxes are tested from one cache line; a leaf holds
-//! `count > 0` consecutive triangles starting at `index`.
+//! A binary tree is built with binned SAH (32-byte nodes; an inner node's two children sit
+//! next to each other at `index` and `index + 1`; a leaf holds `count > 0` consecutive
+//! triangles starting at `index`). It serves the winding-number traversal, and is collapsed
+//! into a 4-wide tree ([`Node4`]) with box and slab bounds per child for closest-point queries.
+
+// Per-axis loops over small fixed arrays read best with indices.
+#![allow(clippy::needless_range_loop)]
 
 /// One BVH node (32 bytes).
 #[derive(Debug, Clone, Copy)]
@@ -216,13 +220,19 @@ impl Builder<'_> {
     }
 }
 
-/// A 4-wide node for closest-point queries: the boxes of up to four children side by side
-/// (structure of arrays, 128 bytes), so one node visit tests four boxes at once.
+/// A 4-wide node for closest-point queries: the bounds of up to four children side by side
+/// (structure of arrays, 192 bytes), so one node visit tests four children at once. Each child
+/// has a box and a slab (unit axis `normal`, every point of its triangles has
+/// `normal · x ∈ [low, high]`); the larger of the two distances is the lower bound used to
+/// prune. Slabs are much tighter than boxes for flat, tilted surface patches.
 #[derive(Debug, Clone, Copy)]
 #[repr(C, align(64))]
 pub(crate) struct Node4 {
     pub min: [[f32; 4]; 3],
     pub max: [[f32; 4]; 3],
+    pub normal: [[f32; 4]; 3],
+    pub low: [f32; 4],
+    pub high: [f32; 4],
     /// Inner child: index into the 4-wide node array; leaf child: first triangle.
     pub child: [u32; 4],
     /// Triangle count of a leaf child, 0 for an inner child.
@@ -233,21 +243,33 @@ impl Node4 {
     const EMPTY: Node4 = Node4 {
         min: [[f32::INFINITY; 4]; 3],
         max: [[f32::NEG_INFINITY; 4]; 3],
+        normal: [[0.0; 4]; 3],
+        low: [f32::NEG_INFINITY; 4],
+        high: [f32::INFINITY; 4],
         child: [0; 4],
         count: [0; 4],
     };
 
-    /// Squared distances from `p` to the four child boxes (infinite for empty lanes).
+    /// Squared lower bounds on the distance from `p` to the four children's triangles
+    /// (infinite for empty lanes).
     #[inline(always)]
     pub fn distances2(&self, p: &[f32; 3]) -> [f32; 4] {
         let mut d2 = [0.0f32; 4];
+        let mut proj = [0.0f32; 4];
         for axis in 0..3 {
             for lane in 0..4 {
                 let d = (self.min[axis][lane] - p[axis])
                     .max(p[axis] - self.max[axis][lane])
                     .max(0.0);
                 d2[lane] += d * d;
+                proj[lane] += self.normal[axis][lane] * p[axis];
             }
+        }
+        for lane in 0..4 {
+            let s = (self.low[lane] - proj[lane])
+                .max(proj[lane] - self.high[lane])
+                .max(0.0);
+            d2[lane] = d2[lane].max(s * s);
         }
         d2
     }
@@ -255,7 +277,12 @@ impl Node4 {
 
 /// Collapses the binary subtree at `node` (an inner node) into 4-wide nodes appended to
 /// `out`; returns the index of its 4-wide root.
-pub(crate) fn collapse(bin: &[Node], node: u32, out: &mut Vec<Node4>) -> u32 {
+pub(crate) fn collapse(
+    bin: &[Node],
+    node: u32,
+    tris: &[[nalgebra::Vector3<f32>; 3]],
+    out: &mut Vec<Node4>,
+) -> u32 {
     let n = &bin[node as usize];
     debug_assert_eq!(n.count, 0);
     let mut kids: Vec<u32> = vec![n.index, n.index + 1];
@@ -289,14 +316,59 @@ pub(crate) fn collapse(bin: &[Node], node: u32, out: &mut Vec<Node4>) -> u32 {
             wide.min[axis][lane] = b.min[axis];
             wide.max[axis][lane] = b.max[axis];
         }
+        let (normal, low, high) = slab(&tris[triangle_range(bin, k)]);
+        for axis in 0..3 {
+            wide.normal[axis][lane] = normal[axis];
+        }
+        wide.low[lane] = low;
+        wide.high[lane] = high;
         if b.count > 0 {
             wide.child[lane] = b.index;
             wide.count[lane] = b.count;
         } else {
-            wide.child[lane] = collapse(bin, k, out);
+            wide.child[lane] = collapse(bin, k, tris, out);
             wide.count[lane] = 0;
         }
     }
     out[me] = wide;
     me as u32
+}
+
+/// The triangles under binary node `k` (subtrees are contiguous in triangle order).
+fn triangle_range(bin: &[Node], k: u32) -> std::ops::Range<usize> {
+    let mut first = k;
+    while bin[first as usize].count == 0 {
+        first = bin[first as usize].index;
+    }
+    let mut last = k;
+    while bin[last as usize].count == 0 {
+        last = bin[last as usize].index + 1;
+    }
+    let (f, l) = (&bin[first as usize], &bin[last as usize]);
+    f.index as usize..(l.index + l.count) as usize
+}
+
+/// The slab of a set of triangles along their area-weighted mean normal: `(axis, low, high)`,
+/// slightly widened so rounding never makes it exclude a triangle.
+fn slab(tris: &[[nalgebra::Vector3<f32>; 3]]) -> ([f32; 3], f32, f32) {
+    let sum: nalgebra::Vector3<f32> = tris
+        .iter()
+        .map(|t| (t[1] - t[0]).cross(&(t[2] - t[0])))
+        .sum();
+    let Some(n) = sum.try_normalize(1e-20) else {
+        return ([0.0; 3], f32::NEG_INFINITY, f32::INFINITY);
+    };
+    let mut low = f32::INFINITY;
+    let mut high = f32::NEG_INFINITY;
+    let mut scale = 0.0f32;
+    for t in tris {
+        for v in t {
+            let d = n.dot(v);
+            low = low.min(d);
+            high = high.max(d);
+            scale = scale.max(v.amax());
+        }
+    }
+    let eps = (scale + (high - low).abs()) * 1e-6;
+    ([n.x, n.y, n.z], low - eps, high + eps)
 }

@@ -211,7 +211,7 @@ impl MeshSdf {
             let wide_root = if r.count > 0 {
                 (r.index, r.count)
             } else {
-                (bvh::collapse(&nodes, root, &mut wide), 0)
+                (bvh::collapse(&nodes, root, &tris, &mut wide), 0)
             };
             let r = &nodes[root as usize];
             groups.push(Group {

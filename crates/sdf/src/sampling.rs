@@ -134,13 +134,13 @@ pub fn negative_clusters(
     }
     let mut clusters: Vec<Vec<usize>> = Vec::new();
     let mut cluster_of_root: Vec<usize> = vec![usize::MAX; negative.len()];
-    for slot in 0..negative.len() {
+    for (slot, &point) in negative.iter().enumerate() {
         let r = find(&mut parent, slot);
         if cluster_of_root[r] == usize::MAX {
             cluster_of_root[r] = clusters.len();
             clusters.push(Vec::new());
         }
-        clusters[cluster_of_root[r]].push(negative[slot]);
+        clusters[cluster_of_root[r]].push(point);
     }
     clusters
 }
