@@ -74,8 +74,9 @@ proptest! {
         } else {
             prop_assert_eq!(approx < 0.0, exact < 0.0, "sign at {:?}: {} vs {}", p, approx, exact);
         }
-        // The grid gradient points outward like the exact one, away from the medial axis.
-        if exact.abs() > diag && exact.abs() < 0.08 {
+        // The grid gradient points outward like the exact one, away from the medial axes (the
+        // tube's centre circle at depth 0.1, the hole's axis 0.2 out).
+        if exact.abs() > diag && exact.abs() < 0.05 {
             let g = grid.gradient(&p);
             prop_assert!(g.dot(&sdf.gradient(&p)) > 0.8);
         }
