@@ -319,6 +319,25 @@ pub fn beam(name: &str, material: usize, a: [f32; 3], b: [f32; 3], section: [f32
     hexahedron(name, material, corners)
 }
 
+/// A leg standing flat: a prism of horizontal cross-section `section` = (x, z) sheared from
+/// `bottom` up to `top`, with horizontal end faces (splayed legs whose feet rest flat on the
+/// floor, ladder stiles, A-frames).
+pub fn strut(
+    name: &str,
+    material: usize,
+    bottom: [f32; 3],
+    top: [f32; 3],
+    section: [f32; 2],
+) -> MeshPart {
+    let corners = std::array::from_fn(|i| {
+        let end = if i & 2 == 0 { bottom } else { top };
+        let dx = if i & 1 == 0 { -0.5 } else { 0.5 } * section[0];
+        let dz = if i & 4 == 0 { -0.5 } else { 0.5 } * section[1];
+        [end[0] + dx, end[1], end[2] + dz]
+    });
+    hexahedron(name, material, corners)
+}
+
 /// Joins two convex rings of equal length (same winding) into a closed part: side quads between
 /// them and a fan to each ring's centroid as caps. Faces are oriented outward.
 pub fn loft(name: &str, material: usize, ring0: &[[f32; 3]], ring1: &[[f32; 3]]) -> MeshPart {
@@ -836,6 +855,11 @@ mod tests {
             1e-5,
         );
         check(
+            &strut("strut", 0, [0.0, 0.0, 0.0], [0.3, 2.0, -0.2], [0.1, 0.2]),
+            0.04,
+            1e-5,
+        );
+        check(
             &rod("rod", 0, [0.0, 0.0, 0.0], [0.0, 0.0, -2.0], 0.5, 0.5, 128),
             PI * 0.25 * 2.0,
             0.01,
@@ -883,7 +907,8 @@ mod tests {
         let top = &asset.info.support_surfaces[0];
         assert_eq!(top.height, 0.5);
         assert!((top.area() - 1.8 * 0.8).abs() < 1e-5);
-        assert_eq!(top.center(), [0.0, 0.0]);
+        let [cx, cz] = top.center();
+        assert!(cx.abs() < 1e-6 && cz.abs() < 1e-6, "centre {cx} {cz}");
         let bounds = asset.mesh.bounds().unwrap();
         assert_eq!(bounds.min.y, 0.0);
         assert_eq!(bounds.min.x, -1.0);

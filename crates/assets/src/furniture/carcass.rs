@@ -149,7 +149,7 @@ pub(super) fn build(
     // Feet.
     match c.feet {
         Feet::Plinth { height, recess } => b.cuboid(
-            "plinth",
+            &format!("{prefix}plinth"),
             m.body,
             [cx - hw + 0.01, 0.0, cz - hd + 0.01],
             [cx + hw - 0.01, height + 0.002, cz + hd - recess],
@@ -161,7 +161,7 @@ pub(super) fn build(
                     cz + sz * (hd - 0.02 - 0.5 * section),
                 );
                 b.cuboid(
-                    &format!("leg_{i}"),
+                    &format!("{prefix}leg_{i}"),
                     m.body,
                     [x - 0.5 * section, 0.0, z - 0.5 * section],
                     [x + 0.5 * section, height + 0.005, z + 0.5 * section],
@@ -185,7 +185,7 @@ pub(super) fn build(
             for (i, (sx, sz)) in CORNERS.iter().enumerate() {
                 let (x, z) = (cx + sx * (hw - 0.05), cz + sz * (hd - 0.05));
                 b.part(ellipsoid(
-                    &format!("wheel_{i}"),
+                    &format!("{prefix}wheel_{i}"),
                     m.handle,
                     [x, r, z],
                     [0.4 * r, r, r],
@@ -193,7 +193,7 @@ pub(super) fn build(
                     10,
                 ));
                 b.part(cylinder(
-                    &format!("caster_{i}"),
+                    &format!("{prefix}caster_{i}"),
                     m.handle,
                     [x, z],
                     0.6 * r,
@@ -207,21 +207,26 @@ pub(super) fn build(
 
     // Body boards.
     b.cuboid(
-        "bottom",
+        &format!("{prefix}bottom"),
         m.body,
         [cx - hw, y0, cz - hd],
         [cx + hw, yi0, cz + hd],
     );
     if c.top_board {
         b.cuboid(
-            "top",
+            &format!("{prefix}top"),
             m.body,
             [cx - hw, h - t, cz - hd],
             [cx + hw, h, cz + hd],
         );
     }
     if c.back {
-        b.cuboid("back", m.back, [cx - hw, y0, cz - hd], [cx + hw, h, zb]);
+        b.cuboid(
+            &format!("{prefix}back"),
+            m.back,
+            [cx - hw, y0, cz - hd],
+            [cx + hw, h, zb],
+        );
     }
     let side_y0 = match c.feet {
         Feet::Plinth { .. } => 0.0,
@@ -239,7 +244,7 @@ pub(super) fn build(
                     .enumerate()
                 {
                     b.cuboid(
-                        &format!("post_{i}_{k}"),
+                        &format!("{prefix}post_{i}_{k}"),
                         m.side,
                         [x - 0.5 * p, side_y0, z - 0.5 * p],
                         [x + 0.5 * p, h, z + 0.5 * p],
@@ -249,13 +254,13 @@ pub(super) fn build(
         }
         None => {
             b.cuboid(
-                "side_left",
+                &format!("{prefix}side_left"),
                 m.side,
                 [cx - hw, side_y0, cz - hd],
                 [cx - hw + t, h, cz + hd],
             );
             b.cuboid(
-                "side_right",
+                &format!("{prefix}side_right"),
                 m.side,
                 [cx + hw - t, side_y0, cz - hd],
                 [cx + hw, h, cz + hd],
@@ -263,7 +268,7 @@ pub(super) fn build(
             for i in 1..c.columns {
                 let x = column_x0(i);
                 b.cuboid(
-                    &format!("divider_{i}"),
+                    &format!("{prefix}divider_{i}"),
                     m.body,
                     [x - t, yi0 - 0.001, zb - 0.001],
                     [x, yi1 + 0.001, zf],
@@ -279,7 +284,7 @@ pub(super) fn build(
         let y = yi0 + f * (yi1 - yi0);
         let (lo, hi) = (y - 0.5 * t, y + 0.5 * t);
         b.cuboid(
-            &format!("shelf_{k}"),
+            &format!("{prefix}shelf_{k}"),
             m.shelf,
             [xi0 - 0.001, lo, zb - 0.001],
             [xi1 + 0.001, hi, zf - 0.005],
@@ -302,7 +307,7 @@ pub(super) fn build(
             if row < c.drawer_rows {
                 let gap = 0.003;
                 b.cuboid(
-                    &format!("drawer_{col}_{row}"),
+                    &format!("{prefix}drawer_{col}_{row}"),
                     m.front,
                     [x0 + gap, floor + gap, zb + 0.02],
                     [x1 - gap, ceiling - gap, cz + hd + 0.006],
@@ -310,7 +315,7 @@ pub(super) fn build(
                 let (mx, my) = (0.5 * (x0 + x1), 0.5 * (floor + ceiling));
                 let hl = (0.25 * (x1 - x0)).min(0.08);
                 b.cuboid(
-                    &format!("drawer_handle_{col}_{row}"),
+                    &format!("{prefix}drawer_handle_{col}_{row}"),
                     m.handle,
                     [mx - hl, my - 0.008, cz + hd + 0.005],
                     [mx + hl, my + 0.008, cz + hd + 0.025],
@@ -321,7 +326,7 @@ pub(super) fn build(
             if c.lip > 0.0 {
                 let lip_t = 0.012;
                 b.cuboid(
-                    &format!("lip_{col}_{row}"),
+                    &format!("{prefix}lip_{col}_{row}"),
                     m.shelf,
                     [x0, floor - 0.001, zf - 0.005 - lip_t],
                     [x1, floor + c.lip, zf - 0.005],
@@ -349,7 +354,7 @@ pub(super) fn build(
     match c.front {
         Front::Open => {}
         Front::Glass => b.cuboid(
-            "glass_front",
+            &format!("{prefix}glass_front"),
             m.front,
             [cx - hw, y0, cz + hd - glass_t],
             [cx + hw, h, cz + hd],
@@ -388,7 +393,7 @@ pub(super) fn build(
                         cz + hd + dir_z * along + normal[1] * out,
                     ];
                     b.part(box_yaw(
-                        &format!("door_{door}"),
+                        &format!("{prefix}door_{door}"),
                         m.front,
                         centre,
                         [0.5 * width, 0.5 * door_t],

@@ -9,7 +9,7 @@ use super::carcass::{self, Carcass, CarcassMaterials, Feet, Front, CORNERS};
 use super::{coin, int, mat, range, SCALE};
 use crate::primitives::{
     beam, cylinder, disc_surface, ellipsoid, fixed_material, frustum, hexahedron, prism_y,
-    rect_surface, rod, sphere, AssetBuilder, Palette,
+    rect_surface, rod, sphere, strut, AssetBuilder, Palette,
 };
 use crate::{Asset, Placement, SurfaceKind};
 
@@ -578,11 +578,11 @@ pub(super) fn music_stand(rng: &mut ChaCha8Rng) -> Asset {
     let spread = range(rng, 0.25, 0.3);
     for i in 0..3 {
         let a = i as f32 / 3.0 * TAU + 0.5 * PI;
-        b.part(beam(
+        b.part(strut(
             &format!("leg_{i}"),
             metal,
-            [0.0, 0.35, 0.0],
             [spread * a.cos(), 0.0, -spread * a.sin()],
+            [0.0, 0.35, 0.0],
             [0.015, 0.015],
         ));
     }
@@ -624,7 +624,7 @@ pub(super) fn easel(rng: &mut ChaCha8Rng) -> Asset {
     let spread = range(rng, 0.25, 0.35);
     let top = [0.0, h, 0.0];
     for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
-        b.part(beam(
+        b.part(strut(
             &format!("front_leg_{i}"),
             wood,
             [sx * spread, 0.0, 0.15],
@@ -633,7 +633,7 @@ pub(super) fn easel(rng: &mut ChaCha8Rng) -> Asset {
         ));
     }
     let back = range(rng, 0.4, 0.6);
-    b.part(beam(
+    b.part(strut(
         "back_leg",
         wood,
         [0.0, 0.0, -back],
@@ -872,7 +872,7 @@ pub(super) fn sink(rng: &mut ChaCha8Rng) -> Asset {
         drawer_rows: 0,
         back: true,
         posts: None,
-        top_board: true,
+        top_board: false,
         front: Front::Open,
         lip: 0.0,
     };
@@ -883,7 +883,6 @@ pub(super) fn sink(rng: &mut ChaCha8Rng) -> Asset {
         [0.0, 0.0],
         "cabinet_",
     );
-    b.surfaces_mut().retain(|s| s.name != "cabinet_top");
     let depth_in = range(rng, 0.12, 0.16);
     // The hole and the basin below it.
     let (bx, bz0, bz1) = (0.5 * w - 0.08, -hd + 0.12, hd - 0.05);
@@ -891,9 +890,8 @@ pub(super) fn sink(rng: &mut ChaCha8Rng) -> Asset {
     // The basin hangs inside the cabinet: lower the cabinet's clearance under it.
     let cabinet_top = basin_bottom - 0.02;
     for s in b.surfaces_mut() {
-        if let Some(cl) = s.clearance.as_mut() {
-            *cl = cl.min(cabinet_top - 0.01 - s.height);
-        }
+        s.kind = SurfaceKind::Shelf;
+        s.clearance = Some(cabinet_top - 0.01 - s.height);
     }
     b.cuboid("counter_back", top, [-hw, h - t, -hd], [hw, h, bz0]);
     b.cuboid("counter_front", top, [-hw, h - t, bz1], [hw, h, hd]);
@@ -958,13 +956,14 @@ pub(super) fn sink(rng: &mut ChaCha8Rng) -> Asset {
         [0.0, h + tap_h - 0.04, tap_z + 0.14],
         [0.02, 0.02],
     ));
+    let spout_bottom = h + tap_h - 0.04 - 0.015;
     b.surface(rect_surface(
         "basin",
         SurfaceKind::Interior,
         [-bx + wall, bz0 + wall],
         [bx - wall, bz1 - wall],
         basin_bottom,
-        None,
+        Some(spout_bottom - 0.01 - basin_bottom),
         0.01,
     ));
     if hw - bx >= 0.08 {
@@ -1003,14 +1002,14 @@ pub(super) fn ladder(rng: &mut ChaCha8Rng) -> Asset {
     let top_z = 0.0;
     for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
         let x = sx * (hw - 0.02);
-        b.part(beam(
+        b.part(strut(
             &format!("stile_{i}"),
             metal,
             [x, 0.0, front_foot],
             [x, h - 0.05, top_z + 0.05],
             [0.03, 0.07],
         ));
-        b.part(beam(
+        b.part(strut(
             &format!("rear_leg_{i}"),
             metal,
             [x * 0.9, 0.0, back_foot],
@@ -1046,7 +1045,13 @@ pub(super) fn ladder(rng: &mut ChaCha8Rng) -> Asset {
 /// segments around an open hole.
 pub(super) fn tire(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let rubber = b.material(fixed_material("tyre_rubber", [0x1C, 0x1C, 0x1E], 0.9, 0.0));
+    let shade = int(rng, 0x16, 0x2C) as u8;
+    let rubber = b.material(fixed_material(
+        "tyre_rubber",
+        [shade, shade, shade + 2],
+        range(rng, 0.8, 0.95),
+        0.0,
+    ));
     let r_out = range(rng, 0.275, 0.4);
     let r_in = r_out * range(rng, 0.55, 0.7);
     let h = range(rng, 0.16, 0.3);

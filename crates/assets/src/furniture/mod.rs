@@ -146,7 +146,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
             "toddler chair",
             "small chair"
         ],
-        [[0.3, 0.38], [0.48, 0.66], [0.3, 0.4]],
+        [[0.3, 0.4], [0.48, 0.66], [0.3, 0.4]],
         seating::kids_chair
     ),
     furniture!(
@@ -188,7 +188,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
         "wheelchair",
         Floor,
         ["wheel chair", "transport chair"],
-        [[0.6, 0.72], [0.86, 0.98], [0.85, 1.05]],
+        [[0.6, 0.72], [0.86, 0.98], [0.8, 1.05]],
         seating::wheelchair
     ),
     // Tables.
@@ -297,14 +297,14 @@ pub(crate) const CATEGORIES: &[Category] = &[
         "nightstand",
         Floor,
         ["bedside table", "night table", "bedside cabinet"],
-        [[0.4, 0.56], [0.5, 0.68], [0.35, 0.47]],
+        [[0.4, 0.56], [0.5, 0.68], [0.35, 0.48]],
         tables::nightstand
     ),
     furniture!(
         "pool_table",
         Floor,
         ["billiard table", "snooker table", "billiards table"],
-        [[2.3, 2.9], [0.78, 0.82], [1.3, 1.65]],
+        [[2.3, 2.91], [0.78, 0.82], [1.3, 1.66]],
         tables::pool_table
     ),
     furniture!(
@@ -337,7 +337,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
             "kitchen island",
             "worktop"
         ],
-        [[1.2, 2.42], [0.88, 0.92], [0.6, 1.1]],
+        [[1.2, 2.57], [0.88, 0.92], [0.6, 1.27]],
         tables::kitchen_counter
     ),
     // Storage.
@@ -378,7 +378,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
         "cabinet",
         Floor,
         ["cupboard", "storage cabinet", "sideboard", "credenza"],
-        [[0.6, 1.2], [0.8, 1.9], [0.4, 1.2]],
+        [[0.6, 1.36], [0.8, 1.9], [0.4, 1.2]],
         storage::cabinet
     ),
     furniture!(
@@ -402,21 +402,21 @@ pub(crate) const CATEGORIES: &[Category] = &[
             "reagent cabinet",
             "acid cabinet"
         ],
-        [[0.6, 1.2], [0.9, 1.8], [0.45, 1.2]],
+        [[0.6, 1.39], [0.9, 1.8], [0.45, 1.24]],
         storage::chemical_cabinet
     ),
     furniture!(
         "locker",
         Floor,
         ["lockers", "locker bank", "gym locker", "school locker"],
-        [[0.3, 1.6], [1.7, 1.95], [0.42, 0.95]],
+        [[0.3, 1.69], [1.7, 1.95], [0.42, 0.95]],
         storage::locker
     ),
     furniture!(
         "wardrobe",
         Floor,
         ["closet", "armoire", "clothes cabinet"],
-        [[0.9, 1.6], [1.9, 2.2], [0.55, 1.45]],
+        [[0.9, 1.73], [1.9, 2.2], [0.55, 1.45]],
         storage::wardrobe
     ),
     furniture!(
@@ -456,7 +456,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
         "toy_box",
         Floor,
         ["toy chest", "toy storage", "toy bin"],
-        [[0.6, 1.0], [0.8, 1.1], [0.45, 0.75]],
+        [[0.6, 1.0], [0.75, 1.1], [0.41, 0.75]],
         storage::toy_box
     ),
     furniture!(
@@ -500,7 +500,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
         "refrigerator",
         Floor,
         ["fridge", "refrigerator freezer", "icebox"],
-        [[0.6, 0.8], [1.7, 1.95], [0.65, 1.5]],
+        [[0.6, 0.93], [1.7, 1.95], [0.65, 1.5]],
         storage::refrigerator
     ),
     furniture!(
@@ -520,7 +520,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
         "chest_freezer",
         Floor,
         ["deep freezer", "freezer", "ice cream freezer"],
-        [[0.9, 1.6], [1.4, 1.65], [0.65, 0.9]],
+        [[0.9, 1.6], [1.4, 1.65], [0.65, 0.96]],
         storage::chest_freezer
     ),
     furniture!(
@@ -567,21 +567,21 @@ pub(crate) const CATEGORIES: &[Category] = &[
             "king bed",
             "twin bed"
         ],
-        [[0.98, 1.9], [0.85, 1.3], [2.05, 2.25]],
+        [[0.98, 1.9], [0.85, 1.3], [2.05, 2.26]],
         beds::bed
     ),
     furniture!(
         "hospital_bed",
         Floor,
         ["patient bed", "medical bed", "ward bed", "gurney"],
-        [[0.95, 1.1], [0.9, 1.2], [2.15, 2.4]],
+        [[0.95, 1.12], [0.9, 1.2], [2.15, 2.4]],
         beds::hospital_bed
     ),
     furniture!(
         "iv_stand",
         Floor,
         ["iv pole", "drip stand", "infusion stand"],
-        [[0.45, 0.62], [1.7, 2.1], [0.45, 0.62]],
+        [[0.45, 0.62], [1.7, 2.1], [0.45, 0.65]],
         beds::iv_stand
     ),
     furniture!(
@@ -593,7 +593,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
             "partition",
             "medical screen"
         ],
-        [[1.0, 2.0], [1.6, 1.85], [0.15, 0.55]],
+        [[1.0, 2.12], [1.6, 1.85], [0.15, 0.55]],
         beds::privacy_screen
     ),
     // Equipment.
@@ -608,21 +608,21 @@ pub(crate) const CATEGORIES: &[Category] = &[
         "exercise_bike",
         Floor,
         ["stationary bike", "spin bike", "exercise bicycle"],
-        [[0.5, 0.65], [1.1, 1.35], [1.0, 1.3]],
+        [[0.5, 0.65], [1.09, 1.35], [1.0, 1.34]],
         equipment::exercise_bike
     ),
     furniture!(
         "weight_bench",
         Floor,
         ["workout bench", "flat bench", "bench press"],
-        [[0.5, 0.66], [0.43, 1.2], [1.1, 1.4]],
+        [[0.5, 0.66], [0.43, 1.2], [1.0, 1.4]],
         equipment::weight_bench
     ),
     furniture!(
         "squat_rack",
         Floor,
         ["power rack", "squat cage", "barbell rack"],
-        [[2.0, 2.2], [2.1, 2.4], [1.0, 1.3]],
+        [[2.0, 2.2], [2.1, 2.4], [1.0, 1.56]],
         equipment::squat_rack
     ),
     furniture!(
@@ -643,7 +643,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
         "music_stand",
         Floor,
         ["sheet music stand", "score stand"],
-        [[0.45, 0.55], [1.0, 1.45], [0.4, 0.6]],
+        [[0.45, 0.55], [1.0, 1.45], [0.39, 0.6]],
         equipment::music_stand
     ),
     furniture!(
@@ -657,7 +657,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
         "rocking_horse",
         Floor,
         ["toy horse", "hobby horse", "rocker"],
-        [[0.3, 0.42], [0.6, 0.95], [0.85, 1.15]],
+        [[0.3, 0.42], [0.6, 0.95], [0.85, 1.17]],
         equipment::rocking_horse
     ),
     furniture!(
@@ -692,7 +692,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
         "coat_rack",
         Floor,
         ["coat stand", "hat stand", "hall tree", "coat tree"],
-        [[0.4, 0.65], [1.7, 1.95], [0.4, 0.65]],
+        [[0.4, 0.65], [1.7, 1.97], [0.4, 0.65]],
         equipment::coat_rack
     ),
     furniture!(
@@ -806,7 +806,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
             "chandelier",
             "ceiling light"
         ],
-        [[0.12, 0.6], [0.45, 1.2], [0.12, 0.6]],
+        [[0.12, 0.6], [0.4, 1.2], [0.12, 0.6]],
         wall::pendant_lamp
     ),
 ];

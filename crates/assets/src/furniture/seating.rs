@@ -11,7 +11,7 @@ use rand_chacha::ChaCha8Rng;
 use super::{coin, int, mat, range, SCALE};
 use crate::primitives::{
     beam, box_yaw, cylinder, disc_surface, ellipsoid, frustum, hexahedron, prism_x, rect_surface,
-    rod, AssetBuilder, Palette,
+    rod, strut, AssetBuilder, Palette,
 };
 use crate::{Asset, Placement, SurfaceKind};
 
@@ -97,7 +97,7 @@ fn build_chair(b: &mut AssetBuilder, c: &Chair, m: ChairMaterials) {
                     })
                     .collect();
             for (i, (top, foot)) in feet.iter().enumerate() {
-                b.part(beam(
+                b.part(strut(
                     &format!("leg_{i}"),
                     m.frame,
                     *foot,
@@ -371,15 +371,11 @@ fn upholstered_seat(rng: &mut ChaCha8Rng, w_lo: f32, w_hi: f32, sofa: bool) -> A
         b.cuboid(
             &format!("seat_cushion_{i}"),
             cover,
-            [x0 + 0.004, frame_top - 0.01, cushion_front - 0.01],
-            [x0 + cw - 0.004, seat_h, hd],
+            [x0 - 0.002, frame_top - 0.01, cushion_front - 0.01],
+            [x0 + cw + 0.002, seat_h, hd],
         );
         let corners = std::array::from_fn(|k| {
-            let x = if k & 1 == 0 {
-                x0 + 0.004
-            } else {
-                x0 + cw - 0.004
-            };
+            let x = if k & 1 == 0 { x0 } else { x0 + cw };
             let top = k & 2 != 0;
             let y = if top { top_h - 0.03 } else { seat_h - 0.01 };
             let z_back = -hd + back_d - 0.01 - if top { back_lean } else { 0.0 };
@@ -778,14 +774,25 @@ pub(super) fn bean_bag(rng: &mut ChaCha8Rng) -> Asset {
         12,
         20,
     ));
-    b.surface(disc_surface(
+    // A flattened seat hollow on top of the sack, in front of the back bulge.
+    let pad_top = base_h + 0.02;
+    b.part(cylinder(
+        "seat_hollow",
+        cover,
+        [0.0, 0.15 * d],
+        0.22 * w,
+        base_h - 0.12,
+        pad_top,
+        20,
+    ));
+    b.surface(rect_surface(
         "seat",
         SurfaceKind::Top,
-        [0.0, 0.1 * d],
-        0.05,
-        base_h,
+        [-0.15 * w, 0.06 * d],
+        [0.15 * w, 0.15 * d + 0.15 * w],
+        pad_top,
         None,
-        6,
+        0.01,
     ));
     b.finish(Placement::Floor, SCALE)
 }
@@ -886,14 +893,14 @@ pub(super) fn camping_chair(rng: &mut ChaCha8Rng) -> Asset {
     let arm_h = seat_h + range(rng, 0.18, 0.22);
     for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
         let x = sx * hw;
-        b.part(beam(
+        b.part(strut(
             &format!("x_leg_a_{i}"),
             frame,
             [x, 0.0, -hd],
             [x, arm_h, hd - 0.02],
             [0.02, 0.02],
         ));
-        b.part(beam(
+        b.part(strut(
             &format!("x_leg_b_{i}"),
             frame,
             [x, 0.0, hd],

@@ -186,7 +186,7 @@ pub(super) fn cabinet(rng: &mut ChaCha8Rng) -> Asset {
         top_board: true,
         front: if coin(rng, 0.6) {
             Front::Doors {
-                angle: range(rng, 1.75, 2.1),
+                angle: range(rng, 1.6, 1.75),
             }
         } else {
             Front::Open
@@ -252,7 +252,7 @@ pub(super) fn chemical_cabinet(rng: &mut ChaCha8Rng) -> Asset {
         posts: None,
         top_board: true,
         front: Front::Doors {
-            angle: range(rng, 1.75, 2.1),
+            angle: range(rng, 1.6, 1.75),
         },
         lip: 0.03,
     };
@@ -284,7 +284,7 @@ pub(super) fn locker(rng: &mut ChaCha8Rng) -> Asset {
         top_board: true,
         front: if coin(rng, 0.7) {
             Front::Doors {
-                angle: range(rng, 1.7, 2.0),
+                angle: range(rng, 1.6, 1.75),
             }
         } else {
             Front::Open
@@ -318,7 +318,7 @@ pub(super) fn wardrobe(rng: &mut ChaCha8Rng) -> Asset {
         top_board: true,
         front: if coin(rng, 0.6) {
             Front::Doors {
-                angle: range(rng, 1.75, 2.1),
+                angle: range(rng, 1.6, 1.75),
             }
         } else {
             Front::Open
@@ -658,7 +658,11 @@ pub(super) fn pallet_rack(rng: &mut ChaCha8Rng) -> Asset {
     for (l, (floor, ceiling)) in floors.iter().zip(&ceilings).enumerate() {
         b.surface(rect_surface(
             &format!("level_{l}"),
-            SurfaceKind::Shelf,
+            if l == 0 {
+                SurfaceKind::Under
+            } else {
+                SurfaceKind::Shelf
+            },
             [-hw + post, -hd + post],
             [hw - post, hd - post],
             *floor,
@@ -814,7 +818,7 @@ pub(super) fn refrigerator(rng: &mut ChaCha8Rng) -> Asset {
         top_board: true,
         front: if coin(rng, 0.75) {
             Front::Doors {
-                angle: range(rng, 1.7, 2.0),
+                angle: range(rng, 1.6, 1.75),
             }
         } else {
             Front::Open

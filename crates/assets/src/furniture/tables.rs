@@ -10,7 +10,8 @@ use rand_chacha::ChaCha8Rng;
 use super::carcass::{self, Carcass, CarcassMaterials, Feet, Front, CORNERS};
 use super::{coin, int, mat, range, SCALE};
 use crate::primitives::{
-    beam, cylinder, disc_surface, fixed_material, frustum, rect_surface, rod, AssetBuilder, Palette,
+    beam, cylinder, disc_surface, fixed_material, frustum, rect_surface, rod, strut, AssetBuilder,
+    Palette,
 };
 use crate::{Asset, Placement, SurfaceKind};
 
@@ -676,7 +677,7 @@ pub(super) fn picnic_table(rng: &mut ChaCha8Rng) -> Asset {
     let bench_d = 0.25;
     let reach = range(rng, 0.7, 0.85);
     let hw = 0.5 * w;
-    let planks = 4;
+    let planks = 5;
     let pd = top_d / planks as f32;
     for i in 0..planks {
         let z0 = -0.5 * top_d + i as f32 * pd;
@@ -707,14 +708,14 @@ pub(super) fn picnic_table(rng: &mut ChaCha8Rng) -> Asset {
     }
     for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
         let x = sx * (hw - 0.25);
-        b.part(beam(
+        b.part(strut(
             &format!("leg_a_{i}"),
             wood,
             [x, 0.0, -reach + 0.05],
             [x, h - 0.04, -0.15],
             [0.05, 0.08],
         ));
-        b.part(beam(
+        b.part(strut(
             &format!("leg_b_{i}"),
             wood,
             [x, 0.0, reach - 0.05],
@@ -1020,7 +1021,7 @@ fn counter(
             Front::Open
         } else {
             Front::Doors {
-                angle: range(rng, 1.75, 2.0),
+                angle: range(rng, 1.6, 1.75),
             }
         },
         lip: 0.0,

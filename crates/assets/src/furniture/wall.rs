@@ -74,7 +74,7 @@ pub(super) fn painting(rng: &mut ChaCha8Rng) -> Asset {
 /// a white board and a marker tray.
 pub(super) fn whiteboard(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let frame = b.material(fixed_material("aluminium", [0xC8, 0xCA, 0xCC], 0.3, 1.0));
+    let frame = mat(&mut b, Palette::Metal, rng);
     let board = b.material(fixed_material("whiteboard", [0xF8, 0xF8, 0xF8], 0.15, 0.0));
     let (w, h) = (range(rng, 0.9, 2.4), range(rng, 0.6, 1.2));
     framed_panel(&mut b, frame, board, w, h, 0.02, 0.02);
