@@ -214,3 +214,62 @@ fn penetrating_surface_points_cluster_per_contact() {
         assert!(c.iter().all(|&i| d[i] < 0.0));
     }
 }
+
+fn table_mesh() -> scenethesis_sdf::Mesh {
+    let part = |name: &str, h: Vector3<f32>, at: Vector3<f32>| {
+        let (p, t) = shapes::cuboid(h);
+        scenethesis_scene_graph::MeshPart {
+            name: name.into(),
+            material: 0,
+            positions: p.iter().map(|v| (Vector3::from(*v) + at).into()).collect(),
+            triangles: t,
+        }
+    };
+    let mut parts = vec![part(
+        "top",
+        Vector3::new(0.3, 0.02, 0.2),
+        Vector3::new(0.0, 0.38, 0.0),
+    )];
+    for (i, (x, z)) in [(-0.25, -0.15), (0.25, -0.15), (-0.25, 0.15), (0.25, 0.15)]
+        .into_iter()
+        .enumerate()
+    {
+        parts.push(part(
+            &format!("leg_{i}"),
+            Vector3::new(0.02, 0.2, 0.02),
+            Vector3::new(x, 0.2, z),
+        ));
+    }
+    scenethesis_sdf::Mesh {
+        parts,
+        materials: vec![],
+    }
+}
+
+fn baked_table() -> &'static (MeshSdf, GridSdf) {
+    static CELL: std::sync::OnceLock<(MeshSdf, GridSdf)> = std::sync::OnceLock::new();
+    CELL.get_or_init(|| {
+        let sdf = MeshSdf::from_mesh(&table_mesh()).unwrap();
+        let grid = GridSdf::bake(&sdf, None);
+        (sdf, grid)
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    #[test]
+    fn grid_of_overlapping_parts_keeps_bound_and_sign(x in -0.4f32..0.4, y in -0.05f32..0.45, z in -0.3f32..0.3) {
+        let (sdf, grid) = baked_table();
+        prop_assert!(grid.cell_size() <= 0.01);
+        let p = Point3::new(x, y, z);
+        let exact = sdf.distance(&p);
+        let approx = grid.distance(&p);
+        let diag = grid.cell_diagonal();
+        if exact.abs() <= diag {
+            prop_assert!((approx - exact).abs() <= diag * 1.0001, "{} vs {}", approx, exact);
+        } else {
+            prop_assert_eq!(approx < 0.0, exact < 0.0, "sign at {:?}: {} vs {}", p, approx, exact);
+        }
+    }
+}
