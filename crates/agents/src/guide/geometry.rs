@@ -160,6 +160,41 @@ impl Raster {
         }
     }
 
+    /// 8-connected components of the free cells, labelled like [`Raster::components`].
+    pub fn components8(&self, mask: &[bool]) -> (Vec<u32>, Vec<usize>) {
+        let mut labels = vec![0u32; mask.len()];
+        let mut sizes = vec![0usize];
+        let mut stack = Vec::new();
+        for start in 0..mask.len() {
+            if !mask[start] || labels[start] != 0 {
+                continue;
+            }
+            let label = sizes.len() as u32;
+            let mut size = 0;
+            labels[start] = label;
+            stack.push(start);
+            while let Some(idx) = stack.pop() {
+                size += 1;
+                let (i, j) = ((idx % self.nx) as i64, (idx / self.nx) as i64);
+                for dj in -1..=1 {
+                    for di in -1..=1 {
+                        let (a, b) = (i + di, j + dj);
+                        if a < 0 || b < 0 || a >= self.nx as i64 || b >= self.nz as i64 {
+                            continue;
+                        }
+                        let n = b as usize * self.nx + a as usize;
+                        if mask[n] && labels[n] == 0 {
+                            labels[n] = label;
+                            stack.push(n);
+                        }
+                    }
+                }
+            }
+            sizes.push(size);
+        }
+        (labels, sizes)
+    }
+
     /// 4-connected components of the free cells: a label per cell (0 = blocked) and the size
     /// of each label (index 0 unused).
     pub fn components(&self, mask: &[bool]) -> (Vec<u32>, Vec<usize>) {

@@ -21,8 +21,12 @@ use crate::plan::{Plan, PlannedObject, Zone};
 
 /// Robot radius of the Walk and Reach metrics (0.3 m diameter).
 pub const ROBOT_RADIUS: f64 = 0.15;
-/// Objects whose box centre is at or above this height do not block walking (metrics rule).
-const WALK_HEIGHT: f64 = 1.5;
+/// How far the guide grows footprints for its own walk check: the robot radius plus half a
+/// raster cell and a centimetre, so that slivers the metric raster may close never count as
+/// passages.
+fn walk_grow(cell: f64) -> f64 {
+    ROBOT_RADIUS + cell / 2.0 + 0.01
+}
 /// Minimum share of the free floor the largest walkable component must hold.
 const MIN_WALK: f64 = 0.995;
 /// Door opening width in metres.
@@ -147,9 +151,8 @@ impl FloorState<'_> {
         let mut walk = self.walk_base.clone();
         if let Some(p) = extra.filter(|p| !p.mounted) {
             r.stamp(&mut aisle, &p.fp, self.aisle_radius);
-            if p.height / 2.0 < WALK_HEIGHT {
-                r.stamp(&mut walk, &p.fp, ROBOT_RADIUS);
-            }
+            // Tall objects too: the Reach raster counts every object as an obstacle.
+            r.stamp(&mut walk, &p.fp, walk_grow(r.cell));
         }
         let (alabels, asizes) = r.components(&aisle);
         let main = match self.door_aisle {
@@ -207,13 +210,31 @@ impl FloorState<'_> {
         found
     }
 
+    /// Recomputes the walkway rasters from the placed objects.
+    fn rebuild(&mut self) {
+        let grow = walk_grow(self.raster.cell);
+        self.aisle_base = self.raster.floor_mask(self.aisle_radius);
+        self.walk_base = self.raster.floor_mask(grow);
+        for (door, mask) in [
+            (self.door_aisle, &mut self.aisle_base),
+            (self.door_walk, &mut self.walk_base),
+        ] {
+            if let Some(d) = door {
+                mask[d] = true;
+            }
+        }
+        let placed = std::mem::take(&mut self.placed);
+        for p in placed {
+            self.commit(p);
+        }
+    }
+
     fn commit(&mut self, p: Placed) {
         if !p.mounted {
             self.raster
                 .stamp(&mut self.aisle_base, &p.fp, self.aisle_radius);
-            if p.height / 2.0 < WALK_HEIGHT {
-                self.raster.stamp(&mut self.walk_base, &p.fp, ROBOT_RADIUS);
-            }
+            self.raster
+                .stamp(&mut self.walk_base, &p.fp, walk_grow(self.raster.cell));
         }
         self.placed.push(p);
     }
@@ -225,6 +246,43 @@ impl FloorState<'_> {
     fn index_of(&self, id: &str) -> Option<usize> {
         self.plan.objects.iter().position(|o| o.id == id)
     }
+}
+
+/// Free-floor components by the Walk metric's rules: a 256 × 256 raster over the floor's
+/// bounding square plus 0.2 m, the floor eroded by the robot radius, footprints grown (round)
+/// by it, 8-connected.
+fn metric_components(floor: [f64; 4], obstacles: &[Footprint]) -> (Raster, Vec<u32>, Vec<usize>) {
+    let side = (floor[2] - floor[0]).max(floor[3] - floor[1]) + 0.4;
+    let (cx, cz) = ((floor[0] + floor[2]) / 2.0, (floor[1] + floor[3]) / 2.0);
+    let raster = Raster::new(
+        cx - side / 2.0,
+        cz - side / 2.0,
+        cx + side / 2.0,
+        cz + side / 2.0,
+        side / 256.0,
+    );
+    let r = ROBOT_RADIUS;
+    let mut free = vec![false; raster.nx * raster.nz];
+    for j in 0..raster.nz {
+        for i in 0..raster.nx {
+            let [x, z] = raster.center(i, j);
+            free[j * raster.nx + i] =
+                x >= floor[0] + r && x <= floor[2] - r && z >= floor[1] + r && z <= floor[3] - r;
+        }
+    }
+    for fp in obstacles {
+        raster.for_cells_in(fp, r, |idx| {
+            let (i, j) = (idx % raster.nx, idx / raster.nx);
+            let [x, z] = raster.center(i, j);
+            let [lx, lz] = fp.to_local(x, z);
+            let (ex, ez) = ((lx.abs() - fp.hx).max(0.0), (lz.abs() - fp.hz).max(0.0));
+            if ex.hypot(ez) <= r {
+                free[idx] = false;
+            }
+        });
+    }
+    let (labels, sizes) = raster.components8(&free);
+    (raster, labels, sizes)
 }
 
 fn seat_like(category: &str) -> bool {
@@ -259,7 +317,39 @@ fn wrap(yaw: f64) -> f64 {
 }
 
 impl Guide for ProceduralGuide {
+    /// Lays the plan out; when the anchor, a stated (hard) object or a parent of other objects
+    /// finds no room, the room grows by 12 % and the layout is redone (at most twice).
     fn layout(
+        &self,
+        plan: &Plan,
+        assets: &dyn AssetLookup,
+        seed: u64,
+    ) -> Result<GuidedLayout, GuideError> {
+        let mut room = plan.clone();
+        for attempt in 0..3 {
+            let result = self.layout_once(&room, assets, seed)?;
+            let important = |id: &str| {
+                room.object(id).is_some_and(|o| {
+                    o.parent == ParentRef::Ground
+                        && (o.id == room.anchor
+                            || o.hard
+                            || room
+                                .objects
+                                .iter()
+                                .any(|c| c.parent.object_id() == Some(id)))
+                })
+            };
+            if attempt == 2 || !result.dropped.iter().any(|d| important(&d.id)) {
+                return Ok(result);
+            }
+            room.room_size = room.room_size.map(|v| (v * 1.12 * 100.0).round() / 100.0);
+        }
+        unreachable!("the last attempt returns")
+    }
+}
+
+impl ProceduralGuide {
+    fn layout_once(
         &self,
         plan: &Plan,
         assets: &dyn AssetLookup,
@@ -303,8 +393,7 @@ impl Guide for ProceduralGuide {
         }
 
         let sides: Vec<Side> = {
-            let inset = if indoor { 0.0 } else { 0.3 };
-            let (x, z) = (hw - inset, hd - inset);
+            let (x, z) = (hw, hd);
             let id = |i: usize| indoor.then(|| format!("wall_{i}"));
             vec![
                 Side {
@@ -341,7 +430,7 @@ impl Guide for ProceduralGuide {
         let aisle_radius = (plan.aisle / 2.0).max(0.3);
         let raster = Raster::new(-hw, -hd, hw, hd, self.cell);
         let mut aisle_base = raster.floor_mask(aisle_radius);
-        let mut walk_base = raster.floor_mask(ROBOT_RADIUS);
+        let mut walk_base = raster.floor_mask(walk_grow(self.cell));
         let door_zone = indoor.then(|| {
             let clear = plan.door_clearance.max(0.6);
             Footprint {
@@ -361,7 +450,7 @@ impl Guide for ProceduralGuide {
                 None
             }
         };
-        let (door_aisle, door_walk) = (door_cell(aisle_radius), door_cell(ROBOT_RADIUS));
+        let (door_aisle, door_walk) = (door_cell(aisle_radius), door_cell(walk_grow(self.cell)));
         if let (Some(a), Some(w)) = (door_aisle, door_walk) {
             aisle_base[a] = true;
             walk_base[w] = true;
@@ -428,8 +517,7 @@ impl Guide for ProceduralGuide {
                 let mut tried = 0;
                 for c in candidates {
                     if !mounted {
-                        let margin = if indoor { 0.0 } else { 0.3 };
-                        if !state.inside_floor(&c.fp, margin) || state.collides(&c.fp, 0.02) {
+                        if !state.inside_floor(&c.fp, 0.0) || state.collides(&c.fp, 0.02) {
                             continue;
                         }
                     } else if !self.mount_ok(&state, &c.fp) {
@@ -509,6 +597,45 @@ impl Guide for ProceduralGuide {
         }
         if state.placed.iter().all(|p| p.mounted) {
             return Err(GuideError::NothingFits { width, depth });
+        }
+
+        // Final check by the metric's own raster rules; objects that close off a pocket of
+        // floor are dropped, newest and softest first.
+        for _ in 0..8 {
+            let walk_obstacles: Vec<Footprint> = state
+                .placed
+                .iter()
+                .filter(|p| !p.mounted && p.height / 2.0 < 1.5)
+                .map(|p| p.fp)
+                .collect();
+            let (raster, labels, sizes) = metric_components(state.floor, &walk_obstacles);
+            let total: usize = sizes.iter().sum();
+            let main = (1..sizes.len()).max_by_key(|&l| sizes[l]).unwrap_or(0);
+            if total == 0 || sizes[main] as f64 >= MIN_WALK * total as f64 {
+                break;
+            }
+            let px = raster.cell;
+            let culprit = state
+                .placed
+                .iter()
+                .enumerate()
+                .filter(|(_, p)| !p.mounted && plan.objects[p.plan_index].id != plan.anchor)
+                .filter(|(_, p)| {
+                    let mut touches_pocket = false;
+                    raster.for_cells_in(&p.fp, ROBOT_RADIUS + 1.5 * px, |idx| {
+                        touches_pocket |= labels[idx] != 0 && labels[idx] as usize != main;
+                    });
+                    touches_pocket
+                })
+                .max_by_key(|(k, p)| (!plan.objects[p.plan_index].hard, *k))
+                .map(|(k, _)| k);
+            let Some(k) = culprit else { break };
+            let p = state.placed.remove(k);
+            dropped.push(DroppedObject {
+                id: plan.objects[p.plan_index].id.clone(),
+                reason: "it closed off a pocket of floor from the walkway".into(),
+            });
+            state.rebuild();
         }
 
         // Poses of ground objects.
