@@ -481,7 +481,15 @@ fn read_relations(out: &mut Analysis, items: &[Item], knowledge: &Knowledge) {
             }
             Item::Pronoun { possessive } => {
                 if let Some((phrase, words, subjects)) = pending.take() {
-                    if let Some(&target) = seen.iter().rev().find(|m| !subjects.contains(m)) {
+                    // In "X with Y inside it", "it" is X; elsewhere the latest other mention.
+                    let with_target = with_parent.filter(|p| {
+                        in_with
+                            && !subjects.contains(p)
+                            && subjects.iter().all(|s| with_members.contains(s))
+                    });
+                    let target = with_target
+                        .or_else(|| seen.iter().rev().find(|m| !subjects.contains(m)).copied());
+                    if let Some(target) = target {
                         emit(
                             out,
                             &subjects,

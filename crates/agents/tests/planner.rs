@@ -479,3 +479,40 @@ fn plans_round_trip_through_json_for_llm_providers() {
         p.description
     );
 }
+
+#[test]
+fn every_spatial_phrase_becomes_its_relation() {
+    let plan = plan(
+        "an office with a desk against the left wall, a chair in front of the desk, a plant next to the desk, a laptop on the desk, a trash can under the desk, a sofa facing the desk, a bookshelf to the right of the sofa with a box inside it, a cabinet behind the sofa and a vase in the corner",
+        0,
+    );
+    let has = |subject: &str, kind: RelationKind, target: &str| {
+        plan.constraints.iter().any(|c| {
+            plan.object(&c.subject)
+                .is_some_and(|o| o.category == subject)
+                && c.kind == kind
+                && match &c.target {
+                    ConstraintTarget::Object(t) => {
+                        plan.object(t).is_some_and(|o| o.category == target)
+                    }
+                    ConstraintTarget::Wall(w) => w == target,
+                    ConstraintTarget::Corner => target == "corner",
+                    ConstraintTarget::AnyWall => target == "any",
+                }
+        })
+    };
+    assert!(
+        has("desk", RelationKind::AgainstWall, "wall_1"),
+        "{:#?}",
+        plan.constraints
+    );
+    assert!(has("chair", RelationKind::InFrontOf, "desk"));
+    assert!(has("plant", RelationKind::Beside, "desk"));
+    assert!(has("laptop", RelationKind::On, "desk"));
+    assert!(has("trash_can", RelationKind::Under, "desk"));
+    assert!(has("sofa", RelationKind::Facing, "desk"));
+    assert!(has("bookshelf", RelationKind::RightOf, "sofa"));
+    assert!(has("box", RelationKind::Inside, "bookshelf"));
+    assert!(has("cabinet", RelationKind::Behind, "sofa"));
+    assert!(has("vase", RelationKind::AgainstWall, "corner"));
+}
