@@ -81,10 +81,14 @@ impl DecompositionCache {
         self.len() == 0
     }
 
-    /// The convex collision pieces of a part: the convex hull of the part when the part is
-    /// convex (procedural parts are), otherwise its VHACD decomposition (computed once per
+    /// The convex collision pieces of a part: a rapier cylinder or cone for a finely segmented
+    /// vertical cylinder or cone (see [`round_solid`]), the convex hull of the part when the part
+    /// is convex (procedural parts are), otherwise its VHACD decomposition (computed once per
     /// distinct geometry), so that cavities stay open. Empty for a flat or empty part.
     pub fn pieces(&self, part: &MeshPart) -> Pieces {
+        if let Some(round) = round_solid(part) {
+            return Arc::new(vec![round]);
+        }
         let points: Vec<Vec3> = part.positions.iter().map(|&p| Vec3::from(p)).collect();
         if is_convex(part) {
             return Arc::new(
@@ -117,6 +121,100 @@ impl DecompositionCache {
         }
         pieces
     }
+}
+
+/// Rings with at least this many vertices are simulated as round primitives.
+const MIN_ROUND_SEGMENTS: usize = 12;
+
+/// A vertical cylinder or cone given as a mesh with at least [`MIN_ROUND_SEGMENTS`] sides, as
+/// the matching rapier primitive with its pose.
+///
+/// A convex hull with many vertices around its base keeps rocking on a dynamic support in
+/// rapier (a 24-sided cup on a table tilts by 0.05 rad and slides by 1 cm, never sleeping), so a
+/// settle check would wrongly call it unstable; the round primitives rest still. Recognised
+/// shapes: every vertex lies on one of two horizontal planes, and on each plane the vertices
+/// are a ring at one radius about a common vertical axis, optionally with the ring's centre
+/// (cap centres); a plane holding only the centre is a cone's apex.
+pub fn round_solid(part: &MeshPart) -> Option<(Pose3, SharedShape)> {
+    let pts: Vec<Vec3> = part.positions.iter().map(|&p| Vec3::from(p)).collect();
+    let (mut y0, mut y1) = (f32::INFINITY, f32::NEG_INFINITY);
+    for p in &pts {
+        y0 = y0.min(p.y);
+        y1 = y1.max(p.y);
+    }
+    let height = y1 - y0;
+    if !(height > 1e-4) {
+        return None;
+    }
+    let eps = 1e-5 + 1e-4 * height;
+    if pts
+        .iter()
+        .any(|p| (p.y - y0).abs() > eps && (p.y - y1).abs() > eps)
+    {
+        return None;
+    }
+    // Ring points of a level: (centre, radius, count); `None` radius when only the centre.
+    let level = |y: f32| -> Option<(Vec3, f32, usize)> {
+        let ring: Vec<Vec3> = pts
+            .iter()
+            .filter(|p| (p.y - y).abs() <= eps)
+            .copied()
+            .collect();
+        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+        for p in &ring {
+            lo = lo.min(*p);
+            hi = hi.max(*p);
+        }
+        let rough = (lo + hi) / 2.0;
+        let reach = ring
+            .iter()
+            .map(|p| (*p - rough).with_y(0.0).length())
+            .fold(0.0f32, f32::max);
+        let outer: Vec<Vec3> = ring
+            .iter()
+            .filter(|p| (**p - rough).with_y(0.0).length() > 0.5 * reach)
+            .copied()
+            .collect();
+        if outer.is_empty() {
+            return Some((rough.with_y(y), 0.0, 0));
+        }
+        let centre = outer.iter().copied().sum::<Vec3>() / outer.len() as f32;
+        let radius = outer
+            .iter()
+            .map(|p| (*p - centre).with_y(0.0).length())
+            .sum::<f32>()
+            / outer.len() as f32;
+        let tolerance = 1e-5 + 0.005 * radius;
+        let round = ring.iter().all(|p| {
+            let d = (*p - centre).with_y(0.0).length();
+            (d - radius).abs() <= tolerance || d <= tolerance
+        });
+        round.then_some((centre.with_y(y), radius, outer.len()))
+    };
+    let (c0, r0, n0) = level(y0)?;
+    let (c1, r1, n1) = level(y1)?;
+    if (c0 - c1).with_y(0.0).length() > 1e-4 + 0.005 * r0.max(r1) {
+        return None;
+    }
+    let centre = Vec3::new(c0.x, (y0 + y1) / 2.0, c0.z);
+    let half = height / 2.0;
+    if n0 >= MIN_ROUND_SEGMENTS && n1 >= MIN_ROUND_SEGMENTS && (r0 - r1).abs() <= 0.005 * r0 {
+        return Some((
+            Pose3::from_translation(centre),
+            SharedShape::cylinder(half, (r0 + r1) / 2.0),
+        ));
+    }
+    if n0 >= MIN_ROUND_SEGMENTS && n1 == 0 {
+        return Some((Pose3::from_translation(centre), SharedShape::cone(half, r0)));
+    }
+    if n1 >= MIN_ROUND_SEGMENTS && n0 == 0 {
+        // rapier's cone points up; turn it upside down for an apex at the bottom.
+        return Some((
+            Pose3::from_parts(centre, Quat::from_rotation_x(std::f32::consts::PI)),
+            SharedShape::cone(half, r1),
+        ));
+    }
+    None
 }
 
 fn geometry_hash(part: &MeshPart) -> u64 {
@@ -271,4 +369,38 @@ pub fn simulate(scene: &EvalScene, cache: &DecompositionCache) -> StabilityRepor
 /// The rotation angle of a unit quaternion, in [0, π].
 fn quat_angle(q: Quat) -> f32 {
     2.0 * q.w.abs().min(1.0).acos()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use scenethesis_assets::primitives::{cuboid, cylinder, frustum};
+
+    #[test]
+    fn finely_segmented_cylinders_and_cones_become_round_primitives() {
+        let cyl = cylinder("c", 0, [0.3, -0.2], 0.04, 0.75, 0.85, 24);
+        let (pose, shape) = round_solid(&cyl).expect("a 24-sided cylinder");
+        let c = shape.as_cylinder().expect("cylinder primitive");
+        assert!((c.radius - 0.04).abs() < 1e-5 && (c.half_height - 0.05).abs() < 1e-5);
+        assert!((pose.translation - Vec3::new(0.3, 0.8, -0.2)).length() < 1e-5);
+        let cone = frustum("k", 0, [0.0, 0.0], 0.2, 0.0, 0.0, 0.5, 32);
+        assert!(round_solid(&cone).unwrap().1.as_cone().is_some());
+        let down = frustum("k", 0, [0.0, 0.0], 0.0, 0.2, 0.0, 0.5, 32);
+        let (pose, shape) = round_solid(&down).unwrap();
+        assert!(shape.as_cone().is_some());
+        assert!(pose.rotation.angle_between(Quat::IDENTITY) > 3.0);
+        // Coarse rings, frusta and boxes stay convex hulls.
+        assert!(round_solid(&cylinder("c", 0, [0.0, 0.0], 0.04, 0.0, 0.1, 8)).is_none());
+        assert!(round_solid(&frustum("f", 0, [0.0, 0.0], 0.2, 0.1, 0.0, 0.5, 32)).is_none());
+        assert!(round_solid(&cuboid("b", 0, [0.0; 3], [1.0; 3])).is_none());
+    }
+
+    #[test]
+    fn convexity_test_tells_boxes_from_an_l_shape() {
+        let mut part = cuboid("b", 0, [0.0; 3], [1.0; 3]);
+        assert!(is_convex(&part));
+        // Push one corner inward: a dent makes it non-convex.
+        part.positions[7] = [0.6, 0.6, 0.6];
+        assert!(!is_convex(&part));
+    }
 }

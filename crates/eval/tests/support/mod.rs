@@ -1,6 +1,8 @@
 //! Hand-built scenes with known answers, shared by the tests and the benchmark.
 #![allow(dead_code)]
 
+use std::f64::consts::FRAC_PI_2;
+
 use nalgebra::{Point2, Vector3};
 use scenethesis_assets::primitives::{cuboid, cylinder};
 use scenethesis_eval::{EvalObject, EvalScene};
@@ -141,7 +143,7 @@ pub fn two_rooms(objects: Vec<EvalObject>) -> EvalScene {
     }
 }
 
-/// A furnished 30-object room: 4 tables each with a book and two cups, 8 chairs around them,
+/// A furnished 30-object room: 4 tables each with a book and two cups, 8 chairs beside them,
 /// and 2 shelves holding 2 boxes each.
 pub fn thirty_objects() -> EvalScene {
     let mut objects = Vec::new();
@@ -153,7 +155,7 @@ pub fn thirty_objects() -> EvalScene {
         cup(),
     );
     let book = block(0.2, 0.04, 0.3);
-    for (n, (x, z)) in [(-1.5, -0.85), (1.5, -0.85), (-1.5, 1.05), (1.5, 1.05)]
+    for (n, (x, z)) in [(-1.3, -0.5), (1.3, -0.5), (-1.3, 1.2), (1.3, 1.2)]
         .into_iter()
         .enumerate()
     {
@@ -184,7 +186,7 @@ pub fn thirty_objects() -> EvalScene {
                 RelationKind::On,
             ));
         }
-        for (m, (dz, yaw)) in [(-0.65, 0.0), (0.65, std::f64::consts::PI)]
+        for (m, (dx, yaw)) in [(-0.95, FRAC_PI_2), (0.95, -FRAC_PI_2)]
             .into_iter()
             .enumerate()
         {
@@ -192,7 +194,7 @@ pub fn thirty_objects() -> EvalScene {
                 &format!("chair_{n}_{m}"),
                 "chair",
                 &c,
-                at(x, 0.0, z + dz, yaw),
+                at(x + dx, 0.0, z, yaw),
                 None,
                 RelationKind::OnFloor,
             ));
