@@ -1,0 +1,196 @@
+//! A rendered frame on the CPU: colour, metric depth and instance ids, with encoders.
+
+use image::{GrayImage, ImageBuffer, Luma, RgbaImage};
+
+use crate::RenderError;
+
+/// The three images of one render, all `width × height`, rows top to bottom.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Frame {
+    /// sRGB colour, opaque.
+    pub color: RgbaImage,
+    /// Distance along the camera's optical axis (its −Z) in metres, row-major; `0.0` where no
+    /// geometry was hit (background).
+    pub depth: Vec<f32>,
+    /// Instance index per pixel, row-major: `0` for background, `k ≥ 1` for `ids[k - 1]`.
+    pub instance: Vec<u32>,
+    /// The id table: objects in the scene's order, then the architecture (floor, walls) and
+    /// ground plane if any.
+    pub ids: Vec<String>,
+}
+
+impl Frame {
+    /// Image width in pixels.
+    pub fn width(&self) -> u32 {
+        self.color.width()
+    }
+
+    /// Image height in pixels.
+    pub fn height(&self) -> u32 {
+        self.color.height()
+    }
+
+    fn index(&self, x: u32, y: u32) -> usize {
+        assert!(
+            x < self.width() && y < self.height(),
+            "pixel ({x}, {y}) is outside the {}×{} frame",
+            self.width(),
+            self.height()
+        );
+        (y * self.width() + x) as usize
+    }
+
+    /// Depth at pixel (x, y) in metres, or `None` for background.
+    pub fn depth_at(&self, x: u32, y: u32) -> Option<f32> {
+        let d = self.depth[self.index(x, y)];
+        (d > 0.0).then_some(d)
+    }
+
+    /// The id shown at pixel (x, y), or `None` for background.
+    pub fn id_at(&self, x: u32, y: u32) -> Option<&str> {
+        let k = self.instance[self.index(x, y)];
+        self.id_of(k)
+    }
+
+    /// The id an instance index stands for (`None` for 0 or out of range).
+    pub fn id_of(&self, index: u32) -> Option<&str> {
+        (index as usize)
+            .checked_sub(1)
+            .and_then(|i| self.ids.get(i))
+            .map(String::as_str)
+    }
+
+    /// The instance index of `id`, if the scene had it.
+    pub fn index_of(&self, id: &str) -> Option<u32> {
+        self.ids.iter().position(|x| x == id).map(|i| i as u32 + 1)
+    }
+
+    /// The visible mask of `id`: 255 where the object is seen, 0 elsewhere (all 0 for an
+    /// unknown id).
+    pub fn mask(&self, id: &str) -> GrayImage {
+        let k = self.index_of(id).unwrap_or(0);
+        let pixels = self
+            .instance
+            .iter()
+            .map(|&v| if k != 0 && v == k { 255 } else { 0 })
+            .collect();
+        GrayImage::from_raw(self.width(), self.height(), pixels).expect("one byte per pixel")
+    }
+
+    /// Number of pixels showing `id`.
+    pub fn pixel_count(&self, id: &str) -> usize {
+        match self.index_of(id) {
+            Some(k) => self.instance.iter().filter(|&&v| v == k).count(),
+            None => 0,
+        }
+    }
+
+    /// The colour image encoded as PNG.
+    pub fn color_png(&self) -> Result<Vec<u8>, RenderError> {
+        encode_png(&self.color)
+    }
+
+    /// Depth as a 16-bit greyscale image in millimetres (0 = background, saturating at
+    /// 65.535 m), the common format of depth cameras.
+    pub fn depth_u16_mm(&self) -> ImageBuffer<Luma<u16>, Vec<u16>> {
+        let pixels = self
+            .depth
+            .iter()
+            .map(|&d| (d * 1000.0).round().clamp(0.0, 65535.0) as u16)
+            .collect();
+        ImageBuffer::from_raw(self.width(), self.height(), pixels).expect("one value per pixel")
+    }
+
+    /// The 16-bit millimetre depth image encoded as PNG.
+    pub fn depth_png16(&self) -> Result<Vec<u8>, RenderError> {
+        encode_png(&self.depth_u16_mm())
+    }
+
+    /// Depth as a NumPy `.npy` file: little-endian `float32`, shape `(height, width)`, metres.
+    pub fn depth_npy(&self) -> Vec<u8> {
+        npy_f32(&self.depth, self.height(), self.width())
+    }
+
+    /// The instance image encoded as a 16-bit greyscale PNG of instance indices (ids beyond
+    /// 65535 saturate).
+    pub fn instance_png16(&self) -> Result<Vec<u8>, RenderError> {
+        let pixels = self.instance.iter().map(|&k| k.min(65535) as u16).collect();
+        let img: ImageBuffer<Luma<u16>, Vec<u16>> =
+            ImageBuffer::from_raw(self.width(), self.height(), pixels).expect("one per pixel");
+        encode_png(&img)
+    }
+}
+
+fn encode_png<P, C>(img: &ImageBuffer<P, C>) -> Result<Vec<u8>, RenderError>
+where
+    P: image::PixelWithColorType,
+    [P::Subpixel]: image::EncodableLayout,
+    C: std::ops::Deref<Target = [P::Subpixel]>,
+{
+    let mut bytes = Vec::new();
+    img.write_to(
+        &mut std::io::Cursor::new(&mut bytes),
+        image::ImageFormat::Png,
+    )?;
+    Ok(bytes)
+}
+
+/// A version-1.0 `.npy` file holding `values` as little-endian f32 of shape (rows, cols).
+fn npy_f32(values: &[f32], rows: u32, cols: u32) -> Vec<u8> {
+    let mut header =
+        format!("{{'descr': '<f4', 'fortran_order': False, 'shape': ({rows}, {cols}), }}");
+    // Magic (6) + version (2) + header length (2) + header + '\n' is a multiple of 64.
+    let unpadded = 10 + header.len() + 1;
+    header.push_str(&" ".repeat((64 - unpadded % 64) % 64));
+    header.push('\n');
+    let mut out = Vec::with_capacity(10 + header.len() + values.len() * 4);
+    out.extend_from_slice(b"\x93NUMPY\x01\x00");
+    out.extend_from_slice(&(header.len() as u16).to_le_bytes());
+    out.extend_from_slice(header.as_bytes());
+    for v in values {
+        out.extend_from_slice(&v.to_le_bytes());
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn frame() -> Frame {
+        Frame {
+            color: RgbaImage::new(3, 2),
+            depth: vec![0.0, 1.5, 2.0, 0.0, 0.25, 70.0],
+            instance: vec![0, 1, 2, 0, 1, 2],
+            ids: vec!["chair_0".into(), "floor".into()],
+        }
+    }
+
+    #[test]
+    fn lookups_and_masks_follow_the_id_table() {
+        let f = frame();
+        assert_eq!(f.id_at(1, 0), Some("chair_0"));
+        assert_eq!(f.id_at(0, 0), None);
+        assert_eq!(f.depth_at(0, 1), None);
+        assert_eq!(f.depth_at(1, 1), Some(0.25));
+        assert_eq!(f.mask("floor").into_raw(), vec![0, 0, 255, 0, 0, 255]);
+        assert_eq!(f.pixel_count("chair_0"), 2);
+        assert_eq!(f.pixel_count("nothing"), 0);
+        assert_eq!(
+            f.depth_u16_mm().into_raw(),
+            vec![0, 1500, 2000, 0, 250, 65535]
+        );
+    }
+
+    #[test]
+    fn npy_header_is_aligned_and_data_follows() {
+        let bytes = frame().depth_npy();
+        let header_len = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
+        assert_eq!((10 + header_len) % 64, 0);
+        let header = std::str::from_utf8(&bytes[10..10 + header_len]).unwrap();
+        assert!(header.contains("'shape': (2, 3)") && header.ends_with('\n'));
+        let first = f32::from_le_bytes(bytes[10 + header_len + 4..][..4].try_into().unwrap());
+        assert_eq!(first, 1.5);
+        assert_eq!(bytes.len(), 10 + header_len + 24);
+    }
+}

@@ -1,0 +1,445 @@
+//! Real renders on whatever adapter the machine offers (GL llvmpipe in CI).
+
+use std::path::PathBuf;
+use std::sync::{Arc, OnceLock};
+
+use nalgebra::{Point2, Point3, Vector3};
+use scenethesis_render::{views, Frame, Instance, RenderScene, Renderer, RendererOptions};
+use scenethesis_scene_graph::{Architecture, Camera, Intrinsics, Material, Mesh, MeshPart, Pose};
+
+fn renderer() -> &'static Renderer {
+    static RENDERER: OnceLock<Renderer> = OnceLock::new();
+    RENDERER.get_or_init(|| {
+        let r = Renderer::from_env().expect("a graphics adapter (Mesa llvmpipe in CI)");
+        eprintln!("rendering on {}", r.adapter_description());
+        r
+    })
+}
+
+/// A closed box part from `min` to `max`, faces counter-clockwise from outside.
+fn cuboid(name: &str, material: usize, min: [f32; 3], max: [f32; 3]) -> MeshPart {
+    let positions = (0..8)
+        .map(|i| {
+            [
+                if i & 1 == 0 { min[0] } else { max[0] },
+                if i & 2 == 0 { min[1] } else { max[1] },
+                if i & 4 == 0 { min[2] } else { max[2] },
+            ]
+        })
+        .collect();
+    MeshPart {
+        name: name.into(),
+        material,
+        positions,
+        triangles: vec![
+            [0, 2, 1],
+            [1, 2, 3],
+            [4, 5, 6],
+            [5, 7, 6],
+            [0, 1, 4],
+            [1, 5, 4],
+            [2, 6, 3],
+            [3, 6, 7],
+            [0, 4, 2],
+            [2, 4, 6],
+            [1, 3, 5],
+            [3, 7, 5],
+        ],
+    }
+}
+
+/// A closed cylinder along +Y standing on y = 0.
+fn cylinder(name: &str, material: usize, radius: f32, height: f32, segments: u32) -> MeshPart {
+    let mut positions = vec![[0.0, 0.0, 0.0], [0.0, height, 0.0]];
+    for i in 0..segments {
+        let a = std::f32::consts::TAU * i as f32 / segments as f32;
+        let (x, z) = (radius * a.cos(), -radius * a.sin());
+        positions.push([x, 0.0, z]);
+        positions.push([x, height, z]);
+    }
+    let mut triangles = Vec::new();
+    for i in 0..segments {
+        let (b0, t0) = (2 + 2 * i, 3 + 2 * i);
+        let (b1, t1) = (2 + 2 * ((i + 1) % segments), 3 + 2 * ((i + 1) % segments));
+        triangles.push([0, b1, b0]);
+        triangles.push([1, t0, t1]);
+        triangles.push([b0, b1, t1]);
+        triangles.push([b0, t1, t0]);
+    }
+    MeshPart {
+        name: name.into(),
+        material,
+        positions,
+        triangles,
+    }
+}
+
+fn unit_cube() -> Arc<Mesh> {
+    Arc::new(Mesh {
+        parts: vec![cuboid("cube", 0, [-0.5, 0.0, -0.5], [0.5, 1.0, 0.5])],
+        materials: vec![Material::new("red", [0.7, 0.1, 0.1], 0.6)],
+    })
+}
+
+fn cube_scene(pose: Pose) -> RenderScene {
+    RenderScene::studio(vec![Instance::new("cube", unit_cube(), pose)])
+}
+
+fn cube_pose() -> Pose {
+    Pose::new(1.2, 0.4, Vector3::new(0.2, 0.0, -0.3))
+}
+
+fn pixel_centre(x: u32, y: u32) -> Point2<f64> {
+    Point2::new(x as f64 + 0.5, y as f64 + 0.5)
+}
+
+#[test]
+fn depth_through_a_cube_face_centre_is_the_known_distance() {
+    let pose = cube_pose();
+    let scene = cube_scene(pose);
+    let face_centre = pose.transform_point(&Point3::new(0.0, 0.5, 0.5));
+    let normal = pose.front();
+    // Straight on: the face is perpendicular to the optical axis 2.5 m away. An odd image
+    // size puts the face centre at the centre of pixel (80, 60).
+    let k = Intrinsics::from_vertical_fov(161, 121, 0.9);
+    let camera = Camera::look_at(k, face_centre + normal * 2.5, face_centre, Vector3::y());
+    let frame = renderer().render(&scene, &camera).unwrap();
+    let depth = frame.depth_at(80, 60).expect("the cube is hit");
+    assert!((depth as f64 - 2.5).abs() < 0.01, "depth {depth}");
+    assert_eq!(frame.id_at(80, 60), Some("cube"));
+
+    // Obliquely: the depth at a pixel near the face centre equals the ray–plane distance.
+    let eye = face_centre + normal * 2.0 + Vector3::new(0.9, 0.7, 0.0);
+    let camera = Camera::look_at(k, eye, face_centre, Vector3::y());
+    let frame = renderer().render(&scene, &camera).unwrap();
+    let proj = camera.project(&face_centre).unwrap();
+    let (x, y) = (proj.pixel.x.floor() as u32, proj.pixel.y.floor() as u32);
+    let along = camera.unproject(&pixel_centre(x, y), 1.0) - camera.position;
+    let expected = (face_centre - camera.position).dot(&normal) / along.dot(&normal);
+    let depth = frame.depth_at(x, y).expect("the cube is hit");
+    assert!(
+        (depth as f64 - expected).abs() < 0.01,
+        "depth {depth}, expected {expected}"
+    );
+}
+
+/// Whether `p` is inside the convex polygon `hull` (counter-clockwise in image space with v
+/// down, i.e. clockwise on screen: handled by checking sign consistency), and its distance to
+/// the polygon's border.
+fn inside_and_border_distance(hull: &[Point2<f64>], p: Point2<f64>) -> (bool, f64) {
+    let n = hull.len();
+    let mut sign = 0.0f64;
+    let mut inside = true;
+    let mut border = f64::MAX;
+    for i in 0..n {
+        let (a, b) = (hull[i], hull[(i + 1) % n]);
+        let e = b - a;
+        let cross = e.x * (p.y - a.y) - e.y * (p.x - a.x);
+        if cross != 0.0 {
+            if sign == 0.0 {
+                sign = cross.signum();
+            } else if cross.signum() != sign {
+                inside = false;
+            }
+        }
+        let t = ((p - a).dot(&e) / e.norm_squared()).clamp(0.0, 1.0);
+        border = border.min((a + e * t - p).norm());
+    }
+    (inside, border)
+}
+
+/// Convex hull of 2D points (Andrew's monotone chain).
+fn convex_hull(mut pts: Vec<Point2<f64>>) -> Vec<Point2<f64>> {
+    pts.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    let cross = |o: Point2<f64>, a: Point2<f64>, b: Point2<f64>| {
+        (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x)
+    };
+    let mut hull: Vec<Point2<f64>> = Vec::new();
+    for pass in 0..2 {
+        let start = hull.len();
+        let iter: Box<dyn Iterator<Item = &Point2<f64>>> = if pass == 0 {
+            Box::new(pts.iter())
+        } else {
+            Box::new(pts.iter().rev())
+        };
+        for &p in iter {
+            while hull.len() >= start + 2
+                && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(p);
+        }
+        hull.pop();
+    }
+    hull
+}
+
+#[test]
+fn instance_mask_equals_the_projected_silhouette_within_one_pixel() {
+    let pose = cube_pose();
+    let scene = cube_scene(pose);
+    let k = Intrinsics::from_vertical_fov(160, 120, 0.8);
+    let camera = Camera::look_at(
+        k,
+        Point3::new(2.4, 1.9, 2.1),
+        Point3::new(0.2, 0.55, -0.3),
+        Vector3::y(),
+    );
+    let frame = renderer().render(&scene, &camera).unwrap();
+    let corners: Vec<Point2<f64>> = unit_cube()
+        .bounds()
+        .unwrap()
+        .corners()
+        .iter()
+        .map(|c| camera.project(&pose.transform_point(c)).unwrap().pixel)
+        .collect();
+    let hull = convex_hull(corners);
+    let mask = frame.mask("cube");
+    let (mut inside_count, mut mismatches) = (0, 0);
+    for y in 0..k.height {
+        for x in 0..k.width {
+            let (inside, border) = inside_and_border_distance(&hull, pixel_centre(x, y));
+            let shown = mask.get_pixel(x, y).0[0] == 255;
+            inside_count += inside as usize;
+            if inside != shown {
+                mismatches += 1;
+                assert!(
+                    border <= 1.0,
+                    "pixel ({x}, {y}) is {} the silhouette but {} in the mask, {border:.2} px \
+                     from the border",
+                    if inside { "inside" } else { "outside" },
+                    if shown { "set" } else { "unset" },
+                );
+            }
+        }
+    }
+    assert!(inside_count > 2000, "the cube covers {inside_count} pixels");
+    assert!(
+        mismatches < inside_count / 20,
+        "{mismatches} border mismatches"
+    );
+}
+
+fn room_scene() -> RenderScene {
+    let wood = Material::new("wood", [0.45, 0.28, 0.14], 0.7);
+    let fabric = Material::new("fabric", [0.12, 0.25, 0.55], 0.9);
+    let ceramic = Material::new("ceramic", [0.85, 0.85, 0.8], 0.3);
+    let table = Arc::new(Mesh {
+        parts: vec![
+            cuboid("top", 0, [-0.6, 0.70, -0.4], [0.6, 0.75, 0.4]),
+            cuboid("leg_0", 0, [-0.55, 0.0, -0.35], [-0.5, 0.7, -0.3]),
+            cuboid("leg_1", 0, [0.5, 0.0, -0.35], [0.55, 0.7, -0.3]),
+            cuboid("leg_2", 0, [-0.55, 0.0, 0.3], [-0.5, 0.7, 0.35]),
+            cuboid("leg_3", 0, [0.5, 0.0, 0.3], [0.55, 0.7, 0.35]),
+        ],
+        materials: vec![wood],
+    });
+    let sofa = Arc::new(Mesh {
+        parts: vec![
+            cuboid("seat", 0, [-1.0, 0.0, -0.45], [1.0, 0.45, 0.45]),
+            cuboid("back", 0, [-1.0, 0.0, -0.45], [1.0, 0.9, -0.25]),
+            cuboid("arm_l", 0, [-1.0, 0.0, -0.45], [-0.85, 0.65, 0.45]),
+            cuboid("arm_r", 0, [0.85, 0.0, -0.45], [1.0, 0.65, 0.45]),
+        ],
+        materials: vec![fabric],
+    });
+    let vase = Arc::new(Mesh {
+        parts: vec![cylinder("body", 0, 0.08, 0.3, 24)],
+        materials: vec![ceramic],
+    });
+    RenderScene::with_architecture(
+        vec![
+            Instance::new(
+                "sofa_0",
+                sofa,
+                Pose::new(1.0, 0.0, Vector3::new(0.0, 0.0, -1.4)),
+            ),
+            Instance::new(
+                "table_0",
+                table,
+                Pose::new(1.0, 0.2, Vector3::new(0.1, 0.0, 0.0)),
+            ),
+            Instance::new(
+                "vase_0",
+                vase,
+                Pose::new(1.0, 0.0, Vector3::new(0.2, 0.75, 0.05)),
+            ),
+        ],
+        Architecture::rectangular_room(4.0, 3.6, 2.6, 0.9),
+    )
+}
+
+#[test]
+fn same_scene_and_camera_give_identical_frames() {
+    let scene = room_scene();
+    let camera = views::photo_view(&scene, 96, 72);
+    let a = renderer().render(&scene, &camera).unwrap();
+    let b = renderer().render(&scene, &camera).unwrap();
+    assert!(a == b, "two renders of one scene differ");
+    assert!(a.pixel_count("table_0") > 50);
+}
+
+#[test]
+fn near_walls_are_cut_away_and_far_walls_and_door_gap_stay() {
+    let mut scene = room_scene();
+    let camera = views::photo_view(&scene, 160, 120);
+    let frame: Frame = renderer().render(&scene, &camera).unwrap();
+    // wall_0 is the back wall (−z), wall_2 the front wall (+z) that holds the door.
+    assert_eq!(
+        frame.pixel_count("wall_2"),
+        0,
+        "the front wall hides the room"
+    );
+    assert!(frame.pixel_count("wall_0") > 500);
+    assert!(frame.pixel_count("floor") > 2000);
+    assert!(frame.pixel_count("sofa_0") > 300);
+
+    scene.cut_away_walls = false;
+    let closed = renderer().render(&scene, &camera).unwrap();
+    assert!(closed.pixel_count("wall_2") > 2000);
+    // The door opening lets the camera see the floor through the front wall.
+    let door_centre = Point3::new(0.0, 1.0, 1.85);
+    let p = camera.project(&door_centre).unwrap().pixel;
+    assert_ne!(closed.id_at(p.x as u32, p.y as u32), Some("wall_2"));
+}
+
+#[test]
+fn objects_cast_shadows_on_the_floor() {
+    let scene = cube_scene(Pose::new(1.0, 0.0, Vector3::zeros()));
+    let camera = Camera::look_at(
+        Intrinsics::from_vertical_fov(160, 120, 0.9),
+        Point3::new(-2.5, 3.0, -3.0),
+        Point3::new(0.0, 0.3, 0.0),
+        Vector3::y(),
+    );
+    let lit = Renderer::new(RendererOptions {
+        shadows: false,
+        ..RendererOptions::from_env().unwrap()
+    })
+    .unwrap()
+    .render(&scene, &camera)
+    .unwrap();
+    let shaded = renderer().render(&scene, &camera).unwrap();
+    let luminance = |f: &Frame, p: Point3<f64>| {
+        let px = camera.project(&p).unwrap().pixel;
+        let c = f.color.get_pixel(px.x as u32, px.y as u32).0;
+        c[0] as i32 + c[1] as i32 + c[2] as i32
+    };
+    // The sun comes from (0.4, 1, 0.6): the cube's shadow falls behind it, toward −x −z.
+    let in_shadow = Point3::new(-0.4, 0.0, -0.9);
+    let open_floor = Point3::new(1.2, 0.0, -1.2);
+    assert!(luminance(&shaded, in_shadow) + 60 < luminance(&lit, in_shadow));
+    assert!((luminance(&shaded, open_floor) - luminance(&lit, open_floor)).abs() <= 3);
+}
+
+#[test]
+fn outdoor_scenes_get_a_sky_and_ground() {
+    let scene = RenderScene::with_architecture(
+        vec![Instance::new("cube", unit_cube(), Pose::IDENTITY)],
+        Architecture::open_ground(10.0, 10.0),
+    );
+    let camera = Camera::look_at(
+        Intrinsics::from_vertical_fov(80, 60, 0.9),
+        Point3::new(0.0, 1.5, 6.0),
+        Point3::new(0.0, 1.0, 0.0),
+        Vector3::y(),
+    );
+    let frame = renderer().render(&scene, &camera).unwrap();
+    let sky = frame.color.get_pixel(40, 1).0;
+    assert!(sky[2] > sky[0] + 20, "sky colour {sky:?}");
+    assert_eq!(frame.id_at(40, 1), None);
+    assert_eq!(frame.depth_at(40, 1), None);
+    assert_eq!(frame.id_at(40, 58), Some("ground_plane"));
+}
+
+#[test]
+fn depth_encodings_round_trip() {
+    let scene = cube_scene(cube_pose());
+    let camera = views::photo_view(&scene, 64, 48);
+    let frame = renderer().render(&scene, &camera).unwrap();
+    let png = image::load_from_memory(&frame.depth_png16().unwrap())
+        .unwrap()
+        .into_luma16();
+    assert_eq!(png.into_raw(), frame.depth_u16_mm().into_raw());
+    let npy = frame.depth_npy();
+    let header = u16::from_le_bytes([npy[8], npy[9]]) as usize;
+    let values: Vec<f32> = npy[10 + header..]
+        .chunks_exact(4)
+        .map(|b| f32::from_le_bytes(b.try_into().unwrap()))
+        .collect();
+    assert_eq!(values, frame.depth);
+    let colour = image::load_from_memory(&frame.color_png().unwrap()).unwrap();
+    assert_eq!(colour.into_rgba8(), frame.color);
+}
+
+#[test]
+fn golden_room_render_matches_within_tolerance() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fixtures/render/golden_room_128x96.png");
+    let scene = room_scene();
+    let frame = renderer()
+        .render(&scene, &views::photo_view(&scene, 128, 96))
+        .unwrap();
+    if std::env::var_os("SCENETHESIS_BLESS").is_some() {
+        std::fs::write(&path, frame.color_png().unwrap()).unwrap();
+        return;
+    }
+    let golden = image::open(&path)
+        .unwrap_or_else(|e| {
+            panic!(
+                "cannot read {}: {e}; run with SCENETHESIS_BLESS=1 to create it",
+                path.display()
+            )
+        })
+        .into_rgba8();
+    assert_eq!(golden.dimensions(), frame.color.dimensions());
+    // Software rasterizers differ slightly (llvmpipe vs lavapipe, filtering, rounding): allow
+    // small colour differences everywhere and larger ones on a few edge pixels.
+    let mut total = 0u64;
+    let mut far_off = 0usize;
+    for (a, b) in golden.pixels().zip(frame.color.pixels()) {
+        let diff = (0..3).map(|c| a.0[c].abs_diff(b.0[c])).max().unwrap();
+        total += diff as u64;
+        far_off += (diff > 40) as usize;
+    }
+    let pixels = (golden.width() * golden.height()) as usize;
+    let mean = total as f64 / pixels as f64;
+    assert!(
+        mean < 3.0 && far_off * 100 < pixels * 2,
+        "render differs from {}: mean difference {mean:.2}, {far_off} pixels off by more \
+         than 40 (rerun with SCENETHESIS_BLESS=1 after an intended change)",
+        path.display()
+    );
+}
+
+#[test]
+fn a_missing_backend_gives_one_clear_error_or_a_working_renderer() {
+    use scenethesis_render::{BackendChoice, RenderError};
+    for backend in [BackendChoice::Vulkan, BackendChoice::Gl] {
+        match Renderer::new(RendererOptions {
+            backend,
+            ..RendererOptions::default()
+        }) {
+            Ok(r) => {
+                let scene = cube_scene(Pose::IDENTITY);
+                let frame = r
+                    .render(&scene, &views::photo_view(&scene, 32, 24))
+                    .unwrap();
+                assert!(
+                    frame.pixel_count("cube") > 20,
+                    "{}",
+                    r.adapter_description()
+                );
+            }
+            Err(err @ RenderError::NoAdapter { .. }) => {
+                let text = err.to_string();
+                assert!(
+                    text.contains("Mesa") && text.contains("GPU driver"),
+                    "{text}"
+                );
+            }
+            Err(other) => panic!("unexpected error for {backend}: {other}"),
+        }
+    }
+}
