@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 use nalgebra::{Point3, Vector3};
 use scenethesis_assets::Placement as AssetPlacement;
-use scenethesis_scene_graph::{Architecture, ParentRef, Pose, Scene, SceneObject};
+use scenethesis_scene_graph::{Architecture, ParentRef, Pose, RelationKind, Scene, SceneObject};
 use scenethesis_sdf::{BoxSdf, SignedDistance};
 use serde::{Deserialize, Serialize};
 
@@ -182,7 +182,10 @@ pub fn optimize_scene(
     })
 }
 
-/// What `object` rests on, given the final poses of the objects placed before it.
+/// What `object` rests on, given the final poses of the objects placed before it: nothing for
+/// wall and ceiling assets, the floor for ground objects and for `on-floor` / `against-wall`
+/// objects linked to another object, else the parent's support surface of the fitting kind
+/// nearest to the object's foot (or the parent's geometry when it has none).
 fn resolve_support(
     problem: &SceneProblem,
     object: &SceneObject,
@@ -196,7 +199,12 @@ fn resolve_support(
     ) {
         return Support::Free;
     }
+    let on_floor = matches!(
+        object.support,
+        RelationKind::OnFloor | RelationKind::AgainstWall
+    );
     match &object.parent {
+        _ if on_floor => Support::Surface(SupportPlane::floor(&problem.scene.architecture)),
         ParentRef::Ground => Support::Surface(SupportPlane::floor(&problem.scene.architecture)),
         ParentRef::Object(parent) => {
             let (Some(parent_pose), Some(parent_asset)) =

@@ -367,6 +367,18 @@ impl ObjectProblem<'_> {
     /// the weighted total, where the collision targets `T + u·|d|` and `g(|d|, u)·S` are held
     /// fixed (as in an autodiff graph that detaches them).
     pub fn losses_and_gradient(&self, pose: &Pose, stage: Stage) -> (Losses, PoseVector) {
+        let (losses, grad, _) = self.losses_gradient_and_state(pose, stage);
+        (losses, grad)
+    }
+
+    /// [`ObjectProblem::losses_and_gradient`] plus, in the physics stage, the collision state
+    /// it was computed from.
+    pub fn losses_gradient_and_state(
+        &self,
+        pose: &Pose,
+        stage: Stage,
+    ) -> (Losses, PoseVector, Option<CollisionState>) {
+        let mut collision = None;
         let s = self.settings;
         let mut losses = Losses::default();
         let mut grad = PoseVector::zeros();
@@ -380,7 +392,10 @@ impl ObjectProblem<'_> {
             }
             Stage::Physics => {
                 let state = self.collision(pose);
-                if !state.is_free() {
+                let free = state.is_free();
+                collision = Some(state);
+                let state = collision.as_ref().expect("just set");
+                if !free {
                     let centroid = self.world_centroid(pose);
                     let n = state.contacts.len() as f64;
                     let mut push = Vector3::zeros();
@@ -425,7 +440,7 @@ impl ObjectProblem<'_> {
                 }
             }
         }
-        (losses, grad)
+        (losses, grad, collision)
     }
 
     /// The loss terms at `pose`.

@@ -120,8 +120,11 @@ impl Optimizer for Sgd {
             };
         }
         while iterations < budget {
-            let (_, grad) = problem.losses_and_gradient(&pose, stage);
-            if stage == Stage::Physics && self.is_settled(problem, &pose) {
+            let (_, grad, state) = problem.losses_gradient_and_state(&pose, stage);
+            let settled = state.is_some_and(|s| s.is_free())
+                && lowest_residual(&problem.stability_residuals(&pose))
+                    .is_none_or(|r| r.abs() <= self.resting_tolerance);
+            if stage == Stage::Physics && settled {
                 break;
             }
             iterations += 1;
@@ -138,15 +141,6 @@ impl Optimizer for Sgd {
             iterations,
             losses: problem.losses(&pose, stage),
         }
-    }
-}
-
-impl Sgd {
-    /// Whether the object is collision-free and resting within tolerance.
-    fn is_settled(&self, problem: &ObjectProblem<'_>, pose: &Pose) -> bool {
-        problem.collision(pose).is_free()
-            && lowest_residual(&problem.stability_residuals(pose))
-                .is_none_or(|r| r.abs() <= self.resting_tolerance)
     }
 }
 
