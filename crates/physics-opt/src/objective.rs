@@ -493,3 +493,126 @@ impl ObjectProblem<'_> {
         )
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+
+    use scenethesis_assets::primitives::cuboid;
+    use scenethesis_assets::Placement;
+    use scenethesis_scene_graph::{Material, Mesh};
+    use scenethesis_sdf::BoxSdf;
+
+    use super::*;
+    use crate::prepare::PrepareSettings;
+    use crate::support::SupportPlane;
+
+    fn cube(half: f32) -> PreparedAsset {
+        let mesh = Mesh {
+            parts: vec![cuboid("c", 0, [-half, 0.0, -half], [half, 2.0 * half, half])],
+            materials: vec![Material::new("m", [0.5; 3], 0.5)],
+        };
+        PreparedAsset::new(
+            "cube",
+            &mesh,
+            Vec::new(),
+            [0.5, 1.5],
+            Placement::Floor,
+            &PrepareSettings::default(),
+        )
+        .unwrap()
+    }
+
+    /// A 1 m wall slab whose face is at x = `face`, extending toward +x when `positive`.
+    fn slab(obstacles: &mut Obstacles, id: &str, face: f64, positive: bool) {
+        let centre = if positive { face + 0.5 } else { face - 0.5 };
+        obstacles.insert(
+            id,
+            Arc::new(BoxSdf::new(Vector3::new(0.5, 2.0, 2.0))),
+            Pose::new(1.0, 0.0, Vector3::new(centre, 0.0, 0.0)),
+            true,
+            &[],
+        );
+    }
+
+    fn problem<'a>(
+        asset: &'a PreparedAsset,
+        obstacles: &'a Obstacles,
+        support: &'a Support,
+        settings: &'a LossSettings,
+    ) -> ObjectProblem<'a> {
+        ObjectProblem {
+            id: "cube",
+            asset,
+            obstacles,
+            support,
+            room: None,
+            alignment: None,
+            settings,
+        }
+    }
+
+    #[test]
+    fn translation_loss_pushes_from_the_penetration_toward_the_centroid() {
+        let asset = cube(0.2);
+        let mut obstacles = Obstacles::new(true);
+        slab(&mut obstacles, "wall", 0.5, true);
+        let settings = LossSettings::default();
+        let support = Support::Free;
+        let p = problem(&asset, &obstacles, &support, &settings);
+        // The cube spans x in [0.2, 0.6]: 10 cm inside the wall.
+        let pose = Pose::new(1.0, 0.0, Vector3::new(0.4, 0.5, 0.0));
+        let (losses, grad, state) = p.losses_gradient_and_state(&pose, Stage::Physics);
+        let state = state.unwrap();
+        assert_eq!(state.clusters.len(), 1);
+        assert!(losses.translation > 0.0 && losses.scale == 0.0);
+        // Descent (−grad) moves the cube toward −x, away from the wall, and not vertically.
+        assert!(grad[TX] > 0.0, "{grad:?}");
+        assert!(grad[TY].abs() < 0.2 * grad[TX] && grad[TZ].abs() < 0.2 * grad[TX]);
+        assert_eq!(grad[SCALE], 0.0);
+        // Out of the wall (and beyond the margin) nothing pushes.
+        let free = Pose::new(1.0, 0.0, Vector3::new(0.29, 0.5, 0.0));
+        assert!(p.collision(&free).is_free());
+    }
+
+    #[test]
+    fn scale_loss_acts_only_when_the_penetration_forms_two_clusters() {
+        let asset = cube(0.2);
+        let mut obstacles = Obstacles::new(true);
+        // A 0.36 m gap between two walls for a 0.4 m cube: penetration on both sides.
+        slab(&mut obstacles, "right", 0.18, true);
+        slab(&mut obstacles, "left", -0.18, false);
+        let settings = LossSettings::default();
+        let support = Support::Free;
+        let p = problem(&asset, &obstacles, &support, &settings);
+        let pose = Pose::new(1.0, 0.0, Vector3::new(0.0, 0.5, 0.0));
+        let (losses, grad, state) = p.losses_gradient_and_state(&pose, Stage::Physics);
+        assert_eq!(state.unwrap().clusters.len(), 2);
+        assert!(losses.scale > 0.0);
+        // Descent shrinks the cube; the two pushes cancel along x.
+        assert!(grad[SCALE] > 0.0, "{grad:?}");
+        assert!(grad[TX].abs() < 0.05 * grad[SCALE].abs().max(1e-3), "{grad:?}");
+    }
+
+    #[test]
+    fn stability_loss_pulls_a_floating_object_down_to_its_support() {
+        let asset = cube(0.1);
+        let obstacles = Obstacles::new(true);
+        let settings = LossSettings::default();
+        let support = Support::Surface(SupportPlane {
+            owner: "table".into(),
+            surface: "top".into(),
+            height: 0.75,
+            region: None,
+            clearance: None,
+        });
+        let p = problem(&asset, &obstacles, &support, &settings);
+        let pose = Pose::new(1.0, 0.0, Vector3::new(0.0, 0.80, 0.0));
+        let (losses, grad) = p.losses_and_gradient(&pose, Stage::Physics);
+        let r = 0.05 - settings.support_clearance;
+        let sigma = settings.stability_length;
+        assert!((losses.stability - (1.0 - (-(r / sigma).powi(2)).exp())).abs() < 1e-9);
+        assert!(grad[TY] > 0.0 && grad[TX] == 0.0 && grad[TZ] == 0.0);
+        assert_eq!(p.resting_height(&pose), Some(0.75 + settings.support_clearance));
+    }
+}
