@@ -509,7 +509,12 @@ mod tests {
 
     fn cube(half: f32) -> PreparedAsset {
         let mesh = Mesh {
-            parts: vec![cuboid("c", 0, [-half, 0.0, -half], [half, 2.0 * half, half])],
+            parts: vec![cuboid(
+                "c",
+                0,
+                [-half, 0.0, -half],
+                [half, 2.0 * half, half],
+            )],
             materials: vec![Material::new("m", [0.5; 3], 0.5)],
         };
         PreparedAsset::new(
@@ -591,7 +596,10 @@ mod tests {
         assert!(losses.scale > 0.0);
         // Descent shrinks the cube; the two pushes cancel along x.
         assert!(grad[SCALE] > 0.0, "{grad:?}");
-        assert!(grad[TX].abs() < 0.05 * grad[SCALE].abs().max(1e-3), "{grad:?}");
+        assert!(
+            grad[TX].abs() < 0.05 * grad[SCALE].abs().max(1e-3),
+            "{grad:?}"
+        );
     }
 
     #[test]
@@ -613,6 +621,9 @@ mod tests {
         let sigma = settings.stability_length;
         assert!((losses.stability - (1.0 - (-(r / sigma).powi(2)).exp())).abs() < 1e-9);
         assert!(grad[TY] > 0.0 && grad[TX] == 0.0 && grad[TZ] == 0.0);
-        assert_eq!(p.resting_height(&pose), Some(0.75 + settings.support_clearance));
+        assert_eq!(
+            p.resting_height(&pose),
+            Some(0.75 + settings.support_clearance)
+        );
     }
 }
