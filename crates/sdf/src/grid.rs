@@ -449,7 +449,10 @@ impl Baker<'_> {
     /// sub-blocks are filled; the others are refined further.
     fn split(&self, c: [usize; 3], s: usize, v: &[f32; 8], tri: &[u32; 8]) {
         let h = s / 2;
-        let (vm, _) = self.exact(c[0] + h, c[1] + h, c[2] + h, Some(tri[0]));
+        let closest_corner = (0..8)
+            .min_by(|&x, &y| v[x].abs().total_cmp(&v[y].abs()))
+            .unwrap_or(0);
+        let (vm, _) = self.exact(c[0] + h, c[1] + h, c[2] + h, Some(tri[closest_corner]));
         let sub_diag = h as f32 * self.cell * SQRT3 * FULL;
         let free: [bool; 8] = std::array::from_fn(|n| v[n].abs() > sub_diag || vm.abs() > sub_diag);
         let halves = |x: usize| -> &'static [usize] {
