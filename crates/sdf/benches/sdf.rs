@@ -21,10 +21,27 @@ const QUERIES: usize = 100_000;
 fn setup() -> (MeshSdf, Vec<Point3<f32>>) {
     let (positions, triangles) = shapes::bumpy_sphere(0.5, 0.15, 100, 51);
     assert_eq!(triangles.len(), 10_000);
+    points_around(positions, triangles, 0.6)
+}
+
+/// A 10 000-triangle torus and 100k points in its own box (the setting of the parry3d figure
+/// in the project's stack notes).
+fn setup_torus() -> (MeshSdf, Vec<Point3<f32>>) {
+    let (positions, triangles) = shapes::torus(0.35, 0.15, 100, 50);
+    assert_eq!(triangles.len(), 10_000);
+    points_around(positions, triangles, 0.5)
+}
+
+/// The field of a mesh and 100k seeded points in its box scaled by `2 × half_scale`.
+fn points_around(
+    positions: Vec<[f32; 3]>,
+    triangles: Vec<[u32; 3]>,
+    half_scale: f32,
+) -> (MeshSdf, Vec<Point3<f32>>) {
     let sdf = MeshSdf::new(&positions, &triangles).expect("closed mesh");
     let (lo, hi) = sdf.local_bounds();
     let centre = nalgebra::center(&lo, &hi);
-    let half = (hi - lo) * 0.6;
+    let half = (hi - lo) * half_scale;
     let mut rng = ChaCha8Rng::seed_from_u64(42);
     let points = (0..QUERIES)
         .map(|_| {
@@ -122,6 +139,17 @@ fn single_thread(c: &mut Criterion<ThreadCpuTime>) {
             black_box(acc)
         })
     });
+    let (torus, torus_points) = setup_torus();
+    group.bench_function("mesh_exact_torus_10k_tris_1thread", |b| {
+        b.iter(|| {
+            let mut acc = 0.0f32;
+            for p in &torus_points {
+                acc += torus.distance(p);
+            }
+            black_box(acc)
+        })
+    });
+
     let one = pool(1);
     let cell = cell_for_64_cubed(&sdf);
     let grid = one.install(|| GridSdf::bake_with_cell(&sdf, cell));
