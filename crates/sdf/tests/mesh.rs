@@ -40,6 +40,34 @@ fn brute_winding(positions: &[[f32; 3]], triangles: &[[u32; 3]], p: &Point3<f32>
     sum / (4.0 * std::f64::consts::PI)
 }
 
+/// Brute-force unsigned distance in f64: the smallest point–triangle distance over all
+/// triangles (projection onto the plane when it falls inside, else the nearest edge).
+fn brute_distance(positions: &[[f32; 3]], triangles: &[[u32; 3]], p: &Point3<f32>) -> f64 {
+    type V = Vector3<f64>;
+    let p = p.coords.cast::<f64>();
+    let segment = |a: V, b: V| {
+        let ab = b - a;
+        let t = ((p - a).dot(&ab) / ab.norm_squared()).clamp(0.0, 1.0);
+        (p - (a + ab * t)).norm()
+    };
+    triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| Vector3::from(positions[i as usize]).cast::<f64>());
+            let n = (b - a).cross(&(c - a));
+            let q = p - n * ((p - a).dot(&n) / n.norm_squared());
+            let inside = [(a, b), (b, c), (c, a)]
+                .iter()
+                .all(|(u, w)| (w - u).cross(&(q - u)).dot(&n) >= 0.0);
+            if inside {
+                (p - q).norm()
+            } else {
+                segment(a, b).min(segment(b, c)).min(segment(c, a))
+            }
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
 fn table() -> Mesh {
     // A top slab and four legs that poke into it.
     let mut parts = vec![part(
@@ -157,6 +185,8 @@ proptest! {
         prop_assert_eq!(d < 0.0, inside);
         let analytic = p.coords.norm() - 1.0;
         prop_assert!((d - analytic).abs() < 0.01, "{} vs {}", d, analytic);
+        let exact = brute_distance(&positions, &triangles, &p);
+        prop_assert!((d.abs() as f64 - exact).abs() < 1e-5, "{} vs brute force {}", d, exact);
     }
 
     #[test]
