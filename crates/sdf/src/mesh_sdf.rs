@@ -564,7 +564,14 @@ impl MeshSdf {
 
     /// Turns a search hit into a full query result.
     pub(crate) fn finish(&self, p: V3, hit: &Hit) -> SdfQuery {
-        let t = &self.tris[hit.tri as usize];
+        let Some(t) = self.tris.get(hit.tri as usize) else {
+            // Only a non-finite query point finds no triangle.
+            return SdfQuery {
+                distance: f32::NAN,
+                closest_point: Point3::from(p),
+                gradient: V3::y(),
+            };
+        };
         let (q, feature) = closest_on_triangle(p, t[0], t[1], t[2]);
         let diff = p - q;
         let len = diff.norm();

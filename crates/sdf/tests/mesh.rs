@@ -150,6 +150,15 @@ fn bad_input_is_rejected_with_context() {
     .unwrap_err();
     assert!(err.to_string().contains("non-finite"), "{err}");
     assert!(MeshSdf::new(&[[0.0; 3]; 3], &[[0, 0, 1]]).is_err());
+    // Non-finite query points give NaN, not a panic.
+    let sdf = cube_sdf(Vector3::new(0.5, 0.5, 0.5));
+    assert!(sdf
+        .query(&Point3::new(f32::NAN, 0.0, 0.0))
+        .distance
+        .is_nan());
+    assert!(!sdf
+        .distance(&Point3::new(f32::INFINITY, 0.0, 0.0))
+        .is_finite());
 }
 
 fn sphere() -> MeshSdf {
