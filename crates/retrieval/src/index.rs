@@ -6,7 +6,7 @@ use std::fmt;
 use scenethesis_assets::{AssetInfo, Placement};
 use scenethesis_scene_graph::AssetRef;
 
-use crate::text::{normalise, overlap_score, words};
+use crate::text::{normalise, word_similarity, words};
 
 /// Common names that differ from the canonical category, as (alias, category). Categories'
 /// own synonyms are matched as well; this table catches everyday words for built-in and
@@ -74,7 +74,6 @@ pub const ALIASES: &[(&str, &str)] = &[
     ("statue", "sculpture"),
     ("parasol", "beach_umbrella"),
     ("sun lounger", "beach_lounger"),
-    ("deck chair", "beach_lounger"),
     ("rucksack", "backpack"),
     ("boulder", "rock"),
     ("stone", "rock"),
@@ -164,8 +163,9 @@ pub trait TextEmbedder {
 struct Entry {
     category: String,
     placement: Placement,
-    /// Normalised names: the category first, then synonyms and aliases, each with its words.
-    names: Vec<(String, Vec<String>)>,
+    /// Normalised names: the category first, then synonyms and aliases, each with its words as
+    /// ids into [`AssetIndex::vocabulary`].
+    names: Vec<(String, Vec<u32>)>,
     /// Whether a built-in generator exists for the category.
     builtin: bool,
     /// Imported assets of this category.
@@ -181,6 +181,9 @@ pub struct AssetIndex {
     entry_vectors: Vec<Vec<f32>>,
     /// [`ALIASES`] with normalised aliases.
     aliases: Vec<(String, &'static str)>,
+    /// Every distinct word of every name, so a query word is compared with each only once.
+    vocabulary: Vec<String>,
+    word_ids: BTreeMap<String, u32>,
 }
 
 impl fmt::Debug for AssetIndex {
@@ -235,6 +238,8 @@ impl AssetIndex {
             embedder: None,
             entry_vectors: Vec::new(),
             aliases: ALIASES.iter().map(|(a, c)| (normalise(a), *c)).collect(),
+            vocabulary: Vec::new(),
+            word_ids: BTreeMap::new(),
         }
     }
 
@@ -339,9 +344,15 @@ impl AssetIndex {
                 None => vec![w.clone()],
             })
             .collect();
+        let direct = self.similarities(&q_words);
+        let via_alias = if aliased == q_words {
+            None
+        } else {
+            Some(self.similarities(&aliased))
+        };
         let mut scored: Vec<(f32, MatchReason, usize)> = Vec::new();
         for (i, entry) in self.entries.iter().enumerate() {
-            let (mut score, mut reason) = lexical(entry, &q, &q_words, &aliased);
+            let (mut score, mut reason) = lexical(entry, &q, &direct, via_alias.as_deref());
             if let Some(sims) = semantic {
                 let s = sims.get(i).copied().unwrap_or(0.0);
                 if score < SYNONYM && SEMANTIC_WEIGHT * s > score {
@@ -425,16 +436,47 @@ impl AssetIndex {
     fn add_name(&mut self, i: usize, name: &str) {
         let n = normalise(name);
         if !n.is_empty() && !self.entries[i].names.iter().any(|(m, _)| *m == n) {
-            let w = words(&n);
-            self.entries[i].names.push((n, w));
+            let ids = words(&n)
+                .into_iter()
+                .map(|w| match self.word_ids.get(&w) {
+                    Some(&id) => id,
+                    None => {
+                        let id = self.vocabulary.len() as u32;
+                        self.word_ids.insert(w.clone(), id);
+                        self.vocabulary.push(w);
+                        id
+                    }
+                })
+                .collect();
+            self.entries[i].names.push((n, ids));
         }
+    }
+
+    /// For each query word, its similarity to every vocabulary word.
+    fn similarities(&self, query: &[String]) -> Vec<Vec<f32>> {
+        query
+            .iter()
+            .map(|q| {
+                self.vocabulary
+                    .iter()
+                    .map(|w| word_similarity(q, w))
+                    .collect()
+            })
+            .collect()
     }
 }
 
-/// The lexical score of one entry: exact, synonym, fuzzy or aliased fuzzy.
-fn lexical(entry: &Entry, q: &str, q_words: &[String], aliased: &[String]) -> (f32, MatchReason) {
+/// The lexical score of one entry: exact, synonym, fuzzy or aliased fuzzy. `direct[j][w]` is
+/// the similarity of query word `j` to vocabulary word `w`; `via_alias` the same for the query
+/// with aliased words replaced.
+fn lexical(
+    entry: &Entry,
+    q: &str,
+    direct: &[Vec<f32>],
+    via_alias: Option<&[Vec<f32>]>,
+) -> (f32, MatchReason) {
     let mut best = (0.0f32, MatchReason::Fuzzy(String::new()));
-    for (k, (name, name_words)) in entry.names.iter().enumerate() {
+    for (k, (name, ids)) in entry.names.iter().enumerate() {
         if name == q {
             return if k == 0 {
                 (EXACT, MatchReason::ExactCategory)
@@ -442,14 +484,37 @@ fn lexical(entry: &Entry, q: &str, q_words: &[String], aliased: &[String]) -> (f
                 (SYNONYM, MatchReason::Synonym(name.clone()))
             };
         }
-        let direct = FUZZY_WEIGHT * overlap_score(q_words, name_words);
-        let via_alias = ALIASED_FUZZY_WEIGHT * overlap_score(aliased, name_words);
-        let s = direct.max(via_alias);
+        let mut s = FUZZY_WEIGHT * overlap(direct, ids);
+        if let Some(aliased) = via_alias {
+            s = s.max(ALIASED_FUZZY_WEIGHT * overlap(aliased, ids));
+        }
         if s > best.0 {
             best = (s, MatchReason::Fuzzy(name.clone()));
         }
     }
     best
+}
+
+/// [`crate::text::overlap_score`] over precomputed word similarities.
+fn overlap(sims: &[Vec<f32>], name: &[u32]) -> f32 {
+    if sims.is_empty() || name.is_empty() {
+        return 0.0;
+    }
+    let recall = name
+        .iter()
+        .map(|&w| {
+            sims.iter()
+                .map(|row| row[w as usize])
+                .fold(0.0f32, f32::max)
+        })
+        .sum::<f32>()
+        / name.len() as f32;
+    let precision = sims
+        .iter()
+        .map(|row| name.iter().map(|&w| row[w as usize]).fold(0.0f32, f32::max))
+        .sum::<f32>()
+        / sims.len() as f32;
+    0.7 * recall + 0.3 * precision
 }
 
 /// The text embedded for an entry: its category and names.

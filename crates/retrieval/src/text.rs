@@ -91,8 +91,10 @@ pub fn word_similarity(a: &str, b: &str) -> f32 {
     if a == b {
         return 1.0;
     }
-    let longer = a.chars().count().max(b.chars().count());
-    if longer < 4 {
+    let (la, lb) = (a.chars().count(), b.chars().count());
+    let longer = la.max(lb);
+    // The distance is at least the length difference: skip pairs that cannot reach 0.75.
+    if longer < 4 || la.abs_diff(lb) * 4 > longer {
         return 0.0;
     }
     let s = 1.0 - edit_distance(a, b) as f32 / longer as f32;

@@ -77,7 +77,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
     ),
     category!(
         "toolbox",
-        ["tool box", "tool case", "tool chest"],
+        ["tool box", "tool case"],
         Floor,
         [[0.376, 0.586], [0.198, 0.273], [0.195, 0.281]],
         containers::toolbox
@@ -299,7 +299,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
     ),
     category!(
         "table_lamp",
-        ["desk lamp", "bedside lamp", "reading lamp", "lamp"],
+        ["desk lamp", "bedside lamp", "lamp"],
         Surface,
         [[0.194, 0.35], [0.31, 0.639], [0.194, 0.35]],
         home::table_lamp

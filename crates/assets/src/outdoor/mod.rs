@@ -62,13 +62,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
     ),
     category!(
         "beach_lounger",
-        [
-            "sun lounger",
-            "deck chair",
-            "sunbed",
-            "lounge chair",
-            "chaise longue"
-        ],
+        ["sun lounger", "sunbed", "chaise longue"],
         [[0.553, 0.742], [0.61, 0.977], [1.708, 2.024]],
         beach_lounger
     ),

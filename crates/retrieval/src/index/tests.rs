@@ -139,6 +139,17 @@ fn builtin_index_gives_procedural_candidates_with_seed_dependent_variants() {
         .collect();
     assert_eq!(seeds.len(), 8, "each search seed gives another variant");
     assert_eq!(top(&index, "rucksack").category, "backpack");
+    for (q, category) in [
+        ("couch", "sofa"),
+        ("settee", "sofa"),
+        ("bookcase", "bookshelf"),
+        ("TV", "television"),
+        ("fridge", "refrigerator"),
+        ("coffee tables", "coffee_table"),
+        ("garbage can", "trash_can"),
+    ] {
+        assert_eq!(top(&index, q).category, category, "{q}");
+    }
     assert_eq!(top(&index, "beach umbrellas").category, "beach_umbrella");
 }
 
