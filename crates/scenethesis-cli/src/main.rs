@@ -22,6 +22,15 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
+    /// Measure a scene (output folder, scene.json or any .glb): collision, stability, Walk,
+    /// Reach and content, as a table (goals from metrics.md) or one JSON object.
+    Eval {
+        /// An output folder, a scene.json, or a .glb / .gltf scene.
+        path: PathBuf,
+        /// Print one JSON object instead of the table.
+        #[arg(long)]
+        json: bool,
+    },
     /// Check a scene.json: schema, ids, parents, relations, numbers; prints the BFS order.
     Validate {
         /// Path of a scene.json file, or of an output folder holding one.
@@ -62,6 +71,7 @@ fn init_logging(verbose: u8) {
 
 fn run(command: Command) -> Result<()> {
     match command {
+        Command::Eval { path, json } => commands::eval::run(path, json),
         Command::Validate { path } => commands::validate::run(path),
     }
 }
