@@ -166,11 +166,14 @@ fn seeds_vary_dimensions_and_materials() {
         let palettes: BTreeSet<Vec<u32>> = assets
             .iter()
             .map(|a| {
-                a.mesh
-                    .materials
+                // The material list and the colour each part wears.
+                let list = a.mesh.materials.iter().map(|m| m.base_color);
+                let worn = a
+                    .mesh
+                    .parts
                     .iter()
-                    .flat_map(|m| m.base_color.map(f32::to_bits))
-                    .collect()
+                    .map(|p| a.mesh.materials[p.material].base_color);
+                list.chain(worn).flat_map(|c| c.map(f32::to_bits)).collect()
             })
             .collect();
         assert!(palettes.len() >= 2, "{}: materials never vary", c.name);
@@ -339,7 +342,18 @@ fn a_small_box_rests_on_every_support_surface() {
                 assert!(side <= cap, "{who}");
                 // Something solid right under the surface (except the floor under furniture).
                 if s.kind != SurfaceKind::Under {
-                    let below = sdf.distance(&Point3::new(cx, s.height - 0.001, cz));
+                    // The centre and four points 3 mm around it, so that a centre lying exactly
+                    // on the shared face of two touching parts still finds them.
+                    let below = [
+                        (0.0, 0.0),
+                        (0.003, 0.0),
+                        (-0.003, 0.0),
+                        (0.0, 0.003),
+                        (0.0, -0.003),
+                    ]
+                    .iter()
+                    .map(|(dx, dz)| sdf.distance(&Point3::new(cx + dx, s.height - 0.001, cz + dz)))
+                    .fold(f32::INFINITY, f32::min);
                     if below >= 0.0 {
                         failures.push(format!(
                             "{who}: nothing solid under the surface (sdf {below:.4})"

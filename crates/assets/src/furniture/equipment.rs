@@ -793,8 +793,7 @@ pub(super) fn stove(rng: &mut ChaCha8Rng) -> Asset {
         [-hw, h - 0.01, -hd],
         [hw, h + bg, -hd + 0.05],
     );
-    for i in 0..4 {
-        let (sx, sz) = CORNERS[i];
+    for (i, (sx, sz)) in CORNERS.iter().enumerate() {
         b.part(cylinder(
             &format!("burner_{i}"),
             body,

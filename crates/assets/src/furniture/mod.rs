@@ -4,7 +4,9 @@
 //! Generators are written as parametric families — a seat family, a table family and a carcass
 //! family of boards with compartments — plus special cases. Every part is a convex primitive;
 //! cavities (compartments, knee holes, the space under a table) come from arrangements of parts.
-//! The size range documented on each generator is the one in its [`Category::size_range`].
+//! Each generator's doc comment gives the parameter ranges of its main body in metres; the
+//! registry's [`Category::size_range`] gives the full extent over all seeds, including doors
+//! left open, lifted lids and protruding parts, and crate tests check it.
 
 mod beds;
 mod carcass;
