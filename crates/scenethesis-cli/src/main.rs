@@ -22,6 +22,11 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
+    /// Inspect the built-in procedural asset library (`assets list`).
+    Assets {
+        #[command(subcommand)]
+        command: commands::assets::AssetsCommand,
+    },
     /// Measure a scene (output folder, scene.json or any .glb): collision, stability, Walk,
     /// Reach and content, as a table (goals from metrics.md) or one JSON object.
     Eval {
@@ -71,6 +76,7 @@ fn init_logging(verbose: u8) {
 
 fn run(command: Command) -> Result<()> {
     match command {
+        Command::Assets { command } => commands::assets::run(command),
         Command::Eval { path, json } => commands::eval::run(path, json),
         Command::Validate { path } => commands::validate::run(path),
     }

@@ -1,4 +1,5 @@
 //! One module per subcommand; `main` only parses arguments and dispatches.
 
+pub mod assets;
 pub mod eval;
 pub mod validate;
