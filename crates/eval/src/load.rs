@@ -71,17 +71,23 @@ fn load_scene_file(json: &Path, glb: Option<std::path::PathBuf>) -> Result<EvalS
 }
 
 /// Loads any glTF / GLB scene that has no `scene.json`: every top-level node is an object (its
-/// subtree's meshes merged) except nodes named like architecture (`floor`, `ground`, `wall_3`,
+/// subtree's meshes merged; a single mesh-less wrapper root is looked through) except nodes
+/// named like architecture (`floor`, `ground`, `wall_3`,
 /// `Ceiling.001`, `door`, …). The floor rectangle is the floor nodes' box (or the objects' box
 /// when there is none); each connected piece of a wall node becomes a wall box. Support links
 /// are inferred: an object whose bottom is within 2 cm of the floor stands on the ground,
 /// otherwise on the highest object below it.
 pub fn load_glb(path: &Path) -> Result<EvalScene, EvalError> {
     let glb = GlbScene::read(path)?;
+    // Exporters often wrap a whole scene in one mesh-less root node: look through it.
+    let mut roots = &glb.roots;
+    while roots.len() == 1 && roots[0].mesh.parts.is_empty() && !roots[0].children.is_empty() {
+        roots = &roots[0].children;
+    }
     let mut floor_box: Option<Aabb> = None;
     let mut walls = Vec::new();
     let mut objects = Vec::new();
-    for node in &glb.roots {
+    for node in roots {
         let mesh = node.subtree_mesh();
         match architecture_kind(&node.name) {
             Some(ArchKind::Floor) => {

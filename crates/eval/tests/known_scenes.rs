@@ -266,13 +266,27 @@ fn foreign_glb_nodes_become_objects_and_architecture() {
     assert_eq!(scene.objects[1].parent.as_deref(), Some("Table.001"));
     assert_eq!(scene.objects[2].parent, None);
     assert_eq!(scene.architecture.walls.len(), 1);
-    let floor = &scene.architecture.floor;
-    assert!((floor.min.x + 2.0).abs() < 1e-6 && (floor.max.y - 2.0).abs() < 1e-6);
+    let rect = &scene.architecture.floor;
+    assert!((rect.min.x + 2.0).abs() < 1e-6 && (rect.max.y - 2.0).abs() < 1e-6);
     let m = evaluate(&scene);
     assert_eq!(m.colliding_objects, ["Table.001", "book_3"]);
     assert!((m.colliding_pairs[0].depth - 0.02).abs() < 1e-3);
     assert_eq!(m.objects, 3);
     assert_eq!(m.categories, 3);
+    // The same nodes under one wrapper root load the same way.
+    let wrapped = dir.path().join("wrapped.glb");
+    write_glb_under(
+        &wrapped,
+        Some("RootNode"),
+        &[
+            ("Floor", &floor),
+            ("wall_0", &wall),
+            ("Table.001", &t),
+            ("book_3", &sunk_book),
+            ("floor_lamp", &lamp),
+        ],
+    );
+    assert_eq!(load_path(&wrapped).unwrap(), scene);
 }
 
 #[test]

@@ -227,6 +227,12 @@ pub fn thirty_objects() -> EvalScene {
 /// Writes a GLB holding one node per (name, mesh), meshes already in world coordinates, with
 /// identity transforms.
 pub fn write_glb(path: &std::path::Path, nodes: &[(&str, &Mesh)]) {
+    write_glb_under(path, None, nodes)
+}
+
+/// Like [`write_glb`], with the nodes as children of one mesh-less root node when `root` names
+/// one (as many exporters do).
+pub fn write_glb_under(path: &std::path::Path, root: Option<&str>, nodes: &[(&str, &Mesh)]) {
     let mut bin: Vec<u8> = Vec::new();
     let mut views = Vec::new();
     let mut accessors = Vec::new();
@@ -257,10 +263,19 @@ pub fn write_glb(path: &std::path::Path, nodes: &[(&str, &Mesh)]) {
         meshes.push(serde_json::json!({"primitives": [{"attributes": {"POSITION": 2 * k}, "indices": 2 * k + 1}]}));
         json_nodes.push(serde_json::json!({"name": name, "mesh": k}));
     }
+    let scene_nodes = match root {
+        Some(name) => {
+            json_nodes.push(
+                serde_json::json!({"name": name, "children": (0..nodes.len()).collect::<Vec<_>>()}),
+            );
+            vec![nodes.len()]
+        }
+        None => (0..nodes.len()).collect::<Vec<_>>(),
+    };
     let json = serde_json::json!({
         "asset": {"version": "2.0"},
         "scene": 0,
-        "scenes": [{"nodes": (0..nodes.len()).collect::<Vec<_>>()}],
+        "scenes": [{"nodes": scene_nodes}],
         "nodes": json_nodes,
         "meshes": meshes,
         "accessors": accessors,
