@@ -55,7 +55,10 @@ fn search(c: &mut Criterion) {
         let index = index_with_imports(imported);
         group.throughput(Throughput::Elements(QUERIES.len() as u64));
         group.bench_with_input(
-            BenchmarkId::new("queries", format!("{}_entries", index.len())),
+            BenchmarkId::new(
+                "queries",
+                format!("{}_categories_{imported}_imported", index.len()),
+            ),
             &index,
             |b, index| {
                 b.iter(|| {

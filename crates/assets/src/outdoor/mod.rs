@@ -63,7 +63,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
     category!(
         "beach_lounger",
         ["sun lounger", "sunbed", "chaise longue"],
-        [[0.553, 0.742], [0.61, 0.977], [1.708, 2.024]],
+        [[0.553, 0.742], [0.6, 1.04], [1.708, 2.024]],
         beach_lounger
     ),
     category!(
@@ -200,9 +200,13 @@ fn beach_lounger(rng: &mut ChaCha8Rng) -> Asset {
     let seat_z0 = -z + back_len * back_angle.cos();
     let t = 0.04;
     b.cuboid("seat", fabric, [-x, seat_h - t, seat_z0], [x, seat_h, z]);
-    let rot = rotation([1.0, 0.0, 0.0], -back_angle);
-    let dir = rot * nalgebra::Vector3::new(0.0, 0.0, -back_len / 2.0);
-    let center = [0.0, seat_h - t / 2.0 - dir.y, seat_z0 + dir.z];
+    // Hinged at the back of the seat, rising toward −Z at `back_angle` above horizontal.
+    let rot = rotation([1.0, 0.0, 0.0], back_angle);
+    let center = [
+        0.0,
+        seat_h - t / 2.0 + back_angle.sin() * back_len / 2.0,
+        seat_z0 - back_angle.cos() * back_len / 2.0,
+    ];
     b.add(crate::items::shapes::oriented_box(
         "backrest",
         fabric,
