@@ -77,6 +77,21 @@ fn registry_matches_the_documented_category_list() {
             c.name
         );
     }
+    // A synonym names one category only, and never another category.
+    let mut owner: BTreeMap<String, &str> = BTreeMap::new();
+    for c in all() {
+        for s in c.synonyms {
+            let key = s.replace(' ', "_");
+            assert!(
+                !registered.contains(key.as_str()) || key == c.name,
+                "{}: synonym `{s}` is another category's name",
+                c.name
+            );
+            if let Some(other) = owner.insert(s.to_string(), c.name) {
+                panic!("synonym `{s}` is shared by {other} and {}", c.name);
+            }
+        }
+    }
     assert!(all().len() >= 80, "only {} categories", all().len());
 }
 

@@ -114,7 +114,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
     furniture!(
         "stool",
         Floor,
-        ["footstool", "step stool", "round stool"],
+        ["round stool"],
         [[0.3, 0.6], [0.44, 0.54], [0.3, 0.6]],
         seating::stool
     ),
@@ -266,13 +266,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
     furniture!(
         "high_table",
         Floor,
-        [
-            "bar table",
-            "pub table",
-            "cocktail table",
-            "standing table",
-            "bistro table"
-        ],
+        ["bar table", "pub table", "standing table", "bistro table"],
         [[0.6, 0.9], [1.0, 1.1], [0.6, 0.9]],
         tables::high_table
     ),
@@ -637,7 +631,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
     furniture!(
         "upright_piano",
         Floor,
-        ["piano", "vertical piano", "console piano"],
+        ["vertical piano", "console piano"],
         [[1.45, 1.55], [1.1, 1.32], [0.55, 0.65]],
         equipment::upright_piano
     ),
