@@ -483,9 +483,23 @@ fn same_problem_gives_bit_identical_poses() {
 #[test]
 fn thirty_object_room_meets_every_post_condition() {
     let problem = thirty_object_room(3);
+    let eval_scene = |scene: &scenethesis_scene_graph::Scene| {
+        scenethesis_eval::EvalScene::from_scene(scene, |o| Ok(thirty_object_room_mesh(&o.id)))
+            .unwrap()
+    };
+    let before = scenethesis_eval::evaluate(&eval_scene(&problem.scene));
+    assert!(before.col_o > 0.0);
     for opt in optimizers() {
         let placement = run(&problem, opt.as_ref());
         assert_eq!(placement.objects.len(), 30);
         assert_all_ok(&placement);
+        // The eval crate's metrics (dense mesh sampling, rigid-body simulation) agree.
+        let mut scene = problem.scene.clone();
+        placement.apply_to(&mut scene);
+        let m = scenethesis_eval::evaluate(&eval_scene(&scene));
+        let name = &placement.optimizer;
+        assert_eq!(m.col_o, 0.0, "[{name}] {:?}", m.colliding_pairs);
+        assert_eq!(m.col_arch, 0.0, "[{name}] {:?}", m.arch_penetrations);
+        assert_eq!(m.inst_o, 0.0, "[{name}] {:?}", m.unstable);
     }
 }

@@ -36,6 +36,12 @@ fn square(x0: f32, z0: f32, x1: f32, z1: f32) -> Vec<[f32; 2]> {
 
 /// A 1.2 × 0.8 m table, 0.76 m high: a 4 cm top on four 5 cm legs.
 pub fn table() -> PreparedAsset {
+    let (mesh, surfaces) = table_mesh();
+    prepare("table", &mesh, surfaces, [0.8, 1.2], Placement::Floor)
+}
+
+/// The table's mesh and support surfaces.
+pub fn table_mesh() -> (Mesh, Vec<SupportSurface>) {
     let mut parts = vec![cuboid("top", 0, [-0.6, 0.72, -0.4], [0.6, 0.76, 0.4])];
     for (i, (x, z)) in [(-0.55, -0.35), (0.55, -0.35), (-0.55, 0.35), (0.55, 0.35)]
         .into_iter()
@@ -64,18 +70,18 @@ pub fn table() -> PreparedAsset {
             clearance: Some(0.72),
         },
     ];
-    prepare(
-        "table",
-        &mesh(parts),
-        surfaces,
-        [0.8, 1.2],
-        Placement::Floor,
-    )
+    (mesh(parts), surfaces)
 }
 
 /// A 0.8 × 1.2 × 0.3 m open shelf: two side boards, four horizontal boards (compartment floors
 /// at 0.02, 0.42 and 0.82 m, 38 cm clear height each) and a back panel.
 pub fn shelf() -> PreparedAsset {
+    let (mesh, surfaces) = shelf_mesh();
+    prepare("shelf", &mesh, surfaces, [0.9, 1.1], Placement::Floor)
+}
+
+/// The shelf's mesh and support surfaces.
+pub fn shelf_mesh() -> (Mesh, Vec<SupportSurface>) {
     let mut parts = vec![
         cuboid("side_l", 0, [-0.4, 0.0, -0.15], [-0.38, 1.2, 0.15]),
         cuboid("side_r", 0, [0.38, 0.0, -0.15], [0.4, 1.2, 0.15]),
@@ -107,53 +113,80 @@ pub fn shelf() -> PreparedAsset {
         height: 1.2,
         clearance: None,
     });
-    prepare(
-        "shelf",
-        &mesh(parts),
-        surfaces,
-        [0.9, 1.1],
-        Placement::Floor,
-    )
+    (mesh(parts), surfaces)
 }
 
 /// A box of the given size standing on its bottom face.
 pub fn boxed(size: [f32; 3], scale_range: [f64; 2]) -> PreparedAsset {
-    let [x, y, z] = size;
     prepare(
         "box",
-        &mesh(vec![cuboid(
-            "box",
-            0,
-            [-x / 2.0, 0.0, -z / 2.0],
-            [x / 2.0, y, z / 2.0],
-        )]),
+        &box_mesh(size),
         Vec::new(),
         scale_range,
         Placement::Floor,
     )
 }
 
+/// A box mesh of the given size standing on its bottom face.
+pub fn box_mesh(size: [f32; 3]) -> Mesh {
+    let [x, y, z] = size;
+    mesh(vec![cuboid(
+        "box",
+        0,
+        [-x / 2.0, 0.0, -z / 2.0],
+        [x / 2.0, y, z / 2.0],
+    )])
+}
+
 /// A 20 × 3 × 28 cm book lying flat.
 pub fn book() -> PreparedAsset {
     prepare(
         "book",
-        &mesh(vec![cuboid(
-            "book",
-            0,
-            [-0.1, 0.0, -0.14],
-            [0.1, 0.03, 0.14],
-        )]),
+        &book_mesh(),
         Vec::new(),
         [0.8, 1.2],
         Placement::Surface,
     )
 }
 
+/// The book's mesh.
+pub fn book_mesh() -> Mesh {
+    mesh(vec![cuboid(
+        "book",
+        0,
+        [-0.1, 0.0, -0.14],
+        [0.1, 0.03, 0.14],
+    )])
+}
+
+/// The cup's mesh.
+pub fn cup_mesh() -> Mesh {
+    mesh(vec![cylinder("cup", 0, [0.0, 0.0], 0.04, 0.0, 0.1, 24)])
+}
+
+/// The asset-frame mesh of an object of [`thirty_object_room`], from its id.
+pub fn thirty_object_room_mesh(id: &str) -> Mesh {
+    match id.split('_').collect::<Vec<_>>().as_slice() {
+        ["table", ..] => table_mesh().0,
+        ["shelf", ..] => shelf_mesh().0,
+        ["cup", ..] => cup_mesh(),
+        ["book", ..] | ["item", _, "1"] => book_mesh(),
+        ["item", ..] => box_mesh(CRATE),
+        ["chair", ..] => box_mesh(CHAIR),
+        _ => panic!("unknown object {id}"),
+    }
+}
+
+/// Size of the storage crates in the shelves.
+pub const CRATE: [f32; 3] = [0.25, 0.2, 0.2];
+/// Size of the chair stand-ins.
+pub const CHAIR: [f32; 3] = [0.45, 0.9, 0.45];
+
 /// A cup: a cylinder of 4 cm radius and 10 cm height.
 pub fn cup() -> PreparedAsset {
     prepare(
         "cup",
-        &mesh(vec![cylinder("cup", 0, [0.0, 0.0], 0.04, 0.0, 0.1, 24)]),
+        &cup_mesh(),
         Vec::new(),
         [0.8, 1.2],
         Placement::Surface,
@@ -233,8 +266,8 @@ pub fn thirty_object_room(seed: u64) -> SceneProblem {
     let shelf = Arc::new(shelf());
     let cup = Arc::new(cup());
     let book = Arc::new(book());
-    let crate_box = Arc::new(boxed([0.25, 0.2, 0.2], [0.7, 1.1]));
-    let chair = Arc::new(boxed([0.45, 0.9, 0.45], [0.8, 1.1]));
+    let crate_box = Arc::new(boxed(CRATE, [0.7, 1.1]));
+    let chair = Arc::new(boxed(CHAIR, [0.8, 1.1]));
     let mut scene = Scene::new(Architecture::rectangular_room(8.0, 6.0, 2.8, 0.9));
     scene.anchor = Some("table_0".into());
     let mut assets: Vec<(String, Arc<PreparedAsset>)> = Vec::new();
