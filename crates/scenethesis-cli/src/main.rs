@@ -41,6 +41,8 @@ enum Command {
         /// Path of a scene.json file, or of an output folder holding one.
         path: PathBuf,
     },
+    /// Render an output folder's previews: preview.png, preview_top.png and view_K.png.
+    Render(commands::render::RenderArgs),
 }
 
 fn main() -> ExitCode {
@@ -79,5 +81,6 @@ fn run(command: Command) -> Result<()> {
         Command::Assets { command } => commands::assets::run(command),
         Command::Eval { path, json } => commands::eval::run(path, json),
         Command::Validate { path } => commands::validate::run(path),
+        Command::Render(args) => commands::render::run(args),
     }
 }

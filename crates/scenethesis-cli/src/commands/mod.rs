@@ -2,4 +2,5 @@
 
 pub mod assets;
 pub mod eval;
+pub mod render;
 pub mod validate;
