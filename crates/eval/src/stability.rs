@@ -143,7 +143,7 @@ pub fn round_solid(part: &MeshPart) -> Option<(Pose3, SharedShape)> {
         y1 = y1.max(p.y);
     }
     let height = y1 - y0;
-    if !(height > 1e-4) {
+    if height.is_nan() || height <= 1e-4 {
         return None;
     }
     let eps = 1e-5 + 1e-4 * height;
