@@ -1,0 +1,63 @@
+//! The pipeline's error type.
+
+use std::path::PathBuf;
+
+use scenethesis_agents::{GuideError, PlanError};
+use scenethesis_export::ExportError;
+use scenethesis_physics_opt::PhysicsOptError;
+use scenethesis_scene_graph::SceneIoError;
+
+use crate::assets::AssetError;
+use crate::judge::JudgeError;
+
+/// Why a run, an export or a batch failed.
+#[derive(Debug, thiserror::Error)]
+pub enum PipelineError {
+    /// The planner could not plan the prompt.
+    #[error("plan: {0}")]
+    Plan(#[from] PlanError),
+    /// An asset could not be retrieved or regenerated.
+    #[error("retrieve: {0}")]
+    Asset(#[from] AssetError),
+    /// The guide could not lay the plan out.
+    #[error("guide: {0}")]
+    Guide(#[from] GuideError),
+    /// The optimizer could not be set up.
+    #[error("optimize: {0}")]
+    Optimize(#[from] PhysicsOptError),
+    /// The judge could not evaluate the scene.
+    #[error("judge: {0}")]
+    Judge(#[from] JudgeError),
+    /// A stage returned something the next stage cannot use.
+    #[error("internal inconsistency: {detail}")]
+    Inconsistent {
+        /// What does not fit.
+        detail: String,
+    },
+    /// Writing an export failed.
+    #[error("export: {0}")]
+    Export(#[from] ExportError),
+    /// Reading or writing `scene.json` failed.
+    #[error(transparent)]
+    SceneIo(#[from] SceneIoError),
+    /// A file or folder could not be read or written.
+    #[error("cannot access {path}")]
+    Io {
+        /// The file or folder.
+        path: PathBuf,
+        /// The OS error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The output path cannot be used.
+    #[error("output {path}: {reason}")]
+    BadOutput {
+        /// The path.
+        path: PathBuf,
+        /// Why not.
+        reason: String,
+    },
+    /// A batch argument or prompts file is malformed.
+    #[error("batch: {0}")]
+    Batch(String),
+}

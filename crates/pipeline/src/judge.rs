@@ -1,0 +1,299 @@
+//! The judge stage: decides whether an optimized scene is good enough to ship, and names the
+//! objects at fault when it is not, so the pipeline can re-plan.
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use scenethesis_agents::{relation_holds, Plan};
+use scenethesis_eval::{
+    evaluate_with_cache, DecompositionCache, EvalError, EvalScene, SceneMetrics,
+};
+use scenethesis_scene_graph::{Mesh, ParentRef, Relation, Scene, GROUND_ID};
+use serde::{Deserialize, Serialize};
+
+/// What the judge looks at.
+#[derive(Debug, Clone, Copy)]
+pub struct JudgeInput<'a> {
+    /// The plan the scene was made from (its relations must hold).
+    pub plan: &'a Plan,
+    /// The optimized scene.
+    pub scene: &'a Scene,
+    /// Every object's mesh in its asset frame, by object id.
+    pub meshes: &'a BTreeMap<String, Mesh>,
+}
+
+/// The kind of a judged failure.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FailureKind {
+    /// Two objects interpenetrate by more than 1 mm.
+    Collision,
+    /// An object penetrates the floor or a wall.
+    ArchitectureCollision,
+    /// An object moves or turns in the stability simulation.
+    Unstable,
+    /// A relation of the plan does not hold.
+    Relation,
+    /// A floor object has no free floor next to it that the walkway reaches.
+    Unreachable,
+    /// The largest walkable region is less than the required share of the free floor.
+    Walk,
+}
+
+/// One reason a scene was rejected.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Failure {
+    /// What failed.
+    pub kind: FailureKind,
+    /// The objects to blame, best candidate for removal first (empty when no single object is
+    /// at fault).
+    pub objects: Vec<String>,
+    /// A sentence saying what was measured.
+    pub detail: String,
+}
+
+/// The judge's decision on a scene.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Verdict {
+    /// Whether the scene passes every check.
+    pub accepted: bool,
+    /// Every failed check (empty when accepted).
+    pub failures: Vec<Failure>,
+    /// The metrics the decision was based on.
+    pub metrics: SceneMetrics,
+    /// Relations of the plan that were checked.
+    pub relations_checked: usize,
+}
+
+impl Verdict {
+    /// The distinct objects blamed by any failure, in first-blamed order.
+    pub fn offenders(&self) -> Vec<String> {
+        let mut seen = BTreeSet::new();
+        self.failures
+            .iter()
+            .flat_map(|f| f.objects.iter())
+            .filter(|id| seen.insert(id.as_str()))
+            .cloned()
+            .collect()
+    }
+}
+
+/// Why a scene could not be judged at all.
+#[derive(Debug, thiserror::Error)]
+pub enum JudgeError {
+    /// The metrics could not be computed.
+    #[error("cannot evaluate the scene: {0}")]
+    Eval(#[from] EvalError),
+    /// An object of the scene has no mesh.
+    #[error("object `{0}` has no mesh to judge")]
+    MissingMesh(String),
+}
+
+/// Stage 5: accepts or rejects a scene with reasons.
+pub trait Judge: Send + Sync {
+    /// A short name for reports.
+    fn name(&self) -> &str;
+
+    /// Judges one scene.
+    fn judge(&self, input: &JudgeInput<'_>) -> Result<Verdict, JudgeError>;
+}
+
+/// The offline geometric judge. It accepts a scene only if no two objects collide and nothing
+/// penetrates the architecture (Col-O = Col-arch = 0), nothing moves in the stability simulation
+/// (Inst-S = false), every relation of the plan between objects present in the scene holds,
+/// Walk ≥ [`GeometricJudge::min_walk`], and every floor object is reachable — all measured by
+/// `scenethesis-eval` exactly as `metrics.md` defines them.
+#[derive(Debug, Clone)]
+pub struct GeometricJudge {
+    /// Smallest acceptable Walk (0.95 by default).
+    pub min_walk: f64,
+    cache: DecompositionCache,
+}
+
+impl Default for GeometricJudge {
+    fn default() -> Self {
+        Self {
+            min_walk: 0.95,
+            cache: DecompositionCache::new(),
+        }
+    }
+}
+
+impl Judge for GeometricJudge {
+    fn name(&self) -> &str {
+        "geometric"
+    }
+
+    fn judge(&self, input: &JudgeInput<'_>) -> Result<Verdict, JudgeError> {
+        let scene = input.scene;
+        let eval_scene = EvalScene::from_scene(scene, |o| {
+            input
+                .meshes
+                .get(&o.id)
+                .cloned()
+                .ok_or_else(|| EvalError::MissingMesh {
+                    object: o.id.clone(),
+                    reason: "the pipeline produced no mesh for it".into(),
+                })
+        })?;
+        let metrics = evaluate_with_cache(&eval_scene, &self.cache);
+        let order = placement_rank(scene);
+        let anchor = scene.anchor.as_deref();
+        let mut failures = Vec::new();
+
+        for pair in &metrics.colliding_pairs {
+            // Blame the object placed later (a child before its parent, never the anchor
+            // before anything else); both are listed.
+            let (first, second) = if rank(&order, &pair.a, anchor) >= rank(&order, &pair.b, anchor)
+            {
+                (&pair.a, &pair.b)
+            } else {
+                (&pair.b, &pair.a)
+            };
+            failures.push(Failure {
+                kind: FailureKind::Collision,
+                objects: vec![first.clone(), second.clone()],
+                detail: format!(
+                    "`{}` and `{}` interpenetrate by {:.1} mm",
+                    pair.a,
+                    pair.b,
+                    pair.depth * 1000.0
+                ),
+            });
+        }
+        for p in &metrics.arch_penetrations {
+            failures.push(Failure {
+                kind: FailureKind::ArchitectureCollision,
+                objects: vec![p.object.clone()],
+                detail: format!(
+                    "`{}` penetrates `{}` by {:.1} mm",
+                    p.object,
+                    p.architecture,
+                    p.depth * 1000.0
+                ),
+            });
+        }
+        for u in &metrics.unstable {
+            failures.push(Failure {
+                kind: FailureKind::Unstable,
+                objects: vec![u.id.clone()],
+                detail: if u.non_finite {
+                    format!("`{}` became non-finite in the simulation", u.id)
+                } else {
+                    format!(
+                        "`{}` moved {:.1} cm and turned {:.3} rad in 2 s of simulation",
+                        u.id,
+                        u.displacement * 100.0,
+                        u.rotation
+                    )
+                },
+            });
+        }
+        let mut relations_checked = 0;
+        for planned in &input.plan.objects {
+            if scene.object(&planned.id).is_none() {
+                continue;
+            }
+            let support_target = match &planned.parent {
+                ParentRef::Ground => GROUND_ID.to_owned(),
+                ParentRef::Object(id) => id.clone(),
+            };
+            let support = Relation::new(planned.support, support_target);
+            for relation in std::iter::once(&support).chain(&planned.relations) {
+                match relation_holds(scene, &planned.id, relation) {
+                    Some(true) => relations_checked += 1,
+                    Some(false) => {
+                        relations_checked += 1;
+                        failures.push(Failure {
+                            kind: FailureKind::Relation,
+                            objects: vec![planned.id.clone()],
+                            detail: format!(
+                                "`{}` {} `{}` does not hold",
+                                planned.id, relation.kind, relation.target
+                            ),
+                        });
+                    }
+                    // The target is not in the scene (dropped earlier): nothing to check.
+                    None => {}
+                }
+            }
+        }
+        if !metrics.unreachable_floor_objects.is_empty() {
+            failures.push(Failure {
+                kind: FailureKind::Unreachable,
+                objects: metrics.unreachable_floor_objects.clone(),
+                detail: format!(
+                    "no walkway reaches {}",
+                    metrics
+                        .unreachable_floor_objects
+                        .iter()
+                        .map(|id| format!("`{id}`"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            });
+        }
+        if metrics.walk < self.min_walk {
+            failures.push(Failure {
+                kind: FailureKind::Walk,
+                objects: walk_blockers(scene),
+                detail: format!(
+                    "Walk is {:.3}, below the required {:.2}",
+                    metrics.walk, self.min_walk
+                ),
+            });
+        }
+        Ok(Verdict {
+            accepted: failures.is_empty(),
+            failures,
+            metrics,
+            relations_checked,
+        })
+    }
+}
+
+/// Position of every object in the breadth-first placement order (stored order if the graph
+/// cannot be ordered).
+fn placement_rank(scene: &Scene) -> BTreeMap<String, usize> {
+    match scene.bfs_order() {
+        Ok(order) => order
+            .iter()
+            .enumerate()
+            .map(|(i, o)| (o.id.clone(), i))
+            .collect(),
+        Err(_) => scene
+            .objects
+            .iter()
+            .enumerate()
+            .map(|(i, o)| (o.id.clone(), i))
+            .collect(),
+    }
+}
+
+fn rank(order: &BTreeMap<String, usize>, id: &str, anchor: Option<&str>) -> usize {
+    if Some(id) == anchor {
+        return 0;
+    }
+    order.get(id).copied().unwrap_or(usize::MAX) + 1
+}
+
+/// Floor objects that split the walkway, most likely first: free-standing (not against a wall)
+/// and not the anchor, largest footprint first.
+fn walk_blockers(scene: &Scene) -> Vec<String> {
+    let mut candidates: Vec<(f64, &str)> = scene
+        .objects
+        .iter()
+        .filter(|o| o.parent == ParentRef::Ground && Some(o.id.as_str()) != scene.anchor.as_deref())
+        .filter(|o| o.support != scenethesis_scene_graph::RelationKind::AgainstWall)
+        .map(|o| {
+            let b = o.world_aabb();
+            let size = b.size();
+            (size.x * size.z, o.id.as_str())
+        })
+        .collect();
+    candidates.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(b.1)));
+    candidates
+        .into_iter()
+        .take(1)
+        .map(|(_, id)| id.to_owned())
+        .collect()
+}

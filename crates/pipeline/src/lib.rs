@@ -1,0 +1,50 @@
+//! The end-to-end scenethesis pipeline as a library: a prompt in, a simulation-ready scene out.
+//!
+//! [`Pipeline::generate`] runs the stages — **plan** (a [`scenethesis_agents::Planner`]),
+//! **retrieve** (an [`AssetSource`]: one asset per planned object), **guide** (a
+//! [`scenethesis_agents::Guide`]: the initial layout), **optimize** (a
+//! [`scenethesis_physics_opt::Optimizer`] over signed distance fields) and **judge** (a
+//! [`Judge`]) — and, while the judge rejects the scene, re-plans: first it moves the objects at
+//! fault (new asset variants, a new layout seed), then drops them, up to
+//! [`GenerateOptions::max_replans`] times, keeping the best attempt. An optional
+//! [`PreviewRenderer`] renders previews. [`GeneratedScene::write_outputs`] writes the output
+//! folder atomically: `scene.glb`, `scene.json`, `preview.png` + `preview_top.png` and
+//! `report.json` (metrics, verdict, every re-plan, per-stage timings).
+//!
+//! [`Pipeline::offline`] needs no network, API key or GPU. [`export_folder`] writes USD, MJCF,
+//! URDF or GLB from a saved folder; [`batch::run_batch`] runs prompts × seeds, resumable and
+//! sharded.
+//!
+//! ```no_run
+//! use scenethesis_pipeline::{GenerateOptions, NoProgress, Pipeline};
+//! let pipeline = Pipeline::offline();
+//! let mut scene = pipeline.generate("a cozy living room", 0, &GenerateOptions::default(), &mut NoProgress)?;
+//! println!("{}", scene.report.summary_line());
+//! scene.write_outputs(std::path::Path::new("out/living_room"))?;
+//! # Ok::<(), scenethesis_pipeline::PipelineError>(())
+//! ```
+
+#![warn(missing_docs)]
+
+mod assets;
+pub mod batch;
+mod error;
+pub mod judge;
+mod output;
+mod pipeline;
+#[cfg(feature = "render")]
+mod render;
+mod report;
+
+pub use assets::{object_seed, AssetError, AssetSource, CatalogSource, RetrievalSource};
+pub use error::PipelineError;
+pub use judge::{Failure, FailureKind, GeometricJudge, Judge, JudgeError, JudgeInput, Verdict};
+pub use output::{export_folder, resolve_meshes, welded_objects, REPORT_JSON, SCENE_JSON};
+pub use pipeline::{
+    GenerateOptions, GeneratedScene, NoProgress, Pipeline, PreviewRenderer, Progress, Stage,
+};
+#[cfg(feature = "render")]
+pub use render::WgpuPreviews;
+pub use report::{ObjectIssue, Replan, ReplanAction, Report, StageTiming};
+
+pub use scenethesis_export::Format;

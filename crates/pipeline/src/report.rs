@@ -1,0 +1,119 @@
+//! `report.json`: what a run measured and decided.
+
+use scenethesis_agents::DroppedObject;
+use serde::{Deserialize, Serialize};
+
+use crate::judge::Verdict;
+use crate::pipeline::Stage;
+
+/// What the judge did before a re-plan.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ReplanAction {
+    /// The objects at fault got new asset variants and the layout a new seed.
+    Move,
+    /// The objects at fault (and everything resting on them) were removed from the plan.
+    Drop,
+}
+
+/// One re-plan the judge made.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Replan {
+    /// The attempt (0-based) whose verdict caused it.
+    pub after_round: usize,
+    /// What was done.
+    pub action: ReplanAction,
+    /// The objects moved or dropped.
+    pub objects: Vec<String>,
+    /// The failures that caused it.
+    pub reasons: Vec<String>,
+    /// The layout seed of the next attempt.
+    pub layout_seed: u64,
+}
+
+/// Post-condition misses the optimizer reported for one object.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ObjectIssue {
+    /// The object.
+    pub id: String,
+    /// The issues, as sentences.
+    pub issues: Vec<String>,
+}
+
+/// Wall-clock seconds spent in one stage (summed over re-plans).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StageTiming {
+    /// The stage.
+    pub stage: Stage,
+    /// Seconds.
+    pub seconds: f64,
+}
+
+/// The content of `report.json`. Everything except `timings`, `total_seconds` and the
+/// export timing is deterministic for a fixed prompt, seed and providers.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Report {
+    /// The prompt.
+    pub prompt: String,
+    /// The seed.
+    pub seed: u64,
+    /// The scene type the planner recognised.
+    pub scene_type: String,
+    /// Whether the judge accepted the final scene.
+    pub accepted: bool,
+    /// The judge's name.
+    pub judge: String,
+    /// The optimizer's name.
+    pub optimizer: String,
+    /// The asset source's name.
+    pub asset_source: String,
+    /// Attempts made (1 + re-plans).
+    pub attempts: usize,
+    /// Which attempt (0-based) the output is.
+    pub chosen_attempt: usize,
+    /// Objects in the first plan.
+    pub planned_objects: usize,
+    /// Objects in the output scene.
+    pub objects: usize,
+    /// Planned objects missing from the output (dropped by the guide or the judge).
+    pub not_in_scene: Vec<String>,
+    /// Objects the guide could not fit in the chosen attempt, with reasons.
+    pub guide_dropped: Vec<DroppedObject>,
+    /// Every re-plan the judge made.
+    pub replans: Vec<Replan>,
+    /// The judge's verdict on the output, with every metric.
+    pub verdict: Verdict,
+    /// Post-condition misses the optimizer reported.
+    pub optimizer_issues: Vec<ObjectIssue>,
+    /// What the planner substituted or left out.
+    pub plan_notes: Vec<String>,
+    /// Other notes (e.g. why previews were skipped).
+    pub notes: Vec<String>,
+    /// Seconds per stage.
+    pub timings: Vec<StageTiming>,
+    /// Seconds from the prompt to the finished scene in memory (before writing files).
+    pub total_seconds: f64,
+}
+
+impl Report {
+    /// A one-line summary: verdict, objects, categories, metrics and time.
+    pub fn summary_line(&self) -> String {
+        let m = &self.verdict.metrics;
+        let reach = m
+            .reach_floor
+            .map_or("n/a".to_owned(), |r| format!("{r:.2}"));
+        format!(
+            "{} — {} objects, {} categories, {} relation kinds; Col-O {:.1}% Inst-O {:.1}% Walk {:.2} Reach {}; {} attempt(s), {:.2} s",
+            if self.accepted { "accepted" } else { "NOT accepted" },
+            self.objects,
+            m.categories,
+            m.relation_kinds,
+            m.col_o * 100.0,
+            m.inst_o * 100.0,
+            m.walk,
+            reach,
+            self.attempts,
+            self.total_seconds,
+        )
+    }
+}
