@@ -262,6 +262,8 @@ pub struct Knowledge {
     pub categories: BTreeMap<String, CategoryPrior>,
     /// Prompt vocabulary.
     pub vocabulary: Vocabulary,
+    /// Category phrases as word stems, longest first (derived from `categories`).
+    phrases: Vec<(Vec<String>, String)>,
 }
 
 #[derive(Deserialize)]
@@ -540,7 +542,9 @@ impl Knowledge {
         // Longest phrases first, so "in front of" wins over "in".
         relations.sort_by(|a, b| b.0.len().cmp(&a.0.len()).then(a.0.cmp(&b.0)));
 
+        let phrases = category_phrases_of(&cats.category);
         Ok(Knowledge {
+            phrases,
             archetypes,
             categories: cats.category,
             vocabulary: Vocabulary {
@@ -574,17 +578,22 @@ impl Knowledge {
         self.categories.keys().map(String::as_str)
     }
 
-    /// The phrases (as word stems) that name each category: its name and its words.
-    pub fn category_phrases(&self) -> Vec<(Vec<String>, String)> {
-        let mut out = Vec::new();
-        for (name, prior) in &self.categories {
-            out.push((phrase_stems(&name.replace('_', " ")), name.clone()));
-            for w in &prior.words {
-                out.push((phrase_stems(w), name.clone()));
-            }
-        }
-        out.retain(|(p, _)| !p.is_empty());
-        out.sort_by(|a, b| b.0.len().cmp(&a.0.len()).then(a.cmp(b)));
-        out
+    /// The phrases (as word stems) that name each category, its name and its words, longest
+    /// first.
+    pub fn category_phrases(&self) -> &[(Vec<String>, String)] {
+        &self.phrases
     }
+}
+
+fn category_phrases_of(categories: &BTreeMap<String, CategoryPrior>) -> Vec<(Vec<String>, String)> {
+    let mut out = Vec::new();
+    for (name, prior) in categories {
+        out.push((phrase_stems(&name.replace('_', " ")), name.clone()));
+        for w in &prior.words {
+            out.push((phrase_stems(w), name.clone()));
+        }
+    }
+    out.retain(|(p, _)| !p.is_empty());
+    out.sort_by(|a, b| b.0.len().cmp(&a.0.len()).then(a.cmp(b)));
+    out
 }

@@ -42,10 +42,13 @@ fn faces(o: &SceneObject, t: &SceneObject) -> bool {
 /// Whether `relation` of object `subject` holds in `scene`'s geometry (world boxes and
 /// poses), or `None` if the subject or target does not exist.
 ///
-/// Conventions: *left of* / *right of* are seen facing the target's front (left = the target's
-/// local −X); *facing* allows 50° of yaw error; *beside* and *around* need the boxes within
-/// 1 m and 0.6 m; *against-wall* needs the back within 0.1 m of the wall's inner face (target
-/// `ground` means any wall).
+/// Conventions: *on* rests above the target's bottom and at most at its top; *inside* starts
+/// below the target's top; *under* stays below the top and starts in the lowest 35 % of the
+/// target's height (the floor beneath a table or its low shelf); all three need the subject's
+/// centre over the target's box. *Left of* / *right of* are seen facing the target's front
+/// (left = the target's local −X); *facing* allows 50° of yaw error; *beside* and *around*
+/// need the boxes within 1 m and 0.6 m; *against-wall* needs the back within 0.1 m of the
+/// wall's inner face (target `ground` means any wall).
 pub fn relation_holds(scene: &Scene, subject: &str, relation: &Relation) -> Option<bool> {
     let o = scene.object(subject)?;
     let ob = o.world_aabb();
