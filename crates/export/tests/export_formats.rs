@@ -272,8 +272,8 @@ fn glb_parses_back_with_names_materials_and_transforms() {
             assert!(indices.iter().all(|&i| (i as usize) < positions.len()));
             let bb = prim.bounding_box();
             for p in &positions {
-                for k in 0..3 {
-                    assert!(bb.min[k] <= p[k] && p[k] <= bb.max[k]);
+                for (k, v) in p.iter().enumerate() {
+                    assert!(bb.min[k] <= *v && *v <= bb.max[k]);
                 }
             }
         }

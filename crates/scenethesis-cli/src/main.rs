@@ -22,6 +22,13 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
+    /// Generate a simulation-ready scene from a prompt (offline by default): scene.glb,
+    /// scene.json, previews and report.json in the output folder.
+    Generate(commands::generate::GenerateArgs),
+    /// Export a generated folder to another format (usd, mjcf, urdf, glb).
+    Export(commands::export::ExportArgs),
+    /// Generate many prompts × seeds into one folder each; resumable and shardable.
+    Batch(commands::batch::BatchArgs),
     /// Inspect the built-in procedural asset library (`assets list`).
     Assets {
         #[command(subcommand)]
@@ -78,6 +85,9 @@ fn init_logging(verbose: u8) {
 
 fn run(command: Command) -> Result<()> {
     match command {
+        Command::Generate(args) => commands::generate::run(args),
+        Command::Export(args) => commands::export::run(args),
+        Command::Batch(args) => commands::batch::run(args),
         Command::Assets { command } => commands::assets::run(command),
         Command::Eval { path, json } => commands::eval::run(path, json),
         Command::Validate { path } => commands::validate::run(path),

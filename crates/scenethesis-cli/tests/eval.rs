@@ -104,11 +104,18 @@ fn eval_reports_colliding_boxes_of_a_foreign_glb_as_json_and_as_a_table() {
     );
     let glb_arg = glb.to_str().unwrap();
     let out = scenethesis(&["eval", glb_arg, "--json"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let metrics: serde_json::Value = serde_json::from_slice(&out.stdout).expect("one JSON object");
     assert_eq!(metrics["objects"], 3);
     assert_eq!(metrics["categories"], 2);
-    assert!((metrics["col_o"].as_f64().unwrap() - 2.0 / 3.0).abs() < 1e-9, "{metrics}");
+    assert!(
+        (metrics["col_o"].as_f64().unwrap() - 2.0 / 3.0).abs() < 1e-9,
+        "{metrics}"
+    );
     let depth = metrics["colliding_pairs"][0]["depth"].as_f64().unwrap();
     assert!((depth - 0.1).abs() < 2e-3, "{depth}");
     assert_eq!(metrics["reach_floor"], 1.0);

@@ -395,7 +395,22 @@ pub(crate) fn dumbbell(rng: &mut ChaCha8Rng) -> Asset {
     let l = uniform(rng, 0.25, 0.42);
     let r = uniform(rng, 0.05, 0.1);
     let mut b = Builder::new();
-    let iron = b.metal("iron", [0.2, 0.2, 0.22], 0.6);
+    // Plates are bare cast iron or rubber-coated in one of the usual gym colours.
+    let (plate_name, plate_rgb, coated) = *pick(
+        rng,
+        &[
+            ("cast_iron", [0.2, 0.2, 0.22], false),
+            ("rubber_black", [0.05, 0.05, 0.05], true),
+            ("rubber_red", [0.55, 0.06, 0.05], true),
+            ("rubber_blue", [0.06, 0.16, 0.5], true),
+            ("rubber_green", [0.08, 0.35, 0.12], true),
+        ],
+    );
+    let iron = if coated {
+        b.material(plate_name, plate_rgb, 0.85)
+    } else {
+        b.metal(plate_name, plate_rgb, 0.6)
+    };
     let chrome = b.metal("chrome", [0.8, 0.8, 0.82], 0.2);
     let hx = l / 2.0;
     let pw = l * uniform(rng, 0.12, 0.18);

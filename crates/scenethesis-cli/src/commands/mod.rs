@@ -1,6 +1,9 @@
 //! One module per subcommand; `main` only parses arguments and dispatches.
 
 pub mod assets;
+pub mod batch;
 pub mod eval;
+pub mod export;
+pub mod generate;
 pub mod render;
 pub mod validate;

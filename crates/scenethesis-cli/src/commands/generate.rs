@@ -1,0 +1,150 @@
+//! `scenethesis generate`: a prompt in, a simulation-ready scene folder out.
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::time::Duration;
+
+use anyhow::{Context, Result};
+use indicatif::{ProgressBar, ProgressStyle};
+use scenethesis_pipeline::{export_folder, Format, GenerateOptions, Pipeline, Progress, Stage};
+
+/// Arguments of `scenethesis generate`.
+#[derive(Debug, clap::Args)]
+pub struct GenerateArgs {
+    /// What to build, e.g. "a cozy living room with reading materials".
+    pub prompt: String,
+    /// Output folder; written atomically (an existing folder is replaced once the new one is
+    /// complete).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Seed: the same prompt and seed give the same scene.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// How many times the judge may re-plan a rejected scene.
+    #[arg(long, default_value_t = 3)]
+    pub max_replans: usize,
+    /// Do not render preview images.
+    #[arg(long)]
+    pub no_preview: bool,
+    /// Also write these formats into the folder (comma-separated: usd, mjcf, urdf).
+    #[arg(long, value_delimiter = ',')]
+    pub export: Vec<Format>,
+    /// Exit with an error when the judge does not accept the final scene.
+    #[arg(long)]
+    pub strict: bool,
+}
+
+/// Draws one spinner per stage on a terminal, or plain lines otherwise.
+#[derive(Default)]
+pub struct StageProgress {
+    bar: Option<ProgressBar>,
+    interactive: bool,
+}
+
+impl StageProgress {
+    /// Progress on stderr: spinners on a terminal, plain lines otherwise.
+    pub fn on_stderr() -> Self {
+        Self {
+            bar: None,
+            interactive: std::io::stderr().is_terminal(),
+        }
+    }
+}
+
+fn label(stage: Stage, round: usize) -> String {
+    if round == 0 {
+        format!("{stage:<8}")
+    } else {
+        format!("{stage:<8} (re-plan {round})")
+    }
+}
+
+impl Progress for StageProgress {
+    fn stage_started(&mut self, stage: Stage, round: usize) {
+        if self.interactive {
+            let bar = ProgressBar::new_spinner();
+            bar.set_style(
+                ProgressStyle::with_template("{spinner:.cyan} {msg} {elapsed:.dim}")
+                    .expect("valid template"),
+            );
+            bar.set_message(label(stage, round));
+            bar.enable_steady_tick(Duration::from_millis(100));
+            self.bar = Some(bar);
+        }
+    }
+
+    fn stage_finished(&mut self, stage: Stage, round: usize, elapsed: Duration, note: &str) {
+        let line = format!(
+            "✔ {} {:>7.2} s  {note}",
+            label(stage, round),
+            elapsed.as_secs_f64()
+        );
+        match self.bar.take() {
+            Some(bar) => {
+                bar.set_style(ProgressStyle::with_template("{msg}").expect("valid template"));
+                bar.finish_with_message(line);
+            }
+            None => eprintln!("{line}"),
+        }
+    }
+}
+
+/// Builds the offline pipeline, with previews when a renderer can be opened.
+pub fn pipeline(previews: bool) -> Pipeline {
+    let pipeline = Pipeline::offline();
+    if !previews {
+        return pipeline;
+    }
+    match scenethesis_pipeline::WgpuPreviews::from_env() {
+        Ok(renderer) => pipeline.with_renderer(renderer),
+        Err(e) => {
+            eprintln!("warning: no previews: cannot open a renderer ({e})");
+            pipeline
+        }
+    }
+}
+
+/// Runs `scenethesis generate`.
+pub fn run(args: GenerateArgs) -> Result<()> {
+    let pipeline = pipeline(!args.no_preview);
+    let options = GenerateOptions {
+        max_replans: args.max_replans,
+        previews: !args.no_preview,
+        ..GenerateOptions::default()
+    };
+    let mut progress = StageProgress::on_stderr();
+    let mut generated = pipeline
+        .generate(&args.prompt, args.seed, &options, &mut progress)
+        .with_context(|| format!("generating \"{}\"", args.prompt))?;
+    generated
+        .write_outputs(&args.out)
+        .with_context(|| format!("writing {}", args.out.display()))?;
+    let mut files = vec!["scene.glb".to_owned(), "scene.json".to_owned()];
+    files.extend(generated.previews.iter().map(|(name, _)| name.clone()));
+    files.push("report.json".into());
+    if !args.export.is_empty() {
+        let written = export_folder(&args.out, &args.export, pipeline.assets())
+            .with_context(|| format!("exporting {}", args.out.display()))?;
+        files.extend(
+            written
+                .iter()
+                .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned())),
+        );
+    }
+    println!("{}", generated.report.summary_line());
+    println!("wrote {}: {}", args.out.display(), files.join(", "));
+    if args.strict && !generated.report.accepted {
+        anyhow::bail!(
+            "the judge did not accept the scene: {}",
+            generated
+                .report
+                .verdict
+                .failures
+                .iter()
+                .map(|f| f.detail.as_str())
+                .collect::<Vec<_>>()
+                .join("; ")
+        );
+    }
+    Ok(())
+}
