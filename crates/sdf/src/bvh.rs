@@ -3,10 +3,13 @@
 //! A binary tree is built with binned SAH (32-byte nodes; an inner node's two children sit
 //! next to each other at `index` and `index + 1`; a leaf holds `count > 0` consecutive
 //! triangles starting at `index`). It serves the winding-number traversal, and is collapsed
-//! into a 4-wide tree ([`Node4`]) with box and slab bounds per child for closest-point queries.
+//! into a 4-wide tree ([`Node4`]) with box and slab bounds per child for closest-point queries,
+//! whose leaves hold their triangles packed four at a time ([`Packets`]).
 
 // Per-axis loops over small fixed arrays read best with indices.
 #![allow(clippy::needless_range_loop)]
+
+use crate::geometry::{TriPacket, F4};
 
 /// One BVH node (32 bytes).
 #[derive(Debug, Clone, Copy)]
@@ -64,7 +67,7 @@ impl Bounds {
     }
 }
 
-const LEAF_SIZE: usize = 8;
+const LEAF_SIZE: usize = 12;
 const BINS: usize = 16;
 
 /// Builds a subtree over `items` (triangle ids; reordered in place) whose triangle boxes are
@@ -228,60 +231,82 @@ impl Builder<'_> {
 #[derive(Debug, Clone, Copy)]
 #[repr(C, align(64))]
 pub(crate) struct Node4 {
-    pub min: [[f32; 4]; 3],
-    pub max: [[f32; 4]; 3],
-    pub normal: [[f32; 4]; 3],
-    pub low: [f32; 4],
-    pub high: [f32; 4],
-    /// Inner child: index into the 4-wide node array; leaf child: first triangle.
+    pub min: [F4; 3],
+    pub max: [F4; 3],
+    pub normal: [F4; 3],
+    pub low: F4,
+    pub high: F4,
+    /// Inner child: index into the 4-wide node array; leaf child: its first [`TriPacket`].
     pub child: [u32; 4],
-    /// Triangle count of a leaf child, 0 for an inner child.
+    /// Packet count of a leaf child, 0 for an inner child.
     pub count: [u32; 4],
 }
 
 impl Node4 {
     const EMPTY: Node4 = Node4 {
-        min: [[f32::INFINITY; 4]; 3],
-        max: [[f32::NEG_INFINITY; 4]; 3],
-        normal: [[0.0; 4]; 3],
-        low: [f32::NEG_INFINITY; 4],
-        high: [f32::INFINITY; 4],
+        min: [F4([f32::INFINITY; 4]); 3],
+        max: [F4([f32::NEG_INFINITY; 4]); 3],
+        normal: [F4([0.0; 4]); 3],
+        low: F4([f32::NEG_INFINITY; 4]),
+        high: F4([f32::INFINITY; 4]),
         child: [0; 4],
         count: [0; 4],
     };
 
-    /// Squared lower bounds on the distance from `p` to the four children's triangles
-    /// (infinite for empty lanes).
+    /// Squared lower bounds on the distance from `p` (splatted) to the four children's
+    /// triangles (infinite for empty lanes).
     #[inline(always)]
-    pub fn distances2(&self, p: &[f32; 3]) -> [f32; 4] {
-        let mut d2 = [0.0f32; 4];
-        let mut proj = [0.0f32; 4];
+    pub fn distances2(&self, p: &[F4; 3]) -> F4 {
+        let zero = F4::splat(0.0);
+        let mut d2 = zero;
+        let mut proj = zero;
         for axis in 0..3 {
-            for lane in 0..4 {
-                let d = (self.min[axis][lane] - p[axis])
-                    .max(p[axis] - self.max[axis][lane])
-                    .max(0.0);
-                d2[lane] += d * d;
-                proj[lane] += self.normal[axis][lane] * p[axis];
-            }
+            let d = (self.min[axis] - p[axis])
+                .max(p[axis] - self.max[axis])
+                .max(zero);
+            d2 = d2 + d * d;
+            proj = proj + self.normal[axis] * p[axis];
         }
-        for lane in 0..4 {
-            let s = (self.low[lane] - proj[lane])
-                .max(proj[lane] - self.high[lane])
-                .max(0.0);
-            d2[lane] = d2[lane].max(s * s);
+        let s = (self.low - proj).max(proj - self.high).max(zero);
+        d2.max(s * s)
+    }
+}
+
+/// The leaves' triangles packed four at a time for closest-point queries.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Packets {
+    /// The packets; a leaf's packets are consecutive.
+    pub packets: Vec<TriPacket>,
+    /// Index (in the triangle array) of each packet's lane-0 triangle; lane `k` is `first + k`.
+    pub first_tri: Vec<u32>,
+}
+
+impl Packets {
+    /// Packs the `count` triangles from `first`; returns `(first packet, packet count)`.
+    pub fn add_leaf(
+        &mut self,
+        tris: &[[nalgebra::Vector3<f32>; 3]],
+        first: u32,
+        count: u32,
+    ) -> (u32, u32) {
+        let start = self.packets.len() as u32;
+        let range = &tris[first as usize..(first + count) as usize];
+        for (k, chunk) in range.chunks(4).enumerate() {
+            self.packets.push(TriPacket::new(chunk));
+            self.first_tri.push(first + 4 * k as u32);
         }
-        d2
+        (start, self.packets.len() as u32 - start)
     }
 }
 
 /// Collapses the binary subtree at `node` (an inner node) into 4-wide nodes appended to
-/// `out`; returns the index of its 4-wide root.
+/// `out`, packing its leaves into `packets`; returns the index of its 4-wide root.
 pub(crate) fn collapse(
     bin: &[Node],
     node: u32,
     tris: &[[nalgebra::Vector3<f32>; 3]],
     out: &mut Vec<Node4>,
+    packets: &mut Packets,
 ) -> u32 {
     let n = &bin[node as usize];
     debug_assert_eq!(n.count, 0);
@@ -313,20 +338,19 @@ pub(crate) fn collapse(
     for (lane, &k) in kids.iter().enumerate() {
         let b = &bin[k as usize];
         for axis in 0..3 {
-            wide.min[axis][lane] = b.min[axis];
-            wide.max[axis][lane] = b.max[axis];
+            wide.min[axis].0[lane] = b.min[axis];
+            wide.max[axis].0[lane] = b.max[axis];
         }
         let (normal, low, high) = slab(&tris[triangle_range(bin, k)]);
         for axis in 0..3 {
-            wide.normal[axis][lane] = normal[axis];
+            wide.normal[axis].0[lane] = normal[axis];
         }
-        wide.low[lane] = low;
-        wide.high[lane] = high;
+        wide.low.0[lane] = low;
+        wide.high.0[lane] = high;
         if b.count > 0 {
-            wide.child[lane] = b.index;
-            wide.count[lane] = b.count;
+            (wide.child[lane], wide.count[lane]) = packets.add_leaf(tris, b.index, b.count);
         } else {
-            wide.child[lane] = collapse(bin, k, tris, out);
+            wide.child[lane] = collapse(bin, k, tris, out, packets);
             wide.count[lane] = 0;
         }
     }

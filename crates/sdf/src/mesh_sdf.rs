@@ -5,9 +5,9 @@ use std::collections::HashMap;
 use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
 
-use crate::bvh::{self, Node, Node4};
+use crate::bvh::{self, Node, Node4, Packets};
 use crate::geometry::{
-    closest_on_triangle, distance2_to_box, distance2_to_triangle, solid_angle, Feature,
+    closest_on_triangle, distance2_to_box, distance2_to_triangle, solid_angle, Feature, F4,
 };
 use crate::{SdfError, SdfQuery, SignedDistance};
 
@@ -37,7 +37,8 @@ pub enum SignRule {
 #[derive(Debug, Clone, Copy)]
 struct Group {
     root: u32,
-    /// Entry of the 4-wide tree: (4-wide node, 0) or, for a one-leaf group, (first, count).
+    /// Entry of the 4-wide tree: (4-wide node, 0) or, for a one-leaf group, (first packet,
+    /// packet count).
     wide_root: (u32, u32),
     first_tri: u32,
     end_tri: u32,
@@ -104,10 +105,9 @@ impl Hit {
 #[derive(Debug, Clone)]
 pub struct MeshSdf {
     tris: Vec<[V3; 3]>,
-    /// Per triangle: unit normal and offset (`n · a`), a cheap lower bound for leaf tests.
-    planes: Vec<[f32; 4]>,
     nodes: Vec<Node>,
     wide: Vec<Node4>,
+    packets: Packets,
     groups: Vec<Group>,
     normals: Vec<PseudoNormals>,
     dipoles: Vec<Dipole>,
@@ -198,6 +198,7 @@ impl MeshSdf {
         let mut nodes = Vec::with_capacity(2 * total / 3 + solids.len());
         let mut groups = Vec::with_capacity(solids.len());
         let mut wide = Vec::new();
+        let mut packets = Packets::default();
         for solid in &solids {
             let boxes: Vec<([f32; 3], [f32; 3])> = solid.tris.iter().map(tri_box).collect();
             let mut order: Vec<u32> = (0..solid.tris.len() as u32).collect();
@@ -209,9 +210,12 @@ impl MeshSdf {
             }
             let r = &nodes[root as usize];
             let wide_root = if r.count > 0 {
-                (r.index, r.count)
+                packets.add_leaf(&tris, r.index, r.count)
             } else {
-                (bvh::collapse(&nodes, root, &tris, &mut wide), 0)
+                (
+                    bvh::collapse(&nodes, root, &tris, &mut wide, &mut packets),
+                    0,
+                )
             };
             let r = &nodes[root as usize];
             groups.push(Group {
@@ -231,18 +235,11 @@ impl MeshSdf {
             max = max.sup(&Point3::from(g.max));
         }
         let extent = (max - min).amax().max(1e-6);
-        let planes = tris
-            .iter()
-            .map(|t| {
-                let n = face_normal(t);
-                [n.x, n.y, n.z, n.dot(&t[0])]
-            })
-            .collect();
         let mut sdf = MeshSdf {
             tris,
-            planes,
             nodes,
             wide,
+            packets,
             groups,
             normals,
             dipoles: Vec::new(),
@@ -464,7 +461,7 @@ impl MeshSdf {
     }
 
     /// Depth-first, nearest-first search of the 4-wide tree from `entry` (node, 0) or
-    /// (first triangle, count).
+    /// (first packet, packet count).
     fn closest_from(
         &self,
         entry: (u32, u32),
@@ -473,8 +470,9 @@ impl MeshSdf {
         best_d2: &mut f32,
         best_tri: &mut u32,
     ) {
-        const CAP: usize = 128;
+        const CAP: usize = 64;
         let pa = [p.x, p.y, p.z];
+        let p4 = pa.map(F4::splat);
         let mut stack: [(f32, u32, u32); CAP] = [(0.0, 0, 0); CAP];
         stack[0] = (d, entry.0, entry.1);
         let mut sp = 1usize;
@@ -487,25 +485,22 @@ impl MeshSdf {
             if count > 0 {
                 let start = index as usize;
                 let end = start + count as usize;
-                for (k, (t, pl)) in self.tris[start..end]
+                for (packet, &first) in self.packets.packets[start..end]
                     .iter()
-                    .zip(&self.planes[start..end])
-                    .enumerate()
+                    .zip(&self.packets.first_tri[start..end])
                 {
-                    let h = pl[0] * p.x + pl[1] * p.y + pl[2] * p.z - pl[3];
-                    if h * h >= *best_d2 {
-                        continue;
-                    }
-                    let d2 = distance2_to_triangle(p, t[0], t[1], t[2]);
-                    if d2 < *best_d2 {
-                        *best_d2 = d2;
-                        *best_tri = (start + k) as u32;
+                    let ds = packet.distances2(&p4);
+                    let nearest = ds.min_lane();
+                    if nearest < *best_d2 {
+                        *best_d2 = nearest;
+                        let lane = ds.0.iter().position(|&d| d == nearest).unwrap_or(0);
+                        *best_tri = first + lane as u32;
                     }
                 }
                 continue;
             }
             let n = &self.wide[index as usize];
-            let ds = n.distances2(&pa);
+            let ds = n.distances2(&p4).0;
             // Push farthest first so the nearest child is searched next.
             let mut order = [0usize, 1, 2, 3];
             for i in 1..4 {
