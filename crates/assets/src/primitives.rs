@@ -5,37 +5,10 @@ use scenethesis_scene_graph::{AssetRef, Material, Mesh, MeshPart};
 
 use crate::{Asset, AssetInfo, Placement, SupportSurface, SurfaceKind};
 
-/// An axis-aligned box from `min` to `max` (asset frame), 8 vertices and 12 triangles.
+/// An axis-aligned box from `min` to `max` (asset frame), 8 vertices and 12 triangles
+/// ([`MeshPart::cuboid`]).
 pub fn cuboid(name: &str, material: usize, min: [f32; 3], max: [f32; 3]) -> MeshPart {
-    let positions = (0..8)
-        .map(|i| {
-            [
-                if i & 1 == 0 { min[0] } else { max[0] },
-                if i & 2 == 0 { min[1] } else { max[1] },
-                if i & 4 == 0 { min[2] } else { max[2] },
-            ]
-        })
-        .collect();
-    let triangles = vec![
-        [0, 2, 1],
-        [1, 2, 3],
-        [4, 5, 6],
-        [5, 7, 6],
-        [0, 1, 4],
-        [1, 5, 4],
-        [2, 6, 3],
-        [3, 6, 7],
-        [0, 4, 2],
-        [2, 4, 6],
-        [1, 3, 5],
-        [3, 7, 5],
-    ];
-    MeshPart {
-        name: name.into(),
-        material,
-        positions,
-        triangles,
-    }
+    MeshPart::cuboid(name, material, min, max)
 }
 
 /// A vertical cylinder (axis +Y) centred at (`cx`, `cz`) from `y0` to `y1`, with `segments`
@@ -205,34 +178,13 @@ pub fn orient_outward(part: &mut MeshPart) {
     }
 }
 
-/// The cuboid's triangle list for corners indexed by bits (x, y, z).
-const HEX_TRIANGLES: [[u32; 3]; 12] = [
-    [0, 2, 1],
-    [1, 2, 3],
-    [4, 5, 6],
-    [5, 7, 6],
-    [0, 1, 4],
-    [1, 5, 4],
-    [2, 6, 3],
-    [3, 6, 7],
-    [0, 4, 2],
-    [2, 4, 6],
-    [1, 3, 5],
-    [3, 7, 5],
-];
-
 /// A hexahedron from its 8 corners, indexed like [`cuboid`]: bit 0 of the index selects the
 /// far side along the first edge direction, bit 1 along the second, bit 2 along the third. The
 /// part is convex when every face is planar and the corners are in convex position (a sheared
 /// or tapered box, a wedge with a non-zero top, a tyre segment). Faces are oriented outward
 /// whatever the handedness of the corner order.
 pub fn hexahedron(name: &str, material: usize, corners: [[f32; 3]; 8]) -> MeshPart {
-    let mut part = MeshPart {
-        name: name.into(),
-        material,
-        positions: corners.to_vec(),
-        triangles: HEX_TRIANGLES.to_vec(),
-    };
+    let mut part = MeshPart::from_box_corners(name, material, corners);
     orient_outward(&mut part);
     part
 }

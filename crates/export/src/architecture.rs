@@ -39,38 +39,17 @@ impl OrientedBox {
     pub fn to_mesh_part(&self, name: &str, material: usize) -> MeshPart {
         let rotation = self.rotation();
         let h = self.half_extents;
-        let positions = (0..8)
-            .map(|i| {
-                let local = Vector3::new(
-                    if i & 1 == 0 { -h.x } else { h.x },
-                    if i & 2 == 0 { -h.y } else { h.y },
-                    if i & 4 == 0 { -h.z } else { h.z },
-                );
-                let p = self.center + rotation * local;
-                [p.x as f32, p.y as f32, p.z as f32]
-            })
-            .collect();
-        // Same corner numbering as `scenethesis_assets::primitives::cuboid`.
-        let triangles = vec![
-            [0, 2, 1],
-            [1, 2, 3],
-            [4, 5, 6],
-            [5, 7, 6],
-            [0, 1, 4],
-            [1, 5, 4],
-            [2, 6, 3],
-            [3, 6, 7],
-            [0, 4, 2],
-            [2, 4, 6],
-            [1, 3, 5],
-            [3, 7, 5],
-        ];
-        MeshPart {
-            name: name.to_owned(),
-            material,
-            positions,
-            triangles,
-        }
+        let corners = std::array::from_fn(|i| {
+            let local = Vector3::new(
+                if i & 1 == 0 { -h.x } else { h.x },
+                if i & 2 == 0 { -h.y } else { h.y },
+                if i & 4 == 0 { -h.z } else { h.z },
+            );
+            let p = self.center + rotation * local;
+            [p.x as f32, p.y as f32, p.z as f32]
+        });
+        // A rotation keeps the corner numbering right-handed, so the faces stay outward.
+        MeshPart::from_box_corners(name, material, corners)
     }
 }
 

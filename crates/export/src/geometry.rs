@@ -213,35 +213,7 @@ mod tests {
     use scenethesis_scene_graph::Material;
 
     fn cube(size: f32) -> MeshPart {
-        let positions = (0..8)
-            .map(|i| {
-                [
-                    (i & 1) as f32 * size,
-                    ((i >> 1) & 1) as f32 * size,
-                    ((i >> 2) & 1) as f32 * size,
-                ]
-            })
-            .collect();
-        let triangles = vec![
-            [0, 2, 1],
-            [1, 2, 3],
-            [4, 5, 6],
-            [5, 7, 6],
-            [0, 1, 4],
-            [1, 5, 4],
-            [2, 6, 3],
-            [3, 6, 7],
-            [0, 4, 2],
-            [2, 4, 6],
-            [1, 3, 5],
-            [3, 7, 5],
-        ];
-        MeshPart {
-            name: "cube".into(),
-            material: 0,
-            positions,
-            triangles,
-        }
+        MeshPart::cuboid("cube", 0, [0.0; 3], [size; 3])
     }
 
     #[test]

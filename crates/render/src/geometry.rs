@@ -361,27 +361,7 @@ mod tests {
 
     #[test]
     fn box_edges_stay_sharp_and_normals_point_out() {
-        let part = MeshPart {
-            name: "cube".into(),
-            material: 0,
-            positions: (0..8)
-                .map(|i| [(i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32])
-                .collect(),
-            triangles: vec![
-                [0, 2, 1],
-                [1, 2, 3],
-                [4, 5, 6],
-                [5, 7, 6],
-                [0, 1, 4],
-                [1, 5, 4],
-                [2, 6, 3],
-                [3, 6, 7],
-                [0, 4, 2],
-                [2, 4, 6],
-                [1, 3, 5],
-                [3, 7, 5],
-            ],
-        };
+        let part = MeshPart::cuboid("cube", 0, [0.0; 3], [1.0; 3]);
         let normals = corner_normals(&part);
         assert_eq!(normals[0], [0.0, 0.0, -1.0]);
         assert_eq!(normals[3 * 4], [0.0, -1.0, 0.0]);

@@ -16,38 +16,6 @@ fn renderer() -> &'static Renderer {
     })
 }
 
-/// A closed box part from `min` to `max`, faces counter-clockwise from outside.
-fn cuboid(name: &str, material: usize, min: [f32; 3], max: [f32; 3]) -> MeshPart {
-    let positions = (0..8)
-        .map(|i| {
-            [
-                if i & 1 == 0 { min[0] } else { max[0] },
-                if i & 2 == 0 { min[1] } else { max[1] },
-                if i & 4 == 0 { min[2] } else { max[2] },
-            ]
-        })
-        .collect();
-    MeshPart {
-        name: name.into(),
-        material,
-        positions,
-        triangles: vec![
-            [0, 2, 1],
-            [1, 2, 3],
-            [4, 5, 6],
-            [5, 7, 6],
-            [0, 1, 4],
-            [1, 5, 4],
-            [2, 6, 3],
-            [3, 6, 7],
-            [0, 4, 2],
-            [2, 4, 6],
-            [1, 3, 5],
-            [3, 7, 5],
-        ],
-    }
-}
-
 /// A closed cylinder along +Y standing on y = 0.
 fn cylinder(name: &str, material: usize, radius: f32, height: f32, segments: u32) -> MeshPart {
     let mut positions = vec![[0.0, 0.0, 0.0], [0.0, height, 0.0]];
@@ -76,7 +44,12 @@ fn cylinder(name: &str, material: usize, radius: f32, height: f32, segments: u32
 
 fn unit_cube() -> Arc<Mesh> {
     Arc::new(Mesh {
-        parts: vec![cuboid("cube", 0, [-0.5, 0.0, -0.5], [0.5, 1.0, 0.5])],
+        parts: vec![MeshPart::cuboid(
+            "cube",
+            0,
+            [-0.5, 0.0, -0.5],
+            [0.5, 1.0, 0.5],
+        )],
         materials: vec![Material::new("red", [0.7, 0.1, 0.1], 0.6)],
     })
 }
@@ -227,20 +200,20 @@ fn room_scene() -> RenderScene {
     let ceramic = Material::new("ceramic", [0.85, 0.85, 0.8], 0.3);
     let table = Arc::new(Mesh {
         parts: vec![
-            cuboid("top", 0, [-0.6, 0.70, -0.4], [0.6, 0.75, 0.4]),
-            cuboid("leg_0", 0, [-0.55, 0.0, -0.35], [-0.5, 0.7, -0.3]),
-            cuboid("leg_1", 0, [0.5, 0.0, -0.35], [0.55, 0.7, -0.3]),
-            cuboid("leg_2", 0, [-0.55, 0.0, 0.3], [-0.5, 0.7, 0.35]),
-            cuboid("leg_3", 0, [0.5, 0.0, 0.3], [0.55, 0.7, 0.35]),
+            MeshPart::cuboid("top", 0, [-0.6, 0.70, -0.4], [0.6, 0.75, 0.4]),
+            MeshPart::cuboid("leg_0", 0, [-0.55, 0.0, -0.35], [-0.5, 0.7, -0.3]),
+            MeshPart::cuboid("leg_1", 0, [0.5, 0.0, -0.35], [0.55, 0.7, -0.3]),
+            MeshPart::cuboid("leg_2", 0, [-0.55, 0.0, 0.3], [-0.5, 0.7, 0.35]),
+            MeshPart::cuboid("leg_3", 0, [0.5, 0.0, 0.3], [0.55, 0.7, 0.35]),
         ],
         materials: vec![wood],
     });
     let sofa = Arc::new(Mesh {
         parts: vec![
-            cuboid("seat", 0, [-1.0, 0.0, -0.45], [1.0, 0.45, 0.45]),
-            cuboid("back", 0, [-1.0, 0.0, -0.45], [1.0, 0.9, -0.25]),
-            cuboid("arm_l", 0, [-1.0, 0.0, -0.45], [-0.85, 0.65, 0.45]),
-            cuboid("arm_r", 0, [0.85, 0.0, -0.45], [1.0, 0.65, 0.45]),
+            MeshPart::cuboid("seat", 0, [-1.0, 0.0, -0.45], [1.0, 0.45, 0.45]),
+            MeshPart::cuboid("back", 0, [-1.0, 0.0, -0.45], [1.0, 0.9, -0.25]),
+            MeshPart::cuboid("arm_l", 0, [-1.0, 0.0, -0.45], [-0.85, 0.65, 0.45]),
+            MeshPart::cuboid("arm_r", 0, [0.85, 0.0, -0.45], [1.0, 0.65, 0.45]),
         ],
         materials: vec![fabric],
     });

@@ -47,6 +47,51 @@ pub struct MeshPart {
 }
 
 impl MeshPart {
+    /// The 12 triangles of a box over 8 corners numbered by bits: bit 0 of a corner's index
+    /// selects the far side along the first edge direction (x), bit 1 along the second (y) and
+    /// bit 2 along the third (z). The triangles are counter-clockwise seen from outside when
+    /// those three directions form a right-handed frame, as in [`MeshPart::cuboid`].
+    pub const BOX_TRIANGLES: [[u32; 3]; 12] = [
+        [0, 2, 1],
+        [1, 2, 3], // first direction's near face (z = min for a cuboid)
+        [4, 5, 6],
+        [5, 7, 6], // z = max
+        [0, 1, 4],
+        [1, 5, 4], // y = min
+        [2, 6, 3],
+        [3, 6, 7], // y = max
+        [0, 4, 2],
+        [2, 4, 6], // x = min
+        [1, 3, 5],
+        [3, 7, 5], // x = max
+    ];
+
+    /// A box (any hexahedron) from its 8 corners, numbered as for
+    /// [`MeshPart::BOX_TRIANGLES`]; outward-oriented when the corner numbering is right-handed
+    /// (an axis-aligned or rotated box). 8 vertices, 12 triangles.
+    pub fn from_box_corners(
+        name: impl Into<String>,
+        material: usize,
+        corners: [[f32; 3]; 8],
+    ) -> Self {
+        Self {
+            name: name.into(),
+            material,
+            positions: corners.to_vec(),
+            triangles: Self::BOX_TRIANGLES.to_vec(),
+        }
+    }
+
+    /// A closed, outward-oriented axis-aligned box from `min` to `max`: 8 vertices (corner `i`
+    /// takes `max` along x, y, z where bit 0, 1, 2 of `i` is set, `min` elsewhere) and 12
+    /// triangles.
+    pub fn cuboid(name: impl Into<String>, material: usize, min: [f32; 3], max: [f32; 3]) -> Self {
+        let corners = std::array::from_fn(|i| {
+            std::array::from_fn(|k| if i & (1 << k) == 0 { min[k] } else { max[k] })
+        });
+        Self::from_box_corners(name, material, corners)
+    }
+
     /// The position of vertex `i` as a point.
     pub fn point(&self, i: u32) -> Point3<f32> {
         Point3::from(self.positions[i as usize])
@@ -161,29 +206,7 @@ mod tests {
 
     /// A unit cube with outward faces.
     pub fn cube() -> MeshPart {
-        let positions = (0..8)
-            .map(|i| [(i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32])
-            .collect();
-        let triangles = vec![
-            [0, 2, 1],
-            [1, 2, 3], // z = 0, normal −z
-            [4, 5, 6],
-            [5, 7, 6], // z = 1
-            [0, 1, 4],
-            [1, 5, 4], // y = 0
-            [2, 6, 3],
-            [3, 6, 7], // y = 1
-            [0, 4, 2],
-            [2, 4, 6], // x = 0
-            [1, 3, 5],
-            [3, 7, 5], // x = 1
-        ];
-        MeshPart {
-            name: "cube".into(),
-            material: 0,
-            positions,
-            triangles,
-        }
+        MeshPart::cuboid("cube", 0, [0.0; 3], [1.0; 3])
     }
 
     #[test]
@@ -197,6 +220,23 @@ mod tests {
         let mut flipped = c;
         flipped.triangles[0].swap(1, 2);
         assert!(!flipped.is_closed_and_oriented());
+    }
+
+    #[test]
+    fn cuboid_spans_min_to_max_with_bit_numbered_corners() {
+        let b = MeshPart::cuboid("b", 2, [1.0, 2.0, 3.0], [2.0, 4.0, 6.0]);
+        assert!(b.is_closed_and_oriented());
+        assert!((b.signed_volume() - 6.0).abs() < 1e-9);
+        assert_eq!((b.name.as_str(), b.material), ("b", 2));
+        assert_eq!(b.positions[0], [1.0, 2.0, 3.0]);
+        assert_eq!(b.positions[5], [2.0, 2.0, 6.0]);
+        assert_eq!(b.positions[7], [2.0, 4.0, 6.0]);
+        // A left-handed corner order (x mirrored) turns the faces inward.
+        let mut mirrored: [[f32; 3]; 8] = b.positions.clone().try_into().unwrap();
+        for c in &mut mirrored {
+            c[0] = -c[0];
+        }
+        assert!(MeshPart::from_box_corners("m", 0, mirrored).signed_volume() < 0.0);
     }
 
     #[test]

@@ -3,40 +3,18 @@
 use std::path::Path;
 use std::process::Command;
 
-/// An axis-aligned box's 8 corners and 12 outward triangles.
-fn cuboid(min: [f32; 3], max: [f32; 3]) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
-    let positions = (0..8)
-        .map(|i| {
-            [
-                if i & 1 == 0 { min[0] } else { max[0] },
-                if i & 2 == 0 { min[1] } else { max[1] },
-                if i & 4 == 0 { min[2] } else { max[2] },
-            ]
-        })
-        .collect();
-    let triangles = vec![
-        [0, 2, 1],
-        [1, 2, 3],
-        [4, 5, 6],
-        [5, 7, 6],
-        [0, 1, 4],
-        [1, 5, 4],
-        [2, 6, 3],
-        [3, 6, 7],
-        [0, 4, 2],
-        [2, 4, 6],
-        [1, 3, 5],
-        [3, 7, 5],
-    ];
-    (positions, triangles)
-}
+use scenethesis_scene_graph::MeshPart;
 
 /// Writes a GLB with one box node per (name, min, max).
 fn write_boxes_glb(path: &Path, boxes: &[(&str, [f32; 3], [f32; 3])]) {
     let mut bin = Vec::new();
     let (mut views, mut accessors, mut meshes, mut nodes) = (vec![], vec![], vec![], vec![]);
     for (k, (name, min, max)) in boxes.iter().enumerate() {
-        let (positions, triangles) = cuboid(*min, *max);
+        let MeshPart {
+            positions,
+            triangles,
+            ..
+        } = MeshPart::cuboid(*name, 0, *min, *max);
         let pos_offset = bin.len();
         for p in &positions {
             for v in p {
