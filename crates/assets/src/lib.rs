@@ -15,5 +15,6 @@ mod info;
 mod items;
 mod outdoor;
 pub mod primitives;
+mod random;
 
 pub use info::{Asset, AssetInfo, Placement, SupportSurface, SurfaceKind};

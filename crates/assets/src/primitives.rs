@@ -1,6 +1,7 @@
 //! Closed, outward-oriented mesh parts to build assets from. Every function returns a part that
 //! passes [`MeshPart::is_closed_and_oriented`] with positive volume.
 
+use nalgebra::{Point3, Rotation3, Unit, Vector3};
 use scenethesis_scene_graph::{AssetRef, Material, Mesh, MeshPart};
 
 use crate::{Asset, AssetInfo, Placement, SupportSurface, SurfaceKind};
@@ -412,6 +413,268 @@ pub fn rotated_y(mut part: MeshPart, yaw: f32, pivot: [f32; 2]) -> MeshPart {
     part
 }
 
+/// The convex solid of one ring slab between angles `a0` and `a1` (radians, from +X toward +Z),
+/// with inner and outer radii `(r_in, r_out)` at `y0` and at `y1`.
+#[allow(clippy::too_many_arguments)]
+pub fn ring_slab(
+    name: &str,
+    material: usize,
+    center: [f32; 2],
+    a0: f32,
+    a1: f32,
+    bottom: (f32, f32, f32),
+    top: (f32, f32, f32),
+) -> MeshPart {
+    let mut corners = [[0.0; 3]; 8];
+    for (i, corner) in corners.iter_mut().enumerate() {
+        let (r_in, r_out, y) = if i & 2 == 0 { bottom } else { top };
+        let r = if i & 1 == 0 { r_in } else { r_out };
+        let a = if i & 4 == 0 { a0 } else { a1 };
+        *corner = [center[0] + r * a.cos(), y, center[1] + r * a.sin()];
+    }
+    hexahedron(name, material, corners)
+}
+
+/// A frustum whose axis runs from `a` to `b` (radius `r0` at `a`, `r1` at `b`): the vertical
+/// [`frustum`] turned onto the axis (handles, spouts, branches). [`rod`] builds the same shape as
+/// a [`loft`] between two rings, with a different vertex layout.
+pub fn tube(
+    name: &str,
+    material: usize,
+    a: [f32; 3],
+    b: [f32; 3],
+    r0: f32,
+    r1: f32,
+    segments: u32,
+) -> MeshPart {
+    let (va, vb) = (Vector3::from(a), Vector3::from(b));
+    let axis = vb - va;
+    let length = axis.norm().max(1e-6);
+    let part = frustum(name, material, [0.0, 0.0], r0, r1, 0.0, length, segments);
+    transformed(part, &rotation_from_y(&axis), a)
+}
+
+/// The rotation taking +Y onto `direction`.
+pub fn rotation_from_y(direction: &Vector3<f32>) -> Rotation3<f32> {
+    let y = Vector3::y();
+    Rotation3::rotation_between(&y, direction)
+        .unwrap_or_else(|| Rotation3::from_axis_angle(&Vector3::x_axis(), std::f32::consts::PI))
+}
+
+/// A rotation by `angle` radians about `axis`.
+pub fn rotation(axis: [f32; 3], angle: f32) -> Rotation3<f32> {
+    Rotation3::from_axis_angle(&Unit::new_normalize(Vector3::from(axis)), angle)
+}
+
+/// `part` rotated about the origin, then moved by `offset` (a proper rotation keeps orientation).
+pub fn transformed(mut part: MeshPart, rot: &Rotation3<f32>, offset: [f32; 3]) -> MeshPart {
+    for p in &mut part.positions {
+        let q = rot * Point3::from(*p);
+        *p = [q.x + offset[0], q.y + offset[1], q.z + offset[2]];
+    }
+    part
+}
+
+/// A box with half extents `half` centred at the origin, rotated by `rot` and moved to `center`.
+pub fn rotated_box(
+    name: &str,
+    material: usize,
+    center: [f32; 3],
+    half: [f32; 3],
+    rot: &Rotation3<f32>,
+) -> MeshPart {
+    let part = cuboid(name, material, half.map(|h| -h), half);
+    transformed(part, rot, center)
+}
+
+/// An ellipsoid with semi-axes `radii` about the origin, rotated by `rot` and moved to `center`.
+pub fn rotated_ellipsoid(
+    name: &str,
+    material: usize,
+    center: [f32; 3],
+    radii: [f32; 3],
+    rot: &Rotation3<f32>,
+) -> MeshPart {
+    let part = ellipsoid(name, material, [0.0; 3], radii, 8, 14);
+    transformed(part, rot, center)
+}
+
+/// The convex hull of `points` as a closed, outward-oriented part, or `None` when the points
+/// are (nearly) coplanar. Incremental construction; meant for a few dozen points.
+pub fn convex_hull(name: &str, material: usize, points: &[[f32; 3]]) -> Option<MeshPart> {
+    let pts: Vec<Vector3<f64>> = points
+        .iter()
+        .map(|p| Vector3::from(*p).cast::<f64>())
+        .collect();
+    let scale = pts.iter().map(|p| p.amax()).fold(1e-3f64, f64::max);
+    // Points closer than this to a face's plane count as on it (f32 inputs carry ~1e-7 noise).
+    let eps = 1e-5 * scale;
+    // Initial tetrahedron: two far points, the point farthest from their line, then from the plane.
+    let i0 = 0;
+    let i1 = (0..pts.len()).max_by(|&a, &b| {
+        (pts[a] - pts[i0])
+            .norm_squared()
+            .total_cmp(&(pts[b] - pts[i0]).norm_squared())
+    })?;
+    let line = pts[i1] - pts[i0];
+    let dist_line = |k: usize| line.cross(&(pts[k] - pts[i0])).norm();
+    let i2 = (0..pts.len()).max_by(|&a, &b| dist_line(a).total_cmp(&dist_line(b)))?;
+    let normal = line.cross(&(pts[i2] - pts[i0]));
+    if normal.norm() < eps * line.norm() {
+        return None;
+    }
+    let dist_plane = |k: usize| normal.dot(&(pts[k] - pts[i0]));
+    let i3 = (0..pts.len()).max_by(|&a, &b| dist_plane(a).abs().total_cmp(&dist_plane(b).abs()))?;
+    if dist_plane(i3).abs() < eps * normal.norm() {
+        return None;
+    }
+    let (i0, i1, i2, i3) = (i0 as u32, i1 as u32, i2 as u32, i3 as u32);
+    let mut faces: Vec<[u32; 3]> = if dist_plane(i3 as usize) > 0.0 {
+        vec![[i0, i2, i1], [i0, i1, i3], [i1, i2, i3], [i2, i0, i3]]
+    } else {
+        vec![[i0, i1, i2], [i0, i3, i1], [i1, i3, i2], [i2, i3, i0]]
+    };
+    let face_plane = |f: &[u32; 3]| {
+        let [a, b, c] = f.map(|i| pts[i as usize]);
+        let n = (b - a).cross(&(c - a));
+        (n, a)
+    };
+    for k in 0..pts.len() as u32 {
+        if [i0, i1, i2, i3].contains(&k) {
+            continue;
+        }
+        let p = pts[k as usize];
+        let visible: Vec<bool> = faces
+            .iter()
+            .map(|f| {
+                let (n, a) = face_plane(f);
+                n.dot(&(p - a)) > eps * n.norm()
+            })
+            .collect();
+        if !visible.iter().any(|&v| v) {
+            continue;
+        }
+        let mut visible_edges = std::collections::BTreeSet::new();
+        for (f, _) in faces.iter().zip(&visible).filter(|(_, v)| **v) {
+            for e in 0..3 {
+                visible_edges.insert((f[e], f[(e + 1) % 3]));
+            }
+        }
+        let horizon: Vec<(u32, u32)> = visible_edges
+            .iter()
+            .filter(|(a, b)| !visible_edges.contains(&(*b, *a)))
+            .copied()
+            .collect();
+        let mut kept: Vec<[u32; 3]> = faces
+            .iter()
+            .zip(&visible)
+            .filter(|(_, v)| !**v)
+            .map(|(f, _)| *f)
+            .collect();
+        kept.extend(horizon.iter().map(|&(a, b)| [a, b, k]));
+        faces = kept;
+    }
+    let mut part = MeshPart {
+        name: name.into(),
+        material,
+        positions: points.to_vec(),
+        triangles: faces,
+    };
+    compact(&mut part);
+    Some(part)
+}
+
+/// A rounded box: the convex hull of a superellipsoid with half extents `half` centred at
+/// `center` (`roundness` 0 is a sharp box, 1 an ellipsoid).
+pub fn rounded_box(
+    name: &str,
+    material: usize,
+    center: [f32; 3],
+    half: [f32; 3],
+    roundness: f32,
+) -> MeshPart {
+    let e = roundness.clamp(0.05, 1.0);
+    let f = |c: f32| c.signum() * c.abs().powf(e);
+    let (rings, segments) = (8, 16);
+    let mut points = vec![
+        [center[0], center[1] - half[1], center[2]],
+        [center[0], center[1] + half[1], center[2]],
+    ];
+    for r in 1..rings {
+        let v = std::f32::consts::PI * (r as f32 / rings as f32 - 0.5);
+        for k in 0..segments {
+            let u = std::f32::consts::TAU * (k as f32 + 0.5) / segments as f32;
+            points.push([
+                center[0] + half[0] * f(v.cos()) * f(u.cos()),
+                center[1] + half[1] * f(v.sin()),
+                center[2] + half[2] * f(v.cos()) * f(u.sin()),
+            ]);
+        }
+    }
+    convex_hull(name, material, &points).expect("a rounded box has volume")
+}
+
+/// Tubes of radius `radius` joining consecutive `points` (a bent handle, a bail, a frond).
+pub fn polyline(name: &str, material: usize, points: &[[f32; 3]], radius: f32) -> Vec<MeshPart> {
+    points
+        .windows(2)
+        .enumerate()
+        .map(|(k, w)| {
+            tube(
+                &format!("{name}_{k}"),
+                material,
+                w[0],
+                w[1],
+                radius,
+                radius,
+                8,
+            )
+        })
+        .collect()
+}
+
+/// Points on a circular arc of radius `radius` about `center` in the plane spanned by the unit
+/// vectors `u` and `v`, from angle `t0` to `t1` (radians) in `n` steps.
+pub fn arc(
+    center: [f32; 3],
+    u: [f32; 3],
+    v: [f32; 3],
+    radius: f32,
+    t0: f32,
+    t1: f32,
+    n: usize,
+) -> Vec<[f32; 3]> {
+    (0..=n)
+        .map(|i| {
+            let t = t0 + (t1 - t0) * i as f32 / n as f32;
+            let (c, s) = (radius * t.cos(), radius * t.sin());
+            [
+                center[0] + c * u[0] + s * v[0],
+                center[1] + c * u[1] + s * v[1],
+                center[2] + c * u[2] + s * v[2],
+            ]
+        })
+        .collect()
+}
+
+/// A rectangle in (x, z), counter-clockwise seen from above.
+pub fn rect(x0: f32, z0: f32, x1: f32, z1: f32) -> Vec<[f32; 2]> {
+    vec![[x0, z0], [x0, z1], [x1, z1], [x1, z0]]
+}
+
+/// A regular polygon of `n` corners inscribed in a circle, counter-clockwise seen from above,
+/// starting at +X. The same polygon as [`regular_polygon`] but for the last bit of rounding
+/// (the angle is computed as `TAU · i / n` rather than `−(i / n) · TAU`); the item generators'
+/// support surfaces are defined by this rounding, so the two are kept apart.
+pub fn disc(center: [f32; 2], radius: f32, n: usize) -> Vec<[f32; 2]> {
+    (0..n)
+        .map(|i| {
+            let a = std::f32::consts::TAU * i as f32 / n as f32;
+            [center[0] + radius * a.cos(), center[1] - radius * a.sin()]
+        })
+        .collect()
+}
+
 /// Families of plausible materials an asset picks from per seed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Palette {
@@ -610,7 +873,7 @@ pub fn rect_surface(
     SupportSurface {
         name: name.into(),
         kind,
-        polygon: vec![[x0, z0], [x0, z1], [x1, z1], [x1, z0]],
+        polygon: rect(x0, z0, x1, z1),
         height,
         clearance,
     }
@@ -837,6 +1100,95 @@ mod tests {
         mirrored.swap(4, 5);
         mirrored.swap(6, 7);
         check(&hexahedron("mirrored", 0, mirrored), 0.75, 1e-6);
+    }
+
+    fn is_convex(part: &MeshPart) -> bool {
+        part.triangles.iter().all(|t| {
+            let [a, b, c] = t.map(|i| Vector3::from(part.positions[i as usize]).cast::<f64>());
+            let n = (b - a).cross(&(c - a));
+            part.positions.iter().all(|p| {
+                n.dot(&(Vector3::from(*p).cast::<f64>() - a)) <= 1e-9 * n.norm().max(1e-12) + 1e-7
+            })
+        })
+    }
+
+    #[test]
+    fn builders_make_closed_outward_convex_parts() {
+        let parts = [
+            ring_slab(
+                "slab",
+                0,
+                [0.0, 0.0],
+                0.0,
+                0.7,
+                (0.03, 0.04, 0.0),
+                (0.05, 0.06, 0.1),
+            ),
+            tube("tube", 0, [0.1, 0.2, 0.3], [0.5, 0.1, -0.4], 0.03, 0.02, 12),
+            rotated_box(
+                "box",
+                0,
+                [1.0, 0.0, 0.0],
+                [0.1, 0.2, 0.3],
+                &rotation([1.0, 1.0, 0.0], 0.6),
+            ),
+            rotated_ellipsoid(
+                "ell",
+                0,
+                [0.0, 1.0, 0.0],
+                [0.3, 0.05, 0.1],
+                &rotation([0.0, 0.0, 1.0], 0.4),
+            ),
+        ];
+        for part in &parts {
+            assert!(part.is_closed_and_oriented(), "{}", part.name);
+            assert!(part.signed_volume() > 0.0, "{}", part.name);
+            assert!(is_convex(part), "{} is not convex", part.name);
+        }
+    }
+
+    #[test]
+    fn convex_hull_of_random_points_is_closed_convex_and_contains_them() {
+        use rand::SeedableRng;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let points: Vec<[f32; 3]> = (0..40)
+            .map(|_| {
+                [
+                    crate::random::uniform(&mut rng, -1.0, 1.0),
+                    crate::random::uniform(&mut rng, 0.0, 0.5),
+                    crate::random::uniform(&mut rng, -0.3, 0.3),
+                ]
+            })
+            .collect();
+        let hull = convex_hull("rock", 0, &points).unwrap();
+        assert!(hull.is_closed_and_oriented());
+        assert!(is_convex(&hull));
+        let cube: Vec<[f32; 3]> = (0..8)
+            .map(|i| [(i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32])
+            .collect();
+        let hull = convex_hull("cube", 0, &cube).unwrap();
+        assert!((hull.signed_volume() - 1.0).abs() < 1e-6);
+        assert!(convex_hull(
+            "flat",
+            0,
+            &[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 1.0]]
+        )
+        .is_none());
+    }
+
+    #[test]
+    fn polygons_wind_counter_clockwise_seen_from_above() {
+        // Counter-clockwise seen from +Y is negative in the (x, z) shoelace sum.
+        for poly in [
+            rect(-1.0, -1.0, 1.0, 2.0),
+            regular_polygon([0.0, 0.0], 1.0, 12),
+        ] {
+            let n = poly.len();
+            let twice: f32 = (0..n)
+                .map(|i| poly[i][0] * poly[(i + 1) % n][1] - poly[(i + 1) % n][0] * poly[i][1])
+                .sum();
+            assert!(twice < 0.0);
+        }
     }
 
     #[test]

@@ -5,10 +5,11 @@ use std::f32::consts::TAU;
 use rand_chacha::ChaCha8Rng;
 
 use super::carcass::CORNERS;
-use super::{coin, int, mat, range, SCALE};
+use super::{mat, SCALE};
 use crate::primitives::{
     beam, box_yaw, cylinder, ellipsoid, fixed_material, rect_surface, AssetBuilder, Palette,
 };
+use crate::random::{coin, int, uniform};
 use crate::{Asset, Placement, SurfaceKind};
 
 /// Bed: width 0.9–1.9 (single to king), height 0.85–1.3 (headboard), length 2.0–2.25; frame on
@@ -36,13 +37,13 @@ pub(super) fn bed(rng: &mut ChaCha8Rng) -> Asset {
     let pillow = b.material(fixed_material("pillow_white", [0xF2, 0xF0, 0xEA], 0.9, 0.0));
     let sizes = [0.9f32, 1.2, 1.4, 1.6, 1.8];
     let mattress_w = sizes[int(rng, 0, sizes.len() - 1)];
-    let mattress_l = range(rng, 1.9, 2.05);
+    let mattress_l = uniform(rng, 1.9, 2.05);
     let w = mattress_w + 0.08;
     let l = mattress_l + 0.1;
     let (hw, hl) = (0.5 * w, 0.5 * l);
-    let leg_h = range(rng, 0.08, 0.25);
-    let rail_top = leg_h + range(rng, 0.15, 0.22);
-    let top = rail_top + range(rng, 0.18, 0.26) - 0.04;
+    let leg_h = uniform(rng, 0.08, 0.25);
+    let rail_top = leg_h + uniform(rng, 0.15, 0.22);
+    let top = rail_top + uniform(rng, 0.18, 0.26) - 0.04;
     for (i, (sx, sz)) in CORNERS.iter().enumerate() {
         b.cuboid(
             &format!("leg_{i}"),
@@ -64,7 +65,7 @@ pub(super) fn bed(rng: &mut ChaCha8Rng) -> Asset {
         [-mw, rail_top - 0.04, mz - ml],
         [mw, top, mz + ml],
     );
-    let head_h = range(rng, 0.85, 1.3);
+    let head_h = uniform(rng, 0.85, 1.3);
     b.cuboid(
         "headboard",
         frame,
@@ -76,7 +77,7 @@ pub(super) fn bed(rng: &mut ChaCha8Rng) -> Asset {
             "footboard",
             frame,
             [-hw, leg_h, hl - 0.005],
-            [hw, top + range(rng, 0.05, 0.2), hl + 0.05],
+            [hw, top + uniform(rng, 0.05, 0.2), hl + 0.05],
         );
     }
     let pillows = if mattress_w >= 1.2 { 2 } else { 1 };
@@ -112,9 +113,9 @@ pub(super) fn hospital_bed(rng: &mut ChaCha8Rng) -> Asset {
     let board = mat(&mut b, Palette::Plastic, rng);
     let sheet = b.material(fixed_material("sheet_white", [0xF0, 0xF2, 0xF2], 0.9, 0.0));
     let wheel = mat(&mut b, Palette::Rubber, rng);
-    let (w, l) = (range(rng, 0.95, 1.05), range(rng, 2.1, 2.3));
+    let (w, l) = (uniform(rng, 0.95, 1.05), uniform(rng, 2.1, 2.3));
     let (hw, hl) = (0.5 * w, 0.5 * l);
-    let top = range(rng, 0.55, 0.7);
+    let top = uniform(rng, 0.55, 0.7);
     let frame_y = top - 0.2;
     for (i, (sx, sz)) in CORNERS.iter().enumerate() {
         let (x, z) = (sx * (hw - 0.08), sz * (hl - 0.1));
@@ -157,7 +158,7 @@ pub(super) fn hospital_bed(rng: &mut ChaCha8Rng) -> Asset {
         [-hw + 0.03, frame_y - 0.005, -hl + 0.06],
         [hw - 0.03, top, hl - 0.06],
     );
-    let head_h = range(rng, 0.9, 1.2);
+    let head_h = uniform(rng, 0.9, 1.2);
     b.cuboid(
         "headboard",
         board,
@@ -204,8 +205,8 @@ pub(super) fn iv_stand(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let metal = mat(&mut b, Palette::Metal, rng);
     let wheel = mat(&mut b, Palette::Rubber, rng);
-    let h = range(rng, 1.7, 2.1);
-    let r = range(rng, 0.25, 0.31);
+    let h = uniform(rng, 1.7, 2.1);
+    let r = uniform(rng, 0.25, 0.31);
     for i in 0..5 {
         let a = i as f32 / 5.0 * TAU;
         let (x, z) = (r * a.cos(), r * a.sin());
@@ -270,9 +271,9 @@ pub(super) fn privacy_screen(rng: &mut ChaCha8Rng) -> Asset {
     );
     let cloth = mat(&mut b, Palette::Fabric, rng);
     let panels = int(rng, 3, 4);
-    let pw = range(rng, 0.45, 0.55);
-    let h = range(rng, 1.6, 1.85);
-    let fold = range(rng, 0.3, 0.5);
+    let pw = uniform(rng, 0.45, 0.55);
+    let h = uniform(rng, 1.6, 1.85);
+    let fold = uniform(rng, 0.3, 0.5);
     let mut x = 0.0f32;
     let mut points = Vec::new();
     for i in 0..=panels {

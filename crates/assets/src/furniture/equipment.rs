@@ -6,11 +6,12 @@ use std::f32::consts::{PI, TAU};
 use rand_chacha::ChaCha8Rng;
 
 use super::carcass::{self, Carcass, CarcassMaterials, Feet, Front, CORNERS};
-use super::{coin, int, mat, range, SCALE};
+use super::{mat, SCALE};
 use crate::primitives::{
     beam, cylinder, disc_surface, ellipsoid, fixed_material, frustum, hexahedron, prism_y,
     rect_surface, rod, sphere, strut, AssetBuilder, Palette,
 };
+use crate::random::{coin, int, uniform};
 use crate::{Asset, Placement, SurfaceKind};
 
 fn finish(b: AssetBuilder) -> Asset {
@@ -30,12 +31,12 @@ pub(super) fn treadmill(rng: &mut ChaCha8Rng) -> Asset {
         0.0,
     ));
     let (w, h, l) = (
-        range(rng, 0.75, 0.92),
-        range(rng, 1.3, 1.5),
-        range(rng, 1.7, 2.0),
+        uniform(rng, 0.75, 0.92),
+        uniform(rng, 1.3, 1.5),
+        uniform(rng, 1.7, 2.0),
     );
     let (hw, hl) = (0.5 * w, 0.5 * l);
-    let deck_h = range(rng, 0.18, 0.24);
+    let deck_h = uniform(rng, 0.18, 0.24);
     b.cuboid(
         "deck",
         frame,
@@ -96,9 +97,9 @@ pub(super) fn exercise_bike(rng: &mut ChaCha8Rng) -> Asset {
     let dark = mat(&mut b, Palette::Rubber, rng);
     let saddle = mat(&mut b, Palette::Leather, rng);
     let (w, h, l) = (
-        range(rng, 0.5, 0.65),
-        range(rng, 1.1, 1.35),
-        range(rng, 1.0, 1.3),
+        uniform(rng, 0.5, 0.65),
+        uniform(rng, 1.1, 1.35),
+        uniform(rng, 1.0, 1.3),
     );
     let (hw, hl) = (0.5 * w, 0.5 * l);
     for (i, z) in [-hl + 0.04, hl - 0.04].into_iter().enumerate() {
@@ -119,7 +120,7 @@ pub(super) fn exercise_bike(rng: &mut ChaCha8Rng) -> Asset {
         [0.0, 0.06, hl - 0.04],
         [0.06, 0.05],
     ));
-    let fly_r = range(rng, 0.2, 0.25);
+    let fly_r = uniform(rng, 0.2, 0.25);
     let fly_z = hl - 0.2;
     b.part(rod(
         "flywheel",
@@ -130,7 +131,7 @@ pub(super) fn exercise_bike(rng: &mut ChaCha8Rng) -> Asset {
         fly_r,
         24,
     ));
-    let seat_h = range(rng, 0.85, 1.0);
+    let seat_h = uniform(rng, 0.85, 1.0);
     let seat_z = -hl + 0.3;
     b.part(beam(
         "seat_tube",
@@ -185,10 +186,10 @@ pub(super) fn weight_bench(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let frame = mat(&mut b, Palette::CoatedMetal, rng);
     let pad = mat(&mut b, Palette::Leather, rng);
-    let l = range(rng, 1.1, 1.4);
+    let l = uniform(rng, 1.1, 1.4);
     let hl = 0.5 * l;
-    let pad_h = range(rng, 0.43, 0.47);
-    let pad_w = range(rng, 0.26, 0.3);
+    let pad_h = uniform(rng, 0.43, 0.47);
+    let pad_w = uniform(rng, 0.26, 0.3);
     b.cuboid(
         "pad",
         pad,
@@ -216,8 +217,8 @@ pub(super) fn weight_bench(rng: &mut ChaCha8Rng) -> Asset {
         );
     }
     if coin(rng, 0.5) {
-        let up_h = range(rng, 1.0, 1.2);
-        let uw = range(rng, 0.5, 0.6);
+        let up_h = uniform(rng, 1.0, 1.2);
+        let uw = uniform(rng, 0.5, 0.6);
         let z = -hl + 0.08;
         for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
             let x = sx * 0.5 * uw;
@@ -261,9 +262,9 @@ pub(super) fn squat_rack(rng: &mut ChaCha8Rng) -> Asset {
     let bar = mat(&mut b, Palette::Metal, rng);
     let plate = mat(&mut b, Palette::Rubber, rng);
     let (w, h, d) = (
-        range(rng, 1.2, 1.4),
-        range(rng, 2.1, 2.4),
-        range(rng, 1.0, 1.3),
+        uniform(rng, 1.2, 1.4),
+        uniform(rng, 2.1, 2.4),
+        uniform(rng, 1.0, 1.3),
     );
     let (hw, hd) = (0.5 * w, 0.5 * d);
     let post = 0.075;
@@ -307,7 +308,7 @@ pub(super) fn squat_rack(rng: &mut ChaCha8Rng) -> Asset {
         0.016,
         10,
     ));
-    let bar_y = range(rng, 1.2, 1.45);
+    let bar_y = uniform(rng, 1.2, 1.45);
     let bz = hd - 0.5 * post;
     for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
         let x = sx * (hw - 0.5 * post);
@@ -318,7 +319,7 @@ pub(super) fn squat_rack(rng: &mut ChaCha8Rng) -> Asset {
             [x + 0.035, bar_y - 0.014, bz + 0.1],
         );
     }
-    let bar_len = range(rng, 2.0, 2.2);
+    let bar_len = uniform(rng, 2.0, 2.2);
     let (bzc, by) = (bz + 0.065, bar_y);
     b.part(rod(
         "barbell",
@@ -384,10 +385,10 @@ pub(super) fn grand_piano(rng: &mut ChaCha8Rng) -> Asset {
         fixed_material("piano_white", [0xF2, 0xF2, 0xF0], 0.12, 0.0)
     });
     let brass = b.material(fixed_material("brass", [0xC8, 0xA0, 0x50], 0.3, 1.0));
-    let w = range(rng, 1.45, 1.58);
-    let l = range(rng, 1.5, 2.3);
+    let w = uniform(rng, 1.45, 1.58);
+    let l = uniform(rng, 1.5, 2.3);
     let hw = 0.5 * w;
-    let body_y0 = range(rng, 0.6, 0.66);
+    let body_y0 = uniform(rng, 0.6, 0.66);
     let body_y1 = body_y0 + 0.3;
     // Keyboard end at z = 0 .. front; the case runs toward −Z. The bass side (−X) is straight;
     // the treble side curves in: front block + tapering tail.
@@ -468,7 +469,7 @@ pub(super) fn grand_piano(rng: &mut ChaCha8Rng) -> Asset {
         [0.35, body_y1 + 0.28, front - 0.18],
     );
     // Lid hinged on the straight bass side, propped open.
-    let lift = range(rng, 0.45, 0.65);
+    let lift = uniform(rng, 0.45, 0.65);
     let lid_w = w - 0.05;
     let corners = std::array::from_fn(|i| {
         let across = if i & 1 == 0 { 0.0 } else { lid_w };
@@ -508,15 +509,15 @@ pub(super) fn upright_piano(rng: &mut ChaCha8Rng) -> Asset {
     });
     let brass = b.material(fixed_material("brass", [0xC8, 0xA0, 0x50], 0.3, 1.0));
     let (w, h, d) = (
-        range(rng, 1.45, 1.55),
-        range(rng, 1.1, 1.32),
-        range(rng, 0.55, 0.65),
+        uniform(rng, 1.45, 1.55),
+        uniform(rng, 1.1, 1.32),
+        uniform(rng, 0.55, 0.65),
     );
     let (hw, hd) = (0.5 * w, 0.5 * d);
-    let body_d = range(rng, 0.3, 0.36);
+    let body_d = uniform(rng, 0.3, 0.36);
     let z_back = -hd;
     b.cuboid("case", case, [-hw, 0.0, z_back], [hw, h, z_back + body_d]);
-    let key_y = range(rng, 0.68, 0.74);
+    let key_y = uniform(rng, 0.68, 0.74);
     b.cuboid(
         "key_bed",
         case,
@@ -574,8 +575,8 @@ pub(super) fn upright_piano(rng: &mut ChaCha8Rng) -> Asset {
 pub(super) fn music_stand(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let metal = mat(&mut b, Palette::CoatedMetal, rng);
-    let h = range(rng, 1.0, 1.45);
-    let spread = range(rng, 0.25, 0.3);
+    let h = uniform(rng, 1.0, 1.45);
+    let spread = uniform(rng, 0.25, 0.3);
     for i in 0..3 {
         let a = i as f32 / 3.0 * TAU + 0.5 * PI;
         b.part(strut(
@@ -596,7 +597,7 @@ pub(super) fn music_stand(rng: &mut ChaCha8Rng) -> Asset {
         desk_bottom + 0.05,
         8,
     ));
-    let tilt = range(rng, 0.2, 0.4);
+    let tilt = uniform(rng, 0.2, 0.4);
     let corners = std::array::from_fn(|k| {
         let x = if k & 1 == 0 { -0.25 } else { 0.25 };
         let up = k & 2 != 0;
@@ -620,8 +621,8 @@ pub(super) fn easel(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let wood = mat(&mut b, Palette::Wood, rng);
     let canvas = b.material(fixed_material("canvas", [0xF0, 0xEC, 0xE0], 0.9, 0.0));
-    let h = range(rng, 1.5, 1.9);
-    let spread = range(rng, 0.25, 0.35);
+    let h = uniform(rng, 1.5, 1.9);
+    let spread = uniform(rng, 0.25, 0.35);
     let top = [0.0, h, 0.0];
     for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
         b.part(strut(
@@ -632,7 +633,7 @@ pub(super) fn easel(rng: &mut ChaCha8Rng) -> Asset {
             [0.035, 0.02],
         ));
     }
-    let back = range(rng, 0.4, 0.6);
+    let back = uniform(rng, 0.4, 0.6);
     b.part(strut(
         "back_leg",
         wood,
@@ -640,7 +641,7 @@ pub(super) fn easel(rng: &mut ChaCha8Rng) -> Asset {
         [0.0, h - 0.02, -0.01],
         [0.03, 0.02],
     ));
-    let tray_y = range(rng, 0.6, 0.8);
+    let tray_y = uniform(rng, 0.6, 0.8);
     let tray_z = 0.15 * (1.0 - tray_y / h) + 0.02;
     b.cuboid(
         "tray",
@@ -648,7 +649,7 @@ pub(super) fn easel(rng: &mut ChaCha8Rng) -> Asset {
         [-0.3, tray_y - 0.03, tray_z - 0.04],
         [0.3, tray_y, tray_z + 0.05],
     );
-    let (cw, ch) = (range(rng, 0.4, 0.6), range(rng, 0.5, 0.7));
+    let (cw, ch) = (uniform(rng, 0.4, 0.6), uniform(rng, 0.5, 0.7));
     let corners = std::array::from_fn(|k| {
         let x = if k & 1 == 0 { -0.5 * cw } else { 0.5 * cw };
         let up = k & 2 != 0;
@@ -675,9 +676,9 @@ pub(super) fn rocking_horse(rng: &mut ChaCha8Rng) -> Asset {
         rng,
     );
     let saddle = mat(&mut b, Palette::BrightPlastic, rng);
-    let l = range(rng, 0.85, 1.15);
+    let l = uniform(rng, 0.85, 1.15);
     let hl = 0.5 * l;
-    let w = range(rng, 0.3, 0.4);
+    let w = uniform(rng, 0.3, 0.4);
     let r = 1.2 * l;
     let n = 6;
     let arc = (hl / r).asin();
@@ -698,7 +699,7 @@ pub(super) fn rocking_horse(rng: &mut ChaCha8Rng) -> Asset {
             ));
         }
     }
-    let body_y = range(rng, 0.42, 0.55);
+    let body_y = uniform(rng, 0.42, 0.55);
     for (i, (sx, sz)) in CORNERS.iter().enumerate() {
         b.part(beam(
             &format!("leg_{i}"),
@@ -761,9 +762,9 @@ pub(super) fn stove(rng: &mut ChaCha8Rng) -> Asset {
         0.2,
         0.0,
     ));
-    let (w, d) = (range(rng, 0.6, 0.9), range(rng, 0.6, 0.7));
+    let (w, d) = (uniform(rng, 0.6, 0.9), uniform(rng, 0.6, 0.7));
     let (hw, hd) = (0.5 * w, 0.5 * d);
-    let h = range(rng, 0.9, 0.93);
+    let h = uniform(rng, 0.9, 0.93);
     b.cuboid("body", body, [-hw, 0.0, -hd], [hw, h - 0.01, hd]);
     b.cuboid(
         "cooktop",
@@ -786,7 +787,7 @@ pub(super) fn stove(rng: &mut ChaCha8Rng) -> Asset {
         0.012,
         8,
     ));
-    let bg = range(rng, 0.08, 0.18);
+    let bg = uniform(rng, 0.08, 0.18);
     b.cuboid(
         "backguard",
         body,
@@ -853,9 +854,9 @@ pub(super) fn sink(rng: &mut ChaCha8Rng) -> Asset {
     );
     let basin_m = b.material(fixed_material("basin_white", [0xF4, 0xF4, 0xF2], 0.15, 0.0));
     let chrome = mat(&mut b, Palette::Metal, rng);
-    let (w, d) = (range(rng, 0.5, 1.0), range(rng, 0.45, 0.6));
+    let (w, d) = (uniform(rng, 0.5, 1.0), uniform(rng, 0.45, 0.6));
     let (hw, hd) = (0.5 * w, 0.5 * d);
-    let h = range(rng, 0.82, 0.88);
+    let h = uniform(rng, 0.82, 0.88);
     let t = 0.03;
     let c = Carcass {
         width: w,
@@ -882,7 +883,7 @@ pub(super) fn sink(rng: &mut ChaCha8Rng) -> Asset {
         [0.0, 0.0],
         "cabinet_",
     );
-    let depth_in = range(rng, 0.12, 0.16);
+    let depth_in = uniform(rng, 0.12, 0.16);
     // The hole and the basin below it.
     let (bx, bz0, bz1) = (0.5 * w - 0.08, -hd + 0.12, hd - 0.05);
     let basin_bottom = h - depth_in;
@@ -938,7 +939,7 @@ pub(super) fn sink(rng: &mut ChaCha8Rng) -> Asset {
         [bx, h - t + 0.001, bz1],
     );
     let tap_z = -hd + 0.06;
-    let tap_h = range(rng, 0.15, 0.3);
+    let tap_h = uniform(rng, 0.15, 0.3);
     b.part(cylinder(
         "tap",
         chrome,
@@ -993,8 +994,8 @@ pub(super) fn ladder(rng: &mut ChaCha8Rng) -> Asset {
         rng,
     );
     let cap = mat(&mut b, Palette::BrightPlastic, rng);
-    let h = range(rng, 0.9, 1.9);
-    let w = range(rng, 0.45, 0.55);
+    let h = uniform(rng, 0.9, 1.9);
+    let w = uniform(rng, 0.45, 0.55);
     let hw = 0.5 * w;
     let front_foot = 0.45 * h * 0.55;
     let back_foot = -0.45 * h * 0.45;
@@ -1048,12 +1049,12 @@ pub(super) fn tire(rng: &mut ChaCha8Rng) -> Asset {
     let rubber = b.material(fixed_material(
         "tyre_rubber",
         [shade, shade, shade + 2],
-        range(rng, 0.8, 0.95),
+        uniform(rng, 0.8, 0.95),
         0.0,
     ));
-    let r_out = range(rng, 0.275, 0.4);
-    let r_in = r_out * range(rng, 0.55, 0.7);
-    let h = range(rng, 0.16, 0.3);
+    let r_out = uniform(rng, 0.275, 0.4);
+    let r_in = r_out * uniform(rng, 0.55, 0.7);
+    let h = uniform(rng, 0.16, 0.3);
     let bead = 0.7 * h;
     let n = 24;
     for i in 0..n {
@@ -1086,8 +1087,8 @@ pub(super) fn coat_rack(rng: &mut ChaCha8Rng) -> Asset {
         },
         rng,
     );
-    let h = range(rng, 1.7, 1.95);
-    let r = range(rng, 0.2, 0.3);
+    let h = uniform(rng, 1.7, 1.95);
+    let r = uniform(rng, 0.2, 0.3);
     for i in 0..4 {
         let a = i as f32 / 4.0 * TAU;
         b.part(beam(
@@ -1127,8 +1128,8 @@ pub(super) fn pedestal(rng: &mut ChaCha8Rng) -> Asset {
         },
         rng,
     );
-    let h = range(rng, 0.75, 1.15);
-    let w = range(rng, 0.3, 0.6);
+    let h = uniform(rng, 0.75, 1.15);
+    let w = uniform(rng, 0.3, 0.6);
     let hw = 0.5 * w;
     if coin(rng, 0.6) {
         b.cuboid("block", body, [-hw, 0.0, -hw], [hw, h, hw]);
@@ -1172,8 +1173,8 @@ pub(super) fn stanchion(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let metal = mat(&mut b, Palette::Metal, rng);
     let dark = mat(&mut b, Palette::CoatedMetal, rng);
-    let h = range(rng, 0.9, 1.0);
-    let r = range(rng, 0.15, 0.18);
+    let h = uniform(rng, 0.9, 1.0);
+    let r = uniform(rng, 0.15, 0.18);
     b.part(frustum("base", dark, [0.0, 0.0], r, 0.8 * r, 0.0, 0.04, 24));
     b.part(cylinder(
         "post",
@@ -1210,11 +1211,11 @@ pub(super) fn floor_lamp(rng: &mut ChaCha8Rng) -> Asset {
         },
         rng,
     );
-    let h = range(rng, 1.4, 1.85);
-    let base_r = range(rng, 0.14, 0.18);
+    let h = uniform(rng, 1.4, 1.85);
+    let base_r = uniform(rng, 0.14, 0.18);
     b.part(cylinder("base", metal, [0.0, 0.0], base_r, 0.0, 0.03, 24));
-    let shade_h = range(rng, 0.22, 0.35);
-    let (r0, r1) = (range(rng, 0.16, 0.27), range(rng, 0.1, 0.2));
+    let shade_h = uniform(rng, 0.22, 0.35);
+    let (r0, r1) = (uniform(rng, 0.16, 0.27), uniform(rng, 0.1, 0.2));
     b.part(cylinder(
         "pole",
         metal,
@@ -1245,9 +1246,9 @@ pub(super) fn plant(rng: &mut ChaCha8Rng) -> Asset {
     let soil = b.material(fixed_material("soil", [0x3A, 0x2A, 0x1E], 0.95, 0.0));
     let stem_m = mat(&mut b, Palette::Wood, rng);
     let leaf = mat(&mut b, Palette::Foliage, rng);
-    let h = range(rng, 0.5, 1.8);
-    let pot_r = range(rng, 0.12, 0.22);
-    let pot_h = range(rng, 0.2, 0.35).min(0.4 * h);
+    let h = uniform(rng, 0.5, 1.8);
+    let pot_r = uniform(rng, 0.12, 0.22);
+    let pot_h = uniform(rng, 0.2, 0.35).min(0.4 * h);
     b.part(frustum(
         "pot",
         pot,
@@ -1267,7 +1268,7 @@ pub(super) fn plant(rng: &mut ChaCha8Rng) -> Asset {
         pot_h + 0.005,
         20,
     ));
-    let crown_r = range(rng, 0.15, 0.5).min(0.45 * h);
+    let crown_r = uniform(rng, 0.15, 0.5).min(0.45 * h);
     let crown_y = h - crown_r;
     b.part(cylinder(
         "stem",
@@ -1288,10 +1289,10 @@ pub(super) fn plant(rng: &mut ChaCha8Rng) -> Asset {
         12,
     ));
     for i in 0..clusters {
-        let a = i as f32 / clusters as f32 * TAU + range(rng, -0.3, 0.3);
-        let rr = range(rng, 0.35, 0.5) * crown_r;
+        let a = i as f32 / clusters as f32 * TAU + uniform(rng, -0.3, 0.3);
+        let rr = uniform(rng, 0.35, 0.5) * crown_r;
         let off = crown_r - rr;
-        let y = crown_y + range(rng, -0.4, 0.2) * crown_r;
+        let y = crown_y + uniform(rng, -0.4, 0.2) * crown_r;
         b.part(ellipsoid(
             &format!("foliage_{i}"),
             leaf,
@@ -1308,9 +1309,9 @@ pub(super) fn plant(rng: &mut ChaCha8Rng) -> Asset {
 pub(super) fn rug(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let cloth = mat(&mut b, Palette::Fabric, rng);
-    let t = range(rng, 0.008, 0.015);
+    let t = uniform(rng, 0.008, 0.015);
     if coin(rng, 0.25) {
-        let r = range(rng, 0.6, 1.2);
+        let r = uniform(rng, 0.6, 1.2);
         b.part(cylinder("rug", cloth, [0.0, 0.0], r, 0.0, t, 40));
         b.surface(disc_surface(
             "top",
@@ -1322,7 +1323,7 @@ pub(super) fn rug(rng: &mut ChaCha8Rng) -> Asset {
             16,
         ));
     } else {
-        let (w, d) = (range(rng, 1.2, 3.0), range(rng, 0.8, 2.4));
+        let (w, d) = (uniform(rng, 1.2, 3.0), uniform(rng, 0.8, 2.4));
         b.cuboid(
             "rug",
             cloth,
@@ -1347,9 +1348,9 @@ pub(super) fn rug(rng: &mut ChaCha8Rng) -> Asset {
 pub(super) fn yoga_mat(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let foam = mat(&mut b, Palette::Rubber, rng);
-    let w = range(rng, 0.58, 0.66);
+    let w = uniform(rng, 0.58, 0.66);
     if coin(rng, 0.75) {
-        let (l, t) = (range(rng, 1.72, 1.85), range(rng, 0.004, 0.008));
+        let (l, t) = (uniform(rng, 1.72, 1.85), uniform(rng, 0.004, 0.008));
         b.cuboid(
             "mat",
             foam,
@@ -1366,7 +1367,7 @@ pub(super) fn yoga_mat(rng: &mut ChaCha8Rng) -> Asset {
             0.03,
         ));
     } else {
-        let r = range(rng, 0.06, 0.075);
+        let r = uniform(rng, 0.06, 0.075);
         b.part(rod(
             "rolled_mat",
             foam,

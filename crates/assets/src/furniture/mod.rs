@@ -16,7 +16,6 @@ mod storage;
 mod tables;
 mod wall;
 
-use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
 use crate::catalog::Category;
@@ -25,29 +24,6 @@ use crate::Placement;
 
 /// The default range of uniform scale furniture may be given.
 const SCALE: [f32; 2] = [0.85, 1.15];
-
-/// A uniform number in `[lo, hi]`.
-fn range(rng: &mut ChaCha8Rng, lo: f32, hi: f32) -> f32 {
-    if hi <= lo {
-        lo
-    } else {
-        rng.random_range(lo..=hi)
-    }
-}
-
-/// A uniform integer in `[lo, hi]`.
-fn int(rng: &mut ChaCha8Rng, lo: usize, hi: usize) -> usize {
-    if hi <= lo {
-        lo
-    } else {
-        rng.random_range(lo..=hi)
-    }
-}
-
-/// True with probability `p`.
-fn coin(rng: &mut ChaCha8Rng, p: f64) -> bool {
-    rng.random_bool(p)
-}
 
 /// Draws a material from `palette` and registers it with the builder.
 fn mat(b: &mut AssetBuilder, palette: Palette, rng: &mut ChaCha8Rng) -> usize {

@@ -8,11 +8,12 @@ use std::f32::consts::{PI, TAU};
 
 use rand_chacha::ChaCha8Rng;
 
-use super::{coin, int, mat, range, SCALE};
+use super::{mat, SCALE};
 use crate::primitives::{
     beam, box_yaw, cylinder, disc_surface, ellipsoid, frustum, hexahedron, prism_x, rect_surface,
     rod, strut, AssetBuilder, Palette,
 };
+use crate::random::{coin, int, uniform};
 use crate::{Asset, Placement, SurfaceKind};
 
 /// What a chair stands on.
@@ -314,19 +315,19 @@ fn upholstered_seat(rng: &mut ChaCha8Rng, w_lo: f32, w_hi: f32, sofa: bool) -> A
         rng,
     );
     let feet = mat(&mut b, Palette::Wood, rng);
-    let w = range(rng, w_lo, w_hi);
-    let d = range(
+    let w = uniform(rng, w_lo, w_hi);
+    let d = uniform(
         rng,
         if sofa { 0.82 } else { 0.78 },
         if sofa { 1.0 } else { 0.95 },
     );
-    let seat_h = range(rng, 0.42, 0.47);
-    let top_h = range(rng, 0.75, 0.95);
-    let arm_w = range(rng, 0.1, 0.2);
-    let arm_h = range(rng, 0.55, 0.66).min(top_h - 0.05);
-    let foot_h = range(rng, 0.04, 0.12);
-    let back_d = range(rng, 0.16, 0.24);
-    let cushion_t = range(rng, 0.1, 0.15);
+    let seat_h = uniform(rng, 0.42, 0.47);
+    let top_h = uniform(rng, 0.75, 0.95);
+    let arm_w = uniform(rng, 0.1, 0.2);
+    let arm_h = uniform(rng, 0.55, 0.66).min(top_h - 0.05);
+    let foot_h = uniform(rng, 0.04, 0.12);
+    let back_d = uniform(rng, 0.16, 0.24);
+    let cushion_t = uniform(rng, 0.1, 0.15);
     let (hw, hd) = (0.5 * w, 0.5 * d);
     for (i, (sx, sz)) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
         .iter()
@@ -363,8 +364,8 @@ fn upholstered_seat(rng: &mut ChaCha8Rng, w_lo: f32, w_hi: f32, sofa: bool) -> A
     let inner = hw - arm_w;
     let seats = if sofa { int(rng, 2, 3) } else { 1 };
     let cw = 2.0 * inner / seats as f32;
-    let back_lean = range(rng, 0.0, 0.06);
-    let back_cushion_t = range(rng, 0.1, 0.16);
+    let back_lean = uniform(rng, 0.0, 0.06);
+    let back_cushion_t = uniform(rng, 0.1, 0.16);
     let cushion_front = -hd + back_d + back_cushion_t;
     for i in 0..seats {
         let x0 = -inner + i as f32 * cw;
@@ -419,18 +420,18 @@ pub(super) fn chair(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let upholstered = coin(rng, 0.3);
     let m = chair_materials(rng, &mut b, upholstered);
-    let seat_height = range(rng, 0.43, 0.48);
+    let seat_height = uniform(rng, 0.43, 0.48);
     let c = Chair {
-        width: range(rng, 0.42, 0.52),
-        depth: range(rng, 0.44, 0.52),
+        width: uniform(rng, 0.42, 0.52),
+        depth: uniform(rng, 0.44, 0.52),
         seat_height,
-        seat_thickness: range(rng, 0.025, 0.05),
+        seat_thickness: uniform(rng, 0.025, 0.05),
         base: Base::Legs {
-            section: range(rng, 0.025, 0.04),
-            splay: range(rng, 0.0, 0.02),
+            section: uniform(rng, 0.025, 0.04),
+            splay: uniform(rng, 0.0, 0.02),
             stretcher: None,
         },
-        back: Some((range(rng, 0.35, 0.5), range(rng, 0.02, 0.06))),
+        back: Some((uniform(rng, 0.35, 0.5), uniform(rng, 0.02, 0.06))),
         arms: None,
         round: None,
     };
@@ -445,17 +446,17 @@ pub(super) fn dining_chair(rng: &mut ChaCha8Rng) -> Asset {
     let m = chair_materials(rng, &mut b, true);
     let arms = coin(rng, 0.25);
     let c = Chair {
-        width: range(rng, 0.44, 0.52),
-        depth: range(rng, 0.48, 0.55),
-        seat_height: range(rng, 0.44, 0.48),
-        seat_thickness: range(rng, 0.04, 0.07),
+        width: uniform(rng, 0.44, 0.52),
+        depth: uniform(rng, 0.48, 0.55),
+        seat_height: uniform(rng, 0.44, 0.48),
+        seat_thickness: uniform(rng, 0.04, 0.07),
         base: Base::Legs {
-            section: range(rng, 0.03, 0.045),
-            splay: range(rng, 0.0, 0.015),
+            section: uniform(rng, 0.03, 0.045),
+            splay: uniform(rng, 0.0, 0.015),
             stretcher: None,
         },
-        back: Some((range(rng, 0.4, 0.54), range(rng, 0.03, 0.07))),
-        arms: arms.then(|| range(rng, 0.2, 0.24)),
+        back: Some((uniform(rng, 0.4, 0.54), uniform(rng, 0.03, 0.07))),
+        arms: arms.then(|| uniform(rng, 0.2, 0.24)),
         round: None,
     };
     build_chair(&mut b, &c, m);
@@ -484,15 +485,15 @@ pub(super) fn office_chair(rng: &mut ChaCha8Rng) -> Asset {
         },
         rng,
     );
-    let radius = range(rng, 0.29, 0.35);
+    let radius = uniform(rng, 0.29, 0.35);
     let c = Chair {
-        width: range(rng, 0.46, 0.54),
-        depth: range(rng, 0.44, 0.5),
-        seat_height: range(rng, 0.42, 0.52),
-        seat_thickness: range(rng, 0.06, 0.09),
+        width: uniform(rng, 0.46, 0.54),
+        depth: uniform(rng, 0.44, 0.5),
+        seat_height: uniform(rng, 0.42, 0.52),
+        seat_thickness: uniform(rng, 0.06, 0.09),
         base: Base::Star { arms: 5, radius },
-        back: Some((range(rng, 0.45, 0.65), range(rng, 0.03, 0.08))),
-        arms: coin(rng, 0.7).then(|| range(rng, 0.18, 0.24)),
+        back: Some((uniform(rng, 0.45, 0.65), uniform(rng, 0.03, 0.08))),
+        arms: coin(rng, 0.7).then(|| uniform(rng, 0.18, 0.24)),
         round: None,
     };
     build_chair(
@@ -538,27 +539,27 @@ fn round_stool(
             rng,
         )
     };
-    let r = range(rng, 0.15, 0.2);
-    let seat_height = range(rng, seat_lo, seat_hi);
+    let r = uniform(rng, 0.15, 0.2);
+    let seat_height = uniform(rng, seat_lo, seat_hi);
     let base = if base_star {
         Base::Star {
             arms: 5,
-            radius: range(rng, 0.26, 0.3),
+            radius: uniform(rng, 0.26, 0.3),
         }
     } else {
         Base::Legs {
-            section: range(rng, 0.022, 0.035),
-            splay: range(rng, 0.03, 0.08),
-            stretcher: footrest.then(|| range(rng, 0.22, 0.32)),
+            section: uniform(rng, 0.022, 0.035),
+            splay: uniform(rng, 0.03, 0.08),
+            stretcher: footrest.then(|| uniform(rng, 0.22, 0.32)),
         }
     };
     let c = Chair {
         width: 2.0 * r,
         depth: 2.0 * r,
         seat_height,
-        seat_thickness: range(rng, 0.03, 0.06),
+        seat_thickness: uniform(rng, 0.03, 0.06),
         base,
-        back: back.then(|| (range(rng, 0.18, 0.3), range(rng, 0.0, 0.04))),
+        back: back.then(|| (uniform(rng, 0.18, 0.3), uniform(rng, 0.0, 0.04))),
         arms: None,
         round: Some(r),
     };
@@ -573,7 +574,7 @@ fn round_stool(
     );
     if base_star && footrest {
         // A foot ring on spokes around the column.
-        let y = range(rng, 0.2, 0.3);
+        let y = uniform(rng, 0.2, 0.3);
         let ring_r = 0.9 * r + 0.05;
         let n = 12;
         for i in 0..n {
@@ -625,12 +626,12 @@ pub(super) fn bench(rng: &mut ChaCha8Rng) -> Asset {
     let upholstered = coin(rng, 0.3);
     let m = chair_materials(rng, &mut b, upholstered);
     let c = Chair {
-        width: range(rng, 0.9, 1.8),
-        depth: range(rng, 0.32, 0.45),
-        seat_height: range(rng, 0.42, 0.48),
-        seat_thickness: range(rng, 0.03, 0.06),
+        width: uniform(rng, 0.9, 1.8),
+        depth: uniform(rng, 0.32, 0.45),
+        seat_height: uniform(rng, 0.42, 0.48),
+        seat_thickness: uniform(rng, 0.03, 0.06),
         base: Base::Legs {
-            section: range(rng, 0.035, 0.055),
+            section: uniform(rng, 0.035, 0.055),
             splay: 0.0,
             stretcher: None,
         },
@@ -660,18 +661,18 @@ pub(super) fn piano_bench(rng: &mut ChaCha8Rng) -> Asset {
         wood
     };
     let (w, d, h) = (
-        range(rng, 0.75, 0.95),
-        range(rng, 0.33, 0.4),
-        range(rng, 0.48, 0.52),
+        uniform(rng, 0.75, 0.95),
+        uniform(rng, 0.33, 0.4),
+        uniform(rng, 0.48, 0.52),
     );
-    let box_h = range(rng, 0.08, 0.12);
+    let box_h = uniform(rng, 0.08, 0.12);
     let c = Chair {
         width: w,
         depth: d,
         seat_height: h,
         seat_thickness: 0.04,
         base: Base::Legs {
-            section: range(rng, 0.04, 0.055),
+            section: uniform(rng, 0.04, 0.055),
             splay: 0.0,
             stretcher: None,
         },
@@ -718,16 +719,16 @@ pub(super) fn kids_chair(rng: &mut ChaCha8Rng) -> Asset {
         rng,
     );
     let c = Chair {
-        width: range(rng, 0.3, 0.38),
-        depth: range(rng, 0.3, 0.36),
-        seat_height: range(rng, 0.26, 0.34),
-        seat_thickness: range(rng, 0.02, 0.035),
+        width: uniform(rng, 0.3, 0.38),
+        depth: uniform(rng, 0.3, 0.36),
+        seat_height: uniform(rng, 0.26, 0.34),
+        seat_thickness: uniform(rng, 0.02, 0.035),
         base: Base::Legs {
-            section: range(rng, 0.025, 0.035),
-            splay: range(rng, 0.0, 0.015),
+            section: uniform(rng, 0.025, 0.035),
+            splay: uniform(rng, 0.0, 0.015),
             stretcher: None,
         },
-        back: Some((range(rng, 0.22, 0.3), range(rng, 0.0, 0.03))),
+        back: Some((uniform(rng, 0.22, 0.3), uniform(rng, 0.0, 0.03))),
         arms: None,
         round: None,
     };
@@ -755,8 +756,8 @@ pub(super) fn bean_bag(rng: &mut ChaCha8Rng) -> Asset {
         },
         rng,
     );
-    let (w, d) = (range(rng, 0.7, 1.0), range(rng, 0.7, 1.0));
-    let h = range(rng, 0.6, 0.9);
+    let (w, d) = (uniform(rng, 0.7, 1.0), uniform(rng, 0.7, 1.0));
+    let h = uniform(rng, 0.6, 0.9);
     let base_h = 0.5 * h;
     b.part(ellipsoid(
         "sack",
@@ -811,10 +812,10 @@ pub(super) fn ottoman(rng: &mut ChaCha8Rng) -> Asset {
         rng,
     );
     let feet = mat(&mut b, Palette::Wood, rng);
-    let h = range(rng, 0.38, 0.46);
-    let foot = range(rng, 0.03, 0.07);
+    let h = uniform(rng, 0.38, 0.46);
+    let foot = uniform(rng, 0.03, 0.07);
     if coin(rng, 0.5) {
-        let r = range(rng, 0.23, 0.35);
+        let r = uniform(rng, 0.23, 0.35);
         b.part(cylinder("drum", cover, [0.0, 0.0], r, foot, h, 28));
         for i in 0..4 {
             let a = i as f32 * 0.5 * PI + 0.25 * PI;
@@ -838,7 +839,7 @@ pub(super) fn ottoman(rng: &mut ChaCha8Rng) -> Asset {
             12,
         ));
     } else {
-        let (w, d) = (range(rng, 0.45, 0.9), range(rng, 0.45, 0.7));
+        let (w, d) = (uniform(rng, 0.45, 0.9), uniform(rng, 0.45, 0.7));
         b.cuboid(
             "block",
             cover,
@@ -886,11 +887,11 @@ pub(super) fn camping_chair(rng: &mut ChaCha8Rng) -> Asset {
         },
         rng,
     );
-    let (w, d) = (range(rng, 0.5, 0.62), range(rng, 0.5, 0.58));
+    let (w, d) = (uniform(rng, 0.5, 0.62), uniform(rng, 0.5, 0.58));
     let (hw, hd) = (0.5 * w, 0.5 * d);
-    let seat_h = range(rng, 0.4, 0.46);
-    let top = range(rng, 0.8, 0.92);
-    let arm_h = seat_h + range(rng, 0.18, 0.22);
+    let seat_h = uniform(rng, 0.4, 0.46);
+    let top = uniform(rng, 0.8, 0.92);
+    let arm_h = seat_h + uniform(rng, 0.18, 0.22);
     for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
         let x = sx * hw;
         b.part(strut(
@@ -952,9 +953,9 @@ pub(super) fn camping_chair(rng: &mut ChaCha8Rng) -> Asset {
 pub(super) fn log_bench(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let bark = mat(&mut b, Palette::Wood, rng);
-    let len = range(rng, 1.0, 2.0);
-    let r = range(rng, 0.14, 0.21);
-    let h = range(rng, 0.4, 0.48);
+    let len = uniform(rng, 1.0, 2.0);
+    let r = uniform(rng, 0.14, 0.21);
+    let h = uniform(rng, 0.4, 0.48);
     let flat = 0.3 * r;
     // Half-log: the lower part of a circle of radius r cut flat at `flat` above its centre.
     let cy = h - flat;
@@ -969,7 +970,7 @@ pub(super) fn log_bench(rng: &mut ChaCha8Rng) -> Asset {
         .collect();
     let half_chord = (r * r - flat * flat).sqrt();
     b.part(prism_x("log", bark, &profile, -0.5 * len, 0.5 * len));
-    let stump_r = range(rng, 0.12, 0.18).min(r);
+    let stump_r = uniform(rng, 0.12, 0.18).min(r);
     for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
         b.part(cylinder(
             &format!("stump_{i}"),
@@ -1016,11 +1017,11 @@ pub(super) fn wheelchair(rng: &mut ChaCha8Rng) -> Asset {
         },
         rng,
     );
-    let w = range(rng, 0.6, 0.7);
+    let w = uniform(rng, 0.6, 0.7);
     let hw = 0.5 * w;
-    let seat_h = range(rng, 0.46, 0.52);
-    let wheel_r = range(rng, 0.28, 0.31);
-    let top = range(rng, 0.88, 0.96);
+    let seat_h = uniform(rng, 0.46, 0.52);
+    let wheel_r = uniform(rng, 0.28, 0.31);
+    let top = uniform(rng, 0.88, 0.96);
     let seat_d = 0.42;
     let wheel_z = -0.08;
     for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {

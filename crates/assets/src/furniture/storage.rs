@@ -5,10 +5,11 @@
 use rand_chacha::ChaCha8Rng;
 
 use super::carcass::{self, Carcass, CarcassMaterials, Feet, Front, CORNERS};
-use super::{coin, int, mat, range, SCALE};
+use super::{mat, SCALE};
 use crate::primitives::{
     beam, fixed_material, hexahedron, rect_surface, rod, AssetBuilder, Palette,
 };
+use crate::random::{coin, int, uniform};
 use crate::{Asset, Placement, SurfaceKind};
 
 /// Picks shelf fractions for `rows` rows (at least one row) of a carcass with compartments
@@ -47,14 +48,14 @@ fn finish(b: AssetBuilder) -> Asset {
 pub(super) fn bookshelf(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let m = wood_materials(rng, &mut b);
-    let width = range(rng, 0.6, 1.2);
+    let width = uniform(rng, 0.6, 1.2);
     let mut c = Carcass {
         width,
-        height: range(rng, 1.6, 2.1),
-        depth: range(rng, 0.28, 0.38),
-        board: range(rng, 0.018, 0.028),
+        height: uniform(rng, 1.6, 2.1),
+        depth: uniform(rng, 0.28, 0.38),
+        board: uniform(rng, 0.018, 0.028),
         feet: Feet::Plinth {
-            height: range(rng, 0.04, 0.1),
+            height: uniform(rng, 0.04, 0.1),
             recess: 0.02,
         },
         columns: if width > 0.9 {
@@ -106,19 +107,19 @@ pub(super) fn display_shelf(rng: &mut ChaCha8Rng) -> Asset {
         handle: frame,
     };
     let mut c = Carcass {
-        width: range(rng, 0.8, 1.4),
-        height: range(rng, 1.2, 1.9),
-        depth: range(rng, 0.3, 0.45),
-        board: range(rng, 0.02, 0.03),
+        width: uniform(rng, 0.8, 1.4),
+        height: uniform(rng, 1.2, 1.9),
+        depth: uniform(rng, 0.3, 0.45),
+        board: uniform(rng, 0.02, 0.03),
         feet: Feet::Legs {
-            height: range(rng, 0.04, 0.1),
+            height: uniform(rng, 0.04, 0.1),
             section: 0.03,
         },
         columns: 1,
         shelves: vec![],
         drawer_rows: 0,
         back: coin(rng, 0.5),
-        posts: Some(range(rng, 0.025, 0.04)),
+        posts: Some(uniform(rng, 0.025, 0.04)),
         top_board: true,
         front: Front::Open,
         lip: 0.0,
@@ -134,12 +135,12 @@ pub(super) fn store_shelf(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let m = metal_materials(rng, &mut b);
     let mut c = Carcass {
-        width: range(rng, 0.9, 1.33),
-        height: range(rng, 1.4, 2.0),
-        depth: range(rng, 0.45, 0.6),
+        width: uniform(rng, 0.9, 1.33),
+        height: uniform(rng, 1.4, 2.0),
+        depth: uniform(rng, 0.45, 0.6),
         board: 0.02,
         feet: Feet::Plinth {
-            height: range(rng, 0.08, 0.14),
+            height: uniform(rng, 0.08, 0.14),
             recess: 0.0,
         },
         columns: int(rng, 1, 2),
@@ -149,7 +150,7 @@ pub(super) fn store_shelf(rng: &mut ChaCha8Rng) -> Asset {
         posts: None,
         top_board: true,
         front: Front::Open,
-        lip: range(rng, 0.025, 0.04),
+        lip: uniform(rng, 0.025, 0.04),
     };
     c.shelves = rows_for(rng, &c, 0.26, 0.4);
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
@@ -161,20 +162,20 @@ pub(super) fn store_shelf(rng: &mut ChaCha8Rng) -> Asset {
 pub(super) fn cabinet(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let m = wood_materials(rng, &mut b);
-    let width = range(rng, 0.6, 1.2);
+    let width = uniform(rng, 0.6, 1.2);
     let mut c = Carcass {
         width,
-        height: range(rng, 0.8, 1.9),
-        depth: range(rng, 0.4, 0.6),
-        board: range(rng, 0.018, 0.025),
+        height: uniform(rng, 0.8, 1.9),
+        depth: uniform(rng, 0.4, 0.6),
+        board: uniform(rng, 0.018, 0.025),
         feet: if coin(rng, 0.5) {
             Feet::Plinth {
-                height: range(rng, 0.06, 0.1),
+                height: uniform(rng, 0.06, 0.1),
                 recess: 0.04,
             }
         } else {
             Feet::Legs {
-                height: range(rng, 0.08, 0.16),
+                height: uniform(rng, 0.08, 0.16),
                 section: 0.04,
             }
         },
@@ -186,7 +187,7 @@ pub(super) fn cabinet(rng: &mut ChaCha8Rng) -> Asset {
         top_board: true,
         front: if coin(rng, 0.6) {
             Front::Doors {
-                angle: range(rng, 1.6, 1.75),
+                angle: uniform(rng, 1.6, 1.75),
             }
         } else {
             Front::Open
@@ -205,12 +206,12 @@ pub(super) fn tool_cabinet(rng: &mut ChaCha8Rng) -> Asset {
     let m = metal_materials(rng, &mut b);
     let rows = int(rng, 4, 8);
     let c = Carcass {
-        width: range(rng, 0.6, 1.05),
-        height: range(rng, 0.85, 1.15),
-        depth: range(rng, 0.45, 0.52),
+        width: uniform(rng, 0.6, 1.05),
+        height: uniform(rng, 0.85, 1.15),
+        depth: uniform(rng, 0.45, 0.52),
         board: 0.015,
         feet: Feet::Casters {
-            height: range(rng, 0.1, 0.14),
+            height: uniform(rng, 0.1, 0.14),
         },
         columns: 1,
         shelves: Carcass::even_shelves(rows),
@@ -237,12 +238,12 @@ pub(super) fn chemical_cabinet(rng: &mut ChaCha8Rng) -> Asset {
     let handle = mat(&mut b, Palette::Metal, rng);
     let m = CarcassMaterials::uniform(body, handle);
     let mut c = Carcass {
-        width: range(rng, 0.6, 1.2),
-        height: range(rng, 0.9, 1.8),
-        depth: range(rng, 0.45, 0.6),
+        width: uniform(rng, 0.6, 1.2),
+        height: uniform(rng, 0.9, 1.8),
+        depth: uniform(rng, 0.45, 0.6),
         board: 0.02,
         feet: Feet::Plinth {
-            height: range(rng, 0.05, 0.08),
+            height: uniform(rng, 0.05, 0.08),
             recess: 0.0,
         },
         columns: 1,
@@ -252,7 +253,7 @@ pub(super) fn chemical_cabinet(rng: &mut ChaCha8Rng) -> Asset {
         posts: None,
         top_board: true,
         front: Front::Doors {
-            angle: range(rng, 1.6, 1.75),
+            angle: uniform(rng, 1.6, 1.75),
         },
         lip: 0.03,
     };
@@ -268,23 +269,23 @@ pub(super) fn locker(rng: &mut ChaCha8Rng) -> Asset {
     let m = metal_materials(rng, &mut b);
     let columns = int(rng, 1, 4);
     let c = Carcass {
-        width: columns as f32 * range(rng, 0.3, 0.4),
-        height: range(rng, 1.7, 1.95),
-        depth: range(rng, 0.42, 0.52),
+        width: columns as f32 * uniform(rng, 0.3, 0.4),
+        height: uniform(rng, 1.7, 1.95),
+        depth: uniform(rng, 0.42, 0.52),
         board: 0.015,
         feet: Feet::Plinth {
-            height: range(rng, 0.08, 0.12),
+            height: uniform(rng, 0.08, 0.12),
             recess: 0.0,
         },
         columns,
-        shelves: vec![range(rng, 0.78, 0.84)],
+        shelves: vec![uniform(rng, 0.78, 0.84)],
         drawer_rows: 0,
         back: true,
         posts: None,
         top_board: true,
         front: if coin(rng, 0.7) {
             Front::Doors {
-                angle: range(rng, 1.6, 1.75),
+                angle: uniform(rng, 1.6, 1.75),
             }
         } else {
             Front::Open
@@ -300,25 +301,25 @@ pub(super) fn locker(rng: &mut ChaCha8Rng) -> Asset {
 pub(super) fn wardrobe(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let m = wood_materials(rng, &mut b);
-    let width = range(rng, 0.9, 1.6);
+    let width = uniform(rng, 0.9, 1.6);
     let c = Carcass {
         width,
-        height: range(rng, 1.9, 2.2),
-        depth: range(rng, 0.55, 0.65),
+        height: uniform(rng, 1.9, 2.2),
+        depth: uniform(rng, 0.55, 0.65),
         board: 0.02,
         feet: Feet::Plinth {
-            height: range(rng, 0.06, 0.1),
+            height: uniform(rng, 0.06, 0.1),
             recess: 0.03,
         },
         columns: if width > 1.2 { 2 } else { 1 },
-        shelves: vec![range(rng, 0.8, 0.86)],
+        shelves: vec![uniform(rng, 0.8, 0.86)],
         drawer_rows: 0,
         back: true,
         posts: None,
         top_board: true,
         front: if coin(rng, 0.6) {
             Front::Doors {
-                angle: range(rng, 1.6, 1.75),
+                angle: uniform(rng, 1.6, 1.75),
             }
         } else {
             Front::Open
@@ -353,14 +354,14 @@ pub(super) fn dresser(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let m = wood_materials(rng, &mut b);
     let rows = int(rng, 3, 5);
-    let width = range(rng, 0.8, 1.5);
+    let width = uniform(rng, 0.8, 1.5);
     let c = Carcass {
         width,
-        height: range(rng, 0.75, 1.05),
-        depth: range(rng, 0.45, 0.55),
+        height: uniform(rng, 0.75, 1.05),
+        depth: uniform(rng, 0.45, 0.55),
         board: 0.02,
         feet: Feet::Legs {
-            height: range(rng, 0.05, 0.1),
+            height: uniform(rng, 0.05, 0.1),
             section: 0.04,
         },
         columns: if width > 1.1 { 2 } else { 1 },
@@ -381,16 +382,16 @@ pub(super) fn dresser(rng: &mut ChaCha8Rng) -> Asset {
 pub(super) fn tv_stand(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let m = wood_materials(rng, &mut b);
-    let height = range(rng, 0.4, 0.6);
+    let height = uniform(rng, 0.4, 0.6);
     let legs = coin(rng, 0.5);
     let c = Carcass {
-        width: range(rng, 1.2, 2.0),
+        width: uniform(rng, 1.2, 2.0),
         height,
-        depth: range(rng, 0.35, 0.5),
-        board: range(rng, 0.018, 0.025),
+        depth: uniform(rng, 0.35, 0.5),
+        board: uniform(rng, 0.018, 0.025),
         feet: if legs {
             Feet::Legs {
-                height: range(rng, 0.08, 0.14),
+                height: uniform(rng, 0.08, 0.14),
                 section: 0.035,
             }
         } else {
@@ -437,18 +438,18 @@ pub(super) fn display_case(rng: &mut ChaCha8Rng) -> Asset {
     };
     let tall = coin(rng, 0.5);
     let base = if tall {
-        range(rng, 0.1, 0.2)
+        uniform(rng, 0.1, 0.2)
     } else {
-        range(rng, 0.6, 0.85)
+        uniform(rng, 0.6, 0.85)
     };
     let mut c = Carcass {
-        width: range(rng, 0.6, 1.5),
+        width: uniform(rng, 0.6, 1.5),
         height: if tall {
-            range(rng, 1.6, 2.0)
+            uniform(rng, 1.6, 2.0)
         } else {
-            base + range(rng, 0.35, 0.5)
+            base + uniform(rng, 0.35, 0.5)
         },
-        depth: range(rng, 0.4, 0.6),
+        depth: uniform(rng, 0.4, 0.6),
         board: 0.012,
         feet: Feet::Plinth {
             height: base,
@@ -549,13 +550,13 @@ pub(super) fn toy_box(rng: &mut ChaCha8Rng) -> Asset {
         rng,
     );
     let (w, h, d) = (
-        range(rng, 0.6, 1.0),
-        range(rng, 0.4, 0.55),
-        range(rng, 0.35, 0.5),
+        uniform(rng, 0.6, 1.0),
+        uniform(rng, 0.4, 0.55),
+        uniform(rng, 0.35, 0.5),
     );
-    let wall = range(rng, 0.015, 0.025);
+    let wall = uniform(rng, 0.015, 0.025);
     open_box(&mut b, body, w, h, d, wall, 0.0, "inside");
-    open_lid(&mut b, body, w, d, h, wall, range(rng, 0.1, 0.3));
+    open_lid(&mut b, body, w, d, h, wall, uniform(rng, 0.1, 0.3));
     finish(b)
 }
 
@@ -565,13 +566,13 @@ pub(super) fn chest_freezer(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let body = mat(&mut b, Palette::Plastic, rng);
     let (w, h, d) = (
-        range(rng, 0.9, 1.6),
-        range(rng, 0.84, 0.9),
-        range(rng, 0.6, 0.75),
+        uniform(rng, 0.9, 1.6),
+        uniform(rng, 0.84, 0.9),
+        uniform(rng, 0.6, 0.75),
     );
-    let wall = range(rng, 0.06, 0.08);
+    let wall = uniform(rng, 0.06, 0.08);
     open_box(&mut b, body, w, h, d, wall, 0.0, "inside");
-    open_lid(&mut b, body, w, d, h, 0.06, range(rng, 0.05, 0.2));
+    open_lid(&mut b, body, w, d, h, 0.06, uniform(rng, 0.05, 0.2));
     finish(b)
 }
 
@@ -591,9 +592,9 @@ pub(super) fn pallet_rack(rng: &mut ChaCha8Rng) -> Asset {
         rng,
     );
     let (w, h, d) = (
-        range(rng, 1.8, 2.8),
-        range(rng, 2.0, 3.4),
-        range(rng, 0.9, 1.1),
+        uniform(rng, 1.8, 2.8),
+        uniform(rng, 2.0, 3.4),
+        uniform(rng, 0.9, 1.1),
     );
     let (hw, hd) = (0.5 * w, 0.5 * d);
     let post = 0.08;
@@ -688,12 +689,12 @@ pub(super) fn shelving_unit(rng: &mut ChaCha8Rng) -> Asset {
     );
     let m = CarcassMaterials::uniform(metal, metal);
     let mut c = Carcass {
-        width: range(rng, 0.9, 1.2),
-        height: range(rng, 1.5, 1.9),
-        depth: range(rng, 0.35, 0.6),
+        width: uniform(rng, 0.9, 1.2),
+        height: uniform(rng, 1.5, 1.9),
+        depth: uniform(rng, 0.35, 0.6),
         board: 0.02,
         feet: Feet::Legs {
-            height: range(rng, 0.05, 0.12),
+            height: uniform(rng, 0.05, 0.12),
             section: 0.025,
         },
         columns: 1,
@@ -729,16 +730,16 @@ pub(super) fn medical_cart(rng: &mut ChaCha8Rng) -> Asset {
         front: drawer,
         ..CarcassMaterials::uniform(body, handle)
     };
-    let w = range(rng, 0.5, 0.76);
-    let d = range(rng, 0.42, 0.5);
+    let w = uniform(rng, 0.5, 0.76);
+    let d = uniform(rng, 0.42, 0.5);
     let rows = int(rng, 3, 5);
     let c = Carcass {
         width: w,
-        height: range(rng, 0.85, 0.98),
+        height: uniform(rng, 0.85, 0.98),
         depth: d,
         board: 0.018,
         feet: Feet::Casters {
-            height: range(rng, 0.1, 0.13),
+            height: uniform(rng, 0.1, 0.13),
         },
         columns: 1,
         shelves: Carcass::even_shelves(rows),
@@ -798,13 +799,13 @@ pub(super) fn refrigerator(rng: &mut ChaCha8Rng) -> Asset {
         handle,
     };
     let rows = int(rng, 4, 5);
-    let freezer = range(rng, 0.22, 0.3);
+    let freezer = uniform(rng, 0.22, 0.3);
     let mut shelves = vec![freezer];
     shelves.extend((1..rows).map(|i| freezer + (1.0 - freezer) * i as f32 / rows as f32));
     let c = Carcass {
-        width: range(rng, 0.6, 0.8),
-        height: range(rng, 1.7, 1.95),
-        depth: range(rng, 0.65, 0.75),
+        width: uniform(rng, 0.6, 0.8),
+        height: uniform(rng, 1.7, 1.95),
+        depth: uniform(rng, 0.65, 0.75),
         board: 0.04,
         feet: Feet::Plinth {
             height: 0.05,
@@ -818,7 +819,7 @@ pub(super) fn refrigerator(rng: &mut ChaCha8Rng) -> Asset {
         top_board: true,
         front: if coin(rng, 0.75) {
             Front::Doors {
-                angle: range(rng, 1.6, 1.75),
+                angle: uniform(rng, 1.6, 1.75),
             }
         } else {
             Front::Open
@@ -853,14 +854,14 @@ pub(super) fn drinks_fridge(rng: &mut ChaCha8Rng) -> Asset {
         front: glass,
         handle: wire,
     };
-    let height = range(rng, 1.6, 1.85);
+    let height = uniform(rng, 1.6, 1.85);
     let mut c = Carcass {
-        width: range(rng, 0.55, 0.75),
+        width: uniform(rng, 0.55, 0.75),
         height,
-        depth: range(rng, 0.6, 0.7),
+        depth: uniform(rng, 0.6, 0.7),
         board: 0.04,
         feet: Feet::Plinth {
-            height: range(rng, 0.08, 0.12),
+            height: uniform(rng, 0.08, 0.12),
             recess: 0.0,
         },
         columns: 1,
@@ -874,7 +875,7 @@ pub(super) fn drinks_fridge(rng: &mut ChaCha8Rng) -> Asset {
     };
     c.shelves = rows_for(rng, &c, 0.22, 0.35);
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
-    let header_h = range(rng, 0.15, 0.2);
+    let header_h = uniform(rng, 0.15, 0.2);
     b.cuboid(
         "header",
         header,
@@ -898,12 +899,12 @@ pub(super) fn fume_hood(rng: &mut ChaCha8Rng) -> Asset {
     let glass = mat(&mut b, Palette::Glass, rng);
     let handle = mat(&mut b, Palette::Metal, rng);
     let (w, h, d) = (
-        range(rng, 1.2, 1.8),
-        range(rng, 2.3, 2.5),
-        range(rng, 0.75, 0.9),
+        uniform(rng, 1.2, 1.8),
+        uniform(rng, 2.3, 2.5),
+        uniform(rng, 0.75, 0.9),
     );
     let (hw, hd) = (0.5 * w, 0.5 * d);
-    let base_h = range(rng, 0.85, 0.9);
+    let base_h = uniform(rng, 0.85, 0.9);
     let c = Carcass {
         width: w,
         height: base_h - 0.03,
@@ -955,9 +956,9 @@ pub(super) fn fume_hood(rng: &mut ChaCha8Rng) -> Asset {
         [-hw, base_h - 0.002, -hd],
         [hw, h, -hd + wall],
     );
-    let ceiling = h - range(rng, 0.25, 0.35);
+    let ceiling = h - uniform(rng, 0.25, 0.35);
     b.cuboid("hood_ceiling", body, [-hw, ceiling, -hd], [hw, h, hd]);
-    let sash_bottom = base_h + range(rng, 0.35, 0.5);
+    let sash_bottom = base_h + uniform(rng, 0.35, 0.5);
     b.cuboid(
         "sash",
         glass,
@@ -991,11 +992,11 @@ pub(super) fn magazine_rack(rng: &mut ChaCha8Rng) -> Asset {
         metal_materials(rng, &mut b)
     };
     let rows = int(rng, 3, 5);
-    let height = range(rng, 0.8, 1.3);
+    let height = uniform(rng, 0.8, 1.3);
     let c = Carcass {
-        width: range(rng, 0.45, 0.9),
+        width: uniform(rng, 0.45, 0.9),
         height,
-        depth: range(rng, 0.28, 0.4),
+        depth: uniform(rng, 0.28, 0.4),
         board: 0.018,
         feet: Feet::Legs {
             height: 0.04,
@@ -1008,7 +1009,7 @@ pub(super) fn magazine_rack(rng: &mut ChaCha8Rng) -> Asset {
         posts: None,
         top_board: false,
         front: Front::Open,
-        lip: range(rng, 0.06, 0.1),
+        lip: uniform(rng, 0.06, 0.1),
     };
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
     finish(b)
@@ -1026,9 +1027,9 @@ pub(super) fn dumbbell_rack(rng: &mut ChaCha8Rng) -> Asset {
     };
     let rows = int(rng, 2, 3);
     let c = Carcass {
-        width: range(rng, 1.0, 2.0),
-        height: range(rng, 0.65, 0.9),
-        depth: range(rng, 0.45, 0.6),
+        width: uniform(rng, 1.0, 2.0),
+        height: uniform(rng, 0.65, 0.9),
+        depth: uniform(rng, 0.45, 0.6),
         board: 0.03,
         feet: Feet::Legs {
             height: 0.12,
@@ -1054,14 +1055,14 @@ pub(super) fn cue_rack(rng: &mut ChaCha8Rng) -> Asset {
     let wood = mat(&mut b, Palette::Wood, rng);
     let cue = mat(&mut b, Palette::Wood, rng);
     let (w, h, d) = (
-        range(rng, 0.45, 0.8),
-        range(rng, 1.2, 1.5),
-        range(rng, 0.25, 0.35),
+        uniform(rng, 0.45, 0.8),
+        uniform(rng, 1.2, 1.5),
+        uniform(rng, 0.25, 0.35),
     );
     let (hw, hd) = (0.5 * w, 0.5 * d);
     b.cuboid("base", wood, [-hw, 0.0, -hd], [hw, 0.08, hd]);
     b.cuboid("back_board", wood, [-hw, 0.0, -hd], [hw, h, -hd + 0.03]);
-    let bar_y = h - range(rng, 0.2, 0.35);
+    let bar_y = h - uniform(rng, 0.2, 0.35);
     b.cuboid(
         "holder_bar",
         wood,

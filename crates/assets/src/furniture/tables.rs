@@ -8,11 +8,12 @@
 use rand_chacha::ChaCha8Rng;
 
 use super::carcass::{self, Carcass, CarcassMaterials, Feet, Front, CORNERS};
-use super::{coin, int, mat, range, SCALE};
+use super::{mat, SCALE};
 use crate::primitives::{
     beam, cylinder, disc_surface, fixed_material, frustum, rect_surface, rod, strut, AssetBuilder,
     Palette,
 };
+use crate::random::{coin, int, uniform};
 use crate::{Asset, Placement, SurfaceKind};
 
 /// How a table top is held up.
@@ -262,29 +263,29 @@ pub(super) fn coffee_table(rng: &mut ChaCha8Rng) -> Asset {
     let (top, legs) = table_materials(rng, &mut b);
     let round = coin(rng, 0.35);
     let width = if round {
-        range(rng, 0.7, 1.0)
+        uniform(rng, 0.7, 1.0)
     } else {
-        range(rng, 0.9, 1.3)
+        uniform(rng, 0.9, 1.3)
     };
     let panels = !round && coin(rng, 0.25);
     let t = Table {
         width,
-        depth: if round { width } else { range(rng, 0.5, 0.7) },
-        height: range(rng, 0.38, 0.46),
-        top_thickness: range(rng, 0.02, 0.05),
+        depth: if round { width } else { uniform(rng, 0.5, 0.7) },
+        height: uniform(rng, 0.38, 0.46),
+        top_thickness: uniform(rng, 0.02, 0.05),
         round,
         support: if panels {
             Support::Panels {
-                thickness: range(rng, 0.03, 0.06),
+                thickness: uniform(rng, 0.03, 0.06),
             }
         } else {
             Support::Legs {
-                section: range(rng, 0.03, 0.05),
-                inset: range(rng, 0.02, 0.06),
+                section: uniform(rng, 0.03, 0.05),
+                inset: uniform(rng, 0.02, 0.06),
             }
         },
         apron: 0.0,
-        lower_shelf: (!round && coin(rng, 0.4)).then(|| range(rng, 0.1, 0.14)),
+        lower_shelf: (!round && coin(rng, 0.4)).then(|| uniform(rng, 0.1, 0.14)),
     };
     build_table(&mut b, &t, top, legs);
     b.finish(Placement::Floor, SCALE)
@@ -296,23 +297,23 @@ pub(super) fn side_table(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let (top, legs) = table_materials(rng, &mut b);
     let round = coin(rng, 0.4);
-    let width = range(rng, 0.4, 0.6);
+    let width = uniform(rng, 0.4, 0.6);
     let t = Table {
         width,
-        depth: if round { width } else { range(rng, 0.4, 0.6) },
-        height: range(rng, 0.5, 0.65),
-        top_thickness: range(rng, 0.02, 0.035),
+        depth: if round { width } else { uniform(rng, 0.4, 0.6) },
+        height: uniform(rng, 0.5, 0.65),
+        top_thickness: uniform(rng, 0.02, 0.035),
         round,
         support: if round && coin(rng, 0.5) {
             Support::Pedestal
         } else {
             Support::Legs {
-                section: range(rng, 0.025, 0.04),
-                inset: range(rng, 0.01, 0.04),
+                section: uniform(rng, 0.025, 0.04),
+                inset: uniform(rng, 0.01, 0.04),
             }
         },
         apron: 0.0,
-        lower_shelf: coin(rng, 0.4).then(|| range(rng, 0.12, 0.25)),
+        lower_shelf: coin(rng, 0.4).then(|| uniform(rng, 0.12, 0.25)),
     };
     build_table(&mut b, &t, top, legs);
     b.finish(Placement::Floor, SCALE)
@@ -325,26 +326,26 @@ pub(super) fn dining_table(rng: &mut ChaCha8Rng) -> Asset {
     let (top, legs) = table_materials(rng, &mut b);
     let round = coin(rng, 0.25);
     let width = if round {
-        range(rng, 1.0, 1.3)
+        uniform(rng, 1.0, 1.3)
     } else {
-        range(rng, 1.4, 2.0)
+        uniform(rng, 1.4, 2.0)
     };
     let support = match (round, int(rng, 0, 3)) {
         (true, 0) => Support::Pedestal,
         (false, 0) => Support::Trestle,
         _ => Support::Legs {
-            section: range(rng, 0.05, 0.08),
-            inset: range(rng, 0.03, 0.08),
+            section: uniform(rng, 0.05, 0.08),
+            inset: uniform(rng, 0.03, 0.08),
         },
     };
     let t = Table {
         width,
-        depth: if round { width } else { range(rng, 0.8, 1.0) },
-        height: range(rng, 0.74, 0.78),
-        top_thickness: range(rng, 0.025, 0.045),
+        depth: if round { width } else { uniform(rng, 0.8, 1.0) },
+        height: uniform(rng, 0.74, 0.78),
+        top_thickness: uniform(rng, 0.025, 0.045),
         round,
         support,
-        apron: range(rng, 0.06, 0.1),
+        apron: uniform(rng, 0.06, 0.1),
         lower_shelf: None,
     };
     build_table(&mut b, &t, top, legs);
@@ -366,12 +367,12 @@ pub(super) fn desk(rng: &mut ChaCha8Rng) -> Asset {
     );
     let handle = mat(&mut b, Palette::Metal, rng);
     let (w, h, d) = (
-        range(rng, 1.1, 1.7),
-        range(rng, 0.72, 0.77),
-        range(rng, 0.6, 0.8),
+        uniform(rng, 1.1, 1.7),
+        uniform(rng, 0.72, 0.77),
+        uniform(rng, 0.6, 0.8),
     );
     let (hw, hd) = (0.5 * w, 0.5 * d);
-    let top_t = range(rng, 0.025, 0.04);
+    let top_t = uniform(rng, 0.025, 0.04);
     let under_top = h - top_t;
     b.cuboid("top", body, [-hw, under_top, -hd], [hw, h, hd]);
     b.surface(rect_surface(
@@ -385,7 +386,7 @@ pub(super) fn desk(rng: &mut ChaCha8Rng) -> Asset {
     ));
     let panel = 0.025;
     let pedestal = coin(rng, 0.7);
-    let ped_w = range(rng, 0.38, 0.45);
+    let ped_w = uniform(rng, 0.38, 0.45);
     let side = if coin(rng, 0.5) { 1.0f32 } else { -1.0 };
     let (knee_x0, knee_x1);
     if pedestal {
@@ -445,7 +446,7 @@ pub(super) fn desk(rng: &mut ChaCha8Rng) -> Asset {
         knee_x0 = -hw + panel;
         knee_x1 = hw - panel;
     }
-    let modesty_bottom = range(rng, 0.3, 0.45);
+    let modesty_bottom = uniform(rng, 0.3, 0.45);
     b.cuboid(
         "modesty_panel",
         body,
@@ -480,18 +481,18 @@ pub(super) fn kids_table(rng: &mut ChaCha8Rng) -> Asset {
     let legs = mat(&mut b, Palette::BrightPlastic, rng);
     let round = coin(rng, 0.3);
     let width = if round {
-        range(rng, 0.6, 0.9)
+        uniform(rng, 0.6, 0.9)
     } else {
-        range(rng, 0.75, 1.2)
+        uniform(rng, 0.75, 1.2)
     };
     let t = Table {
         width,
-        depth: if round { width } else { range(rng, 0.5, 0.7) },
-        height: range(rng, 0.45, 0.55),
-        top_thickness: range(rng, 0.02, 0.03),
+        depth: if round { width } else { uniform(rng, 0.5, 0.7) },
+        height: uniform(rng, 0.45, 0.55),
+        top_thickness: uniform(rng, 0.02, 0.03),
         round,
         support: Support::Legs {
-            section: range(rng, 0.035, 0.05),
+            section: uniform(rng, 0.035, 0.05),
             inset: 0.02,
         },
         apron: 0.0,
@@ -508,23 +509,23 @@ pub(super) fn display_table(rng: &mut ChaCha8Rng) -> Asset {
     let (top, legs) = table_materials(rng, &mut b);
     let panels = coin(rng, 0.5);
     let t = Table {
-        width: range(rng, 1.0, 1.8),
-        depth: range(rng, 0.6, 0.95),
-        height: range(rng, 0.75, 0.92),
-        top_thickness: range(rng, 0.03, 0.05),
+        width: uniform(rng, 1.0, 1.8),
+        depth: uniform(rng, 0.6, 0.95),
+        height: uniform(rng, 0.75, 0.92),
+        top_thickness: uniform(rng, 0.03, 0.05),
         round: false,
         support: if panels {
             Support::Panels {
-                thickness: range(rng, 0.04, 0.07),
+                thickness: uniform(rng, 0.04, 0.07),
             }
         } else {
             Support::Legs {
-                section: range(rng, 0.04, 0.06),
+                section: uniform(rng, 0.04, 0.06),
                 inset: 0.03,
             }
         },
         apron: 0.0,
-        lower_shelf: coin(rng, 0.6).then(|| range(rng, 0.15, 0.3)),
+        lower_shelf: coin(rng, 0.6).then(|| uniform(rng, 0.15, 0.3)),
     };
     build_table(&mut b, &t, top, legs);
     b.finish(Placement::Floor, SCALE)
@@ -536,18 +537,18 @@ pub(super) fn high_table(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let (top, legs) = table_materials(rng, &mut b);
     let round = coin(rng, 0.6);
-    let width = range(rng, 0.6, 0.9);
+    let width = uniform(rng, 0.6, 0.9);
     let t = Table {
         width,
         depth: width,
-        height: range(rng, 1.0, 1.1),
-        top_thickness: range(rng, 0.025, 0.04),
+        height: uniform(rng, 1.0, 1.1),
+        top_thickness: uniform(rng, 0.025, 0.04),
         round,
         support: if round {
             Support::Pedestal
         } else {
             Support::Legs {
-                section: range(rng, 0.04, 0.05),
+                section: uniform(rng, 0.04, 0.05),
                 inset: 0.03,
             }
         },
@@ -573,23 +574,23 @@ pub(super) fn workbench(rng: &mut ChaCha8Rng) -> Asset {
         rng,
     );
     let t = Table {
-        width: range(rng, 1.2, 2.0),
-        depth: range(rng, 0.6, 0.8),
-        height: range(rng, 0.85, 0.95),
-        top_thickness: range(rng, 0.04, 0.07),
+        width: uniform(rng, 1.2, 2.0),
+        depth: uniform(rng, 0.6, 0.8),
+        height: uniform(rng, 0.85, 0.95),
+        top_thickness: uniform(rng, 0.04, 0.07),
         round: false,
         support: Support::Legs {
-            section: range(rng, 0.06, 0.09),
+            section: uniform(rng, 0.06, 0.09),
             inset: 0.03,
         },
-        apron: range(rng, 0.06, 0.1),
-        lower_shelf: Some(range(rng, 0.15, 0.25)),
+        apron: uniform(rng, 0.06, 0.1),
+        lower_shelf: Some(uniform(rng, 0.15, 0.25)),
     };
     build_table(&mut b, &t, top, legs);
     if coin(rng, 0.5) {
         let (hw, hd) = (0.5 * t.width, 0.5 * t.depth);
         let board = mat(&mut b, Palette::Paper, rng);
-        let ph = range(rng, 0.5, 0.8);
+        let ph = uniform(rng, 0.5, 0.8);
         b.cuboid(
             "pegboard",
             board,
@@ -620,14 +621,14 @@ pub(super) fn nightstand(rng: &mut ChaCha8Rng) -> Asset {
         rng,
     );
     let handle = mat(&mut b, Palette::Metal, rng);
-    let drawer_on_top = range(rng, 0.6, 0.7);
+    let drawer_on_top = uniform(rng, 0.6, 0.7);
     let c = Carcass {
-        width: range(rng, 0.4, 0.56),
-        height: range(rng, 0.5, 0.68),
-        depth: range(rng, 0.35, 0.45),
+        width: uniform(rng, 0.4, 0.56),
+        height: uniform(rng, 0.5, 0.68),
+        depth: uniform(rng, 0.35, 0.45),
         board: 0.018,
         feet: Feet::Legs {
-            height: range(rng, 0.06, 0.16),
+            height: uniform(rng, 0.06, 0.16),
             section: 0.03,
         },
         columns: 1,
@@ -671,11 +672,11 @@ pub(super) fn nightstand(rng: &mut ChaCha8Rng) -> Asset {
 pub(super) fn picnic_table(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let wood = mat(&mut b, Palette::Wood, rng);
-    let (w, h) = (range(rng, 1.5, 2.1), range(rng, 0.72, 0.78));
-    let top_d = range(rng, 0.7, 0.8);
-    let seat_h = range(rng, 0.43, 0.46);
+    let (w, h) = (uniform(rng, 1.5, 2.1), uniform(rng, 0.72, 0.78));
+    let top_d = uniform(rng, 0.7, 0.8);
+    let seat_h = uniform(rng, 0.43, 0.46);
     let bench_d = 0.25;
-    let reach = range(rng, 0.7, 0.85);
+    let reach = uniform(rng, 0.7, 0.85);
     let hw = 0.5 * w;
     let planks = 5;
     let pd = top_d / planks as f32;
@@ -755,14 +756,14 @@ pub(super) fn lab_bench(rng: &mut ChaCha8Rng) -> Asset {
     let top = mat(&mut b, Palette::Stone, rng);
     let handle = mat(&mut b, Palette::Metal, rng);
     let (w, h, d) = (
-        range(rng, 1.5, 2.4),
-        range(rng, 0.88, 0.95),
-        range(rng, 0.75, 0.9),
+        uniform(rng, 1.5, 2.4),
+        uniform(rng, 0.88, 0.95),
+        uniform(rng, 0.75, 0.9),
     );
     let (hw, hd) = (0.5 * w, 0.5 * d);
     let top_t = 0.03;
     b.cuboid("top", top, [-hw, h - top_t, -hd], [hw, h, hd]);
-    let cab_w = range(rng, 0.45, 0.6);
+    let cab_w = uniform(rng, 0.45, 0.6);
     let c = Carcass {
         width: cab_w,
         height: h - top_t + 0.001,
@@ -793,8 +794,8 @@ pub(super) fn lab_bench(rng: &mut ChaCha8Rng) -> Asset {
     }
     b.surfaces_mut().retain(|s| !s.name.ends_with("_top"));
     // The reagent shelf stands on the back of the top.
-    let shelf_h = range(rng, 0.45, 0.6);
-    let shelf_d = range(rng, 0.2, 0.25);
+    let shelf_h = uniform(rng, 0.45, 0.6);
+    let shelf_d = uniform(rng, 0.2, 0.25);
     let post = 0.03;
     for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
         let x = sx * (hw - 0.1);
@@ -865,10 +866,10 @@ pub(super) fn pool_table(rng: &mut ChaCha8Rng) -> Asset {
         fixed_material("baize_blue", [0x1E, 0x4E, 0x8C], 0.95, 0.0)
     });
     let pocket_m = b.material(fixed_material("pocket_black", [0x18, 0x18, 0x18], 0.9, 0.0));
-    let (w, d) = (range(rng, 2.3, 2.9), range(rng, 1.3, 1.65));
-    let h = range(rng, 0.78, 0.82);
+    let (w, d) = (uniform(rng, 2.3, 2.9), uniform(rng, 1.3, 1.65));
+    let h = uniform(rng, 0.78, 0.82);
     let (hw, hd) = (0.5 * w, 0.5 * d);
-    let rail = range(rng, 0.1, 0.14);
+    let rail = uniform(rng, 0.1, 0.14);
     let bed_y = h - 0.05;
     b.cuboid(
         "apron",
@@ -994,12 +995,12 @@ fn counter(
     );
     let handle = mat(&mut b, Palette::Metal, rng);
     let (w, h, d) = (
-        range(rng, width.0, width.1),
-        range(rng, height.0, height.1),
-        range(rng, depth.0, depth.1),
+        uniform(rng, width.0, width.1),
+        uniform(rng, height.0, height.1),
+        uniform(rng, depth.0, depth.1),
     );
-    let top_t = range(rng, 0.03, 0.05);
-    let overhang = if bar { range(rng, 0.2, 0.3) } else { 0.03 };
+    let top_t = uniform(rng, 0.03, 0.05);
+    let overhang = if bar { uniform(rng, 0.2, 0.3) } else { 0.03 };
     let body_d = d - overhang;
     let columns = ((w / 0.6).round() as usize).max(2);
     let c = Carcass {
@@ -1012,7 +1013,7 @@ fn counter(
             recess: 0.05,
         },
         columns,
-        shelves: vec![range(rng, 0.45, 0.55)],
+        shelves: vec![uniform(rng, 0.45, 0.55)],
         drawer_rows: 0,
         back: true,
         posts: None,
@@ -1021,7 +1022,7 @@ fn counter(
             Front::Open
         } else {
             Front::Doors {
-                angle: range(rng, 1.6, 1.75),
+                angle: uniform(rng, 1.6, 1.75),
             }
         },
         lip: 0.0,

@@ -4,11 +4,12 @@
 
 use rand_chacha::ChaCha8Rng;
 
-use super::{coin, int, mat, range};
+use super::mat;
 use crate::primitives::{
     cylinder, fixed_material, frustum, prism_z, rect_surface, regular_polygon, sphere,
     AssetBuilder, Palette,
 };
+use crate::random::{coin, int, uniform};
 use crate::{Asset, Placement, SurfaceKind};
 
 /// A rectangular frame of four bars around a panel (`w` × `h`, frame `bar` wide, `depth` deep),
@@ -57,15 +58,15 @@ pub(super) fn painting(rng: &mut ChaCha8Rng) -> Asset {
         },
         rng,
     );
-    let (w, h) = (range(rng, 0.3, 1.5), range(rng, 0.3, 1.2));
+    let (w, h) = (uniform(rng, 0.3, 1.5), uniform(rng, 0.3, 1.2));
     framed_panel(
         &mut b,
         frame,
         canvas,
         w,
         h,
-        range(rng, 0.02, 0.07).min(0.15 * w.min(h)),
-        range(rng, 0.02, 0.05),
+        uniform(rng, 0.02, 0.07).min(0.15 * w.min(h)),
+        uniform(rng, 0.02, 0.05),
     );
     b.finish(Placement::Wall, [0.7, 1.3])
 }
@@ -76,7 +77,7 @@ pub(super) fn whiteboard(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let frame = mat(&mut b, Palette::Metal, rng);
     let board = b.material(fixed_material("whiteboard", [0xF8, 0xF8, 0xF8], 0.15, 0.0));
-    let (w, h) = (range(rng, 0.9, 2.4), range(rng, 0.6, 1.2));
+    let (w, h) = (uniform(rng, 0.9, 2.4), uniform(rng, 0.6, 1.2));
     framed_panel(&mut b, frame, board, w, h, 0.02, 0.02);
     let tray_w = 0.6 * w;
     b.cuboid(
@@ -117,11 +118,11 @@ pub(super) fn wall_shelf(rng: &mut ChaCha8Rng) -> Asset {
         rng,
     );
     let bracket = mat(&mut b, Palette::CoatedMetal, rng);
-    let (w, d) = (range(rng, 0.5, 1.2), range(rng, 0.15, 0.3));
+    let (w, d) = (uniform(rng, 0.5, 1.2), uniform(rng, 0.15, 0.3));
     let hw = 0.5 * w;
     let boards = int(rng, 1, 3);
-    let t = range(rng, 0.02, 0.035);
-    let gap = range(rng, 0.25, 0.33);
+    let t = uniform(rng, 0.02, 0.035);
+    let gap = uniform(rng, 0.25, 0.33);
     for i in 0..boards {
         let y = i as f32 * gap;
         b.cuboid(&format!("board_{i}"), wood, [-hw, y, 0.0], [hw, y + t, d]);
@@ -166,8 +167,8 @@ pub(super) fn mirror(rng: &mut ChaCha8Rng) -> Asset {
         rng,
     );
     let glass = b.material(fixed_material("mirror", [0xE8, 0xEC, 0xEE], 0.02, 1.0));
-    let (w, h) = (range(rng, 0.3, 1.0), range(rng, 0.4, 1.6));
-    let depth = range(rng, 0.015, 0.04);
+    let (w, h) = (uniform(rng, 0.3, 1.0), uniform(rng, 0.4, 1.6));
+    let depth = uniform(rng, 0.015, 0.04);
     if coin(rng, 0.3) {
         let outline: Vec<[f32; 2]> = regular_polygon([0.0, 0.0], 1.0, 32)
             .into_iter()
@@ -180,7 +181,7 @@ pub(super) fn mirror(rng: &mut ChaCha8Rng) -> Asset {
         b.part(prism_z("frame", frame, &outline, 0.0, 0.6 * depth));
         b.part(prism_z("glass", glass, &inner, 0.0, depth));
     } else {
-        framed_panel(&mut b, frame, glass, w, h, range(rng, 0.02, 0.06), depth);
+        framed_panel(&mut b, frame, glass, w, h, uniform(rng, 0.02, 0.06), depth);
     }
     b.finish(Placement::Wall, [0.8, 1.2])
 }
@@ -208,9 +209,9 @@ pub(super) fn pendant_lamp(rng: &mut ChaCha8Rng) -> Asset {
         rng,
     );
     let bulb = b.material(fixed_material("bulb", [0xFF, 0xF4, 0xD8], 0.1, 0.0));
-    let cord = range(rng, 0.2, 0.8);
-    let r = range(rng, 0.1, 0.3);
-    let shade_h = range(rng, 0.15, 0.3).min(1.6 * r);
+    let cord = uniform(rng, 0.2, 0.8);
+    let r = uniform(rng, 0.1, 0.3);
+    let shade_h = uniform(rng, 0.15, 0.3).min(1.6 * r);
     let top = shade_h + cord + 0.04;
     b.part(cylinder(
         "canopy",

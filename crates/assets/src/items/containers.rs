@@ -3,7 +3,9 @@
 
 use rand_chacha::ChaCha8Rng;
 
-use super::shapes::{arc, color, disc, rect, uniform, Builder};
+use super::builder::Builder;
+use crate::primitives::{arc, disc, rect};
+use crate::random::{color, uniform};
 use crate::{Asset, Placement, SurfaceKind};
 
 const WOODS: &[[f32; 3]] = &[

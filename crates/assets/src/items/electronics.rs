@@ -2,7 +2,9 @@
 
 use rand_chacha::ChaCha8Rng;
 
-use super::shapes::{color, convex_hull, oriented_box, rotation, uniform, Builder};
+use super::builder::Builder;
+use crate::primitives::{convex_hull, rotated_box, rotation};
+use crate::random::{color, uniform};
 use crate::{Asset, Placement};
 
 const CASES: &[[f32; 3]] = &[
@@ -43,7 +45,7 @@ pub(crate) fn laptop(rng: &mut ChaCha8Rng) -> Asset {
     let rot = rotation([1.0, 0.0, 0.0], -(open - std::f32::consts::FRAC_PI_2));
     let hinge = nalgebra::Vector3::new(0.0, t, -z);
     let lid_center = hinge + rot * nalgebra::Vector3::new(0.0, d / 2.0, -lt / 2.0);
-    b.add(oriented_box(
+    b.add(rotated_box(
         "lid",
         shell,
         lid_center.into(),
@@ -51,7 +53,7 @@ pub(crate) fn laptop(rng: &mut ChaCha8Rng) -> Asset {
         &rot,
     ));
     let display_center = hinge + rot * nalgebra::Vector3::new(0.0, d / 2.0, 0.0008);
-    b.add(oriented_box(
+    b.add(rotated_box(
         "display",
         screen,
         display_center.into(),
@@ -226,7 +228,7 @@ pub(crate) fn cash_register(rng: &mut ChaCha8Rng) -> Asset {
     ];
     b.add(convex_hull("console", case, &top).expect("console has volume"));
     let slope = rotation([1.0, 0.0, 0.0], (0.08f32 / (z * 1.2)).atan());
-    b.add(oriented_box(
+    b.add(rotated_box(
         "keypad",
         keys,
         [0.0, drawer_h + 0.08, -z * 0.4],

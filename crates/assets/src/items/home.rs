@@ -5,9 +5,9 @@ use std::f32::consts::{PI, TAU};
 
 use rand_chacha::ChaCha8Rng;
 
-use super::shapes::{
-    color, convex_hull, oriented_box, pick, rect, rotation, rounded_box, uniform, Builder,
-};
+use super::builder::Builder;
+use crate::primitives::{convex_hull, rect, rotated_box, rotation, rounded_box};
+use crate::random::{color, pick, uniform};
 use crate::{Asset, Placement, SurfaceKind};
 
 const COVERS: &[[f32; 3]] = &[
@@ -172,16 +172,16 @@ pub(crate) fn picture_frame(rng: &mut ChaCha8Rng) -> Asset {
             [bar / 2.0, hy, t / 2.0],
         ),
     ] {
-        b.add(oriented_box(name, frame, at(c[0], c[1], c[2]), half, &rot));
+        b.add(rotated_box(name, frame, at(c[0], c[1], c[2]), half, &rot));
     }
-    b.add(oriented_box(
+    b.add(rotated_box(
         "photo",
         photo,
         at(0.0, hy, -0.001),
         [x - bar, hy - bar, 0.004],
         &rot,
     ));
-    b.add(oriented_box(
+    b.add(rotated_box(
         "back",
         frame,
         at(0.0, hy, -t / 2.0),
@@ -470,7 +470,7 @@ pub(crate) fn kettlebell(rng: &mut ChaCha8Rng) -> Asset {
     );
     b.ellipsoid("bell", iron, [0.0, cy, 0.0], [r, r, r]);
     let hr = r * 0.55;
-    let pts = super::shapes::arc(
+    let pts = crate::primitives::arc(
         [0.0, cy + r * 0.95, 0.0],
         [1.0, 0.0, 0.0],
         [0.0, 1.0, 0.0],
@@ -618,7 +618,7 @@ pub(crate) fn clock(rng: &mut ChaCha8Rng) -> Asset {
     ] {
         let rot = rotation([0.0, 0.0, 1.0], -angle);
         let off = rot * nalgebra::Vector3::new(0.0, len / 2.0, 0.0);
-        b.add(oriented_box(
+        b.add(rotated_box(
             name,
             hand,
             [off.x, cy + off.y, z1 + 0.003],

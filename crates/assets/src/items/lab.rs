@@ -3,7 +3,9 @@
 
 use rand_chacha::ChaCha8Rng;
 
-use super::shapes::{color, disc, rotation, uniform, Builder};
+use super::builder::Builder;
+use crate::primitives::{disc, rotation};
+use crate::random::{color, uniform};
 use crate::{Asset, Placement, SurfaceKind};
 
 /// Glass beaker with a spout, hollow: Ø 0.05–0.09, 0.07–0.13 m high.

@@ -1,11 +1,11 @@
 //! Built-in generators for containers and small items (things that stand on the floor or rest on,
 //! in and under furniture). Dimensions per category are documented on each generator, in metres.
 
+pub(crate) mod builder;
 pub(crate) mod containers;
 mod electronics;
 mod home;
 mod lab;
-pub(crate) mod shapes;
 mod tableware;
 
 use crate::catalog::Category;

@@ -5,7 +5,9 @@ use std::f32::consts::{FRAC_PI_2, PI};
 
 use rand_chacha::ChaCha8Rng;
 
-use super::shapes::{arc, color, disc, pick, uniform, Builder};
+use super::builder::Builder;
+use crate::primitives::{arc, disc};
+use crate::random::{color, pick, uniform};
 use crate::{Asset, Placement, SurfaceKind};
 
 const CERAMICS: &[[f32; 3]] = &[

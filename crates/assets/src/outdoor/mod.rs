@@ -6,9 +6,9 @@ use std::f32::consts::{FRAC_PI_2, PI, TAU};
 use rand_chacha::ChaCha8Rng;
 
 use crate::catalog::Category;
-use crate::items::shapes::{
-    arc, color, convex_hull, oriented_ellipsoid, rect, rotation, rounded_box, uniform, Builder,
-};
+use crate::items::builder::Builder;
+use crate::primitives::{arc, convex_hull, rect, rotated_ellipsoid, rotation, rounded_box};
+use crate::random::{color, uniform};
 use crate::{Asset, Placement, SurfaceKind};
 
 const BRIGHT: &[[f32; 3]] = &[
@@ -207,7 +207,7 @@ fn beach_lounger(rng: &mut ChaCha8Rng) -> Asset {
         seat_h - t / 2.0 + back_angle.sin() * back_len / 2.0,
         seat_z0 - back_angle.cos() * back_len / 2.0,
     ];
-    b.add(crate::items::shapes::oriented_box(
+    b.add(crate::primitives::rotated_box(
         "backrest",
         fabric,
         center,
@@ -371,7 +371,7 @@ fn palm_tree(rng: &mut ChaCha8Rng) -> Asset {
                 p[2] + dir.z * seg / 2.0,
             ];
             let rot = rotation([0.0, 1.0, 0.0], -yaw) * rotation([0.0, 0.0, 1.0], pitch);
-            b.add(oriented_ellipsoid(
+            b.add(rotated_ellipsoid(
                 &format!("frond_{f}_{s}"),
                 leaf,
                 c,
