@@ -235,6 +235,28 @@ impl TriPacket {
         packet
     }
 
+    /// The corners of the triangle in `lane`, exactly as packed.
+    #[inline]
+    pub fn triangle(&self, lane: usize) -> [V3; 3] {
+        std::array::from_fn(|k| {
+            V3::new(
+                self.corner[k][0].0[lane],
+                self.corner[k][1].0[lane],
+                self.corner[k][2].0[lane],
+            )
+        })
+    }
+
+    /// The unit face normal of the triangle in `lane` (zero if it is degenerate).
+    #[inline]
+    pub fn face_normal(&self, lane: usize) -> V3 {
+        V3::new(
+            self.normal[0].0[lane],
+            self.normal[1].0[lane],
+            self.normal[2].0[lane],
+        )
+    }
+
     /// Squared distances from `p` to the four triangles: the squared distance to the plane when
     /// the projection of `p` falls inside the triangle, else to the nearest of its three edges.
     #[inline(always)]

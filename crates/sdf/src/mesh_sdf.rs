@@ -70,6 +70,24 @@ struct Dipole {
     radius: f32,
 }
 
+/// The nearest triangle found so far: squared distance, triangle, and the packet lane
+/// (`4 · packet + lane`, or [`NO_TRIANGLE`] when it came from a hint) whose cached corners and
+/// face normal can sign it without touching the per-triangle arrays.
+#[derive(Debug, Clone, Copy)]
+struct Nearest {
+    d2: f32,
+    tri: u32,
+    slot: u32,
+}
+
+impl Nearest {
+    const NONE: Nearest = Nearest {
+        d2: f32::INFINITY,
+        tri: NO_TRIANGLE,
+        slot: NO_TRIANGLE,
+    };
+}
+
 /// The closest triangle found by a search, and whether the query point is inside.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Hit {
@@ -365,76 +383,88 @@ impl MeshSdf {
         let pa = [p.x, p.y, p.z];
         if self.groups.len() == 1 {
             let g = &self.groups[0];
-            let (mut d2, mut tri) = self.seed(g, p, hint);
-            self.closest_in(g, p, &mut d2, &mut tri);
-            let inside = g.contains(&pa) && self.inside_group(g, p, tri);
+            let mut best = self.seed(g, p, hint);
+            self.closest_in(g, p, &mut best);
+            let inside = g.contains(&pa) && self.inside_group(g, p, &best);
             return Hit {
-                tri,
-                distance2: d2,
+                tri: best.tri,
+                distance2: best.d2,
                 inside,
             };
         }
         // Solids whose box holds p may contain it: search each fully and sign it.
-        let mut best_d2 = f32::INFINITY;
-        let mut best_tri = NO_TRIANGLE;
-        let mut deepest: Option<(f32, u32)> = None;
+        let mut best = Nearest::NONE;
+        let mut deepest: Option<Nearest> = None;
         for g in &self.groups {
             if !g.contains(&pa) {
                 continue;
             }
-            let (mut d2, mut tri) = self.seed(g, p, hint);
-            self.closest_in(g, p, &mut d2, &mut tri);
-            if self.inside_group(g, p, tri) && deepest.is_none_or(|(dd, _)| d2 > dd) {
-                deepest = Some((d2, tri));
+            let mut near = self.seed(g, p, hint);
+            self.closest_in(g, p, &mut near);
+            if self.inside_group(g, p, &near) && deepest.is_none_or(|dd| near.d2 > dd.d2) {
+                deepest = Some(near);
             }
-            if d2 < best_d2 {
-                best_d2 = d2;
-                best_tri = tri;
+            if near.d2 < best.d2 {
+                best = near;
             }
         }
-        if let Some((d2, tri)) = deepest {
+        if let Some(near) = deepest {
             return Hit {
-                tri,
-                distance2: d2,
+                tri: near.tri,
+                distance2: near.d2,
                 inside: true,
             };
         }
         // Outside every solid: the nearest triangle of any solid decides.
         for g in &self.groups {
-            if g.contains(&pa) || distance2_to_box(&pa, &g.min, &g.max) >= best_d2 {
+            if g.contains(&pa) || distance2_to_box(&pa, &g.min, &g.max) >= best.d2 {
                 continue;
             }
-            if best_tri == NO_TRIANGLE && g.holds(hint) {
-                let (d2, tri) = self.seed(g, p, hint);
-                best_d2 = d2;
-                best_tri = tri;
+            if best.tri == NO_TRIANGLE && g.holds(hint) {
+                best = self.seed(g, p, hint);
             }
-            self.closest_in(g, p, &mut best_d2, &mut best_tri);
+            self.closest_in(g, p, &mut best);
         }
         Hit {
-            tri: best_tri,
-            distance2: best_d2,
+            tri: best.tri,
+            distance2: best.d2,
             inside: false,
         }
     }
 
     #[inline]
-    fn seed(&self, g: &Group, p: V3, hint: u32) -> (f32, u32) {
+    fn seed(&self, g: &Group, p: V3, hint: u32) -> Nearest {
         if g.holds(hint) {
             let t = &self.tris[hint as usize];
-            (distance2_to_triangle(p, t[0], t[1], t[2]), hint)
+            Nearest {
+                d2: distance2_to_triangle(p, t[0], t[1], t[2]),
+                tri: hint,
+                slot: NO_TRIANGLE,
+            }
         } else {
-            (f32::INFINITY, NO_TRIANGLE)
+            Nearest::NONE
         }
     }
 
+    /// Whether `p`, whose nearest triangle of solid `g` is `near`, is inside that solid.
     #[inline]
-    fn inside_group(&self, g: &Group, p: V3, tri: u32) -> bool {
+    fn inside_group(&self, g: &Group, p: V3, near: &Nearest) -> bool {
         match g.rule {
             SignRule::PseudoNormal => {
-                let t = &self.tris[tri as usize];
+                let tri = near.tri;
+                // Corners from the packet the search just read (in cache) when there is one.
+                let packet = self.packets.packets.get((near.slot / 4) as usize);
+                let lane = (near.slot % 4) as usize;
+                let t = match packet {
+                    Some(packet) => packet.triangle(lane),
+                    None => self.tris[tri as usize],
+                };
                 let (q, feature) = closest_on_triangle(p, t[0], t[1], t[2]);
-                (p - q).dot(&self.pseudo_normal(tri, feature)) < 0.0
+                let normal = match (feature, packet) {
+                    (Feature::Face, Some(packet)) => packet.face_normal(lane),
+                    _ => self.pseudo_normal(tri, feature),
+                };
+                (p - q).dot(&normal) < 0.0
             }
             SignRule::WindingNumber => self.winding(g.root, p) >= 0.5,
         }
@@ -450,26 +480,19 @@ impl MeshSdf {
         }
     }
 
-    /// Nearest triangle of group `g`, improving `(best_d2, best_tri)`.
+    /// Nearest triangle of group `g`, improving `best`.
     #[inline]
-    fn closest_in(&self, g: &Group, p: V3, best_d2: &mut f32, best_tri: &mut u32) {
+    fn closest_in(&self, g: &Group, p: V3, best: &mut Nearest) {
         let pa = [p.x, p.y, p.z];
         let d = distance2_to_box(&pa, &g.min, &g.max);
-        if d < *best_d2 {
-            self.closest_from(g.wide_root, d, p, best_d2, best_tri);
+        if d < best.d2 {
+            self.closest_from(g.wide_root, d, p, best);
         }
     }
 
     /// Depth-first, nearest-first search of the 4-wide tree from `entry` (node, 0) or
     /// (first packet, packet count).
-    fn closest_from(
-        &self,
-        entry: (u32, u32),
-        d: f32,
-        p: V3,
-        best_d2: &mut f32,
-        best_tri: &mut u32,
-    ) {
+    fn closest_from(&self, entry: (u32, u32), d: f32, p: V3, best: &mut Nearest) {
         const CAP: usize = 64;
         let pa = [p.x, p.y, p.z];
         let p4 = pa.map(F4::splat);
@@ -479,22 +502,26 @@ impl MeshSdf {
         while sp > 0 {
             sp -= 1;
             let (d, index, count) = stack[sp];
-            if d >= *best_d2 {
+            if d >= best.d2 {
                 continue;
             }
             if count > 0 {
                 let start = index as usize;
                 let end = start + count as usize;
-                for (packet, &first) in self.packets.packets[start..end]
+                for (k, (packet, &first)) in self.packets.packets[start..end]
                     .iter()
                     .zip(&self.packets.first_tri[start..end])
+                    .enumerate()
                 {
                     let ds = packet.distances2(&p4);
                     let nearest = ds.min_lane();
-                    if nearest < *best_d2 {
-                        *best_d2 = nearest;
-                        let lane = ds.0.iter().position(|&d| d == nearest).unwrap_or(0);
-                        *best_tri = first + lane as u32;
+                    if nearest < best.d2 {
+                        let lane = ds.0.iter().position(|&d| d == nearest).unwrap_or(0) as u32;
+                        *best = Nearest {
+                            d2: nearest,
+                            tri: first + lane,
+                            slot: 4 * (start + k) as u32 + lane,
+                        };
                     }
                 }
                 continue;
@@ -511,16 +538,10 @@ impl MeshSdf {
                 }
             }
             for &lane in &order {
-                if ds[lane] < *best_d2 {
+                if ds[lane] < best.d2 {
                     if sp == CAP {
                         // Pathologically deep tree: search this child recursively.
-                        self.closest_from(
-                            (n.child[lane], n.count[lane]),
-                            ds[lane],
-                            p,
-                            best_d2,
-                            best_tri,
-                        );
+                        self.closest_from((n.child[lane], n.count[lane]), ds[lane], p, best);
                     } else {
                         stack[sp] = (ds[lane], n.child[lane], n.count[lane]);
                         sp += 1;
