@@ -1,4 +1,5 @@
-//! Throughput of exact mesh queries, baked grid lookups, grid baking and scene batches.
+//! Throughput of exact mesh queries, building the exact field, baked grid lookups, grid baking
+//! and scene batches.
 //!
 //! Single-thread figures run on the calling thread (the bake inside a one-thread rayon pool)
 //! and are timed in the thread's own CPU time (Linux `/proc/thread-self/schedstat`, falling back
@@ -149,6 +150,14 @@ fn single_thread(c: &mut Criterion<ThreadCpuTime>) {
             black_box(acc)
         })
     });
+
+    // Building the exact field (welding, components, pseudo-normals, BVH, packets).
+    let (positions, triangles) = shapes::bumpy_sphere(0.5, 0.15, 100, 51);
+    group.throughput(Throughput::Elements(triangles.len() as u64));
+    group.bench_function("mesh_build_10k_tris_1thread", |b| {
+        b.iter(|| black_box(MeshSdf::new(&positions, &triangles).expect("closed mesh")))
+    });
+    group.throughput(Throughput::Elements(QUERIES as u64));
 
     let one = pool(1);
     let cell = cell_for_64_cubed(&sdf);
