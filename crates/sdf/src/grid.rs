@@ -315,7 +315,7 @@ struct Baker<'a> {
     cell: f32,
     dims: [usize; 3],
     /// Per node: value bits << 32 | tag (0 empty, 1..16 interpolated, finer blocks higher;
-    /// 16 + t exact with closest triangle t).
+    /// 16 + t exact with closest triangle in packet slot t).
     slots: Vec<AtomicU64>,
 }
 
@@ -333,7 +333,7 @@ impl Baker<'_> {
         self.origin + Vector3::new(i as f32, j as f32, k as f32) * self.cell
     }
 
-    /// Exact value of a node (computed once), with its closest triangle.
+    /// Exact value of a node (computed once), with its closest triangle's packet slot.
     fn exact(&self, i: usize, j: usize, k: usize, hint: Option<u32>) -> (f32, u32) {
         let slot = &self.slots[self.index(i, j, k)];
         let cur = slot.load(Ordering::Relaxed);
@@ -342,8 +342,8 @@ impl Baker<'_> {
         }
         let hit = self.source.search_hinted(&self.point(i, j, k), hint);
         let d = hit.signed_distance();
-        slot.store(pack(d, TAG_EXACT + hit.tri), Ordering::Relaxed);
-        (d, hit.tri)
+        slot.store(pack(d, TAG_EXACT + hit.slot), Ordering::Relaxed);
+        (d, hit.slot)
     }
 
     /// Stores an interpolated value unless a finer or exact value is already there.
@@ -359,14 +359,15 @@ impl Baker<'_> {
 
     fn run(&self, cells: [usize; 3]) {
         let blocks = cells.map(|c| c / BLOCK);
-        // Exact values on the root lattice.
-        let lattice: Vec<[usize; 3]> = (0..=blocks[2])
-            .flat_map(|k| {
-                (0..=blocks[1]).flat_map(move |j| (0..=blocks[0]).map(move |i| [i, j, k]))
-            })
+        // Exact values on the root lattice, one x row per task, each node hinted by the last.
+        let rows: Vec<[usize; 2]> = (0..=blocks[2])
+            .flat_map(|k| (0..=blocks[1]).map(move |j| [j, k]))
             .collect();
-        lattice.par_iter().for_each(|&[i, j, k]| {
-            self.exact(i * BLOCK, j * BLOCK, k * BLOCK, None);
+        rows.par_iter().for_each(|&[j, k]| {
+            let mut hint = None;
+            for i in 0..=blocks[0] {
+                hint = Some(self.exact(i * BLOCK, j * BLOCK, k * BLOCK, hint).1);
+            }
         });
         // Refine root blocks in 8 colour phases: blocks of one colour share no nodes, so the
         // result does not depend on scheduling.

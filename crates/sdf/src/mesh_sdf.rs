@@ -70,9 +70,9 @@ struct Dipole {
     radius: f32,
 }
 
-/// The nearest triangle found so far: squared distance, triangle, and the packet lane
-/// (`4 · packet + lane`, or [`NO_TRIANGLE`] when it came from a hint) whose cached corners and
-/// face normal can sign it without touching the per-triangle arrays.
+/// The nearest triangle found so far: squared distance, triangle, and its packet lane
+/// (`4 · packet + lane`) whose cached corners and face normal can sign it without touching the
+/// per-triangle arrays.
 #[derive(Debug, Clone, Copy)]
 struct Nearest {
     d2: f32,
@@ -92,6 +92,8 @@ impl Nearest {
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Hit {
     pub tri: u32,
+    /// The triangle's packet lane (`4 · packet + lane`): the hint for a later search.
+    pub slot: u32,
     pub distance2: f32,
     pub inside: bool,
 }
@@ -372,22 +374,35 @@ impl MeshSdf {
         sum / (4.0 * std::f32::consts::PI)
     }
 
-    /// Signed distance with an optional closest-triangle hint (speeds up coherent queries);
-    /// returns the hit so the caller can pass its triangle as the next hint.
+    /// Signed distance with an optional hint, the `slot` of an earlier hit near `p` (speeds up
+    /// coherent queries); returns the hit so the caller can pass its slot as the next hint.
     #[inline]
     pub(crate) fn search_hinted(&self, p: &Point3<f32>, hint: Option<u32>) -> Hit {
         self.search(p.coords, hint.unwrap_or(NO_TRIANGLE))
     }
 
-    fn search(&self, p: V3, hint: u32) -> Hit {
+    /// The triangle in packet lane `slot` ([`NO_TRIANGLE`] for an invalid slot).
+    #[inline]
+    fn slot_triangle(&self, slot: u32) -> u32 {
+        match self.packets.first_tri.get((slot / 4) as usize) {
+            Some(&first) => first + slot % 4,
+            None => NO_TRIANGLE,
+        }
+    }
+
+    /// Nearest triangle, its squared distance and whether `p` is inside, starting from the
+    /// hint slot `hint_slot` ([`NO_TRIANGLE`] for none).
+    fn search(&self, p: V3, hint_slot: u32) -> Hit {
+        let hint = self.slot_triangle(hint_slot);
         let pa = [p.x, p.y, p.z];
         if self.groups.len() == 1 {
             let g = &self.groups[0];
-            let mut best = self.seed(g, p, hint);
+            let mut best = self.seed(g, p, hint, hint_slot);
             self.closest_in(g, p, &mut best);
             let inside = g.contains(&pa) && self.inside_group(g, p, &best);
             return Hit {
                 tri: best.tri,
+                slot: best.slot,
                 distance2: best.d2,
                 inside,
             };
@@ -399,7 +414,7 @@ impl MeshSdf {
             if !g.contains(&pa) {
                 continue;
             }
-            let mut near = self.seed(g, p, hint);
+            let mut near = self.seed(g, p, hint, hint_slot);
             self.closest_in(g, p, &mut near);
             if self.inside_group(g, p, &near) && deepest.is_none_or(|dd| near.d2 > dd.d2) {
                 deepest = Some(near);
@@ -411,6 +426,7 @@ impl MeshSdf {
         if let Some(near) = deepest {
             return Hit {
                 tri: near.tri,
+                slot: near.slot,
                 distance2: near.d2,
                 inside: true,
             };
@@ -421,25 +437,28 @@ impl MeshSdf {
                 continue;
             }
             if best.tri == NO_TRIANGLE && g.holds(hint) {
-                best = self.seed(g, p, hint);
+                best = self.seed(g, p, hint, hint_slot);
             }
             self.closest_in(g, p, &mut best);
         }
         Hit {
             tri: best.tri,
+            slot: best.slot,
             distance2: best.d2,
             inside: false,
         }
     }
 
+    /// The starting bound of a search in `g`: the hint triangle (in packet lane `slot`) if `g`
+    /// holds it.
     #[inline]
-    fn seed(&self, g: &Group, p: V3, hint: u32) -> Nearest {
+    fn seed(&self, g: &Group, p: V3, hint: u32, slot: u32) -> Nearest {
         if g.holds(hint) {
-            let t = &self.tris[hint as usize];
+            let t = self.packets.packets[(slot / 4) as usize].triangle((slot % 4) as usize);
             Nearest {
                 d2: distance2_to_triangle(p, t[0], t[1], t[2]),
                 tri: hint,
-                slot: NO_TRIANGLE,
+                slot,
             }
         } else {
             Nearest::NONE
@@ -452,7 +471,7 @@ impl MeshSdf {
         match g.rule {
             SignRule::PseudoNormal => {
                 let tri = near.tri;
-                // Corners from the packet the search just read (in cache) when there is one.
+                // Corners from the packet the search just read (in cache).
                 let packet = self.packets.packets.get((near.slot / 4) as usize);
                 let lane = (near.slot % 4) as usize;
                 let t = match packet {
