@@ -224,7 +224,8 @@ impl Builder<'_> {
 }
 
 /// A 4-wide node for closest-point queries: the bounds of up to four children side by side
-/// (structure of arrays, 192 bytes), so one node visit tests four children at once. Each child
+/// (structure of arrays, 192 bytes = three cache lines), so one node visit tests four children
+/// at once. Each child
 /// has a box and a slab (unit axis `normal`, every point of its triangles has
 /// `normal · x ∈ [low, high]`); the larger of the two distances is the lower bound used to
 /// prune. Slabs are much tighter than boxes for flat, tilted surface patches.
@@ -236,11 +237,16 @@ pub(crate) struct Node4 {
     pub normal: [F4; 3],
     pub low: F4,
     pub high: F4,
-    /// Inner child: index into the 4-wide node array; leaf child: its first [`TriPacket`].
-    pub child: [u32; 4],
-    /// Packet count of a leaf child, 0 for an inner child.
-    pub count: [u32; 4],
+    /// Inner child: its index in the 4-wide node array (top bit clear). Leaf child: top bit
+    /// set, then its first [`TriPacket`] and, in the two low bits, its packet count minus one.
+    child: [u32; 4],
 }
+
+/// Marks a leaf child in [`Node4::child`].
+const LEAF_BIT: u32 = 1 << 31;
+// A leaf's packet count minus one must fit in two bits.
+const _: () = assert!(LEAF_SIZE <= 16);
+const _: () = assert!(std::mem::size_of::<Node4>() == 192);
 
 impl Node4 {
     const EMPTY: Node4 = Node4 {
@@ -250,8 +256,19 @@ impl Node4 {
         low: F4([f32::NEG_INFINITY; 4]),
         high: F4([f32::INFINITY; 4]),
         child: [0; 4],
-        count: [0; 4],
     };
+
+    /// Child `lane` as `(4-wide node, 0)` for an inner child or `(first packet, packet count)`
+    /// for a leaf.
+    #[inline(always)]
+    pub fn entry(&self, lane: usize) -> (u32, u32) {
+        let c = self.child[lane];
+        if c & LEAF_BIT == 0 {
+            (c, 0)
+        } else {
+            ((c & !LEAF_BIT) >> 2, (c & 3) + 1)
+        }
+    }
 
     /// Squared lower bounds on the distance from `p` (splatted) to the four children's
     /// triangles (infinite for empty lanes).
@@ -348,10 +365,11 @@ pub(crate) fn collapse(
         wide.low.0[lane] = low;
         wide.high.0[lane] = high;
         if b.count > 0 {
-            (wide.child[lane], wide.count[lane]) = packets.add_leaf(tris, b.index, b.count);
+            let (first, count) = packets.add_leaf(tris, b.index, b.count);
+            assert!(first < LEAF_BIT >> 2, "too many triangle packets");
+            wide.child[lane] = LEAF_BIT | (first << 2) | (count - 1);
         } else {
             wide.child[lane] = collapse(bin, k, tris, out, packets);
-            wide.count[lane] = 0;
         }
     }
     out[me] = wide;

@@ -560,9 +560,10 @@ impl MeshSdf {
                 if ds[lane] < best.d2 {
                     if sp == CAP {
                         // Pathologically deep tree: search this child recursively.
-                        self.closest_from((n.child[lane], n.count[lane]), ds[lane], p, best);
+                        self.closest_from(n.entry(lane), ds[lane], p, best);
                     } else {
-                        stack[sp] = (ds[lane], n.child[lane], n.count[lane]);
+                        let (index, count) = n.entry(lane);
+                        stack[sp] = (ds[lane], index, count);
                         sp += 1;
                     }
                 }
