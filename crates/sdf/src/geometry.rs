@@ -1,5 +1,5 @@
-//! Small geometric kernels shared by the fields: closest point on a triangle, triangle solid
-//! angle and point–box distance.
+//! Small geometric kernels shared by the fields: closest point on a triangle, squared distances
+//! to four triangles at once ([`TriPacket`]), triangle solid angle and point–box distance.
 
 use nalgebra::Vector3;
 
@@ -90,9 +90,9 @@ pub(crate) fn closest_on_triangle(p: V3, a: V3, b: V3, c: V3) -> (V3, Feature) {
     best
 }
 
-/// Squared distance from `p` to triangle `abc`.
-#[inline(always)]
-pub(crate) fn distance2_to_triangle(p: V3, a: V3, b: V3, c: V3) -> f32 {
+/// Squared distance from `p` to triangle `abc` (the reference for [`TriPacket::distances2`]).
+#[cfg(test)]
+fn distance2_to_triangle(p: V3, a: V3, b: V3, c: V3) -> f32 {
     (closest_on_triangle(p, a, b, c).0 - p).norm_squared()
 }
 

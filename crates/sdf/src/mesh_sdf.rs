@@ -6,9 +6,7 @@ use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
 
 use crate::bvh::{self, Node, Node4, Packets};
-use crate::geometry::{
-    closest_on_triangle, distance2_to_box, distance2_to_triangle, solid_angle, Feature, F4,
-};
+use crate::geometry::{closest_on_triangle, distance2_to_box, solid_angle, Feature, F4};
 use crate::{SdfError, SdfQuery, SignedDistance};
 
 type V3 = Vector3<f32>;
@@ -381,23 +379,19 @@ impl MeshSdf {
         self.search(p.coords, hint.unwrap_or(NO_TRIANGLE))
     }
 
-    /// The triangle in packet lane `slot` ([`NO_TRIANGLE`] for an invalid slot).
-    #[inline]
-    fn slot_triangle(&self, slot: u32) -> u32 {
-        match self.packets.first_tri.get((slot / 4) as usize) {
-            Some(&first) => first + slot % 4,
-            None => NO_TRIANGLE,
-        }
-    }
-
     /// Nearest triangle, its squared distance and whether `p` is inside, starting from the
-    /// hint slot `hint_slot` ([`NO_TRIANGLE`] for none).
+    /// hint slot `hint_slot` (any value; out-of-range ones are ignored).
     fn search(&self, p: V3, hint_slot: u32) -> Hit {
-        let hint = self.slot_triangle(hint_slot);
+        // The hint's packet and the first triangle of it (all its triangles share a leaf).
+        let hint = self
+            .packets
+            .first_tri
+            .get((hint_slot / 4) as usize)
+            .map(|&first| ((hint_slot / 4) as usize, first));
         let pa = [p.x, p.y, p.z];
         if self.groups.len() == 1 {
             let g = &self.groups[0];
-            let mut best = self.seed(g, p, hint, hint_slot);
+            let mut best = self.seed(g, p, hint);
             self.closest_in(g, p, &mut best);
             let inside = g.contains(&pa) && self.inside_group(g, p, &best);
             return Hit {
@@ -414,7 +408,7 @@ impl MeshSdf {
             if !g.contains(&pa) {
                 continue;
             }
-            let mut near = self.seed(g, p, hint, hint_slot);
+            let mut near = self.seed(g, p, hint);
             self.closest_in(g, p, &mut near);
             if self.inside_group(g, p, &near) && deepest.is_none_or(|dd| near.d2 > dd.d2) {
                 deepest = Some(near);
@@ -436,8 +430,8 @@ impl MeshSdf {
             if g.contains(&pa) || distance2_to_box(&pa, &g.min, &g.max) >= best.d2 {
                 continue;
             }
-            if best.tri == NO_TRIANGLE && g.holds(hint) {
-                best = self.seed(g, p, hint, hint_slot);
+            if best.tri == NO_TRIANGLE && hint.is_some_and(|(_, first)| g.holds(first)) {
+                best = self.seed(g, p, hint);
             }
             self.closest_in(g, p, &mut best);
         }
@@ -449,16 +443,24 @@ impl MeshSdf {
         }
     }
 
-    /// The starting bound of a search in `g`: the hint triangle (in packet lane `slot`) if `g`
-    /// holds it.
+    /// The starting bound of a search in `g`: the nearest triangle of the hint's packet
+    /// `(packet, its first triangle)` if that packet belongs to `g`.
     #[inline]
-    fn seed(&self, g: &Group, p: V3, hint: u32, slot: u32) -> Nearest {
-        if g.holds(hint) {
-            let t = self.packets.packets[(slot / 4) as usize].triangle((slot % 4) as usize);
+    fn seed(&self, g: &Group, p: V3, hint: Option<(usize, u32)>) -> Nearest {
+        if let Some((packet, first)) = hint.filter(|&(_, first)| g.holds(first)) {
+            // The whole packet of the hint (its leaf neighbours) in one go; padding lanes are
+            // infinitely far, so the nearest lane is a real triangle.
+            let ds = self.packets.packets[packet].distances2(&[
+                F4::splat(p.x),
+                F4::splat(p.y),
+                F4::splat(p.z),
+            ]);
+            let d2 = ds.min_lane();
+            let lane = ds.0.iter().position(|&d| d == d2).unwrap_or(0) as u32;
             Nearest {
-                d2: distance2_to_triangle(p, t[0], t[1], t[2]),
-                tri: hint,
-                slot,
+                d2,
+                tri: first + lane,
+                slot: 4 * packet as u32 + lane,
             }
         } else {
             Nearest::NONE
@@ -810,5 +812,67 @@ fn split_part(part: &PartInput, solids: &mut Vec<SolidInput>, soup: &mut Vec<[V3
             ]));
         }
         solids.push(solid);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+
+    /// Two overlapping boxes (two closed solids) and an open square (winding-number soup).
+    fn several_solids() -> MeshSdf {
+        let (mut positions, mut triangles) = crate::shapes::cuboid(V3::new(0.3, 0.2, 0.25));
+        let (more, tris) = crate::shapes::cuboid(V3::new(0.1, 0.4, 0.1));
+        let base = positions.len() as u32;
+        positions.extend(more.iter().map(|p| [p[0] + 0.25, p[1] + 0.1, p[2]]));
+        triangles.extend(tris.iter().map(|t| t.map(|i| i + base)));
+        let base = positions.len() as u32;
+        positions.extend([
+            [-0.5, -0.5, 0.5],
+            [0.5, -0.5, 0.5],
+            [0.5, 0.5, 0.5],
+            [-0.5, 0.5, 0.5],
+        ]);
+        triangles.extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]);
+        MeshSdf::new(&positions, &triangles).unwrap()
+    }
+
+    #[test]
+    fn hinted_searches_agree_with_unhinted_ones() {
+        let (positions, triangles) = crate::shapes::bumpy_sphere(0.5, 0.15, 40, 21);
+        let bumpy = MeshSdf::new(&positions, &triangles).unwrap();
+        let several = several_solids();
+        assert_eq!(several.sign_rules().len(), 3);
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+        for sdf in [&bumpy, &several] {
+            let slots = 4 * sdf.packets.packets.len() as u32;
+            for _ in 0..2000 {
+                let p = Point3::new(
+                    rng.random_range(-0.8f32..0.8),
+                    rng.random_range(-0.8f32..0.8),
+                    rng.random_range(-0.8f32..0.8),
+                );
+                let plain = sdf.search_hinted(&p, None);
+                // Any slot may serve as a hint, even padding lanes and invalid ones.
+                let hint = rng.random_range(0..slots + 8);
+                let hinted = sdf.search_hinted(&p, Some(hint));
+                // Equal up to rounding: bounds and triangle distances round differently where
+                // they coincide (axis-aligned faces), which may prune a tied triangle.
+                assert!(
+                    (plain.distance2 - hinted.distance2).abs() <= 1e-6 * plain.distance2,
+                    "at {p:?} with hint {hint}: {} vs {}",
+                    plain.distance2,
+                    hinted.distance2
+                );
+                assert_eq!(plain.inside, hinted.inside, "at {p:?} with hint {hint}");
+                // The hit's slot names its triangle, at the reported distance.
+                let (packet, lane) = ((plain.slot / 4) as usize, plain.slot % 4);
+                assert_eq!(sdf.packets.first_tri[packet] + lane, plain.tri);
+                let t = &sdf.tris[plain.tri as usize];
+                let q = closest_on_triangle(p.coords, t[0], t[1], t[2]).0;
+                assert!(((q - p.coords).norm_squared() - plain.distance2).abs() <= 1e-6);
+            }
+        }
     }
 }

@@ -166,6 +166,14 @@ fn sphere() -> MeshSdf {
     MeshSdf::new(&p, &t).unwrap()
 }
 
+fn bumpy_sphere() -> &'static MeshSdf {
+    static SDF: std::sync::OnceLock<MeshSdf> = std::sync::OnceLock::new();
+    SDF.get_or_init(|| {
+        let (p, t) = shapes::bumpy_sphere(0.5, 0.15, 40, 21);
+        MeshSdf::new(&p, &t).unwrap()
+    })
+}
+
 fn coord() -> impl Strategy<Value = f32> {
     -1.5f32..1.5
 }
@@ -196,6 +204,20 @@ proptest! {
         prop_assert!((d - analytic).abs() < 0.01, "{} vs {}", d, analytic);
         let exact = brute_distance(&positions, &triangles, &p);
         prop_assert!((d.abs() as f64 - exact).abs() < 1e-5, "{} vs brute force {}", d, exact);
+    }
+
+    #[test]
+    fn bumpy_sphere_matches_brute_force(x in -0.8f32..0.8, y in -0.8f32..0.8, z in -0.8f32..0.8) {
+        // Non-convex: exact distance and sign against brute force over every triangle.
+        let (positions, triangles) = shapes::bumpy_sphere(0.5, 0.15, 40, 21);
+        let sdf = bumpy_sphere();
+        let p = Point3::new(x, y, z);
+        let d = sdf.distance(&p);
+        let exact = brute_distance(&positions, &triangles, &p);
+        prop_assert!((d.abs() as f64 - exact).abs() < 1e-5, "{} vs brute force {}", d, exact);
+        prop_assume!(exact > 1e-4);
+        let inside = brute_winding(&positions, &triangles, &p) > 0.5;
+        prop_assert_eq!(d < 0.0, inside);
     }
 
     #[test]
