@@ -119,7 +119,11 @@ impl Hit {
 /// is minus the depth within the deepest containing solid (a lower bound on the depth in the
 /// union, exact wherever the nearest surface point is not buried inside another solid).
 ///
-/// Queries are `f32`; `MeshSdf` is `Send + Sync` and cheap to share through an `Arc`.
+/// Queries are `f32`; `MeshSdf` is `Send + Sync` and cheap to share through an `Arc`. A query
+/// searches a 4-wide BVH (box and slab bounds per child) whose leaves hold triangles packed four
+/// at a time for branch-free distance tests; queries in a box around the mesh start from the
+/// triangle a coarse seed grid (built with the field) stores for their cell, whose distance is a
+/// tight upper bound from the first step.
 #[derive(Debug, Clone)]
 pub struct MeshSdf {
     tris: Vec<[V3; 3]>,
@@ -132,6 +136,44 @@ pub struct MeshSdf {
     min: Point3<f32>,
     max: Point3<f32>,
     grad_epsilon: f32,
+    /// Starting triangles for unhinted searches.
+    seeds: SeedGrid,
+}
+
+/// Fewest triangles for which a [`SeedGrid`] is built.
+const SEED_MIN_TRIANGLES: usize = 256;
+/// Largest number of cells of a [`SeedGrid`].
+const SEED_MAX_CELLS: usize = 4096;
+
+/// A coarse grid over the mesh's bounds, padded by a quarter of the longest side, holding per
+/// cell the packet slot of the triangle nearest to the cell's centre. An unhinted query inside
+/// it starts from that triangle: its distance is a valid (and usually tight) upper bound, so the
+/// tree search prunes from the start. Empty for small meshes.
+#[derive(Debug, Clone, Default)]
+struct SeedGrid {
+    origin: [f32; 3],
+    cell: f32,
+    dims: [usize; 3],
+    slots: Vec<u32>,
+}
+
+impl SeedGrid {
+    /// The seed slot of the cell holding `p` ([`NO_TRIANGLE`] outside the grid).
+    #[inline]
+    fn slot(&self, p: &V3) -> u32 {
+        let mut index = 0;
+        let mut stride = 1;
+        for axis in 0..3 {
+            let u = (p[axis] - self.origin[axis]) / self.cell;
+            // Also false for NaN.
+            if !(u >= 0.0 && u < self.dims[axis] as f32) {
+                return NO_TRIANGLE;
+            }
+            index += (u as usize).min(self.dims[axis] - 1) * stride;
+            stride *= self.dims[axis];
+        }
+        self.slots[index]
+    }
 }
 
 struct PartInput<'a> {
@@ -264,6 +306,7 @@ impl MeshSdf {
             min,
             max,
             grad_epsilon: extent * 1e-6,
+            seeds: SeedGrid::default(),
         };
         if sdf.groups.iter().any(|g| g.rule == SignRule::WindingNumber) {
             sdf.dipoles = vec![Dipole::default(); sdf.nodes.len()];
@@ -277,7 +320,55 @@ impl MeshSdf {
                 sdf.fill_dipoles(root);
             }
         }
+        sdf.seeds = sdf.seed_grid();
         Ok(sdf)
+    }
+
+    /// Builds the [`SeedGrid`] (empty below [`SEED_MIN_TRIANGLES`] triangles), walking each x
+    /// row with the previous cell's triangle as the hint.
+    fn seed_grid(&self) -> SeedGrid {
+        let count = self.tris.len();
+        if count < SEED_MIN_TRIANGLES {
+            return SeedGrid::default();
+        }
+        let pad = 0.25 * (self.max - self.min).amax();
+        let lo = self.min.coords.add_scalar(-pad);
+        let side = (self.max - self.min).add_scalar(2.0 * pad);
+        let cells = (count / 4).min(SEED_MAX_CELLS) as f32;
+        let cell = (side.x * side.y * side.z / cells).cbrt().max(1e-6);
+        let dims = [0, 1, 2].map(|a| ((side[a] / cell).ceil() as usize).clamp(1, 64));
+        let mut slots = Vec::with_capacity(dims[0] * dims[1] * dims[2]);
+        for k in 0..dims[2] {
+            for j in 0..dims[1] {
+                let mut hint = NO_TRIANGLE;
+                for i in 0..dims[0] {
+                    let centre =
+                        lo + V3::new(i as f32 + 0.5, j as f32 + 0.5, k as f32 + 0.5) * cell;
+                    hint = self.nearest(centre, hint).slot;
+                    slots.push(hint);
+                }
+            }
+        }
+        SeedGrid {
+            origin: [lo.x, lo.y, lo.z],
+            cell,
+            dims,
+            slots,
+        }
+    }
+
+    /// The nearest triangle of any solid (unsigned), starting from the hint slot.
+    fn nearest(&self, p: V3, hint_slot: u32) -> Nearest {
+        let hint = self.hint_packet(hint_slot);
+        let mut best = Nearest::NONE;
+        for g in &self.groups {
+            let seed = self.seed(g, p, hint);
+            if seed.d2 < best.d2 {
+                best = seed;
+            }
+            self.closest_in(g, p, &mut best);
+        }
+        best
     }
 
     /// Computes dipoles for the subtree at `node`; returns its triangle range.
@@ -380,14 +471,15 @@ impl MeshSdf {
     }
 
     /// Nearest triangle, its squared distance and whether `p` is inside, starting from the
-    /// hint slot `hint_slot` (any value; out-of-range ones are ignored).
+    /// hint slot `hint_slot` (any value; out-of-range ones are ignored) or, without one
+    /// ([`NO_TRIANGLE`]), from the seed grid.
     fn search(&self, p: V3, hint_slot: u32) -> Hit {
-        // The hint's packet and the first triangle of it (all its triangles share a leaf).
-        let hint = self
-            .packets
-            .first_tri
-            .get((hint_slot / 4) as usize)
-            .map(|&first| ((hint_slot / 4) as usize, first));
+        let hint_slot = if hint_slot == NO_TRIANGLE {
+            self.seeds.slot(&p)
+        } else {
+            hint_slot
+        };
+        let hint = self.hint_packet(hint_slot);
         let pa = [p.x, p.y, p.z];
         if self.groups.len() == 1 {
             let g = &self.groups[0];
@@ -441,6 +533,17 @@ impl MeshSdf {
             distance2: best.d2,
             inside: false,
         }
+    }
+
+    /// The hint's packet and its first triangle (all its triangles share a leaf), if the slot
+    /// names a packet.
+    #[inline]
+    fn hint_packet(&self, slot: u32) -> Option<(usize, u32)> {
+        let packet = (slot / 4) as usize;
+        self.packets
+            .first_tri
+            .get(packet)
+            .map(|&first| (packet, first))
     }
 
     /// The starting bound of a search in `g`: the nearest triangle of the hint's packet
@@ -836,6 +939,39 @@ mod tests {
         ]);
         triangles.extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]);
         MeshSdf::new(&positions, &triangles).unwrap()
+    }
+
+    #[test]
+    fn seed_grid_holds_the_nearest_triangle_of_each_cell_centre() {
+        let (positions, triangles) = crate::shapes::bumpy_sphere(0.5, 0.15, 40, 21);
+        let sdf = MeshSdf::new(&positions, &triangles).unwrap();
+        let seeds = &sdf.seeds;
+        assert_eq!(seeds.slots.len(), seeds.dims.iter().product::<usize>());
+        assert!(seeds.slots.len() >= 64, "{:?}", seeds.dims);
+        for (index, &slot) in seeds.slots.iter().enumerate() {
+            let (i, j, k) = (
+                index % seeds.dims[0],
+                index / seeds.dims[0] % seeds.dims[1],
+                index / (seeds.dims[0] * seeds.dims[1]),
+            );
+            let centre = V3::from(seeds.origin)
+                + V3::new(i as f32 + 0.5, j as f32 + 0.5, k as f32 + 0.5) * seeds.cell;
+            assert_eq!(seeds.slot(&centre), slot);
+            let (packet, lane) = ((slot / 4) as usize, slot % 4);
+            let t = &sdf.tris[(sdf.packets.first_tri[packet] + lane) as usize];
+            let seeded = (closest_on_triangle(centre, t[0], t[1], t[2]).0 - centre).norm_squared();
+            let exact = sdf.search_hinted(&Point3::from(centre), None).distance2;
+            assert!(
+                (seeded - exact).abs() <= 1e-6 * exact + 1e-9,
+                "{seeded} vs {exact}"
+            );
+        }
+        // Outside the grid and for NaN there is no seed.
+        assert_eq!(seeds.slot(&V3::new(10.0, 0.0, 0.0)), NO_TRIANGLE);
+        assert_eq!(seeds.slot(&V3::new(f32::NAN, 0.0, 0.0)), NO_TRIANGLE);
+        // Small meshes have none.
+        let (p, t) = crate::shapes::cuboid(V3::new(0.5, 0.5, 0.5));
+        assert!(MeshSdf::new(&p, &t).unwrap().seeds.slots.is_empty());
     }
 
     #[test]
