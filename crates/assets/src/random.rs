@@ -13,6 +13,20 @@ pub(crate) fn uniform(rng: &mut ChaCha8Rng, lo: f32, hi: f32) -> f32 {
     }
 }
 
+/// Three uniform draws in order, from the ranges `x`, `y` and `z`: an asset's width, height and
+/// depth.
+pub(crate) fn uniform3(
+    rng: &mut ChaCha8Rng,
+    x: [f32; 2],
+    y: [f32; 2],
+    z: [f32; 2],
+) -> (f32, f32, f32) {
+    let x = uniform(rng, x[0], x[1]);
+    let y = uniform(rng, y[0], y[1]);
+    let z = uniform(rng, z[0], z[1]);
+    (x, y, z)
+}
+
 /// One element of a non-empty slice, chosen by the generator.
 pub(crate) fn pick<'a, T>(rng: &mut ChaCha8Rng, items: &'a [T]) -> &'a T {
     &items[rng.random_range(0..items.len())]

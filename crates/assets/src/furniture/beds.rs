@@ -5,7 +5,7 @@ use std::f32::consts::TAU;
 use rand_chacha::ChaCha8Rng;
 
 use super::carcass::CORNERS;
-use super::{mat, SCALE};
+use super::{mat, mat_either, SCALE};
 use crate::primitives::{
     beam, box_yaw, cylinder, ellipsoid, fixed_material, rect_surface, AssetBuilder, Palette,
 };
@@ -16,24 +16,8 @@ use crate::{Asset, Placement, SurfaceKind};
 /// legs, mattress top 0.45–0.62, pillows, headboard, optional footboard.
 pub(super) fn bed(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let frame = mat(
-        &mut b,
-        if coin(rng, 0.6) {
-            Palette::Wood
-        } else {
-            Palette::Fabric
-        },
-        rng,
-    );
-    let sheet = mat(
-        &mut b,
-        if coin(rng, 0.5) {
-            Palette::Paper
-        } else {
-            Palette::Fabric
-        },
-        rng,
-    );
+    let frame = mat_either(&mut b, 0.6, Palette::Wood, Palette::Fabric, rng);
+    let sheet = mat_either(&mut b, 0.5, Palette::Paper, Palette::Fabric, rng);
     let pillow = b.material(fixed_material("pillow_white", [0xF2, 0xF0, 0xEA], 0.9, 0.0));
     let sizes = [0.9f32, 1.2, 1.4, 1.6, 1.8];
     let mattress_w = sizes[int(rng, 0, sizes.len() - 1)];
@@ -260,15 +244,7 @@ pub(super) fn iv_stand(rng: &mut ChaCha8Rng) -> Asset {
 /// framed fabric panels folded in a zig-zag on small feet.
 pub(super) fn privacy_screen(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let frame = mat(
-        &mut b,
-        if coin(rng, 0.5) {
-            Palette::Metal
-        } else {
-            Palette::Wood
-        },
-        rng,
-    );
+    let frame = mat_either(&mut b, 0.5, Palette::Metal, Palette::Wood, rng);
     let cloth = mat(&mut b, Palette::Fabric, rng);
     let panels = int(rng, 3, 4);
     let pw = uniform(rng, 0.45, 0.55);

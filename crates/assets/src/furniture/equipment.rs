@@ -6,12 +6,12 @@ use std::f32::consts::{PI, TAU};
 use rand_chacha::ChaCha8Rng;
 
 use super::carcass::{self, Carcass, CarcassMaterials, Feet, Front, CORNERS};
-use super::{mat, SCALE};
+use super::{mat, mat_either, SCALE};
 use crate::primitives::{
     beam, cylinder, disc_surface, ellipsoid, fixed_material, frustum, hexahedron, prism_y,
     rect_surface, rod, sphere, strut, AssetBuilder, Palette,
 };
-use crate::random::{coin, int, uniform};
+use crate::random::{coin, int, uniform, uniform3};
 use crate::{Asset, Placement, SurfaceKind};
 
 fn finish(b: AssetBuilder) -> Asset {
@@ -30,11 +30,7 @@ pub(super) fn treadmill(rng: &mut ChaCha8Rng) -> Asset {
         0.3,
         0.0,
     ));
-    let (w, h, l) = (
-        uniform(rng, 0.75, 0.92),
-        uniform(rng, 1.3, 1.5),
-        uniform(rng, 1.7, 2.0),
-    );
+    let (w, h, l) = uniform3(rng, [0.75, 0.92], [1.3, 1.5], [1.7, 2.0]);
     let (hw, hl) = (0.5 * w, 0.5 * l);
     let deck_h = uniform(rng, 0.18, 0.24);
     b.cuboid(
@@ -96,11 +92,7 @@ pub(super) fn exercise_bike(rng: &mut ChaCha8Rng) -> Asset {
     let frame = mat(&mut b, Palette::CoatedMetal, rng);
     let dark = mat(&mut b, Palette::Rubber, rng);
     let saddle = mat(&mut b, Palette::Leather, rng);
-    let (w, h, l) = (
-        uniform(rng, 0.5, 0.65),
-        uniform(rng, 1.1, 1.35),
-        uniform(rng, 1.0, 1.3),
-    );
+    let (w, h, l) = uniform3(rng, [0.5, 0.65], [1.1, 1.35], [1.0, 1.3]);
     let (hw, hl) = (0.5 * w, 0.5 * l);
     for (i, z) in [-hl + 0.04, hl - 0.04].into_iter().enumerate() {
         b.part(rod(
@@ -261,11 +253,7 @@ pub(super) fn squat_rack(rng: &mut ChaCha8Rng) -> Asset {
     let frame = mat(&mut b, Palette::CoatedMetal, rng);
     let bar = mat(&mut b, Palette::Metal, rng);
     let plate = mat(&mut b, Palette::Rubber, rng);
-    let (w, h, d) = (
-        uniform(rng, 1.2, 1.4),
-        uniform(rng, 2.1, 2.4),
-        uniform(rng, 1.0, 1.3),
-    );
+    let (w, h, d) = uniform3(rng, [1.2, 1.4], [2.1, 2.4], [1.0, 1.3]);
     let (hw, hd) = (0.5 * w, 0.5 * d);
     let post = 0.075;
     for (i, (sx, sz)) in CORNERS.iter().enumerate() {
@@ -508,11 +496,7 @@ pub(super) fn upright_piano(rng: &mut ChaCha8Rng) -> Asset {
         _ => fixed_material("piano_white", [0xF2, 0xF2, 0xF0], 0.12, 0.0),
     });
     let brass = b.material(fixed_material("brass", [0xC8, 0xA0, 0x50], 0.3, 1.0));
-    let (w, h, d) = (
-        uniform(rng, 1.45, 1.55),
-        uniform(rng, 1.1, 1.32),
-        uniform(rng, 0.55, 0.65),
-    );
+    let (w, h, d) = uniform3(rng, [1.45, 1.55], [1.1, 1.32], [0.55, 0.65]);
     let (hw, hd) = (0.5 * w, 0.5 * d);
     let body_d = uniform(rng, 0.3, 0.36);
     let z_back = -hd;
@@ -666,15 +650,7 @@ pub(super) fn easel(rng: &mut ChaCha8Rng) -> Asset {
 /// segments, four legs, a body, neck and head.
 pub(super) fn rocking_horse(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let wood = mat(
-        &mut b,
-        if coin(rng, 0.5) {
-            Palette::Wood
-        } else {
-            Palette::PaintedWood
-        },
-        rng,
-    );
+    let wood = mat_either(&mut b, 0.5, Palette::Wood, Palette::PaintedWood, rng);
     let saddle = mat(&mut b, Palette::BrightPlastic, rng);
     let l = uniform(rng, 0.85, 1.15);
     let hl = 0.5 * l;
@@ -747,15 +723,7 @@ pub(super) fn rocking_horse(rng: &mut ChaCha8Rng) -> Asset {
 /// a closed door, a cooktop with four burners and control knobs.
 pub(super) fn stove(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let body = mat(
-        &mut b,
-        if coin(rng, 0.6) {
-            Palette::Metal
-        } else {
-            Palette::Plastic
-        },
-        rng,
-    );
+    let body = mat_either(&mut b, 0.6, Palette::Metal, Palette::Plastic, rng);
     let dark = b.material(fixed_material(
         "cooktop_black",
         [0x16, 0x16, 0x18],
@@ -834,24 +802,8 @@ pub(super) fn stove(rng: &mut ChaCha8Rng) -> Asset {
 /// counter (four slabs around the hole), a tap, and an open cabinet bay below.
 pub(super) fn sink(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let body = mat(
-        &mut b,
-        if coin(rng, 0.5) {
-            Palette::Wood
-        } else {
-            Palette::PaintedWood
-        },
-        rng,
-    );
-    let top = mat(
-        &mut b,
-        if coin(rng, 0.5) {
-            Palette::Stone
-        } else {
-            Palette::Ceramic
-        },
-        rng,
-    );
+    let body = mat_either(&mut b, 0.5, Palette::Wood, Palette::PaintedWood, rng);
+    let top = mat_either(&mut b, 0.5, Palette::Stone, Palette::Ceramic, rng);
     let basin_m = b.material(fixed_material("basin_white", [0xF4, 0xF4, 0xF2], 0.15, 0.0));
     let chrome = mat(&mut b, Palette::Metal, rng);
     let (w, d) = (uniform(rng, 0.5, 1.0), uniform(rng, 0.45, 0.6));
@@ -984,15 +936,7 @@ pub(super) fn sink(rng: &mut ChaCha8Rng) -> Asset {
 /// flat steps, rear legs and a top platform.
 pub(super) fn ladder(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let metal = mat(
-        &mut b,
-        if coin(rng, 0.6) {
-            Palette::Metal
-        } else {
-            Palette::Wood
-        },
-        rng,
-    );
+    let metal = mat_either(&mut b, 0.6, Palette::Metal, Palette::Wood, rng);
     let cap = mat(&mut b, Palette::BrightPlastic, rng);
     let h = uniform(rng, 0.9, 1.9);
     let w = uniform(rng, 0.45, 0.55);
@@ -1078,15 +1022,7 @@ pub(super) fn tire(rng: &mut ChaCha8Rng) -> Asset {
 /// hooks around the top.
 pub(super) fn coat_rack(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let wood = mat(
-        &mut b,
-        if coin(rng, 0.6) {
-            Palette::Wood
-        } else {
-            Palette::CoatedMetal
-        },
-        rng,
-    );
+    let wood = mat_either(&mut b, 0.6, Palette::Wood, Palette::CoatedMetal, rng);
     let h = uniform(rng, 1.7, 1.95);
     let r = uniform(rng, 0.2, 0.3);
     for i in 0..4 {
@@ -1119,15 +1055,7 @@ pub(super) fn coat_rack(rng: &mut ChaCha8Rng) -> Asset {
 /// a column with a cap; the top carries a sculpture or vase.
 pub(super) fn pedestal(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let body = mat(
-        &mut b,
-        if coin(rng, 0.5) {
-            Palette::PaintedWood
-        } else {
-            Palette::Stone
-        },
-        rng,
-    );
+    let body = mat_either(&mut b, 0.5, Palette::PaintedWood, Palette::Stone, rng);
     let h = uniform(rng, 0.75, 1.15);
     let w = uniform(rng, 0.3, 0.6);
     let hw = 0.5 * w;
@@ -1193,24 +1121,8 @@ pub(super) fn stanchion(rng: &mut ChaCha8Rng) -> Asset {
 /// drum or cone shade.
 pub(super) fn floor_lamp(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let metal = mat(
-        &mut b,
-        if coin(rng, 0.5) {
-            Palette::Metal
-        } else {
-            Palette::CoatedMetal
-        },
-        rng,
-    );
-    let shade_m = mat(
-        &mut b,
-        if coin(rng, 0.7) {
-            Palette::Paper
-        } else {
-            Palette::Fabric
-        },
-        rng,
-    );
+    let metal = mat_either(&mut b, 0.5, Palette::Metal, Palette::CoatedMetal, rng);
+    let shade_m = mat_either(&mut b, 0.7, Palette::Paper, Palette::Fabric, rng);
     let h = uniform(rng, 1.4, 1.85);
     let base_r = uniform(rng, 0.14, 0.18);
     b.part(cylinder("base", metal, [0.0, 0.0], base_r, 0.0, 0.03, 24));

@@ -31,6 +31,23 @@ fn mat(b: &mut AssetBuilder, palette: Palette, rng: &mut ChaCha8Rng) -> usize {
     b.material(m)
 }
 
+/// Draws a material from `likely` with probability `p`, otherwise from `otherwise`, and
+/// registers it with the builder.
+fn mat_either(
+    b: &mut AssetBuilder,
+    p: f64,
+    likely: Palette,
+    otherwise: Palette,
+    rng: &mut ChaCha8Rng,
+) -> usize {
+    let palette = if crate::random::coin(rng, p) {
+        likely
+    } else {
+        otherwise
+    };
+    mat(b, palette, rng)
+}
+
 macro_rules! furniture {
     ($name:literal, $placement:ident, [$($syn:literal),* $(,)?], $size:expr, $generate:path) => {
         Category {

@@ -8,12 +8,12 @@ use std::f32::consts::{PI, TAU};
 
 use rand_chacha::ChaCha8Rng;
 
-use super::{mat, SCALE};
+use super::{mat, mat_either, SCALE};
 use crate::primitives::{
     beam, box_yaw, cylinder, disc_surface, ellipsoid, frustum, hexahedron, prism_x, rect_surface,
     rod, strut, AssetBuilder, Palette,
 };
-use crate::random::{coin, int, uniform};
+use crate::random::{coin, int, uniform, uniform3};
 use crate::{Asset, Placement, SurfaceKind};
 
 /// What a chair stands on.
@@ -305,15 +305,7 @@ pub(super) fn armchair(rng: &mut ChaCha8Rng) -> Asset {
 
 fn upholstered_seat(rng: &mut ChaCha8Rng, w_lo: f32, w_hi: f32, sofa: bool) -> Asset {
     let mut b = AssetBuilder::new();
-    let cover = mat(
-        &mut b,
-        if coin(rng, 0.75) {
-            Palette::Fabric
-        } else {
-            Palette::Leather
-        },
-        rng,
-    );
+    let cover = mat_either(&mut b, 0.75, Palette::Fabric, Palette::Leather, rng);
     let feet = mat(&mut b, Palette::Wood, rng);
     let w = uniform(rng, w_lo, w_hi);
     let d = uniform(
@@ -467,24 +459,8 @@ pub(super) fn dining_chair(rng: &mut ChaCha8Rng) -> Asset {
 /// 0.42–0.52 high on a five-star caster base.
 pub(super) fn office_chair(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let frame = mat(
-        &mut b,
-        if coin(rng, 0.7) {
-            Palette::CoatedMetal
-        } else {
-            Palette::Metal
-        },
-        rng,
-    );
-    let seat = mat(
-        &mut b,
-        if coin(rng, 0.6) {
-            Palette::Fabric
-        } else {
-            Palette::Leather
-        },
-        rng,
-    );
+    let frame = mat_either(&mut b, 0.7, Palette::CoatedMetal, Palette::Metal, rng);
+    let seat = mat_either(&mut b, 0.6, Palette::Fabric, Palette::Leather, rng);
     let radius = uniform(rng, 0.29, 0.35);
     let c = Chair {
         width: uniform(rng, 0.46, 0.54),
@@ -517,27 +493,11 @@ fn round_stool(
     base_star: bool,
 ) -> Asset {
     let mut b = AssetBuilder::new();
-    let frame = mat(
-        &mut b,
-        if coin(rng, 0.5) {
-            Palette::Wood
-        } else {
-            Palette::CoatedMetal
-        },
-        rng,
-    );
+    let frame = mat_either(&mut b, 0.5, Palette::Wood, Palette::CoatedMetal, rng);
     let seat = if coin(rng, 0.5) {
         frame
     } else {
-        mat(
-            &mut b,
-            if coin(rng, 0.5) {
-                Palette::Leather
-            } else {
-                Palette::Plastic
-            },
-            rng,
-        )
+        mat_either(&mut b, 0.5, Palette::Leather, Palette::Plastic, rng)
     };
     let r = uniform(rng, 0.15, 0.2);
     let seat_height = uniform(rng, seat_lo, seat_hi);
@@ -646,25 +606,13 @@ pub(super) fn bench(rng: &mut ChaCha8Rng) -> Asset {
 /// Piano bench: width 0.75–0.95, height 0.48–0.52, depth 0.33–0.4; a lidded box seat on legs.
 pub(super) fn piano_bench(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let wood = mat(
-        &mut b,
-        if coin(rng, 0.6) {
-            Palette::PaintedWood
-        } else {
-            Palette::Wood
-        },
-        rng,
-    );
+    let wood = mat_either(&mut b, 0.6, Palette::PaintedWood, Palette::Wood, rng);
     let pad = if coin(rng, 0.5) {
         mat(&mut b, Palette::Leather, rng)
     } else {
         wood
     };
-    let (w, d, h) = (
-        uniform(rng, 0.75, 0.95),
-        uniform(rng, 0.33, 0.4),
-        uniform(rng, 0.48, 0.52),
-    );
+    let (w, d, h) = uniform3(rng, [0.75, 0.95], [0.33, 0.4], [0.48, 0.52]);
     let box_h = uniform(rng, 0.08, 0.12);
     let c = Chair {
         width: w,
@@ -709,13 +657,11 @@ pub(super) fn piano_bench(rng: &mut ChaCha8Rng) -> Asset {
 /// plastic or painted wood.
 pub(super) fn kids_chair(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let body = mat(
+    let body = mat_either(
         &mut b,
-        if coin(rng, 0.7) {
-            Palette::BrightPlastic
-        } else {
-            Palette::PaintedWood
-        },
+        0.7,
+        Palette::BrightPlastic,
+        Palette::PaintedWood,
         rng,
     );
     let c = Chair {
@@ -747,15 +693,7 @@ pub(super) fn kids_chair(rng: &mut ChaCha8Rng) -> Asset {
 /// Bean bag: width 0.7–1.0, height 0.6–0.9, depth 0.7–1.0; a squashed sack with a raised back.
 pub(super) fn bean_bag(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let cover = mat(
-        &mut b,
-        if coin(rng, 0.6) {
-            Palette::Fabric
-        } else {
-            Palette::BrightPlastic
-        },
-        rng,
-    );
+    let cover = mat_either(&mut b, 0.6, Palette::Fabric, Palette::BrightPlastic, rng);
     let (w, d) = (uniform(rng, 0.7, 1.0), uniform(rng, 0.7, 1.0));
     let h = uniform(rng, 0.6, 0.9);
     let base_h = 0.5 * h;
@@ -802,15 +740,7 @@ pub(super) fn bean_bag(rng: &mut ChaCha8Rng) -> Asset {
 /// short feet.
 pub(super) fn ottoman(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let cover = mat(
-        &mut b,
-        if coin(rng, 0.6) {
-            Palette::Fabric
-        } else {
-            Palette::Leather
-        },
-        rng,
-    );
+    let cover = mat_either(&mut b, 0.6, Palette::Fabric, Palette::Leather, rng);
     let feet = mat(&mut b, Palette::Wood, rng);
     let h = uniform(rng, 0.38, 0.46);
     let foot = uniform(rng, 0.03, 0.07);
@@ -878,15 +808,7 @@ pub(super) fn ottoman(rng: &mut ChaCha8Rng) -> Asset {
 pub(super) fn camping_chair(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let frame = mat(&mut b, Palette::CoatedMetal, rng);
-    let cloth = mat(
-        &mut b,
-        if coin(rng, 0.5) {
-            Palette::Fabric
-        } else {
-            Palette::BrightPlastic
-        },
-        rng,
-    );
+    let cloth = mat_either(&mut b, 0.5, Palette::Fabric, Palette::BrightPlastic, rng);
     let (w, d) = (uniform(rng, 0.5, 0.62), uniform(rng, 0.5, 0.58));
     let (hw, hd) = (0.5 * w, 0.5 * d);
     let seat_h = uniform(rng, 0.4, 0.46);
@@ -998,25 +920,9 @@ pub(super) fn log_bench(rng: &mut ChaCha8Rng) -> Asset {
 /// sling seat 0.46–0.52 high, armrests and foot plates.
 pub(super) fn wheelchair(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let frame = mat(
-        &mut b,
-        if coin(rng, 0.5) {
-            Palette::Metal
-        } else {
-            Palette::CoatedMetal
-        },
-        rng,
-    );
+    let frame = mat_either(&mut b, 0.5, Palette::Metal, Palette::CoatedMetal, rng);
     let tyre = mat(&mut b, Palette::Rubber, rng);
-    let cloth = mat(
-        &mut b,
-        if coin(rng, 0.5) {
-            Palette::Leather
-        } else {
-            Palette::Fabric
-        },
-        rng,
-    );
+    let cloth = mat_either(&mut b, 0.5, Palette::Leather, Palette::Fabric, rng);
     let w = uniform(rng, 0.6, 0.7);
     let hw = 0.5 * w;
     let seat_h = uniform(rng, 0.46, 0.52);

@@ -5,11 +5,11 @@
 use rand_chacha::ChaCha8Rng;
 
 use super::carcass::{self, Carcass, CarcassMaterials, Feet, Front, CORNERS};
-use super::{mat, SCALE};
+use super::{mat, mat_either, SCALE};
 use crate::primitives::{
     beam, fixed_material, hexahedron, rect_surface, rod, AssetBuilder, Palette,
 };
-use crate::random::{coin, int, uniform};
+use crate::random::{coin, int, uniform, uniform3};
 use crate::{Asset, Placement, SurfaceKind};
 
 /// Picks shelf fractions for `rows` rows (at least one row) of a carcass with compartments
@@ -80,24 +80,8 @@ pub(super) fn bookshelf(rng: &mut ChaCha8Rng) -> Asset {
 /// with 3–5 shelves, optional back.
 pub(super) fn display_shelf(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let frame = mat(
-        &mut b,
-        if coin(rng, 0.5) {
-            Palette::Metal
-        } else {
-            Palette::Wood
-        },
-        rng,
-    );
-    let shelf = mat(
-        &mut b,
-        if coin(rng, 0.5) {
-            Palette::Wood
-        } else {
-            Palette::PaintedWood
-        },
-        rng,
-    );
+    let frame = mat_either(&mut b, 0.5, Palette::Metal, Palette::Wood, rng);
+    let shelf = mat_either(&mut b, 0.5, Palette::Wood, Palette::PaintedWood, rng);
     let m = CarcassMaterials {
         body: shelf,
         shelf,
@@ -417,15 +401,7 @@ pub(super) fn tv_stand(rng: &mut ChaCha8Rng) -> Asset {
 /// sides, front and top around 1–4 glass-shelved bays.
 pub(super) fn display_case(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let body = mat(
-        &mut b,
-        if coin(rng, 0.5) {
-            Palette::Wood
-        } else {
-            Palette::PaintedWood
-        },
-        rng,
-    );
+    let body = mat_either(&mut b, 0.5, Palette::Wood, Palette::PaintedWood, rng);
     let glass = mat(&mut b, Palette::Glass, rng);
     let handle = mat(&mut b, Palette::Metal, rng);
     let m = CarcassMaterials {
@@ -540,20 +516,14 @@ fn open_lid(b: &mut AssetBuilder, material: usize, w: f32, d: f32, top: f32, t: 
 /// on top with the lid swung back.
 pub(super) fn toy_box(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let body = mat(
+    let body = mat_either(
         &mut b,
-        if coin(rng, 0.5) {
-            Palette::BrightPlastic
-        } else {
-            Palette::PaintedWood
-        },
+        0.5,
+        Palette::BrightPlastic,
+        Palette::PaintedWood,
         rng,
     );
-    let (w, h, d) = (
-        uniform(rng, 0.6, 1.0),
-        uniform(rng, 0.4, 0.55),
-        uniform(rng, 0.35, 0.5),
-    );
+    let (w, h, d) = uniform3(rng, [0.6, 1.0], [0.4, 0.55], [0.35, 0.5]);
     let wall = uniform(rng, 0.015, 0.025);
     open_box(&mut b, body, w, h, d, wall, 0.0, "inside");
     open_lid(&mut b, body, w, d, h, wall, uniform(rng, 0.1, 0.3));
@@ -565,11 +535,7 @@ pub(super) fn toy_box(rng: &mut ChaCha8Rng) -> Asset {
 pub(super) fn chest_freezer(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let body = mat(&mut b, Palette::Plastic, rng);
-    let (w, h, d) = (
-        uniform(rng, 0.9, 1.6),
-        uniform(rng, 0.84, 0.9),
-        uniform(rng, 0.6, 0.75),
-    );
+    let (w, h, d) = uniform3(rng, [0.9, 1.6], [0.84, 0.9], [0.6, 0.75]);
     let wall = uniform(rng, 0.06, 0.08);
     open_box(&mut b, body, w, h, d, wall, 0.0, "inside");
     open_lid(&mut b, body, w, d, h, 0.06, uniform(rng, 0.05, 0.2));
@@ -582,20 +548,8 @@ pub(super) fn pallet_rack(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let upright = b.material(fixed_material("rack_blue", [0x24, 0x50, 0x9C], 0.45, 0.5));
     let beam_m = b.material(fixed_material("rack_orange", [0xE0, 0x6C, 0x1C], 0.45, 0.5));
-    let deck = mat(
-        &mut b,
-        if coin(rng, 0.5) {
-            Palette::Wood
-        } else {
-            Palette::Metal
-        },
-        rng,
-    );
-    let (w, h, d) = (
-        uniform(rng, 1.8, 2.8),
-        uniform(rng, 2.0, 3.4),
-        uniform(rng, 0.9, 1.1),
-    );
+    let deck = mat_either(&mut b, 0.5, Palette::Wood, Palette::Metal, rng);
+    let (w, h, d) = uniform3(rng, [1.8, 2.8], [2.0, 3.4], [0.9, 1.1]);
     let (hw, hd) = (0.5 * w, 0.5 * d);
     let post = 0.08;
     for (i, (sx, sz)) in CORNERS.iter().enumerate() {
@@ -678,15 +632,7 @@ pub(super) fn pallet_rack(rng: &mut ChaCha8Rng) -> Asset {
 /// 4–6 shelves, open all round.
 pub(super) fn shelving_unit(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let metal = mat(
-        &mut b,
-        if coin(rng, 0.6) {
-            Palette::Metal
-        } else {
-            Palette::CoatedMetal
-        },
-        rng,
-    );
+    let metal = mat_either(&mut b, 0.6, Palette::Metal, Palette::CoatedMetal, rng);
     let m = CarcassMaterials::uniform(metal, metal);
     let mut c = Carcass {
         width: uniform(rng, 0.9, 1.2),
@@ -715,15 +661,7 @@ pub(super) fn shelving_unit(rng: &mut ChaCha8Rng) -> Asset {
 /// casters, a work top and a push handle.
 pub(super) fn medical_cart(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let body = mat(
-        &mut b,
-        if coin(rng, 0.6) {
-            Palette::Plastic
-        } else {
-            Palette::CoatedMetal
-        },
-        rng,
-    );
+    let body = mat_either(&mut b, 0.6, Palette::Plastic, Palette::CoatedMetal, rng);
     let drawer = mat(&mut b, Palette::BrightPlastic, rng);
     let handle = mat(&mut b, Palette::Metal, rng);
     let m = CarcassMaterials {
@@ -778,15 +716,7 @@ pub(super) fn medical_cart(rng: &mut ChaCha8Rng) -> Asset {
 /// with 3–5 shelves above a closed freezer drawer, door left open.
 pub(super) fn refrigerator(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let body = mat(
-        &mut b,
-        if coin(rng, 0.5) {
-            Palette::Metal
-        } else {
-            Palette::Plastic
-        },
-        rng,
-    );
+    let body = mat_either(&mut b, 0.5, Palette::Metal, Palette::Plastic, rng);
     let inside = b.material(fixed_material("fridge_liner", [0xF2, 0xF2, 0xF0], 0.3, 0.0));
     let glass = mat(&mut b, Palette::Glass, rng);
     let handle = mat(&mut b, Palette::Metal, rng);
@@ -834,15 +764,7 @@ pub(super) fn refrigerator(rng: &mut ChaCha8Rng) -> Asset {
 /// 4–6 wire shelves behind a glass door, a lit header panel on top.
 pub(super) fn drinks_fridge(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let body = mat(
-        &mut b,
-        if coin(rng, 0.5) {
-            Palette::CoatedMetal
-        } else {
-            Palette::Plastic
-        },
-        rng,
-    );
+    let body = mat_either(&mut b, 0.5, Palette::CoatedMetal, Palette::Plastic, rng);
     let glass = mat(&mut b, Palette::Glass, rng);
     let wire = mat(&mut b, Palette::Metal, rng);
     let header = mat(&mut b, Palette::BrightPlastic, rng);
@@ -898,11 +820,7 @@ pub(super) fn fume_hood(rng: &mut ChaCha8Rng) -> Asset {
     let top = mat(&mut b, Palette::Stone, rng);
     let glass = mat(&mut b, Palette::Glass, rng);
     let handle = mat(&mut b, Palette::Metal, rng);
-    let (w, h, d) = (
-        uniform(rng, 1.2, 1.8),
-        uniform(rng, 2.3, 2.5),
-        uniform(rng, 0.75, 0.9),
-    );
+    let (w, h, d) = uniform3(rng, [1.2, 1.8], [2.3, 2.5], [0.75, 0.9]);
     let (hw, hd) = (0.5 * w, 0.5 * d);
     let base_h = uniform(rng, 0.85, 0.9);
     let c = Carcass {
@@ -1054,11 +972,7 @@ pub(super) fn cue_rack(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let wood = mat(&mut b, Palette::Wood, rng);
     let cue = mat(&mut b, Palette::Wood, rng);
-    let (w, h, d) = (
-        uniform(rng, 0.45, 0.8),
-        uniform(rng, 1.2, 1.5),
-        uniform(rng, 0.25, 0.35),
-    );
+    let (w, h, d) = uniform3(rng, [0.45, 0.8], [1.2, 1.5], [0.25, 0.35]);
     let (hw, hd) = (0.5 * w, 0.5 * d);
     b.cuboid("base", wood, [-hw, 0.0, -hd], [hw, 0.08, hd]);
     b.cuboid("back_board", wood, [-hw, 0.0, -hd], [hw, h, -hd + 0.03]);

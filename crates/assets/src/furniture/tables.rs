@@ -8,12 +8,12 @@
 use rand_chacha::ChaCha8Rng;
 
 use super::carcass::{self, Carcass, CarcassMaterials, Feet, Front, CORNERS};
-use super::{mat, SCALE};
+use super::{mat, mat_either, SCALE};
 use crate::primitives::{
     beam, cylinder, disc_surface, fixed_material, frustum, rect_surface, rod, strut, AssetBuilder,
     Palette,
 };
-use crate::random::{coin, int, uniform};
+use crate::random::{coin, int, uniform, uniform3};
 use crate::{Asset, Placement, SurfaceKind};
 
 /// How a table top is held up.
@@ -356,21 +356,9 @@ pub(super) fn dining_table(rng: &mut ChaCha8Rng) -> Asset {
 /// pedestal and a leg panel (or two panels), modesty panel at the back.
 pub(super) fn desk(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let body = mat(
-        &mut b,
-        if coin(rng, 0.6) {
-            Palette::Wood
-        } else {
-            Palette::PaintedWood
-        },
-        rng,
-    );
+    let body = mat_either(&mut b, 0.6, Palette::Wood, Palette::PaintedWood, rng);
     let handle = mat(&mut b, Palette::Metal, rng);
-    let (w, h, d) = (
-        uniform(rng, 1.1, 1.7),
-        uniform(rng, 0.72, 0.77),
-        uniform(rng, 0.6, 0.8),
-    );
+    let (w, h, d) = uniform3(rng, [1.1, 1.7], [0.72, 0.77], [0.6, 0.8]);
     let (hw, hd) = (0.5 * w, 0.5 * d);
     let top_t = uniform(rng, 0.025, 0.04);
     let under_top = h - top_t;
@@ -469,15 +457,7 @@ pub(super) fn desk(rng: &mut ChaCha8Rng) -> Asset {
 /// rectangular.
 pub(super) fn kids_table(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let top = mat(
-        &mut b,
-        if coin(rng, 0.5) {
-            Palette::BrightPlastic
-        } else {
-            Palette::Wood
-        },
-        rng,
-    );
+    let top = mat_either(&mut b, 0.5, Palette::BrightPlastic, Palette::Wood, rng);
     let legs = mat(&mut b, Palette::BrightPlastic, rng);
     let round = coin(rng, 0.3);
     let width = if round {
@@ -564,15 +544,7 @@ pub(super) fn high_table(rng: &mut ChaCha8Rng) -> Asset {
 pub(super) fn workbench(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let top = mat(&mut b, Palette::Wood, rng);
-    let legs = mat(
-        &mut b,
-        if coin(rng, 0.5) {
-            Palette::Wood
-        } else {
-            Palette::CoatedMetal
-        },
-        rng,
-    );
+    let legs = mat_either(&mut b, 0.5, Palette::Wood, Palette::CoatedMetal, rng);
     let t = Table {
         width: uniform(rng, 1.2, 2.0),
         depth: uniform(rng, 0.6, 0.8),
@@ -611,15 +583,7 @@ pub(super) fn workbench(rng: &mut ChaCha8Rng) -> Asset {
 /// Nightstand: width 0.4–0.56, height 0.5–0.68, depth 0.35–0.45; a drawer over an open cubby.
 pub(super) fn nightstand(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let body = mat(
-        &mut b,
-        if coin(rng, 0.6) {
-            Palette::Wood
-        } else {
-            Palette::PaintedWood
-        },
-        rng,
-    );
+    let body = mat_either(&mut b, 0.6, Palette::Wood, Palette::PaintedWood, rng);
     let handle = mat(&mut b, Palette::Metal, rng);
     let drawer_on_top = uniform(rng, 0.6, 0.7);
     let c = Carcass {
@@ -755,11 +719,7 @@ pub(super) fn lab_bench(rng: &mut ChaCha8Rng) -> Asset {
     let body = b.material(fixed_material("lab_white", [0xE8, 0xE8, 0xE4], 0.45, 0.1));
     let top = mat(&mut b, Palette::Stone, rng);
     let handle = mat(&mut b, Palette::Metal, rng);
-    let (w, h, d) = (
-        uniform(rng, 1.5, 2.4),
-        uniform(rng, 0.88, 0.95),
-        uniform(rng, 0.75, 0.9),
-    );
+    let (w, h, d) = uniform3(rng, [1.5, 2.4], [0.88, 0.95], [0.75, 0.9]);
     let (hw, hd) = (0.5 * w, 0.5 * d);
     let top_t = 0.03;
     b.cuboid("top", top, [-hw, h - top_t, -hd], [hw, h, hd]);
@@ -975,29 +935,14 @@ fn counter(
     bar: bool,
 ) -> Asset {
     let mut b = AssetBuilder::new();
-    let body = mat(
-        &mut b,
-        if coin(rng, 0.5) {
-            Palette::Wood
-        } else {
-            Palette::PaintedWood
-        },
-        rng,
-    );
-    let top = mat(
-        &mut b,
-        if coin(rng, 0.6) {
-            Palette::Stone
-        } else {
-            Palette::Wood
-        },
-        rng,
-    );
+    let body = mat_either(&mut b, 0.5, Palette::Wood, Palette::PaintedWood, rng);
+    let top = mat_either(&mut b, 0.6, Palette::Stone, Palette::Wood, rng);
     let handle = mat(&mut b, Palette::Metal, rng);
-    let (w, h, d) = (
-        uniform(rng, width.0, width.1),
-        uniform(rng, height.0, height.1),
-        uniform(rng, depth.0, depth.1),
+    let (w, h, d) = uniform3(
+        rng,
+        [width.0, width.1],
+        [height.0, height.1],
+        [depth.0, depth.1],
     );
     let top_t = uniform(rng, 0.03, 0.05);
     let overhang = if bar { uniform(rng, 0.2, 0.3) } else { 0.03 };

@@ -4,7 +4,7 @@
 
 use rand_chacha::ChaCha8Rng;
 
-use super::mat;
+use super::{mat, mat_either};
 use crate::primitives::{
     cylinder, fixed_material, frustum, prism_z, rect_surface, regular_polygon, sphere,
     AssetBuilder, Palette,
@@ -39,15 +39,7 @@ fn framed_panel(
 /// Painting: width 0.3–1.5, height 0.3–1.2, depth 0.02–0.05; a framed canvas.
 pub(super) fn painting(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let frame = mat(
-        &mut b,
-        if coin(rng, 0.6) {
-            Palette::Wood
-        } else {
-            Palette::Metal
-        },
-        rng,
-    );
+    let frame = mat_either(&mut b, 0.6, Palette::Wood, Palette::Metal, rng);
     let canvas = mat(
         &mut b,
         match int(rng, 0, 3) {
@@ -108,15 +100,7 @@ pub(super) fn whiteboard(rng: &mut ChaCha8Rng) -> Asset {
 /// (lower boards are compartments under the ones above).
 pub(super) fn wall_shelf(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let wood = mat(
-        &mut b,
-        if coin(rng, 0.6) {
-            Palette::Wood
-        } else {
-            Palette::PaintedWood
-        },
-        rng,
-    );
+    let wood = mat_either(&mut b, 0.6, Palette::Wood, Palette::PaintedWood, rng);
     let bracket = mat(&mut b, Palette::CoatedMetal, rng);
     let (w, d) = (uniform(rng, 0.5, 1.2), uniform(rng, 0.15, 0.3));
     let hw = 0.5 * w;
@@ -157,15 +141,7 @@ pub(super) fn wall_shelf(rng: &mut ChaCha8Rng) -> Asset {
 /// frame.
 pub(super) fn mirror(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let frame = mat(
-        &mut b,
-        if coin(rng, 0.5) {
-            Palette::Wood
-        } else {
-            Palette::Metal
-        },
-        rng,
-    );
+    let frame = mat_either(&mut b, 0.5, Palette::Wood, Palette::Metal, rng);
     let glass = b.material(fixed_material("mirror", [0xE8, 0xEC, 0xEE], 0.02, 1.0));
     let (w, h) = (uniform(rng, 0.3, 1.0), uniform(rng, 0.4, 1.6));
     let depth = uniform(rng, 0.015, 0.04);
@@ -190,15 +166,7 @@ pub(super) fn mirror(rng: &mut ChaCha8Rng) -> Asset {
 /// a cord and a drum, cone or globe shade.
 pub(super) fn pendant_lamp(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
-    let metal = mat(
-        &mut b,
-        if coin(rng, 0.5) {
-            Palette::Metal
-        } else {
-            Palette::CoatedMetal
-        },
-        rng,
-    );
+    let metal = mat_either(&mut b, 0.5, Palette::Metal, Palette::CoatedMetal, rng);
     let shade_m = mat(
         &mut b,
         match int(rng, 0, 2) {

@@ -195,6 +195,17 @@ impl Builder {
         });
     }
 
+    /// Adds the `interior` support surface of a container open on top: the inside bottom at
+    /// `height`, free above.
+    pub(crate) fn interior(&mut self, polygon: Vec<[f32; 2]>, height: f32) {
+        self.surface("interior", SurfaceKind::Interior, polygon, height, None);
+    }
+
+    /// Adds an upward-facing support surface open above (a top, a lid, a plate's flat).
+    pub(crate) fn top(&mut self, name: &str, polygon: Vec<[f32; 2]>, height: f32) {
+        self.surface(name, SurfaceKind::Top, polygon, height, None);
+    }
+
     /// Moves everything so that the origin is the footprint centre at the lowest point, and
     /// returns the asset with its size measured from the mesh.
     pub(crate) fn finish(self, placement: Placement, scale_range: [f32; 2]) -> Asset {

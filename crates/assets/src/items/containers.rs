@@ -5,8 +5,8 @@ use rand_chacha::ChaCha8Rng;
 
 use super::builder::Builder;
 use crate::primitives::{arc, disc, rect};
-use crate::random::{color, uniform};
-use crate::{Asset, Placement, SurfaceKind};
+use crate::random::{color, uniform, uniform3};
+use crate::{Asset, Placement};
 
 const WOODS: &[[f32; 3]] = &[
     [0.55, 0.38, 0.22],
@@ -27,11 +27,7 @@ const METALS: &[[f32; 3]] = &[[0.6, 0.6, 0.62], [0.35, 0.36, 0.38], [0.75, 0.72,
 
 /// Slatted wooden crate, open on top: 0.40–0.60 × 0.26–0.36 (h) × 0.30–0.42 m.
 pub(crate) fn wooden_crate(rng: &mut ChaCha8Rng) -> Asset {
-    let (w, h, d) = (
-        uniform(rng, 0.4, 0.6),
-        uniform(rng, 0.26, 0.36),
-        uniform(rng, 0.3, 0.42),
-    );
+    let (w, h, d) = uniform3(rng, [0.4, 0.6], [0.26, 0.36], [0.3, 0.42]);
     let (board, floor) = (uniform(rng, 0.012, 0.018), 0.015);
     let mut b = Builder::new();
     let wood = b.material("crate_wood", color(rng, WOODS, 0.05), 0.8);
@@ -82,23 +78,13 @@ pub(crate) fn wooden_crate(rng: &mut ChaCha8Rng) -> Asset {
         );
     }
     let m = board + post + 0.01;
-    b.surface(
-        "interior",
-        SurfaceKind::Interior,
-        rect(-x + m, -z + m, x - m, z - m),
-        floor,
-        None,
-    );
+    b.interior(rect(-x + m, -z + m, x - m, z - m), floor);
     b.finish(Placement::Floor, [0.8, 1.25])
 }
 
 /// Closed cardboard box with a tape strip: 0.25–0.60 × 0.18–0.45 (h) × 0.22–0.45 m.
 pub(crate) fn cardboard_box(rng: &mut ChaCha8Rng) -> Asset {
-    let (w, h, d) = (
-        uniform(rng, 0.25, 0.6),
-        uniform(rng, 0.18, 0.45),
-        uniform(rng, 0.22, 0.45),
-    );
+    let (w, h, d) = uniform3(rng, [0.25, 0.6], [0.18, 0.45], [0.22, 0.45]);
     let mut b = Builder::new();
     let card = b.material(
         "cardboard",
@@ -123,23 +109,17 @@ pub(crate) fn cardboard_box(rng: &mut ChaCha8Rng) -> Asset {
         [-t, h - 0.001, -z - 0.001],
         [t, h + 0.001, z + 0.001],
     );
-    b.surface(
+    b.top(
         "top",
-        SurfaceKind::Top,
         rect(-x + 0.01, -z + 0.01, x - 0.01, z - 0.01),
         h + 0.001,
-        None,
     );
     b.finish(Placement::Floor, [0.7, 1.4])
 }
 
 /// Plastic storage bin with a lip, open on top: 0.38–0.62 × 0.20–0.36 (h) × 0.28–0.42 m.
 pub(crate) fn storage_bin(rng: &mut ChaCha8Rng) -> Asset {
-    let (w, h, d) = (
-        uniform(rng, 0.38, 0.62),
-        uniform(rng, 0.2, 0.36),
-        uniform(rng, 0.28, 0.42),
-    );
+    let (w, h, d) = uniform3(rng, [0.38, 0.62], [0.2, 0.36], [0.28, 0.42]);
     let wall = uniform(rng, 0.004, 0.007);
     let mut b = Builder::new();
     let plastic = b.material("bin_plastic", color(rng, PLASTICS, 0.04), 0.5);
@@ -178,13 +158,7 @@ pub(crate) fn storage_bin(rng: &mut ChaCha8Rng) -> Asset {
         [lx, h, lz],
     );
     let m = wall + 0.01;
-    b.surface(
-        "interior",
-        SurfaceKind::Interior,
-        rect(-x + m, -z + m, x - m, z - m),
-        floor,
-        None,
-    );
+    b.interior(rect(-x + m, -z + m, x - m, z - m), floor);
     b.finish(Placement::Floor, [0.8, 1.25])
 }
 
@@ -230,13 +204,7 @@ pub(crate) fn basket(rng: &mut ChaCha8Rng) -> Asset {
         (r_top - wall - 0.004, r_top + 0.004, h),
         20,
     );
-    b.surface(
-        "interior",
-        SurfaceKind::Interior,
-        disc([0.0, 0.0], r_bottom - wall - 0.01, 12),
-        0.012,
-        None,
-    );
+    b.interior(disc([0.0, 0.0], r_bottom - wall - 0.01, 12), 0.012);
     b.finish(Placement::Surface, [0.75, 1.3])
 }
 
@@ -266,13 +234,7 @@ pub(crate) fn barrel(rng: &mut ChaCha8Rng) -> Asset {
             24,
         );
     }
-    b.surface(
-        "top",
-        SurfaceKind::Top,
-        disc([0.0, 0.0], r_end - 0.03, 12),
-        h,
-        None,
-    );
+    b.top("top", disc([0.0, 0.0], r_end - 0.03, 12), h);
     b.finish(Placement::Floor, [0.85, 1.15])
 }
 
@@ -327,17 +289,13 @@ pub(crate) fn pallet(rng: &mut ChaCha8Rng) -> Asset {
             [x0 + bw, h, z],
         );
     }
-    b.surface("top", SurfaceKind::Top, rect(-x, -z, x, z), h, None);
+    b.top("top", rect(-x, -z, x, z), h);
     b.finish(Placement::Floor, [0.97, 1.03])
 }
 
 /// Plastic shopping basket with two handles, open on top: 0.40–0.48 × 0.20–0.25 (h) × 0.28–0.33 m.
 pub(crate) fn shopping_basket(rng: &mut ChaCha8Rng) -> Asset {
-    let (w, h, d) = (
-        uniform(rng, 0.4, 0.48),
-        uniform(rng, 0.2, 0.25),
-        uniform(rng, 0.28, 0.33),
-    );
+    let (w, h, d) = uniform3(rng, [0.4, 0.48], [0.2, 0.25], [0.28, 0.33]);
     let mut b = Builder::new();
     let plastic = b.material(
         "basket_plastic",
@@ -373,23 +331,13 @@ pub(crate) fn shopping_basket(rng: &mut ChaCha8Rng) -> Asset {
         b.polyline(&format!("handle_{i}"), grip, &pts, 0.006);
     }
     let m = wall + 0.01;
-    b.surface(
-        "interior",
-        SurfaceKind::Interior,
-        rect(-x + m, -z + m, x - m, z - m),
-        floor,
-        None,
-    );
+    b.interior(rect(-x + m, -z + m, x - m, z - m), floor);
     b.finish(Placement::Floor, [0.9, 1.1])
 }
 
 /// Closed toolbox with a lid and a carry handle: 0.38–0.56 × 0.17–0.26 (h) × 0.19–0.26 m.
 pub(crate) fn toolbox(rng: &mut ChaCha8Rng) -> Asset {
-    let (w, h, d) = (
-        uniform(rng, 0.38, 0.56),
-        uniform(rng, 0.15, 0.21),
-        uniform(rng, 0.19, 0.26),
-    );
+    let (w, h, d) = uniform3(rng, [0.38, 0.56], [0.15, 0.21], [0.19, 0.26]);
     let mut b = Builder::new();
     let shell = b.material(
         "toolbox_shell",
@@ -440,11 +388,7 @@ pub(crate) fn toolbox(rng: &mut ChaCha8Rng) -> Asset {
 
 /// Picnic cooler with a closed lid and side grips: 0.48–0.72 × 0.34–0.46 (h) × 0.32–0.44 m.
 pub(crate) fn cooler(rng: &mut ChaCha8Rng) -> Asset {
-    let (w, h, d) = (
-        uniform(rng, 0.48, 0.72),
-        uniform(rng, 0.34, 0.46),
-        uniform(rng, 0.32, 0.44),
-    );
+    let (w, h, d) = uniform3(rng, [0.48, 0.72], [0.34, 0.46], [0.32, 0.44]);
     let mut b = Builder::new();
     let body = b.material(
         "cooler_body",
@@ -482,13 +426,7 @@ pub(crate) fn cooler(rng: &mut ChaCha8Rng) -> Asset {
             [sx * x + 0.012, lid_y - 0.03, 0.06],
         );
     }
-    b.surface(
-        "top",
-        SurfaceKind::Top,
-        rect(-x + 0.01, -z + 0.01, x - 0.01, z - 0.01),
-        h,
-        None,
-    );
+    b.top("top", rect(-x + 0.01, -z + 0.01, x - 0.01, z - 0.01), h);
     b.finish(Placement::Floor, [0.85, 1.15])
 }
 
@@ -513,13 +451,7 @@ pub(crate) fn trash_can(rng: &mut ChaCha8Rng) -> Asset {
         (r_top - wall, r_top, h),
         24,
     );
-    b.surface(
-        "interior",
-        SurfaceKind::Interior,
-        disc([0.0, 0.0], r_bottom - wall - 0.01, 12),
-        0.01,
-        None,
-    );
+    b.interior(disc([0.0, 0.0], r_bottom - wall - 0.01, 12), 0.01);
     b.finish(Placement::Floor, [0.8, 1.2])
 }
 
@@ -571,13 +503,7 @@ pub(crate) fn bucket_of(
         10,
     );
     b.polyline("bail", bail, &pts, 0.003);
-    b.surface(
-        "interior",
-        SurfaceKind::Interior,
-        disc([0.0, 0.0], r_bottom - wall - 0.01, 12),
-        0.008,
-        None,
-    );
+    b.interior(disc([0.0, 0.0], r_bottom - wall - 0.01, 12), 0.008);
 }
 
 /// Bucket with a folded bail handle, open on top: Ø 0.24–0.32 at the rim, 0.24–0.32 m high.

@@ -4,7 +4,7 @@ use rand_chacha::ChaCha8Rng;
 
 use super::builder::Builder;
 use crate::primitives::{convex_hull, rotated_box, rotation};
-use crate::random::{color, uniform};
+use crate::random::{color, uniform, uniform3};
 use crate::{Asset, Placement};
 
 const CASES: &[[f32; 3]] = &[
@@ -16,11 +16,7 @@ const CASES: &[[f32; 3]] = &[
 
 /// Open laptop, lid at 100–120°: 0.30–0.38 wide × 0.21–0.26 deep, base 0.015–0.02 thick.
 pub(crate) fn laptop(rng: &mut ChaCha8Rng) -> Asset {
-    let (w, d, t) = (
-        uniform(rng, 0.3, 0.38),
-        uniform(rng, 0.21, 0.26),
-        uniform(rng, 0.015, 0.02),
-    );
+    let (w, d, t) = uniform3(rng, [0.3, 0.38], [0.21, 0.26], [0.015, 0.02]);
     let open = uniform(rng, 1.75, 2.1);
     let mut b = Builder::new();
     let shell = b.metal("shell", color(rng, CASES, 0.02), 0.35);

@@ -7,8 +7,8 @@ use rand_chacha::ChaCha8Rng;
 
 use super::builder::Builder;
 use crate::primitives::{convex_hull, rect, rotated_box, rotation, rounded_box};
-use crate::random::{color, pick, uniform};
-use crate::{Asset, Placement, SurfaceKind};
+use crate::random::{color, pick, uniform, uniform3};
+use crate::{Asset, Placement};
 
 const COVERS: &[[f32; 3]] = &[
     [0.6, 0.1, 0.1],
@@ -41,11 +41,7 @@ const BRIGHT: &[[f32; 3]] = &[
 /// Hardcover book standing upright, spine toward +Z: 0.02–0.05 thick (x) × 0.21–0.30 high (y)
 /// × 0.15–0.24 deep (z).
 pub(crate) fn book(rng: &mut ChaCha8Rng) -> Asset {
-    let (t, h, d) = (
-        uniform(rng, 0.02, 0.05),
-        uniform(rng, 0.21, 0.3),
-        uniform(rng, 0.15, 0.24),
-    );
+    let (t, h, d) = uniform3(rng, [0.02, 0.05], [0.21, 0.3], [0.15, 0.24]);
     let mut b = Builder::new();
     let cover = b.material("cover", color(rng, COVERS, 0.06), 0.6);
     let pages = b.material("pages", [0.93, 0.91, 0.84], 0.9);
@@ -65,11 +61,7 @@ pub(crate) fn book(rng: &mut ChaCha8Rng) -> Asset {
 
 /// Magazine lying flat: 0.20–0.23 × 0.003–0.010 (h) × 0.27–0.30 m.
 pub(crate) fn magazine(rng: &mut ChaCha8Rng) -> Asset {
-    let (w, t, d) = (
-        uniform(rng, 0.2, 0.23),
-        uniform(rng, 0.003, 0.01),
-        uniform(rng, 0.27, 0.3),
-    );
+    let (w, t, d) = uniform3(rng, [0.2, 0.23], [0.003, 0.01], [0.27, 0.3]);
     let mut b = Builder::new();
     let cover = b.material("glossy_cover", color(rng, BRIGHT, 0.1), 0.25);
     let pages = b.material("pages", [0.95, 0.95, 0.93], 0.6);
@@ -83,7 +75,7 @@ pub(crate) fn magazine(rng: &mut ChaCha8Rng) -> Asset {
     b.cuboid("cover_bottom", cover, [-x, 0.0, -z], [x, 0.0008, z]);
     b.cuboid("cover_top", cover, [-x, t - 0.0008, -z], [x, t, z]);
     b.cuboid("spine", cover, [-x, 0.0, z - 0.001], [x, t, z]);
-    b.surface("top", SurfaceKind::Top, rect(-x, -z, x, z), t, None);
+    b.top("top", rect(-x, -z, x, z), t);
     b.finish(Placement::Surface, [0.95, 1.05])
 }
 
@@ -106,7 +98,7 @@ pub(crate) fn cushion(rng: &mut ChaCha8Rng) -> Asset {
         0.35,
     ));
     let m = (w.min(d)) * 0.25;
-    b.surface("top", SurfaceKind::Top, rect(-m, -m, m, m), t, None);
+    b.top("top", rect(-m, -m, m, m), t);
     b.finish(Placement::Surface, [0.8, 1.2])
 }
 

@@ -5,8 +5,8 @@ use rand_chacha::ChaCha8Rng;
 
 use super::builder::Builder;
 use crate::primitives::{disc, rotation};
-use crate::random::{color, uniform};
-use crate::{Asset, Placement, SurfaceKind};
+use crate::random::{color, uniform, uniform3};
+use crate::{Asset, Placement};
 
 /// Glass beaker with a spout, hollow: Ø 0.05–0.09, 0.07–0.13 m high.
 pub(crate) fn beaker(rng: &mut ChaCha8Rng) -> Asset {
@@ -37,13 +37,7 @@ pub(crate) fn beaker(rng: &mut ChaCha8Rng) -> Asset {
         [-0.004, h * 0.3, r - 0.0005],
         [0.004, h * 0.75, r + 0.0004],
     );
-    b.surface(
-        "interior",
-        SurfaceKind::Interior,
-        disc([0.0, 0.0], r - wall - 0.003, 12),
-        0.003,
-        None,
-    );
+    b.interior(disc([0.0, 0.0], r - wall - 0.003, 12), 0.003);
     b.finish(Placement::Surface, [0.8, 1.3])
 }
 
@@ -289,11 +283,7 @@ pub(crate) fn microscope(rng: &mut ChaCha8Rng) -> Asset {
 
 /// Bedside patient monitor with a screen, handle and feet: 0.26–0.36 wide × 0.24–0.32 high.
 pub(crate) fn patient_monitor(rng: &mut ChaCha8Rng) -> Asset {
-    let (w, h, d) = (
-        uniform(rng, 0.26, 0.36),
-        uniform(rng, 0.22, 0.28),
-        uniform(rng, 0.12, 0.18),
-    );
+    let (w, h, d) = uniform3(rng, [0.26, 0.36], [0.22, 0.28], [0.12, 0.18]);
     let mut b = Builder::new();
     let case = b.material(
         "case",

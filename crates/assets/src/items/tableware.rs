@@ -8,7 +8,7 @@ use rand_chacha::ChaCha8Rng;
 use super::builder::Builder;
 use crate::primitives::{arc, disc};
 use crate::random::{color, pick, uniform};
-use crate::{Asset, Placement, SurfaceKind};
+use crate::{Asset, Placement};
 
 const CERAMICS: &[[f32; 3]] = &[
     [0.95, 0.95, 0.93],
@@ -48,13 +48,7 @@ pub(crate) fn mug(rng: &mut ChaCha8Rng) -> Asset {
         8,
     );
     b.polyline("handle", glaze, &pts, 0.005);
-    b.surface(
-        "interior",
-        SurfaceKind::Interior,
-        disc([0.0, 0.0], r - wall - 0.004, 12),
-        base,
-        None,
-    );
+    b.interior(disc([0.0, 0.0], r - wall - 0.004, 12), base);
     b.finish(Placement::Surface, [0.9, 1.15])
 }
 
@@ -81,13 +75,7 @@ pub(crate) fn cup(rng: &mut ChaCha8Rng) -> Asset {
         (r_top - wall, r_top, h),
         24,
     );
-    b.surface(
-        "interior",
-        SurfaceKind::Interior,
-        disc([0.0, 0.0], r_bottom - wall - 0.004, 12),
-        base,
-        None,
-    );
+    b.interior(disc([0.0, 0.0], r_bottom - wall - 0.004, 12), base);
     b.finish(Placement::Surface, [0.85, 1.2])
 }
 
@@ -117,13 +105,7 @@ pub(crate) fn plate(rng: &mut ChaCha8Rng) -> Asset {
         (r - 0.004, r, h),
         32,
     );
-    b.surface(
-        "top",
-        SurfaceKind::Top,
-        disc([0.0, 0.0], flat - 0.008, 12),
-        0.009,
-        None,
-    );
+    b.top("top", disc([0.0, 0.0], flat - 0.008, 12), 0.009);
     b.finish(Placement::Surface, [0.85, 1.15])
 }
 
@@ -155,13 +137,7 @@ pub(crate) fn bowl(rng: &mut ChaCha8Rng) -> Asset {
         (r - wall, r, h),
         24,
     );
-    b.surface(
-        "interior",
-        SurfaceKind::Interior,
-        disc([0.0, 0.0], r_foot - wall - 0.003, 10),
-        base,
-        None,
-    );
+    b.interior(disc([0.0, 0.0], r_foot - wall - 0.003, 10), base);
     b.finish(Placement::Surface, [0.8, 1.25])
 }
 
@@ -309,13 +285,7 @@ pub(crate) fn can(rng: &mut ChaCha8Rng) -> Asset {
     b.frustum("bottom", alu, [0.0, 0.0], r * 0.85, r, 0.0, 0.008, 24);
     b.frustum("body", print, [0.0, 0.0], r, r, 0.008, h - 0.012, 24);
     b.frustum("neck", alu, [0.0, 0.0], r, r * 0.85, h - 0.012, h, 24);
-    b.surface(
-        "top",
-        SurfaceKind::Top,
-        disc([0.0, 0.0], r * 0.7, 8),
-        h,
-        None,
-    );
+    b.top("top", disc([0.0, 0.0], r * 0.7, 8), h);
     b.finish(Placement::Surface, [0.95, 1.05])
 }
 
@@ -536,12 +506,6 @@ pub(crate) fn paint_can(rng: &mut ChaCha8Rng) -> Asset {
         10,
     );
     b.polyline("bail", tin, &pts, 0.0025);
-    b.surface(
-        "lid",
-        SurfaceKind::Top,
-        disc([0.0, 0.0], r - 0.01, 12),
-        h,
-        None,
-    );
+    b.top("lid", disc([0.0, 0.0], r - 0.01, 12), h);
     b.finish(Placement::Surface, [0.85, 1.2])
 }

@@ -8,7 +8,7 @@ use rand_chacha::ChaCha8Rng;
 use crate::catalog::Category;
 use crate::items::builder::Builder;
 use crate::primitives::{arc, convex_hull, rect, rotated_ellipsoid, rotation, rounded_box};
-use crate::random::{color, uniform};
+use crate::random::{color, uniform, uniform3};
 use crate::{Asset, Placement, SurfaceKind};
 
 const BRIGHT: &[[f32; 3]] = &[
@@ -182,11 +182,7 @@ fn beach_umbrella(rng: &mut ChaCha8Rng) -> Asset {
 
 /// Beach lounger with a flat seat and a raised backrest: 1.75–1.95 × 0.30–0.40 (seat) × 0.55–0.70.
 fn beach_lounger(rng: &mut ChaCha8Rng) -> Asset {
-    let (l, seat_h, w) = (
-        uniform(rng, 1.75, 1.95),
-        uniform(rng, 0.3, 0.4),
-        uniform(rng, 0.55, 0.7),
-    );
+    let (l, seat_h, w) = uniform3(rng, [1.75, 1.95], [0.3, 0.4], [0.55, 0.7]);
     let back_angle = uniform(rng, 0.5, 0.9);
     let mut b = Builder::new();
     let frame = if uniform(rng, 0.0, 1.0) < 0.5 {
@@ -243,12 +239,10 @@ fn beach_lounger(rng: &mut ChaCha8Rng) -> Asset {
         [x - 0.02, seat_h - t - 0.04, seat_z0 - 0.02],
         [x + 0.01, seat_h - t, z],
     );
-    b.surface(
+    b.top(
         "seat",
-        SurfaceKind::Top,
         rect(-x + 0.03, seat_z0 + 0.05, x - 0.03, z - 0.03),
         seat_h,
-        None,
     );
     b.finish(Placement::Floor, [0.9, 1.1])
 }
@@ -272,17 +266,13 @@ fn beach_towel(rng: &mut ChaCha8Rng) -> Asset {
             [x, t, z1],
         );
     }
-    b.surface("top", SurfaceKind::Top, rect(-x, -z, x, z), t, None);
+    b.top("top", rect(-x, -z, x, z), t);
     b.finish(Placement::Floor, [0.9, 1.1])
 }
 
 /// Surfboard lying flat, nose toward +Z: 1.8–2.8 long, 0.48–0.58 wide, 0.06–0.08 thick.
 fn surfboard(rng: &mut ChaCha8Rng) -> Asset {
-    let (l, w, t) = (
-        uniform(rng, 1.8, 2.8),
-        uniform(rng, 0.48, 0.58),
-        uniform(rng, 0.06, 0.08),
-    );
+    let (l, w, t) = uniform3(rng, [1.8, 2.8], [0.48, 0.58], [0.06, 0.08]);
     let mut b = Builder::new();
     let deck = b.material(
         "deck",
@@ -526,11 +516,7 @@ fn sandcastle(rng: &mut ChaCha8Rng) -> Asset {
 /// A-frame tent with a floor, two roof panels, a back wall and a front door gap:
 /// 1.9–2.3 long (z) × 1.2–1.6 wide × 1.0–1.3 high. The floor inside is a shelf with clearance.
 fn tent(rng: &mut ChaCha8Rng) -> Asset {
-    let (l, w, h) = (
-        uniform(rng, 1.9, 2.3),
-        uniform(rng, 1.2, 1.6),
-        uniform(rng, 1.0, 1.3),
-    );
+    let (l, w, h) = uniform3(rng, [1.9, 2.3], [1.2, 1.6], [1.0, 1.3]);
     let mut b = Builder::new();
     let fly = b.material(
         "tent_fabric",
@@ -756,11 +742,7 @@ fn lantern(rng: &mut ChaCha8Rng) -> Asset {
 
 /// Backpack standing upright, front pocket toward +Z: 0.40–0.55 high × 0.28–0.36 × 0.15–0.24.
 fn backpack(rng: &mut ChaCha8Rng) -> Asset {
-    let (h, w, d) = (
-        uniform(rng, 0.4, 0.55),
-        uniform(rng, 0.28, 0.36),
-        uniform(rng, 0.15, 0.24),
-    );
+    let (h, w, d) = uniform3(rng, [0.4, 0.55], [0.28, 0.36], [0.15, 0.24]);
     let mut b = Builder::new();
     let nylon = b.material(
         "nylon",
