@@ -204,7 +204,8 @@ const SEMANTIC_WEIGHT: f32 = 0.85;
 /// Candidates scoring below this are not returned.
 const MIN_SCORE: f32 = 0.3;
 /// Imported assets rank just above the built-in generator of the same category: the user
-/// brought them for a reason.
+/// brought them for a reason. (Scores are capped at 1, so an exact match ties with the
+/// generator; ties put imported assets first.)
 const IMPORTED_BONUS: f32 = 0.01;
 
 impl AssetIndex {
@@ -364,7 +365,8 @@ impl AssetIndex {
                 scored.push((score, reason, i));
             }
         }
-        let mut candidates: Vec<(Candidate, u64)> = Vec::new();
+        // (candidate, rank among equal scores: imported before built-in, then the seeded tie).
+        let mut candidates: Vec<(Candidate, (bool, u64))> = Vec::new();
         for (score, reason, i) in scored {
             let entry = &self.entries[i];
             let category_seed = mix(seed ^ fnv(&entry.category));
@@ -380,7 +382,7 @@ impl AssetIndex {
                         score,
                         reason: reason.clone(),
                     },
-                    category_seed,
+                    (true, category_seed),
                 ));
             }
             for asset in &entry.imported {
@@ -393,7 +395,7 @@ impl AssetIndex {
                         score: (score + IMPORTED_BONUS).min(1.0),
                         reason: reason.clone(),
                     },
-                    tie,
+                    (false, tie),
                 ));
             }
         }
