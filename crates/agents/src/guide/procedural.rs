@@ -1,7 +1,7 @@
 //! The offline procedural guide: rule-based floor layout with a walkway check, then children
 //! packed onto their parents' support surfaces.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::f64::consts::{FRAC_PI_2, PI};
 
 use nalgebra::Vector3;
@@ -490,6 +490,7 @@ impl ProceduralGuide {
             .filter(|&i| plan.objects[i].parent == ParentRef::Ground)
             .collect();
         order.sort_by_key(|&i| (class(i), !plan.objects[i].hard, i));
+        let order = chain_dependents(plan, order);
 
         let mut dropped: Vec<DroppedObject> = Vec::new();
         let mut attempted = vec![false; plan.objects.len()];
@@ -738,6 +739,74 @@ impl ProceduralGuide {
 }
 
 /// The object a relative placement positions against (the first positional relation).
+/// Reorders floor objects so each object placed relative to another comes right after its
+/// target (depth first), dependents whose chain holds a prompt-requested (hard) object first.
+/// Otherwise objects placed in between take the spots around a target before a requested
+/// object that is waiting for it ("an armchair next to the floor lamp") gets its turn.
+fn chain_dependents(plan: &Plan, order: Vec<usize>) -> Vec<usize> {
+    let in_order: BTreeSet<usize> = order.iter().copied().collect();
+    let target_of = |i: usize| {
+        positional_target(&plan.objects[i])
+            .and_then(|t| plan.objects.iter().position(|o| o.id == t))
+            .filter(|t| in_order.contains(t) && *t != i)
+    };
+    let mut dependents: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+    for &i in &order {
+        if let Some(t) = target_of(i) {
+            dependents.entry(t).or_default().push(i);
+        }
+    }
+    fn holds_hard(
+        plan: &Plan,
+        dependents: &BTreeMap<usize, Vec<usize>>,
+        i: usize,
+        depth: usize,
+    ) -> bool {
+        plan.objects[i].hard
+            || (depth < 16
+                && dependents.get(&i).is_some_and(|d| {
+                    d.iter()
+                        .any(|&j| holds_hard(plan, dependents, j, depth + 1))
+                }))
+    }
+    let hard: Vec<bool> = (0..plan.objects.len())
+        .map(|i| holds_hard(plan, &dependents, i, 0))
+        .collect();
+    for list in dependents.values_mut() {
+        // A stable sort keeps the class/hard/index order among equals.
+        list.sort_by_key(|&j| !hard[j]);
+    }
+    let mut out = Vec::with_capacity(order.len());
+    let mut emitted = vec![false; plan.objects.len()];
+    fn emit(
+        i: usize,
+        dependents: &BTreeMap<usize, Vec<usize>>,
+        emitted: &mut [bool],
+        out: &mut Vec<usize>,
+    ) {
+        if emitted[i] {
+            return;
+        }
+        emitted[i] = true;
+        out.push(i);
+        if let Some(list) = dependents.get(&i) {
+            for &j in list {
+                emit(j, dependents, emitted, out);
+            }
+        }
+    }
+    for &i in &order {
+        // Roots first; a dependent is emitted with its target (cycles fall back to order).
+        if target_of(i).is_none() {
+            emit(i, &dependents, &mut emitted, &mut out);
+        }
+    }
+    for &i in &order {
+        emit(i, &dependents, &mut emitted, &mut out);
+    }
+    out
+}
+
 fn positional_target(o: &PlannedObject) -> Option<&str> {
     if o.zone != Zone::Relative {
         return None;
@@ -1240,6 +1309,38 @@ impl ProceduralGuide {
                         let along_f = if facing.is_some() { 0.0 } else { e_f - t.fp.hz };
                         let c = add(add(tc, side * (t.fp.hx + gap + e_r), r_t), along_f, f_t);
                         out.push(mk(c, y));
+                    }
+                }
+                if side_rel.is_none() {
+                    // Both flanks taken (a corner, a wall, a neighbour): "beside" also holds in
+                    // front, behind or diagonally, as long as the gap stays under a metre.
+                    for gap in [0.08, 0.25, 0.45, 0.7] {
+                        for (a, b) in [
+                            (0.0, 1.0),
+                            (1.0, 1.0),
+                            (-1.0, 1.0),
+                            (0.0, -1.0),
+                            (1.0, -1.0),
+                            (-1.0, -1.0),
+                        ] {
+                            let dir = [a * r_t[0] + b * f_t[0], a * r_t[1] + b * f_t[1]];
+                            let len = (dir[0] * dir[0] + dir[1] * dir[1]).sqrt();
+                            let dir = [dir[0] / len, dir[1] / len];
+                            let probe = add(tc, t.fp.extent_along(dir) + gap + hx.max(hz), dir);
+                            let y = match facing {
+                                Some(f) => yaw_toward(probe, f),
+                                None => t.fp.yaw,
+                            };
+                            let fp = Footprint {
+                                cx: 0.0,
+                                cz: 0.0,
+                                yaw: y,
+                                hx,
+                                hz,
+                            };
+                            let dist = t.fp.extent_along(dir) + gap + fp.extent_along(dir);
+                            out.push(mk(add(tc, dist, dir), y));
+                        }
                     }
                 }
             }
