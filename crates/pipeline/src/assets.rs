@@ -1,8 +1,10 @@
 //! The retrieve stage's seam: where each planned object's asset (mesh and metadata) comes from.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
 
 use scenethesis_agents::PlannedObject;
+use scenethesis_assets::import::{import_directory, ImportWarning, MANIFEST_FILE};
 use scenethesis_assets::{catalog, Asset};
 use scenethesis_retrieval::AssetIndex;
 use scenethesis_scene_graph::{AssetRef, Mesh};
@@ -21,6 +23,14 @@ pub enum AssetError {
         category: String,
         /// The asset source's name.
         source_name: String,
+    },
+    /// A bring-your-own asset directory could not be imported.
+    #[error("asset directory {}: {reason}", dir.display())]
+    Import {
+        /// The directory.
+        dir: PathBuf,
+        /// What went wrong.
+        reason: String,
     },
     /// An asset reference cannot be turned back into a mesh by this source.
     #[error("asset {asset}: {reason}")]
@@ -51,7 +61,9 @@ pub trait AssetSource: Send + Sync {
 }
 
 /// The built-in procedural library (`scenethesis_assets::catalog`): every category the registry
-/// lists, each object's asset generated with a seed derived from its id and the variant.
+/// lists, each object's asset generated with a seed derived from its id and the variant. It
+/// never retrieves imported assets, but [`AssetSource::mesh`] re-imports those a saved scene
+/// references from their file's directory.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct CatalogSource;
 
@@ -86,26 +98,28 @@ impl AssetSource for CatalogSource {
                     })?;
                 Ok(catalog::generate(category, *seed).mesh)
             }
-            AssetRef::Imported { .. } => Err(AssetError::Unresolvable {
-                asset: asset.to_string(),
-                reason: "an imported asset; the procedural catalog cannot regenerate it".into(),
-            }),
+            AssetRef::Imported { .. } => Ok(load_imported(asset)?.mesh),
         }
     }
 }
 
 /// Retrieval through a [`scenethesis_retrieval::AssetIndex`]: each planned object's category is
-/// the query and the best candidate is used, its procedural seed drawn from the object's id and
-/// the variant. The default index holds the built-in library; imported assets in the index are
-/// not supported by this source yet (their meshes are not loaded) and are reported as errors.
+/// the query and the best candidate is used. Built-in candidates are generated with a
+/// procedural seed drawn from the object's id and the variant; imported (bring-your-own)
+/// assets — see [`RetrievalSource::with_imported`] — rank above the built-in generator of the
+/// same category and are used as loaded. Where several imported assets share the best score,
+/// the variant picks among them.
 pub struct RetrievalSource {
     index: AssetIndex,
+    /// Imported assets by their id (`AssetRef::Imported::id`).
+    imported: BTreeMap<String, Asset>,
 }
 
 impl std::fmt::Debug for RetrievalSource {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("RetrievalSource")
             .field("index", &self.index)
+            .field("imported", &self.imported.keys().collect::<Vec<_>>())
             .finish()
     }
 }
@@ -117,9 +131,69 @@ impl Default for RetrievalSource {
 }
 
 impl RetrievalSource {
-    /// Retrieval over `index`.
+    /// Retrieval over `index`. Imported entries of the index can only be used if their assets
+    /// are also given (see [`RetrievalSource::with_imported`]); otherwise they are loaded from
+    /// their file's directory when retrieved.
     pub fn new(index: AssetIndex) -> Self {
-        Self { index }
+        Self {
+            index,
+            imported: BTreeMap::new(),
+        }
+    }
+
+    /// Retrieval over the built-in library plus `assets` (e.g. the
+    /// [`ImportReport::assets`](scenethesis_assets::import::ImportReport) of
+    /// [`scenethesis_assets::import::import_directory`]). Assets that are not imported ones
+    /// (their source is procedural) are ignored.
+    pub fn with_imported(assets: impl IntoIterator<Item = Asset>) -> Self {
+        let imported: BTreeMap<String, Asset> = assets
+            .into_iter()
+            .filter_map(|a| match &a.info.source {
+                AssetRef::Imported { id, .. } => Some((id.clone(), a)),
+                AssetRef::Procedural { .. } => None,
+            })
+            .collect();
+        let index = AssetIndex::with_imported(imported.values().map(|a| &a.info));
+        Self { index, imported }
+    }
+
+    /// The built-in library plus every asset of the bring-your-own directory `dir` (an
+    /// `assets.json` manifest and GLB/glTF/OBJ files), and the import's warnings for files that
+    /// were skipped.
+    pub fn from_directory(dir: &Path) -> Result<(Self, Vec<ImportWarning>), AssetError> {
+        let report = import_directory(dir).map_err(|e| AssetError::Import {
+            dir: dir.to_owned(),
+            reason: e.to_string(),
+        })?;
+        if report.assets.is_empty() {
+            return Err(AssetError::Import {
+                dir: dir.to_owned(),
+                reason: format!(
+                    "no asset could be imported ({} skipped); expected GLB, glTF or OBJ files, \
+                     optionally listed in {MANIFEST_FILE}",
+                    report.warnings.len()
+                ),
+            });
+        }
+        Ok((Self::with_imported(report.assets), report.warnings))
+    }
+
+    /// How many imported assets this source holds.
+    pub fn imported_count(&self) -> usize {
+        self.imported.len()
+    }
+
+    fn imported_asset(&self, asset: &AssetRef) -> Result<Asset, AssetError> {
+        match asset {
+            AssetRef::Imported { id, .. } => match self.imported.get(id) {
+                Some(a) => Ok(a.clone()),
+                None => load_imported(asset),
+            },
+            AssetRef::Procedural { .. } => Err(AssetError::Unresolvable {
+                asset: asset.to_string(),
+                reason: "not an imported asset".into(),
+            }),
+        }
     }
 }
 
@@ -138,9 +212,10 @@ impl AssetSource for RetrievalSource {
             category: object.category.clone(),
             source_name: self.name().to_owned(),
         };
+        let seed = object_seed(&object.id, variant);
         let hit = self
             .index
-            .search(&object.category, 1, object_seed(&object.id, variant))
+            .search(&object.category, 1, seed)
             .into_iter()
             .next()
             .ok_or_else(no_asset)?;
@@ -149,17 +224,51 @@ impl AssetSource for RetrievalSource {
                 let category = catalog::category(generator).ok_or_else(no_asset)?;
                 Ok(catalog::generate(category, *seed))
             }
-            AssetRef::Imported { .. } => Err(AssetError::Unresolvable {
-                asset: hit.asset.to_string(),
-                reason: "imported assets are not loaded by the pipeline's retrieval source yet"
-                    .into(),
-            }),
+            AssetRef::Imported { .. } => self.imported_asset(&hit.asset),
         }
     }
 
     fn mesh(&self, asset: &AssetRef) -> Result<Mesh, AssetError> {
-        CatalogSource.mesh(asset)
+        match asset {
+            AssetRef::Procedural { .. } => CatalogSource.mesh(asset),
+            AssetRef::Imported { .. } => Ok(self.imported_asset(asset)?.mesh),
+        }
     }
+}
+
+/// Loads an imported asset that is not in memory by importing the directory its file lies in
+/// again (so the manifest's units, axes and front apply) and picking it by id.
+fn load_imported(asset: &AssetRef) -> Result<Asset, AssetError> {
+    let AssetRef::Imported { id, path } = asset else {
+        return Err(AssetError::Unresolvable {
+            asset: asset.to_string(),
+            reason: "not an imported asset".into(),
+        });
+    };
+    let unresolvable = |reason: String| AssetError::Unresolvable {
+        asset: asset.to_string(),
+        reason,
+    };
+    let dir = Path::new(path)
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let report = import_directory(dir).map_err(|e| {
+        unresolvable(format!(
+            "cannot re-import its directory {}: {e}",
+            dir.display()
+        ))
+    })?;
+    report
+        .assets
+        .into_iter()
+        .find(|a| matches!(&a.info.source, AssetRef::Imported { id: found, .. } if found == id))
+        .ok_or_else(|| {
+            unresolvable(format!(
+                "the directory {} no longer holds an asset with id `{id}`",
+                dir.display()
+            ))
+        })
 }
 
 /// A stable per-object seed: FNV-1a of the object id, mixed with the variant.

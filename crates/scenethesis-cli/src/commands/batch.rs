@@ -34,6 +34,10 @@ pub struct BatchArgs {
     /// Do not render preview images.
     #[arg(long)]
     pub no_preview: bool,
+    /// Bring your own assets: a folder of GLB/glTF/OBJ files (described by an optional
+    /// `assets.json`); they are preferred over the built-in generators of their category.
+    #[arg(long, value_name = "DIR")]
+    pub assets: Option<PathBuf>,
 }
 
 /// Runs `scenethesis batch`.
@@ -55,7 +59,7 @@ pub fn run(args: BatchArgs) -> Result<()> {
         .iter()
         .filter(|j| options.shard.contains(j.position))
         .count();
-    let pipeline = super::generate::pipeline(!args.no_preview);
+    let pipeline = super::generate::pipeline(!args.no_preview, args.assets.as_deref())?;
     let bar = ProgressBar::new(mine as u64);
     bar.set_style(
         ProgressStyle::with_template("{bar:30.cyan/blue} {pos}/{len} scenes {elapsed} (eta {eta})")

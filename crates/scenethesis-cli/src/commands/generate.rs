@@ -1,12 +1,14 @@
 //! `scenethesis generate`: a prompt in, a simulation-ready scene folder out.
 
 use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
-use scenethesis_pipeline::{export_folder, Format, GenerateOptions, Pipeline, Progress, Stage};
+use scenethesis_pipeline::{
+    export_folder, Format, GenerateOptions, Pipeline, Progress, RetrievalSource, Stage,
+};
 
 /// Arguments of `scenethesis generate`.
 #[derive(Debug, clap::Args)]
@@ -32,6 +34,10 @@ pub struct GenerateArgs {
     /// Exit with an error when the judge does not accept the final scene.
     #[arg(long)]
     pub strict: bool,
+    /// Bring your own assets: a folder of GLB/glTF/OBJ files (described by an optional
+    /// `assets.json`); they are preferred over the built-in generators of their category.
+    #[arg(long, value_name = "DIR")]
+    pub assets: Option<PathBuf>,
 }
 
 /// Draws one spinner per stage on a terminal, or plain lines otherwise.
@@ -89,24 +95,38 @@ impl Progress for StageProgress {
     }
 }
 
-/// Builds the offline pipeline, with previews when a renderer can be opened.
-pub fn pipeline(previews: bool) -> Pipeline {
-    let pipeline = Pipeline::offline();
+/// Builds the offline pipeline, over the built-in library plus the assets of `assets_dir`, with
+/// previews when a renderer can be opened.
+pub fn pipeline(previews: bool, assets_dir: Option<&Path>) -> Result<Pipeline> {
+    let mut pipeline = Pipeline::offline();
+    if let Some(dir) = assets_dir {
+        let (source, warnings) = RetrievalSource::from_directory(dir)
+            .with_context(|| format!("importing assets from {}", dir.display()))?;
+        for w in &warnings {
+            eprintln!("warning: {}: {}", w.path.display(), w.reason);
+        }
+        eprintln!(
+            "imported {} assets from {}",
+            source.imported_count(),
+            dir.display()
+        );
+        pipeline = pipeline.with_assets(source);
+    }
     if !previews {
-        return pipeline;
+        return Ok(pipeline);
     }
     match scenethesis_pipeline::WgpuPreviews::from_env() {
-        Ok(renderer) => pipeline.with_renderer(renderer),
+        Ok(renderer) => Ok(pipeline.with_renderer(renderer)),
         Err(e) => {
             eprintln!("warning: no previews: cannot open a renderer ({e})");
-            pipeline
+            Ok(pipeline)
         }
     }
 }
 
 /// Runs `scenethesis generate`.
 pub fn run(args: GenerateArgs) -> Result<()> {
-    let pipeline = pipeline(!args.no_preview);
+    let pipeline = pipeline(!args.no_preview, args.assets.as_deref())?;
     let options = GenerateOptions {
         max_replans: args.max_replans,
         previews: !args.no_preview,
