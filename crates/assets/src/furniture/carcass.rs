@@ -7,7 +7,10 @@
 
 use std::f32::consts::PI;
 
+use rand_chacha::ChaCha8Rng;
+
 use crate::primitives::{box_yaw, cylinder, ellipsoid, rect_surface, AssetBuilder};
+use crate::random::{coin, uniform};
 use crate::SurfaceKind;
 
 /// What the carcass body stands on.
@@ -40,6 +43,25 @@ pub(super) enum Front {
     Glass,
     /// Hinged doors swung open by this angle in radians (π/2 is square to the front).
     Doors { angle: f32 },
+}
+
+impl Front {
+    /// Doors left open just past square (1.6–1.75 rad).
+    pub fn doors_left_open(rng: &mut ChaCha8Rng) -> Self {
+        Front::Doors {
+            angle: uniform(rng, 1.6, 1.75),
+        }
+    }
+
+    /// Doors left open (as [`Front::doors_left_open`]) with probability `p`, otherwise an open
+    /// front.
+    pub fn doors_or_open(rng: &mut ChaCha8Rng, p: f64) -> Self {
+        if coin(rng, p) {
+            Self::doors_left_open(rng)
+        } else {
+            Front::Open
+        }
+    }
 }
 
 /// The materials of a carcass.
@@ -90,6 +112,28 @@ pub(super) struct Carcass {
 }
 
 impl Carcass {
+    /// A carcass without optional parts: no drawers, a back, side boards rather than posts, a
+    /// top board, an open front and no lip. Its size, board, feet, columns and shelves are zero
+    /// or empty: generators set those and take the rest from here with `..Carcass::PLAIN`.
+    pub const PLAIN: Carcass = Carcass {
+        width: 0.0,
+        height: 0.0,
+        depth: 0.0,
+        board: 0.0,
+        feet: Feet::Plinth {
+            height: 0.0,
+            recess: 0.0,
+        },
+        columns: 0,
+        shelves: Vec::new(),
+        drawer_rows: 0,
+        back: true,
+        posts: None,
+        top_board: true,
+        front: Front::Open,
+        lip: 0.0,
+    };
+
     /// Evenly spaced shelves giving `rows` rows.
     pub fn even_shelves(rows: usize) -> Vec<f32> {
         (1..rows).map(|i| i as f32 / rows as f32).collect()

@@ -5,7 +5,7 @@ use std::f32::consts::{PI, TAU};
 
 use rand_chacha::ChaCha8Rng;
 
-use super::carcass::{self, Carcass, CarcassMaterials, Feet, Front, CORNERS};
+use super::carcass::{self, Carcass, CarcassMaterials, Feet, CORNERS};
 use super::{mat, mat_either, SCALE};
 use crate::primitives::{
     beam, cylinder, disc_surface, ellipsoid, fixed_material, frustum, hexahedron, prism_y,
@@ -821,12 +821,8 @@ pub(super) fn sink(rng: &mut ChaCha8Rng) -> Asset {
         },
         columns: 1,
         shelves: vec![],
-        drawer_rows: 0,
-        back: true,
-        posts: None,
         top_board: false,
-        front: Front::Open,
-        lip: 0.0,
+        ..Carcass::PLAIN
     };
     carcass::build(
         &mut b,

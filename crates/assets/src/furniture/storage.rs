@@ -64,12 +64,7 @@ pub(super) fn bookshelf(rng: &mut ChaCha8Rng) -> Asset {
             int(rng, 1, 2)
         },
         shelves: vec![],
-        drawer_rows: 0,
-        back: true,
-        posts: None,
-        top_board: true,
-        front: Front::Open,
-        lip: 0.0,
+        ..Carcass::PLAIN
     };
     c.shelves = rows_for(rng, &c, 0.25, 0.42);
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
@@ -101,12 +96,9 @@ pub(super) fn display_shelf(rng: &mut ChaCha8Rng) -> Asset {
         },
         columns: 1,
         shelves: vec![],
-        drawer_rows: 0,
         back: coin(rng, 0.5),
         posts: Some(uniform(rng, 0.025, 0.04)),
-        top_board: true,
-        front: Front::Open,
-        lip: 0.0,
+        ..Carcass::PLAIN
     };
     c.shelves = rows_for(rng, &c, 0.28, 0.45);
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
@@ -129,12 +121,8 @@ pub(super) fn store_shelf(rng: &mut ChaCha8Rng) -> Asset {
         },
         columns: int(rng, 1, 2),
         shelves: vec![],
-        drawer_rows: 0,
-        back: true,
-        posts: None,
-        top_board: true,
-        front: Front::Open,
         lip: uniform(rng, 0.025, 0.04),
+        ..Carcass::PLAIN
     };
     c.shelves = rows_for(rng, &c, 0.26, 0.4);
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
@@ -165,18 +153,8 @@ pub(super) fn cabinet(rng: &mut ChaCha8Rng) -> Asset {
         },
         columns: if width > 0.9 { 2 } else { 1 },
         shelves: vec![],
-        drawer_rows: 0,
-        back: true,
-        posts: None,
-        top_board: true,
-        front: if coin(rng, 0.6) {
-            Front::Doors {
-                angle: uniform(rng, 1.6, 1.75),
-            }
-        } else {
-            Front::Open
-        },
-        lip: 0.0,
+        front: Front::doors_or_open(rng, 0.6),
+        ..Carcass::PLAIN
     };
     c.shelves = rows_for(rng, &c, 0.26, 0.45);
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
@@ -200,11 +178,7 @@ pub(super) fn tool_cabinet(rng: &mut ChaCha8Rng) -> Asset {
         columns: 1,
         shelves: Carcass::even_shelves(rows),
         drawer_rows: rows,
-        back: true,
-        posts: None,
-        top_board: true,
-        front: Front::Open,
-        lip: 0.0,
+        ..Carcass::PLAIN
     };
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
     finish(b)
@@ -232,14 +206,9 @@ pub(super) fn chemical_cabinet(rng: &mut ChaCha8Rng) -> Asset {
         },
         columns: 1,
         shelves: vec![],
-        drawer_rows: 0,
-        back: true,
-        posts: None,
-        top_board: true,
-        front: Front::Doors {
-            angle: uniform(rng, 1.6, 1.75),
-        },
+        front: Front::doors_left_open(rng),
         lip: 0.03,
+        ..Carcass::PLAIN
     };
     c.shelves = rows_for(rng, &c, 0.28, 0.45);
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
@@ -263,18 +232,8 @@ pub(super) fn locker(rng: &mut ChaCha8Rng) -> Asset {
         },
         columns,
         shelves: vec![uniform(rng, 0.78, 0.84)],
-        drawer_rows: 0,
-        back: true,
-        posts: None,
-        top_board: true,
-        front: if coin(rng, 0.7) {
-            Front::Doors {
-                angle: uniform(rng, 1.6, 1.75),
-            }
-        } else {
-            Front::Open
-        },
-        lip: 0.0,
+        front: Front::doors_or_open(rng, 0.7),
+        ..Carcass::PLAIN
     };
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
     finish(b)
@@ -297,18 +256,8 @@ pub(super) fn wardrobe(rng: &mut ChaCha8Rng) -> Asset {
         },
         columns: if width > 1.2 { 2 } else { 1 },
         shelves: vec![uniform(rng, 0.8, 0.86)],
-        drawer_rows: 0,
-        back: true,
-        posts: None,
-        top_board: true,
-        front: if coin(rng, 0.6) {
-            Front::Doors {
-                angle: uniform(rng, 1.6, 1.75),
-            }
-        } else {
-            Front::Open
-        },
-        lip: 0.0,
+        front: Front::doors_or_open(rng, 0.6),
+        ..Carcass::PLAIN
     };
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
     // A hanging rail below the hat shelf of each column lowers the bay's clearance.
@@ -351,11 +300,7 @@ pub(super) fn dresser(rng: &mut ChaCha8Rng) -> Asset {
         columns: if width > 1.1 { 2 } else { 1 },
         shelves: Carcass::even_shelves(rows),
         drawer_rows: rows,
-        back: true,
-        posts: None,
-        top_board: true,
-        front: Front::Open,
-        lip: 0.0,
+        ..Carcass::PLAIN
     };
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
     finish(b)
@@ -386,12 +331,8 @@ pub(super) fn tv_stand(rng: &mut ChaCha8Rng) -> Asset {
         },
         columns: int(rng, 2, 4),
         shelves: vec![],
-        drawer_rows: 0,
         back: coin(rng, 0.5),
-        posts: None,
-        top_board: true,
-        front: Front::Open,
-        lip: 0.0,
+        ..Carcass::PLAIN
     };
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
     finish(b)
@@ -433,12 +374,8 @@ pub(super) fn display_case(rng: &mut ChaCha8Rng) -> Asset {
         },
         columns: 1,
         shelves: vec![],
-        drawer_rows: 0,
-        back: true,
-        posts: None,
-        top_board: true,
         front: Front::Glass,
-        lip: 0.0,
+        ..Carcass::PLAIN
     };
     c.shelves = rows_for(rng, &c, 0.25, 0.5);
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
@@ -645,12 +582,9 @@ pub(super) fn shelving_unit(rng: &mut ChaCha8Rng) -> Asset {
         },
         columns: 1,
         shelves: vec![],
-        drawer_rows: 0,
         back: false,
         posts: Some(0.025),
-        top_board: true,
-        front: Front::Open,
-        lip: 0.0,
+        ..Carcass::PLAIN
     };
     c.shelves = rows_for(rng, &c, 0.26, 0.42);
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
@@ -682,11 +616,7 @@ pub(super) fn medical_cart(rng: &mut ChaCha8Rng) -> Asset {
         columns: 1,
         shelves: Carcass::even_shelves(rows),
         drawer_rows: rows - 1,
-        back: true,
-        posts: None,
-        top_board: true,
-        front: Front::Open,
-        lip: 0.0,
+        ..Carcass::PLAIN
     };
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
     let y = c.height - 0.1;
@@ -744,17 +674,8 @@ pub(super) fn refrigerator(rng: &mut ChaCha8Rng) -> Asset {
         columns: 1,
         shelves,
         drawer_rows: 1,
-        back: true,
-        posts: None,
-        top_board: true,
-        front: if coin(rng, 0.75) {
-            Front::Doors {
-                angle: uniform(rng, 1.6, 1.75),
-            }
-        } else {
-            Front::Open
-        },
-        lip: 0.0,
+        front: Front::doors_or_open(rng, 0.75),
+        ..Carcass::PLAIN
     };
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
     finish(b)
@@ -788,12 +709,8 @@ pub(super) fn drinks_fridge(rng: &mut ChaCha8Rng) -> Asset {
         },
         columns: 1,
         shelves: vec![],
-        drawer_rows: 0,
-        back: true,
-        posts: None,
-        top_board: true,
         front: Front::Glass,
-        lip: 0.0,
+        ..Carcass::PLAIN
     };
     c.shelves = rows_for(rng, &c, 0.22, 0.35);
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
@@ -834,12 +751,7 @@ pub(super) fn fume_hood(rng: &mut ChaCha8Rng) -> Asset {
         },
         columns: 2,
         shelves: vec![],
-        drawer_rows: 0,
-        back: true,
-        posts: None,
-        top_board: true,
-        front: Front::Open,
-        lip: 0.0,
+        ..Carcass::PLAIN
     };
     carcass::build(
         &mut b,
@@ -922,12 +834,9 @@ pub(super) fn magazine_rack(rng: &mut ChaCha8Rng) -> Asset {
         },
         columns: 1,
         shelves: Carcass::even_shelves(rows),
-        drawer_rows: 0,
-        back: true,
-        posts: None,
         top_board: false,
-        front: Front::Open,
         lip: uniform(rng, 0.06, 0.1),
+        ..Carcass::PLAIN
     };
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
     finish(b)
@@ -955,12 +864,11 @@ pub(super) fn dumbbell_rack(rng: &mut ChaCha8Rng) -> Asset {
         },
         columns: 1,
         shelves: Carcass::even_shelves(rows),
-        drawer_rows: 0,
         back: false,
         posts: Some(0.05),
         top_board: false,
-        front: Front::Open,
         lip: 0.04,
+        ..Carcass::PLAIN
     };
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
     finish(b)

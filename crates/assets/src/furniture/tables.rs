@@ -391,11 +391,8 @@ pub(super) fn desk(rng: &mut ChaCha8Rng) -> Asset {
             columns: 1,
             shelves: Carcass::even_shelves(rows),
             drawer_rows: rows,
-            back: true,
-            posts: None,
             top_board: false,
-            front: Front::Open,
-            lip: 0.0,
+            ..Carcass::PLAIN
         };
         let cx = side * (hw - 0.5 * ped_w);
         carcass::build(
@@ -597,12 +594,7 @@ pub(super) fn nightstand(rng: &mut ChaCha8Rng) -> Asset {
         },
         columns: 1,
         shelves: vec![drawer_on_top],
-        drawer_rows: 0,
-        back: true,
-        posts: None,
-        top_board: true,
-        front: Front::Open,
-        lip: 0.0,
+        ..Carcass::PLAIN
     };
     carcass::build(
         &mut b,
@@ -735,12 +727,7 @@ pub(super) fn lab_bench(rng: &mut ChaCha8Rng) -> Asset {
         },
         columns: 1,
         shelves: vec![0.5],
-        drawer_rows: 0,
-        back: true,
-        posts: None,
-        top_board: true,
-        front: Front::Open,
-        lip: 0.0,
+        ..Carcass::PLAIN
     };
     for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
         let cx = sx * (hw - 0.5 * cab_w);
@@ -959,18 +946,12 @@ fn counter(
         },
         columns,
         shelves: vec![uniform(rng, 0.45, 0.55)],
-        drawer_rows: 0,
-        back: true,
-        posts: None,
-        top_board: true,
         front: if customer_side || coin(rng, 0.5) {
             Front::Open
         } else {
-            Front::Doors {
-                angle: uniform(rng, 1.6, 1.75),
-            }
+            Front::doors_left_open(rng)
         },
-        lip: 0.0,
+        ..Carcass::PLAIN
     };
     let body_cz = -0.5 * overhang;
     carcass::build(
