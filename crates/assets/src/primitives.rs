@@ -939,6 +939,28 @@ impl AssetBuilder {
         self
     }
 
+    /// Adds an upward-facing support surface open above (a table top, a seat, a counter) over
+    /// the axis-aligned rectangle `min`..`max` in (x, z), shrunk by `margin` as in
+    /// [`rect_surface`].
+    pub fn top_surface(
+        &mut self,
+        name: &str,
+        min: [f32; 2],
+        max: [f32; 2],
+        height: f32,
+        margin: f32,
+    ) -> &mut Self {
+        self.surface(rect_surface(
+            name,
+            SurfaceKind::Top,
+            min,
+            max,
+            height,
+            None,
+            margin,
+        ))
+    }
+
     /// The support surfaces added so far, to adjust them after later parts.
     pub fn surfaces_mut(&mut self) -> &mut Vec<SupportSurface> {
         &mut self.surfaces

@@ -7,10 +7,10 @@ use rand_chacha::ChaCha8Rng;
 use super::carcass::CORNERS;
 use super::{mat, mat_either, SCALE};
 use crate::primitives::{
-    beam, box_yaw, cylinder, ellipsoid, fixed_material, rect_surface, AssetBuilder, Palette,
+    beam, box_yaw, cylinder, ellipsoid, fixed_material, AssetBuilder, Palette,
 };
 use crate::random::{coin, int, uniform};
-use crate::{Asset, Placement, SurfaceKind};
+use crate::{Asset, Placement};
 
 /// Bed: width 0.9–1.9 (single to king), height 0.85–1.3 (headboard), length 2.0–2.25; frame on
 /// legs, mattress top 0.45–0.62, pillows, headboard, optional footboard.
@@ -77,15 +77,7 @@ pub(super) fn bed(rng: &mut ChaCha8Rng) -> Asset {
             14,
         ));
     }
-    b.surface(rect_surface(
-        "mattress",
-        SurfaceKind::Top,
-        [-mw, mz - ml + 0.5],
-        [mw, mz + ml],
-        top,
-        None,
-        0.05,
-    ));
+    b.top_surface("mattress", [-mw, mz - ml + 0.5], [mw, mz + ml], top, 0.05);
     b.finish(Placement::Floor, SCALE)
 }
 
@@ -171,15 +163,13 @@ pub(super) fn hospital_bed(rng: &mut ChaCha8Rng) -> Asset {
             [x + 0.015, y1, 0.2],
         );
     }
-    b.surface(rect_surface(
+    b.top_surface(
         "mattress",
-        SurfaceKind::Top,
         [-hw + 0.03, -hl + 0.5],
         [hw - 0.03, hl - 0.06],
         top,
-        None,
         0.05,
-    ));
+    );
     b.finish(Placement::Floor, SCALE)
 }
 

@@ -452,15 +452,13 @@ pub(super) fn build(
     }
 
     if c.top_board {
-        b.surface(rect_surface(
+        b.top_surface(
             &format!("{prefix}top"),
-            SurfaceKind::Top,
             [cx - hw, cz - hd],
             [cx + hw, cz + hd],
             h,
-            None,
             0.03,
-        ));
+        );
     }
 }
 

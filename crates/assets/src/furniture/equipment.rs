@@ -234,15 +234,13 @@ pub(super) fn weight_bench(rng: &mut ChaCha8Rng) -> Asset {
             [0.5 * uw, 0.05, z + 0.04],
         );
     }
-    b.surface(rect_surface(
+    b.top_surface(
         "pad",
-        SurfaceKind::Top,
         [-0.5 * pad_w, -hl + 0.05],
         [0.5 * pad_w, hl - 0.05],
         pad_h,
-        None,
         0.03,
-    ));
+    );
     finish(b)
 }
 
@@ -542,15 +540,7 @@ pub(super) fn upright_piano(rng: &mut ChaCha8Rng) -> Asset {
         [-0.35, key_y + 0.2, z_back + body_d - 0.01],
         [0.35, key_y + 0.3, z_back + body_d + 0.04],
     );
-    b.surface(rect_surface(
-        "top",
-        SurfaceKind::Top,
-        [-hw, z_back],
-        [hw, z_back + body_d],
-        h,
-        None,
-        0.03,
-    ));
+    b.top_surface("top", [-hw, z_back], [hw, z_back + body_d], h, 0.03);
     b.finish(Placement::Floor, [0.9, 1.1])
 }
 
@@ -786,15 +776,13 @@ pub(super) fn stove(rng: &mut ChaCha8Rng) -> Asset {
             10,
         ));
     }
-    b.surface(rect_surface(
+    b.top_surface(
         "cooktop_centre",
-        SurfaceKind::Top,
         [-0.27 * w + 0.06, -0.1],
         [0.27 * w - 0.06, 0.1],
         h,
-        None,
         0.005,
-    ));
+    );
     b.finish(Placement::Floor, [0.95, 1.05])
 }
 
@@ -915,15 +903,7 @@ pub(super) fn sink(rng: &mut ChaCha8Rng) -> Asset {
         0.01,
     ));
     if hw - bx >= 0.08 {
-        b.surface(rect_surface(
-            "counter_left",
-            SurfaceKind::Top,
-            [-hw, bz0],
-            [-bx, bz1],
-            h,
-            None,
-            0.01,
-        ));
+        b.top_surface("counter_left", [-hw, bz0], [-bx, bz1], h, 0.01);
     }
     b.finish(Placement::Floor, [0.95, 1.05])
 }
@@ -969,15 +949,7 @@ pub(super) fn ladder(rng: &mut ChaCha8Rng) -> Asset {
         );
     }
     b.cuboid("top_cap", cap, [-hw, h - 0.06, -0.1], [hw, h, 0.12]);
-    b.surface(rect_surface(
-        "top_cap",
-        SurfaceKind::Top,
-        [-hw, -0.1],
-        [hw, 0.12],
-        h,
-        None,
-        0.02,
-    ));
+    b.top_surface("top_cap", [-hw, -0.1], [hw, 0.12], h, 0.02);
     b.finish(Placement::Floor, [0.9, 1.1])
 }
 
@@ -1057,15 +1029,7 @@ pub(super) fn pedestal(rng: &mut ChaCha8Rng) -> Asset {
     let hw = 0.5 * w;
     if coin(rng, 0.6) {
         b.cuboid("block", body, [-hw, 0.0, -hw], [hw, h, hw]);
-        b.surface(rect_surface(
-            "top",
-            SurfaceKind::Top,
-            [-hw, -hw],
-            [hw, hw],
-            h,
-            None,
-            0.03,
-        ));
+        b.top_surface("top", [-hw, -hw], [hw, hw], h, 0.03);
     } else {
         b.cuboid("plinth", body, [-hw, 0.0, -hw], [hw, 0.08, hw]);
         b.part(cylinder(
@@ -1078,15 +1042,7 @@ pub(super) fn pedestal(rng: &mut ChaCha8Rng) -> Asset {
             20,
         ));
         b.cuboid("cap", body, [-hw, h - 0.051, -hw], [hw, h, hw]);
-        b.surface(rect_surface(
-            "top",
-            SurfaceKind::Top,
-            [-hw, -hw],
-            [hw, hw],
-            h,
-            None,
-            0.03,
-        ));
+        b.top_surface("top", [-hw, -hw], [hw, hw], h, 0.03);
     }
     b.finish(Placement::Floor, [0.9, 1.1])
 }
@@ -1238,15 +1194,7 @@ pub(super) fn rug(rng: &mut ChaCha8Rng) -> Asset {
             [-0.5 * w, 0.0, -0.5 * d],
             [0.5 * w, t, 0.5 * d],
         );
-        b.surface(rect_surface(
-            "top",
-            SurfaceKind::Top,
-            [-0.5 * w, -0.5 * d],
-            [0.5 * w, 0.5 * d],
-            t,
-            None,
-            0.05,
-        ));
+        b.top_surface("top", [-0.5 * w, -0.5 * d], [0.5 * w, 0.5 * d], t, 0.05);
     }
     b.finish(Placement::Floor, [0.8, 1.25])
 }
@@ -1265,15 +1213,7 @@ pub(super) fn yoga_mat(rng: &mut ChaCha8Rng) -> Asset {
             [-0.5 * w, 0.0, -0.5 * l],
             [0.5 * w, t, 0.5 * l],
         );
-        b.surface(rect_surface(
-            "top",
-            SurfaceKind::Top,
-            [-0.5 * w, -0.5 * l],
-            [0.5 * w, 0.5 * l],
-            t,
-            None,
-            0.03,
-        ));
+        b.top_surface("top", [-0.5 * w, -0.5 * l], [0.5 * w, 0.5 * l], t, 0.03);
     } else {
         let r = uniform(rng, 0.06, 0.075);
         b.part(rod(

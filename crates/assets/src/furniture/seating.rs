@@ -243,15 +243,13 @@ fn build_chair(b: &mut AssetBuilder, c: &Chair, m: ChairMaterials) {
             ));
         }
         None => {
-            b.surface(rect_surface(
+            b.top_surface(
                 "seat",
-                SurfaceKind::Top,
                 [-inner, back_front],
                 [inner, hd],
                 c.seat_height,
-                None,
                 0.03,
-            ));
+            );
         }
     }
 }
@@ -381,27 +379,17 @@ fn upholstered_seat(rng: &mut ChaCha8Rng, w_lo: f32, w_hi: f32, sofa: bool) -> A
         });
         b.part(hexahedron(&format!("back_cushion_{i}"), cover, corners));
     }
-    b.surface(rect_surface(
-        "seat",
-        SurfaceKind::Top,
-        [-inner, cushion_front],
-        [inner, hd],
-        seat_h,
-        None,
-        0.03,
-    ));
+    b.top_surface("seat", [-inner, cushion_front], [inner, hd], seat_h, 0.03);
     for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
         let x0 = if sx < 0.0 { -hw } else { hw - arm_w };
         if arm_w >= 0.15 {
-            b.surface(rect_surface(
+            b.top_surface(
                 &format!("arm_{i}"),
-                SurfaceKind::Top,
                 [x0, -hd + back_d],
                 [x0 + arm_w, hd],
                 arm_h,
-                None,
                 0.02,
-            ));
+            );
         }
     }
     b.finish(Placement::Floor, SCALE)
@@ -724,15 +712,13 @@ pub(super) fn bean_bag(rng: &mut ChaCha8Rng) -> Asset {
         pad_top,
         20,
     ));
-    b.surface(rect_surface(
+    b.top_surface(
         "seat",
-        SurfaceKind::Top,
         [-0.15 * w, 0.06 * d],
         [0.15 * w, 0.15 * d + 0.15 * w],
         pad_top,
-        None,
         0.01,
-    ));
+    );
     b.finish(Placement::Floor, SCALE)
 }
 
@@ -790,15 +776,7 @@ pub(super) fn ottoman(rng: &mut ChaCha8Rng) -> Asset {
                 8,
             ));
         }
-        b.surface(rect_surface(
-            "top",
-            SurfaceKind::Top,
-            [-0.5 * w, -0.5 * d],
-            [0.5 * w, 0.5 * d],
-            h,
-            None,
-            0.04,
-        ));
+        b.top_surface("top", [-0.5 * w, -0.5 * d], [0.5 * w, 0.5 * d], h, 0.04);
     }
     b.finish(Placement::Floor, SCALE)
 }
@@ -858,15 +836,13 @@ pub(super) fn camping_chair(rng: &mut ChaCha8Rng) -> Asset {
         [x, y, z]
     });
     b.part(hexahedron("back_sling", cloth, corners));
-    b.surface(rect_surface(
+    b.top_surface(
         "seat",
-        SurfaceKind::Top,
         [-hw + 0.04, -hd + 0.04],
         [hw - 0.04, hd - 0.04],
         seat_h,
-        None,
         0.02,
-    ));
+    );
     b.finish(Placement::Floor, SCALE)
 }
 
@@ -904,15 +880,13 @@ pub(super) fn log_bench(rng: &mut ChaCha8Rng) -> Asset {
             12,
         ));
     }
-    b.surface(rect_surface(
+    b.top_surface(
         "seat",
-        SurfaceKind::Top,
         [-0.5 * len, -half_chord],
         [0.5 * len, half_chord],
         h,
-        None,
         0.03,
-    ));
+    );
     b.finish(Placement::Floor, [0.85, 1.2])
 }
 
@@ -1038,15 +1012,13 @@ pub(super) fn wheelchair(rng: &mut ChaCha8Rng) -> Asset {
         0.15,
         0.0,
     ));
-    b.surface(rect_surface(
+    b.top_surface(
         "seat",
-        SurfaceKind::Top,
         [-sx, -0.5 * seat_d + 0.02],
         [sx, 0.5 * seat_d],
         seat_h,
-        None,
         0.03,
-    ));
+    );
     b.finish(Placement::Floor, SCALE)
 }
 

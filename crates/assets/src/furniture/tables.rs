@@ -60,15 +60,7 @@ fn build_table(b: &mut AssetBuilder, t: &Table, top_m: usize, leg_m: usize) {
         ));
     } else {
         b.cuboid("top", top_m, [-hw, under_top, -hd], [hw, h, hd]);
-        b.surface(rect_surface(
-            "top",
-            SurfaceKind::Top,
-            [-hw, -hd],
-            [hw, hd],
-            h,
-            None,
-            0.03,
-        ));
+        b.top_surface("top", [-hw, -hd], [hw, hd], h, 0.03);
     }
     // Leg footprint: the rectangle the legs stand on (inner faces).
     let (fx, fz) = if t.round {
@@ -363,15 +355,7 @@ pub(super) fn desk(rng: &mut ChaCha8Rng) -> Asset {
     let top_t = uniform(rng, 0.025, 0.04);
     let under_top = h - top_t;
     b.cuboid("top", body, [-hw, under_top, -hd], [hw, h, hd]);
-    b.surface(rect_surface(
-        "top",
-        SurfaceKind::Top,
-        [-hw, -hd],
-        [hw, hd],
-        h,
-        None,
-        0.03,
-    ));
+    b.top_surface("top", [-hw, -hd], [hw, hd], h, 0.03);
     let panel = 0.025;
     let pedestal = coin(rng, 0.7);
     let ped_w = uniform(rng, 0.38, 0.45);
@@ -653,15 +637,13 @@ pub(super) fn picnic_table(rng: &mut ChaCha8Rng) -> Asset {
             [-hw, seat_h - 0.04, zc - 0.5 * bench_d],
             [hw, seat_h, zc + 0.5 * bench_d],
         );
-        b.surface(rect_surface(
+        b.top_surface(
             &format!("bench_{k}"),
-            SurfaceKind::Top,
             [-hw, zc - 0.5 * bench_d],
             [hw, zc + 0.5 * bench_d],
             seat_h,
-            None,
             0.03,
-        ));
+        );
     }
     for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
         let x = sx * (hw - 0.25);
@@ -692,15 +674,7 @@ pub(super) fn picnic_table(rng: &mut ChaCha8Rng) -> Asset {
             [x + 0.03, h - 0.04, 0.5 * top_d - 0.02],
         );
     }
-    b.surface(rect_surface(
-        "top",
-        SurfaceKind::Top,
-        [-hw, -0.5 * top_d],
-        [hw, 0.5 * top_d],
-        h,
-        None,
-        0.03,
-    ));
+    b.top_surface("top", [-hw, -0.5 * top_d], [hw, 0.5 * top_d], h, 0.03);
     b.finish(Placement::Floor, SCALE)
 }
 
@@ -759,25 +733,15 @@ pub(super) fn lab_bench(rng: &mut ChaCha8Rng) -> Asset {
         [-hw + 0.05, h + shelf_h - 0.02, -hd + 0.01],
         [hw - 0.05, h + shelf_h, -hd + 0.01 + shelf_d],
     );
-    b.surface(rect_surface(
+    b.top_surface(
         "reagent_shelf",
-        SurfaceKind::Top,
         [-hw + 0.05, -hd + 0.01],
         [hw - 0.05, -hd + 0.01 + shelf_d],
         h + shelf_h,
-        None,
         0.03,
-    ));
+    );
     let front_of_shelf = -hd + 0.01 + shelf_d;
-    b.surface(rect_surface(
-        "top",
-        SurfaceKind::Top,
-        [-hw, front_of_shelf],
-        [hw, hd],
-        h,
-        None,
-        0.03,
-    ));
+    b.top_surface("top", [-hw, front_of_shelf], [hw, hd], h, 0.03);
     b.surface(rect_surface(
         "top_under_shelf",
         SurfaceKind::Shelf,
@@ -899,15 +863,13 @@ pub(super) fn pool_table(rng: &mut ChaCha8Rng) -> Asset {
             ));
         }
     }
-    b.surface(rect_surface(
+    b.top_surface(
         "bed",
-        SurfaceKind::Top,
         [-hw + rail, -hd + rail],
         [hw - rail, hd - rail],
         bed_y,
-        None,
         0.03,
-    ));
+    );
     b.finish(Placement::Floor, SCALE)
 }
 
@@ -972,15 +934,7 @@ fn counter(
         [-hw - 0.01, h - top_t, -hd],
         [hw + 0.01, h, hd],
     );
-    b.surface(rect_surface(
-        "top",
-        SurfaceKind::Top,
-        [-hw, -hd],
-        [hw, hd],
-        h,
-        None,
-        0.03,
-    ));
+    b.top_surface("top", [-hw, -hd], [hw, hd], h, 0.03);
     if bar {
         let rail_z = hd - overhang + 0.12;
         b.part(rod(

@@ -84,15 +84,13 @@ pub(super) fn whiteboard(rng: &mut ChaCha8Rng) -> Asset {
         [-0.5 * tray_w, -0.02, 0.07],
         [0.5 * tray_w, 0.01, 0.08],
     );
-    b.surface(rect_surface(
+    b.top_surface(
         "tray",
-        SurfaceKind::Top,
         [-0.5 * tray_w, 0.02],
         [0.5 * tray_w, 0.07],
         0.0,
-        None,
         0.005,
-    ));
+    );
     b.finish(Placement::Wall, [0.9, 1.1])
 }
 
