@@ -12,6 +12,25 @@ pub fn cuboid(name: &str, material: usize, min: [f32; 3], max: [f32; 3]) -> Mesh
     MeshPart::cuboid(name, material, min, max)
 }
 
+/// A vertical post of square section `side` centred at `center` = (x, z), from `y0` to `y1`:
+/// table and bed legs, rack uprights, crate corner posts.
+pub fn square_post(
+    name: &str,
+    material: usize,
+    center: [f32; 2],
+    side: f32,
+    y0: f32,
+    y1: f32,
+) -> MeshPart {
+    let half = 0.5 * side;
+    cuboid(
+        name,
+        material,
+        [center[0] - half, y0, center[1] - half],
+        [center[0] + half, y1, center[1] + half],
+    )
+}
+
 /// A vertical cylinder (axis +Y) centred at (`cx`, `cz`) from `y0` to `y1`, with `segments`
 /// sides (at least 3) and capped ends.
 pub fn cylinder(
@@ -1061,6 +1080,9 @@ mod tests {
             6.0,
             1e-6,
         );
+        let post = square_post("post", 0, [1.0, 2.0], 0.2, 0.5, 3.5);
+        check(&post, 0.12, 1e-5);
+        assert_eq!(post.positions[0], [0.9, 0.5, 1.9]);
         check(
             &cylinder("cyl", 0, [0.5, 0.5], 0.5, 0.0, 2.0, 64),
             PI * 0.25 * 2.0,

@@ -7,7 +7,7 @@ use rand_chacha::ChaCha8Rng;
 use super::carcass::CORNERS;
 use super::{mat, mat_either, SCALE};
 use crate::primitives::{
-    beam, box_yaw, cylinder, ellipsoid, fixed_material, AssetBuilder, Palette,
+    beam, box_yaw, cylinder, ellipsoid, fixed_material, square_post, AssetBuilder, Palette,
 };
 use crate::random::{coin, int, uniform};
 use crate::{Asset, Placement};
@@ -29,16 +29,14 @@ pub(super) fn bed(rng: &mut ChaCha8Rng) -> Asset {
     let rail_top = leg_h + uniform(rng, 0.15, 0.22);
     let top = rail_top + uniform(rng, 0.18, 0.26) - 0.04;
     for (i, (sx, sz)) in CORNERS.iter().enumerate() {
-        b.cuboid(
+        b.part(square_post(
             &format!("leg_{i}"),
             frame,
-            [sx * (hw - 0.03) - 0.03, 0.0, sz * (hl - 0.03) - 0.03],
-            [
-                sx * (hw - 0.03) + 0.03,
-                leg_h + 0.002,
-                sz * (hl - 0.03) + 0.03,
-            ],
-        );
+            [sx * (hw - 0.03), sz * (hl - 0.03)],
+            0.06,
+            0.0,
+            leg_h + 0.002,
+        ));
     }
     b.cuboid("frame", frame, [-hw, leg_h, -hl], [hw, rail_top, hl]);
     let (mw, ml) = (0.5 * mattress_w, 0.5 * mattress_l);

@@ -9,7 +9,7 @@ use std::f32::consts::PI;
 
 use rand_chacha::ChaCha8Rng;
 
-use crate::primitives::{box_yaw, cylinder, ellipsoid, rect_surface, AssetBuilder};
+use crate::primitives::{box_yaw, cylinder, ellipsoid, rect_surface, square_post, AssetBuilder};
 use crate::random::{coin, uniform};
 use crate::SurfaceKind;
 
@@ -204,12 +204,14 @@ pub(super) fn build(
                     cx + sx * (hw - 0.02 - 0.5 * section),
                     cz + sz * (hd - 0.02 - 0.5 * section),
                 );
-                b.cuboid(
+                b.part(square_post(
                     &format!("{prefix}leg_{i}"),
                     m.body,
-                    [x - 0.5 * section, 0.0, z - 0.5 * section],
-                    [x + 0.5 * section, height + 0.005, z + 0.5 * section],
-                );
+                    [x, z],
+                    section,
+                    0.0,
+                    height + 0.005,
+                ));
             }
             if height >= 0.12 {
                 let (ix, iz) = (hw - 0.02 - section, hd - 0.02 - section);
@@ -287,12 +289,14 @@ pub(super) fn build(
                     .into_iter()
                     .enumerate()
                 {
-                    b.cuboid(
+                    b.part(square_post(
                         &format!("{prefix}post_{i}_{k}"),
                         m.side,
-                        [x - 0.5 * p, side_y0, z - 0.5 * p],
-                        [x + 0.5 * p, h, z + 0.5 * p],
-                    );
+                        [x, z],
+                        p,
+                        side_y0,
+                        h,
+                    ));
                 }
             }
         }

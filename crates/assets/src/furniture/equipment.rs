@@ -9,7 +9,7 @@ use super::carcass::{self, Carcass, CarcassMaterials, Feet, CORNERS};
 use super::{mat, mat_either, SCALE};
 use crate::primitives::{
     beam, cylinder, disc_surface, ellipsoid, fixed_material, frustum, hexahedron, prism_y,
-    rect_surface, rod, sphere, strut, AssetBuilder, Palette,
+    rect_surface, rod, sphere, square_post, strut, AssetBuilder, Palette,
 };
 use crate::random::{coin, int, uniform, uniform3};
 use crate::{Asset, Placement, SurfaceKind};
@@ -256,12 +256,14 @@ pub(super) fn squat_rack(rng: &mut ChaCha8Rng) -> Asset {
     let post = 0.075;
     for (i, (sx, sz)) in CORNERS.iter().enumerate() {
         let (x, z) = (sx * (hw - 0.5 * post), sz * (hd - 0.5 * post));
-        b.cuboid(
+        b.part(square_post(
             &format!("upright_{i}"),
             frame,
-            [x - 0.5 * post, 0.0, z - 0.5 * post],
-            [x + 0.5 * post, h, z + 0.5 * post],
-        );
+            [x, z],
+            post,
+            0.0,
+            h,
+        ));
     }
     for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
         let x = sx * (hw - 0.5 * post);

@@ -7,7 +7,7 @@ use rand_chacha::ChaCha8Rng;
 use super::carcass::{self, Carcass, CarcassMaterials, Feet, Front, CORNERS};
 use super::{mat, mat_either, SCALE};
 use crate::primitives::{
-    beam, fixed_material, hexahedron, rect_surface, rod, AssetBuilder, Palette,
+    beam, fixed_material, hexahedron, rect_surface, rod, square_post, AssetBuilder, Palette,
 };
 use crate::random::{coin, int, uniform, uniform3};
 use crate::{Asset, Placement, SurfaceKind};
@@ -491,12 +491,14 @@ pub(super) fn pallet_rack(rng: &mut ChaCha8Rng) -> Asset {
     let post = 0.08;
     for (i, (sx, sz)) in CORNERS.iter().enumerate() {
         let (x, z) = (sx * (hw - 0.5 * post), sz * (hd - 0.5 * post));
-        b.cuboid(
+        b.part(square_post(
             &format!("upright_{i}"),
             upright,
-            [x - 0.5 * post, 0.0, z - 0.5 * post],
-            [x + 0.5 * post, h, z + 0.5 * post],
-        );
+            [x, z],
+            post,
+            0.0,
+            h,
+        ));
     }
     for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
         let x = sx * (hw - 0.5 * post);

@@ -10,8 +10,8 @@ use rand_chacha::ChaCha8Rng;
 use super::carcass::{self, Carcass, CarcassMaterials, Feet, Front, CORNERS};
 use super::{mat, mat_either, SCALE};
 use crate::primitives::{
-    beam, cylinder, disc_surface, fixed_material, frustum, rect_surface, rod, strut, AssetBuilder,
-    Palette,
+    beam, cylinder, disc_surface, fixed_material, frustum, rect_surface, rod, square_post, strut,
+    AssetBuilder, Palette,
 };
 use crate::random::{coin, int, uniform, uniform3};
 use crate::{Asset, Placement, SurfaceKind};
@@ -74,16 +74,14 @@ fn build_table(b: &mut AssetBuilder, t: &Table, top_m: usize, leg_m: usize) {
         Support::Legs { section, inset } => {
             let (lx, lz) = (fx - inset - 0.5 * section, fz - inset - 0.5 * section);
             for (i, (sx, sz)) in CORNERS.iter().enumerate() {
-                b.cuboid(
+                b.part(square_post(
                     &format!("leg_{i}"),
                     leg_m,
-                    [sx * lx - 0.5 * section, 0.0, sz * lz - 0.5 * section],
-                    [
-                        sx * lx + 0.5 * section,
-                        under_top + 0.002,
-                        sz * lz + 0.5 * section,
-                    ],
-                );
+                    [sx * lx, sz * lz],
+                    section,
+                    0.0,
+                    under_top + 0.002,
+                ));
             }
             if t.apron > 0.0 {
                 let y0 = under_top - t.apron;

@@ -4,7 +4,7 @@
 use rand_chacha::ChaCha8Rng;
 
 use super::builder::Builder;
-use crate::primitives::{arc, disc, rect};
+use crate::primitives::{arc, disc, rect, square_post};
 use crate::random::{color, uniform, uniform3};
 use crate::{Asset, Placement};
 
@@ -70,12 +70,14 @@ pub(crate) fn wooden_crate(rng: &mut ChaCha8Rng) -> Asset {
         .enumerate()
     {
         let (cx, cz) = (sx * (x - board - post / 2.0), sz * (z - board - post / 2.0));
-        b.cuboid(
+        b.add(square_post(
             &format!("post_{i}"),
             wood,
-            [cx - post / 2.0, 0.0, cz - post / 2.0],
-            [cx + post / 2.0, h, cz + post / 2.0],
-        );
+            [cx, cz],
+            post,
+            0.0,
+            h,
+        ));
     }
     let m = board + post + 0.01;
     b.interior(rect(-x + m, -z + m, x - m, z - m), floor);
