@@ -24,65 +24,9 @@ pub(super) fn parse(
 ) -> Result<Mesh, MeshLoadError> {
     let mut vertices: Vec<[f32; 3]> = Vec::new();
     let mut library: BTreeMap<String, Material> = BTreeMap::new();
-    let mut mesh = Mesh::default();
-    let mut material_index: BTreeMap<String, usize> = BTreeMap::new();
+    let mut parts = Parts::default();
     let mut group = String::from("mesh");
     let mut current_material = String::new();
-    // Global-index triangles of the part being filled.
-    let mut pending: Vec<[u32; 3]> = Vec::new();
-
-    let flush = |mesh: &mut Mesh,
-                 pending: &mut Vec<[u32; 3]>,
-                 vertices: &[[f32; 3]],
-                 group: &str,
-                 material: &str,
-                 library: &BTreeMap<String, Material>,
-                 material_index: &mut BTreeMap<String, usize>| {
-        if pending.is_empty() {
-            return;
-        }
-        let m = *material_index
-            .entry(material.to_owned())
-            .or_insert_with(|| {
-                let mat = library.get(material).cloned().unwrap_or_else(|| {
-                    Material::new(
-                        if material.is_empty() {
-                            "default"
-                        } else {
-                            material
-                        },
-                        [0.7, 0.7, 0.7],
-                        0.7,
-                    )
-                });
-                mesh.materials.push(mat);
-                mesh.materials.len() - 1
-            });
-        let mut local: std::collections::HashMap<u32, u32> = std::collections::HashMap::new();
-        let mut positions = Vec::new();
-        let triangles = std::mem::take(pending)
-            .into_iter()
-            .map(|t| {
-                t.map(|i| {
-                    *local.entry(i).or_insert_with(|| {
-                        positions.push(vertices[i as usize]);
-                        positions.len() as u32 - 1
-                    })
-                })
-            })
-            .collect();
-        let part = MeshPart {
-            name: if material.is_empty() {
-                group.to_owned()
-            } else {
-                format!("{group}_{material}")
-            },
-            material: m,
-            positions,
-            triangles,
-        };
-        mesh.parts.push(part);
-    };
 
     for (n, raw) in text.lines().enumerate() {
         let line = raw.split('#').next().unwrap_or("").trim();
@@ -130,35 +74,19 @@ pub(super) fn parse(
                 for k in 1..face.len() - 1 {
                     let t = [face[0], face[k], face[k + 1]];
                     if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
-                        pending.push(t);
+                        parts.pending.push(t);
                     }
                 }
             }
             "o" | "g" => {
-                flush(
-                    &mut mesh,
-                    &mut pending,
-                    &vertices,
-                    &group,
-                    &current_material,
-                    &library,
-                    &mut material_index,
-                );
+                parts.flush(&vertices, &group, &current_material, &library);
                 group = fields.collect::<Vec<_>>().join("_");
                 if group.is_empty() {
                     group = "mesh".into();
                 }
             }
             "usemtl" => {
-                flush(
-                    &mut mesh,
-                    &mut pending,
-                    &vertices,
-                    &group,
-                    &current_material,
-                    &library,
-                    &mut material_index,
-                );
+                parts.flush(&vertices, &group, &current_material, &library);
                 current_material = fields.collect::<Vec<_>>().join(" ");
             }
             "mtllib" => {
@@ -170,19 +98,81 @@ pub(super) fn parse(
             _ => {} // vt, vn, s, l, p and the rest carry nothing we keep.
         }
     }
-    flush(
-        &mut mesh,
-        &mut pending,
-        &vertices,
-        &group,
-        &current_material,
-        &library,
-        &mut material_index,
-    );
-    if mesh.triangle_count() == 0 {
+    parts.flush(&vertices, &group, &current_material, &library);
+    if parts.mesh.triangle_count() == 0 {
         return Err(MeshLoadError::Empty);
     }
-    Ok(mesh)
+    Ok(parts.mesh)
+}
+
+/// The mesh being read: finished parts, the triangles of the part being filled and the index of
+/// every material used so far.
+#[derive(Default)]
+struct Parts {
+    mesh: Mesh,
+    /// Global-index triangles of the part being filled.
+    pending: Vec<[u32; 3]>,
+    material_index: BTreeMap<String, usize>,
+}
+
+impl Parts {
+    /// Closes the part being filled (if it has triangles) as object/group `group` with
+    /// `material` (looked up in `library`, a grey default when missing), keeping only the
+    /// vertices it uses.
+    fn flush(
+        &mut self,
+        vertices: &[[f32; 3]],
+        group: &str,
+        material: &str,
+        library: &BTreeMap<String, Material>,
+    ) {
+        if self.pending.is_empty() {
+            return;
+        }
+        let mesh = &mut self.mesh;
+        let m = *self
+            .material_index
+            .entry(material.to_owned())
+            .or_insert_with(|| {
+                let mat = library.get(material).cloned().unwrap_or_else(|| {
+                    Material::new(
+                        if material.is_empty() {
+                            "default"
+                        } else {
+                            material
+                        },
+                        [0.7, 0.7, 0.7],
+                        0.7,
+                    )
+                });
+                mesh.materials.push(mat);
+                mesh.materials.len() - 1
+            });
+        let mut local: std::collections::HashMap<u32, u32> = std::collections::HashMap::new();
+        let mut positions = Vec::new();
+        let triangles = std::mem::take(&mut self.pending)
+            .into_iter()
+            .map(|t| {
+                t.map(|i| {
+                    *local.entry(i).or_insert_with(|| {
+                        positions.push(vertices[i as usize]);
+                        positions.len() as u32 - 1
+                    })
+                })
+            })
+            .collect();
+        let part = MeshPart {
+            name: if material.is_empty() {
+                group.to_owned()
+            } else {
+                format!("{group}_{material}")
+            },
+            material: m,
+            positions,
+            triangles,
+        };
+        mesh.parts.push(part);
+    }
 }
 
 /// Reads `newmtl` blocks: `Kd` (diffuse colour), `Ns` (shininess → roughness), `d`/`Tr`
