@@ -265,70 +265,72 @@ impl Renderer {
             stencil: wgpu::StencilState::default(),
             bias,
         };
-        let scene_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("scene"),
-            layout: Some(&scene_layout),
-            vertex: wgpu::VertexState {
-                module: &shader,
-                entry_point: Some("vs_scene"),
-                compilation_options: Default::default(),
-                buffers: &[Some(vertex_layout.clone())],
-            },
-            primitive: wgpu::PrimitiveState {
-                cull_mode: Some(wgpu::Face::Back),
-                ..Default::default()
-            },
-            depth_stencil: Some(depth_state(
+        // The three pipelines share the shader, the colour targets and everything but these.
+        let pipeline = |label: &str,
+                        layout: &wgpu::PipelineLayout,
+                        vertex_entry: &str,
+                        buffers: &[Option<wgpu::VertexBufferLayout>],
+                        cull_mode: Option<wgpu::Face>,
+                        depth_stencil: wgpu::DepthStencilState,
+                        fragment_entry: Option<&str>| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: Some(layout),
+                vertex: wgpu::VertexState {
+                    module: &shader,
+                    entry_point: Some(vertex_entry),
+                    compilation_options: Default::default(),
+                    buffers,
+                },
+                primitive: wgpu::PrimitiveState {
+                    cull_mode,
+                    ..Default::default()
+                },
+                depth_stencil: Some(depth_stencil),
+                multisample: wgpu::MultisampleState::default(),
+                fragment: fragment_entry.map(|entry| wgpu::FragmentState {
+                    module: &shader,
+                    entry_point: Some(entry),
+                    compilation_options: Default::default(),
+                    targets: &targets,
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let scene_pipeline = pipeline(
+            "scene",
+            &scene_layout,
+            "vs_scene",
+            &[Some(vertex_layout.clone())],
+            Some(wgpu::Face::Back),
+            depth_state(
                 true,
                 wgpu::CompareFunction::Less,
                 wgpu::DepthBiasState::default(),
-            )),
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &shader,
-                entry_point: Some("fs_scene"),
-                compilation_options: Default::default(),
-                targets: &targets,
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
-        let background_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("background"),
-            layout: Some(&globals_only),
-            vertex: wgpu::VertexState {
-                module: &shader,
-                entry_point: Some("vs_background"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: Some(depth_state(
+            ),
+            Some("fs_scene"),
+        );
+        let background_pipeline = pipeline(
+            "background",
+            &globals_only,
+            "vs_background",
+            &[],
+            None,
+            depth_state(
                 false,
                 wgpu::CompareFunction::Always,
                 wgpu::DepthBiasState::default(),
-            )),
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &shader,
-                entry_point: Some("fs_background"),
-                compilation_options: Default::default(),
-                targets: &targets,
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
-        let shadow_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("shadow"),
-            layout: Some(&globals_only),
-            vertex: wgpu::VertexState {
-                module: &shader,
-                entry_point: Some("vs_shadow"),
-                compilation_options: Default::default(),
-                buffers: &[Some(vertex_layout)],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: Some(depth_state(
+            ),
+            Some("fs_background"),
+        );
+        let shadow_pipeline = pipeline(
+            "shadow",
+            &globals_only,
+            "vs_shadow",
+            &[Some(vertex_layout)],
+            None,
+            depth_state(
                 true,
                 wgpu::CompareFunction::Less,
                 wgpu::DepthBiasState {
@@ -336,12 +338,9 @@ impl Renderer {
                     slope_scale: 2.0,
                     clamp: 0.0,
                 },
-            )),
-            multisample: wgpu::MultisampleState::default(),
-            fragment: None,
-            multiview_mask: None,
-            cache: None,
-        });
+            ),
+            None,
+        );
         let shadow_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("shadow"),
             address_mode_u: wgpu::AddressMode::ClampToEdge,
