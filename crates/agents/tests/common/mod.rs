@@ -1,13 +1,14 @@
 //! Shared helpers of the agents tests: the benchmark prompts with the categories each plan
-//! must hold, the library's categories, and an independent raster implementation of the Walk
-//! and Reach metrics (docs: /work/shared/metrics.md).
+//! must hold, the library's categories, and the Walk and Reach metrics of a guided scene (from
+//! `scenethesis-eval`).
 #![allow(dead_code)]
 
 use scenethesis_agents::{
     CatalogAssets, Guide, GuidedLayout, KnowledgePlanner, Plan, PlanRequest, Planner,
     ProceduralGuide,
 };
-use scenethesis_scene_graph::{ParentRef, Scene, SceneObject};
+use scenethesis_eval::EvalScene;
+use scenethesis_scene_graph::{Scene, SceneObject};
 
 /// The public benchmark prompts (shared/benchmarks/prompts.txt) and the key categories one
 /// expects in each plan.
@@ -179,131 +180,12 @@ pub fn footprint(o: &SceneObject) -> ([f64; 2], f64, [f64; 2]) {
     ([w.x, w.z], o.pose.yaw, [s.x, s.z])
 }
 
-fn distance_to_box(p: [f64; 2], o: &SceneObject) -> f64 {
-    let (c, yaw, h) = footprint(o);
-    let (s, co) = yaw.sin_cos();
-    let (dx, dz) = (p[0] - c[0], p[1] - c[1]);
-    let lx = dx * co - dz * s;
-    let lz = dx * s + dz * co;
-    let ex = (lx.abs() - h[0]).max(0.0);
-    let ez = (lz.abs() - h[1]).max(0.0);
-    (ex * ex + ez * ez).sqrt()
-}
-
-/// Walk and Reach (floor-standing objects) by the metric rules: a 256 × 256 raster over the
-/// floor's bounding square plus 0.2 m, the floor eroded by the 0.15 m robot radius, footprints
-/// grown by the radius, 8-connected components.
+/// Walk and Reach (floor-standing objects) by the metric rules (docs: /work/shared/metrics.md),
+/// computed by `scenethesis-eval` over the scene's regenerated procedural meshes. Reach is 0
+/// when nothing stands on the floor.
 pub fn walk_and_reach(scene: &Scene) -> (f64, f64) {
-    let floor = &scene.architecture.floor;
-    let (w, d) = (floor.max.x - floor.min.x, floor.max.y - floor.min.y);
-    let side = w.max(d) + 0.4;
-    let (cx, cz) = (
-        (floor.min.x + floor.max.x) / 2.0,
-        (floor.min.y + floor.max.y) / 2.0,
-    );
-    let n = 256usize;
-    let px = side / n as f64;
-    let r = 0.15;
-    let center = |i: usize, j: usize| {
-        [
-            cx - side / 2.0 + (i as f64 + 0.5) * px,
-            cz - side / 2.0 + (j as f64 + 0.5) * px,
-        ]
-    };
-    let on_floor = |p: [f64; 2]| {
-        p[0] >= floor.min.x + r
-            && p[0] <= floor.max.x - r
-            && p[1] >= floor.min.y + r
-            && p[1] <= floor.max.y - r
-    };
-    let walk_obstacles: Vec<&SceneObject> = scene
-        .objects
-        .iter()
-        .filter(|o| o.world_aabb().center().y < 1.5)
-        .collect();
-    let components = |obstacles: &[&SceneObject]| {
-        let mut free = vec![false; n * n];
-        for j in 0..n {
-            for i in 0..n {
-                let p = center(i, j);
-                free[j * n + i] =
-                    on_floor(p) && obstacles.iter().all(|o| distance_to_box(p, o) > r);
-            }
-        }
-        let mut labels = vec![0usize; n * n];
-        let mut sizes = vec![0usize];
-        for s in 0..n * n {
-            if !free[s] || labels[s] != 0 {
-                continue;
-            }
-            let l = sizes.len();
-            let mut stack = vec![s];
-            labels[s] = l;
-            let mut size = 0;
-            while let Some(k) = stack.pop() {
-                size += 1;
-                let (i, j) = ((k % n) as i64, (k / n) as i64);
-                for dj in -1..=1 {
-                    for di in -1..=1 {
-                        let (a, b) = (i + di, j + dj);
-                        if a >= 0 && b >= 0 && a < n as i64 && b < n as i64 {
-                            let m = b as usize * n + a as usize;
-                            if free[m] && labels[m] == 0 {
-                                labels[m] = l;
-                                stack.push(m);
-                            }
-                        }
-                    }
-                }
-            }
-            sizes.push(size);
-        }
-        (labels, sizes)
-    };
-    let (_, wsizes) = components(&walk_obstacles);
-    let total: usize = wsizes.iter().sum();
-    let walk = if total == 0 {
-        0.0
-    } else {
-        *wsizes.iter().max().unwrap() as f64 / total as f64
-    };
-
-    let all: Vec<&SceneObject> = scene.objects.iter().collect();
-    let (labels, sizes) = components(&all);
-    let total: usize = sizes.iter().sum();
-    let ground: Vec<&SceneObject> = scene
-        .objects
-        .iter()
-        .filter(|o| o.parent == ParentRef::Ground)
-        .collect();
-    let mut touching = vec![0usize; sizes.len()];
-    for o in &ground {
-        let (c, _, h) = footprint(o);
-        let reach_r = h[0].hypot(h[1]) + r + 3.0 * px;
-        let to_px = |v: f64, c0: f64| {
-            ((v - (c0 - side / 2.0)) / px)
-                .floor()
-                .clamp(0.0, (n - 1) as f64) as usize
-        };
-        let (i0, i1) = (to_px(c[0] - reach_r, cx), to_px(c[0] + reach_r, cx));
-        let (j0, j1) = (to_px(c[1] - reach_r, cz), to_px(c[1] + reach_r, cz));
-        let mut seen = std::collections::BTreeSet::new();
-        for j in j0..=j1 {
-            for i in i0..=i1 {
-                let l = labels[j * n + i];
-                if l != 0 && distance_to_box(center(i, j), o) <= r + px * 1.5 {
-                    seen.insert(l);
-                }
-            }
-        }
-        for l in seen {
-            touching[l] += 1;
-        }
-    }
-    let mut reach = 0.0;
-    for l in 1..sizes.len() {
-        reach +=
-            touching[l] as f64 / ground.len().max(1) as f64 * sizes[l] as f64 / total.max(1) as f64;
-    }
-    (walk, reach)
+    let eval = EvalScene::from_scene_procedural(scene)
+        .unwrap_or_else(|e| panic!("procedural meshes of a guided scene: {e}"));
+    let metrics = scenethesis_eval::raster::walk_and_reach(&eval);
+    (metrics.walk, metrics.reach_floor.unwrap_or(0.0))
 }
