@@ -21,6 +21,40 @@ fn header(out: &mut String) {
     let _ = writeln!(out, "{}", "-".repeat(48));
 }
 
+/// The collision, stability, Walk and Reach values one table shows (rates as fractions).
+struct PhysicalRows {
+    col_o: f64,
+    col_s: f64,
+    col_arch: f64,
+    inst_o: f64,
+    inst_s: f64,
+    walk: f64,
+    reach_floor: Option<f64>,
+    reach_all: Option<f64>,
+}
+
+/// The rows both tables share, each with its goal.
+fn physical_rows(out: &mut String, v: &PhysicalRows) {
+    row(out, "Col-O", &percent(v.col_o), "0.0 %");
+    row(out, "Col-S", &percent(v.col_s), "0 %");
+    row(out, "Col-arch", &percent(v.col_arch), "0 %");
+    row(out, "Inst-O", &percent(v.inst_o), "< 0.5 %");
+    row(out, "Inst-S", &percent(v.inst_s), "< 5 %");
+    row(out, "Walk", &format!("{:.3}", v.walk), ">= 0.99");
+    row(
+        out,
+        "Reach (floor objects)",
+        &ratio(v.reach_floor),
+        ">= 0.98",
+    );
+    row(
+        out,
+        "Reach (all objects)",
+        &ratio(v.reach_all),
+        "(reported)",
+    );
+}
+
 impl SceneMetrics {
     /// A readable table: metric, value and goal, then the details (colliding pairs, unstable
     /// objects, penetrated architecture, unreachable objects).
@@ -40,28 +74,18 @@ impl SceneMetrics {
             &self.relation_kinds.to_string(),
             ">= 4",
         );
-        row(&mut out, "Col-O", &percent(self.col_o), "0.0 %");
-        row(&mut out, "Col-S", &percent(self.col_s as u8 as f64), "0 %");
-        row(&mut out, "Col-arch", &percent(self.col_arch), "0 %");
-        row(&mut out, "Inst-O", &percent(self.inst_o), "< 0.5 %");
-        row(
+        physical_rows(
             &mut out,
-            "Inst-S",
-            &percent(self.inst_s as u8 as f64),
-            "< 5 %",
-        );
-        row(&mut out, "Walk", &format!("{:.3}", self.walk), ">= 0.99");
-        row(
-            &mut out,
-            "Reach (floor objects)",
-            &ratio(self.reach_floor),
-            ">= 0.98",
-        );
-        row(
-            &mut out,
-            "Reach (all objects)",
-            &ratio(self.reach_all),
-            "(reported)",
+            &PhysicalRows {
+                col_o: self.col_o,
+                col_s: self.col_s as u8 as f64,
+                col_arch: self.col_arch,
+                inst_o: self.inst_o,
+                inst_s: self.inst_s as u8 as f64,
+                walk: self.walk,
+                reach_floor: self.reach_floor,
+                reach_all: self.reach_all,
+            },
         );
         for p in &self.colliding_pairs {
             let _ = writeln!(
@@ -136,24 +160,62 @@ impl MetricsSummary {
             &format!("{:.1}", self.mean_relation_kinds),
             ">= 4",
         );
-        row(&mut out, "Col-O", &percent(self.col_o), "0.0 %");
-        row(&mut out, "Col-S", &percent(self.col_s), "0 %");
-        row(&mut out, "Col-arch", &percent(self.col_arch), "0 %");
-        row(&mut out, "Inst-O", &percent(self.inst_o), "< 0.5 %");
-        row(&mut out, "Inst-S", &percent(self.inst_s), "< 5 %");
-        row(&mut out, "Walk", &format!("{:.3}", self.walk), ">= 0.99");
-        row(
+        physical_rows(
             &mut out,
-            "Reach (floor objects)",
-            &ratio(self.reach_floor),
-            ">= 0.98",
-        );
-        row(
-            &mut out,
-            "Reach (all objects)",
-            &ratio(self.reach_all),
-            "(reported)",
+            &PhysicalRows {
+                col_o: self.col_o,
+                col_s: self.col_s,
+                col_arch: self.col_arch,
+                inst_o: self.inst_o,
+                inst_s: self.inst_s,
+                walk: self.walk,
+                reach_floor: self.reach_floor,
+                reach_all: self.reach_all,
+            },
         );
         out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn summary_table_lists_every_metric_with_its_goal() {
+        let summary = MetricsSummary {
+            scenes: 3,
+            objects: 60,
+            col_o: 0.0126,
+            col_s: 1.0 / 3.0,
+            col_arch: 0.0,
+            inst_o: 0.004,
+            inst_s: 0.0,
+            walk: 0.99512,
+            reach_floor: Some(0.98765),
+            reach_all: None,
+            mean_objects: 20.0,
+            mean_categories: 11.333,
+            mean_relation_kinds: 4.5,
+        };
+        let expected = [
+            "metric                        value   goal",
+            "------------------------------------------------",
+            "scenes                            3   ",
+            "objects / scene                20.0   >= 20",
+            "categories / scene             11.3   >= 10",
+            "relation kinds / scene          4.5   >= 4",
+            "Col-O                         1.3 %   0.0 %",
+            "Col-S                        33.3 %   0 %",
+            "Col-arch                      0.0 %   0 %",
+            "Inst-O                        0.4 %   < 0.5 %",
+            "Inst-S                        0.0 %   < 5 %",
+            "Walk                          0.995   >= 0.99",
+            "Reach (floor objects)         0.988   >= 0.98",
+            "Reach (all objects)             n/a   (reported)",
+        ];
+        let table = summary.to_table();
+        let lines: Vec<&str> = table.lines().collect();
+        assert_eq!(lines, expected);
     }
 }
