@@ -7,7 +7,7 @@ use std::sync::Arc;
 use nalgebra::{Point3, Vector3};
 use scenethesis_physics_opt::{
     optimize_scene, Correspondence, Issue, OptimizeSettings, Optimizer, Placement, PoseAlignment,
-    ProjectedGaussNewton, SceneProblem, Sgd,
+    PreparedAsset, ProjectedGaussNewton, SceneProblem, Sgd,
 };
 use scenethesis_scene_graph::{Camera, Intrinsics, Pose, RelationKind};
 use support::*;
@@ -195,12 +195,10 @@ fn cup_floating_above_table_is_lowered_onto_it() {
     }
 }
 
-#[test]
-fn box_in_a_shelf_compartment_stays_in_it() {
+/// The shelf against the back wall (z = −1.8) with `item` inside it at `item_pose`.
+fn item_in_shelf(item: &Arc<PreparedAsset>, item_pose: Pose) -> SceneProblem {
     let shelf = Arc::new(shelf());
-    let item = Arc::new(boxed([0.3, 0.25, 0.2], [0.8, 1.2]));
-    let start = at(0.05, SHELF_BOARDS[1] + 0.001, 0.0, 0.0);
-    let problem = problem(
+    problem(
         "shelf",
         vec![
             (
@@ -214,19 +212,23 @@ fn box_in_a_shelf_compartment_stays_in_it() {
                 shelf.clone(),
             ),
             (
-                object(
-                    "item",
-                    Some("shelf"),
-                    RelationKind::Inside,
-                    &item,
-                    Pose {
-                        translation: start.translation + Vector3::new(0.0, 0.0, -1.8),
-                        ..start
-                    },
-                ),
+                object("item", Some("shelf"), RelationKind::Inside, item, item_pose),
                 item.clone(),
             ),
         ],
+    )
+}
+
+#[test]
+fn box_in_a_shelf_compartment_stays_in_it() {
+    let item = Arc::new(boxed([0.3, 0.25, 0.2], [0.8, 1.2]));
+    let start = at(0.05, SHELF_BOARDS[1] + 0.001, 0.0, 0.0);
+    let problem = item_in_shelf(
+        &item,
+        Pose {
+            translation: start.translation + Vector3::new(0.0, 0.0, -1.8),
+            ..start
+        },
     );
     for opt in optimizers() {
         let placement = run(&problem, opt.as_ref());
@@ -241,34 +243,9 @@ fn box_in_a_shelf_compartment_stays_in_it() {
 
 #[test]
 fn box_too_wide_for_its_compartment_shrinks_to_fit() {
-    let shelf = Arc::new(shelf());
     // 0.80 m wide, the compartment is 0.76 m: it touches both side boards (two clusters).
     let item = Arc::new(boxed([0.8, 0.2, 0.2], [0.85, 1.1]));
-    let problem = problem(
-        "shelf",
-        vec![
-            (
-                object(
-                    "shelf",
-                    None,
-                    RelationKind::AgainstWall,
-                    &shelf,
-                    at(0.0, 0.0, -1.8, 0.0),
-                ),
-                shelf.clone(),
-            ),
-            (
-                object(
-                    "item",
-                    Some("shelf"),
-                    RelationKind::Inside,
-                    &item,
-                    at(0.0, SHELF_BOARDS[1], -1.8, 0.0),
-                ),
-                item.clone(),
-            ),
-        ],
-    );
+    let problem = item_in_shelf(&item, at(0.0, SHELF_BOARDS[1], -1.8, 0.0));
     for opt in optimizers() {
         let placement = run(&problem, opt.as_ref());
         assert_all_ok(&placement);
@@ -284,34 +261,9 @@ fn box_too_wide_for_its_compartment_shrinks_to_fit() {
 
 #[test]
 fn object_that_cannot_fit_is_reported_with_what_it_hits() {
-    let shelf = Arc::new(shelf());
     // 1.0 m wide and may shrink only to 0.95: it cannot fit the 0.76 m compartment.
     let item = Arc::new(boxed([1.0, 0.2, 0.2], [0.95, 1.05]));
-    let problem = problem(
-        "shelf",
-        vec![
-            (
-                object(
-                    "shelf",
-                    None,
-                    RelationKind::AgainstWall,
-                    &shelf,
-                    at(0.0, 0.0, -1.8, 0.0),
-                ),
-                shelf.clone(),
-            ),
-            (
-                object(
-                    "item",
-                    Some("shelf"),
-                    RelationKind::Inside,
-                    &item,
-                    at(0.0, SHELF_BOARDS[1], -1.8, 0.0),
-                ),
-                item.clone(),
-            ),
-        ],
-    );
+    let problem = item_in_shelf(&item, at(0.0, SHELF_BOARDS[1], -1.8, 0.0));
     for opt in optimizers() {
         let placement = run(&problem, opt.as_ref());
         assert!(!placement.is_ok());
