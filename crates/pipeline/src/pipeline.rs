@@ -255,8 +255,9 @@ impl Pipeline {
 
     /// Generates a scene for `prompt` with `seed`: plans, retrieves assets, lays out, optimizes
     /// and judges; while the judge rejects the scene and re-plans remain, moves the objects at
-    /// fault (new asset variants and a new layout seed) and then drops them, keeping the best
-    /// attempt. Deterministic for the same prompt, seed, options and providers.
+    /// fault (new asset variants and a new layout seed) and then drops them (those the prompt
+    /// asked for last), keeping the best attempt. Deterministic for the same prompt, seed,
+    /// options and providers.
     pub fn generate(
         &self,
         prompt: &str,
@@ -421,25 +422,37 @@ impl Pipeline {
 
             // Re-plan: first move the offenders (new asset variants, new layout seed); from
             // the second re-plan on, drop them (never the anchor) with everything they hold.
+            // Objects the prompt asked for are dropped last: while other offenders remain, or
+            // until the final re-plan, they are moved again instead.
             let movable: Vec<String> = offenders
                 .iter()
                 .filter(|id| **id != plan.anchor)
                 .cloned()
                 .collect();
-            let action = if round == 0 || movable.is_empty() {
-                for id in &offenders {
-                    *variants.entry(id.clone()).or_default() += 1;
-                }
+            let requested = |id: &String| plan.object(id).is_some_and(|o| o.hard);
+            let (asked_for, optional): (Vec<String>, Vec<String>) =
+                movable.iter().cloned().partition(requested);
+            let last_chance = round + 1 == options.max_replans;
+            let to_drop: Vec<String> = if round == 0 || movable.is_empty() {
+                Vec::new()
+            } else if !optional.is_empty() {
+                optional
+            } else if last_chance {
+                asked_for
+            } else {
+                Vec::new()
+            };
+            let action = if to_drop.is_empty() {
                 ReplanAction::Move
             } else {
                 ReplanAction::Drop
             };
+            for id in offenders.iter().filter(|id| !to_drop.contains(id)) {
+                *variants.entry(id.clone()).or_default() += 1;
+            }
             let objects = match action {
                 ReplanAction::Move => offenders.clone(),
-                ReplanAction::Drop => {
-                    let dropped = drop_objects(&mut plan, &movable);
-                    dropped.into_iter().collect()
-                }
+                ReplanAction::Drop => drop_objects(&mut plan, &to_drop).into_iter().collect(),
             };
             replans.push(Replan {
                 after_round: round,

@@ -12,7 +12,9 @@ use crate::pipeline::Stage;
 pub enum ReplanAction {
     /// The objects at fault got new asset variants and the layout a new seed.
     Move,
-    /// The objects at fault (and everything resting on them) were removed from the plan.
+    /// The objects at fault (and everything resting on them) were removed from the plan. Objects
+    /// the prompt asked for are removed only when no other offender is left or at the last
+    /// re-plan; until then they are moved (new variants) alongside.
     Drop,
 }
 
