@@ -88,7 +88,8 @@ fn bench(args: &[String]) -> Result<()> {
     if !status.success() {
         bail!("cargo bench failed with {status}");
     }
-    let figures = collect_figures(&criterion_dir)?;
+    let mut figures = collect_figures(&criterion_dir)?;
+    add_end_to_end_median(&mut figures);
     if json_out {
         println!(
             "{}",
@@ -100,6 +101,35 @@ fn bench(args: &[String]) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// Group of the end-to-end benchmark (one function per prompt) in `crates/pipeline`.
+const END_TO_END: &str = "end_to_end/";
+
+/// Adds seconds to every end-to-end figure and one `end_to_end/median` figure: the median over
+/// prompts of the mean seconds per generated scene (the target is under 2 s).
+fn add_end_to_end_median(figures: &mut BTreeMap<String, Value>) {
+    let mut seconds: Vec<f64> = Vec::new();
+    for (name, value) in figures.iter_mut() {
+        if let (true, Some(ms)) = (name.starts_with(END_TO_END), value["mean_ms"].as_f64()) {
+            value["seconds"] = json!(ms / 1e3);
+            seconds.push(ms / 1e3);
+        }
+    }
+    if seconds.is_empty() {
+        return;
+    }
+    seconds.sort_by(f64::total_cmp);
+    let n = seconds.len();
+    let median = if n % 2 == 1 {
+        seconds[n / 2]
+    } else {
+        (seconds[n / 2 - 1] + seconds[n / 2]) / 2.0
+    };
+    figures.insert(
+        format!("{END_TO_END}median"),
+        json!({ "seconds": median, "prompts": n, "max_seconds": seconds[n - 1] }),
+    );
 }
 
 /// Reads every `new/benchmark.json` + `new/estimates.json` pair under criterion's output folder.

@@ -5,11 +5,14 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use scenethesis_pipeline::batch::slug;
 use scenethesis_pipeline::{GenerateOptions, NoProgress, Pipeline};
 
-const PROMPTS: [&str; 4] = [
+/// Short and detailed prompts, indoor and outdoor (some from the public benchmark list).
+const PROMPTS: [&str; 6] = [
     "a cozy living room with reading materials",
     "a garage",
     "a bookstore",
     "a peaceful beach during sunset",
+    "a gym room",
+    "a small office with a desk, a chair and a bookshelf with books",
 ];
 
 fn end_to_end(c: &mut Criterion) {
@@ -20,6 +23,7 @@ fn end_to_end(c: &mut Criterion) {
     };
     let mut group = c.benchmark_group("end_to_end");
     group.sample_size(10);
+    group.warm_up_time(std::time::Duration::from_secs(1));
     for prompt in PROMPTS {
         group.bench_function(slug(prompt), |b| {
             b.iter(|| {
