@@ -104,34 +104,37 @@ fn two_interpenetrating_boxes_are_pushed_apart() {
     }
 }
 
-#[test]
-fn book_sunk_into_table_is_lifted_onto_it() {
+/// The table standing at `table_pose` with the item `id` on it at `item_pose`.
+fn item_on_table(
+    table_pose: Pose,
+    id: &str,
+    item: &Arc<PreparedAsset>,
+    item_pose: Pose,
+) -> SceneProblem {
     let table = Arc::new(table());
-    let book = Arc::new(book());
-    let problem = problem(
+    problem(
         "table",
         vec![
             (
-                object(
-                    "table",
-                    None,
-                    RelationKind::OnFloor,
-                    &table,
-                    at(0.0, 0.0, 0.0, 0.0),
-                ),
+                object("table", None, RelationKind::OnFloor, &table, table_pose),
                 table.clone(),
             ),
             (
-                object(
-                    "book",
-                    Some("table"),
-                    RelationKind::On,
-                    &book,
-                    at(0.1, TABLE_TOP - 0.02, 0.05, 0.3),
-                ),
-                book.clone(),
+                object(id, Some("table"), RelationKind::On, item, item_pose),
+                item.clone(),
             ),
         ],
+    )
+}
+
+#[test]
+fn book_sunk_into_table_is_lifted_onto_it() {
+    let book = Arc::new(book());
+    let problem = item_on_table(
+        at(0.0, 0.0, 0.0, 0.0),
+        "book",
+        &book,
+        at(0.1, TABLE_TOP - 0.02, 0.05, 0.3),
     );
     for opt in optimizers() {
         let placement = run(&problem, opt.as_ref());
@@ -154,32 +157,12 @@ fn book_sunk_into_table_is_lifted_onto_it() {
 
 #[test]
 fn cup_floating_above_table_is_lowered_onto_it() {
-    let table = Arc::new(table());
     let cup = Arc::new(cup());
-    let problem = problem(
-        "table",
-        vec![
-            (
-                object(
-                    "table",
-                    None,
-                    RelationKind::OnFloor,
-                    &table,
-                    at(0.0, 0.0, 0.0, 0.0),
-                ),
-                table.clone(),
-            ),
-            (
-                object(
-                    "cup",
-                    Some("table"),
-                    RelationKind::On,
-                    &cup,
-                    at(-0.2, TABLE_TOP + 0.05, 0.1, 0.0),
-                ),
-                cup.clone(),
-            ),
-        ],
+    let problem = item_on_table(
+        at(0.0, 0.0, 0.0, 0.0),
+        "cup",
+        &cup,
+        at(-0.2, TABLE_TOP + 0.05, 0.1, 0.0),
     );
     for opt in optimizers() {
         let placement = run(&problem, opt.as_ref());
@@ -319,33 +302,13 @@ fn object_through_a_wall_is_brought_inside_the_room() {
 
 #[test]
 fn children_follow_their_parent_when_it_moves() {
-    let table = Arc::new(table());
     let cup = Arc::new(cup());
     // The table pokes 0.1 m into the +x wall; the cup sits on its right end.
-    let problem = problem(
-        "table",
-        vec![
-            (
-                object(
-                    "table",
-                    None,
-                    RelationKind::OnFloor,
-                    &table,
-                    at(2.5, 0.0, 0.0, 0.0),
-                ),
-                table.clone(),
-            ),
-            (
-                object(
-                    "cup",
-                    Some("table"),
-                    RelationKind::On,
-                    &cup,
-                    at(3.0, TABLE_TOP, 0.0, 0.0),
-                ),
-                cup.clone(),
-            ),
-        ],
+    let problem = item_on_table(
+        at(2.5, 0.0, 0.0, 0.0),
+        "cup",
+        &cup,
+        at(3.0, TABLE_TOP, 0.0, 0.0),
     );
     for opt in optimizers() {
         let placement = run(&problem, opt.as_ref());
