@@ -250,6 +250,11 @@ pub fn simulate(scene: &EvalScene, cache: &DecompositionCache) -> StabilityRepor
     let mut world = PhysicsWorld::new();
     world.gravity = Vec3::new(0.0, -GRAVITY as f32, 0.0);
     world.integration_parameters.dt = SIM_STEP as f32;
+    // Rapier reuses a pair's contact points while the pair moves less than a few millimetres
+    // (a speed-up for games). For a metric whose threshold is 1 cm that staleness is not
+    // acceptable: it made tall, symmetric objects (lamps, plants, umbrellas) creep and tilt by
+    // a few hundredths of a radian while standing still. Recompute contacts every step.
+    world.integration_parameters.contact_recycling = false;
 
     let material = |b: ColliderBuilder| {
         b.friction(FRICTION as f32)
