@@ -509,14 +509,14 @@ pub(crate) fn billiard_ball(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = Builder::new();
     let resin = b.material("resin", *pick(rng, colors), 0.1);
     let r = 0.0286;
-    b.add(crate::primitives::sphere(
-        "ball",
-        resin,
-        [0.0, r, 0.0],
-        r,
-        12,
-        20,
-    ));
+    let mut ball = crate::primitives::sphere("ball", resin, [0.0, r, 0.0], r, 12, 20);
+    // A faceted sphere resting on its pole vertex rolls away in simulation; flatten the lowest
+    // ring into a contact patch (≈ 7 mm across, 1.7 mm high) so it rests like a real ball.
+    let flat = r * 0.06;
+    for p in &mut ball.positions {
+        p[1] = p[1].max(flat) - flat;
+    }
+    b.add(ball);
     b.finish(Placement::Surface, [1.0, 1.0])
 }
 
@@ -618,16 +618,15 @@ pub(crate) fn clock(rng: &mut ChaCha8Rng) -> Asset {
             &rot,
         ));
     }
+    // Two block feet as deep as the case: a stable footprint front to back (round feet on one
+    // line let the clock tip onto its face).
     for (i, sx) in [-1.0f32, 1.0].iter().enumerate() {
-        let p = [sx * r * 0.55, cy - r * 0.8, 0.0];
-        b.tube(
+        let x = sx * r * 0.6;
+        b.cuboid(
             &format!("foot_{i}"),
             case,
-            p,
-            [sx * r * 0.7, 0.0, 0.0],
-            r * 0.1,
-            r * 0.12,
-            10,
+            [x - r * 0.12, 0.0, z0],
+            [x + r * 0.12, cy - r * 0.75, z1],
         );
     }
     b.finish(Placement::Surface, [0.8, 1.25])

@@ -154,10 +154,12 @@ fn beach_umbrella(rng: &mut ChaCha8Rng) -> Asset {
         0.5,
     );
     let base = b.material("base", [0.25, 0.25, 0.27], 0.7);
-    b.frustum("base", base, [0.0, 0.0], 0.22, 0.16, 0.0, 0.06, 20);
+    // A weighted base (≈ 25 kg at water density) and a thin canopy keep the centre of mass low,
+    // as a free-standing umbrella needs.
+    b.frustum("base", base, [0.0, 0.0], 0.3, 0.24, 0.0, 0.11, 20);
     b.frustum("pole", pole, [0.0, 0.0], 0.019, 0.019, 0.02, h + 0.05, 12);
     let panels = 8;
-    let thick = 0.01;
+    let thick = 0.003;
     for k in 0..panels {
         let (a0, a1) = (
             TAU * k as f32 / panels as f32,
@@ -322,7 +324,7 @@ fn surfboard(rng: &mut ChaCha8Rng) -> Asset {
 /// Palm tree: leaning, segmented trunk 4–7 m high with 7–10 drooping fronds and coconuts.
 fn palm_tree(rng: &mut ChaCha8Rng) -> Asset {
     let h = uniform(rng, 4.0, 7.0);
-    let lean = uniform(rng, 0.0, 0.18);
+    let lean = uniform(rng, 0.0, 0.06);
     let lean_dir = uniform(rng, 0.0, TAU);
     let mut b = Builder::new();
     let bark = b.material("palm_bark", color(rng, BARK, 0.04), 0.95);
@@ -340,6 +342,8 @@ fn palm_tree(rng: &mut ChaCha8Rng) -> Asset {
         let r1 = r0 - 0.012;
         b.tube(&format!("trunk_{k}"), bark, w[0], w[1], r0, r1, 12);
     }
+    // The root flare and its soil: a wide, heavy footing so the tree stands free in simulation.
+    b.frustum("root_flare", bark, [0.0, 0.0], 0.55, 0.22, 0.0, 0.3, 16);
     let top = trunk[segs];
     let fronds = 7 + (uniform(rng, 0.0, 3.99) as usize);
     let frond_len = uniform(rng, 1.8, 2.8);
@@ -767,6 +771,14 @@ fn backpack(rng: &mut ChaCha8Rng) -> Asset {
         [w / 2.0, h / 2.0, d / 2.0],
         0.35,
     ));
+    // A flat, stiffened bottom panel: the pack stands upright instead of rocking on its
+    // rounded base.
+    b.cuboid(
+        "base_panel",
+        trim,
+        [-w * 0.42, 0.0, -d * 0.42],
+        [w * 0.42, 0.03, d * 0.42],
+    );
     b.add(rounded_box(
         "front_pocket",
         nylon,
