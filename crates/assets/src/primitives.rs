@@ -932,6 +932,34 @@ impl AssetBuilder {
         Self::default()
     }
 
+    /// Whether a part of this name has been added.
+    pub fn has_part(&self, name: &str) -> bool {
+        self.mesh.parts.iter().any(|p| p.name == name)
+    }
+
+    /// Flattens the underside into a contact patch: every vertex lower than `depth` above the
+    /// parts' lowest point is raised onto that plane. A tessellated sphere or a cylinder lying
+    /// on its side otherwise rests on one vertex or edge and rolls off it in simulation (a real
+    /// ball or fruit flattens into its contact patch the same way). Convex parts stay convex
+    /// while `depth` is below their second ring of vertices.
+    pub fn flatten_base(&mut self, depth: f32) {
+        let lowest = self
+            .mesh
+            .parts
+            .iter()
+            .flat_map(|p| p.positions.iter().map(|v| v[1]))
+            .fold(f32::INFINITY, f32::min);
+        if !lowest.is_finite() {
+            return;
+        }
+        let plane = lowest + depth;
+        for part in &mut self.mesh.parts {
+            for v in &mut part.positions {
+                v[1] = v[1].max(plane);
+            }
+        }
+    }
+
     /// Adds `material` (or finds an identical one) and returns its index.
     pub fn material(&mut self, material: Material) -> usize {
         if let Some(i) = self.mesh.materials.iter().position(|m| *m == material) {

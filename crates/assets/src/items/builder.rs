@@ -38,6 +38,17 @@ impl Builder {
         self.inner.material(m)
     }
 
+    /// Flattens the underside into a contact patch `depth` high (see
+    /// [`AssetBuilder::flatten_base`]).
+    pub(crate) fn flatten_base(&mut self, depth: f32) {
+        self.inner.flatten_base(depth);
+    }
+
+    /// Whether a part of this name has been added.
+    pub(crate) fn has_part(&self, name: &str) -> bool {
+        self.inner.has_part(name)
+    }
+
     /// Adds a finished part.
     pub(crate) fn add(&mut self, part: MeshPart) {
         self.inner.part(part);

@@ -379,6 +379,7 @@ pub(crate) fn ball(rng: &mut ChaCha8Rng) -> Asset {
         16,
         24,
     ));
+    b.flatten_base(r * 0.03);
     b.finish(Placement::Surface, [0.95, 1.05])
 }
 
@@ -433,6 +434,9 @@ pub(crate) fn dumbbell(rng: &mut ChaCha8Rng) -> Asset {
         r,
         20,
     );
+    // The 20-gon plates rest on a vertex: lift it to the height of its two neighbours so the
+    // dumbbell lies on a flat strip instead of rolling a fortieth of a turn.
+    b.flatten_base(r * (1.0 - (PI / 10.0).cos()) * 1.01);
     b.finish(Placement::Surface, [0.85, 1.15])
 }
 
@@ -509,14 +513,17 @@ pub(crate) fn billiard_ball(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = Builder::new();
     let resin = b.material("resin", *pick(rng, colors), 0.1);
     let r = 0.0286;
-    let mut ball = crate::primitives::sphere("ball", resin, [0.0, r, 0.0], r, 12, 20);
-    // A faceted sphere resting on its pole vertex rolls away in simulation; flatten the lowest
-    // ring into a contact patch (≈ 7 mm across, 1.7 mm high) so it rests like a real ball.
-    let flat = r * 0.06;
-    for p in &mut ball.positions {
-        p[1] = p[1].max(flat) - flat;
-    }
-    b.add(ball);
+    b.add(crate::primitives::sphere(
+        "ball",
+        resin,
+        [0.0, r, 0.0],
+        r,
+        12,
+        20,
+    ));
+    // A faceted sphere resting on its pole vertex rolls away in simulation (nudged by the other
+    // balls on the table); flatten the lowest rings into a contact patch ≈ 3 cm across.
+    b.flatten_base(r * 0.14);
     b.finish(Placement::Surface, [1.0, 1.0])
 }
 

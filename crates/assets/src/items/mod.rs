@@ -179,7 +179,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
         "fruit",
         ["apple", "orange", "banana", "pear", "lemon"],
         Surface,
-        [[0.052, 0.237], [0.037, 0.136], [0.034, 0.093]],
+        [[0.052, 0.237], [0.032, 0.136], [0.034, 0.093]],
         tableware::fruit
     ),
     category!(
@@ -355,7 +355,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
         "billiard_ball",
         ["pool ball", "snooker ball", "cue ball"],
         Surface,
-        [[0.055, 0.059], [0.055, 0.059], [0.055, 0.059]],
+        [[0.055, 0.059], [0.051, 0.059], [0.055, 0.059]],
         home::billiard_ball
     ),
     category!(

@@ -398,6 +398,10 @@ pub(crate) fn fruit(rng: &mut ChaCha8Rng) -> Asset {
             );
         }
     }
+    // A contact patch, so fruit rests instead of rolling off its lowest vertex: 2 mm for round
+    // fruit; a banana's octagonal belly needs 6 mm to lie on a flat strip.
+    let banana = b.has_part("banana_tip");
+    b.flatten_base(if banana { 0.006 } else { 0.002 });
     b.finish(Placement::Surface, [0.85, 1.2])
 }
 
