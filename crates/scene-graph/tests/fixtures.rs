@@ -145,3 +145,23 @@ fn non_finite_numbers_built_in_code_are_reported() {
         }]
     );
 }
+
+#[test]
+fn atomic_writes_replace_the_file_and_leave_it_readable() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("scene.json");
+    scenethesis_scene_graph::write_file_atomic(&path, b"first").unwrap();
+    scenethesis_scene_graph::write_file_atomic(&path, b"second").unwrap();
+    assert_eq!(std::fs::read(&path).unwrap(), b"second");
+    // Only the file itself is left: no temporary files beside it.
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let mode = std::fs::metadata(&path).unwrap().permissions().mode() & 0o777;
+        assert_eq!(
+            mode, 0o644,
+            "written files must be readable by others, got {mode:o}"
+        );
+    }
+}
