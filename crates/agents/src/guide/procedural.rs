@@ -1233,6 +1233,17 @@ impl ProceduralGuide {
             wall: None,
         };
         let add = |a: [f64; 2], s: f64, b: [f64; 2]| [a[0] + s * b[0], a[1] + s * b[1]];
+        // Half extent along `dir` of this object's footprint turned to `yaw`.
+        let extent_at = |yaw: f64, dir: [f64; 2]| {
+            Footprint {
+                cx: 0.0,
+                cz: 0.0,
+                yaw,
+                hx,
+                hz,
+            }
+            .extent_along(dir)
+        };
         match kind {
             RelationKind::InFrontOf | RelationKind::Behind => {
                 let dir = if kind == RelationKind::InFrontOf {
@@ -1262,14 +1273,7 @@ impl ProceduralGuide {
                         let probe =
                             add(add(tc, dir * (t.fp.hz + gap + hz), f_t), lateral + dl, r_t);
                         let y = yaw.unwrap_or_else(|| yaw_toward(probe, facing.unwrap_or(tc)));
-                        let fp = Footprint {
-                            cx: 0.0,
-                            cz: 0.0,
-                            yaw: y,
-                            hx,
-                            hz,
-                        };
-                        let e = fp.extent_along(f_t);
+                        let e = extent_at(y, f_t);
                         let c = add(add(tc, dir * (t.fp.hz + gap + e), f_t), lateral + dl, r_t);
                         out.push(mk(c, y));
                     }
@@ -1297,15 +1301,8 @@ impl ProceduralGuide {
                             }
                             None => t.fp.yaw,
                         };
-                        let fp = Footprint {
-                            cx: 0.0,
-                            cz: 0.0,
-                            yaw: y,
-                            hx,
-                            hz,
-                        };
-                        let e_r = fp.extent_along(r_t);
-                        let e_f = fp.extent_along(f_t);
+                        let e_r = extent_at(y, r_t);
+                        let e_f = extent_at(y, f_t);
                         let along_f = if facing.is_some() { 0.0 } else { e_f - t.fp.hz };
                         let c = add(add(tc, side * (t.fp.hx + gap + e_r), r_t), along_f, f_t);
                         out.push(mk(c, y));
@@ -1331,14 +1328,7 @@ impl ProceduralGuide {
                                 Some(f) => yaw_toward(probe, f),
                                 None => t.fp.yaw,
                             };
-                            let fp = Footprint {
-                                cx: 0.0,
-                                cz: 0.0,
-                                yaw: y,
-                                hx,
-                                hz,
-                            };
-                            let dist = t.fp.extent_along(dir) + gap + fp.extent_along(dir);
+                            let dist = t.fp.extent_along(dir) + gap + extent_at(y, dir);
                             out.push(mk(add(tc, dist, dir), y));
                         }
                     }
