@@ -77,7 +77,8 @@ fn bench(args: &[String]) -> Result<()> {
     }
     let mut cmd = Command::new(env!("CARGO"));
     cmd.current_dir(&root)
-        .args(["bench", "--workspace", "--quiet", "--"]);
+        // Bench targets only: library test harnesses would reject criterion's flags.
+        .args(["bench", "--workspace", "--bench", "*", "--quiet", "--"]);
     cmd.args(&filter);
     cmd.arg("--noplot");
     if json_out {
