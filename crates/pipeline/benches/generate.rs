@@ -5,18 +5,29 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use scenethesis_pipeline::batch::slug;
 use scenethesis_pipeline::{GenerateOptions, NoProgress, Pipeline};
 
-/// Short and detailed prompts, indoor and outdoor (some from the public benchmark list).
-const PROMPTS: [&str; 6] = [
+/// The public benchmark prompts (`../shared/benchmarks/prompts.txt`): the paper's indoor
+/// categories, an outdoor scene and a detailed prompt.
+const PROMPTS: [&str; 14] = [
     "a cozy living room with reading materials",
+    "a children's playroom",
     "a garage",
+    "a warehouse",
     "a bookstore",
-    "a peaceful beach during sunset",
+    "a convenience store",
+    "a museum gallery",
+    "a piano showroom",
     "a gym room",
-    "a small office with a desk, a chair and a bookshelf with books",
+    "a billiard club",
+    "a hospital ward",
+    "a chemistry laboratory",
+    "a peaceful beach during sunset",
+    "a living room with a grey three-seat sofa against the back wall, a low round coffee table \
+     in front of it with two mugs and a small vase on top, two armchairs on either side of the \
+     table turned toward the sofa, a tall bookshelf in the corner with books and a plant inside \
+     its shelves, and a floor lamp beside the sofa",
 ];
 
 fn end_to_end(c: &mut Criterion) {
-    let pipeline = Pipeline::offline();
     let options = GenerateOptions {
         previews: false,
         ..GenerateOptions::default()
@@ -26,8 +37,9 @@ fn end_to_end(c: &mut Criterion) {
     group.warm_up_time(std::time::Duration::from_secs(1));
     for prompt in PROMPTS {
         group.bench_function(slug(prompt), |b| {
+            // A fresh pipeline each time, as a CLI run has: no cache warmed by earlier runs.
             b.iter(|| {
-                pipeline
+                Pipeline::offline()
                     .generate(prompt, 0, &options, &mut NoProgress)
                     .expect("offline generation works")
             })
