@@ -2,6 +2,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
+use std::sync::{Mutex, PoisonError};
 
 use scenethesis_agents::PlannedObject;
 use scenethesis_assets::import::{import_directory, ImportWarning, MANIFEST_FILE};
@@ -98,7 +99,7 @@ impl AssetSource for CatalogSource {
                     })?;
                 Ok(catalog::generate(category, *seed).mesh)
             }
-            AssetRef::Imported { .. } => Ok(load_imported(asset)?.mesh),
+            AssetRef::Imported { id, path } => Ok(load_imported(asset, id, path)?.mesh),
         }
     }
 }
@@ -113,6 +114,9 @@ pub struct RetrievalSource {
     index: AssetIndex,
     /// Imported assets by their id (`AssetRef::Imported::id`).
     imported: BTreeMap<String, Asset>,
+    /// Asset directories re-imported for references not in `imported` (a saved scene being
+    /// exported), each read once however many of its assets the scene uses.
+    reimported: Mutex<BTreeMap<PathBuf, Vec<Asset>>>,
 }
 
 impl std::fmt::Debug for RetrievalSource {
@@ -135,10 +139,7 @@ impl RetrievalSource {
     /// are also given (see [`RetrievalSource::with_imported`]); otherwise they are loaded from
     /// their file's directory when retrieved.
     pub fn new(index: AssetIndex) -> Self {
-        Self {
-            index,
-            imported: BTreeMap::new(),
-        }
+        Self::from_parts(index, BTreeMap::new())
     }
 
     /// Retrieval over the built-in library plus `assets` (e.g. the
@@ -154,7 +155,15 @@ impl RetrievalSource {
             })
             .collect();
         let index = AssetIndex::with_imported(imported.values().map(|a| &a.info));
-        Self { index, imported }
+        Self::from_parts(index, imported)
+    }
+
+    fn from_parts(index: AssetIndex, imported: BTreeMap<String, Asset>) -> Self {
+        Self {
+            index,
+            imported,
+            reimported: Mutex::default(),
+        }
     }
 
     /// The built-in library plus every asset of the bring-your-own directory `dir` (an
@@ -183,17 +192,22 @@ impl RetrievalSource {
         self.imported.len()
     }
 
-    fn imported_asset(&self, asset: &AssetRef) -> Result<Asset, AssetError> {
-        match asset {
-            AssetRef::Imported { id, .. } => match self.imported.get(id) {
-                Some(a) => Ok(a.clone()),
-                None => load_imported(asset),
-            },
-            AssetRef::Procedural { .. } => Err(AssetError::Unresolvable {
-                asset: asset.to_string(),
-                reason: "not an imported asset".into(),
-            }),
+    /// The imported asset `asset` (with these `id` and `path`): from memory, else from its
+    /// directory, re-imported once.
+    fn imported_asset(&self, asset: &AssetRef, id: &str, path: &str) -> Result<Asset, AssetError> {
+        if let Some(a) = self.imported.get(id) {
+            return Ok(a.clone());
         }
+        let dir = asset_directory(path);
+        let mut reimported = self
+            .reimported
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner);
+        if !reimported.contains_key(&dir) {
+            let assets = reimport(asset, &dir)?;
+            reimported.insert(dir.clone(), assets);
+        }
+        find_imported(asset, id, &dir, &reimported[&dir])
     }
 }
 
@@ -224,50 +238,61 @@ impl AssetSource for RetrievalSource {
                 let category = catalog::category(generator).ok_or_else(no_asset)?;
                 Ok(catalog::generate(category, *seed))
             }
-            AssetRef::Imported { .. } => self.imported_asset(&hit.asset),
+            AssetRef::Imported { id, path } => self.imported_asset(&hit.asset, id, path),
         }
     }
 
     fn mesh(&self, asset: &AssetRef) -> Result<Mesh, AssetError> {
         match asset {
             AssetRef::Procedural { .. } => CatalogSource.mesh(asset),
-            AssetRef::Imported { .. } => Ok(self.imported_asset(asset)?.mesh),
+            AssetRef::Imported { id, path } => Ok(self.imported_asset(asset, id, path)?.mesh),
         }
     }
 }
 
-/// Loads an imported asset that is not in memory by importing the directory its file lies in
-/// again (so the manifest's units, axes and front apply) and picking it by id.
-fn load_imported(asset: &AssetRef) -> Result<Asset, AssetError> {
-    let AssetRef::Imported { id, path } = asset else {
-        return Err(AssetError::Unresolvable {
-            asset: asset.to_string(),
-            reason: "not an imported asset".into(),
-        });
-    };
-    let unresolvable = |reason: String| AssetError::Unresolvable {
-        asset: asset.to_string(),
-        reason,
-    };
-    let dir = Path::new(path)
+/// Loads the imported asset `asset` (with these `id` and `path`) by importing the directory
+/// its file lies in again (so the manifest's units, axes and front apply) and picking it by id.
+fn load_imported(asset: &AssetRef, id: &str, path: &str) -> Result<Asset, AssetError> {
+    let dir = asset_directory(path);
+    find_imported(asset, id, &dir, &reimport(asset, &dir)?)
+}
+
+/// The directory an imported asset's file lies in.
+fn asset_directory(path: &str) -> PathBuf {
+    Path::new(path)
         .parent()
         .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let report = import_directory(dir).map_err(|e| {
-        unresolvable(format!(
-            "cannot re-import its directory {}: {e}",
-            dir.display()
-        ))
-    })?;
-    report
-        .assets
-        .into_iter()
+        .unwrap_or(Path::new("."))
+        .to_owned()
+}
+
+/// Every asset of `dir`, imported again to resolve `asset`.
+fn reimport(asset: &AssetRef, dir: &Path) -> Result<Vec<Asset>, AssetError> {
+    import_directory(dir)
+        .map(|report| report.assets)
+        .map_err(|e| AssetError::Unresolvable {
+            asset: asset.to_string(),
+            reason: format!("cannot re-import its directory {}: {e}", dir.display()),
+        })
+}
+
+/// The asset with `id` among those re-imported from `dir`.
+fn find_imported(
+    asset: &AssetRef,
+    id: &str,
+    dir: &Path,
+    assets: &[Asset],
+) -> Result<Asset, AssetError> {
+    assets
+        .iter()
         .find(|a| matches!(&a.info.source, AssetRef::Imported { id: found, .. } if found == id))
-        .ok_or_else(|| {
-            unresolvable(format!(
+        .cloned()
+        .ok_or_else(|| AssetError::Unresolvable {
+            asset: asset.to_string(),
+            reason: format!(
                 "the directory {} no longer holds an asset with id `{id}`",
                 dir.display()
-            ))
+            ),
         })
 }
 
