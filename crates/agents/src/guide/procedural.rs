@@ -745,14 +745,23 @@ impl ProceduralGuide {
 /// object that is waiting for it ("an armchair next to the floor lamp") gets its turn.
 fn chain_dependents(plan: &Plan, order: Vec<usize>) -> Vec<usize> {
     let in_order: BTreeSet<usize> = order.iter().copied().collect();
-    let target_of = |i: usize| {
-        positional_target(&plan.objects[i])
-            .and_then(|t| plan.objects.iter().position(|o| o.id == t))
-            .filter(|t| in_order.contains(t) && *t != i)
-    };
+    let index_of: BTreeMap<&str, usize> = plan
+        .objects
+        .iter()
+        .enumerate()
+        .map(|(i, o)| (o.id.as_str(), i))
+        .collect();
+    // Each object's target among the floor objects being ordered, by plan index.
+    let target: Vec<Option<usize>> = (0..plan.objects.len())
+        .map(|i| {
+            positional_target(&plan.objects[i])
+                .and_then(|t| index_of.get(t).copied())
+                .filter(|t| in_order.contains(t) && *t != i)
+        })
+        .collect();
     let mut dependents: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
     for &i in &order {
-        if let Some(t) = target_of(i) {
+        if let Some(t) = target[i] {
             dependents.entry(t).or_default().push(i);
         }
     }
@@ -797,7 +806,7 @@ fn chain_dependents(plan: &Plan, order: Vec<usize>) -> Vec<usize> {
     }
     for &i in &order {
         // Roots first; a dependent is emitted with its target (cycles fall back to order).
-        if target_of(i).is_none() {
+        if target[i].is_none() {
             emit(i, &dependents, &mut emitted, &mut out);
         }
     }
