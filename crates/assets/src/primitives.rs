@@ -932,11 +932,6 @@ impl AssetBuilder {
         Self::default()
     }
 
-    /// Whether a part of this name has been added.
-    pub fn has_part(&self, name: &str) -> bool {
-        self.mesh.parts.iter().any(|p| p.name == name)
-    }
-
     /// Flattens the underside into a contact patch: every vertex lower than `depth` above the
     /// parts' lowest point is raised onto that plane. A tessellated sphere or a cylinder lying
     /// on its side otherwise rests on one vertex or edge and rolls off it in simulation (a real

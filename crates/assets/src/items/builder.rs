@@ -44,11 +44,6 @@ impl Builder {
         self.inner.flatten_base(depth);
     }
 
-    /// Whether a part of this name has been added.
-    pub(crate) fn has_part(&self, name: &str) -> bool {
-        self.inner.has_part(name)
-    }
-
     /// Adds a finished part.
     pub(crate) fn add(&mut self, part: MeshPart) {
         self.inner.part(part);

@@ -294,7 +294,9 @@ pub(crate) fn can(rng: &mut ChaCha8Rng) -> Asset {
 pub(crate) fn fruit(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = Builder::new();
     let stem = b.material("stem", [0.35, 0.25, 0.12], 0.8);
-    match rng_index(rng, 5) {
+    // Depth of the contact patch that keeps the fruit from rolling off its lowest vertex: 2 mm
+    // for round fruit; a banana's octagonal belly needs 6 mm to lie on a flat strip.
+    let base_depth = match rng_index(rng, 5) {
         0 => {
             let r = uniform(rng, 0.035, 0.045);
             let skin = b.material(
@@ -317,11 +319,13 @@ pub(crate) fn fruit(rng: &mut ChaCha8Rng) -> Asset {
                 r * 1.7 + 0.015,
                 6,
             );
+            0.002
         }
         1 => {
             let r = uniform(rng, 0.035, 0.045);
             let skin = b.material("orange_peel", color(rng, &[[0.95, 0.5, 0.05]], 0.04), 0.6);
             b.ellipsoid("orange", skin, [0.0, r, 0.0], [r, r * 0.96, r]);
+            0.002
         }
         2 => {
             let h = uniform(rng, 0.09, 0.12);
@@ -348,6 +352,7 @@ pub(crate) fn fruit(rng: &mut ChaCha8Rng) -> Asset {
                 h + 0.012,
                 6,
             );
+            0.002
         }
         3 => {
             let l = uniform(rng, 0.07, 0.09);
@@ -362,6 +367,7 @@ pub(crate) fn fruit(rng: &mut ChaCha8Rng) -> Asset {
                 [0.0, l * 0.33, 0.0],
                 [l * 0.5, l * 0.33, l * 0.33],
             );
+            0.002
         }
         _ => {
             let l = uniform(rng, 0.17, 0.22);
@@ -396,12 +402,10 @@ pub(crate) fn fruit(rng: &mut ChaCha8Rng) -> Asset {
                 0.004,
                 6,
             );
+            0.006
         }
-    }
-    // A contact patch, so fruit rests instead of rolling off its lowest vertex: 2 mm for round
-    // fruit; a banana's octagonal belly needs 6 mm to lie on a flat strip.
-    let banana = b.has_part("banana_tip");
-    b.flatten_base(if banana { 0.006 } else { 0.002 });
+    };
+    b.flatten_base(base_depth);
     b.finish(Placement::Surface, [0.85, 1.2])
 }
 
