@@ -5,7 +5,6 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use scenethesis_pipeline::batch::{self, BatchOptions, JobOutcome, JobStatus, Shard};
-use scenethesis_pipeline::GenerateOptions;
 
 /// Arguments of `scenethesis batch`.
 #[derive(Debug, clap::Args)]
@@ -28,16 +27,9 @@ pub struct BatchArgs {
     /// The first seed.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
-    /// How many times the judge may re-plan a rejected scene.
-    #[arg(long, default_value_t = 3)]
-    pub max_replans: usize,
-    /// Do not render preview images.
-    #[arg(long)]
-    pub no_preview: bool,
-    /// Bring your own assets: a folder of GLB/glTF/OBJ files (described by an optional
-    /// `assets.json`); they are preferred over the built-in generators of their category.
-    #[arg(long, value_name = "DIR")]
-    pub assets: Option<PathBuf>,
+    /// Pipeline options shared with `generate`.
+    #[command(flatten)]
+    pub pipeline: super::generate::PipelineArgs,
 }
 
 /// Runs `scenethesis batch`.
@@ -48,18 +40,14 @@ pub fn run(args: BatchArgs) -> Result<()> {
         shard: args.shard,
         seeds: args.seeds,
         base_seed: args.seed,
-        generate: GenerateOptions {
-            max_replans: args.max_replans,
-            previews: !args.no_preview,
-            ..GenerateOptions::default()
-        },
+        generate: args.pipeline.options(),
     };
     let all = batch::jobs(&prompts, options.seeds, options.base_seed);
     let mine = all
         .iter()
         .filter(|j| options.shard.contains(j.position))
         .count();
-    let pipeline = super::generate::pipeline(!args.no_preview, args.assets.as_deref())?;
+    let pipeline = args.pipeline.pipeline()?;
     let bar = ProgressBar::new(mine as u64);
     bar.set_style(
         ProgressStyle::with_template("{bar:30.cyan/blue} {pos}/{len} scenes {elapsed} (eta {eta})")

@@ -22,22 +22,47 @@ pub struct GenerateArgs {
     /// Seed: the same prompt and seed give the same scene.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
-    /// How many times the judge may re-plan a rejected scene.
-    #[arg(long, default_value_t = 3)]
-    pub max_replans: usize,
-    /// Do not render preview images.
-    #[arg(long)]
-    pub no_preview: bool,
+    /// Pipeline options shared with `batch`.
+    #[command(flatten)]
+    pub pipeline: PipelineArgs,
     /// Also write these formats into the folder (comma-separated: usd, mjcf, urdf).
     #[arg(long, value_delimiter = ',')]
     pub export: Vec<Format>,
     /// Exit with an error when the judge does not accept the final scene.
     #[arg(long)]
     pub strict: bool,
+}
+
+/// The options of `generate` and `batch` that set up the pipeline.
+#[derive(Debug, clap::Args)]
+pub struct PipelineArgs {
+    /// How many times the judge may re-plan a rejected scene.
+    #[arg(long, default_value_t = 3)]
+    pub max_replans: usize,
+    /// Do not render preview images.
+    #[arg(long)]
+    pub no_preview: bool,
     /// Bring your own assets: a folder of GLB/glTF/OBJ files (described by an optional
     /// `assets.json`); they are preferred over the built-in generators of their category.
     #[arg(long, value_name = "DIR")]
     pub assets: Option<PathBuf>,
+}
+
+impl PipelineArgs {
+    /// The generation options these flags ask for.
+    pub fn options(&self) -> GenerateOptions {
+        GenerateOptions {
+            max_replans: self.max_replans,
+            previews: !self.no_preview,
+            ..GenerateOptions::default()
+        }
+    }
+
+    /// The offline pipeline over the built-in library plus the `--assets` folder, with previews
+    /// unless `--no-preview`.
+    pub fn pipeline(&self) -> Result<Pipeline> {
+        pipeline(!self.no_preview, self.assets.as_deref())
+    }
 }
 
 /// Draws one spinner per stage on a terminal, or plain lines otherwise.
@@ -97,7 +122,7 @@ impl Progress for StageProgress {
 
 /// Builds the offline pipeline, over the built-in library plus the assets of `assets_dir`, with
 /// previews when a renderer can be opened.
-pub fn pipeline(previews: bool, assets_dir: Option<&Path>) -> Result<Pipeline> {
+fn pipeline(previews: bool, assets_dir: Option<&Path>) -> Result<Pipeline> {
     let mut pipeline = Pipeline::offline();
     if let Some(dir) = assets_dir {
         let (source, warnings) = RetrievalSource::from_directory(dir)
@@ -126,12 +151,8 @@ pub fn pipeline(previews: bool, assets_dir: Option<&Path>) -> Result<Pipeline> {
 
 /// Runs `scenethesis generate`.
 pub fn run(args: GenerateArgs) -> Result<()> {
-    let pipeline = pipeline(!args.no_preview, args.assets.as_deref())?;
-    let options = GenerateOptions {
-        max_replans: args.max_replans,
-        previews: !args.no_preview,
-        ..GenerateOptions::default()
-    };
+    let pipeline = args.pipeline.pipeline()?;
+    let options = args.pipeline.options();
     let mut progress = StageProgress::on_stderr();
     let mut generated = pipeline
         .generate(&args.prompt, args.seed, &options, &mut progress)
