@@ -1,2 +1,33 @@
-//! 2D/3D correspondences between a rendered object and a guidance image: the matches that the
-//! pose-alignment loss consumes, behind a trait so that matching models can be swapped.
+//! 2D/3D correspondences between a rendered object and a guidance image, and the guidance data
+//! itself: the exchange types between a guide that reads an image (the vision guide) and the
+//! pose optimizer that aligns assets to it.
+//!
+//! - [`Correspondence`]: one matched pair (asset point ↔ target pixel ↔ optional target 3D
+//!   point), the unit the pose-alignment loss of `scenethesis-physics-opt` consumes.
+//! - [`Guidance`]: what a guide saw — the [`Camera`](scenethesis_scene_graph::Camera), the
+//!   colour image ([`RgbImage`]), an optional metric [`DepthMap`] and one [`Mask`] per object id.
+//!
+//! This crate has no GPU, HTTP or model-runtime dependency: renders and model outputs arrive
+//! as plain buffers.
+//!
+//! ```
+//! use scenethesis_correspondence::{DepthMap, Mask};
+//!
+//! let mut mask = Mask::new(4, 3);
+//! mask.set(1, 1, true);
+//! mask.set(2, 1, true);
+//! assert_eq!(mask.area(), 2);
+//! assert_eq!(mask.bounding_box(), Some((1, 1, 3, 2)));
+//!
+//! let depth = DepthMap::from_fn(4, 3, |x, _| if x == 0 { f32::NAN } else { 2.0 });
+//! assert_eq!(depth.get(0, 0), None);
+//! assert_eq!(depth.get(1, 2), Some(2.0));
+//! ```
+
+#![warn(missing_docs)]
+
+mod guidance;
+mod pair;
+
+pub use guidance::{DepthMap, Guidance, GuidanceError, Mask, RgbImage};
+pub use pair::Correspondence;

@@ -1,26 +1,12 @@
 //! Pose alignment: 2D pixel and 3D point distances of correspondences between an object's
 //! asset and the guidance image, under the guide's pinhole camera.
 
-use nalgebra::{Point2, Point3, Vector3};
+use nalgebra::Vector3;
+use scenethesis_correspondence::Correspondence;
 use scenethesis_scene_graph::{Camera, Pose};
 use serde::{Deserialize, Serialize};
 
 use crate::params::{world_point, world_point_jacobian, PoseVector};
-
-/// One matched pair: a point on the asset and where the guidance image sees it.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct Correspondence {
-    /// The matched point on the asset, in the asset's own frame (scale 1), e.g. a rendered
-    /// pixel of the object lifted onto its surface.
-    pub asset_point: Point3<f64>,
-    /// The matching pixel in the guidance image (`u` right, `v` down).
-    pub target_pixel: Point2<f64>,
-    /// The matching 3D point lifted from the guidance image's depth, in world coordinates;
-    /// `None` when no depth is known (the pair then only contributes to the 2D term).
-    pub target_point: Option<Point3<f64>>,
-    /// Matching confidence in [0, 1]; pairs below [`PoseAlignment::min_confidence`] are ignored.
-    pub confidence: f64,
-}
 
 /// The pose-alignment objective of one object:
 /// `L_pose = λ_2d · mean ‖π(x_k) − q_k‖² + λ_3d · mean ‖x_k − X_k‖²`, where `x_k` is the posed
@@ -137,6 +123,7 @@ impl PoseAlignment {
 mod tests {
     use super::*;
     use crate::params::{from_vector, to_vector};
+    use nalgebra::Point3;
     use scenethesis_scene_graph::Intrinsics;
 
     fn setup() -> (PoseAlignment, Pose) {

@@ -38,7 +38,7 @@ mod report;
 pub mod support;
 mod verify;
 
-pub use alignment::{Correspondence, PoseAlignment};
+pub use alignment::PoseAlignment;
 pub use driver::{architecture_fields, optimize_scene, OptimizeSettings, SceneProblem};
 pub use objective::{
     CollisionState, Contact, LossSettings, Losses, ObjectProblem, RoomBounds, Stage,
@@ -48,6 +48,7 @@ pub use optimizer::{LearningRates, Optimizer, Sgd, StageOutcome};
 pub use prepare::{PrepareSettings, PreparedAsset};
 pub use projected::ProjectedGaussNewton;
 pub use report::{Issue, ObjectReport, Placement};
+pub use scenethesis_correspondence::Correspondence;
 pub use support::{Support, SupportPlane};
 pub use verify::Tolerances;
 

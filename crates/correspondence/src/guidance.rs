@@ -1,0 +1,382 @@
+//! The guidance data a vision guide hands the optimizer: camera, colour image, optional metric
+//! depth and one instance mask per object.
+
+use std::collections::BTreeMap;
+
+use scenethesis_scene_graph::Camera;
+
+/// Why guidance data is inconsistent.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum GuidanceError {
+    /// A buffer's length does not match its stated size.
+    #[error("{what}: {len} values for a {width} × {height} image (expected {expected})")]
+    BufferSize {
+        /// Which buffer ("image", "depth", "mask of `sofa_0`", …).
+        what: String,
+        /// Stated width in pixels.
+        width: u32,
+        /// Stated height in pixels.
+        height: u32,
+        /// Values given.
+        len: usize,
+        /// Values expected.
+        expected: usize,
+    },
+    /// An image's size differs from the camera's.
+    #[error(
+        "{what} is {width} × {height} but the camera's image is {camera_width} × {camera_height}"
+    )]
+    SizeMismatch {
+        /// Which image.
+        what: String,
+        /// Its width.
+        width: u32,
+        /// Its height.
+        height: u32,
+        /// The camera's width.
+        camera_width: u32,
+        /// The camera's height.
+        camera_height: u32,
+    },
+    /// A depth value is negative or infinite (unknown depth is `NaN` or `0`).
+    #[error("depth at pixel ({x}, {y}) is {value}: expected a finite distance ≥ 0 in metres (NaN or 0 = unknown)")]
+    BadDepth {
+        /// Column.
+        x: u32,
+        /// Row.
+        y: u32,
+        /// The offending value.
+        value: f32,
+    },
+}
+
+fn check_len(
+    what: &str,
+    width: u32,
+    height: u32,
+    len: usize,
+    per_pixel: usize,
+) -> Result<(), GuidanceError> {
+    let expected = width as usize * height as usize * per_pixel;
+    if len == expected {
+        Ok(())
+    } else {
+        Err(GuidanceError::BufferSize {
+            what: what.to_owned(),
+            width,
+            height,
+            len,
+            expected,
+        })
+    }
+}
+
+/// An 8-bit sRGB colour image, rows top to bottom, 3 bytes per pixel.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RgbImage {
+    width: u32,
+    height: u32,
+    data: Vec<u8>,
+}
+
+impl RgbImage {
+    /// An image from `width × height × 3` bytes (row-major RGB).
+    pub fn new(width: u32, height: u32, data: Vec<u8>) -> Result<Self, GuidanceError> {
+        check_len("image", width, height, data.len(), 3)?;
+        Ok(Self {
+            width,
+            height,
+            data,
+        })
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// The RGB bytes, row-major.
+    pub fn as_bytes(&self) -> &[u8] {
+        &self.data
+    }
+
+    /// The colour at pixel (x, y); `None` outside the image.
+    pub fn get(&self, x: u32, y: u32) -> Option<[u8; 3]> {
+        if x >= self.width || y >= self.height {
+            return None;
+        }
+        let i = (y as usize * self.width as usize + x as usize) * 3;
+        Some([self.data[i], self.data[i + 1], self.data[i + 2]])
+    }
+}
+
+/// Metric depth along the camera's optical axis (its −Z), in metres, rows top to bottom.
+/// `NaN` or `0` marks an unknown pixel.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DepthMap {
+    width: u32,
+    height: u32,
+    data: Vec<f32>,
+}
+
+impl DepthMap {
+    /// A depth map from `width × height` values in metres; rejects negative or infinite values.
+    pub fn new(width: u32, height: u32, data: Vec<f32>) -> Result<Self, GuidanceError> {
+        check_len("depth", width, height, data.len(), 1)?;
+        if let Some(i) = data.iter().position(|d| d.is_infinite() || *d < 0.0) {
+            return Err(GuidanceError::BadDepth {
+                x: (i % width as usize) as u32,
+                y: (i / width as usize) as u32,
+                value: data[i],
+            });
+        }
+        Ok(Self {
+            width,
+            height,
+            data,
+        })
+    }
+
+    /// A depth map whose value at (x, y) is `f(x, y)`; negative or infinite values become
+    /// unknown (`NaN`).
+    pub fn from_fn(width: u32, height: u32, mut f: impl FnMut(u32, u32) -> f32) -> Self {
+        let mut data = Vec::with_capacity(width as usize * height as usize);
+        for y in 0..height {
+            for x in 0..width {
+                let d = f(x, y);
+                data.push(if d.is_infinite() || d < 0.0 {
+                    f32::NAN
+                } else {
+                    d
+                });
+            }
+        }
+        Self {
+            width,
+            height,
+            data,
+        }
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// The raw values, row-major (`NaN` or `0` = unknown).
+    pub fn values(&self) -> &[f32] {
+        &self.data
+    }
+
+    /// The depth at pixel (x, y) in metres; `None` outside the image or where unknown.
+    pub fn get(&self, x: u32, y: u32) -> Option<f32> {
+        if x >= self.width || y >= self.height {
+            return None;
+        }
+        let d = self.data[y as usize * self.width as usize + x as usize];
+        (d.is_finite() && d > 0.0).then_some(d)
+    }
+}
+
+/// A binary per-pixel mask (one object's visible pixels), rows top to bottom.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Mask {
+    width: u32,
+    height: u32,
+    data: Vec<bool>,
+}
+
+impl Mask {
+    /// An empty `width × height` mask.
+    pub fn new(width: u32, height: u32) -> Self {
+        Self {
+            width,
+            height,
+            data: vec![false; width as usize * height as usize],
+        }
+    }
+
+    /// A mask from `width × height` flags, row-major.
+    pub fn from_flags(width: u32, height: u32, data: Vec<bool>) -> Result<Self, GuidanceError> {
+        check_len("mask", width, height, data.len(), 1)?;
+        Ok(Self {
+            width,
+            height,
+            data,
+        })
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Whether pixel (x, y) belongs to the mask (`false` outside the image).
+    pub fn contains(&self, x: u32, y: u32) -> bool {
+        x < self.width
+            && y < self.height
+            && self.data[y as usize * self.width as usize + x as usize]
+    }
+
+    /// Sets pixel (x, y); ignored outside the image.
+    pub fn set(&mut self, x: u32, y: u32, value: bool) {
+        if x < self.width && y < self.height {
+            self.data[y as usize * self.width as usize + x as usize] = value;
+        }
+    }
+
+    /// The flags, row-major.
+    pub fn flags(&self) -> &[bool] {
+        &self.data
+    }
+
+    /// Number of pixels in the mask.
+    pub fn area(&self) -> usize {
+        self.data.iter().filter(|&&m| m).count()
+    }
+
+    /// The pixels in the mask as (x, y), row by row.
+    pub fn pixels(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
+        let w = self.width as usize;
+        self.data
+            .iter()
+            .enumerate()
+            .filter(|(_, &m)| m)
+            .map(move |(i, _)| ((i % w) as u32, (i / w) as u32))
+    }
+
+    /// The tight pixel box `(x0, y0, x1, y1)` (exclusive ends) or `None` when empty.
+    pub fn bounding_box(&self) -> Option<(u32, u32, u32, u32)> {
+        let mut b: Option<(u32, u32, u32, u32)> = None;
+        for (x, y) in self.pixels() {
+            b = Some(match b {
+                None => (x, y, x + 1, y + 1),
+                Some((x0, y0, x1, y1)) => (x0.min(x), y0.min(y), x1.max(x + 1), y1.max(y + 1)),
+            });
+        }
+        b
+    }
+}
+
+/// What a guide saw, handed to the optimizer's alignment stage: the camera, the guidance
+/// image, optional metric depth and the visible mask of each object by id.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Guidance {
+    /// The camera the image was taken with (its intrinsics give the image size).
+    pub camera: Camera,
+    /// The guidance colour image.
+    pub image: RgbImage,
+    /// Metric depth of the guidance image, when known.
+    pub depth: Option<DepthMap>,
+    /// The visible pixels of each object, by object id.
+    pub masks: BTreeMap<String, Mask>,
+}
+
+impl Guidance {
+    /// Guidance from its parts, checking that the image, depth and masks all have the
+    /// camera's size.
+    pub fn new(
+        camera: Camera,
+        image: RgbImage,
+        depth: Option<DepthMap>,
+        masks: BTreeMap<String, Mask>,
+    ) -> Result<Self, GuidanceError> {
+        let (cw, ch) = (camera.intrinsics.width, camera.intrinsics.height);
+        let check = |what: String, w: u32, h: u32| {
+            if (w, h) == (cw, ch) {
+                Ok(())
+            } else {
+                Err(GuidanceError::SizeMismatch {
+                    what,
+                    width: w,
+                    height: h,
+                    camera_width: cw,
+                    camera_height: ch,
+                })
+            }
+        };
+        check("the guidance image".into(), image.width(), image.height())?;
+        if let Some(d) = &depth {
+            check("the depth map".into(), d.width(), d.height())?;
+        }
+        for (id, m) in &masks {
+            check(format!("the mask of `{id}`"), m.width(), m.height())?;
+        }
+        Ok(Self {
+            camera,
+            image,
+            depth,
+            masks,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{Point3, Vector3};
+    use scenethesis_scene_graph::Intrinsics;
+
+    fn camera(w: u32, h: u32) -> Camera {
+        Camera::look_at(
+            Intrinsics::from_vertical_fov(w, h, 1.0),
+            Point3::new(0.0, 1.5, 3.0),
+            Point3::origin(),
+            Vector3::y(),
+        )
+    }
+
+    #[test]
+    fn buffers_must_match_their_size() {
+        assert!(RgbImage::new(2, 2, vec![0; 12]).is_ok());
+        let e = RgbImage::new(2, 2, vec![0; 11]).unwrap_err();
+        assert!(e.to_string().contains("expected 12"), "{e}");
+        assert!(Mask::from_flags(3, 1, vec![true; 2]).is_err());
+    }
+
+    #[test]
+    fn depth_rejects_negative_and_infinite_values_and_hides_unknown_ones() {
+        let e = DepthMap::new(2, 1, vec![1.0, -0.5]).unwrap_err();
+        assert_eq!(
+            e,
+            GuidanceError::BadDepth {
+                x: 1,
+                y: 0,
+                value: -0.5
+            }
+        );
+        assert!(DepthMap::new(1, 1, vec![f32::INFINITY]).is_err());
+        let d = DepthMap::new(3, 1, vec![f32::NAN, 0.0, 1.5]).unwrap();
+        assert_eq!(
+            (d.get(0, 0), d.get(1, 0), d.get(2, 0)),
+            (None, None, Some(1.5))
+        );
+        assert_eq!(d.get(3, 0), None);
+    }
+
+    #[test]
+    fn guidance_checks_every_image_against_the_camera() {
+        let img = RgbImage::new(8, 6, vec![0; 8 * 6 * 3]).unwrap();
+        let mut masks = BTreeMap::new();
+        masks.insert("sofa_0".to_owned(), Mask::new(8, 6));
+        assert!(Guidance::new(camera(8, 6), img.clone(), None, masks.clone()).is_ok());
+        masks.insert("lamp_0".to_owned(), Mask::new(8, 5));
+        let e = Guidance::new(camera(8, 6), img, None, masks).unwrap_err();
+        assert!(e.to_string().contains("`lamp_0`"), "{e}");
+    }
+}
