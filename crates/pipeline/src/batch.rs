@@ -153,7 +153,7 @@ pub struct BatchSummary {
 
 /// Reads a prompts file: one prompt per line; blank lines and lines starting with `#` skipped.
 pub fn read_prompts(path: &Path) -> Result<Vec<String>, PipelineError> {
-    let text = std::fs::read_to_string(path).map_err(|source| PipelineError::Io {
+    let text = std::fs::read_to_string(path).map_err(|source| PipelineError::Read {
         path: path.to_owned(),
         source,
     })?;
@@ -227,7 +227,7 @@ pub fn run_batch(
     options: &BatchOptions,
     on_done: &(dyn Fn(&JobOutcome) + Sync),
 ) -> Result<BatchSummary, PipelineError> {
-    std::fs::create_dir_all(out).map_err(|source| PipelineError::Io {
+    std::fs::create_dir_all(out).map_err(|source| PipelineError::Write {
         path: out.to_owned(),
         source,
     })?;
@@ -352,7 +352,7 @@ fn summarize(all: &[BatchJob], out: &Path, ran: &[JobOutcome]) -> BatchSummary {
 
 fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<(), PipelineError> {
     let text = serde_json::to_string_pretty(value).expect("summary serializes") + "\n";
-    write_file_atomic(path, text.as_bytes()).map_err(|source| PipelineError::Io {
+    write_file_atomic(path, text.as_bytes()).map_err(|source| PipelineError::Write {
         path: PathBuf::from(path),
         source,
     })

@@ -40,9 +40,18 @@ pub enum PipelineError {
     /// Reading or writing `scene.json` failed.
     #[error(transparent)]
     SceneIo(#[from] SceneIoError),
-    /// A file or folder could not be read or written.
-    #[error("cannot access {path}")]
-    Io {
+    /// A file or folder could not be read.
+    #[error("cannot read {path}")]
+    Read {
+        /// The file or folder.
+        path: PathBuf,
+        /// The OS error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// A file or folder could not be written or created.
+    #[error("cannot write {path}")]
+    Write {
         /// The file or folder.
         path: PathBuf,
         /// The OS error.

@@ -30,6 +30,7 @@ mod assets;
 pub mod batch;
 mod error;
 pub mod judge;
+pub mod out_dir;
 mod output;
 mod pipeline;
 #[cfg(feature = "render")]
@@ -39,6 +40,7 @@ mod report;
 pub use assets::{object_seed, AssetError, AssetSource, CatalogSource, RetrievalSource};
 pub use error::PipelineError;
 pub use judge::{Failure, FailureKind, GeometricJudge, Judge, JudgeError, JudgeInput, Verdict};
+pub use out_dir::{Existing, OutputDir};
 pub use output::{export_folder, resolve_meshes, welded_objects, REPORT_JSON, SCENE_JSON};
 pub use pipeline::{
     GenerateOptions, GeneratedScene, NoProgress, Pipeline, PreviewRenderer, Progress, Stage,

@@ -5,25 +5,19 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use scenethesis_eval::EvalObject;
-use scenethesis_export::{ExportScene, Format};
-use scenethesis_scene_graph::{Mesh, Scene};
+use scenethesis_export::{ExportError, ExportScene, Format};
+use scenethesis_scene_graph::{Mesh, Scene, SceneIoError};
 
 use crate::assets::AssetSource;
+use crate::error::PipelineError;
+use crate::out_dir::OutputDir;
 use crate::pipeline::{GeneratedScene, Stage};
 use crate::report::StageTiming;
-use crate::PipelineError;
 
 /// The scene graph file of an output folder.
 pub const SCENE_JSON: &str = "scene.json";
 /// The report file of an output folder.
 pub const REPORT_JSON: &str = "report.json";
-
-fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> PipelineError + '_ {
-    move |source| PipelineError::Io {
-        path: path.to_owned(),
-        source,
-    }
-}
 
 /// The objects the physics formats should weld to the world: the same rule the stability metric
 /// uses (wall and ceiling categories, and anything standing against a wall high above the
@@ -42,86 +36,72 @@ pub fn welded_objects(scene: &Scene, meshes: &BTreeMap<String, Mesh>) -> Vec<Str
 }
 
 impl GeneratedScene {
-    /// Writes the output folder `dir`: `scene.glb`, `scene.json`, the previews and
-    /// `report.json` (with the export time added to its timings). Atomic: everything is written
-    /// into a temporary folder next to `dir` and renamed into place, so a failed run leaves no
-    /// half-written scene; an existing `dir` is replaced only once the new one is complete.
+    /// Writes the output folder `dir` after checking it with [`OutputDir::prepare`] (without
+    /// `force`: a folder holding anything scenethesis did not write is refused). See
+    /// [`GeneratedScene::write_to`].
     pub fn write_outputs(&mut self, dir: &Path) -> Result<PathBuf, PipelineError> {
-        let started = Instant::now();
-        let name = dir
-            .file_name()
-            .ok_or_else(|| PipelineError::BadOutput {
-                path: dir.to_owned(),
-                reason: "the output path has no folder name".into(),
-            })?
-            .to_string_lossy()
-            .into_owned();
-        let parent = match dir.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p.to_owned(),
-            _ => PathBuf::from("."),
-        };
-        std::fs::create_dir_all(&parent).map_err(io_error(&parent))?;
-        let staging = tempfile::Builder::new()
-            .prefix(&format!(".{name}.partial-"))
-            .tempdir_in(&parent)
-            .map_err(io_error(&parent))?;
-        let tmp = staging.path();
+        let out = OutputDir::prepare(dir, false)?;
+        self.write_to(&out)
+    }
 
+    /// Writes `scene.glb`, `scene.json`, the previews and `report.json` (with the export time
+    /// added to its timings) into a checked output folder. Atomic: everything is written into a
+    /// private staging folder next to it and swapped into place, so a failed or killed run
+    /// leaves no half-written scene, and the previous output is replaced only once the new one
+    /// is complete. Returns the absolute path written.
+    pub fn write_to(&mut self, out: &OutputDir) -> Result<PathBuf, PipelineError> {
+        let started = Instant::now();
+        let staging = out.stage()?;
+        self.write_files(staging.path(), started)
+            .map_err(|e| unstage(e, staging.path(), out.path()))?;
+        out.commit(staging)?;
+        Ok(out.path().to_owned())
+    }
+
+    fn write_files(&mut self, tmp: &Path, started: Instant) -> Result<(), PipelineError> {
         let welded = welded_objects(&self.scene, &self.meshes);
         let export = ExportScene::new(&self.scene, &self.meshes)?.with_fixed(welded);
         Format::Glb.write(&export, tmp)?;
-        let scene_path = tmp.join(SCENE_JSON);
-        self.scene.write_json_atomic(&scene_path)?;
+        self.scene.write_json_atomic(&tmp.join(SCENE_JSON))?;
         for (file, png) in &self.previews {
             let path = tmp.join(file);
-            std::fs::write(&path, png).map_err(io_error(&path))?;
+            std::fs::write(&path, png).map_err(|source| PipelineError::Write { path, source })?;
         }
         self.report.timings.push(StageTiming {
             stage: Stage::Export,
             seconds: started.elapsed().as_secs_f64(),
         });
-        let report_path = tmp.join(REPORT_JSON);
+        let path = tmp.join(REPORT_JSON);
         let text = serde_json::to_string_pretty(&self.report).expect("report serializes") + "\n";
-        std::fs::write(&report_path, text).map_err(io_error(&report_path))?;
-
-        replace_dir(staging, dir, &parent, &name)?;
-        Ok(dir.to_owned())
+        std::fs::write(&path, text).map_err(|source| PipelineError::Write { path, source })
     }
 }
 
-/// Moves the finished staging folder to `dir`, replacing an existing folder only after the new
-/// one is complete.
-fn replace_dir(
-    staging: tempfile::TempDir,
-    dir: &Path,
-    parent: &Path,
-    name: &str,
-) -> Result<(), PipelineError> {
-    let old = if dir.exists() {
-        let aside = tempfile::Builder::new()
-            .prefix(&format!(".{name}.old-"))
-            .tempdir_in(parent)
-            .map_err(io_error(parent))?;
-        let aside_path = aside.path().join("previous");
-        std::fs::rename(dir, &aside_path).map_err(io_error(dir))?;
-        Some(aside)
-    } else {
-        None
+/// Names the final output path instead of the private staging folder in a write error.
+fn unstage(e: PipelineError, staging: &Path, out: &Path) -> PipelineError {
+    let fix = |path: PathBuf| match path.strip_prefix(staging) {
+        Ok(rest) => out.join(rest),
+        Err(_) => path,
     };
-    let staged = staging.keep();
-    if let Err(source) = std::fs::rename(&staged, dir) {
-        let _ = std::fs::remove_dir_all(&staged);
-        if let Some(old) = &old {
-            let _ = std::fs::rename(old.path().join("previous"), dir);
-        }
-        return Err(PipelineError::Io {
-            path: dir.to_owned(),
+    match e {
+        PipelineError::Write { path, source } => PipelineError::Write {
+            path: fix(path),
             source,
-        });
+        },
+        PipelineError::Export(ExportError::Write { path, source }) => {
+            PipelineError::Export(ExportError::Write {
+                path: fix(path),
+                source,
+            })
+        }
+        PipelineError::SceneIo(SceneIoError::Write { path, source }) => {
+            PipelineError::SceneIo(SceneIoError::Write {
+                path: fix(path),
+                source,
+            })
+        }
+        other => other,
     }
-    // Dropping `old` deletes the previous output.
-    drop(old);
-    Ok(())
 }
 
 /// Exports a saved output folder (`dir/scene.json`) in the given formats, regenerating each

@@ -6,7 +6,7 @@ use std::path::Path;
 use scenethesis_pipeline::batch::{self, BatchOptions, JobStatus, Shard};
 use scenethesis_pipeline::{
     export_folder, CatalogSource, FailureKind, Format, GenerateOptions, GeometricJudge, Judge,
-    JudgeInput, NoProgress, Pipeline, Stage,
+    JudgeInput, NoProgress, OutputDir, Pipeline, Stage,
 };
 use scenethesis_scene_graph::Scene;
 
@@ -101,11 +101,23 @@ fn generate_writes_a_complete_deterministic_folder() {
     let mjcf = std::fs::read_to_string(dir.join("scene.mjcf.xml")).unwrap();
     assert_eq!(mjcf.matches("<body ").count(), scene.objects.len());
 
-    // Re-writing replaces the folder atomically: stale files disappear, and no staging
-    // folders are left beside it.
-    std::fs::write(dir.join("stale.txt"), "old").unwrap();
+    // Re-writing replaces an earlier output atomically (the exports written into it above are
+    // ours too), and no staging folders are left beside it.
     a.write_outputs(&dir).unwrap();
-    assert!(!dir.join("stale.txt").exists());
+    assert!(
+        !dir.join("scene.usda").exists(),
+        "the old folder was replaced"
+    );
+    assert!(dir.join("scene.glb").is_file());
+    // A file scenethesis did not write makes the folder foreign: refused without `force`,
+    // untouched; replaced with it.
+    std::fs::write(dir.join("notes.txt"), "mine").unwrap();
+    let err = a.write_outputs(&dir).unwrap_err();
+    assert!(err.to_string().contains("notes.txt"), "{err}");
+    assert!(dir.join("notes.txt").is_file());
+    a.write_to(&OutputDir::prepare(&dir, true).unwrap())
+        .unwrap();
+    assert!(!dir.join("notes.txt").exists());
     assert!(dir.join("scene.glb").is_file());
     let leftovers: Vec<_> = std::fs::read_dir(tmp.path())
         .unwrap()

@@ -7,7 +7,7 @@ use std::time::Duration;
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use scenethesis_pipeline::{
-    export_folder, Format, GenerateOptions, Pipeline, Progress, RetrievalSource, Stage,
+    export_folder, Format, GenerateOptions, OutputDir, Pipeline, Progress, RetrievalSource, Stage,
 };
 
 /// Arguments of `scenethesis generate`.
@@ -15,10 +15,14 @@ use scenethesis_pipeline::{
 pub struct GenerateArgs {
     /// What to build, e.g. "a cozy living room with reading materials".
     pub prompt: String,
-    /// Output folder; written atomically (an existing folder is replaced once the new one is
-    /// complete).
+    /// Output folder; written atomically. An earlier scenethesis output there is replaced once
+    /// the new scene is complete; a folder holding anything else is refused (see --force), and
+    /// a file is never replaced.
     #[arg(long)]
     pub out: PathBuf,
+    /// Replace the --out folder even when it holds files scenethesis did not write.
+    #[arg(long)]
+    pub force: bool,
     /// Seed: the same prompt and seed give the same scene.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
@@ -28,7 +32,8 @@ pub struct GenerateArgs {
     /// Also write these formats into the folder (comma-separated: usd, mjcf, urdf).
     #[arg(long, value_delimiter = ',')]
     pub export: Vec<Format>,
-    /// Exit with an error when the judge does not accept the final scene.
+    /// Exit with an error when the judge does not accept the final scene; a rejected scene
+    /// then never replaces an accepted one already in --out.
     #[arg(long)]
     pub strict: bool,
 }
@@ -151,20 +156,30 @@ fn pipeline(previews: bool, assets_dir: Option<&Path>) -> Result<Pipeline> {
 
 /// Runs `scenethesis generate`.
 pub fn run(args: GenerateArgs) -> Result<()> {
+    // The output path is checked before any work.
+    let out = OutputDir::prepare(&args.out, args.force)?;
     let pipeline = args.pipeline.pipeline()?;
     let options = args.pipeline.options();
     let mut progress = StageProgress::on_stderr();
     let mut generated = pipeline
         .generate(&args.prompt, args.seed, &options, &mut progress)
         .with_context(|| format!("generating \"{}\"", args.prompt))?;
-    generated
-        .write_outputs(&args.out)
-        .with_context(|| format!("writing {}", args.out.display()))?;
+    println!("{}", generated.report.summary_line());
+    let rejected = !generated.report.accepted;
+    if args.strict && rejected && out.holds_accepted_scene() {
+        anyhow::bail!(
+            "the judge did not accept the scene ({}); the accepted scene already in {} was kept \
+             and nothing was written",
+            rejection(&generated.report),
+            args.out.display()
+        );
+    }
+    generated.write_to(&out)?;
     let mut files = vec!["scene.glb".to_owned(), "scene.json".to_owned()];
     files.extend(generated.previews.iter().map(|(name, _)| name.clone()));
     files.push("report.json".into());
     if !args.export.is_empty() {
-        let written = export_folder(&args.out, &args.export, pipeline.assets())
+        let written = export_folder(out.path(), &args.export, pipeline.assets())
             .with_context(|| format!("exporting {}", args.out.display()))?;
         files.extend(
             written
@@ -172,20 +187,23 @@ pub fn run(args: GenerateArgs) -> Result<()> {
                 .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned())),
         );
     }
-    println!("{}", generated.report.summary_line());
     println!("wrote {}: {}", args.out.display(), files.join(", "));
-    if args.strict && !generated.report.accepted {
+    if args.strict && rejected {
         anyhow::bail!(
             "the judge did not accept the scene: {}",
-            generated
-                .report
-                .verdict
-                .failures
-                .iter()
-                .map(|f| f.detail.as_str())
-                .collect::<Vec<_>>()
-                .join("; ")
+            rejection(&generated.report)
         );
     }
     Ok(())
+}
+
+/// The judge's reasons for rejecting a scene, on one line.
+fn rejection(report: &scenethesis_pipeline::Report) -> String {
+    report
+        .verdict
+        .failures
+        .iter()
+        .map(|f| f.detail.as_str())
+        .collect::<Vec<_>>()
+        .join("; ")
 }
