@@ -4,14 +4,20 @@
 //! The job list is every (prompt, seed) pair in file order; shard `I/N` (0-based `I`) runs the
 //! jobs whose position `j` satisfies `j mod N = I`, so SLURM array tasks or Kubernetes indexed
 //! jobs can each pass their index. A job's folder appears only once complete (it is written
-//! atomically), so a folder with a `report.json` is finished and skipped on the next run.
+//! atomically), so a folder whose `report.json` records the job's prompt, seed and options
+//! digest is finished and skipped on the next run; a folder of another prompt or other options
+//! under the same name is generated again. Each running job holds a lock file
+//! (`.FOLDER.lock`) so that two batches over the same folder never do the same job at once, and
+//! a batch that is interrupted still writes its summary.
 //! `summary.json` aggregates every finished folder of the whole batch (all shards), so the last
 //! shard to finish writes the complete summary; each shard also writes its own
 //! `summary.shard-I-of-N.json`.
 
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
-use std::time::Instant;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::{Duration, Instant, SystemTime};
 
 use rayon::prelude::*;
 use scenethesis_eval::{MetricsSummary, SceneMetrics};
@@ -75,6 +81,9 @@ pub struct BatchOptions {
     pub base_seed: u64,
     /// Options of every run.
     pub generate: GenerateOptions,
+    /// Set (e.g. by a Ctrl-C handler) to stop starting new jobs; running jobs finish and the
+    /// summary is still written.
+    pub cancel: Option<Arc<AtomicBool>>,
 }
 
 impl Default for BatchOptions {
@@ -85,7 +94,16 @@ impl Default for BatchOptions {
             seeds: 1,
             base_seed: 0,
             generate: GenerateOptions::default(),
+            cancel: None,
         }
+    }
+}
+
+impl BatchOptions {
+    fn cancelled(&self) -> bool {
+        self.cancel
+            .as_ref()
+            .is_some_and(|c| c.load(Ordering::SeqCst))
     }
 }
 
@@ -94,8 +112,10 @@ impl Default for BatchOptions {
 pub struct BatchJob {
     /// Position in the full job list (all shards).
     pub position: usize,
-    /// 0-based line of the prompt among the prompts.
+    /// 0-based index of the prompt among the prompts.
     pub prompt_index: usize,
+    /// 1-based line of the prompt in the prompts file (0 when the prompts came from elsewhere).
+    pub line: usize,
     /// The prompt.
     pub prompt: String,
     /// The seed.
@@ -114,6 +134,10 @@ pub enum JobStatus {
     Skipped,
     /// Failed; see the error.
     Failed,
+    /// Another batch is running this job right now (it holds the job's lock); not run.
+    Busy,
+    /// Not started: the batch was interrupted.
+    Interrupted,
 }
 
 /// One job's outcome.
@@ -132,6 +156,18 @@ pub struct JobOutcome {
     pub seconds: Option<f64>,
     /// Why it failed.
     pub error: Option<String>,
+    /// Anything else worth knowing (e.g. an earlier scene of another prompt was replaced).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
+}
+
+/// What a batch reports while it runs.
+#[derive(Debug, Clone, Copy)]
+pub enum BatchEvent<'a> {
+    /// A job started.
+    Started(&'a BatchJob),
+    /// A job ended (generated, skipped, failed, busy or interrupted).
+    Finished(&'a JobOutcome),
 }
 
 /// `summary.json`: aggregate metrics over every finished scene of the batch.
@@ -151,29 +187,80 @@ pub struct BatchSummary {
     pub jobs: Vec<JobOutcome>,
 }
 
-/// Reads a prompts file: one prompt per line; blank lines and lines starting with `#` skipped.
-pub fn read_prompts(path: &Path) -> Result<Vec<String>, PipelineError> {
-    let text = std::fs::read_to_string(path).map_err(|source| PipelineError::Read {
+/// One prompt of a prompts file.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Prompt {
+    /// 1-based line in the file (0 when the prompt did not come from a file).
+    pub line: usize,
+    /// The prompt, trimmed.
+    pub text: String,
+}
+
+impl From<&str> for Prompt {
+    fn from(text: &str) -> Self {
+        Self {
+            line: 0,
+            text: text.to_owned(),
+        }
+    }
+}
+
+/// A line of a prompts file that was skipped, and why.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct SkippedLine {
+    /// 1-based line number.
+    pub line: usize,
+    /// Why it was skipped.
+    pub reason: String,
+}
+
+/// The prompts of a prompts file, and the lines that could not be used.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct PromptsFile {
+    /// The usable prompts, in file order.
+    pub prompts: Vec<Prompt>,
+    /// Lines skipped (e.g. not valid UTF-8), each with its line number.
+    pub skipped: Vec<SkippedLine>,
+}
+
+/// Reads a prompts file: one prompt per line; blank lines and lines starting with `#` are
+/// ignored; a line that is not valid UTF-8 is skipped and reported with its line number.
+pub fn read_prompts(path: &Path) -> Result<PromptsFile, PipelineError> {
+    let bytes = std::fs::read(path).map_err(|source| PipelineError::Read {
         path: path.to_owned(),
         source,
     })?;
-    let prompts: Vec<String> = text
-        .lines()
-        .map(str::trim)
-        .filter(|l| !l.is_empty() && !l.starts_with('#'))
-        .map(str::to_owned)
-        .collect();
-    if prompts.is_empty() {
+    let mut file = PromptsFile::default();
+    for (i, raw) in bytes.split(|&b| b == b'\n').enumerate() {
+        let line = i + 1;
+        let raw = raw.strip_suffix(b"\r").unwrap_or(raw);
+        let Ok(text) = std::str::from_utf8(raw) else {
+            file.skipped.push(SkippedLine {
+                line,
+                reason: "not valid UTF-8".into(),
+            });
+            continue;
+        };
+        let text = text.trim();
+        if text.is_empty() || text.starts_with('#') {
+            continue;
+        }
+        file.prompts.push(Prompt {
+            line,
+            text: text.to_owned(),
+        });
+    }
+    if file.prompts.is_empty() {
         return Err(PipelineError::Batch(format!(
             "{} holds no prompts (one per line; # starts a comment)",
             path.display()
         )));
     }
-    Ok(prompts)
+    Ok(file)
 }
 
-/// Every job of a batch, in order: for each prompt, each seed.
-pub fn jobs(prompts: &[String], seeds: u64, base_seed: u64) -> Vec<BatchJob> {
+/// Every job of a batch, in order: for each prompt, each seed (`seeds` ≥ 1).
+pub fn jobs(prompts: &[Prompt], seeds: u64, base_seed: u64) -> Vec<BatchJob> {
     let mut out = Vec::new();
     for (i, prompt) in prompts.iter().enumerate() {
         for k in 0..seeds.max(1) {
@@ -181,9 +268,10 @@ pub fn jobs(prompts: &[String], seeds: u64, base_seed: u64) -> Vec<BatchJob> {
             out.push(BatchJob {
                 position: out.len(),
                 prompt_index: i,
-                prompt: prompt.clone(),
+                line: prompt.line,
+                prompt: prompt.text.clone(),
                 seed,
-                folder: format!("{:03}_{}_s{seed}", i + 1, slug(prompt)),
+                folder: format!("{:03}_{}_s{seed}", i + 1, slug(&prompt.text)),
             });
         }
     }
@@ -217,21 +305,111 @@ fn read_report(dir: &Path) -> Option<Report> {
     serde_json::from_str(&text).ok()
 }
 
-/// Runs this shard's jobs of a batch into `out` (skipping finished folders), calling `on_done`
-/// after each job, then writes `summary.json` over every finished folder and this shard's
-/// `summary.shard-I-of-N.json`. A failing job does not stop the others.
+/// The report of `job`'s folder when it holds this job's scene: same prompt, seed and options
+/// digest (not merely the same folder name).
+fn finished_report(dir: &Path, job: &BatchJob, digest: &str) -> Option<Report> {
+    read_report(dir)
+        .filter(|r| r.prompt == job.prompt && r.seed == job.seed && r.options_digest == digest)
+}
+
+/// A job's lock: `.FOLDER.lock` in the batch folder, created exclusively, removed on drop.
+struct JobLock {
+    path: PathBuf,
+}
+
+/// A lock older than this is taken over even when its owner cannot be checked (another host).
+const LOCK_STALE_AFTER: Duration = Duration::from_secs(6 * 3600);
+
+impl JobLock {
+    /// Takes the lock of `folder`, or `None` when another live batch holds it. A lock whose
+    /// owner is gone (same host, dead process) or that is older than [`LOCK_STALE_AFTER`] is
+    /// taken over.
+    fn acquire(out: &Path, folder: &str) -> Result<Option<Self>, PipelineError> {
+        let path = out.join(format!(".{folder}.lock"));
+        let me = format!("{}\n{}\n", std::process::id(), host_name());
+        for _ in 0..2 {
+            match std::fs::OpenOptions::new()
+                .write(true)
+                .create_new(true)
+                .open(&path)
+            {
+                Ok(mut f) => {
+                    use std::io::Write;
+                    f.write_all(me.as_bytes())
+                        .map_err(|source| PipelineError::Write {
+                            path: path.clone(),
+                            source,
+                        })?;
+                    return Ok(Some(Self { path }));
+                }
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+                    if !lock_is_stale(&path) {
+                        return Ok(None);
+                    }
+                    let _ = std::fs::remove_file(&path);
+                }
+                Err(source) => return Err(PipelineError::Write { path, source }),
+            }
+        }
+        Ok(None)
+    }
+}
+
+impl Drop for JobLock {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.path);
+    }
+}
+
+fn lock_is_stale(path: &Path) -> bool {
+    let old = std::fs::metadata(path)
+        .and_then(|m| m.modified())
+        .ok()
+        .and_then(|t| SystemTime::now().duration_since(t).ok())
+        .is_some_and(|age| age > LOCK_STALE_AFTER);
+    if old {
+        return true;
+    }
+    let Ok(text) = std::fs::read_to_string(path) else {
+        return false;
+    };
+    let mut lines = text.lines();
+    let (Some(pid), Some(host)) = (lines.next(), lines.next()) else {
+        return false;
+    };
+    let Ok(pid) = pid.trim().parse::<u32>() else {
+        return false;
+    };
+    host == host_name()
+        && !Path::new("/proc").join(pid.to_string()).exists()
+        && cfg!(target_os = "linux")
+}
+
+fn host_name() -> String {
+    std::fs::read_to_string("/proc/sys/kernel/hostname")
+        .or_else(|_| std::fs::read_to_string("/etc/hostname"))
+        .map(|h| h.trim().to_owned())
+        .unwrap_or_else(|_| "unknown-host".into())
+}
+
+/// Runs this shard's jobs of a batch into `out` (skipping jobs already finished with the same
+/// prompt, seed and options), reporting each job's start and end to `on_event`, then writes
+/// `summary.json` over every finished folder and this shard's `summary.shard-I-of-N.json` —
+/// also when the batch was interrupted through [`BatchOptions::cancel`]. A failing job does not
+/// stop the others.
 pub fn run_batch(
     pipeline: &Pipeline,
-    prompts: &[String],
+    prompts: &[Prompt],
     out: &Path,
     options: &BatchOptions,
-    on_done: &(dyn Fn(&JobOutcome) + Sync),
+    on_event: &(dyn Fn(BatchEvent<'_>) + Sync),
 ) -> Result<BatchSummary, PipelineError> {
     std::fs::create_dir_all(out).map_err(|source| PipelineError::Write {
         path: out.to_owned(),
         source,
     })?;
     let all = jobs(prompts, options.seeds, options.base_seed);
+    let digest = options.generate.digest(pipeline.assets().name());
     let mine: Vec<&BatchJob> = all
         .iter()
         .filter(|j| options.shard.contains(j.position))
@@ -249,10 +427,31 @@ pub fn run_batch(
             objects: report.map(|r| r.objects),
             seconds: report.map(|r| r.total_seconds),
             error,
+            note: None,
         };
-        if let Some(report) = read_report(&dir) {
+        if let Some(report) = finished_report(&dir, job, &digest) {
             return outcome(JobStatus::Skipped, Some(&report), None);
         }
+        if options.cancelled() {
+            return outcome(JobStatus::Interrupted, None, None);
+        }
+        let _lock = match JobLock::acquire(out, &job.folder) {
+            Ok(Some(lock)) => lock,
+            Ok(None) => return outcome(JobStatus::Busy, None, None),
+            Err(e) => return outcome(JobStatus::Failed, None, Some(error_chain(&e))),
+        };
+        // Another batch may have finished it while we waited for the lock.
+        if let Some(report) = finished_report(&dir, job, &digest) {
+            return outcome(JobStatus::Skipped, Some(&report), None);
+        }
+        let replaced = read_report(&dir).map(|r| {
+            format!(
+                "replaced an earlier scene of this folder made from prompt {:?}, seed {} \
+                 and other options or assets",
+                r.prompt, r.seed
+            )
+        });
+        on_event(BatchEvent::Started(job));
         let started = Instant::now();
         let result = pipeline
             .generate(&job.prompt, job.seed, &options.generate, &mut NoProgress)
@@ -261,7 +460,10 @@ pub fn run_batch(
                 Ok(generated.report)
             });
         match result {
-            Ok(report) => outcome(JobStatus::Generated, Some(&report), None),
+            Ok(report) => JobOutcome {
+                note: replaced,
+                ..outcome(JobStatus::Generated, Some(&report), None)
+            },
             Err(e) => {
                 tracing::warn!(
                     "job {} failed after {:.1} s: {e}",
@@ -276,7 +478,7 @@ pub fn run_batch(
         mine.par_iter()
             .map(|job| {
                 let o = run_one(job);
-                on_done(&o);
+                on_event(BatchEvent::Finished(&o));
                 o
             })
             .collect()
@@ -286,7 +488,7 @@ pub fn run_batch(
         "summary.shard-{}-of-{}.json",
         options.shard.index, options.shard.count
     ));
-    let shard_summary = summarize(&all, out, &outcomes);
+    let shard_summary = summarize(&all, out, &outcomes, &digest);
     let mut mine_only = shard_summary.clone();
     mine_only
         .jobs
@@ -298,7 +500,7 @@ pub fn run_batch(
 
 /// Aggregates every finished folder of the batch; `ran` supplies this run's outcomes (for
 /// failures, which leave no folder).
-fn summarize(all: &[BatchJob], out: &Path, ran: &[JobOutcome]) -> BatchSummary {
+fn summarize(all: &[BatchJob], out: &Path, ran: &[JobOutcome], digest: &str) -> BatchSummary {
     let mut metrics: Vec<SceneMetrics> = Vec::new();
     let mut seconds: Vec<f64> = Vec::new();
     let mut accepted = 0;
@@ -306,7 +508,7 @@ fn summarize(all: &[BatchJob], out: &Path, ran: &[JobOutcome]) -> BatchSummary {
         .iter()
         .map(|job| {
             let ran_here = ran.iter().find(|o| o.job.position == job.position);
-            match read_report(&out.join(&job.folder)) {
+            match finished_report(&out.join(&job.folder), job, digest) {
                 Some(report) => {
                     metrics.push(report.verdict.metrics.clone());
                     seconds.push(report.total_seconds);
@@ -318,6 +520,7 @@ fn summarize(all: &[BatchJob], out: &Path, ran: &[JobOutcome]) -> BatchSummary {
                         objects: Some(report.objects),
                         seconds: Some(report.total_seconds),
                         error: None,
+                        note: ran_here.and_then(|o| o.note.clone()),
                     }
                 }
                 None => ran_here.cloned().unwrap_or(JobOutcome {
@@ -327,6 +530,7 @@ fn summarize(all: &[BatchJob], out: &Path, ran: &[JobOutcome]) -> BatchSummary {
                     objects: None,
                     seconds: None,
                     error: Some("not finished (another shard, or not run yet)".into()),
+                    note: None,
                 }),
             }
         })

@@ -104,6 +104,15 @@ pub struct GenerateOptions {
     pub prepare: PrepareSettings,
 }
 
+impl GenerateOptions {
+    /// A stable hex digest of these options and the asset source's name: two runs with the
+    /// same prompt, seed and digest produce the same scene (batch resume compares it).
+    pub fn digest(&self, asset_source: &str) -> String {
+        let text = serde_json::to_string(&(self, asset_source)).expect("options serialize");
+        format!("{:016x}", scenethesis_scene_graph::fnv1a64(text.as_bytes()))
+    }
+}
+
 impl Default for GenerateOptions {
     fn default() -> Self {
         Self {
@@ -505,6 +514,7 @@ impl Pipeline {
         let report = Report {
             prompt: prompt.to_owned(),
             seed,
+            options_digest: options.digest(self.assets.name()),
             scene_type: best.plan.scene_type.clone(),
             accepted: best.verdict.accepted,
             judge: self.judge.name().to_owned(),

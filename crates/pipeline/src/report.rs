@@ -59,6 +59,11 @@ pub struct Report {
     pub prompt: String,
     /// The seed.
     pub seed: u64,
+    /// Digest of the generation options and asset source ([`GenerateOptions::digest`]).
+    ///
+    /// [`GenerateOptions::digest`]: crate::GenerateOptions::digest
+    #[serde(default)]
+    pub options_digest: String,
     /// The scene type the planner recognised.
     pub scene_type: String,
     /// Whether the judge accepted the final scene.

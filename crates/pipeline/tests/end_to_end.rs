@@ -3,7 +3,10 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use scenethesis_pipeline::batch::{self, BatchOptions, JobStatus, Shard};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+use scenethesis_pipeline::batch::{self, BatchEvent, BatchOptions, JobStatus, Prompt, Shard};
 use scenethesis_pipeline::{
     export_folder, CatalogSource, FailureKind, Format, GenerateOptions, GeometricJudge, Judge,
     JudgeInput, NoProgress, OutputDir, Pipeline, Stage,
@@ -193,10 +196,7 @@ fn folders(dir: &Path) -> BTreeMap<String, bool> {
 
 #[test]
 fn batch_shards_resume_and_summarize() {
-    let prompts = vec![
-        "a bathroom".to_owned(),
-        "a kids playroom with toys".to_owned(),
-    ];
+    let prompts: Vec<Prompt> = vec!["a bathroom".into(), "a kids playroom with toys".into()];
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("batch");
     let pipeline = Pipeline::offline();
@@ -209,6 +209,7 @@ fn batch_shards_resume_and_summarize() {
             max_replans: 1,
             ..options()
         },
+        cancel: None,
     };
     let summary = batch::run_batch(&pipeline, &prompts, &out, &options, &|_| {}).unwrap();
     assert_eq!(summary.total_jobs, 2);
@@ -231,6 +232,94 @@ fn batch_shards_resume_and_summarize() {
     let summary = batch::run_batch(&pipeline, &prompts, &out, &options, &|_| {}).unwrap();
     assert!(summary.jobs.iter().all(|j| j.status == JobStatus::Skipped));
     assert_eq!(summary.finished, 2);
+
+    // An edited prompt with the same folder name is not "finished": it is generated again.
+    let edited: Vec<Prompt> = vec!["a bathroom!".into(), "a kids playroom with toys".into()];
+    let summary = batch::run_batch(&pipeline, &edited, &out, &options, &|_| {}).unwrap();
+    let statuses: Vec<JobStatus> = summary.jobs.iter().map(|j| j.status).collect();
+    assert_eq!(statuses, [JobStatus::Generated, JobStatus::Skipped]);
+    assert!(summary.jobs[0]
+        .note
+        .as_deref()
+        .unwrap()
+        .contains("a bathroom"));
+    let report: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(out.join(&summary.jobs[0].job.folder).join("report.json"))
+            .unwrap(),
+    )
+    .unwrap();
+    assert_eq!(report["prompt"], "a bathroom!");
+
+    // Other options: both jobs again.
+    options.generate.max_replans = 0;
+    let summary = batch::run_batch(&pipeline, &edited, &out, &options, &|_| {}).unwrap();
+    assert!(summary
+        .jobs
+        .iter()
+        .all(|j| j.status == JobStatus::Generated));
+}
+
+#[test]
+fn batch_locks_jobs_and_writes_its_summary_when_interrupted() {
+    let prompts: Vec<Prompt> = vec!["a garage".into(), "a warehouse".into()];
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("batch");
+    std::fs::create_dir_all(&out).unwrap();
+    let pipeline = Pipeline::offline();
+    let jobs = batch::jobs(&prompts, 1, 0);
+    // A live batch (this very process) holds the first job's lock.
+    std::fs::write(
+        out.join(format!(".{}.lock", jobs[0].folder)),
+        format!(
+            "{}\n{}\n",
+            std::process::id(),
+            std::fs::read_to_string("/proc/sys/kernel/hostname")
+                .unwrap_or_default()
+                .trim()
+        ),
+    )
+    .unwrap();
+    // A dead one (pid 0 never runs a batch) held the second's: taken over.
+    std::fs::write(
+        out.join(format!(".{}.lock", jobs[1].folder)),
+        format!(
+            "0\n{}\n",
+            std::fs::read_to_string("/proc/sys/kernel/hostname")
+                .unwrap_or_default()
+                .trim()
+        ),
+    )
+    .unwrap();
+    let cancel = Arc::new(AtomicBool::new(false));
+    let options = BatchOptions {
+        generate: options(),
+        cancel: Some(cancel.clone()),
+        ..BatchOptions::default()
+    };
+    // The interrupt arrives while the second job runs: nothing else starts.
+    let summary = batch::run_batch(&pipeline, &prompts, &out, &options, &|event| {
+        if let BatchEvent::Started(_) = event {
+            cancel.store(true, Ordering::SeqCst);
+        }
+    })
+    .unwrap();
+    let statuses: Vec<JobStatus> = summary.jobs.iter().map(|j| j.status).collect();
+    if cfg!(target_os = "linux") {
+        assert_eq!(statuses, [JobStatus::Busy, JobStatus::Generated]);
+        assert!(!out.join(format!(".{}.lock", jobs[1].folder)).exists());
+    }
+    assert!(out.join("summary.json").is_file());
+
+    // Once interrupted, a run starts nothing but still writes the summary.
+    std::fs::remove_file(out.join(format!(".{}.lock", jobs[0].folder))).unwrap();
+    let summary = batch::run_batch(&pipeline, &prompts, &out, &options, &|_| {}).unwrap();
+    assert_eq!(summary.jobs[0].status, JobStatus::Interrupted);
+    assert_eq!(
+        summary.jobs[1].status,
+        JobStatus::Skipped,
+        "finished stays finished"
+    );
+    assert!(out.join("summary.json").is_file());
 }
 
 #[test]
@@ -244,12 +333,21 @@ fn shard_and_prompt_parsing() {
     }
     let tmp = tempfile::tempdir().unwrap();
     let file = tmp.path().join("prompts.txt");
-    std::fs::write(&file, "# benchmark\n\na garage\n  a beach  \n").unwrap();
-    let prompts = batch::read_prompts(&file).unwrap();
-    assert_eq!(prompts, ["a garage", "a beach"]);
-    let jobs = batch::jobs(&prompts, 2, 10);
+    std::fs::write(
+        &file,
+        b"# benchmark\n\na garage\n\xff\xfe broken\n  a beach  \r\n".as_slice(),
+    )
+    .unwrap();
+    let read = batch::read_prompts(&file).unwrap();
+    let texts: Vec<&str> = read.prompts.iter().map(|p| p.text.as_str()).collect();
+    assert_eq!(texts, ["a garage", "a beach"]);
+    assert_eq!(read.prompts[1].line, 5);
+    assert_eq!(read.skipped.len(), 1);
+    assert_eq!(read.skipped[0].line, 4);
+    let jobs = batch::jobs(&read.prompts, 2, 10);
     assert_eq!(jobs.len(), 4);
     assert_eq!(jobs[3].folder, "002_a_beach_s11");
+    assert_eq!(jobs[3].line, 5);
     std::fs::write(&file, "# nothing\n").unwrap();
     assert!(batch::read_prompts(&file).is_err());
 }

@@ -16,6 +16,7 @@
 mod aabb;
 mod architecture;
 mod camera;
+mod hash;
 mod io;
 mod mesh;
 mod object;
@@ -27,6 +28,7 @@ mod validate;
 pub use aabb::Aabb;
 pub use architecture::{Architecture, DoorOpening, Environment, Floor, Wall};
 pub use camera::{Camera, Intrinsics, Projection};
+pub use hash::fnv1a64;
 pub use io::{write_file_atomic, SceneIoError};
 pub use mesh::{Material, Mesh, MeshPart};
 pub use object::{AssetRef, ParentRef, Relation, RelationKind, SceneObject, GROUND_ID};

@@ -8,6 +8,7 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 mod commands;
+mod interrupt;
 
 /// Text to simulation-ready 3D scenes.
 #[derive(Debug, Parser)]

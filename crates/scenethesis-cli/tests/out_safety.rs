@@ -112,3 +112,94 @@ fn earlier_outputs_are_replaced_also_from_inside_them_and_force_replaces_foreign
     assert!(!b.join("mine.txt").exists());
     assert_eq!(std::fs::read(b.join("scene.json")).unwrap(), scene);
 }
+
+#[test]
+fn batch_reports_bad_lines_by_number_and_refuses_zero_seeds() {
+    let tmp = tempfile::tempdir().unwrap();
+    let root = tmp.path();
+    std::fs::write(
+        root.join("prompts.txt"),
+        b"a garage\n\xc3\x28 bad\n".as_slice(),
+    )
+    .unwrap();
+    let zero = scenethesis_in(
+        root,
+        &["batch", "prompts.txt", "--out", "b", "--seeds", "0"],
+    );
+    assert!(!zero.status.success());
+    assert!(stderr(&zero).contains("--seeds"), "{}", stderr(&zero));
+    assert!(
+        !root.join("b").exists(),
+        "nothing written for a bad argument"
+    );
+
+    let run = scenethesis_in(
+        root,
+        &["batch", "prompts.txt", "--out", "b", "--no-preview"],
+    );
+    let text = stderr(&run);
+    assert!(run.status.success(), "{text}");
+    assert!(
+        text.contains("prompts.txt line 2: not valid UTF-8; skipped"),
+        "{text}"
+    );
+    assert!(root.join("b/001_a_garage_s0/scene.json").is_file());
+    assert!(root.join("b/summary.json").is_file());
+}
+
+#[test]
+fn an_interrupted_batch_finishes_its_running_job_and_writes_the_summary() {
+    use std::io::{BufRead, BufReader};
+    let tmp = tempfile::tempdir().unwrap();
+    let root = tmp.path();
+    std::fs::write(
+        root.join("prompts.txt"),
+        "a garage\na warehouse\na gym room\n",
+    )
+    .unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_scenethesis"))
+        .args(["batch", "prompts.txt", "--out", "b", "--no-preview"])
+        .current_dir(root)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut lines = BufReader::new(child.stderr.take().unwrap()).lines();
+    let mut seen = Vec::new();
+    for line in lines.by_ref() {
+        let line = line.unwrap();
+        let first_done = line.starts_with("done ");
+        seen.push(line);
+        if first_done {
+            break;
+        }
+    }
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    seen.extend(lines.map(|l| l.unwrap()));
+    let status = child.wait().unwrap();
+    let text = seen.join("\n");
+    assert!(!status.success(), "{text}");
+    assert!(text.contains("interrupted"), "{text}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(root.join("b/summary.json")).unwrap())
+            .unwrap();
+    let statuses: Vec<&str> = summary["jobs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|j| j["status"].as_str().unwrap())
+        .collect();
+    assert_eq!(statuses[0], "generated", "{summary}");
+    assert!(statuses.contains(&"interrupted"), "{summary}");
+    // Resuming finishes the rest and skips the first.
+    let resumed = scenethesis_in(
+        root,
+        &["batch", "prompts.txt", "--out", "b", "--no-preview"],
+    );
+    let text = stderr(&resumed);
+    assert!(resumed.status.success(), "{text}");
+    assert!(text.contains("skip 001_a_garage_s0"), "{text}");
+}

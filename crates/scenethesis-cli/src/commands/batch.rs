@@ -1,10 +1,12 @@
 //! `scenethesis batch`: many prompts × seeds, one folder each, resumable and shardable.
 
 use std::path::PathBuf;
+use std::sync::atomic::AtomicBool;
+use std::sync::{Arc, Mutex};
 
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
-use scenethesis_pipeline::batch::{self, BatchOptions, JobOutcome, JobStatus, Shard};
+use scenethesis_pipeline::batch::{self, BatchEvent, BatchOptions, JobOutcome, JobStatus, Shard};
 
 /// Arguments of `scenethesis batch`.
 #[derive(Debug, clap::Args)]
@@ -15,14 +17,14 @@ pub struct BatchArgs {
     #[arg(long)]
     pub out: PathBuf,
     /// Scenes generated at the same time.
-    #[arg(long, default_value_t = 1)]
-    pub jobs: usize,
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..=256))]
+    pub jobs: u64,
     /// Run only shard I of N (0-based), e.g. `--shard $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT`
     /// or `--shard $JOB_COMPLETION_INDEX/N` in a Kubernetes indexed job.
     #[arg(long, default_value = "0/1")]
     pub shard: Shard,
-    /// Seeds per prompt (seed, seed + 1, …).
-    #[arg(long, default_value_t = 1)]
+    /// Seeds per prompt (seed, seed + 1, …); at least 1.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
     pub seeds: u64,
     /// The first seed.
     #[arg(long, default_value_t = 0)]
@@ -34,15 +36,26 @@ pub struct BatchArgs {
 
 /// Runs `scenethesis batch`.
 pub fn run(args: BatchArgs) -> Result<()> {
-    let prompts = batch::read_prompts(&args.prompts)?;
+    let file = batch::read_prompts(&args.prompts)?;
+    for skipped in &file.skipped {
+        eprintln!(
+            "warning: {} line {}: {}; skipped",
+            args.prompts.display(),
+            skipped.line,
+            skipped.reason
+        );
+    }
+    let cancel = Arc::new(AtomicBool::new(false));
+    crate::interrupt::on_interrupt(cancel.clone());
     let options = BatchOptions {
-        jobs: args.jobs,
+        jobs: args.jobs as usize,
         shard: args.shard,
         seeds: args.seeds,
         base_seed: args.seed,
         generate: args.pipeline.options(),
+        cancel: Some(cancel.clone()),
     };
-    let all = batch::jobs(&prompts, options.seeds, options.base_seed);
+    let all = batch::jobs(&file.prompts, options.seeds, options.base_seed);
     let mine = all
         .iter()
         .filter(|j| options.shard.contains(j.position))
@@ -50,33 +63,35 @@ pub fn run(args: BatchArgs) -> Result<()> {
     let pipeline = args.pipeline.pipeline()?;
     let bar = ProgressBar::new(mine as u64);
     bar.set_style(
-        ProgressStyle::with_template("{bar:30.cyan/blue} {pos}/{len} scenes {elapsed} (eta {eta})")
-            .expect("valid template"),
+        ProgressStyle::with_template(
+            "{bar:30.cyan/blue} {pos}/{len} scenes {elapsed} (eta {eta}) {wide_msg}",
+        )
+        .expect("valid template"),
     );
-    let on_done = |o: &JobOutcome| {
-        let line = match o.status {
-            JobStatus::Skipped => format!("skip {} (already finished)", o.job.folder),
-            JobStatus::Generated => format!(
-                "done {} — {}, {} objects, {:.2} s",
-                o.job.folder,
-                if o.accepted == Some(true) {
-                    "accepted"
+    let running: Mutex<Vec<String>> = Mutex::new(Vec::new());
+    let show_running = |running: &[String]| bar.set_message(running.join(", "));
+    let on_event = |event: BatchEvent<'_>| match event {
+        BatchEvent::Started(job) => {
+            let mut r = running.lock().expect("progress lock");
+            r.push(job.folder.clone());
+            show_running(&r);
+        }
+        BatchEvent::Finished(o) => {
+            let mut r = running.lock().expect("progress lock");
+            r.retain(|f| *f != o.job.folder);
+            show_running(&r);
+            if let Some(line) = outcome_line(o) {
+                // A hidden bar (stderr is not a terminal) prints nothing itself.
+                if bar.is_hidden() {
+                    eprintln!("{line}");
                 } else {
-                    "NOT accepted"
-                },
-                o.objects.unwrap_or(0),
-                o.seconds.unwrap_or(0.0)
-            ),
-            JobStatus::Failed => format!(
-                "FAIL {}: {}",
-                o.job.folder,
-                o.error.as_deref().unwrap_or("unknown error")
-            ),
-        };
-        bar.println(line);
-        bar.inc(1);
+                    bar.println(line);
+                }
+            }
+            bar.inc(1);
+        }
     };
-    let summary = batch::run_batch(&pipeline, &prompts, &args.out, &options, &on_done)
+    let summary = batch::run_batch(&pipeline, &file.prompts, &args.out, &options, &on_event)
         .with_context(|| {
             format!(
                 "batch {} into {}",
@@ -85,11 +100,12 @@ pub fn run(args: BatchArgs) -> Result<()> {
             )
         })?;
     bar.finish_and_clear();
-    let failed = summary
-        .jobs
-        .iter()
-        .filter(|j| j.status == JobStatus::Failed)
-        .count();
+    let count = |status| summary.jobs.iter().filter(|j| j.status == status).count();
+    let (failed, busy, interrupted) = (
+        count(JobStatus::Failed),
+        count(JobStatus::Busy),
+        count(JobStatus::Interrupted),
+    );
     let m = &summary.metrics;
     println!(
         "{}/{} scenes finished, {} accepted, {failed} failed; Col-O {:.1}% Col-S {:.0}% Inst-O {:.1}% Inst-S {:.0}% Walk {:.3}; median {:.2} s/scene",
@@ -104,8 +120,46 @@ pub fn run(args: BatchArgs) -> Result<()> {
         summary.median_seconds.unwrap_or(f64::NAN),
     );
     println!("wrote {}", args.out.join("summary.json").display());
+    if interrupted > 0 {
+        anyhow::bail!(
+            "interrupted: {interrupted} job(s) not started; run the same command again to resume"
+        );
+    }
     if failed > 0 {
         anyhow::bail!("{failed} job(s) failed (see summary.json)");
     }
+    if busy > 0 {
+        eprintln!("note: {busy} job(s) are being run by another batch right now (lock files)");
+    }
     Ok(())
+}
+
+/// One progress line per finished job (none for jobs an interrupt kept from starting).
+fn outcome_line(o: &JobOutcome) -> Option<String> {
+    let line = match o.status {
+        JobStatus::Skipped => format!("skip {} (already finished)", o.job.folder),
+        JobStatus::Generated => format!(
+            "done {} — {}, {} objects, {:.2} s{}",
+            o.job.folder,
+            if o.accepted == Some(true) {
+                "accepted"
+            } else {
+                "NOT accepted"
+            },
+            o.objects.unwrap_or(0),
+            o.seconds.unwrap_or(0.0),
+            o.note
+                .as_deref()
+                .map(|n| format!(" ({n})"))
+                .unwrap_or_default()
+        ),
+        JobStatus::Failed => format!(
+            "FAIL {}: {}",
+            o.job.folder,
+            o.error.as_deref().unwrap_or("unknown error")
+        ),
+        JobStatus::Busy => format!("busy {} (another batch is running it)", o.job.folder),
+        JobStatus::Interrupted => return None,
+    };
+    Some(line)
 }
