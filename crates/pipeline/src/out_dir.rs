@@ -24,6 +24,9 @@ const NAME_MAX: usize = 255;
 /// Room the temporary names need beside the output's own name: `.` + `.partial-` + a process
 /// id (up to 10 digits) + `-` + 6 random characters.
 const TEMP_NAME_EXTRA: usize = 1 + 9 + 10 + 1 + 6;
+/// Staging folders live for the seconds a write takes; one of a dead process is swept only
+/// once it is older than this.
+const SWEEP_AFTER: std::time::Duration = std::time::Duration::from_secs(60);
 /// Longest output folder name, in bytes.
 pub const MAX_OUTPUT_NAME: usize = NAME_MAX - TEMP_NAME_EXTRA;
 
@@ -251,7 +254,15 @@ fn sweep(parent: &Path, name: &std::ffi::OsStr, path: &Path) {
         let Some(pid) = rest.split('-').next().and_then(|p| p.parse::<u32>().ok()) else {
             continue;
         };
-        if pid == std::process::id() || process_alive(pid) {
+        // The process id is only meaningful on this host; a folder that another host's batch
+        // (sharing the file system) is writing right now is young, so it is left alone.
+        let young = entry
+            .metadata()
+            .and_then(|m| m.modified())
+            .ok()
+            .and_then(|t| std::time::SystemTime::now().duration_since(t).ok())
+            .is_none_or(|age| age < SWEEP_AFTER);
+        if pid == std::process::id() || process_alive(pid) || young {
             continue;
         }
         let stale = entry.path();
@@ -623,10 +634,20 @@ mod tests {
         // Someone else's hidden folder with a similar name is left alone.
         let other = tmp.path().join(".out.partial-notapid");
         std::fs::create_dir_all(&other).unwrap();
+        // A young one of a pid unknown here may belong to another host's live run: kept.
+        let young = tmp.path().join(".out.partial-0-young1");
+        std::fs::create_dir_all(&young).unwrap();
+        let long_ago = std::time::SystemTime::now() - std::time::Duration::from_secs(3600);
+        for dir in [&aside, &partial] {
+            std::fs::File::open(dir)
+                .unwrap()
+                .set_modified(long_ago)
+                .unwrap();
+        }
         let dir = OutputDir::prepare(&out, false).unwrap();
         assert!(out.join(SCENE_JSON).is_file(), "previous output restored");
         assert!(!aside.exists() && !partial.exists());
-        assert!(other.exists());
+        assert!(other.exists() && young.exists());
         assert!(dir.holds_accepted_scene(), "{:?}", dir.existing());
     }
 }
