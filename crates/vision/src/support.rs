@@ -1,0 +1,100 @@
+//! Phase 5: what holds each lifted box up.
+//!
+//! Boxes are visited lowest first. A box whose bottom is at the floor stands on the ground; one
+//! whose bottom meets another box's top within a gap tolerance, with most of its footprint over
+//! that box, stands on it; one whose bottom lies between another box's bottom and top, with its
+//! footprint inside, sits inside it (a shelf, a cabinet). Anything else is reported as
+//! unsupported so the caller can decide (a wall-mounted object, or a lifting error).
+
+use serde::{Deserialize, Serialize};
+
+use crate::boxes::LiftedBox;
+
+/// How a lifted box is held up.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SupportKind {
+    /// Stands on the floor.
+    Ground,
+    /// Rests on top of its parent.
+    On,
+    /// Rests inside its parent (on a shelf or an inner floor).
+    Inside,
+    /// Nothing below it: mounted on a wall, or lifted wrongly.
+    Unsupported,
+}
+
+/// The inferred support of one box.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SupportGuess {
+    /// The supported box's object id.
+    pub id: String,
+    /// The supporting object's id; `None` for the ground or when unsupported.
+    pub parent: Option<String>,
+    /// How it is supported.
+    pub kind: SupportKind,
+}
+
+/// Infers the support of every box. `gap` is the largest vertical gap in metres between a
+/// child's bottom and its parent's top (or the floor) that still counts as contact.
+pub fn infer_supports(boxes: &[LiftedBox], gap: f64) -> Vec<SupportGuess> {
+    let mut order: Vec<usize> = (0..boxes.len()).collect();
+    order.sort_by(|&a, &b| {
+        boxes[a]
+            .bottom()
+            .total_cmp(&boxes[b].bottom())
+            .then(boxes[a].id.cmp(&boxes[b].id))
+    });
+    let mut out = Vec::with_capacity(boxes.len());
+    for &i in &order {
+        let b = &boxes[i];
+        let bottom = b.bottom();
+        let foot = b.footprint();
+        // (score, parent index, kind): smaller score wins.
+        let mut best: Option<(f64, usize, SupportKind)> = None;
+        for (j, a) in boxes.iter().enumerate() {
+            if j == i || a.bottom() >= bottom - 1e-9 {
+                continue;
+            }
+            let cover = foot.fraction_inside(&a.footprint(), 0.05);
+            let top_gap = (bottom - a.top()).abs();
+            let candidate = if top_gap <= gap && cover >= 0.5 {
+                Some((top_gap, SupportKind::On))
+            } else if bottom > a.bottom() + 1e-3
+                && bottom < a.top() - gap
+                && b.top() <= a.top() + gap
+                && cover >= 0.6
+            {
+                // Inside: rank by how close the bottom is to the parent's inner floor.
+                Some((gap + (bottom - a.bottom()), SupportKind::Inside))
+            } else {
+                None
+            };
+            if let Some((score, kind)) = candidate {
+                if best.is_none_or(|(s, _, _)| score < s) {
+                    best = Some((score, j, kind));
+                }
+            }
+        }
+        let guess = match best {
+            _ if bottom <= gap => SupportGuess {
+                id: b.id.clone(),
+                parent: None,
+                kind: SupportKind::Ground,
+            },
+            Some((_, j, kind)) => SupportGuess {
+                id: b.id.clone(),
+                parent: Some(boxes[j].id.clone()),
+                kind,
+            },
+            None => SupportGuess {
+                id: b.id.clone(),
+                parent: None,
+                kind: SupportKind::Unsupported,
+            },
+        };
+        out.push(guess);
+    }
+    out.sort_by(|a, b| a.id.cmp(&b.id));
+    out
+}
