@@ -45,6 +45,7 @@
 
 pub mod boxes;
 mod error;
+pub mod files;
 pub mod footprint;
 pub mod metrology;
 pub mod points;
