@@ -36,6 +36,8 @@ mod pipeline;
 #[cfg(feature = "render")]
 mod render;
 mod report;
+#[cfg(feature = "render")]
+pub mod roundtrip;
 
 pub use assets::{object_seed, AssetError, AssetSource, CatalogSource, RetrievalSource};
 pub use error::PipelineError;

@@ -51,6 +51,9 @@ enum Command {
     },
     /// Render an output folder's previews: preview.png, preview_top.png and view_K.png.
     Render(commands::render::RenderArgs),
+    /// Render a saved scene's guidance, lift it back to 3D boxes with the vision guide's
+    /// geometry and compare each recovered object with the scene.
+    Roundtrip(commands::roundtrip::RoundtripArgs),
 }
 
 fn main() -> ExitCode {
@@ -94,5 +97,6 @@ fn run(command: Command) -> Result<()> {
         Command::Eval { path, json } => commands::eval::run(path, json),
         Command::Validate { path } => commands::validate::run(path),
         Command::Render(args) => commands::render::run(args),
+        Command::Roundtrip(args) => commands::roundtrip::run(args),
     }
 }

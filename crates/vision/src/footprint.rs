@@ -45,6 +45,44 @@ impl FloorRectangle {
         4.0 * self.half_extents.x * self.half_extents.y
     }
 
+    /// The four corners (world `(x, z)`), counter-clockwise seen from above (+Y).
+    pub fn corners(&self) -> [Point2<f64>; 4] {
+        let (ax, az) = (
+            self.axis_x() * self.half_extents.x,
+            self.axis_z() * self.half_extents.y,
+        );
+        let c = self.center;
+        [c - ax - az, c + ax - az, c + ax + az, c - ax + az]
+    }
+
+    /// The area of the intersection with `other`, exact (convex polygon clipping).
+    pub fn intersection_area(&self, other: &FloorRectangle) -> f64 {
+        let mut poly: Vec<Point2<f64>> = self.corners().to_vec();
+        let clip = oriented(other.corners());
+        for i in 0..4 {
+            let (a, b) = (clip[i], clip[(i + 1) % 4]);
+            let inside = |p: &Point2<f64>| (b - a).perp(&(p - a)) >= 0.0;
+            let mut next = Vec::with_capacity(poly.len() + 4);
+            for j in 0..poly.len() {
+                let (p, q) = (poly[j], poly[(j + 1) % poly.len()]);
+                let (pin, qin) = (inside(&p), inside(&q));
+                if pin {
+                    next.push(p);
+                }
+                if pin != qin {
+                    let (dp, dq) = ((b - a).perp(&(p - a)), (b - a).perp(&(q - a)));
+                    let t = dp / (dp - dq);
+                    next.push(p + (q - p) * t);
+                }
+            }
+            poly = next;
+            if poly.is_empty() {
+                return 0.0;
+            }
+        }
+        polygon_area(&poly).abs()
+    }
+
     /// The fraction of this rectangle's area that lies inside `other`, estimated on a 9 × 9 grid
     /// of sample points.
     pub fn fraction_inside(&self, other: &FloorRectangle, margin: f64) -> f64 {
@@ -62,6 +100,23 @@ impl FloorRectangle {
         }
         inside as f64 / (N * N) as f64
     }
+}
+
+/// The corners in counter-clockwise order for the (x, z) plane's orientation used by `perp`.
+fn oriented(c: [Point2<f64>; 4]) -> [Point2<f64>; 4] {
+    if polygon_area(&c) < 0.0 {
+        [c[3], c[2], c[1], c[0]]
+    } else {
+        c
+    }
+}
+
+/// Signed shoelace area of a polygon.
+fn polygon_area(p: &[Point2<f64>]) -> f64 {
+    (0..p.len())
+        .map(|i| p[i].coords.perp(&p[(i + 1) % p.len()].coords))
+        .sum::<f64>()
+        / 2.0
 }
 
 /// The convex hull of `points` in counter-clockwise order (Andrew's monotone chain); collinear
@@ -189,6 +244,23 @@ mod tests {
                 r.yaw
             );
         }
+    }
+
+    #[test]
+    fn intersection_of_rotated_rectangles() {
+        let r = |cx: f64, cz: f64, hx: f64, hz: f64, yaw: f64| FloorRectangle {
+            center: Point2::new(cx, cz),
+            half_extents: Vector2::new(hx, hz),
+            yaw,
+        };
+        let a = r(0.0, 0.0, 1.0, 1.0, 0.0);
+        assert!((a.intersection_area(&a) - 4.0).abs() < 1e-9);
+        assert!((a.intersection_area(&r(1.0, 0.0, 1.0, 1.0, 0.0)) - 2.0).abs() < 1e-9);
+        assert_eq!(a.intersection_area(&r(5.0, 0.0, 1.0, 1.0, 0.3)), 0.0);
+        // A square turned by 45° inside a larger one: its whole area.
+        let small = r(0.0, 0.0, 0.5, 0.5, std::f64::consts::FRAC_PI_4);
+        assert!((small.intersection_area(&a) - 1.0).abs() < 1e-9);
+        assert!((a.intersection_area(&small) - 1.0).abs() < 1e-9);
     }
 
     #[test]

@@ -13,11 +13,15 @@ use scenethesis_scene_graph::Camera;
 /// The world points seen through `mask`, one per pixel with a valid depth, in row order.
 ///
 /// `stride` subsamples rows and columns (1 = every pixel) to bound the work for large masks.
+/// `radius` > 0 replaces each depth by the median of the valid depths of the mask's pixels
+/// within that many pixels (a square window), which suppresses per-pixel depth noise without
+/// mixing in other objects.
 pub fn mask_points(
     camera: &Camera,
     depth: &DepthMap,
     mask: &Mask,
     stride: u32,
+    radius: u32,
 ) -> Vec<Point3<f64>> {
     let stride = stride.max(1);
     let mut out = Vec::new();
@@ -25,10 +29,31 @@ pub fn mask_points(
         if u % stride != 0 || v % stride != 0 {
             continue;
         }
-        let Some(d) = depth.get(u, v) else { continue };
-        if !(d.is_finite() && d > 0.0) {
-            continue;
-        }
+        let valid = |x: u32, y: u32| {
+            depth
+                .get(x, y)
+                .filter(|d| d.is_finite() && *d > 0.0 && mask.contains(x, y))
+        };
+        let d = if radius == 0 {
+            match valid(u, v) {
+                Some(d) => d,
+                None => continue,
+            }
+        } else {
+            let mut window: Vec<f64> =
+                Vec::with_capacity(((2 * radius + 1) * (2 * radius + 1)) as usize);
+            for y in v.saturating_sub(radius)..=(v + radius).min(mask.height() - 1) {
+                for x in u.saturating_sub(radius)..=(u + radius).min(mask.width() - 1) {
+                    if let Some(d) = valid(x, y) {
+                        window.push(d as f64);
+                    }
+                }
+            }
+            match median(&mut window) {
+                Some(d) => d as f32,
+                None => continue,
+            }
+        };
         let pixel = Point2::new(u as f64 + 0.5, v as f64 + 0.5);
         out.push(camera.unproject(&pixel, d as f64));
     }

@@ -20,6 +20,9 @@ pub enum SupportKind {
     On,
     /// Rests inside its parent (on a shelf or an inner floor).
     Inside,
+    /// Stands on the floor under its parent (a basket under a table): the parent's footprint
+    /// covers it and the parent's top is above it.
+    Under,
     /// Nothing below it: mounted on a wall, or lifted wrongly.
     Unsupported,
 }
@@ -33,6 +36,28 @@ pub struct SupportGuess {
     pub parent: Option<String>,
     /// How it is supported.
     pub kind: SupportKind,
+}
+
+/// The box a floor-standing box `i` stands under: the lowest-topped box taller than it whose
+/// footprint covers at least 60 % of its own and that does not itself reach down around it
+/// (its bottom may be on the floor, as table legs are).
+fn under(boxes: &[LiftedBox], i: usize) -> Option<usize> {
+    let b = &boxes[i];
+    let foot = b.footprint();
+    let mut best: Option<usize> = None;
+    for (j, a) in boxes.iter().enumerate() {
+        if j == i || a.top() <= b.top() + 0.02 || foot.fraction_inside(&a.footprint(), 0.0) < 0.6 {
+            continue;
+        }
+        // The covering box must be wider than the one under it.
+        if a.footprint().area() <= foot.area() {
+            continue;
+        }
+        if best.is_none_or(|k| a.top() < boxes[k].top()) {
+            best = Some(j);
+        }
+    }
+    best
 }
 
 /// Infers the support of every box. `gap` is the largest vertical gap in metres between a
@@ -53,7 +78,8 @@ pub fn infer_supports(boxes: &[LiftedBox], gap: f64) -> Vec<SupportGuess> {
         // (score, parent index, kind): smaller score wins.
         let mut best: Option<(f64, usize, SupportKind)> = None;
         for (j, a) in boxes.iter().enumerate() {
-            if j == i || a.bottom() >= bottom - 1e-9 {
+            // A parent starts clearly lower (2 cm): side-by-side objects do not hold each other.
+            if j == i || a.bottom() >= bottom - 0.02 {
                 continue;
             }
             let cover = foot.fraction_inside(&a.footprint(), 0.05);
@@ -77,10 +103,17 @@ pub fn infer_supports(boxes: &[LiftedBox], gap: f64) -> Vec<SupportGuess> {
             }
         }
         let guess = match best {
-            _ if bottom <= gap => SupportGuess {
-                id: b.id.clone(),
-                parent: None,
-                kind: SupportKind::Ground,
+            _ if bottom <= gap => match under(boxes, i) {
+                Some(j) => SupportGuess {
+                    id: b.id.clone(),
+                    parent: Some(boxes[j].id.clone()),
+                    kind: SupportKind::Under,
+                },
+                None => SupportGuess {
+                    id: b.id.clone(),
+                    parent: None,
+                    kind: SupportKind::Ground,
+                },
             },
             Some((_, j, kind)) => SupportGuess {
                 id: b.id.clone(),

@@ -58,6 +58,10 @@ pub struct RenderArgs {
     /// Render colour at this many times the size per side and average down (anti-aliasing).
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=4))]
     pub supersample: u32,
+    /// Instead of previews, write what the vision guide reads for the photo view into
+    /// DIR/guidance/: rgb.png, depth.npy (metres), ids.png + labels.json and camera.json.
+    #[arg(long)]
+    pub guidance: bool,
 }
 
 /// Renders the folder's previews: `preview.png` (photo view), `preview_top.png` and
@@ -70,6 +74,9 @@ pub fn run(args: RenderArgs) -> Result<()> {
         (parent, args.dir.clone())
     };
     let scene = Scene::read_json(&file).context("cannot render")?;
+    if args.guidance {
+        return write_guidance(&scene, &file, &dir, &args);
+    }
     let (render_scene, skipped) = render_scene(&scene);
     for reason in &skipped {
         tracing::warn!("{reason}");
@@ -126,6 +133,32 @@ fn write_view(
             .with_context(|| format!("rendering depth of {name} failed"))?;
         let path = dir.join(format!("{name}_depth.npy"));
         write_file_atomic(&path, &frame.depth_npy())
+            .with_context(|| format!("cannot write {}", path.display()))?;
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// Writes the photo view's guidance files into `dir/guidance/`.
+fn write_guidance(scene: &Scene, file: &Path, dir: &Path, args: &RenderArgs) -> Result<()> {
+    let meshes = scenethesis_pipeline::resolve_meshes(
+        scene,
+        &scenethesis_pipeline::RetrievalSource::default(),
+    )
+    .with_context(|| format!("cannot rebuild the meshes of {}", file.display()))?;
+    let renderer = open_renderer(args.backend)?;
+    let (guidance, labels) = scenethesis_pipeline::roundtrip::render_guidance(
+        &renderer,
+        scene,
+        &meshes,
+        [args.size.width, args.size.height],
+    )
+    .with_context(|| format!("cannot render the guidance of {}", file.display()))?;
+    let out = dir.join("guidance");
+    std::fs::create_dir_all(&out).with_context(|| format!("cannot write {}", out.display()))?;
+    for (name, bytes) in scenethesis_vision::files::encode_guidance(&guidance, &labels)? {
+        let path = out.join(name);
+        write_file_atomic(&path, &bytes)
             .with_context(|| format!("cannot write {}", path.display()))?;
         println!("wrote {}", path.display());
     }
