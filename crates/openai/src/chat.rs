@@ -47,8 +47,9 @@ impl OutputFormat {
 /// A chat model behind an OpenAI-compatible `/chat/completions` endpoint.
 ///
 /// Structured requests try `json_schema`, then `json_object`, then a plain instruction,
-/// moving on whenever the server rejects a format (HTTP 400, 422, 500 or 501) and remembering
-/// the format that worked for later calls. Every structured answer is validated locally; an
+/// moving on whenever the server rejects a format (HTTP 400, 422, 501, or 500 with a message
+/// about the format; other 5xx answers are retried as server failures) and remembering the
+/// format that worked for later calls. Every structured answer is validated locally; an
 /// invalid one gets one repair round that quotes the violations, then fails with
 /// [`ProviderErrorKind::Schema`].
 #[derive(Debug)]
@@ -218,9 +219,11 @@ impl OpenAiChat {
             let on_5xx = if format == OutputFormat::Plain {
                 On5xx::Retry
             } else {
-                On5xx::Return
+                On5xx::RetryUnlessAboutFormat
             };
-            match self.complete(&self.body(request, &request.messages, Some(format)), on_5xx) {
+            let body = self.body(request, &request.messages, Some(format));
+            let result = self.complete(&body, on_5xx);
+            match result {
                 Ok((text, model, tokens)) => {
                     usage += tokens;
                     break (text, model);
@@ -265,13 +268,9 @@ impl OpenAiChat {
             problem.summary(),
             schema.name
         )));
-        let on_5xx = if format == OutputFormat::Plain {
-            On5xx::Retry
-        } else {
-            On5xx::Return
-        };
+        // The server accepted this format already: a 5xx now is a server failure.
         let (text, model, tokens) =
-            self.complete(&self.body(request, &messages, Some(format)), on_5xx)?;
+            self.complete(&self.body(request, &messages, Some(format)), On5xx::Retry)?;
         usage += tokens;
         match check(schema, &text) {
             Ok(json) => Ok(ChatResponse {
@@ -330,9 +329,24 @@ fn check(schema: &JsonSchema, text: &str) -> Result<Value, Problem> {
     }
 }
 
-/// Whether an error means the server does not accept the requested `response_format`.
+/// Whether an error means the server does not accept the requested `response_format`: HTTP
+/// 400, 422 or 501, or a 500 whose message speaks of the format (llama-cpp-python's answer to
+/// `json_schema`).
 fn rejects_format(e: &ProviderError) -> bool {
-    matches!(e.kind, ProviderErrorKind::Status { status, .. } if matches!(status, 400 | 422 | 500 | 501))
+    match e.kind {
+        ProviderErrorKind::Status { status, .. } => {
+            matches!(status, 400 | 422 | 501) || (status == 500 && mentions_format(e))
+        }
+        _ => false,
+    }
+}
+
+/// Whether a server's error message is about the output format.
+fn mentions_format(e: &ProviderError) -> bool {
+    match &e.kind {
+        ProviderErrorKind::Status { message, .. } => crate::http::about_format(message),
+        _ => false,
+    }
 }
 
 /// The instruction that carries the schema when the server does not enforce it.

@@ -13,9 +13,10 @@ use crate::config::{redact_url, ClientConfig};
 pub(crate) enum On5xx {
     /// Retry with backoff (the default).
     Retry,
-    /// Return at once: the caller falls back to another request format (some servers answer
-    /// an unsupported `response_format` with HTTP 500).
-    Return,
+    /// Retry, except when the message is about the output format: the caller then falls back
+    /// to another request format (llama-cpp-python answers an unsupported `response_format`
+    /// with HTTP 500).
+    RetryUnlessAboutFormat,
 }
 
 /// A successful HTTP answer.
@@ -184,11 +185,10 @@ impl Transport {
                     return Ok(Answer { body });
                 }
                 Ok((status, retry_after, body)) => {
-                    let kind = ProviderErrorKind::Status {
-                        status,
-                        message: server_message(&body),
-                    };
-                    let transient = status == 429 || (status >= 500 && on_5xx == On5xx::Retry);
+                    let message = server_message(&body);
+                    let transient = status == 429
+                        || (status >= 500 && (on_5xx == On5xx::Retry || !about_format(&message)));
+                    let kind = ProviderErrorKind::Status { status, message };
                     if !transient {
                         return Err(err(kind));
                     }
@@ -297,6 +297,20 @@ pub(crate) fn server_message(body: &[u8]) -> String {
     } else {
         shorten(text.trim())
     }
+}
+
+/// Whether a server's error message is about the requested output format.
+pub(crate) fn about_format(message: &str) -> bool {
+    let m = message.to_lowercase();
+    [
+        "response_format",
+        "json_schema",
+        "json_object",
+        "schema",
+        "grammar",
+    ]
+    .iter()
+    .any(|k| m.contains(k))
 }
 
 /// Cuts a message to 300 characters.

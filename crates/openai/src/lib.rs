@@ -15,6 +15,28 @@
 //! Requests time out, transient failures (429, 5xx, refused connections, timeouts) are
 //! retried with exponential backoff or the server's `Retry-After`, within a total budget, and
 //! every error names the endpoint and the model.
+//!
+//! ```
+//! use scenethesis_openai::{ClientConfig, OpenAiClient, Overrides};
+//!
+//! // Flags win over the environment (here a stand-in for the process environment).
+//! let env = |name: &str| match name {
+//!     "OPENAI_BASE_URL" => Some("http://127.0.0.1:11434/v1".to_string()),
+//!     "OPENAI_API_KEY" => Some("sk-example-key".to_string()),
+//!     "SCENETHESIS_LLM_MODEL" => Some("qwen2.5:7b".to_string()),
+//!     _ => None,
+//! };
+//! let flags = Overrides { llm_model: Some("llama3.1:8b".into()), ..Overrides::default() };
+//! let config = ClientConfig::resolve_with(&flags, &env, None)?;
+//! assert_eq!(config.require_llm()?, "llama3.1:8b");
+//! assert!(!format!("{config:?}").contains("sk-example-key"));
+//!
+//! // Building clients contacts no server.
+//! let client = OpenAiClient::new(config)?;
+//! assert_eq!(client.llm()?.model(), "llama3.1:8b");
+//! assert!(client.image_model().is_err(), "no image model configured");
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 #![warn(missing_docs)]
 
 mod chat;

@@ -665,3 +665,19 @@ fn cached_client_replays_offline_byte_for_byte() {
         "{err}"
     );
 }
+
+#[test]
+fn a_transient_5xx_under_json_schema_is_retried_not_taken_as_a_format_rejection() {
+    let server = TestServer::scripted(vec![
+        Reply::json(503, &json!({"error": {"message": "model is loading"}})),
+        Reply::json(200, &vllm_completion("m", GOOD)),
+    ]);
+    let chat = client(&server).chat("m");
+    let answer = chat.chat(&request()).unwrap();
+    assert!(answer.notes.is_empty(), "{:?}", answer.notes);
+    assert_eq!(chat.first_format(), OutputFormat::JsonSchema);
+    let requests = server.requests();
+    assert_eq!(requests.len(), 2);
+    assert_eq!(requests[1].json()["response_format"]["type"], "json_schema");
+    assert_eq!(chat.meter().snapshot().retries, 1);
+}
