@@ -497,3 +497,52 @@ fn provider_failures_are_errors_naming_the_endpoint() {
         PlanError::EmptyPrompt
     );
 }
+
+#[test]
+fn a_cached_planner_replays_the_same_plan_offline() {
+    use scenethesis_models::{CacheMode, Cached, ResponseCache};
+    let dir = std::env::temp_dir().join(format!("language-cache-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let mut clean = pharmacy();
+    clean["objects"].as_array_mut().unwrap().pop();
+    let recorded = {
+        let server = TestServer::scripted(vec![Reply::json(
+            200,
+            &openai_completion("gpt-4o", &clean.to_string()),
+        )]);
+        let model = Cached::new(
+            chat(&server),
+            ResponseCache::open(&dir, CacheMode::ReadWrite).unwrap(),
+        );
+        LlmPlanner::new(model).plan(&request("a pharmacy")).unwrap()
+    };
+    let offline = ClientConfig::new("http://127.0.0.1:9/v1");
+    let model = Cached::new(
+        OpenAiClient::new(offline).unwrap().chat("planner-model"),
+        ResponseCache::open(&dir, CacheMode::ReplayOnly).unwrap(),
+    );
+    let replayed = LlmPlanner::new(model).plan(&request("a pharmacy")).unwrap();
+    assert_eq!(
+        serde_json::to_string(&replayed).unwrap(),
+        serde_json::to_string(&recorded).unwrap()
+    );
+    // Another seed is another request: not in the cache, and replay-only says so.
+    let model = Cached::new(
+        OpenAiClient::new(ClientConfig::new("http://127.0.0.1:9/v1"))
+            .unwrap()
+            .chat("planner-model"),
+        ResponseCache::open(&dir, CacheMode::ReplayOnly).unwrap(),
+    );
+    let mut other = request("a pharmacy");
+    other.seed = 8;
+    let err = LlmPlanner::new(model).plan(&other).unwrap_err();
+    assert!(err.to_string().contains("no cached answer"), "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn the_planner_is_send_and_sync() {
+    fn check<T: Send + Sync>() {}
+    check::<LlmPlanner<OpenAiChat>>();
+    check::<LlmPlanner<scenethesis_models::Cached<OpenAiChat>>>();
+}
