@@ -681,3 +681,28 @@ fn a_transient_5xx_under_json_schema_is_retried_not_taken_as_a_format_rejection(
     assert_eq!(requests[1].json()["response_format"]["type"], "json_schema");
     assert_eq!(chat.meter().snapshot().retries, 1);
 }
+
+#[test]
+fn one_client_serves_several_threads_at_once() {
+    let server = TestServer::scripted(vec![
+        Reply::json(200, &openai_completion("m", GOOD)).delayed(Duration::from_millis(200))
+    ]);
+    let chat = std::sync::Arc::new(client(&server).chat("m"));
+    let started = Instant::now();
+    let handles: Vec<_> = (0..4)
+        .map(|_| {
+            let chat = std::sync::Arc::clone(&chat);
+            std::thread::spawn(move || chat.chat(&request()).map(|a| a.json))
+        })
+        .collect();
+    for h in handles {
+        assert_eq!(h.join().unwrap().unwrap().unwrap()["anchor"], "counter");
+    }
+    assert_eq!(chat.meter().snapshot().requests, 4);
+    // The calls overlap rather than queue behind one another.
+    assert!(
+        started.elapsed() < Duration::from_millis(750),
+        "{:?}",
+        started.elapsed()
+    );
+}
