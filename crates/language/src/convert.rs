@@ -1,0 +1,493 @@
+//! The model's answer → a [`Plan`]: categories cross-checked against the library, ids made
+//! unique, supports and zones made consistent, relations to unknown targets dropped, objects
+//! ordered (floor objects with the anchor first, then supported ones, parents first).
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use scenethesis_agents::{
+    ConstraintTarget, Layer, Plan, PlanConstraint, PlannedObject, Zone, BACK_WALL, FRONT_WALL,
+    LEFT_WALL, RIGHT_WALL,
+};
+use scenethesis_scene_graph::{Environment, ParentRef, Relation, RelationKind};
+use serde::Deserialize;
+
+const WALLS: [&str; 4] = [BACK_WALL, LEFT_WALL, FRONT_WALL, RIGHT_WALL];
+
+/// The model's answer, as the schema shapes it.
+#[derive(Debug, Clone, Deserialize)]
+pub(crate) struct Answer {
+    pub(crate) interpretation: String,
+    pub(crate) detailed: bool,
+    pub(crate) scene_type: String,
+    pub(crate) environment: String,
+    pub(crate) room_width: f64,
+    pub(crate) room_depth: f64,
+    pub(crate) anchor: String,
+    pub(crate) objects: Vec<AnswerObject>,
+    pub(crate) unavailable: Vec<Unavailable>,
+    pub(crate) description: String,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+pub(crate) struct AnswerObject {
+    id: String,
+    category: String,
+    layer: Layer,
+    support: RelationKind,
+    parent: String,
+    zone: String,
+    wall: String,
+    relations: Vec<AnswerRelation>,
+    stated: bool,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+pub(crate) struct AnswerRelation {
+    kind: RelationKind,
+    target: String,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+pub(crate) struct Unavailable {
+    name: String,
+    reason: String,
+}
+
+/// A converted plan and what is weak about it.
+#[derive(Debug, Clone)]
+pub(crate) struct Converted {
+    pub(crate) plan: Plan,
+    /// Problems worth re-asking about (too few objects, unknown categories, no anchor).
+    pub(crate) issues: Vec<String>,
+    /// Whether the model judged the prompt detailed.
+    pub(crate) detailed: bool,
+}
+
+/// Lower case, words split on anything not alphanumeric, each word singular.
+pub(crate) fn normalise(name: &str) -> Vec<String> {
+    name.to_lowercase()
+        .split(|c: char| !c.is_alphanumeric())
+        .filter(|w| !w.is_empty())
+        .map(singular)
+        .collect()
+}
+
+fn singular(word: &str) -> String {
+    if let Some(stem) = word.strip_suffix("ies") {
+        if stem.len() >= 2 {
+            return format!("{stem}y");
+        }
+    }
+    for suffix in ["ches", "shes", "sses", "xes"] {
+        if word.ends_with(suffix) {
+            return word[..word.len() - 2].to_string();
+        }
+    }
+    if word.len() > 3 && word.ends_with("ves") && !word.ends_with("eaves") {
+        return format!("{}f", &word[..word.len() - 3]);
+    }
+    if word.len() > 3 && word.ends_with('s') && !word.ends_with("ss") && !word.ends_with("us") {
+        return word[..word.len() - 1].to_string();
+    }
+    word.to_string()
+}
+
+/// The library category nearest to `name`: the same words (after normalising), else the
+/// category with the most words all contained in the name ("pharmacy shelf" → `shelf`).
+pub(crate) fn nearest_category(name: &str, available: &BTreeSet<String>) -> Option<String> {
+    let words = normalise(name);
+    if words.is_empty() {
+        return None;
+    }
+    let mut best: Option<(usize, &String)> = None;
+    for category in available {
+        let cw = normalise(category);
+        if cw == words {
+            return Some(category.clone());
+        }
+        if !cw.is_empty() && cw.iter().all(|w| words.contains(w)) {
+            // More matched words first; ties go to the first in sorted order.
+            if best.is_none_or(|(n, _)| cw.len() > n) {
+                best = Some((cw.len(), category));
+            }
+        }
+    }
+    best.map(|(_, c)| c.clone())
+}
+
+fn zone_of(zone: &str, wall: &str) -> Zone {
+    match zone {
+        "wall" => Zone::Wall {
+            wall: WALLS.contains(&wall).then(|| wall.to_string()),
+        },
+        "corner" => Zone::Corner,
+        "center" => Zone::Center,
+        "rows" => Zone::Rows,
+        "wall-mounted" => Zone::WallMounted,
+        "relative" => Zone::Relative,
+        "supported" => Zone::Supported,
+        _ => Zone::Free,
+    }
+}
+
+fn round_cm(x: f64) -> f64 {
+    (x * 100.0).round() / 100.0
+}
+
+/// Converts a schema-valid answer for `prompt` over the `available` categories.
+pub(crate) fn convert(
+    answer: &Answer,
+    prompt: &str,
+    available: &BTreeSet<String>,
+    min_objects: usize,
+) -> Converted {
+    let mut notes = Vec::new();
+    let mut issues = Vec::new();
+    let indoor = answer.environment != "outdoor";
+
+    // 1. Categories and ids.
+    let mut unknown = Vec::new();
+    let mut id_map: BTreeMap<String, String> = BTreeMap::new();
+    let mut taken: BTreeSet<String> = BTreeSet::new();
+    let mut kept: Vec<(&AnswerObject, String, String)> = Vec::new(); // (object, id, category)
+    for o in &answer.objects {
+        let Some(category) = nearest_category(&o.category, available) else {
+            unknown.push(format!("`{}` ({})", o.category, o.id));
+            continue;
+        };
+        if normalise(&category) != normalise(&o.category) {
+            notes.push(format!(
+                "`{}` ({}) mapped to the nearest library category `{category}`",
+                o.category, o.id
+            ));
+        }
+        let mut id = o.id.trim().to_string();
+        if id.is_empty() || taken.contains(&id) || WALLS.contains(&id.as_str()) || id == "ground" {
+            let mut n = 0;
+            while taken.contains(&format!("{category}_{n}")) {
+                n += 1;
+            }
+            id = format!("{category}_{n}");
+        }
+        taken.insert(id.clone());
+        id_map.entry(o.id.clone()).or_insert_with(|| id.clone());
+        kept.push((o, id, category));
+    }
+    if !unknown.is_empty() {
+        notes.push(format!(
+            "not in the asset library, left out: {}",
+            unknown.join(", ")
+        ));
+        issues.push(format!(
+            "these categories are not in the library (use only the listed categories): {}",
+            unknown.join(", ")
+        ));
+    }
+    for u in &answer.unavailable {
+        notes.push(format!("unavailable `{}`: {}", u.name, u.reason));
+    }
+
+    // 2. Objects with consistent support, parent, zone and relations.
+    let mut objects: Vec<PlannedObject> = Vec::new();
+    for (o, id, category) in &kept {
+        let parent_id = id_map.get(&o.parent).filter(|p| *p != id).cloned();
+        let supported = matches!(
+            o.support,
+            RelationKind::On | RelationKind::Inside | RelationKind::Under
+        );
+        let (support, parent, mut zone) = match (supported, parent_id) {
+            (true, Some(p)) => (o.support, ParentRef::Object(p), Zone::Supported),
+            (true, None) => {
+                notes.push(format!(
+                    "{id}: parent `{}` is not in the plan; placed on the floor instead",
+                    o.parent
+                ));
+                (RelationKind::OnFloor, ParentRef::Ground, Zone::Free)
+            }
+            (false, _) => {
+                let zone = match zone_of(&o.zone, &o.wall) {
+                    Zone::Supported => Zone::Free,
+                    z => z,
+                };
+                let zone = match (indoor, zone, o.support) {
+                    (false, Zone::WallMounted | Zone::Wall { .. } | Zone::Corner, _) => Zone::Free,
+                    (
+                        true,
+                        Zone::Free | Zone::Center | Zone::Relative,
+                        RelationKind::AgainstWall,
+                    ) => Zone::Wall { wall: None },
+                    (_, z, _) => z,
+                };
+                let against =
+                    indoor && matches!(zone, Zone::Wall { .. } | Zone::Corner | Zone::WallMounted);
+                let support = if against {
+                    RelationKind::AgainstWall
+                } else {
+                    RelationKind::OnFloor
+                };
+                (support, ParentRef::Ground, zone)
+            }
+        };
+        let mut relations = Vec::new();
+        if let Zone::Wall { wall: Some(w) } = &zone {
+            relations.push(Relation::new(RelationKind::AgainstWall, w.clone()));
+        }
+        for r in &o.relations {
+            let target = if indoor && WALLS.contains(&r.target.as_str()) {
+                Some(r.target.clone())
+            } else {
+                id_map.get(&r.target).filter(|t| *t != id).cloned()
+            };
+            match target {
+                Some(t) if !r.kind.is_support() => relations.push(Relation::new(r.kind, t)),
+                _ => notes.push(format!(
+                    "{id}: relation {} `{}` dropped (no such object)",
+                    r.kind, r.target
+                )),
+            }
+        }
+        if zone == Zone::Relative && relations.is_empty() {
+            zone = Zone::Free;
+        }
+        objects.push(PlannedObject {
+            id: id.clone(),
+            category: category.clone(),
+            layer: o.layer,
+            support,
+            parent,
+            zone,
+            relations,
+            hard: o.stated && answer.detailed,
+        });
+    }
+    break_cycles(&mut objects, &mut notes);
+
+    // 3. The anchor.
+    let anchor = id_map
+        .get(&answer.anchor)
+        .filter(|a| {
+            objects
+                .iter()
+                .any(|o| &o.id == *a && o.parent == ParentRef::Ground)
+        })
+        .cloned();
+    if anchor.is_none() {
+        issues.push(format!(
+            "the anchor `{}` is not a floor-standing object of the plan",
+            answer.anchor
+        ));
+    }
+    if !answer.detailed && objects.len() < min_objects {
+        issues.push(format!(
+            "the plan has only {} usable objects; a simple prompt needs at least {min_objects}",
+            objects.len()
+        ));
+    }
+
+    // 4. Hard constraints from what the prompt stated.
+    let constraints = constraints_of(&objects, indoor);
+    let description = if answer.detailed {
+        // A detailed prompt is kept as written: it already names objects and relations.
+        prompt.trim().to_string()
+    } else {
+        answer.description.trim().to_string()
+    };
+    let anchor_id = anchor.clone().unwrap_or_default();
+    let objects = order(objects, &anchor_id);
+    let plan = Plan {
+        prompt: prompt.trim().to_string(),
+        scene_type: answer.scene_type.trim().to_lowercase().replace(' ', "_"),
+        archetypes: Vec::new(),
+        environment: if indoor {
+            Environment::Indoor
+        } else {
+            Environment::Outdoor
+        },
+        room_size: [
+            round_cm(answer.room_width.clamp(2.0, 40.0)),
+            round_cm(answer.room_depth.clamp(2.0, 40.0)),
+        ],
+        wall_height: 2.8,
+        aisle: 0.9,
+        door_clearance: 1.0,
+        anchor: anchor_id,
+        objects,
+        constraints,
+        description,
+        notes: {
+            let mut n = vec![format!(
+                "model interpretation: {}",
+                answer.interpretation.trim()
+            )];
+            n.extend(notes);
+            n
+        },
+    };
+    Converted {
+        plan,
+        issues,
+        detailed: answer.detailed,
+    }
+}
+
+/// Puts objects whose parent chain loops back onto the floor.
+fn break_cycles(objects: &mut [PlannedObject], notes: &mut Vec<String>) {
+    let parent_of: BTreeMap<String, Option<String>> = objects
+        .iter()
+        .map(|o| (o.id.clone(), o.parent.object_id().map(str::to_string)))
+        .collect();
+    for o in objects.iter_mut() {
+        let mut seen = BTreeSet::new();
+        let mut cur = o.parent.object_id().map(str::to_string);
+        let mut looped = false;
+        while let Some(p) = cur {
+            if p == o.id || !seen.insert(p.clone()) {
+                looped = true;
+                break;
+            }
+            cur = parent_of.get(&p).cloned().flatten();
+        }
+        if looped {
+            notes.push(format!(
+                "{}: its supports form a loop; placed on the floor",
+                o.id
+            ));
+            o.parent = ParentRef::Ground;
+            o.support = RelationKind::OnFloor;
+            o.zone = Zone::Free;
+        }
+    }
+}
+
+fn constraints_of(objects: &[PlannedObject], indoor: bool) -> Vec<PlanConstraint> {
+    let mut out = Vec::new();
+    for o in objects.iter().filter(|o| o.hard) {
+        let phrase = format!("stated in the prompt ({})", o.category);
+        match (&o.parent, &o.zone) {
+            (ParentRef::Object(p), _) => out.push(PlanConstraint {
+                subject: o.id.clone(),
+                kind: o.support,
+                target: ConstraintTarget::Object(p.clone()),
+                phrase: phrase.clone(),
+            }),
+            (ParentRef::Ground, Zone::Wall { wall }) if indoor => out.push(PlanConstraint {
+                subject: o.id.clone(),
+                kind: RelationKind::AgainstWall,
+                target: wall
+                    .clone()
+                    .map_or(ConstraintTarget::AnyWall, ConstraintTarget::Wall),
+                phrase: phrase.clone(),
+            }),
+            (ParentRef::Ground, Zone::Corner) if indoor => out.push(PlanConstraint {
+                subject: o.id.clone(),
+                kind: RelationKind::AgainstWall,
+                target: ConstraintTarget::Corner,
+                phrase: phrase.clone(),
+            }),
+            _ => {}
+        }
+        for r in o
+            .relations
+            .iter()
+            .filter(|r| r.kind != RelationKind::AgainstWall)
+        {
+            let target = if WALLS.contains(&r.target.as_str()) {
+                ConstraintTarget::Wall(r.target.clone())
+            } else {
+                ConstraintTarget::Object(r.target.clone())
+            };
+            out.push(PlanConstraint {
+                subject: o.id.clone(),
+                kind: r.kind,
+                target,
+                phrase: phrase.clone(),
+            });
+        }
+    }
+    out
+}
+
+/// Floor objects first (the anchor first), then supported objects with parents before
+/// children; otherwise the given order.
+pub(crate) fn order(objects: Vec<PlannedObject>, anchor: &str) -> Vec<PlannedObject> {
+    let (mut ground, mut supported): (Vec<_>, Vec<_>) = objects
+        .into_iter()
+        .partition(|o| o.parent == ParentRef::Ground);
+    if let Some(i) = ground.iter().position(|o| o.id == anchor) {
+        let a = ground.remove(i);
+        ground.insert(0, a);
+    }
+    let mut placed: BTreeSet<String> = ground.iter().map(|o| o.id.clone()).collect();
+    let mut out = ground;
+    while !supported.is_empty() {
+        let before = supported.len();
+        let mut rest = Vec::new();
+        for o in supported {
+            if o.parent.object_id().is_some_and(|p| placed.contains(p)) {
+                placed.insert(o.id.clone());
+                out.push(o);
+            } else {
+                rest.push(o);
+            }
+        }
+        supported = rest;
+        if supported.len() == before {
+            // Unreachable after break_cycles; keep the objects rather than loop.
+            out.append(&mut supported);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cats(names: &[&str]) -> BTreeSet<String> {
+        names.iter().map(|s| s.to_string()).collect()
+    }
+
+    #[test]
+    fn nearest_category_by_words() {
+        let c = cats(&[
+            "shelf",
+            "bookshelf",
+            "coffee_table",
+            "table",
+            "chair",
+            "potted_plant",
+        ]);
+        assert_eq!(nearest_category("Shelves", &c).as_deref(), Some("shelf"));
+        assert_eq!(
+            nearest_category("coffee tables", &c).as_deref(),
+            Some("coffee_table")
+        );
+        assert_eq!(
+            nearest_category("pharmacy shelf", &c).as_deref(),
+            Some("shelf")
+        );
+        assert_eq!(
+            nearest_category("small coffee table", &c).as_deref(),
+            Some("coffee_table")
+        );
+        assert_eq!(
+            nearest_category("potted plants", &c).as_deref(),
+            Some("potted_plant")
+        );
+        assert_eq!(nearest_category("x-ray machine", &c), None);
+    }
+
+    #[test]
+    fn singulars() {
+        for (w, s) in [
+            ("benches", "bench"),
+            ("shelves", "shelf"),
+            ("boxes", "box"),
+            ("glass", "glass"),
+            ("cabinets", "cabinet"),
+            ("batteries", "battery"),
+        ] {
+            assert_eq!(singular(w), s);
+        }
+    }
+}

@@ -1,0 +1,325 @@
+//! [`LlmPlanner`]: the paper's coarse planning by a chat model, completed from offline
+//! knowledge when the model's plan is weak.
+
+use std::collections::BTreeSet;
+
+use scenethesis_agents::{
+    KnowledgePlanner, Plan, PlanError, PlanRequest, PlannedObject, Planner, Zone,
+};
+use scenethesis_models::{ChatModel, ChatRequest, Message, ProviderError, ProviderErrorKind};
+use scenethesis_scene_graph::ParentRef;
+
+use crate::convert::{convert, order, Answer, Converted};
+use crate::schema::plan_schema;
+
+/// Objects a plan for a simple prompt must have.
+pub const MIN_OBJECTS: usize = 15;
+
+const INSTRUCTIONS: &str = "You plan 3D scenes for a physics simulator. Work in these steps:
+1. Interpret the user's prompt: the kind of place, its size and style. Decide whether the prompt is
+   detailed (it names several objects and where they go) or simple.
+2. Review the categories the asset library offers; every object must use one of them exactly.
+3. Select the objects: for a simple prompt at least 15 (counting each instance), with the
+   supporting objects and the small things on them that make the place believable; for a
+   detailed prompt every object the user named with the stated counts, plus fitting extras.
+   Choose one large floor-standing object as the anchor that the layout is organised around.
+4. Cross-check every object against the library: use the nearest category, and list what has no
+   fitting category under `unavailable` with the reason.
+5. Lay out a spatial hierarchy: `background` (against the walls), `middle` (the anchor and its
+   group) and `foreground` (nearest the viewer). Give each object its support: `on-floor` or
+   `against-wall` with parent `ground`, or `on`/`inside`/`under` with the supporting object's id
+   as parent. Zones: `wall` (with `wall`: wall_0 back, wall_1 left, wall_2 front with the door,
+   wall_3 right, or any), `corner`, `center`, `rows`, `free`, `wall-mounted`, `relative` (placed
+   by its relations), `supported` (for on/inside/under). Relations (`beside`, `in-front-of`,
+   `behind`, `left-of`, `right-of`, `facing`, `around`) target other object ids. Mark `stated`
+   true for objects whose placement the prompt itself states.
+6. Write `description`: the scene in words, background, then middle ground, then foreground
+   (the up-sampled prompt an image model will draw from). Room width and depth are in metres.
+Ids are the category with a number: shelf_0, shelf_1, ...";
+
+/// A [`Planner`] that asks a [`ChatModel`] for the plan, as the paper's LLM planner does.
+///
+/// The answer is requested under [`plan_schema`] and converted into the offline planner's
+/// [`Plan`] type. A weak answer (too few objects for a simple prompt, categories the library
+/// lacks, no usable anchor) is re-asked once with the problems listed; if it is still weak,
+/// the plan is completed from the offline [`KnowledgePlanner`] (missing anchor, objects up to
+/// [`MIN_OBJECTS`]) with a note, so a run does not fail because the model is small. Provider
+/// failures (unreachable, timeouts, HTTP errors) are errors: no plan is invented.
+#[derive(Debug)]
+pub struct LlmPlanner<M> {
+    model: M,
+    fallback: KnowledgePlanner,
+    min_objects: usize,
+}
+
+/// What one model round gave.
+enum Round {
+    /// A plan, maybe with issues, and the answer text.
+    Plan(Box<Converted>, String),
+    /// No usable plan (not JSON, schema violated after repair); why.
+    Unusable(String),
+}
+
+impl<M: ChatModel> LlmPlanner<M> {
+    /// A planner asking `model`, completing weak plans from the built-in knowledge.
+    pub fn new(model: M) -> Self {
+        Self {
+            model,
+            fallback: KnowledgePlanner::new(),
+            min_objects: MIN_OBJECTS,
+        }
+    }
+
+    /// Completes weak plans from `fallback` instead.
+    pub fn with_fallback(mut self, fallback: KnowledgePlanner) -> Self {
+        self.fallback = fallback;
+        self
+    }
+
+    /// Sets the object count a simple prompt's plan needs (default [`MIN_OBJECTS`]).
+    pub fn with_min_objects(mut self, n: usize) -> Self {
+        self.min_objects = n;
+        self
+    }
+
+    /// `llm:<model name>`, for reports.
+    pub fn name(&self) -> String {
+        format!("llm:{}", self.model.name())
+    }
+
+    /// The model.
+    pub fn model(&self) -> &M {
+        &self.model
+    }
+
+    fn round(&self, messages: Vec<Message>, request: &PlanRequest) -> Result<Round, PlanError> {
+        let mut chat = ChatRequest::structured(messages, plan_schema());
+        chat.seed = Some(request.seed);
+        let response = match self.model.chat(&chat) {
+            Ok(r) => r,
+            Err(e) if usable_failure(&e) => return Ok(Round::Unusable(e.to_string())),
+            Err(e) => {
+                return Err(PlanError::Provider {
+                    provider: self.name(),
+                    message: e.to_string(),
+                })
+            }
+        };
+        let value = response.json.unwrap_or(serde_json::Value::Null);
+        let answer: Answer = match serde_json::from_value(value) {
+            Ok(a) => a,
+            Err(e) => {
+                return Ok(Round::Unusable(format!(
+                    "the answer does not fit the plan schema: {e}"
+                )))
+            }
+        };
+        let mut converted = convert(
+            &answer,
+            &request.prompt,
+            &request.available_categories,
+            self.min_objects,
+        );
+        converted.plan.notes.extend(response.notes);
+        Ok(Round::Plan(Box::new(converted), response.text))
+    }
+
+    /// Fills a weak plan from the offline planner: the anchor when missing, then objects up
+    /// to the minimum count.
+    fn complete(&self, mut converted: Converted, request: &PlanRequest) -> Result<Plan, PlanError> {
+        let reasons = converted.issues.join("; ");
+        let offline = match self.fallback.plan(request) {
+            Ok(p) => p,
+            Err(e) => {
+                if converted.plan.anchor.is_empty() || converted.plan.objects.is_empty() {
+                    return Err(PlanError::InvalidPlan {
+                        provider: self.name(),
+                        message: format!(
+                            "{reasons}; the offline knowledge cannot complete it either: {e}"
+                        ),
+                    });
+                }
+                converted.plan.notes.push(format!(
+                    "weak plan kept as is ({reasons}); offline knowledge: {e}"
+                ));
+                return Ok(converted.plan);
+            }
+        };
+        let plan = &mut converted.plan;
+        let mut taken: BTreeSet<String> = plan.objects.iter().map(|o| o.id.clone()).collect();
+        let mut renamed: Vec<(String, String)> = Vec::new();
+        let mut added = 0usize;
+        let fresh_id = |category: &str, taken: &mut BTreeSet<String>| {
+            let mut n = 0;
+            while taken.contains(&format!("{category}_{n}")) {
+                n += 1;
+            }
+            let id = format!("{category}_{n}");
+            taken.insert(id.clone());
+            id
+        };
+        if plan.anchor.is_empty() {
+            if let Some(a) = offline.object(&offline.anchor) {
+                let id = fresh_id(&a.category, &mut taken);
+                renamed.push((a.id.clone(), id.clone()));
+                let mut a = a.clone();
+                a.id = id.clone();
+                a.relations.retain(|r| r.target.starts_with("wall_"));
+                plan.objects.push(a);
+                plan.anchor = id;
+                added += 1;
+            }
+        }
+        let needed = if converted.detailed {
+            0
+        } else {
+            self.min_objects
+        };
+        for o in &offline.objects {
+            if plan.objects.len() >= needed {
+                break;
+            }
+            if o.id == offline.anchor {
+                continue;
+            }
+            let parent = match &o.parent {
+                ParentRef::Ground => Some(ParentRef::Ground),
+                ParentRef::Object(p) => renamed
+                    .iter()
+                    .find(|(from, _)| from == p)
+                    .map(|(_, to)| ParentRef::Object(to.clone())),
+            };
+            let Some(parent) = parent else { continue };
+            let id = fresh_id(&o.category, &mut taken);
+            renamed.push((o.id.clone(), id.clone()));
+            let mut copy: PlannedObject = o.clone();
+            copy.id = id;
+            copy.parent = parent;
+            copy.hard = false;
+            copy.relations = o
+                .relations
+                .iter()
+                .filter_map(|r| {
+                    if r.target.starts_with("wall_") {
+                        return Some(r.clone());
+                    }
+                    renamed
+                        .iter()
+                        .find(|(from, _)| *from == r.target)
+                        .map(|(_, to)| scenethesis_scene_graph::Relation::new(r.kind, to.clone()))
+                })
+                .collect();
+            if copy.zone == Zone::Relative && copy.relations.is_empty() {
+                copy.zone = Zone::Free;
+            }
+            plan.objects.push(copy);
+            added += 1;
+        }
+        plan.objects = order(std::mem::take(&mut plan.objects), &plan.anchor.clone());
+        if added > 0 {
+            plan.archetypes = offline.archetypes.clone();
+        }
+        plan.notes.push(format!(
+            "completed from offline knowledge ({}): {added} objects added because {reasons}",
+            offline.scene_type
+        ));
+        if plan.anchor.is_empty() {
+            return Err(PlanError::InvalidPlan {
+                provider: self.name(),
+                message: format!("{reasons}; no anchor could be found"),
+            });
+        }
+        Ok(converted.plan)
+    }
+}
+
+/// Failures that mean "the model answered, but badly": handled by re-asking and completing.
+fn usable_failure(e: &ProviderError) -> bool {
+    matches!(
+        e.kind,
+        ProviderErrorKind::Schema { .. } | ProviderErrorKind::Malformed { .. }
+    )
+}
+
+fn user_message(request: &PlanRequest) -> String {
+    let categories: Vec<&str> = request
+        .available_categories
+        .iter()
+        .map(String::as_str)
+        .collect();
+    format!(
+        "Prompt: {}\n\nAvailable categories ({}): {}",
+        request.prompt.trim(),
+        categories.len(),
+        categories.join(", ")
+    )
+}
+
+impl<M: ChatModel> Planner for LlmPlanner<M> {
+    fn plan(&self, request: &PlanRequest) -> Result<Plan, PlanError> {
+        if !request.prompt.chars().any(char::is_alphanumeric) {
+            return Err(PlanError::EmptyPrompt);
+        }
+        if request.available_categories.is_empty() {
+            return Err(PlanError::NothingAvailable {
+                prompt: request.prompt.clone(),
+                available: 0,
+            });
+        }
+        let messages = vec![
+            Message::system(INSTRUCTIONS),
+            Message::user(user_message(request)),
+        ];
+        let first = self.round(messages.clone(), request)?;
+        let critique = match &first {
+            Round::Plan(c, _) if c.issues.is_empty() => {
+                let Round::Plan(c, _) = first else {
+                    unreachable!()
+                };
+                return Ok(c.plan);
+            }
+            Round::Plan(c, _) => c.issues.join("; "),
+            Round::Unusable(why) => why.clone(),
+        };
+        tracing::info!(planner = %self.name(), "re-asking once: {critique}");
+        let mut again = messages;
+        if let Round::Plan(_, text) = &first {
+            again.push(Message::assistant(text.clone()));
+        }
+        again.push(Message::user(format!(
+            "Your plan has these problems: {critique}. Answer again with the complete, corrected \
+             plan."
+        )));
+        let second = self.round(again, request)?;
+        let best = match (second, first) {
+            (Round::Plan(c, _), _) if c.issues.is_empty() => {
+                let mut plan = c.plan;
+                plan.notes.push(format!("re-asked once: {critique}"));
+                return Ok(plan);
+            }
+            (Round::Plan(c, _), _) | (Round::Unusable(_), Round::Plan(c, _)) => Some(c),
+            (Round::Unusable(_), Round::Unusable(_)) => None,
+        };
+        match best {
+            Some(mut c) => {
+                c.plan.notes.push(format!("re-asked once: {critique}"));
+                self.complete(*c, request)
+            }
+            None => {
+                let mut plan = self
+                    .fallback
+                    .plan(request)
+                    .map_err(|e| PlanError::InvalidPlan {
+                        provider: self.name(),
+                        message: format!(
+                            "{critique}; the offline knowledge cannot plan it either: {e}"
+                        ),
+                    })?;
+                plan.notes.push(format!(
+                    "the model's answers were unusable twice ({critique}); planned from offline knowledge"
+                ));
+                Ok(plan)
+            }
+        }
+    }
+}

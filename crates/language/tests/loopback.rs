@@ -1,0 +1,548 @@
+//! The LLM planner against a model served over real HTTP on 127.0.0.1: a plan for a prompt
+//! the offline planner does not know, a weak plan completed from offline knowledge, a detailed
+//! prompt kept as written, and provider failures.
+
+mod support;
+
+use std::time::Duration;
+
+use scenethesis_agents::{
+    ConstraintTarget, Guide, KnowledgePlanner, Layer, NominalAssets, PlanError, PlanRequest,
+    Planner, ProceduralGuide, Zone,
+};
+use scenethesis_language::LlmPlanner;
+use scenethesis_models::UsageMeter;
+use scenethesis_openai::{ClientConfig, OpenAiChat, OpenAiClient};
+use scenethesis_scene_graph::{ParentRef, RelationKind};
+use serde_json::{json, Value};
+use support::{ollama_completion, openai_completion, vllm_completion, Reply, TestServer};
+
+fn chat(server: &TestServer) -> OpenAiChat {
+    let mut c = ClientConfig::new(&server.base_url);
+    c.timeout = Duration::from_secs(5);
+    c.max_attempts = 1;
+    OpenAiClient::new(c).unwrap().chat("planner-model")
+}
+
+fn request(prompt: &str) -> PlanRequest {
+    PlanRequest::new(prompt, KnowledgePlanner::new().known_categories(), 7)
+}
+
+/// An answer object; `place` is [support, parent, zone, wall].
+fn obj(id: &str, category: &str, layer: &str, place: [&str; 4], relations: Value) -> Value {
+    json!({"id": id, "category": category, "layer": layer, "support": place[0], "parent": place[1],
+           "zone": place[2], "wall": place[3], "relations": relations, "stated": false})
+}
+
+fn pharmacy() -> Value {
+    let mut objects = vec![
+        obj(
+            "checkout_counter_0",
+            "checkout_counter",
+            "middle",
+            ["on-floor", "ground", "center", "any"],
+            json!([]),
+        ),
+        obj(
+            "cash_register_0",
+            "cash register",
+            "middle",
+            ["on", "checkout_counter_0", "supported", "any"],
+            json!([]),
+        ),
+        obj(
+            "drinks_fridge_0",
+            "drinks_fridge",
+            "background",
+            ["against-wall", "ground", "wall", "wall_0"],
+            json!([]),
+        ),
+        obj(
+            "plant_0",
+            "potted plants",
+            "background",
+            ["on-floor", "ground", "corner", "any"],
+            json!([]),
+        ),
+        obj(
+            "shopping_basket_0",
+            "shopping_basket",
+            "foreground",
+            ["on-floor", "ground", "relative", "any"],
+            json!([{"kind": "beside", "target": "checkout_counter_0"}]),
+        ),
+        obj(
+            "chair_0",
+            "waiting chair",
+            "foreground",
+            ["on-floor", "ground", "relative", "any"],
+            json!([{"kind": "facing", "target": "checkout_counter_0"}]),
+        ),
+    ];
+    for (i, wall) in ["wall_1", "wall_3", "wall_0", "wall_1"].iter().enumerate() {
+        objects.push(obj(
+            &format!("store_shelf_{i}"),
+            "store_shelf",
+            "background",
+            ["against-wall", "ground", "wall", wall],
+            json!([]),
+        ));
+    }
+    for i in 0..2 {
+        objects.push(obj(
+            &format!("display_shelf_{i}"),
+            "display_shelf",
+            "middle",
+            ["on-floor", "ground", "rows", "any"],
+            json!([]),
+        ));
+    }
+    for i in 0..4 {
+        objects.push(obj(
+            &format!("bottle_{i}"),
+            "bottles",
+            "background",
+            ["on", "ground", "supported", "any"],
+            json!([]),
+        ));
+        let last = objects.len() - 1;
+        objects[last]["parent"] = json!(format!("store_shelf_{}", i % 2));
+    }
+    for i in 0..2 {
+        objects.push(obj(
+            &format!("box_{i}"),
+            "medicine boxes",
+            "middle",
+            ["on", "display_shelf_0", "supported", "any"],
+            json!([]),
+        ));
+    }
+    objects.push(obj(
+        "xray_0",
+        "x-ray machine",
+        "background",
+        ["on-floor", "ground", "free", "any"],
+        json!([]),
+    ));
+    json!({
+        "interpretation": "a small retail pharmacy with a dispensing counter",
+        "detailed": false,
+        "scene_type": "Pharmacy",
+        "environment": "indoor",
+        "room_width": 8.5,
+        "room_depth": 6.0,
+        "anchor": "checkout_counter_0",
+        "objects": objects,
+        "unavailable": [{"name": "prescription scanner", "reason": "no such category"}],
+        "description": "Background: store shelves of medicine along the side walls and a drinks fridge at the back. Middle ground: the checkout counter with a cash register, display shelves in rows. Foreground: a shopping basket and a waiting chair."
+    })
+}
+
+#[test]
+fn the_offline_planner_does_not_know_a_pharmacy() {
+    // The reason for this planner: the offline one refuses or blends.
+    let offline = KnowledgePlanner::new().plan(&request("a pharmacy"));
+    if let Ok(plan) = &offline {
+        assert_ne!(plan.scene_type, "pharmacy");
+    }
+}
+
+#[test]
+fn plans_a_pharmacy_from_an_openai_shaped_answer() {
+    // The first answer names a category the library lacks: re-asked once, the second is clean.
+    let first = pharmacy().to_string();
+    let mut clean = pharmacy();
+    clean["objects"].as_array_mut().unwrap().pop();
+    let server = TestServer::scripted(vec![
+        Reply::json(200, &openai_completion("gpt-4o", &first)),
+        Reply::json(200, &openai_completion("gpt-4o", &clean.to_string())),
+    ]);
+    let model = chat(&server);
+    let meter: UsageMeter = model.meter().clone();
+    let planner = LlmPlanner::new(model);
+    assert_eq!(planner.name(), "llm:openai-compatible/planner-model");
+    let plan = planner.plan(&request("a pharmacy")).unwrap();
+    assert_eq!(server.requests().len(), 2, "re-asked once");
+    let again = server.requests()[1].json();
+    let messages = again["messages"].as_array().unwrap();
+    assert_eq!(
+        messages[2]["content"],
+        first.as_str(),
+        "the previous answer is quoted"
+    );
+    assert!(messages[3]["content"]
+        .as_str()
+        .unwrap()
+        .contains("`x-ray machine` (xray_0)"));
+    assert_eq!(plan.scene_type, "pharmacy");
+    assert_eq!(plan.anchor, "checkout_counter_0");
+    assert_eq!(plan.objects[0].id, "checkout_counter_0");
+    assert_eq!(plan.objects.len(), 18, "the x-ray machine is left out");
+    assert!(plan.objects.iter().all(|o| o.category != "x-ray machine"));
+    // Nearest categories.
+    assert_eq!(
+        plan.object("cash_register_0").unwrap().category,
+        "cash_register"
+    );
+    assert_eq!(plan.object("box_0").unwrap().category, "box");
+    assert_eq!(plan.object("plant_0").unwrap().category, "plant");
+    assert_eq!(plan.object("chair_0").unwrap().category, "chair");
+    // Hierarchy and supports.
+    let shelf = plan.object("store_shelf_0").unwrap();
+    assert_eq!(
+        (shelf.layer, shelf.support),
+        (Layer::Background, RelationKind::AgainstWall)
+    );
+    assert_eq!(
+        shelf.zone,
+        Zone::Wall {
+            wall: Some("wall_1".into())
+        }
+    );
+    let bottle = plan.object("bottle_1").unwrap();
+    assert_eq!(
+        (bottle.support, &bottle.parent),
+        (RelationKind::On, &ParentRef::Object("store_shelf_1".into()))
+    );
+    assert_eq!(bottle.zone, Zone::Supported);
+    let basket = plan.object("shopping_basket_0").unwrap();
+    assert_eq!(basket.relations[0].target, "checkout_counter_0");
+    // Parents come before children.
+    let pos = |id: &str| plan.objects.iter().position(|o| o.id == id).unwrap();
+    assert!(pos("store_shelf_1") < pos("bottle_1") && pos("display_shelf_0") < pos("box_1"));
+    assert!(plan.description.starts_with("Background: store shelves"));
+    let notes = plan.notes.join("\n");
+    assert!(
+        notes.contains("re-asked once: these categories are not in the library"),
+        "{notes}"
+    );
+    assert!(
+        notes.contains("unavailable `prescription scanner`"),
+        "{notes}"
+    );
+    assert!(
+        notes.contains("`medicine boxes` (box_0) mapped to the nearest library category `box`"),
+        "{notes}"
+    );
+    // The request carried the prompt, the categories and the schema.
+    let sent = server.requests()[0].json();
+    let user = sent["messages"][1]["content"].as_str().unwrap();
+    assert!(
+        user.contains("Prompt: a pharmacy") && user.contains("checkout_counter"),
+        "{user}"
+    );
+    assert_eq!(sent["response_format"]["json_schema"]["name"], "scene_plan");
+    assert_eq!(sent["response_format"]["json_schema"]["strict"], true);
+    assert_eq!(sent["seed"], 7);
+    assert_eq!(meter.snapshot().requests, 2);
+    // The rest of the pipeline takes it as it takes an offline plan.
+    let layout = ProceduralGuide::default()
+        .layout(&plan, &NominalAssets::default(), 7)
+        .unwrap();
+    assert!(
+        layout.scene.objects.len() >= 15,
+        "{}",
+        layout.scene.objects.len()
+    );
+}
+
+fn weak_answer() -> Value {
+    json!({
+        "interpretation": "a living room",
+        "detailed": false,
+        "scene_type": "living room",
+        "environment": "indoor",
+        "room_width": 5.0,
+        "room_depth": 4.0,
+        "anchor": "hologram_0",
+        "objects": [
+            obj("sofa_0", "sofa", "middle", ["on-floor", "ground", "center", "any"], json!([])),
+            obj("hologram_0", "hologram projector", "middle", ["on-floor", "ground", "center", "any"], json!([])),
+            obj("lamp_0", "floor lamp", "background", ["on-floor", "ground", "corner", "any"], json!([]))
+        ],
+        "unavailable": [],
+        "description": "A sofa and a lamp."
+    })
+}
+
+#[test]
+fn a_weak_plan_is_reasked_once_then_completed_from_offline_knowledge() {
+    let server = TestServer::scripted(vec![Reply::json(
+        200,
+        &vllm_completion("Qwen/Qwen2.5-0.5B-Instruct", &weak_answer().to_string()),
+    )]);
+    let plan = LlmPlanner::new(chat(&server))
+        .plan(&request("a cozy living room"))
+        .unwrap();
+    let requests = server.requests();
+    assert_eq!(requests.len(), 2, "one re-ask");
+    let critique = requests[1].json()["messages"]
+        .as_array()
+        .unwrap()
+        .last()
+        .unwrap()["content"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    assert!(
+        critique.contains("hologram projector") && critique.contains("at least 15"),
+        "{critique}"
+    );
+    assert!(plan.objects.len() >= 15, "{}", plan.objects.len());
+    assert!(
+        plan.object("sofa_0").is_some() && plan.object("floor_lamp_0").is_some(),
+        "the model's objects stay"
+    );
+    let anchor = plan.object(&plan.anchor).unwrap();
+    assert_eq!(anchor.parent, ParentRef::Ground);
+    assert_eq!(plan.objects[0].id, plan.anchor);
+    let categories = KnowledgePlanner::new().known_categories();
+    assert!(plan
+        .objects
+        .iter()
+        .all(|o| categories.contains(&o.category)));
+    let ids: std::collections::BTreeSet<&str> =
+        plan.objects.iter().map(|o| o.id.as_str()).collect();
+    assert_eq!(ids.len(), plan.objects.len(), "ids stay unique");
+    for o in &plan.objects {
+        if let ParentRef::Object(p) = &o.parent {
+            assert!(
+                ids.contains(p.as_str()),
+                "{} has a missing parent {p}",
+                o.id
+            );
+        }
+        for r in &o.relations {
+            assert!(
+                ids.contains(r.target.as_str()) || r.target.starts_with("wall_"),
+                "{} -> {}",
+                o.id,
+                r.target
+            );
+        }
+    }
+    let notes = plan.notes.join("\n");
+    assert!(
+        notes.contains("re-asked once") && notes.contains("completed from offline knowledge"),
+        "{notes}"
+    );
+    ProceduralGuide::default()
+        .layout(&plan, &NominalAssets::default(), 7)
+        .unwrap();
+}
+
+#[test]
+fn a_detailed_prompt_keeps_what_the_user_stated() {
+    let prompt = "a study with a desk against the back wall, an office chair in front of the desk and a bookshelf beside the desk";
+    let mut chair = obj(
+        "office_chair_0",
+        "office_chair",
+        "foreground",
+        ["on-floor", "ground", "relative", "any"],
+        json!([{"kind": "in-front-of", "target": "desk_0"}]),
+    );
+    chair["stated"] = json!(true);
+    let mut desk = obj(
+        "desk_0",
+        "desk",
+        "middle",
+        ["against-wall", "ground", "wall", "wall_0"],
+        json!([]),
+    );
+    desk["stated"] = json!(true);
+    let mut shelf = obj(
+        "bookshelf_0",
+        "bookshelf",
+        "background",
+        ["against-wall", "ground", "wall", "any"],
+        json!([{"kind": "beside", "target": "desk_0"}]),
+    );
+    shelf["stated"] = json!(true);
+    let answer = json!({
+        "interpretation": "a small study", "detailed": true, "scene_type": "study", "environment": "indoor",
+        "room_width": 4.0, "room_depth": 3.5, "anchor": "desk_0",
+        "objects": [desk, chair, shelf, obj("laptop_0", "laptop", "middle", ["on", "desk_0", "supported", "any"], json!([]))],
+        "unavailable": [], "description": "ignored for a detailed prompt"
+    });
+    let server = TestServer::scripted(vec![Reply::json(
+        200,
+        &ollama_completion("llama3.1:8b", &answer.to_string()),
+    )]);
+    let plan = LlmPlanner::new(chat(&server))
+        .plan(&request(prompt))
+        .unwrap();
+    assert_eq!(
+        server.requests().len(),
+        1,
+        "a detailed prompt needs no 15 objects"
+    );
+    assert_eq!(
+        plan.description, prompt,
+        "a detailed prompt is not up-sampled"
+    );
+    assert_eq!(plan.objects.len(), 4);
+    let has = |subject: &str, kind: RelationKind, target: ConstraintTarget| {
+        plan.constraints
+            .iter()
+            .any(|c| c.subject == subject && c.kind == kind && c.target == target)
+    };
+    assert!(
+        has(
+            "desk_0",
+            RelationKind::AgainstWall,
+            ConstraintTarget::Wall("wall_0".into())
+        ),
+        "{:?}",
+        plan.constraints
+    );
+    assert!(has(
+        "office_chair_0",
+        RelationKind::InFrontOf,
+        ConstraintTarget::Object("desk_0".into())
+    ));
+    assert!(has(
+        "bookshelf_0",
+        RelationKind::Beside,
+        ConstraintTarget::Object("desk_0".into())
+    ));
+    assert!(has(
+        "bookshelf_0",
+        RelationKind::AgainstWall,
+        ConstraintTarget::AnyWall
+    ));
+    assert!(plan
+        .objects
+        .iter()
+        .filter(|o| o.id != "laptop_0")
+        .all(|o| o.hard));
+}
+
+#[test]
+fn garbage_twice_falls_back_to_offline_or_fails_clearly() {
+    let server = TestServer::scripted(vec![Reply::json(
+        200,
+        &openai_completion("m", "I am a small model and I like rooms."),
+    )]);
+    let plan = LlmPlanner::new(chat(&server))
+        .plan(&request("a cozy living room"))
+        .unwrap();
+    assert_eq!(
+        server.requests().len(),
+        4,
+        "two rounds, each with its repair round"
+    );
+    assert!(
+        plan.notes
+            .last()
+            .unwrap()
+            .contains("planned from offline knowledge"),
+        "{:?}",
+        plan.notes
+    );
+    assert!(plan.objects.len() >= 15);
+
+    let server = TestServer::scripted(vec![Reply::json(200, &openai_completion("m", "no"))]);
+    let err = LlmPlanner::new(chat(&server))
+        .plan(&request("zxqv blorp"))
+        .unwrap_err();
+    assert!(matches!(err, PlanError::InvalidPlan { .. }), "{err}");
+    assert!(
+        err.to_string()
+            .contains("llm:openai-compatible/planner-model"),
+        "{err}"
+    );
+}
+
+#[test]
+fn provider_failures_are_errors_naming_the_endpoint() {
+    let server = TestServer::scripted(vec![Reply::json(
+        503,
+        &json!({"error": {"message": "model is loading"}}),
+    )]);
+    let err = LlmPlanner::new(chat(&server))
+        .plan(&request("a pharmacy"))
+        .unwrap_err();
+    let PlanError::Provider { provider, message } = &err else {
+        panic!("{err}")
+    };
+    assert_eq!(provider, "llm:openai-compatible/planner-model");
+    assert!(
+        message.contains(&format!(
+            "{}/chat/completions (model `planner-model`): HTTP 503: model is loading",
+            server.base_url
+        )),
+        "{message}"
+    );
+    let refused = {
+        let port = std::net::TcpListener::bind("127.0.0.1:0")
+            .unwrap()
+            .local_addr()
+            .unwrap()
+            .port();
+        let mut c = ClientConfig::new(format!("http://127.0.0.1:{port}/v1"));
+        c.max_attempts = 1;
+        OpenAiClient::new(c).unwrap().chat("m")
+    };
+    let err = LlmPlanner::new(refused)
+        .plan(&request("a pharmacy"))
+        .unwrap_err();
+    assert!(
+        err.to_string().contains("the server is unreachable"),
+        "{err}"
+    );
+    assert_eq!(
+        LlmPlanner::new(chat(&server))
+            .plan(&request("  "))
+            .unwrap_err(),
+        PlanError::EmptyPrompt
+    );
+}
+
+#[test]
+fn a_cached_planner_replays_the_same_plan_offline() {
+    use scenethesis_models::{CacheMode, Cached, ResponseCache};
+    let dir = std::env::temp_dir().join(format!("language-cache-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let mut clean = pharmacy();
+    clean["objects"].as_array_mut().unwrap().pop();
+    let recorded = {
+        let server = TestServer::scripted(vec![Reply::json(
+            200,
+            &openai_completion("gpt-4o", &clean.to_string()),
+        )]);
+        let model = Cached::new(
+            chat(&server),
+            ResponseCache::open(&dir, CacheMode::ReadWrite).unwrap(),
+        );
+        LlmPlanner::new(model).plan(&request("a pharmacy")).unwrap()
+    };
+    let offline = ClientConfig::new("http://127.0.0.1:9/v1");
+    let model = Cached::new(
+        OpenAiClient::new(offline).unwrap().chat("planner-model"),
+        ResponseCache::open(&dir, CacheMode::ReplayOnly).unwrap(),
+    );
+    let replayed = LlmPlanner::new(model).plan(&request("a pharmacy")).unwrap();
+    assert_eq!(
+        serde_json::to_string(&replayed).unwrap(),
+        serde_json::to_string(&recorded).unwrap()
+    );
+    // Another seed is another request: not in the cache, and replay-only says so.
+    let model = Cached::new(
+        OpenAiClient::new(ClientConfig::new("http://127.0.0.1:9/v1"))
+            .unwrap()
+            .chat("planner-model"),
+        ResponseCache::open(&dir, CacheMode::ReplayOnly).unwrap(),
+    );
+    let mut other = request("a pharmacy");
+    other.seed = 8;
+    let err = LlmPlanner::new(model).plan(&other).unwrap_err();
+    assert!(err.to_string().contains("no cached answer"), "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn the_planner_is_send_and_sync() {
+    fn check<T: Send + Sync>() {}
+    check::<LlmPlanner<OpenAiChat>>();
+    check::<LlmPlanner<scenethesis_models::Cached<OpenAiChat>>>();
+}

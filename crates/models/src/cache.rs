@@ -1,0 +1,440 @@
+//! A response cache keyed by the SHA-256 of the canonical request, and [`Cached`], a wrapper
+//! that answers repeated requests from it, so a run can be replayed offline byte for byte.
+
+use std::fs;
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use serde::de::DeserializeOwned;
+use serde::Serialize;
+use serde_json::Value;
+use sha2::{Digest, Sha256};
+
+use crate::chat::{ChatModel, ChatRequest, ChatResponse};
+use crate::error::{ProviderError, ProviderErrorKind};
+use crate::image::ImageData;
+use crate::providers::{
+    BoxPrompt, DepthEstimator, DepthMap, GeneratedImage, ImageEditRequest, ImageGenerator,
+    ImageRequest, Intrinsics, Mask, Segmenter, TextEmbedder,
+};
+use crate::usage::UsageMeter;
+
+/// Version of the key derivation and file layout; part of every key.
+const CACHE_VERSION: u32 = 1;
+
+/// Whether the cache may call the provider on a miss.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CacheMode {
+    /// Answer hits from the cache; on a miss call the provider and record its answer.
+    ReadWrite,
+    /// Answer only from the cache; a miss is an error (offline replay, tests).
+    ReplayOnly,
+}
+
+/// Writes `value` as JSON with object keys sorted, no whitespace; the same value always gives
+/// the same bytes.
+pub fn canonical_json(value: &Value) -> String {
+    let mut out = String::new();
+    write_canonical(value, &mut out);
+    out
+}
+
+fn write_canonical(value: &Value, out: &mut String) {
+    match value {
+        Value::Object(map) => {
+            let mut keys: Vec<&String> = map.keys().collect();
+            keys.sort();
+            out.push('{');
+            for (i, k) in keys.into_iter().enumerate() {
+                if i > 0 {
+                    out.push(',');
+                }
+                out.push_str(&Value::String(k.clone()).to_string());
+                out.push(':');
+                write_canonical(&map[k], out);
+            }
+            out.push('}');
+        }
+        Value::Array(items) => {
+            out.push('[');
+            for (i, item) in items.iter().enumerate() {
+                if i > 0 {
+                    out.push(',');
+                }
+                write_canonical(item, out);
+            }
+            out.push(']');
+        }
+        scalar => out.push_str(&scalar.to_string()),
+    }
+}
+
+/// Lower-case hex SHA-256 of `bytes`.
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    Sha256::digest(bytes)
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
+}
+
+/// A directory of recorded answers, one JSON file per request, named by the request's key.
+#[derive(Debug, Clone)]
+pub struct ResponseCache {
+    dir: PathBuf,
+    mode: CacheMode,
+}
+
+/// Distinguishes temporary files of concurrent writers within one process.
+static TMP_COUNTER: AtomicU64 = AtomicU64::new(0);
+
+impl ResponseCache {
+    /// Opens (creating if needed) the cache in `dir`.
+    pub fn open(dir: impl Into<PathBuf>, mode: CacheMode) -> Result<Self, ProviderError> {
+        let dir = dir.into();
+        if mode == CacheMode::ReadWrite {
+            fs::create_dir_all(&dir).map_err(|e| cache_error(&dir, "cannot create", e))?;
+        }
+        Ok(Self { dir, mode })
+    }
+
+    /// The cache directory.
+    pub fn dir(&self) -> &Path {
+        &self.dir
+    }
+
+    /// The mode.
+    pub fn mode(&self) -> CacheMode {
+        self.mode
+    }
+
+    /// The record a request is stored under: operation, model and request, canonical.
+    fn envelope(operation: &str, model: &str, request: &Value) -> Value {
+        serde_json::json!({
+            "version": CACHE_VERSION,
+            "operation": operation,
+            "model": model,
+            "request": request,
+        })
+    }
+
+    /// The key of a request: SHA-256 of the canonical JSON of operation, model and request.
+    pub fn key<Q: Serialize + ?Sized>(operation: &str, model: &str, request: &Q) -> String {
+        let request = serde_json::to_value(request).unwrap_or(Value::Null);
+        sha256_hex(canonical_json(&Self::envelope(operation, model, &request)).as_bytes())
+    }
+
+    /// The file of a key.
+    pub fn path(&self, key: &str) -> PathBuf {
+        self.dir.join(format!("{key}.json"))
+    }
+
+    /// The recorded answer for `key`, if any.
+    pub fn get<R: DeserializeOwned>(&self, key: &str) -> Result<Option<R>, ProviderError> {
+        let path = self.path(key);
+        let bytes = match fs::read(&path) {
+            Ok(b) => b,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+            Err(e) => return Err(cache_error(&path, "cannot read", e)),
+        };
+        let record: Value =
+            serde_json::from_slice(&bytes).map_err(|e| cache_error(&path, "is not JSON", e))?;
+        let response = record.get("response").cloned().ok_or_else(|| {
+            ProviderError::new(
+                self.dir.display().to_string(),
+                "",
+                ProviderErrorKind::Cache {
+                    path: path.clone(),
+                    message: "has no `response` field".to_string(),
+                    source: None,
+                },
+            )
+        })?;
+        serde_json::from_value(response)
+            .map(Some)
+            .map_err(|e| cache_error(&path, "holds an answer of the wrong shape", e))
+    }
+
+    /// Records `response` for a request (atomically: a temporary file renamed into place).
+    pub fn put<Q: Serialize + ?Sized, R: Serialize>(
+        &self,
+        operation: &str,
+        model: &str,
+        request: &Q,
+        response: &R,
+    ) -> Result<String, ProviderError> {
+        let request = serde_json::to_value(request).unwrap_or(Value::Null);
+        let envelope = Self::envelope(operation, model, &request);
+        let key = sha256_hex(canonical_json(&envelope).as_bytes());
+        let mut record = envelope;
+        record["response"] = serde_json::to_value(response).unwrap_or(Value::Null);
+        let path = self.path(&key);
+        let tmp = self.dir.join(format!(
+            ".{key}.{}.{}.tmp",
+            std::process::id(),
+            TMP_COUNTER.fetch_add(1, Ordering::Relaxed)
+        ));
+        let write = || -> std::io::Result<()> {
+            let mut file = fs::File::create(&tmp)?;
+            file.write_all(canonical_json(&record).as_bytes())?;
+            file.write_all(b"\n")?;
+            file.sync_all()?;
+            fs::rename(&tmp, &path)
+        };
+        write().map_err(|e| {
+            let _ = fs::remove_file(&tmp);
+            cache_error(&path, "cannot write", e)
+        })?;
+        Ok(key)
+    }
+}
+
+fn cache_error(
+    path: &Path,
+    what: &str,
+    e: impl std::error::Error + Send + Sync + 'static,
+) -> ProviderError {
+    ProviderError::new(
+        "response cache",
+        "",
+        ProviderErrorKind::Cache {
+            path: path.to_path_buf(),
+            message: format!("{what}: {e}"),
+            source: Some(Box::new(e)),
+        },
+    )
+}
+
+/// A provider wrapped with a [`ResponseCache`]: identical requests are answered from the cache
+/// (counted as cache hits on the meter), new ones go to the inner provider and are recorded.
+#[derive(Debug)]
+pub struct Cached<M> {
+    inner: M,
+    cache: ResponseCache,
+    meter: Option<UsageMeter>,
+}
+
+impl<M> Cached<M> {
+    /// Wraps `inner`.
+    pub fn new(inner: M, cache: ResponseCache) -> Self {
+        Self {
+            inner,
+            cache,
+            meter: None,
+        }
+    }
+
+    /// Counts cache hits on `meter`.
+    pub fn with_meter(mut self, meter: UsageMeter) -> Self {
+        self.meter = Some(meter);
+        self
+    }
+
+    /// The wrapped provider.
+    pub fn inner(&self) -> &M {
+        &self.inner
+    }
+
+    /// The cache.
+    pub fn cache(&self) -> &ResponseCache {
+        &self.cache
+    }
+
+    fn through<Q, R>(
+        &self,
+        operation: &str,
+        model: &str,
+        request: &Q,
+        call: impl FnOnce() -> Result<R, ProviderError>,
+    ) -> Result<R, ProviderError>
+    where
+        Q: Serialize + ?Sized,
+        R: Serialize + DeserializeOwned,
+    {
+        let key = ResponseCache::key(operation, model, request);
+        if let Some(hit) = self
+            .cache
+            .get::<R>(&key)
+            .map_err(|e| with_model(e, model))?
+        {
+            if let Some(m) = &self.meter {
+                m.record_cache_hit();
+            }
+            return Ok(hit);
+        }
+        if self.cache.mode == CacheMode::ReplayOnly {
+            return Err(ProviderError::new(
+                "response cache",
+                model,
+                ProviderErrorKind::CacheMiss {
+                    key,
+                    dir: self.cache.dir.clone(),
+                },
+            ));
+        }
+        let answer = call()?;
+        let key = self
+            .cache
+            .put(operation, model, request, &answer)
+            .map_err(|e| with_model(e, model))?;
+        // Hand back what a replay will read, so recording and replaying runs see the same
+        // values (and an answer JSON cannot hold, such as a NaN, fails now, not on replay).
+        self.cache
+            .get::<R>(&key)
+            .map_err(|e| with_model(e, model))?
+            .ok_or_else(|| {
+                ProviderError::new(
+                    "response cache",
+                    model,
+                    ProviderErrorKind::Cache {
+                        path: self.cache.path(&key),
+                        message: "vanished right after it was written".to_string(),
+                        source: None,
+                    },
+                )
+            })
+    }
+}
+
+fn with_model(mut e: ProviderError, model: &str) -> ProviderError {
+    e.model = model.to_string();
+    e
+}
+
+impl<M: ChatModel> ChatModel for Cached<M> {
+    fn name(&self) -> String {
+        self.inner.name()
+    }
+
+    fn chat(&self, request: &ChatRequest) -> Result<ChatResponse, ProviderError> {
+        self.through("chat", &self.inner.name(), request, || {
+            self.inner.chat(request)
+        })
+    }
+}
+
+impl<M: ImageGenerator> ImageGenerator for Cached<M> {
+    fn name(&self) -> String {
+        self.inner.name()
+    }
+
+    fn generate(&self, request: &ImageRequest) -> Result<GeneratedImage, ProviderError> {
+        self.through("image-generate", &self.inner.name(), request, || {
+            self.inner.generate(request)
+        })
+    }
+
+    fn edit(&self, request: &ImageEditRequest) -> Result<GeneratedImage, ProviderError> {
+        self.through("image-edit", &self.inner.name(), request, || {
+            self.inner.edit(request)
+        })
+    }
+}
+
+impl<M: Segmenter> Segmenter for Cached<M> {
+    fn name(&self) -> String {
+        self.inner.name()
+    }
+
+    fn segment(&self, image: &ImageData, boxes: &[BoxPrompt]) -> Result<Vec<Mask>, ProviderError> {
+        self.through("segment", &self.inner.name(), &(image, boxes), || {
+            self.inner.segment(image, boxes)
+        })
+    }
+}
+
+impl<M: DepthEstimator> DepthEstimator for Cached<M> {
+    fn name(&self) -> String {
+        self.inner.name()
+    }
+
+    fn estimate(
+        &self,
+        image: &ImageData,
+        intrinsics: Option<Intrinsics>,
+    ) -> Result<DepthMap, ProviderError> {
+        self.through("depth", &self.inner.name(), &(image, intrinsics), || {
+            self.inner.estimate(image, intrinsics)
+        })
+    }
+}
+
+impl<M: TextEmbedder> TextEmbedder for Cached<M> {
+    fn name(&self) -> String {
+        self.inner.name()
+    }
+
+    fn embed(&self, texts: &[&str]) -> Result<Vec<Vec<f32>>, ProviderError> {
+        self.through("embed", &self.inner.name(), texts, || {
+            self.inner.embed(texts)
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    #[test]
+    fn sha256_matches_known_vectors() {
+        assert_eq!(
+            sha256_hex(b""),
+            "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855"
+        );
+        assert_eq!(
+            sha256_hex(b"abc"),
+            "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad"
+        );
+    }
+
+    #[test]
+    fn canonical_json_sorts_keys_at_every_level() {
+        let a = json!({"b": 1, "a": {"y": [1, {"d": 2, "c": 3}], "x": "s"}});
+        assert_eq!(
+            canonical_json(&a),
+            r#"{"a":{"x":"s","y":[1,{"c":3,"d":2}]},"b":1}"#
+        );
+    }
+
+    #[test]
+    fn key_depends_on_operation_model_and_request() {
+        let k = ResponseCache::key("chat", "m", &json!({"a": 1}));
+        assert_eq!(k.len(), 64);
+        assert_eq!(k, ResponseCache::key("chat", "m", &json!({"a": 1})));
+        assert_ne!(k, ResponseCache::key("chat", "m2", &json!({"a": 1})));
+        assert_ne!(k, ResponseCache::key("embed", "m", &json!({"a": 1})));
+        assert_ne!(k, ResponseCache::key("chat", "m", &json!({"a": 2})));
+    }
+
+    #[test]
+    fn put_then_get_and_leaves_no_temporary_files() {
+        let dir = tempfile::tempdir().unwrap();
+        let cache = ResponseCache::open(dir.path().join("c"), CacheMode::ReadWrite).unwrap();
+        let key = cache
+            .put("embed", "m", &["a"], &vec![vec![0.1f32, 0.2]])
+            .unwrap();
+        assert_eq!(key, ResponseCache::key("embed", "m", &["a"]));
+        let got: Option<Vec<Vec<f32>>> = cache.get(&key).unwrap();
+        assert_eq!(got, Some(vec![vec![0.1f32, 0.2]]));
+        let names: Vec<String> = fs::read_dir(cache.dir())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        assert_eq!(names, vec![format!("{key}.json")]);
+        assert_eq!(cache.get::<Value>(&"0".repeat(64)).unwrap(), None);
+    }
+
+    #[test]
+    fn corrupt_file_is_an_error_naming_it() {
+        let dir = tempfile::tempdir().unwrap();
+        let cache = ResponseCache::open(dir.path(), CacheMode::ReadWrite).unwrap();
+        let key = "f".repeat(64);
+        fs::write(cache.path(&key), "{not json").unwrap();
+        let err = cache.get::<Value>(&key).unwrap_err();
+        let text = err.to_string();
+        assert!(text.contains(&format!("{key}.json")), "{text}");
+        assert!(text.contains("is not JSON"), "{text}");
+        assert!(std::error::Error::source(&err).is_some());
+    }
+}

@@ -1,0 +1,353 @@
+//! The HTTP transport: a reqwest client on a private current-thread tokio runtime, with
+//! timeouts, retries on transient failures (honouring `Retry-After`) and a total time budget.
+
+use std::time::{Duration, Instant};
+
+use scenethesis_models::{ProviderError, ProviderErrorKind, TokenUsage, UsageMeter};
+use serde_json::Value;
+
+use crate::config::{redact_url, ClientConfig};
+
+/// How a call treats HTTP 5xx answers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum On5xx {
+    /// Retry with backoff (the default).
+    Retry,
+    /// Retry, except when the message is about the output format: the caller then falls back
+    /// to another request format (llama-cpp-python answers an unsupported `response_format`
+    /// with HTTP 500).
+    RetryUnlessAboutFormat,
+}
+
+/// A successful HTTP answer.
+pub(crate) struct Answer {
+    pub(crate) body: Vec<u8>,
+}
+
+/// One part of a multipart form, rebuilt for every attempt.
+#[derive(Clone)]
+pub(crate) enum Part {
+    Text(&'static str, String),
+    File {
+        name: &'static str,
+        file_name: String,
+        mime: &'static str,
+        bytes: Vec<u8>,
+    },
+}
+
+/// What a request sends.
+pub(crate) enum Body<'a> {
+    Json(&'a Value),
+    Multipart(&'a [Part]),
+}
+
+/// The shared HTTP machinery of the clients.
+pub(crate) struct Transport {
+    config: ClientConfig,
+    client: reqwest::Client,
+    runtime: tokio::runtime::Runtime,
+}
+
+impl std::fmt::Debug for Transport {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Transport")
+            .field("endpoint", &self.config.endpoint_label())
+            .finish()
+    }
+}
+
+/// Installs the ring crypto provider for rustls once per process (reqwest is built without a
+/// provider of its own).
+fn install_crypto_provider() {
+    // An error means a provider is already installed, which is all we need.
+    let _ = rustls::crypto::ring::default_provider().install_default();
+}
+
+impl Transport {
+    pub(crate) fn new(config: ClientConfig) -> Result<Self, ProviderError> {
+        install_crypto_provider();
+        let endpoint = config.endpoint_label();
+        let fail = |message: String, source: Option<scenethesis_models::BoxError>| {
+            ProviderError::new(
+                endpoint.clone(),
+                "",
+                ProviderErrorKind::Unreachable { message, source },
+            )
+        };
+        let client = reqwest::Client::builder()
+            .timeout(config.timeout)
+            .connect_timeout(config.timeout.min(Duration::from_secs(30)))
+            .build()
+            .map_err(|e| {
+                fail(
+                    "cannot build the HTTP client".into(),
+                    Some(Box::new(e.without_url())),
+                )
+            })?;
+        let runtime = tokio::runtime::Builder::new_current_thread()
+            .enable_all()
+            .build()
+            .map_err(|e| fail("cannot start the HTTP runtime".into(), Some(Box::new(e))))?;
+        Ok(Self {
+            config,
+            client,
+            runtime,
+        })
+    }
+
+    pub(crate) fn config(&self) -> &ClientConfig {
+        &self.config
+    }
+
+    /// The full URL of an API path (`/chat/completions`).
+    pub(crate) fn url(&self, path: &str) -> String {
+        format!("{}{}", self.config.base_url, path)
+    }
+
+    /// The URL of `path` without credentials, for messages.
+    pub(crate) fn label(&self, path: &str) -> String {
+        redact_url(&self.url(path))
+    }
+
+    /// Sends `body` to `path` and returns the body of a 2xx answer, retrying transient
+    /// failures within the budget. Every attempt counts as a request on `meter`.
+    pub(crate) fn send(
+        &self,
+        path: &str,
+        model: &str,
+        body: Body<'_>,
+        on_5xx: On5xx,
+        meter: &UsageMeter,
+    ) -> Result<Answer, ProviderError> {
+        let url = self.url(path);
+        self.with_retries(&self.label(path), model, on_5xx, meter, || {
+            let mut request = self.client.post(&url);
+            if let Some(key) = &self.config.api_key {
+                request = request.bearer_auth(key.expose());
+            }
+            match &body {
+                Body::Json(v) => request.json(v),
+                Body::Multipart(parts) => request.multipart(form(parts)),
+            }
+        })
+    }
+
+    /// Downloads `url` (an image an endpoint answered with).
+    pub(crate) fn get(
+        &self,
+        url: &str,
+        model: &str,
+        meter: &UsageMeter,
+    ) -> Result<Answer, ProviderError> {
+        self.with_retries(&redact_url(url), model, On5xx::Retry, meter, || {
+            self.client.get(url)
+        })
+    }
+
+    fn with_retries(
+        &self,
+        endpoint: &str,
+        model: &str,
+        on_5xx: On5xx,
+        meter: &UsageMeter,
+        build: impl Fn() -> reqwest::RequestBuilder,
+    ) -> Result<Answer, ProviderError> {
+        let started = Instant::now();
+        let budget = self.config.budget;
+        let err = |kind| ProviderError::new(endpoint, model, kind);
+        let mut backoff = self.config.backoff;
+        let mut attempt = 0u32;
+        loop {
+            attempt += 1;
+            let remaining = budget.saturating_sub(started.elapsed());
+            let outcome = self.runtime.block_on(async {
+                let send = build().timeout(self.config.timeout.min(remaining)).send();
+                match send.await {
+                    Ok(response) => {
+                        let status = response.status().as_u16();
+                        let retry_after = response
+                            .headers()
+                            .get(reqwest::header::RETRY_AFTER)
+                            .and_then(|v| v.to_str().ok())
+                            .and_then(parse_retry_after);
+                        match response.bytes().await {
+                            Ok(bytes) => Ok((status, retry_after, bytes.to_vec())),
+                            Err(e) => Err(e),
+                        }
+                    }
+                    Err(e) => Err(e),
+                }
+            });
+            meter.record_request(TokenUsage::default());
+            let (failure, retry_after) = match outcome {
+                Ok((status, _, body)) if (200..300).contains(&status) => {
+                    return Ok(Answer { body });
+                }
+                Ok((status, retry_after, body)) => {
+                    let message = server_message(&body);
+                    let transient = status == 429
+                        || (status >= 500 && (on_5xx == On5xx::Retry || !about_format(&message)));
+                    let kind = ProviderErrorKind::Status { status, message };
+                    if !transient {
+                        return Err(err(kind));
+                    }
+                    (kind, retry_after)
+                }
+                Err(e) => (transport_kind(e, self.config.timeout.min(remaining)), None),
+            };
+            if attempt >= self.config.max_attempts {
+                return Err(err(failure));
+            }
+            let wait = retry_after.unwrap_or(backoff);
+            let spent = started.elapsed();
+            if spent + wait >= budget {
+                return Err(err(ProviderErrorKind::BudgetExhausted {
+                    attempts: attempt,
+                    spent,
+                    budget,
+                    last: failure.to_string(),
+                }));
+            }
+            tracing::warn!(
+                endpoint,
+                model,
+                attempt,
+                wait_ms = wait.as_millis() as u64,
+                "{failure}; retrying"
+            );
+            meter.record_retry();
+            std::thread::sleep(wait);
+            backoff = backoff.saturating_mul(2);
+        }
+    }
+}
+
+fn form(parts: &[Part]) -> reqwest::multipart::Form {
+    let mut form = reqwest::multipart::Form::new();
+    for part in parts {
+        form = match part.clone() {
+            Part::Text(name, value) => form.text(name, value),
+            Part::File {
+                name,
+                file_name,
+                mime,
+                bytes,
+            } => {
+                let p = reqwest::multipart::Part::bytes(bytes)
+                    .file_name(file_name)
+                    .mime_str(mime)
+                    .expect("static MIME types parse");
+                form.part(name, p)
+            }
+        };
+    }
+    form
+}
+
+/// Classifies a transport error; the URL is dropped from the source so that a key in a URL
+/// cannot leak.
+fn transport_kind(e: reqwest::Error, timeout: Duration) -> ProviderErrorKind {
+    if e.is_timeout() {
+        ProviderErrorKind::Timeout { after: timeout }
+    } else if e.is_connect() {
+        ProviderErrorKind::Unreachable {
+            message: "connection failed (is the server running and the base URL right?)".into(),
+            source: Some(Box::new(e.without_url())),
+        }
+    } else if e.is_body() || e.is_decode() {
+        ProviderErrorKind::Malformed {
+            message: "the answer body could not be read".into(),
+            source: Some(Box::new(e.without_url())),
+        }
+    } else {
+        ProviderErrorKind::Unreachable {
+            message: "the request failed".into(),
+            source: Some(Box::new(e.without_url())),
+        }
+    }
+}
+
+/// `Retry-After` in seconds (integer or fractional); HTTP dates are not used by the servers
+/// we target and fall back to the backoff.
+fn parse_retry_after(value: &str) -> Option<Duration> {
+    let secs: f64 = value.trim().parse().ok()?;
+    (secs.is_finite() && secs >= 0.0).then(|| Duration::from_secs_f64(secs.min(3600.0)))
+}
+
+/// The error message of an error body: OpenAI's `error.message`, a string `error`, FastAPI's
+/// `detail`, else the body's start.
+pub(crate) fn server_message(body: &[u8]) -> String {
+    let text = String::from_utf8_lossy(body);
+    if let Ok(v) = serde_json::from_str::<Value>(&text) {
+        let found = v
+            .pointer("/error/message")
+            .or_else(|| v.get("error"))
+            .or_else(|| v.get("detail"))
+            .or_else(|| v.get("message"));
+        if let Some(m) = found {
+            return shorten(&match m {
+                Value::String(s) => s.clone(),
+                other => other.to_string(),
+            });
+        }
+    }
+    if text.trim().is_empty() {
+        "(empty body)".to_string()
+    } else {
+        shorten(text.trim())
+    }
+}
+
+/// Whether a server's error message is about the requested output format.
+pub(crate) fn about_format(message: &str) -> bool {
+    let m = message.to_lowercase();
+    [
+        "response_format",
+        "json_schema",
+        "json_object",
+        "schema",
+        "grammar",
+    ]
+    .iter()
+    .any(|k| m.contains(k))
+}
+
+/// Cuts a message to 300 characters.
+pub(crate) fn shorten(text: &str) -> String {
+    if text.chars().count() > 300 {
+        let cut: String = text.chars().take(297).collect();
+        format!("{cut}...")
+    } else {
+        text.to_string()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn retry_after_and_messages() {
+        assert_eq!(parse_retry_after("2"), Some(Duration::from_secs(2)));
+        assert_eq!(
+            parse_retry_after(" 0.25 "),
+            Some(Duration::from_millis(250))
+        );
+        assert_eq!(parse_retry_after("Wed, 21 Oct 2015 07:28:00 GMT"), None);
+        assert_eq!(
+            server_message(br#"{"error":{"message":"Rate limit","type":"x"}}"#),
+            "Rate limit"
+        );
+        assert_eq!(
+            server_message(br#"{"error":"model not found"}"#),
+            "model not found"
+        );
+        assert_eq!(
+            server_message(br#"{"detail":[{"msg":"bad"}]}"#),
+            r#"[{"msg":"bad"}]"#
+        );
+        assert_eq!(server_message(b""), "(empty body)");
+        assert_eq!(server_message(&[b'x'; 400]).chars().count(), 300);
+    }
+}
