@@ -8,9 +8,12 @@
 //! registry's [`Category::size_range`] gives the full extent over all seeds, including doors
 //! left open, lifted lids and protruding parts, and crate tests check it.
 
+mod bathroom;
 mod beds;
 mod carcass;
 mod equipment;
+mod kitchen;
+mod living;
 mod seating;
 mod storage;
 mod tables;
@@ -319,13 +322,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
     furniture!(
         "kitchen_counter",
         Floor,
-        [
-            "countertop",
-            "kitchen cabinet",
-            "base cabinet",
-            "kitchen island",
-            "worktop"
-        ],
+        ["countertop", "kitchen cabinet", "base cabinet", "worktop"],
         [[1.2, 2.57], [0.88, 0.92], [0.6, 1.27]],
         tables::kitchen_counter
     ),
@@ -747,6 +744,183 @@ pub(crate) const CATEGORIES: &[Category] = &[
         ["exercise mat", "fitness mat", "gym mat"],
         [[0.58, 0.66], [0.004, 0.15], [0.12, 1.85]],
         equipment::yoga_mat
+    ),
+    // Bathroom and laundry.
+    furniture!(
+        "toilet",
+        Floor,
+        ["wc", "loo", "water closet", "lavatory", "toilet bowl"],
+        [[0.352, 0.428], [0.711, 0.902], [0.562, 0.693]],
+        bathroom::toilet
+    ),
+    furniture!(
+        "bathtub",
+        Floor,
+        ["bath", "tub", "bath tub", "clawfoot tub", "soaking tub"],
+        [[1.472, 1.833], [0.609, 0.807], [0.686, 0.816]],
+        bathroom::bathtub
+    ),
+    furniture!(
+        "shower",
+        Floor,
+        [
+            "shower stall",
+            "shower cubicle",
+            "shower enclosure",
+            "walk-in shower",
+            "shower cabin"
+        ],
+        [[0.786, 1.019], [1.911, 2.061], [0.784, 1.019]],
+        bathroom::shower
+    ),
+    furniture!(
+        "towel_rack",
+        Wall,
+        [
+            "towel rail",
+            "towel bar",
+            "towel holder",
+            "heated towel rail"
+        ],
+        [[0.447, 0.814], [0.058, 0.916], [0.081, 0.119]],
+        bathroom::towel_rack
+    ),
+    furniture!(
+        "bath_mat",
+        Floor,
+        ["bathmat", "bath rug", "shower mat"],
+        [[0.489, 0.914], [0.009, 0.026], [0.393, 0.61]],
+        bathroom::bath_mat
+    ),
+    furniture!(
+        "standing_mirror",
+        Floor,
+        [
+            "wardrobe mirror",
+            "floor mirror",
+            "full-length mirror",
+            "full length mirror",
+            "cheval mirror",
+            "dressing mirror"
+        ],
+        [[0.392, 0.906], [1.429, 1.929], [0.295, 0.623]],
+        bathroom::standing_mirror
+    ),
+    furniture!(
+        "laundry_hamper",
+        Floor,
+        ["hamper", "laundry basket", "clothes hamper", "laundry bin"],
+        [[0.343, 0.559], [0.49, 0.713], [0.325, 0.47]],
+        bathroom::laundry_hamper
+    ),
+    furniture!(
+        "washing_machine",
+        Floor,
+        [
+            "washer",
+            "washing-machine",
+            "laundry machine",
+            "clothes washer"
+        ],
+        [[0.583, 0.612], [0.804, 0.979], [0.544, 0.684]],
+        bathroom::washing_machine
+    ),
+    // Kitchen.
+    furniture!(
+        "kitchen_island",
+        Floor,
+        ["island", "island counter", "breakfast bar", "island unit"],
+        [[1.18, 2.274], [0.882, 0.969], [0.83, 1.194]],
+        kitchen::kitchen_island
+    ),
+    furniture!(
+        "wall_cabinet",
+        Wall,
+        [
+            "wall cupboard",
+            "upper cabinet",
+            "overhead cabinet",
+            "medicine cabinet",
+            "wall unit"
+        ],
+        [[0.396, 1.224], [0.49, 0.918], [0.275, 0.368]],
+        kitchen::wall_cabinet
+    ),
+    furniture!(
+        "range_hood",
+        Wall,
+        [
+            "cooker hood",
+            "extractor",
+            "extractor fan",
+            "kitchen hood",
+            "vent hood",
+            "stove hood"
+        ],
+        [[0.588, 0.918], [0.556, 1.027], [0.447, 0.537]],
+        kitchen::range_hood
+    ),
+    // Living, hall and study.
+    furniture!(
+        "fireplace",
+        Floor,
+        [
+            "hearth",
+            "fire place",
+            "mantelpiece",
+            "mantel",
+            "chimney piece"
+        ],
+        [[1.178, 1.734], [1.024, 1.337], [0.294, 0.51]],
+        living::fireplace
+    ),
+    furniture!(
+        "curtain",
+        Wall,
+        ["curtains", "drapes", "drape", "draperies"],
+        [[1.231, 2.698], [1.472, 2.465], [0.091, 0.148]],
+        living::curtain
+    ),
+    furniture!(
+        "window_blind",
+        Wall,
+        [
+            "blind",
+            "blinds",
+            "venetian blind",
+            "roller blind",
+            "window shade"
+        ],
+        [[0.595, 1.623], [0.692, 1.625], [0.039, 0.062]],
+        living::window_blind
+    ),
+    furniture!(
+        "wall_clock",
+        Wall,
+        ["kitchen clock", "round clock"],
+        [[0.245, 0.458], [0.245, 0.458], [0.034, 0.062]],
+        living::wall_clock
+    ),
+    furniture!(
+        "shoe_rack",
+        Floor,
+        ["shoe shelf", "shoe stand", "shoe storage", "shoe cabinet"],
+        [[0.588, 1.019], [0.441, 0.969], [0.256, 0.369]],
+        living::shoe_rack
+    ),
+    furniture!(
+        "suitcase",
+        Floor,
+        ["luggage", "trolley case", "travel case", "valise"],
+        [[0.352, 0.508], [0.609, 0.918], [0.216, 0.312]],
+        living::suitcase
+    ),
+    furniture!(
+        "filing_cabinet",
+        Floor,
+        ["file cabinet", "filing drawers", "file drawers"],
+        [[0.373, 0.51], [0.64, 1.397], [0.515, 0.668]],
+        living::filing_cabinet
     ),
     // Wall.
     furniture!(

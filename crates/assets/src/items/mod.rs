@@ -1,10 +1,13 @@
 //! Built-in generators for containers and small items (things that stand on the floor or rest on,
 //! in and under furniture). Dimensions per category are documented on each generator, in metres.
 
+mod bathroom;
 pub(crate) mod builder;
 pub(crate) mod containers;
 mod electronics;
 mod home;
+mod household;
+mod kitchen;
 mod lab;
 mod tableware;
 
@@ -42,7 +45,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
     ),
     category!(
         "storage_bin",
-        ["plastic bin", "tote", "storage box", "tub"],
+        ["plastic bin", "tote", "storage box"],
         Floor,
         [[0.368, 0.639], [0.194, 0.371], [0.271, 0.433]],
         containers::storage_bin
@@ -367,10 +370,192 @@ pub(crate) const CATEGORIES: &[Category] = &[
     ),
     category!(
         "clock",
-        ["desk clock", "alarm clock", "table clock", "wall clock"],
+        ["desk clock", "table clock", "mantel clock"],
         Surface,
         [[0.097, 0.227], [0.106, 0.249], [0.021, 0.06]],
         home::clock
+    ),
+    // Kitchen items.
+    category!(
+        "microwave",
+        ["microwave oven", "micro wave"],
+        Surface,
+        [[0.431, 0.571], [0.257, 0.339], [0.352, 0.459]],
+        kitchen::microwave
+    ),
+    category!(
+        "toaster",
+        ["bread toaster", "pop-up toaster"],
+        Surface,
+        [[0.18, 0.344], [0.176, 0.215], [0.162, 0.219]],
+        kitchen::toaster
+    ),
+    category!(
+        "coffee_machine",
+        [
+            "coffee maker",
+            "espresso machine",
+            "coffee brewer",
+            "coffeemaker"
+        ],
+        Surface,
+        [[0.177, 0.326], [0.294, 0.428], [0.245, 0.408]],
+        kitchen::coffee_machine
+    ),
+    category!(
+        "kettle",
+        ["electric kettle", "tea kettle", "water kettle"],
+        Surface,
+        [[0.137, 0.204], [0.197, 0.286], [0.213, 0.28]],
+        kitchen::kettle
+    ),
+    category!(
+        "pot",
+        [
+            "cooking pot",
+            "saucepan",
+            "stock pot",
+            "stockpot",
+            "casserole"
+        ],
+        Surface,
+        [[0.235, 0.366], [0.098, 0.224], [0.156, 0.284]],
+        kitchen::pot
+    ),
+    category!(
+        "pan",
+        ["frying pan", "skillet", "fry pan", "frypan"],
+        Surface,
+        [[0.363, 0.56], [0.063, 0.092], [0.196, 0.306]],
+        kitchen::pan
+    ),
+    category!(
+        "cutlery",
+        [
+            "silverware",
+            "flatware",
+            "utensils",
+            "knife and fork",
+            "fork",
+            "spoon",
+            "knife"
+        ],
+        Surface,
+        [[0.086, 0.115], [0.009, 0.013], [0.166, 0.225]],
+        kitchen::cutlery
+    ),
+    category!(
+        "cutting_board",
+        ["chopping board", "chopping block", "bread board"],
+        Surface,
+        [[0.276, 0.467], [0.014, 0.036], [0.195, 0.325]],
+        kitchen::cutting_board
+    ),
+    category!(
+        "knife_block",
+        ["knife holder", "knife stand"],
+        Surface,
+        [[0.098, 0.164], [0.266, 0.355], [0.174, 0.224]],
+        kitchen::knife_block
+    ),
+    category!(
+        "dish_rack",
+        [
+            "dish drainer",
+            "drying rack",
+            "dish drying rack",
+            "plate rack"
+        ],
+        Surface,
+        [[0.333, 0.51], [0.118, 0.204], [0.254, 0.367]],
+        kitchen::dish_rack
+    ),
+    // Bathroom items.
+    category!(
+        "towel",
+        ["towels", "bath towel", "hand towel", "folded towel"],
+        Surface,
+        [[0.255, 0.423], [0.029, 0.145], [0.176, 0.305]],
+        bathroom::towel
+    ),
+    category!(
+        "toilet_paper",
+        [
+            "toilet roll",
+            "loo roll",
+            "toilet tissue",
+            "bathroom tissue"
+        ],
+        Surface,
+        [[0.098, 0.249], [0.093, 0.118], [0.098, 0.123]],
+        bathroom::toilet_paper
+    ),
+    category!(
+        "soap",
+        [
+            "bar of soap",
+            "soap bar",
+            "soap dispenser",
+            "hand soap",
+            "soap dish"
+        ],
+        Surface,
+        [[0.058, 0.143], [0.023, 0.209], [0.069, 0.101]],
+        bathroom::soap
+    ),
+    category!(
+        "toothbrush_holder",
+        ["toothbrush", "toothbrushes", "toothbrush cup", "tooth mug"],
+        Surface,
+        [[0.062, 0.086], [0.19, 0.219], [0.062, 0.084]],
+        bathroom::toothbrush_holder
+    ),
+    // Household items.
+    category!(
+        "remote_control",
+        ["remote", "tv remote", "remote controller", "clicker"],
+        Surface,
+        [[0.039, 0.062], [0.016, 0.026], [0.137, 0.224]],
+        household::remote_control
+    ),
+    category!(
+        "phone",
+        [
+            "smartphone",
+            "mobile phone",
+            "cell phone",
+            "telephone",
+            "cellphone"
+        ],
+        Surface,
+        [[0.063, 0.225], [0.008, 0.1], [0.137, 0.214]],
+        household::phone
+    ),
+    category!(
+        "keys",
+        ["key", "keyring", "key ring", "bunch of keys", "house keys"],
+        Surface,
+        [[0.041, 0.161], [0.002, 0.004], [0.071, 0.098]],
+        household::keys
+    ),
+    category!(
+        "alarm_clock",
+        ["bedside clock", "travel clock", "digital clock"],
+        Surface,
+        [[0.098, 0.159], [0.068, 0.141], [0.041, 0.082]],
+        household::alarm_clock
+    ),
+    category!(
+        "printer",
+        [
+            "inkjet printer",
+            "laser printer",
+            "printing machine",
+            "all-in-one printer"
+        ],
+        Surface,
+        [[0.372, 0.51], [0.201, 0.344], [0.356, 0.502]],
+        household::printer
     ),
 ];
 

@@ -68,7 +68,7 @@ pub(crate) const CATEGORIES: &[Category] = &[
     ),
     category!(
         "beach_towel",
-        ["towel", "beach blanket"],
+        ["beach blanket", "picnic blanket"],
         [[0.679, 1.029], [0.003, 0.007], [1.358, 1.854]],
         beach_towel
     ),
