@@ -223,6 +223,12 @@ pub struct Archetype {
     pub door_clearance: f64,
     /// The object groups, in planning order.
     pub objects: Vec<ObjectGroup>,
+    /// What real rooms of this type hold: categories every generated scene of the type should
+    /// contain (each has a group with a minimum count of at least one). Groups with a minimum
+    /// of zero are the optional extras drawn per seed.
+    pub core: Vec<String>,
+    /// Where the core comes from.
+    pub source: Option<String>,
 }
 
 /// The prompt vocabulary.
@@ -290,6 +296,10 @@ struct RawArchetype {
     #[serde(default)]
     door_clearance: Option<f64>,
     objects: Vec<(String, u32, u32, String)>,
+    #[serde(default)]
+    core: Vec<String>,
+    #[serde(default)]
+    source: Option<String>,
 }
 
 #[derive(Deserialize)]
@@ -508,6 +518,22 @@ impl Knowledge {
                     format!("anchor `{}` has no group with place `anchor`", raw.anchor),
                 ));
             }
+            for c in &raw.core {
+                if !objects.iter().any(|g| g.category == *c && g.min >= 1) {
+                    return Err(invalid(
+                        ARCHETYPES_FILE,
+                        &entry,
+                        format!("core category `{c}` needs an object group with a minimum count of at least 1"),
+                    ));
+                }
+            }
+            if !raw.core.is_empty() && raw.source.as_deref().is_none_or(str::is_empty) {
+                return Err(invalid(
+                    ARCHETYPES_FILE,
+                    &entry,
+                    "a `core` needs a `source` saying where it comes from".into(),
+                ));
+            }
             archetypes.push(Archetype {
                 phrases: raw
                     .words
@@ -524,6 +550,8 @@ impl Knowledge {
                 aisle: raw.aisle.unwrap_or(0.6).max(0.6),
                 door_clearance: raw.door_clearance.unwrap_or(1.0).max(0.6),
                 objects,
+                core: raw.core,
+                source: raw.source,
             });
         }
 
