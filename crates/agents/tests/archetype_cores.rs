@@ -109,3 +109,43 @@ fn generated_rooms_hold_at_least_ninety_percent_of_their_core() {
     println!("{}", report.join("\n"));
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+#[test]
+fn denser_home_rooms_stay_walkable_and_reachable() {
+    let mut report = Vec::new();
+    for room in [
+        "bathroom",
+        "kitchen",
+        "bedroom",
+        "living room",
+        "dining room",
+        "office",
+        "laundry room",
+    ] {
+        let prompt = format!("a {room}");
+        let mut counts = Vec::new();
+        for seed in 0..4 {
+            let (plan, laid) = layout(&prompt, seed);
+            let w = &laid.walkway;
+            assert!(w.door_reachable, "{prompt} #{seed}: door not reachable");
+            assert!(
+                w.unreachable.is_empty(),
+                "{prompt} #{seed}: {:?}",
+                w.unreachable
+            );
+            assert!(
+                w.walk_ratio >= 0.99,
+                "{prompt} #{seed}: walk {}",
+                w.walk_ratio
+            );
+            assert!(
+                laid.dropped.len() * 5 <= plan.objects.len(),
+                "{prompt} #{seed}: dropped {:?}",
+                laid.dropped
+            );
+            counts.push(laid.scene.objects.len());
+        }
+        report.push(format!("{room:<13} objects per seed {counts:?}"));
+    }
+    println!("{}", report.join("\n"));
+}
