@@ -5,8 +5,9 @@
 //! family of boards with compartments — plus special cases. Every part is a convex primitive;
 //! cavities (compartments, knee holes, the space under a table) come from arrangements of parts.
 //! Each generator's doc comment gives the parameter ranges of its main body in metres; the
-//! registry's [`Category::size_range`] gives the full extent over all seeds, including doors
-//! left open, lifted lids and protruding parts, and crate tests check it.
+//! `size_range` of its row in the category table ([`crate::catalog::Category::size_range`])
+//! gives the full extent over all seeds, including doors left open, lifted lids and protruding
+//! parts, and crate tests check it.
 
 mod bathroom;
 mod beds;
