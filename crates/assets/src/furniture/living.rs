@@ -95,14 +95,15 @@ pub(super) fn fireplace(rng: &mut ChaCha8Rng) -> Asset {
     b.finish(Placement::Floor, [0.9, 1.1])
 }
 
-/// Curtain (a pair of drapes on a rod): width 1.2–2.6, height 1.5–2.5, depth 0.07–0.16; pleated
+/// Curtain (a pair of drapes on a rod): width 1.2–2.6, height 1.5–2.25, depth 0.07–0.16; pleated
 /// panels drawn closed or gathered at the sides, hanging from a rod with finials.
 pub(super) fn curtain(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let cloth = mat(&mut b, Palette::Fabric, rng);
     let metal = mat_either(&mut b, 0.6, Palette::Metal, Palette::Wood, rng);
     let w = uniform(rng, 1.2, 2.6);
-    let h = uniform(rng, 1.5, 2.4);
+    // At most 2.2 m: hung from 0.5 m up on a 2.8 m wall it still clears the ceiling.
+    let h = uniform(rng, 1.5, 2.2);
     let hw = 0.5 * w;
     let rod_z = 0.07;
     b.part(rod(
