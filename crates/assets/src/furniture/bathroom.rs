@@ -11,11 +11,11 @@ use crate::primitives::{
 use crate::random::{coin, int, uniform};
 use crate::{Asset, Placement};
 
-/// Adds an oval wall as `segments` convex slabs: at height `y0` the inner and outer half axes
-/// are `(ax, az)` scaled by `s0` (outer) and `s0` minus `wall` (inner), and likewise at `y1`
-/// with `s1`, around `center` = (x, z). Returns nothing; every slab is a closed convex hull.
+/// Adds an oval wall of `segments` convex slabs around `center` = (x, z): at height `y0` the
+/// outer half axes are `axes` scaled by `s0` and the inner ones `wall` less, likewise at `y1`
+/// with `s1` (a flaring bowl when `s1 > s0`). Every slab is a closed convex hull.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn oval_wall(
+fn oval_wall(
     b: &mut Builder,
     name: &str,
     material: usize,
