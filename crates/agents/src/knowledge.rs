@@ -1,5 +1,8 @@
 //! The planner's knowledge: scene archetypes, category priors and prompt vocabulary, read from
-//! TOML files embedded at build time (`knowledge/*.toml`) or supplied by the caller.
+//! TOML files embedded at build time or supplied by the caller. Category names, words,
+//! placement and priors come from the one category table of the asset library
+//! ([`scenethesis_assets::catalog::CATEGORIES_TOML`]), which retrieval reads too; archetypes and
+//! vocabulary are this crate's `knowledge/*.toml`.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::sync::OnceLock;
@@ -11,8 +14,9 @@ use crate::text::phrase_stems;
 
 /// The embedded archetype file.
 pub const ARCHETYPES_TOML: &str = include_str!("../knowledge/archetypes.toml");
-/// The embedded category-prior file.
-pub const CATEGORIES_TOML: &str = include_str!("../knowledge/categories.toml");
+/// The embedded category table (names, words, placement, size ranges and planner priors),
+/// shared with the asset library and retrieval.
+pub const CATEGORIES_TOML: &str = scenethesis_assets::catalog::CATEGORIES_TOML;
 /// The embedded vocabulary file.
 pub const VOCABULARY_TOML: &str = include_str!("../knowledge/vocabulary.toml");
 
@@ -219,6 +223,12 @@ pub struct Archetype {
     pub door_clearance: f64,
     /// The object groups, in planning order.
     pub objects: Vec<ObjectGroup>,
+    /// What real rooms of this type hold: categories every generated scene of the type should
+    /// contain (each has a group with a minimum count of at least one). Groups with a minimum
+    /// of zero are the optional extras drawn per seed.
+    pub core: Vec<String>,
+    /// Where the core comes from.
+    pub source: Option<String>,
 }
 
 /// The prompt vocabulary.
@@ -286,12 +296,60 @@ struct RawArchetype {
     #[serde(default)]
     door_clearance: Option<f64>,
     objects: Vec<(String, u32, u32, String)>,
+    #[serde(default)]
+    core: Vec<String>,
+    #[serde(default)]
+    source: Option<String>,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct CategoriesFile {
-    category: BTreeMap<String, CategoryPrior>,
+    category: BTreeMap<String, RawCategory>,
+}
+
+/// A row of the category table (see `crates/assets/data/categories.toml`).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawCategory {
+    placement: Mount,
+    /// Checked by the asset library; the planner sizes rooms from `plan.size`.
+    #[allow(dead_code)]
+    size_range: [[f64; 2]; 3],
+    #[serde(default)]
+    words: Vec<String>,
+    plan: RawPrior,
+}
+
+/// The `plan` prior of a table row.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawPrior {
+    size: [f64; 3],
+    shape: NominalShape,
+    #[serde(default)]
+    shelves: u32,
+    #[serde(default)]
+    rests: Option<ItemRest>,
+    #[serde(default)]
+    small: Option<String>,
+    /// Only where the planner places the category differently from `placement`.
+    #[serde(default)]
+    mount: Option<Mount>,
+}
+
+impl RawCategory {
+    fn prior(self) -> CategoryPrior {
+        CategoryPrior {
+            size: self.plan.size,
+            shape: self.plan.shape,
+            shelves: self.plan.shelves,
+            words: self.words,
+            rests: self.plan.rests,
+            mount: self.plan.mount.unwrap_or(self.placement),
+            small: self.plan.small,
+        }
+    }
 }
 
 #[derive(Deserialize)]
@@ -318,7 +376,7 @@ struct SceneWords {
 }
 
 const ARCHETYPES_FILE: &str = "knowledge/archetypes.toml";
-const CATEGORIES_FILE: &str = "knowledge/categories.toml";
+const CATEGORIES_FILE: &str = "crates/assets/data/categories.toml";
 const VOCABULARY_FILE: &str = "knowledge/vocabulary.toml";
 
 fn relation_kind(name: &str) -> Option<RelationKind> {
@@ -350,8 +408,12 @@ impl Knowledge {
                 message: e.to_string(),
             }
         };
-        let cats: CategoriesFile =
-            toml::from_str(categories).map_err(parse_err(CATEGORIES_FILE))?;
+        let raw: CategoriesFile = toml::from_str(categories).map_err(parse_err(CATEGORIES_FILE))?;
+        let priors: BTreeMap<String, CategoryPrior> = raw
+            .category
+            .into_iter()
+            .map(|(name, row)| (name, row.prior()))
+            .collect();
         let arch: ArchetypesFile =
             toml::from_str(archetypes).map_err(parse_err(ARCHETYPES_FILE))?;
         let voc: VocabularyFile = toml::from_str(vocabulary).map_err(parse_err(VOCABULARY_FILE))?;
@@ -361,7 +423,7 @@ impl Knowledge {
             message,
         };
 
-        for (name, prior) in &cats.category {
+        for (name, prior) in &priors {
             if prior.size.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
                 return Err(invalid(
                     CATEGORIES_FILE,
@@ -379,8 +441,8 @@ impl Knowledge {
                 ));
             }
         }
-        let known = |c: &str| cats.category.contains_key(c);
-        for (name, prior) in &cats.category {
+        let known = |c: &str| priors.contains_key(c);
+        for (name, prior) in &priors {
             if let Some(small) = prior.small.as_deref().filter(|s| !known(s)) {
                 return Err(invalid(
                     CATEGORIES_FILE,
@@ -456,6 +518,22 @@ impl Knowledge {
                     format!("anchor `{}` has no group with place `anchor`", raw.anchor),
                 ));
             }
+            for c in &raw.core {
+                if !objects.iter().any(|g| g.category == *c && g.min >= 1) {
+                    return Err(invalid(
+                        ARCHETYPES_FILE,
+                        &entry,
+                        format!("core category `{c}` needs an object group with a minimum count of at least 1"),
+                    ));
+                }
+            }
+            if !raw.core.is_empty() && raw.source.as_deref().is_none_or(str::is_empty) {
+                return Err(invalid(
+                    ARCHETYPES_FILE,
+                    &entry,
+                    "a `core` needs a `source` saying where it comes from".into(),
+                ));
+            }
             archetypes.push(Archetype {
                 phrases: raw
                     .words
@@ -472,6 +550,8 @@ impl Knowledge {
                 aisle: raw.aisle.unwrap_or(0.6).max(0.6),
                 door_clearance: raw.door_clearance.unwrap_or(1.0).max(0.6),
                 objects,
+                core: raw.core,
+                source: raw.source,
             });
         }
 
@@ -542,11 +622,11 @@ impl Knowledge {
         // Longest phrases first, so "in front of" wins over "in".
         relations.sort_by(|a, b| b.0.len().cmp(&a.0.len()).then(a.0.cmp(&b.0)));
 
-        let phrases = category_phrases_of(&cats.category);
+        let phrases = category_phrases_of(&priors);
         Ok(Knowledge {
             phrases,
             archetypes,
-            categories: cats.category,
+            categories: priors,
             vocabulary: Vocabulary {
                 counts: voc.counts,
                 generic: voc.generic,
@@ -576,6 +656,16 @@ impl Knowledge {
     /// Every category named by the knowledge files.
     pub fn category_names(&self) -> impl Iterator<Item = &str> {
         self.categories.keys().map(String::as_str)
+    }
+
+    /// The category a whole phrase names (`"couch"` → `sofa`), matched on word stems against the
+    /// category names and words, as the planner reads prompts.
+    pub fn category_of_phrase(&self, phrase: &str) -> Option<&str> {
+        let stems = phrase_stems(phrase);
+        self.phrases
+            .iter()
+            .find(|(p, _)| *p == stems)
+            .map(|(_, c)| c.as_str())
     }
 
     /// The phrases (as word stems) that name each category, its name and its words, longest

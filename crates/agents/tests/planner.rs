@@ -89,7 +89,7 @@ fn every_knowledge_category_is_a_documented_library_category() {
     let known: BTreeSet<String> = k.category_names().map(str::to_owned).collect();
     assert_eq!(
         known, doc,
-        "knowledge/categories.toml must list exactly the documented categories"
+        "the category table must list exactly the documented categories"
     );
     for a in &k.archetypes {
         for g in &a.objects {

@@ -3,98 +3,10 @@
 use std::collections::BTreeMap;
 use std::fmt;
 
-use scenethesis_assets::{AssetInfo, Placement};
+use scenethesis_assets::{catalog, AssetInfo, Placement};
 use scenethesis_scene_graph::AssetRef;
 
 use crate::text::{normalise, word_similarity, words};
-
-/// Common names that differ from the canonical category, as (alias, category). Categories'
-/// own synonyms are matched as well; this table catches everyday words for built-in and
-/// imported categories alike, whoever supplied the synonyms.
-pub const ALIASES: &[(&str, &str)] = &[
-    ("couch", "sofa"),
-    ("settee", "sofa"),
-    ("loveseat", "sofa"),
-    ("love seat", "sofa"),
-    ("sectional", "sofa"),
-    ("divan", "sofa"),
-    ("bookcase", "bookshelf"),
-    ("book case", "bookshelf"),
-    ("book shelf", "bookshelf"),
-    ("tv", "television"),
-    ("tv set", "television"),
-    ("telly", "television"),
-    ("fridge", "refrigerator"),
-    ("icebox", "refrigerator"),
-    ("freezer", "chest_freezer"),
-    ("tv unit", "tv_stand"),
-    ("tv cabinet", "tv_stand"),
-    ("media console", "tv_stand"),
-    ("bedside table", "nightstand"),
-    ("night stand", "nightstand"),
-    ("end table", "side_table"),
-    ("closet", "wardrobe"),
-    ("armoire", "wardrobe"),
-    ("chest of drawers", "dresser"),
-    ("bureau", "dresser"),
-    ("footstool", "ottoman"),
-    ("pouf", "ottoman"),
-    ("recliner", "armchair"),
-    ("easy chair", "armchair"),
-    ("desk chair", "office_chair"),
-    ("swivel chair", "office_chair"),
-    ("barstool", "bar_stool"),
-    ("worktop", "kitchen_counter"),
-    ("countertop", "kitchen_counter"),
-    ("cooker", "stove"),
-    ("range", "stove"),
-    ("oven", "stove"),
-    ("washbasin", "sink"),
-    ("basin", "sink"),
-    ("houseplant", "plant"),
-    ("potted plant", "plant"),
-    ("pot plant", "plant"),
-    ("carpet", "rug"),
-    ("mat", "rug"),
-    ("cot", "bed"),
-    ("mattress", "bed"),
-    ("garbage can", "trash_can"),
-    ("trash bin", "trash_can"),
-    ("wastebasket", "trash_can"),
-    ("dustbin", "trash_can"),
-    ("pail", "bucket"),
-    ("carton", "box"),
-    ("pillow", "cushion"),
-    ("tumbler", "cup"),
-    ("teacup", "cup"),
-    ("dish", "plate"),
-    ("notebook computer", "laptop"),
-    ("computer screen", "monitor"),
-    ("display", "monitor"),
-    ("statue", "sculpture"),
-    ("parasol", "beach_umbrella"),
-    ("sun lounger", "beach_lounger"),
-    ("rucksack", "backpack"),
-    ("boulder", "rock"),
-    ("stone", "rock"),
-    ("light fixture", "pendant_lamp"),
-    ("chandelier", "pendant_lamp"),
-    ("standing lamp", "floor_lamp"),
-    ("desk lamp", "table_lamp"),
-    ("artwork", "painting"),
-    ("picture", "painting"),
-    ("poster", "painting"),
-    ("blackboard", "whiteboard"),
-    ("chalkboard", "whiteboard"),
-    ("wall mirror", "mirror"),
-    ("floating shelf", "wall_shelf"),
-    ("piano", "upright_piano"),
-    ("treadmill machine", "treadmill"),
-    ("stationary bike", "exercise_bike"),
-    ("exercise bicycle", "exercise_bike"),
-    ("shelf", "shelving_unit"),
-    ("shelves", "shelving_unit"),
-];
 
 /// Why a candidate matched.
 #[derive(Debug, Clone, PartialEq)]
@@ -179,7 +91,7 @@ pub struct AssetIndex {
     by_category: BTreeMap<String, usize>,
     embedder: Option<Box<dyn TextEmbedder + Send + Sync>>,
     entry_vectors: Vec<Vec<f32>>,
-    /// [`ALIASES`] with normalised aliases.
+    /// The words of the category table ([`catalog::words`]), normalised, with their categories.
     aliases: Vec<(String, &'static str)>,
     /// Every distinct word of every name, so a query word is compared with each only once.
     vocabulary: Vec<String>,
@@ -238,7 +150,7 @@ impl AssetIndex {
             by_category: BTreeMap::new(),
             embedder: None,
             entry_vectors: Vec::new(),
-            aliases: ALIASES.iter().map(|(a, c)| (normalise(a), *c)).collect(),
+            aliases: catalog::words().map(|(a, c)| (normalise(a), c)).collect(),
             vocabulary: Vec::new(),
             word_ids: BTreeMap::new(),
         }
@@ -419,9 +331,10 @@ impl AssetIndex {
         let i = self.entries.len() - 1;
         self.by_category.insert(category.to_owned(), i);
         self.add_name(i, category);
-        for (alias, target) in ALIASES {
-            if *target == category {
-                self.add_name(i, alias);
+        // An imported category named like a built-in one answers to the table's words too.
+        for (word, target) in catalog::words() {
+            if target == category {
+                self.add_name(i, word);
             }
         }
         i

@@ -4,7 +4,9 @@
 //! Ranking stages, best first:
 //! 1. the query names a category exactly (`"coffee table"`, `"coffee_tables"`);
 //! 2. the query is a synonym: the category's own synonyms, the imported asset's synonyms, or the
-//!    built-in alias table ([`ALIASES`]: couch → sofa, bookcase → bookshelf, TV → television, …);
+//!    words of the one category table that the planner reads too
+//!    ([`scenethesis_assets::catalog::words`]: couch → sofa, bookcase → bookshelf, TV →
+//!    television, …);
 //! 3. fuzzy word match: overlap of the query's words with a name's words, tolerant of typos
 //!    (edit distance), and with single aliased words replaced (`"big tv"` → `big television`);
 //! 4. when a [`TextEmbedder`] is attached, cosine similarity of embeddings lifts candidates the
@@ -19,4 +21,4 @@
 mod index;
 pub mod text;
 
-pub use index::{AssetIndex, Candidate, EmbedError, MatchReason, TextEmbedder, ALIASES};
+pub use index::{AssetIndex, Candidate, EmbedError, MatchReason, TextEmbedder};

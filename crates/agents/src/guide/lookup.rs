@@ -7,7 +7,7 @@ use super::AssetLookup;
 use crate::knowledge::{Knowledge, Mount, NominalShape};
 use crate::plan::PlannedObject;
 
-/// Box-shaped metadata from the category priors (`knowledge/categories.toml`): nominal size
+/// Box-shaped metadata from the category priors (the `plan` rows of `crates/assets/data/categories.toml`): nominal size
 /// and support surfaces by shape. For planning and layout before real assets are chosen, and
 /// for categories no generator provides.
 #[derive(Debug, Clone, Copy)]

@@ -1,9 +1,13 @@
 //! The asset builder of the item and outdoor generators: [`AssetBuilder`] with shorthands for
 //! the materials and part families small items are made of.
 
+use rand_chacha::ChaCha8Rng;
 use scenethesis_scene_graph::{Material, MeshPart};
 
-use crate::primitives::{ellipsoid, frustum, polyline, ring_slab, tube, AssetBuilder};
+use crate::primitives::{
+    ellipsoid, fixed_material, frustum, pick_material, polyline, ring_slab, tube, AssetBuilder,
+    Palette,
+};
 use crate::{Asset, Placement, SupportSurface, SurfaceKind};
 
 /// Collects parts, materials and support surfaces in an [`AssetBuilder`], then normalises them
@@ -36,6 +40,23 @@ impl Builder {
         let mut m = Material::new(name, rgb, 0.05);
         m.base_color[3] = alpha;
         self.inner.material(m)
+    }
+
+    /// Draws a material from `palette` and returns its index.
+    pub(crate) fn palette(&mut self, palette: Palette, rng: &mut ChaCha8Rng) -> usize {
+        self.inner.material(pick_material(palette, rng))
+    }
+
+    /// Adds a material given in sRGB bytes (see [`fixed_material`]) and returns its index.
+    pub(crate) fn fixed(
+        &mut self,
+        name: &str,
+        srgb: [u8; 3],
+        roughness: f32,
+        metallic: f32,
+    ) -> usize {
+        self.inner
+            .material(fixed_material(name, srgb, roughness, metallic))
     }
 
     /// Flattens the underside into a contact patch `depth` high (see

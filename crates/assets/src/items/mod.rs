@@ -1,377 +1,90 @@
 //! Built-in generators for containers and small items (things that stand on the floor or rest on,
 //! in and under furniture). Dimensions per category are documented on each generator, in metres.
 
+mod bathroom;
 pub(crate) mod builder;
 pub(crate) mod containers;
 mod electronics;
 mod home;
+mod household;
+mod kitchen;
 mod lab;
 mod tableware;
 
-use crate::catalog::Category;
-use crate::Placement::{Floor, Surface};
+use crate::catalog::Generator;
 
-macro_rules! category {
-    ($name:literal, [$($syn:literal),* $(,)?], $placement:expr, $size:expr, $generate:path) => {
-        Category {
-            name: $name,
-            synonyms: &[$($syn),*],
-            placement: $placement,
-            size_range: $size,
-            generate: $generate,
-        }
-    };
-}
-
-/// The container and small-item categories of the registry.
-pub(crate) const CATEGORIES: &[Category] = &[
+/// The container and small-item generators of the registry, by category name (their rows are
+/// in `data/categories.toml`).
+pub(crate) const GENERATORS: &[(&str, Generator)] = &[
     // Containers.
-    category!(
-        "crate",
-        ["wooden crate", "fruit crate", "slatted crate"],
-        Floor,
-        [[0.388, 0.618], [0.252, 0.371], [0.291, 0.432]],
-        containers::wooden_crate
-    ),
-    category!(
-        "box",
-        ["cardboard box", "carton", "moving box", "parcel", "package"],
-        Floor,
-        [[0.247, 0.618], [0.176, 0.465], [0.216, 0.466]],
-        containers::cardboard_box
-    ),
-    category!(
-        "storage_bin",
-        ["plastic bin", "tote", "storage box", "tub"],
-        Floor,
-        [[0.368, 0.639], [0.194, 0.371], [0.271, 0.433]],
-        containers::storage_bin
-    ),
-    category!(
-        "basket",
-        ["wicker basket", "fruit basket", "bread basket"],
-        Surface,
-        [[0.221, 0.42], [0.116, 0.268], [0.221, 0.42]],
-        containers::basket
-    ),
-    category!(
-        "barrel",
-        ["cask", "keg", "wine barrel"],
-        Floor,
-        [[0.523, 0.696], [0.777, 1.01], [0.523, 0.696]],
-        containers::barrel
-    ),
-    category!(
-        "pallet",
-        ["skid", "wooden pallet", "shipping pallet"],
-        Floor,
-        [[1.164, 1.236], [0.135, 0.155], [0.776, 1.03]],
-        containers::pallet
-    ),
-    category!(
-        "shopping_basket",
-        ["shop basket", "grocery basket", "hand basket"],
-        Floor,
-        [[0.388, 0.494], [0.194, 0.258], [0.298, 0.369]],
-        containers::shopping_basket
-    ),
-    category!(
-        "toolbox",
-        ["tool box", "tool case"],
-        Floor,
-        [[0.376, 0.586], [0.198, 0.273], [0.195, 0.281]],
-        containers::toolbox
-    ),
-    category!(
-        "cooler",
-        ["ice chest", "cool box", "esky", "ice box"],
-        Floor,
-        [[0.489, 0.766], [0.33, 0.474], [0.32, 0.464]],
-        containers::cooler
-    ),
-    category!(
-        "trash_can",
-        [
-            "garbage can",
-            "bin",
-            "waste bin",
-            "wastebasket",
-            "dustbin",
-            "rubbish bin",
-            "trash bin"
-        ],
-        Floor,
-        [[0.213, 0.413], [0.292, 0.772], [0.213, 0.413]],
-        containers::trash_can
-    ),
-    category!(
-        "bucket",
-        ["pail"],
-        Floor,
-        [[0.258, 0.357], [0.232, 0.33], [0.249, 0.347]],
-        containers::bucket
-    ),
+    ("crate", containers::wooden_crate),
+    ("box", containers::cardboard_box),
+    ("storage_bin", containers::storage_bin),
+    ("basket", containers::basket),
+    ("barrel", containers::barrel),
+    ("pallet", containers::pallet),
+    ("shopping_basket", containers::shopping_basket),
+    ("toolbox", containers::toolbox),
+    ("cooler", containers::cooler),
+    ("trash_can", containers::trash_can),
+    ("bucket", containers::bucket),
     // Small items.
-    category!(
-        "book",
-        ["novel", "hardcover", "textbook", "volume"],
-        Surface,
-        [[0.019, 0.052], [0.204, 0.309], [0.145, 0.248]],
-        home::book
-    ),
-    category!(
-        "magazine",
-        ["journal", "periodical", "comic"],
-        Surface,
-        [[0.194, 0.237], [0.002, 0.011], [0.261, 0.309]],
-        home::magazine
-    ),
-    category!(
-        "mug",
-        ["coffee mug", "tea mug"],
-        Surface,
-        [[0.099, 0.129], [0.085, 0.109], [0.072, 0.093]],
-        tableware::mug
-    ),
-    category!(
-        "cup",
-        ["glass", "tumbler", "drinking glass", "paper cup", "teacup"],
-        Surface,
-        [[0.067, 0.093], [0.068, 0.124], [0.067, 0.093]],
-        tableware::cup
-    ),
-    category!(
-        "plate",
-        ["dish", "dinner plate", "saucer"],
-        Surface,
-        [[0.194, 0.288], [0.017, 0.029], [0.194, 0.288]],
-        tableware::plate
-    ),
-    category!(
-        "bowl",
-        ["salad bowl", "soup bowl", "cereal bowl"],
-        Surface,
-        [[0.116, 0.227], [0.048, 0.102], [0.116, 0.227]],
-        tableware::bowl
-    ),
-    category!(
-        "vase",
-        ["flower vase", "urn", "jar"],
-        Surface,
-        [[0.077, 0.185], [0.175, 0.411], [0.077, 0.185]],
-        tableware::vase
-    ),
-    category!(
-        "bottle",
-        ["wine bottle", "beer bottle", "glass bottle"],
-        Surface,
-        [[0.059, 0.085], [0.213, 0.33], [0.059, 0.085]],
-        tableware::bottle
-    ),
-    category!(
-        "can",
-        ["soda can", "tin can", "drink can", "beer can", "soda"],
-        Surface,
-        [[0.06, 0.068], [0.111, 0.174], [0.06, 0.068]],
-        tableware::can
-    ),
-    category!(
-        "fruit",
-        ["apple", "orange", "banana", "pear", "lemon"],
-        Surface,
-        [[0.052, 0.237], [0.032, 0.136], [0.034, 0.093]],
-        tableware::fruit
-    ),
-    category!(
-        "cushion",
-        ["pillow", "throw pillow", "scatter cushion"],
-        Surface,
-        [[0.337, 0.563], [0.097, 0.165], [0.217, 0.563]],
-        home::cushion
-    ),
-    category!(
-        "picture_frame",
-        ["photo frame", "photo", "framed photo"],
-        Surface,
-        [[0.126, 0.33], [0.126, 0.326], [0.054, 0.156]],
-        home::picture_frame
-    ),
-    category!(
-        "toy_car",
-        ["model car", "toy truck", "toy vehicle"],
-        Surface,
-        [[0.05, 0.172], [0.037, 0.14], [0.097, 0.309]],
-        home::toy_car
-    ),
-    category!(
-        "teddy_bear",
-        [
-            "teddy",
-            "stuffed animal",
-            "plush toy",
-            "soft toy",
-            "plushie"
-        ],
-        Surface,
-        [[0.113, 0.272], [0.18, 0.431], [0.103, 0.248]],
-        home::teddy_bear
-    ),
-    category!(
-        "toy_blocks",
-        ["building blocks", "wooden blocks", "blocks"],
-        Surface,
-        [[0.091, 0.266], [0.087, 0.258], [0.033, 0.06]],
-        home::toy_blocks
-    ),
-    category!(
-        "ball",
-        [
-            "football",
-            "soccer ball",
-            "basketball",
-            "volleyball",
-            "tennis ball"
-        ],
-        Surface,
-        [[0.064, 0.248], [0.064, 0.248], [0.064, 0.248]],
-        home::ball
-    ),
-    category!(
-        "dumbbell",
-        ["hand weight", "free weight", "barbell"],
-        Surface,
-        [[0.242, 0.433], [0.097, 0.206], [0.097, 0.206]],
-        home::dumbbell
-    ),
-    category!(
-        "kettlebell",
-        ["kettle bell"],
-        Surface,
-        [[0.135, 0.227], [0.179, 0.299], [0.135, 0.227]],
-        home::kettlebell
-    ),
-    category!(
-        "water_bottle",
-        [
-            "drinking bottle",
-            "flask bottle",
-            "sports bottle",
-            "thermos"
-        ],
-        Surface,
-        [[0.063, 0.083], [0.194, 0.279], [0.063, 0.083]],
-        tableware::water_bottle
-    ),
-    category!(
-        "beaker",
-        ["lab beaker", "measuring beaker"],
-        Surface,
-        [[0.048, 0.093], [0.068, 0.134], [0.052, 0.097]],
-        lab::beaker
-    ),
-    category!(
-        "flask",
-        ["erlenmeyer flask", "conical flask", "lab flask"],
-        Surface,
-        [[0.058, 0.134], [0.097, 0.206], [0.058, 0.134]],
-        lab::flask
-    ),
-    category!(
-        "test_tube_rack",
-        ["test tubes", "test tube", "tube rack"],
-        Surface,
-        [[0.114, 0.262], [0.107, 0.154], [0.058, 0.062]],
-        lab::test_tube_rack
-    ),
-    category!(
-        "microscope",
-        ["light microscope", "lab microscope"],
-        Surface,
-        [[0.129, 0.192], [0.276, 0.41], [0.169, 0.252]],
-        lab::microscope
-    ),
-    category!(
-        "paint_can",
-        ["paint tin", "paint bucket", "paint pot"],
-        Surface,
-        [[0.117, 0.207], [0.116, 0.206], [0.109, 0.199]],
-        tableware::paint_can
-    ),
-    category!(
-        "table_lamp",
-        ["desk lamp", "bedside lamp", "lamp"],
-        Surface,
-        [[0.194, 0.35], [0.31, 0.639], [0.194, 0.35]],
-        home::table_lamp
-    ),
-    category!(
-        "laptop",
-        ["notebook computer", "notebook", "macbook", "computer"],
-        Surface,
-        [[0.291, 0.392], [0.192, 0.277], [0.251, 0.405]],
-        electronics::laptop
-    ),
-    category!(
-        "monitor",
-        ["computer monitor", "computer screen", "display", "screen"],
-        Surface,
-        [[0.468, 0.741], [0.367, 0.565], [0.174, 0.248]],
-        electronics::monitor
-    ),
-    category!(
-        "keyboard",
-        ["computer keyboard"],
-        Surface,
-        [[0.339, 0.474], [0.017, 0.031], [0.116, 0.165]],
-        electronics::keyboard
-    ),
-    category!(
-        "television",
-        ["tv", "tv set", "telly", "flat screen", "flatscreen"],
-        Surface,
-        [[0.699, 1.492], [0.471, 0.949], [0.194, 0.309]],
-        electronics::television
-    ),
-    category!(
-        "cash_register",
-        ["till", "register", "pos terminal", "checkout register"],
-        Surface,
-        [[0.32, 0.431], [0.378, 0.433], [0.349, 0.454]],
-        electronics::cash_register
-    ),
-    category!(
-        "patient_monitor",
-        [
-            "vital signs monitor",
-            "heart monitor",
-            "ecg monitor",
-            "medical monitor"
-        ],
-        Surface,
-        [[0.252, 0.371], [0.252, 0.33], [0.12, 0.19]],
-        lab::patient_monitor
-    ),
-    category!(
-        "billiard_ball",
-        ["pool ball", "snooker ball", "cue ball"],
-        Surface,
-        [[0.055, 0.059], [0.051, 0.059], [0.055, 0.059]],
-        home::billiard_ball
-    ),
-    category!(
-        "sculpture",
-        ["statue", "statuette", "figurine", "art piece", "bust"],
-        Surface,
-        [[0.1, 0.386], [0.187, 0.547], [0.1, 0.386]],
-        home::sculpture
-    ),
-    category!(
-        "clock",
-        ["desk clock", "alarm clock", "table clock", "wall clock"],
-        Surface,
-        [[0.097, 0.227], [0.106, 0.249], [0.021, 0.06]],
-        home::clock
-    ),
+    ("book", home::book),
+    ("magazine", home::magazine),
+    ("mug", tableware::mug),
+    ("cup", tableware::cup),
+    ("plate", tableware::plate),
+    ("bowl", tableware::bowl),
+    ("vase", tableware::vase),
+    ("bottle", tableware::bottle),
+    ("can", tableware::can),
+    ("fruit", tableware::fruit),
+    ("cushion", home::cushion),
+    ("picture_frame", home::picture_frame),
+    ("toy_car", home::toy_car),
+    ("teddy_bear", home::teddy_bear),
+    ("toy_blocks", home::toy_blocks),
+    ("ball", home::ball),
+    ("dumbbell", home::dumbbell),
+    ("kettlebell", home::kettlebell),
+    ("water_bottle", tableware::water_bottle),
+    ("beaker", lab::beaker),
+    ("flask", lab::flask),
+    ("test_tube_rack", lab::test_tube_rack),
+    ("microscope", lab::microscope),
+    ("paint_can", tableware::paint_can),
+    ("table_lamp", home::table_lamp),
+    ("laptop", electronics::laptop),
+    ("monitor", electronics::monitor),
+    ("keyboard", electronics::keyboard),
+    ("television", electronics::television),
+    ("cash_register", electronics::cash_register),
+    ("patient_monitor", lab::patient_monitor),
+    ("billiard_ball", home::billiard_ball),
+    ("sculpture", home::sculpture),
+    ("clock", home::clock),
+    // Kitchen items.
+    ("microwave", kitchen::microwave),
+    ("toaster", kitchen::toaster),
+    ("coffee_machine", kitchen::coffee_machine),
+    ("kettle", kitchen::kettle),
+    ("pot", kitchen::pot),
+    ("pan", kitchen::pan),
+    ("cutlery", kitchen::cutlery),
+    ("cutting_board", kitchen::cutting_board),
+    ("knife_block", kitchen::knife_block),
+    ("dish_rack", kitchen::dish_rack),
+    // Bathroom items.
+    ("towel", bathroom::towel),
+    ("toilet_paper", bathroom::toilet_paper),
+    ("soap", bathroom::soap),
+    ("toothbrush_holder", bathroom::toothbrush_holder),
+    // Household items.
+    ("remote_control", household::remote_control),
+    ("phone", household::phone),
+    ("keys", household::keys),
+    ("alarm_clock", household::alarm_clock),
+    ("printer", household::printer),
 ];
 
 #[cfg(test)]
@@ -381,7 +94,7 @@ pub(crate) mod tests {
     use crate::{Asset, SurfaceKind};
 
     /// Checks the conventions every built-in asset must meet; returns the asset for more checks.
-    pub(crate) fn check_asset(category: &Category, seed: u64) -> Asset {
+    pub(crate) fn check_asset(category: &crate::catalog::Category, seed: u64) -> Asset {
         let asset = generate(category, seed);
         let name = category.name;
         assert!(!asset.mesh.parts.is_empty(), "{name}: no parts");
@@ -452,7 +165,9 @@ pub(crate) mod tests {
 
     #[test]
     fn every_item_category_meets_the_conventions_for_several_seeds() {
-        for category in CATEGORIES {
+        for category in
+            crate::catalog::categories().filter(|c| GENERATORS.iter().any(|(n, _)| *n == c.name))
+        {
             for seed in 0..6 {
                 check_asset(category, seed);
             }
@@ -461,7 +176,9 @@ pub(crate) mod tests {
 
     #[test]
     fn generators_are_deterministic_and_vary_with_the_seed() {
-        for category in CATEGORIES {
+        for category in
+            crate::catalog::categories().filter(|c| GENERATORS.iter().any(|(n, _)| *n == c.name))
+        {
             let a = generate(category, 11);
             assert_eq!(a, generate(category, 11), "{}", category.name);
             let varied = (12..20).any(|s| {

@@ -168,7 +168,7 @@ fn imported_assets_rank_next_to_and_just_above_the_builtin_generator() {
 }
 
 /// A deterministic test double for the embedding seam: bag-of-letter-trigram vectors with a
-/// few hand-made concept dimensions, so "somewhere to sleep" lands near "bed".
+/// few hand-made concept words, so "somewhere to sleep" lands near "bed".
 struct TrigramEmbedder;
 
 impl TextEmbedder for TrigramEmbedder {
@@ -178,13 +178,18 @@ impl TextEmbedder for TrigramEmbedder {
             .map(|t| {
                 let t = t.to_lowercase();
                 let mut v = vec![0.0f32; 64];
+                // Whole words, so that "bedside lamp" is not about sleeping.
+                let has = |concept: &str| {
+                    t.split(|c: char| !c.is_alphanumeric())
+                        .any(|w| w == concept)
+                };
                 for concept in ["sleep", "bed", "rest", "night"] {
-                    if t.contains(concept) {
+                    if has(concept) {
                         v[0] += 1.0;
                     }
                 }
                 for concept in ["drink", "coffee", "mug", "tea"] {
-                    if t.contains(concept) {
+                    if has(concept) {
                         v[1] += 1.0;
                     }
                 }
