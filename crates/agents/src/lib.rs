@@ -17,6 +17,7 @@
 
 mod guide;
 pub mod knowledge;
+pub mod places;
 mod plan;
 mod planner;
 mod prompt;
@@ -28,9 +29,11 @@ pub use guide::{
     ProceduralGuide, WalkwayReport,
 };
 pub use knowledge::{Knowledge, KnowledgeError};
+pub use places::{Family, PlaceKind, Thesaurus};
 pub use plan::{
     ConstraintTarget, Layer, Plan, PlanConstraint, PlanError, PlanRequest, PlannedObject, Planner,
-    Zone, BACK_WALL, FRONT_WALL, LEFT_WALL, RIGHT_WALL,
+    RequestedObject, Zone, BACK_WALL, FRONT_WALL, LEFT_WALL, MAX_COUNT_PER_OBJECT,
+    MAX_PLANNED_OBJECTS, MAX_PROMPT_CHARS, RIGHT_WALL,
 };
 pub use planner::KnowledgePlanner;
 pub use relations::relation_holds;

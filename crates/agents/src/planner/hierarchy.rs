@@ -23,6 +23,8 @@ pub(super) struct Tree {
     pub objects: Vec<PlannedObject>,
     /// The stated relations, by object id.
     pub constraints: Vec<PlanConstraint>,
+    /// Each draft's id, by draft index.
+    pub ids: Vec<String>,
 }
 
 /// Chooses the anchor, breaks relation and support loops, orders and names the drafts and
@@ -240,6 +242,7 @@ pub(super) fn build(
         anchor: ids[anchor].clone(),
         objects,
         constraints,
+        ids,
     })
 }
 

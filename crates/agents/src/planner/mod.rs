@@ -10,6 +10,7 @@ mod constrain;
 mod describe;
 mod hierarchy;
 mod interpret;
+mod requested;
 mod room;
 mod select;
 
@@ -20,6 +21,7 @@ use rand_chacha::ChaCha8Rng;
 use scenethesis_scene_graph::RelationKind;
 
 use crate::knowledge::Knowledge;
+use crate::places::Thesaurus;
 use crate::plan::*;
 
 /// Plans scenes from the embedded (or a supplied) archetype knowledge, with no API key.
@@ -32,6 +34,7 @@ use crate::plan::*;
 #[derive(Debug, Clone)]
 pub struct KnowledgePlanner {
     knowledge: Knowledge,
+    thesaurus: Thesaurus,
 }
 
 impl Default for KnowledgePlanner {
@@ -45,12 +48,22 @@ impl KnowledgePlanner {
     pub fn new() -> Self {
         Self {
             knowledge: Knowledge::builtin().clone(),
+            thesaurus: Thesaurus::builtin().clone(),
         }
     }
 
-    /// A planner over caller-supplied knowledge.
+    /// A planner over caller-supplied knowledge (and the embedded place thesaurus; places
+    /// whose archetypes the knowledge lacks are not used).
     pub fn with_knowledge(knowledge: Knowledge) -> Self {
-        Self { knowledge }
+        Self {
+            knowledge,
+            thesaurus: Thesaurus::builtin().clone(),
+        }
+    }
+
+    /// The planner's place thesaurus.
+    pub fn thesaurus(&self) -> &Thesaurus {
+        &self.thesaurus
     }
 
     /// The planner's knowledge.
@@ -87,7 +100,9 @@ impl Planner for KnowledgePlanner {
         let mut rng = ChaCha8Rng::seed_from_u64(request.seed ^ 0x5ce7_e515_9a11_0001);
         let mut drafting = select::select(self, &reading, &request.available_categories, &mut rng);
         constrain::apply_stated(self, &reading, &request.available_categories, &mut drafting);
-        let tree = hierarchy::build(self, &reading, request, drafting.drafts)?;
+        let drafts = std::mem::take(&mut drafting.drafts);
+        let tree = hierarchy::build(self, &reading, request, drafts)?;
+        let (requested, limits) = requested::requested(&reading, &drafting, &tree.ids);
         let room = room::size_room(
             &self.knowledge,
             &reading.archetypes,
@@ -109,6 +124,9 @@ impl Planner for KnowledgePlanner {
             constraints: tree.constraints,
             description,
             notes: drafting.notes,
+            assumptions: reading.assumptions,
+            limits: reading.limits.into_iter().chain(limits).collect(),
+            requested,
         })
     }
 }
@@ -146,13 +164,37 @@ struct Drafting {
     by_category: BTreeMap<String, Vec<usize>>,
     /// The drafts made for each mention of the prompt.
     mention_drafts: Vec<Vec<usize>>,
+    /// The category planned for each mention (`None`: not available).
+    mention_category: Vec<Option<String>>,
     /// What the planner substituted or left out, and why.
     notes: Vec<String>,
+    /// Planned objects still reserved for the prompt's mentions.
+    reserve: usize,
+    /// Instances left out by [`MAX_PLANNED_OBJECTS`], by category.
+    cut: BTreeMap<String, u32>,
 }
 
 impl Drafting {
-    /// Adds a draft of `category` at `place`; returns its index.
-    fn add(&mut self, category: &str, place: DraftPlace, hard: bool) -> usize {
+    /// Adds a draft of `category` at `place` and returns its index, or `None` when the plan
+    /// is full ([`MAX_PLANNED_OBJECTS`]; an archetype's own objects leave room for the
+    /// objects the prompt names, `requested`).
+    fn add(
+        &mut self,
+        category: &str,
+        place: DraftPlace,
+        hard: bool,
+        requested: bool,
+    ) -> Option<usize> {
+        let room = if requested {
+            self.reserve = self.reserve.saturating_sub(1);
+            MAX_PLANNED_OBJECTS
+        } else {
+            MAX_PLANNED_OBJECTS.saturating_sub(self.reserve)
+        };
+        if self.drafts.len() >= room {
+            *self.cut.entry(category.to_owned()).or_default() += 1;
+            return None;
+        }
         let idx = self.drafts.len();
         self.drafts.push(Draft {
             category: category.to_owned(),
@@ -166,6 +208,6 @@ impl Drafting {
             .entry(category.to_owned())
             .or_default()
             .push(idx);
-        idx
+        Some(idx)
     }
 }

@@ -27,6 +27,8 @@ pub(super) fn select(
     let primary = &archetypes[0];
     let mut out = Drafting {
         mention_drafts: vec![Vec::new(); analysis.mentions.len()],
+        // Room for every object the prompt names before the archetypes' own.
+        reserve: analysis.mentions.iter().map(|m| m.count as usize).sum(),
         ..Drafting::default()
     };
 
@@ -49,6 +51,8 @@ pub(super) fn select(
     // Mentions take over the first archetype group of their category.
     let mut mention_group: Vec<Option<usize>> = vec![None; analysis.mentions.len()];
     let mut mention_category: Vec<Option<String>> = vec![None; analysis.mentions.len()];
+    let mut excluded: BTreeSet<String> = BTreeSet::new();
+    let mut totals: BTreeSet<String> = BTreeSet::new();
     for (mi, m) in analysis.mentions.iter().enumerate() {
         match planner.substitute(&m.category, available) {
             Some(c) => {
@@ -61,7 +65,16 @@ pub(super) fn select(
                 let g = groups.iter().enumerate().position(|(gi, g)| {
                     g.category == c && !group_consumed[gi] && !mention_group.contains(&Some(gi))
                 });
-                mention_group[mi] = g;
+                if m.count == 0 {
+                    // "without chairs": no group of the category is planned.
+                    excluded.insert(c.clone());
+                } else if m.zone.is_none() {
+                    mention_group[mi] = g;
+                }
+                if m.numbered && m.zone.is_none() {
+                    // "three chairs" is the scene's total: no other group adds to it.
+                    totals.insert(c.clone());
+                }
                 mention_category[mi] = Some(c);
             }
             None => out.notes.push(format!(
@@ -81,6 +94,11 @@ pub(super) fn select(
                 .push(format!("`{}` is not available; left out", group.category));
             continue;
         };
+        let mention = mention_group.iter().position(|g| *g == Some(gi));
+        if excluded.contains(&category) || (mention.is_none() && totals.contains(&category)) {
+            group_consumed[gi] = true;
+            continue;
+        }
         if category != group.category
             && !out
                 .notes
@@ -92,7 +110,6 @@ pub(super) fn select(
                 group.category
             ));
         }
-        let mention = mention_group.iter().position(|g| *g == Some(gi));
         let count_for = |rng: &mut ChaCha8Rng| rng.random_range(group.min..=group.max);
         let hard = mention.is_some_and(|mi| stated_for(mi).next().is_some());
         match &group.place {
@@ -115,19 +132,17 @@ pub(super) fn select(
                         count_for(rng).max(m.count) * parents.len() as u32
                     };
                     for k in 0..total as usize {
-                        let d = out.add(
-                            &category,
-                            DraftPlace::Support(*kind, parents[k % parents.len()]),
-                            false,
-                        );
-                        out.mention_drafts[mi].push(d);
+                        let place = DraftPlace::Support(*kind, parents[k % parents.len()]);
+                        if let Some(d) = out.add(&category, place, false, true) {
+                            out.mention_drafts[mi].push(d);
+                        }
                     }
                     group_consumed[gi] = true;
                     continue;
                 }
                 for &p in &parents {
                     for _ in 0..count_for(rng) {
-                        out.add(&category, DraftPlace::Support(*kind, p), false);
+                        out.add(&category, DraftPlace::Support(*kind, p), false, false);
                     }
                 }
             }
@@ -165,12 +180,10 @@ pub(super) fn select(
                             Some(targets) => {
                                 // Spread over the target's instances.
                                 for k in 0..count as usize {
-                                    let d = out.add(
-                                        &category,
-                                        DraftPlace::Relative(*kind, targets[k % targets.len()]),
-                                        hard,
-                                    );
-                                    if let Some(mi) = mention {
+                                    let place =
+                                        DraftPlace::Relative(*kind, targets[k % targets.len()]);
+                                    let d = out.add(&category, place, hard, mention.is_some());
+                                    if let (Some(mi), Some(d)) = (mention, d) {
                                         out.mention_drafts[mi].push(d);
                                     }
                                 }
@@ -194,8 +207,8 @@ pub(super) fn select(
                     } else {
                         place.clone()
                     };
-                    let d = out.add(&category, p, hard);
-                    if let Some(mi) = mention {
+                    let d = out.add(&category, p, hard, mention.is_some());
+                    if let (Some(mi), Some(d)) = (mention, d) {
                         out.mention_drafts[mi].push(d);
                     }
                 }
@@ -222,10 +235,16 @@ pub(super) fn select(
             m.count.max(3)
         };
         for _ in 0..count {
-            let d = out.add(&category, DraftPlace::Zone(Zone::Free), false);
-            out.mention_drafts[mi].push(d);
+            if let Some(d) = out.add(&category, DraftPlace::Zone(Zone::Free), false, true) {
+                out.mention_drafts[mi].push(d);
+            }
         }
-        if stated_for(mi).next().is_none() {
+        if let (None, Some(zone)) = (stated_for(mi).next(), &m.zone) {
+            // A stand-in's own place ("an island" stands free in the middle).
+            for &d in &out.mention_drafts[mi] {
+                out.drafts[d].place = DraftPlace::Zone(zone.clone());
+            }
+        } else if stated_for(mi).next().is_none() {
             // Default place by the category's kind.
             let mount = prior.map(|p| p.mount).unwrap_or_default();
             let shape = prior.map(|p| p.shape).unwrap_or(NominalShape::None);
@@ -258,6 +277,7 @@ pub(super) fn select(
             }
         }
     }
+    out.mention_category = mention_category;
     out
 }
 
