@@ -10,11 +10,13 @@
 //!   (or open ground), floor objects placed by their relations while one connected walkway
 //!   reaches the door and every object, and children packed onto their parents' support
 //!   surfaces.
-//! - [`relation_holds`] checks a scene relation geometrically.
+//! - [`relation_holds`] checks a scene relation geometrically; [`check_prompt`] checks that a
+//!   scene holds every object its prompt names and every relation it states.
 //!
 //! An LLM planner and a vision guide implement the same traits.
 #![warn(missing_docs)]
 
+mod fidelity;
 mod guide;
 pub mod knowledge;
 pub mod places;
@@ -24,6 +26,7 @@ mod prompt;
 mod relations;
 mod text;
 
+pub use fidelity::{check_prompt, constraint_holds, BrokenRelation, MissingObject, PromptCheck};
 pub use guide::{
     AssetLookup, CatalogAssets, DroppedObject, Guide, GuideError, GuidedLayout, NominalAssets,
     ProceduralGuide, WalkwayReport,

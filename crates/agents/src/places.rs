@@ -403,12 +403,14 @@ fn read_nouns(text: &str, knowledge: &Knowledge) -> Result<Vec<NounAlias>, Knowl
             Some("corner") => Some(Zone::Corner),
             Some("free") => Some(Zone::Free),
             Some("wall-mounted") => Some(Zone::WallMounted),
-            Some(other) => return Err(invalid(
-                &entry,
-                format!(
+            Some(other) => {
+                return Err(invalid(
+                    &entry,
+                    format!(
                     "unknown zone `{other}`; expected center, wall, corner, free or wall-mounted"
                 ),
-            )),
+                ))
+            }
         };
         for words in &raw.words {
             let phrase = phrase_stems(words);
