@@ -24,10 +24,13 @@ pub(super) fn apply_stated(
     let analysis = &reading.analysis;
     // Stated relations become hard constraints.
     let mut split_seen: BTreeMap<(usize, usize), usize> = BTreeMap::new();
+    // The stated relation that last moved each draft (by its words), to report conflicts.
+    let mut moved_by: BTreeMap<usize, String> = BTreeMap::new();
     for s in &analysis.stated {
         let subjects = out.mention_drafts[s.subject].clone();
         for (k, &d) in subjects.iter().enumerate() {
             out.drafts[d].hard = true;
+            let before = out.drafts[d].place.clone();
             let kind = s.phrase.kind;
             match &s.target {
                 StatedTarget::Corner => {
@@ -56,6 +59,14 @@ pub(super) fn apply_stated(
                 StatedTarget::Mention(t) => {
                     let targets = &out.mention_drafts[*t];
                     if targets.is_empty() {
+                        if k == 0 {
+                            out.notes.push(format!(
+                                "\"{}\" {} \"{}\": the target is not planned (not asked for, or not available); the relation cannot hold",
+                                analysis.mentions[s.subject].words,
+                                s.words,
+                                analysis.mentions[*t].words
+                            ));
+                        }
                         continue;
                     }
                     let target = targets[k % targets.len()];
@@ -121,6 +132,15 @@ pub(super) fn apply_stated(
                         format!("{}#{target}", s.words),
                     ));
                 }
+            }
+            if out.drafts[d].place != before {
+                if let (0, Some(earlier)) = (k, moved_by.get(&d)) {
+                    out.notes.push(format!(
+                        "\"{}\": \"{}\" conflicts with the earlier \"{earlier}\", which moved it first; the later one places it and both are checked",
+                        analysis.mentions[s.subject].words, s.words
+                    ));
+                }
+                moved_by.insert(d, s.words.clone());
             }
         }
     }
