@@ -199,3 +199,29 @@ fn nouns_the_library_lacks_map_to_the_nearest_category_or_are_reported() {
     let p = plan("a desert island");
     assert!(p.requested.iter().all(|r| r.words != "island"));
 }
+
+#[test]
+fn conflicting_and_unplannable_relations_are_reported() {
+    // The mug is put on the desk and then inside the cabinet: the later relation places it,
+    // both stay constraints (one will be reported broken), and the plan notes the conflict.
+    let p =
+        plan("an office with a desk and a cabinet, a mug on the desk, the mug inside the cabinet");
+    let mug_constraints = p
+        .constraints
+        .iter()
+        .filter(|c| c.subject.starts_with("mug"))
+        .count();
+    assert!(mug_constraints >= 2, "{:?}", p.constraints);
+    assert!(
+        p.notes.iter().any(|n| n.contains("conflicts")),
+        "{:?}",
+        p.notes
+    );
+    // A relation to an object the prompt excludes cannot hold, and the plan says so.
+    let p = plan("a living room without a coffee table, a mug on the coffee table");
+    assert!(
+        p.notes.iter().any(|n| n.contains("not planned")),
+        "{:?}",
+        p.notes
+    );
+}
