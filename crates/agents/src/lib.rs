@@ -10,27 +10,33 @@
 //!   (or open ground), floor objects placed by their relations while one connected walkway
 //!   reaches the door and every object, and children packed onto their parents' support
 //!   surfaces.
-//! - [`relation_holds`] checks a scene relation geometrically.
+//! - [`relation_holds`] checks a scene relation geometrically; [`check_prompt`] checks that a
+//!   scene holds every object its prompt names and every relation it states.
 //!
 //! An LLM planner and a vision guide implement the same traits.
 #![warn(missing_docs)]
 
+mod fidelity;
 mod guide;
 pub mod knowledge;
+pub mod places;
 mod plan;
 mod planner;
 mod prompt;
 mod relations;
 mod text;
 
+pub use fidelity::{check_prompt, constraint_holds, BrokenRelation, MissingObject, PromptCheck};
 pub use guide::{
     AssetLookup, CatalogAssets, DroppedObject, Guide, GuideError, GuidedLayout, NominalAssets,
     ProceduralGuide, WalkwayReport,
 };
 pub use knowledge::{Knowledge, KnowledgeError};
+pub use places::{Family, PlaceKind, Thesaurus};
 pub use plan::{
     ConstraintTarget, Layer, Plan, PlanConstraint, PlanError, PlanRequest, PlannedObject, Planner,
-    Zone, BACK_WALL, FRONT_WALL, LEFT_WALL, RIGHT_WALL,
+    RequestedObject, Zone, BACK_WALL, FRONT_WALL, LEFT_WALL, MAX_COUNT_PER_OBJECT,
+    MAX_PLANNED_OBJECTS, MAX_PROMPT_CHARS, RIGHT_WALL,
 };
 pub use planner::KnowledgePlanner;
 pub use relations::relation_holds;

@@ -14,6 +14,16 @@ pub const FRONT_WALL: &str = "wall_2";
 /// Id of the right wall (+x, seen from the door looking at the back wall).
 pub const RIGHT_WALL: &str = "wall_3";
 
+/// The longest prompt the offline planner reads, in characters; a longer prompt is cut at a
+/// word boundary before this limit and the plan's `limits` say so.
+pub const MAX_PROMPT_CHARS: usize = 2000;
+/// The most instances of one requested object ("500 chairs" plans this many, and the plan's
+/// `limits` say so).
+pub const MAX_COUNT_PER_OBJECT: u32 = 50;
+/// The most objects one plan holds; objects the prompt names come first, and the plan's
+/// `limits` say what was left out.
+pub const MAX_PLANNED_OBJECTS: usize = 250;
+
 /// What a planner is asked for.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 pub struct PlanRequest {
@@ -155,6 +165,42 @@ pub struct Plan {
     pub description: String,
     /// What the planner substituted or left out, and why.
     pub notes: Vec<String>,
+    /// What the planner assumed to read the prompt: the kind of place an unknown scene type
+    /// was read as, or the generic room it fell back to (empty when the prompt names a known
+    /// scene type).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub assumptions: Vec<String>,
+    /// Limits that cut the request: prompt length, instances per object, objects per plan.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub limits: Vec<String>,
+    /// Every object the prompt names, with how many were asked for and the planned ids (or why
+    /// none could be planned).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub requested: Vec<RequestedObject>,
+}
+
+/// An object the prompt names, as planned.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct RequestedObject {
+    /// The prompt's words for it (singular stems), e.g. `office chair`.
+    pub words: String,
+    /// The category planned for it, or `None` when the library has nothing close.
+    pub category: Option<String>,
+    /// How many the prompt asks for (0 for "without …" / "no …" / "0 …"), after the
+    /// [`MAX_COUNT_PER_OBJECT`] cap.
+    pub count: u32,
+    /// The planned objects' ids (empty when none were asked for or none is available).
+    pub ids: Vec<String>,
+    /// Why the plan differs from the words (substituted, unavailable, capped), if it does.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
+}
+
+impl RequestedObject {
+    /// Whether the prompt asked for at least one instance that the plan could hold.
+    pub fn expected(&self) -> bool {
+        self.count > 0 && self.category.is_some()
+    }
 }
 
 impl Plan {

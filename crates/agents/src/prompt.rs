@@ -4,6 +4,8 @@
 use std::collections::BTreeSet;
 
 use crate::knowledge::{Knowledge, RelationPhrase};
+use crate::places::NounAlias;
+use crate::plan::{Zone, MAX_COUNT_PER_OBJECT};
 use crate::text::{tokenize, Token};
 
 /// An archetype's match against the prompt.
@@ -24,10 +26,21 @@ pub(crate) struct SceneMatch {
 pub(crate) struct Mention {
     /// The category.
     pub category: String,
-    /// How many (1 for a singular without a count word).
+    /// How many (1 for a singular without a count word; 0 for "no …", "without …", "0 …"),
+    /// at most [`MAX_COUNT_PER_OBJECT`].
     pub count: u32,
+    /// The count the prompt asked for when it was above [`MAX_COUNT_PER_OBJECT`].
+    pub capped_from: Option<u32>,
+    /// Where a noun the library lacks puts its stand-in ("an island": a kitchen counter in
+    /// the middle), if the noun table says.
+    pub zone: Option<Zone>,
+    /// Whether the words name a noun the library lacks and the category stands in for it.
+    pub stand_in: bool,
     /// Whether a count word or a singular article fixed the count.
     pub explicit_count: bool,
+    /// Whether a number or count word other than "a"/"an" fixed the count ("three chairs",
+    /// "no chairs"): the count is then the scene's total for the category.
+    pub numbered: bool,
     /// The words of the mention as written (stems).
     pub words: String,
 }
@@ -69,6 +82,8 @@ pub(crate) struct Analysis {
     pub scene_words: bool,
     /// Whether the prompt holds any word at all.
     pub any_word: bool,
+    /// Nouns the prompt names that the library has nothing close to (prompt words).
+    pub unavailable: Vec<String>,
 }
 
 #[derive(Debug, Clone)]
@@ -85,6 +100,7 @@ enum Item {
 pub(crate) fn analyze(
     prompt: &str,
     knowledge: &Knowledge,
+    nouns: &[NounAlias],
     available: &BTreeSet<String>,
 ) -> Analysis {
     let tokens = tokenize(prompt);
@@ -171,6 +187,10 @@ pub(crate) fn analyze(
     let mut items: Vec<Item> = Vec::new();
     let mut count: Option<u32> = None;
     let mut definite = false;
+    // "without" negates the mentions up to the next clause or "with"; "no" the next one.
+    let mut negated = false;
+    // Whether the pending count came from an article ("a chair": one, but not a total).
+    let mut article = false;
     // After "its" / "their" the next noun names a part of the target ("its shelves").
     let mut possessive = false;
     let mut i = 0;
@@ -180,6 +200,7 @@ pub(crate) fn analyze(
             count = None;
             definite = false;
             possessive = false;
+            negated = false;
             i += 1;
             continue;
         };
@@ -208,12 +229,57 @@ pub(crate) fn analyze(
             i += len;
             continue;
         }
+        // A noun the library lacks, when its phrase is longer than any category phrase here.
+        let alias = nouns.iter().find(|a| {
+            matches_at(i, &a.phrase)
+                && a.phrase.len() > noun_len.unwrap_or(0)
+                && a.only_with
+                    .as_ref()
+                    .is_none_or(|c| scene_categories.contains(c.as_str()))
+        });
+        if let Some(alias) = alias {
+            let last = i + alias.phrase.len() - 1;
+            let plural = matches!(&tokens[last], Token::Word { plural: true, .. });
+            let words = alias.phrase.join(" ");
+            match alias.category.as_deref() {
+                Some(category) => {
+                    let m = push_mention(
+                        &mut out,
+                        &mut items,
+                        category,
+                        if negated { Some(0) } else { count },
+                        negated || !article,
+                        plural,
+                        definite,
+                        words.clone(),
+                    );
+                    if out.mentions[m].words == words {
+                        out.mentions[m].zone = alias.zone.clone();
+                        out.mentions[m].stand_in = true;
+                    }
+                }
+                None if !negated && count != Some(0) => out.unavailable.push(words),
+                None => {}
+            }
+            count = None;
+            definite = false;
+            i += alias.phrase.len();
+            continue;
+        }
         if let Some((phrase, category)) = category_phrases.iter().find(|(p, _)| matches_at(i, p)) {
             let last = i + phrase.len() - 1;
             let plural = matches!(&tokens[last], Token::Word { plural: true, .. });
             let words = phrase.join(" ");
+            let n = if negated { Some(0) } else { count };
             push_mention(
-                &mut out, &mut items, category, count, plural, definite, words,
+                &mut out,
+                &mut items,
+                category,
+                n,
+                negated || !article,
+                plural,
+                definite,
+                words,
             );
             count = None;
             definite = false;
@@ -229,7 +295,7 @@ pub(crate) fn analyze(
                 .rposition(|m| list.contains(&m.category));
             if definite && earlier.is_some() {
                 items.push(Item::Mention(earlier.unwrap_or_default()));
-            } else if plural && count.is_none() && usable.len() > 1 {
+            } else if plural && count.is_none_or(|n| n == 0) && usable.len() > 1 {
                 // "toys": several categories of the list, preferring the scene's own.
                 let mut chosen: Vec<&String> = usable
                     .iter()
@@ -251,7 +317,8 @@ pub(crate) fn analyze(
                         &mut out,
                         &mut items,
                         c,
-                        Some(2),
+                        Some(if negated || count == Some(0) { 0 } else { 2 }),
+                        negated || count == Some(0),
                         true,
                         false,
                         word.to_owned(),
@@ -267,7 +334,8 @@ pub(crate) fn analyze(
                     &mut out,
                     &mut items,
                     &c,
-                    count,
+                    if negated { Some(0) } else { count },
+                    negated || !article,
                     plural,
                     definite,
                     word.to_owned(),
@@ -285,14 +353,29 @@ pub(crate) fn analyze(
                 items.push(Item::Pronoun { possessive: true });
                 possessive = true;
             }
-            "with" | "holding" | "containing" | "featuring" | "including" => items.push(Item::With),
+            "with" | "holding" | "containing" | "featuring" | "including" => {
+                negated = false;
+                items.push(Item::With);
+            }
+            "without" | "minus" | "lacking" => negated = true,
+            "but" => negated = false,
+            "no" | "zero" | "none" => {
+                count = Some(0);
+                article = false;
+            }
             "and" | "plus" => items.push(Item::And),
             _ => {
                 if let Some(n) = voc.counts.get(word) {
                     // "a few" → few wins over a; "a couple" → couple wins.
                     count = Some(*n);
+                    article = matches!(word, "a" | "an");
                 } else if let Ok(n) = word.parse::<u32>() {
-                    count = Some(n.clamp(1, 50));
+                    count = Some(n);
+                    article = false;
+                } else if word.chars().all(|c| c.is_ascii_digit()) {
+                    // More digits than a u32 holds.
+                    count = Some(u32::MAX);
+                    article = false;
                 } else if word == "lot" {
                     count = Some(6);
                 }
@@ -306,11 +389,13 @@ pub(crate) fn analyze(
     out
 }
 
+#[allow(clippy::too_many_arguments)]
 fn push_mention(
     out: &mut Analysis,
     items: &mut Vec<Item>,
     category: &str,
     count: Option<u32>,
+    numbered: bool,
     plural: bool,
     definite: bool,
     words: String,
@@ -324,12 +409,22 @@ fn push_mention(
     let idx = out.mentions.len();
     let explicit = count.is_some() || !plural;
     let n = count.unwrap_or(if plural { 3 } else { 1 });
-    // "a few books" keeps the count; "an armchair" is one.
+    let capped_from = (n > MAX_COUNT_PER_OBJECT).then_some(n);
+    let n = n.min(MAX_COUNT_PER_OBJECT);
+    // "a few books" keeps the count; "an armchair" is one; "no chairs" is none.
     out.mentions.push(Mention {
         category: category.to_owned(),
-        count: if plural { n.max(2) } else { n.max(1) },
+        count: match (n, plural) {
+            (0, _) => 0,
+            (n, true) => n.max(2),
+            (n, false) => n.max(1),
+        },
         explicit_count: explicit,
+        numbered: numbered && count.is_some(),
         words,
+        capped_from,
+        zone: None,
+        stand_in: false,
     });
     items.push(Item::Mention(idx));
     idx

@@ -3,7 +3,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use scenethesis_agents::{relation_holds, Plan};
+use scenethesis_agents::{check_prompt, relation_holds, Plan};
 use scenethesis_eval::{
     evaluate_with_cache, DecompositionCache, EvalError, EvalScene, SceneMetrics,
 };
@@ -37,6 +37,8 @@ pub enum FailureKind {
     Unreachable,
     /// The largest walkable region is less than the required share of the free floor.
     Walk,
+    /// An object the prompt asked for is not in the scene.
+    MissingObject,
 }
 
 /// One reason a scene was rejected.
@@ -217,6 +219,7 @@ impl Judge for GeometricJudge {
                 }
             }
         }
+        failures.extend(prompt_failures(input.plan, scene));
         if !metrics.unreachable_floor_objects.is_empty() {
             failures.push(Failure {
                 kind: FailureKind::Unreachable,
@@ -249,6 +252,40 @@ impl Judge for GeometricJudge {
             relations_checked,
         })
     }
+}
+
+/// What the prompt asked for and the scene lacks: requested objects missing from the scene
+/// (the plan lists their ids even after a re-plan dropped them) and stated relations of
+/// present objects that do not hold.
+fn prompt_failures(plan: &Plan, scene: &Scene) -> Vec<Failure> {
+    let check = check_prompt(plan, scene);
+    let mut failures: Vec<Failure> = check
+        .missing
+        .iter()
+        .map(|m| Failure {
+            kind: FailureKind::MissingObject,
+            objects: m.missing_ids.clone(),
+            detail: format!(
+                "the prompt asks for {} \"{}\" (`{}`); {} in the scene",
+                m.requested, m.words, m.category, m.present
+            ),
+        })
+        .collect();
+    failures.extend(
+        check
+            .broken
+            .iter()
+            .filter(|b| scene.object(&b.subject).is_some())
+            .map(|b| Failure {
+                kind: FailureKind::Relation,
+                objects: vec![b.subject.clone()],
+                detail: format!(
+                    "stated \"{}\": `{}` {} `{}` {}",
+                    b.phrase, b.subject, b.kind, b.target, b.reason
+                ),
+            }),
+    );
+    failures
 }
 
 /// Position of every object in the breadth-first placement order (stored order if the graph

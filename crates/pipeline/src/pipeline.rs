@@ -438,7 +438,10 @@ impl Pipeline {
                 .filter(|id| **id != plan.anchor)
                 .cloned()
                 .collect();
-            let requested = |id: &String| plan.object(id).is_some_and(|o| o.hard);
+            let requested = |id: &String| {
+                plan.object(id).is_some_and(|o| o.hard)
+                    || plan.requested.iter().any(|r| r.ids.contains(id))
+            };
             let (asked_for, optional): (Vec<String>, Vec<String>) =
                 movable.iter().cloned().partition(requested);
             let last_chance = round + 1 == options.max_replans;
@@ -530,6 +533,9 @@ impl Pipeline {
             verdict: best.verdict.clone(),
             optimizer_issues: object_issues,
             plan_notes: best.plan.notes.clone(),
+            assumptions: original_plan.assumptions.clone(),
+            limits: original_plan.limits.clone(),
+            prompt_check: scenethesis_agents::check_prompt(&original_plan, &best.scene),
             notes,
             timings: Stage::ALL
                 .iter()

@@ -1,6 +1,6 @@
 //! `report.json`: what a run measured and decided.
 
-use scenethesis_agents::DroppedObject;
+use scenethesis_agents::{DroppedObject, PromptCheck};
 use serde::{Deserialize, Serialize};
 
 use crate::judge::Verdict;
@@ -94,6 +94,16 @@ pub struct Report {
     pub optimizer_issues: Vec<ObjectIssue>,
     /// What the planner substituted or left out.
     pub plan_notes: Vec<String>,
+    /// What the planner assumed to read the prompt (an unknown place read as a known kind,
+    /// a generic room).
+    #[serde(default)]
+    pub assumptions: Vec<String>,
+    /// Limits that cut the request (prompt length, instances per object, objects per plan).
+    #[serde(default)]
+    pub limits: Vec<String>,
+    /// Whether the output holds every object the prompt names and every relation it states.
+    #[serde(default)]
+    pub prompt_check: PromptCheck,
     /// Other notes (e.g. why previews were skipped).
     pub notes: Vec<String>,
     /// Seconds per stage.
@@ -103,24 +113,40 @@ pub struct Report {
 }
 
 impl Report {
-    /// A one-line summary: verdict, objects, categories, metrics and time.
+    /// A one-line summary: verdict, objects, categories, requested objects present and stated
+    /// relations held, metrics, time, then what was unavailable, assumed or capped.
     pub fn summary_line(&self) -> String {
         let m = &self.verdict.metrics;
         let reach = m
             .reach_floor
             .map_or("n/a".to_owned(), |r| format!("{r:.2}"));
-        format!(
-            "{} — {} objects, {} categories, {} relation kinds; Col-O {:.1}% Inst-O {:.1}% Walk {:.2} Reach {}; {} attempt(s), {:.2} s",
+        let p = &self.prompt_check;
+        let mut line = format!(
+            "{} — {} objects, {} categories, {} relation kinds; requested {}/{} present, relations {}/{} held; Col-O {:.1}% Inst-O {:.1}% Walk {:.2} Reach {}; {} attempt(s), {:.2} s",
             if self.accepted { "accepted" } else { "NOT accepted" },
             self.objects,
             m.categories,
             m.relation_kinds,
+            p.present,
+            p.requested,
+            p.relations_held,
+            p.relations_stated,
             m.col_o * 100.0,
             m.inst_o * 100.0,
             m.walk,
             reach,
             self.attempts,
             self.total_seconds,
-        )
+        );
+        if !p.unavailable.is_empty() {
+            line.push_str(&format!("; unavailable: {}", p.unavailable.join(", ")));
+        }
+        for a in &self.assumptions {
+            line.push_str(&format!("; assumed: {a}"));
+        }
+        for l in &self.limits {
+            line.push_str(&format!("; capped: {l}"));
+        }
+        line
     }
 }

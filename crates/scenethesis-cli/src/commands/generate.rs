@@ -166,6 +166,13 @@ pub fn run(args: GenerateArgs) -> Result<()> {
         .with_context(|| format!("generating \"{}\"", args.prompt))?;
     println!("{}", generated.report.summary_line());
     let rejected = !generated.report.accepted;
+    if rejected && !args.strict {
+        // Said clearly even without --strict (which turns it into an error below).
+        eprintln!(
+            "warning: the judge did not accept the scene: {}",
+            rejection(&generated.report)
+        );
+    }
     if args.strict && rejected && out.holds_accepted_scene() {
         anyhow::bail!(
             "the judge did not accept the scene ({}); the accepted scene already in {} was kept \

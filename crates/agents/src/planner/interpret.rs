@@ -1,0 +1,263 @@
+//! Phase 1, interpret: read the prompt and choose the archetypes the scene draws on.
+//!
+//! No non-empty prompt is refused. The scene type comes, in order, from: an archetype the
+//! prompt names; a place of the thesaurus (`knowledge/places.toml`: "a pharmacy" is a shop
+//! selling medicine) when its phrase is longer than any archetype phrase found; archetypes
+//! sharing the prompt's words; the archetypes holding the objects the prompt names; the
+//! generic room of a place family ("a haunted castle" → fantasy); the default archetype.
+//! Everything but the first is recorded as an assumption of the plan.
+
+use std::collections::BTreeSet;
+
+use crate::knowledge::Archetype;
+use crate::places::Family;
+use crate::plan::{PlanError, PlanRequest, MAX_PROMPT_CHARS};
+use crate::prompt::{analyze, Analysis};
+use crate::text::tokenize;
+
+use super::KnowledgePlanner;
+
+/// What the planner made of a prompt before drafting any object.
+#[derive(Debug, Clone)]
+pub(super) struct Reading {
+    /// The prompt, trimmed (and cut to [`MAX_PROMPT_CHARS`]).
+    pub prompt: String,
+    /// Mentions, stated relations and archetype matches.
+    pub analysis: Analysis,
+    /// The archetypes the plan draws on, primary first (places of the thesaurus derived).
+    pub archetypes: Vec<Archetype>,
+    /// The plan's scene type: the primary archetype's name, or `custom` for a blend.
+    pub scene_type: String,
+    /// What was assumed to read the prompt (empty when it names a known scene type).
+    pub assumptions: Vec<String>,
+    /// Limits applied to the prompt (its length).
+    pub limits: Vec<String>,
+}
+
+/// Reads `request.prompt` and chooses its archetypes.
+pub(super) fn interpret(
+    planner: &KnowledgePlanner,
+    request: &PlanRequest,
+) -> Result<Reading, PlanError> {
+    let mut prompt = request.prompt.trim();
+    let knowledge = &planner.knowledge;
+    if !prompt.chars().any(char::is_alphanumeric) {
+        return Err(PlanError::EmptyPrompt);
+    }
+    let mut limits = Vec::new();
+    let length = prompt.chars().count();
+    if length > MAX_PROMPT_CHARS {
+        // Cut at the last word boundary within the limit.
+        let end = prompt
+            .char_indices()
+            .nth(MAX_PROMPT_CHARS)
+            .map_or(prompt.len(), |(i, _)| i);
+        let cut = prompt[..end]
+            .rfind(|c: char| !c.is_alphanumeric())
+            .filter(|&i| i > 0)
+            .unwrap_or(end);
+        prompt = prompt[..cut].trim_end();
+        limits.push(format!(
+            "the prompt is {length} characters long; only its first {} were read (the limit is {MAX_PROMPT_CHARS})",
+            prompt.chars().count()
+        ));
+    }
+    let analysis = analyze(
+        prompt,
+        knowledge,
+        &planner.thesaurus.nouns,
+        &request.available_categories,
+    );
+    let choice = choose_archetypes(planner, &analysis, prompt);
+    if choice.archetypes.is_empty() {
+        // Only knowledge without archetypes gets here.
+        return Err(PlanError::Unintelligible {
+            prompt: prompt.to_owned(),
+        });
+    }
+    let scene_type = if choice.blended {
+        "custom".to_owned()
+    } else {
+        choice.archetypes[0].name.clone()
+    };
+    Ok(Reading {
+        prompt: prompt.to_owned(),
+        analysis,
+        archetypes: choice.archetypes,
+        scene_type,
+        assumptions: choice.assumption.into_iter().collect(),
+        limits,
+    })
+}
+
+/// The archetypes chosen for a prompt.
+struct Choice {
+    archetypes: Vec<Archetype>,
+    blended: bool,
+    assumption: Option<String>,
+}
+
+/// The archetypes best matching the analysis (best first), whether they blend, and what was
+/// assumed.
+fn choose_archetypes(planner: &KnowledgePlanner, analysis: &Analysis, prompt: &str) -> Choice {
+    let knowledge = &planner.knowledge;
+    let thesaurus = &planner.thesaurus;
+    let tokens = tokenize(prompt);
+    let stems: Vec<Option<&str>> = tokens.iter().map(|t| t.stem()).collect();
+    let by_index = |chosen: &[usize]| -> Vec<Archetype> {
+        chosen
+            .iter()
+            .map(|&i| knowledge.archetypes[i].clone())
+            .collect()
+    };
+    let names = |chosen: &[usize]| -> String {
+        chosen
+            .iter()
+            .map(|&i| format!("`{}`", knowledge.archetypes[i].name))
+            .collect::<Vec<_>>()
+            .join(" and ")
+    };
+    let scenes = &analysis.scenes;
+    // A place of the thesaurus that derives, with its phrase length.
+    let place = thesaurus
+        .find_place(&stems)
+        .and_then(|(p, len)| thesaurus.archetype(&p.name, knowledge).map(|a| (p, a, len)));
+    let named = scenes.first().filter(|best| best.phrase).filter(|best| {
+        place
+            .as_ref()
+            .is_none_or(|(_, _, len)| *len <= best.phrase_len)
+    });
+    if let Some(best) = named {
+        let ties = scenes
+            .iter()
+            .take_while(|m| (m.score - best.score).abs() < 1e-9)
+            .count();
+        // Two archetypes named equally strongly ("an alchemy workshop") blend.
+        let rival = scenes
+            .get(1)
+            .is_some_and(|m| m.phrase && m.phrase_len == best.phrase_len);
+        if ties == 1 && !rival {
+            return Choice {
+                archetypes: by_index(&[best.archetype]),
+                blended: false,
+                assumption: None,
+            };
+        }
+        let mut chosen: Vec<usize> = scenes.iter().take(2).map(|m| m.archetype).collect();
+        chosen.dedup();
+        return Choice {
+            assumption: Some(format!(
+                "the prompt names {} equally; blended them",
+                names(&chosen)
+            )),
+            archetypes: by_index(&chosen),
+            blended: true,
+        };
+    }
+    if let Some((place, archetype, _)) = place {
+        let name = place.name.replace('_', " ");
+        let article = if name.starts_with(['a', 'e', 'i', 'o', 'u']) {
+            "an"
+        } else {
+            "a"
+        };
+        return Choice {
+            assumption: Some(format!(
+                "read as {article} {name}: {} (like `{}`, family {})",
+                place.gloss, place.like, place.family
+            )),
+            archetypes: vec![archetype],
+            blended: false,
+        };
+    }
+    let family = thesaurus.find_family(&stems).and_then(|(f, word)| {
+        thesaurus
+            .archetype(&f.room, knowledge)
+            .map(|a| (f, word, a))
+    });
+    let family_choice = |(family, word, archetype): (&Family, &str, Archetype)| Choice {
+        assumption: Some(format!(
+            "\"{word}\" is a {} place; assumed the family's generic room (`{}`)",
+            family.name, family.room
+        )),
+        archetypes: vec![archetype],
+        blended: !analysis.mentions.is_empty(),
+    };
+    // A family's head noun ("a city bus") tells more than a word shared with an archetype
+    // phrase ("city park"), unless the prompt names objects.
+    if analysis.mentions.is_empty() {
+        if let Some(f) = family.clone() {
+            return family_choice(f);
+        }
+    }
+    if !scenes.is_empty() {
+        let mut chosen: Vec<usize> = scenes.iter().take(2).map(|m| m.archetype).collect();
+        chosen.dedup();
+        return Choice {
+            assumption: Some(format!(
+                "no known scene type is named; blended {}, which share the prompt's words",
+                names(&chosen)
+            )),
+            archetypes: by_index(&chosen),
+            blended: true,
+        };
+    }
+    // No scene words: the archetypes holding most of the mentioned categories.
+    let mentioned: BTreeSet<&str> = analysis
+        .mentions
+        .iter()
+        .filter(|m| m.count > 0)
+        .map(|m| m.category.as_str())
+        .collect();
+    if !mentioned.is_empty() {
+        let mut ranked: Vec<(usize, usize)> = knowledge
+            .archetypes
+            .iter()
+            .enumerate()
+            .map(|(i, a)| {
+                let held = a
+                    .objects
+                    .iter()
+                    .filter(|g| mentioned.contains(g.category.as_str()))
+                    .map(|g| &g.category)
+                    .collect::<BTreeSet<_>>()
+                    .len();
+                // An archetype anchored on a mentioned object fits best.
+                let anchored = held > 0 && mentioned.contains(a.anchor.as_str());
+                (2 * held + usize::from(anchored), i)
+            })
+            .filter(|(n, _)| *n > 0)
+            .collect();
+        ranked.sort_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
+        if !ranked.is_empty() {
+            let chosen: Vec<usize> = ranked.iter().take(2).map(|r| r.1).collect();
+            return Choice {
+                assumption: Some(format!(
+                    "no scene type is named; chose {}, which hold the objects the prompt names",
+                    names(&chosen)
+                )),
+                archetypes: by_index(&chosen),
+                blended: true,
+            };
+        }
+    }
+    if let Some(f) = family {
+        return family_choice(f);
+    }
+    let default = knowledge
+        .archetype(&knowledge.vocabulary.default_archetype)
+        .or(knowledge.archetypes.first());
+    let why = if analysis.scene_words || !analysis.mentions.is_empty() {
+        "no scene type is named"
+    } else {
+        "no word of the prompt names a place, an object or a setting the planner knows"
+    };
+    Choice {
+        assumption: Some(format!(
+            "{why}; assumed a generic room (`{}`)",
+            default.map_or("", |a| a.name.as_str())
+        )),
+        archetypes: default.cloned().into_iter().collect(),
+        blended: !analysis.mentions.is_empty(),
+    }
+}

@@ -1,0 +1,72 @@
+//! Phase 6, requested: every object the prompt names, with how many were asked for and the
+//! planned ids, and the limits that cut the plan.
+
+use crate::plan::{RequestedObject, MAX_COUNT_PER_OBJECT, MAX_PLANNED_OBJECTS};
+
+use super::interpret::Reading;
+use super::Drafting;
+
+/// The requested objects of the plan and the limits applied to it (besides the prompt's
+/// length).
+pub(super) fn requested(
+    reading: &Reading,
+    drafting: &Drafting,
+    ids: &[String],
+) -> (Vec<RequestedObject>, Vec<String>) {
+    let mut limits = Vec::new();
+    let mut out = Vec::new();
+    for (mi, m) in reading.analysis.mentions.iter().enumerate() {
+        let category = drafting.mention_category.get(mi).cloned().flatten();
+        let planned: Vec<String> = drafting.mention_drafts[mi]
+            .iter()
+            .map(|&d| ids[d].clone())
+            .collect();
+        let mut notes = Vec::new();
+        match &category {
+            None => notes.push(format!(
+                "the library has no `{}` and nothing close enough",
+                m.category
+            )),
+            Some(c) if *c != m.category => {
+                notes.push(format!("`{}` is not available; using `{c}`", m.category))
+            }
+            Some(c) if m.stand_in => {
+                notes.push(format!("the library has no \"{}\"; using `{c}`", m.words))
+            }
+            Some(_) => {}
+        }
+        if let Some(asked) = m.capped_from {
+            notes.push(format!(
+                "asked for {asked}; capped at {MAX_COUNT_PER_OBJECT} (the most instances of one object)"
+            ));
+            limits.push(format!(
+                "\"{}\": {asked} asked for, {MAX_COUNT_PER_OBJECT} planned (the most instances of one object)",
+                m.words
+            ));
+        }
+        out.push(RequestedObject {
+            words: m.words.clone(),
+            category,
+            count: m.count,
+            ids: planned,
+            note: (!notes.is_empty()).then(|| notes.join("; ")),
+        });
+    }
+    for words in &reading.analysis.unavailable {
+        out.push(RequestedObject {
+            words: words.clone(),
+            category: None,
+            count: 1,
+            ids: Vec::new(),
+            note: Some(format!(
+                "the library has nothing close to \"{words}\"; left out"
+            )),
+        });
+    }
+    for (category, n) in &drafting.cut {
+        limits.push(format!(
+            "{n} × `{category}` left out: a plan holds at most {MAX_PLANNED_OBJECTS} objects"
+        ));
+    }
+    (out, limits)
+}
