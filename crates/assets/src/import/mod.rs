@@ -132,6 +132,9 @@ pub enum MeshLoadError {
     /// The file holds no triangles.
     #[error("the file holds no triangles")]
     Empty,
+    /// The mesh loaded but cannot be used as an asset (no area, too large, ...).
+    #[error("{0}")]
+    Unusable(String),
     /// The manifest entry itself is unusable.
     #[error("invalid manifest entry: {0}")]
     Entry(String),
@@ -277,7 +280,7 @@ pub fn import_directory(dir: impl AsRef<Path>) -> Result<ImportReport, ImportErr
         let entry = match entry.and_then(|e| check_entry(&e).map(|()| e)) {
             Ok(e) => e,
             Err(reason) => {
-                tracing::warn!("skipping asset {label}: {reason}");
+                tracing::debug!("skipping asset {label}: {reason}");
                 report.warnings.push(ImportWarning {
                     path: manifest_path.clone(),
                     reason: format!("{label}: {reason}"),
@@ -285,14 +288,13 @@ pub fn import_directory(dir: impl AsRef<Path>) -> Result<ImportReport, ImportErr
                 continue;
             }
         };
-        let shown = printable(&entry.file.to_string_lossy()).into_owned();
         let path = match resolve_inside(&root, &root, &entry.file.to_string_lossy()) {
             Ok(p) => p,
             Err(reason) => {
-                tracing::warn!("skipping asset {label}: field `file`: {reason}");
+                tracing::debug!("skipping asset {label}: field `file`: {reason}");
                 report.warnings.push(ImportWarning {
-                    path: root.join(&entry.file),
-                    reason: format!("{label}: field `file`: {reason}"),
+                    path: manifest_path.clone(),
+                    reason: format!("{label}: field `file` {reason}"),
                 });
                 continue;
             }
@@ -313,10 +315,10 @@ pub fn import_directory(dir: impl AsRef<Path>) -> Result<ImportReport, ImportErr
                 report.assets.push(asset);
             }
             Err(e) => {
-                tracing::warn!("skipping asset {label} ({shown}): {e}");
+                tracing::debug!("skipping asset {label}: {e}");
                 report.warnings.push(ImportWarning {
                     path,
-                    reason: e.to_string(),
+                    reason: format!("{label}: {e}"),
                 });
             }
         }
@@ -523,13 +525,13 @@ fn import_entry_in(
     let bounds = mesh.bounds().ok_or(MeshLoadError::Empty)?;
     let extent = bounds.max - bounds.min;
     if !extent.iter().all(|v| v.is_finite()) || extent.max() > MAX_ASSET_SIZE {
-        return Err(MeshLoadError::Entry(format!(
+        return Err(MeshLoadError::Unusable(format!(
             "the mesh is {:.3} x {:.3} x {:.3} m after unit_scale, larger than the limit of {MAX_ASSET_SIZE} m",
             extent.x, extent.y, extent.z
         )));
     }
     if mesh_area(&mesh) <= 1e-12 {
-        return Err(MeshLoadError::Entry(
+        return Err(MeshLoadError::Unusable(
             "the mesh has zero surface area (every triangle is degenerate)".into(),
         ));
     }
