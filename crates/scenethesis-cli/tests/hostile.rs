@@ -297,6 +297,27 @@ fn a_hostile_asset_pack_cannot_pull_files_in_and_bad_assets_only_warn() {
         Some(elsewhere.path()),
     );
     assert!(out.status.success(), "{}", stderr(&out));
+    // `render DIR` draws the imported assets too (it used to skip them and exit 0).
+    let out = scenethesis(
+        &[
+            "render",
+            out_dir.to_str().unwrap(),
+            "--views",
+            "1",
+            "--size",
+            "64x48",
+            "--supersample",
+            "1",
+        ],
+        Some(elsewhere.path()),
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let objects = scene.matches("\"local_bounds\"").count();
+    assert!(
+        stdout.contains(&format!("rendering {objects} of {objects} objects")),
+        "{stdout}"
+    );
     // Eval without scene.glb regenerates the imported asset instead of failing.
     std::fs::remove_file(out_dir.join("scene.glb")).unwrap();
     let out = scenethesis(&["eval", out_dir.to_str().unwrap()], Some(elsewhere.path()));
