@@ -468,11 +468,11 @@ fn values_no_format_can_hold_are_refused_before_writing() {
         matches!(&err, ExportError::InvalidPose { id } if id == "table"),
         "{err}"
     );
-    let (mut scene, meshes) = scene();
+    let (mut scene, meshes) = crate::scene();
     scene.architecture.walls[0].height = f64::INFINITY;
     let err = ExportScene::new(&scene, &meshes).unwrap_err();
     assert!(err.to_string().contains("wall_0"), "{err}");
-    let (scene, mut meshes) = scene();
+    let (scene, mut meshes) = crate::scene();
     meshes.get_mut("mug").unwrap().parts[0].positions[0][1] = f32::NAN;
     let err = ExportScene::new(&scene, &meshes).unwrap_err();
     assert!(matches!(&err, ExportError::InvalidMesh { id, .. } if id == "mug"));
