@@ -106,10 +106,11 @@ fn bad(path: &Path, e: GltfError) -> EvalError {
 /// A node instance of the shared reader as a [`GlbNode`]: one part per triangle primitive
 /// (named `<node>/<primitive index>`) with its own material.
 fn convert(file: &GltfFile, node: &GltfNode) -> GlbNode {
-    let name = node
-        .name
-        .clone()
-        .unwrap_or_else(|| format!("node_{}", node.index));
+    // Node names become object ids that `eval` prints: never let one drive the terminal.
+    let name = node.name.as_deref().map_or_else(
+        || format!("node_{}", node.index),
+        |n| scenethesis_scene_graph::printable(n).into_owned(),
+    );
     let mut mesh = Mesh::default();
     for p in &node.primitives {
         let m = file.material(p.material);

@@ -323,3 +323,22 @@ fn a_hostile_asset_pack_cannot_pull_files_in_and_bad_assets_only_warn() {
     let out = scenethesis(&["eval", out_dir.to_str().unwrap()], Some(elsewhere.path()));
     assert!(out.status.success(), "{}", stderr(&out));
 }
+
+#[test]
+fn node_names_with_escape_sequences_are_printed_escaped_by_eval() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("evil.glb");
+    std::fs::write(
+        &path,
+        glb(serde_json::json!([{"name": "chair\u{1b}[2J\u{1b}]0;owned\u{7}", "mesh": 0}])),
+    )
+    .unwrap();
+    let out = scenethesis(&["eval", path.to_str().unwrap()], None);
+    let all = [out.stdout.clone(), out.stderr.clone()].concat();
+    assert!(
+        !all.contains(&0x1b) && !all.contains(&0x07),
+        "{}",
+        String::from_utf8_lossy(&all)
+    );
+    assert!(!stderr(&out).contains("panicked"));
+}
