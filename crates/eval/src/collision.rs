@@ -88,9 +88,15 @@ impl TriangleF64 for scenethesis_scene_graph::MeshPart {
     }
 }
 
-/// The number of surface samples for a mesh: one per cm², at least [`MIN_SAMPLES`].
+/// The number of surface samples for a mesh: one per cm², at least [`MIN_SAMPLES`] and at most
+/// [`crate::limits::MAX_SAMPLES_PER_OBJECT`].
 pub fn sample_count(mesh: &Mesh) -> usize {
-    ((surface_area(mesh) * SAMPLES_PER_M2).ceil() as usize).max(MIN_SAMPLES)
+    let wanted = surface_area(mesh) * SAMPLES_PER_M2;
+    if wanted.is_finite() {
+        (wanted.ceil() as usize).clamp(MIN_SAMPLES, crate::limits::MAX_SAMPLES_PER_OBJECT)
+    } else {
+        crate::limits::MAX_SAMPLES_PER_OBJECT
+    }
 }
 
 /// The test points of a mesh: its vertices and area-uniform surface samples.

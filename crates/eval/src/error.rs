@@ -60,4 +60,13 @@ pub enum EvalError {
         /// Where it was looked for.
         reason: String,
     },
+    /// The scene is over one of the evaluator's limits ([`crate::limits`]) or holds a value the
+    /// geometry code cannot take.
+    #[error("{what}: {reason} (see docs/limits.md)")]
+    OverLimit {
+        /// The object or element concerned (or `scene`).
+        what: String,
+        /// The value found and the limit.
+        reason: String,
+    },
 }

@@ -2,8 +2,9 @@
 
 use std::path::{Path, PathBuf};
 
-use nalgebra::{Matrix4, Point3, Vector3};
-use scenethesis_scene_graph::{Material, Mesh, MeshPart};
+use nalgebra::Matrix4;
+use scenethesis_assets::import::{GltfError, GltfFile, GltfNode};
+use scenethesis_scene_graph::{Mesh, MeshPart};
 
 use crate::EvalError;
 
@@ -60,60 +61,30 @@ pub struct GlbScene {
 }
 
 impl GlbScene {
-    /// Reads a `.glb` or `.gltf` file (external buffers are resolved next to it; embedded
-    /// base64 buffers are not supported).
+    /// Reads a `.glb` or `.gltf` file with the workspace's hardened glTF reader
+    /// ([`scenethesis_assets::import::GltfFile`]): size, depth, cycle, count and coordinate
+    /// limits; external buffers must lie in the file's own folder (or be `data:` URIs).
     pub fn read(path: &Path) -> Result<Self, EvalError> {
-        let bytes = std::fs::read(path).map_err(|source| EvalError::Io {
-            path: path.to_owned(),
-            source,
-        })?;
-        Self::from_slice(&bytes, path)
+        let file = GltfFile::read(path, None).map_err(|e| bad(path, e))?;
+        Ok(Self::from_file(&file, path))
     }
 
-    /// Parses glTF / GLB bytes; `path` names the file in errors and locates external buffers.
+    /// Parses glTF / GLB bytes; `path` names the file in errors and locates external buffers
+    /// (which must lie in its folder).
     pub fn from_slice(bytes: &[u8], path: &Path) -> Result<Self, EvalError> {
-        let gltf = gltf::Gltf::from_slice(bytes).map_err(|source| EvalError::Gltf {
-            path: path.to_owned(),
-            source,
-        })?;
-        let dir = path.parent().unwrap_or(Path::new("."));
-        let mut buffers = Vec::new();
-        for buffer in gltf.document.buffers() {
-            let data = match buffer.source() {
-                gltf::buffer::Source::Bin => {
-                    gltf.blob.clone().ok_or_else(|| EvalError::BadGltf {
-                        path: path.to_owned(),
-                        reason: "buffer refers to a missing BIN chunk".into(),
-                    })?
-                }
-                gltf::buffer::Source::Uri(uri) => {
-                    if uri.starts_with("data:") {
-                        return Err(EvalError::BadGltf {
-                            path: path.to_owned(),
-                            reason: "embedded base64 buffers are not supported; use GLB".into(),
-                        });
-                    }
-                    let file = dir.join(uri);
-                    std::fs::read(&file).map_err(|source| EvalError::Io { path: file, source })?
-                }
-            };
-            buffers.push(data);
-        }
-        let scene = gltf
-            .document
-            .default_scene()
-            .or_else(|| gltf.document.scenes().next());
-        let roots = match scene {
-            Some(scene) => scene
-                .nodes()
-                .map(|n| read_node(&n, &Matrix4::identity(), &buffers, path))
-                .collect::<Result<Vec<_>, _>>()?,
-            None => Vec::new(),
+        let dir = match path.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d,
+            _ => Path::new("."),
         };
-        Ok(Self {
+        let file = GltfFile::from_slice(bytes, dir, dir).map_err(|e| bad(path, e))?;
+        Ok(Self::from_file(&file, path))
+    }
+
+    fn from_file(file: &GltfFile, path: &Path) -> Self {
+        Self {
             path: path.to_owned(),
-            roots,
-        })
+            roots: file.roots.iter().map(|n| convert(file, n)).collect(),
+        }
     }
 
     /// The first node named `name` anywhere in the scene.
@@ -122,80 +93,40 @@ impl GlbScene {
     }
 }
 
-fn read_node(
-    node: &gltf::Node,
-    parent: &Matrix4<f64>,
-    buffers: &[Vec<u8>],
-    path: &Path,
-) -> Result<GlbNode, EvalError> {
-    let cols = node.transform().matrix();
-    let local = Matrix4::from_fn(|r, c| cols[c][r] as f64);
-    let world = parent * local;
-    let name = node
-        .name()
-        .map(str::to_owned)
-        .unwrap_or_else(|| format!("node_{}", node.index()));
-    let mut mesh = Mesh::default();
-    if let Some(m) = node.mesh() {
-        let mirrored = world.fixed_view::<3, 3>(0, 0).determinant() < 0.0;
-        for (k, prim) in m.primitives().enumerate() {
-            if prim.mode() != gltf::mesh::Mode::Triangles {
-                continue;
-            }
-            let reader = prim.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
-            let Some(positions) = reader.read_positions() else {
-                continue;
-            };
-            let positions: Vec<[f32; 3]> = positions
-                .map(|p| {
-                    let w = world.transform_point(&Point3::from(Vector3::from(p).cast::<f64>()));
-                    [w.x as f32, w.y as f32, w.z as f32]
-                })
-                .collect();
-            let indices: Vec<u32> = match reader.read_indices() {
-                Some(ix) => ix.into_u32().collect(),
-                None => (0..positions.len() as u32).collect(),
-            };
-            if indices.iter().any(|&i| i as usize >= positions.len()) {
-                return Err(EvalError::BadGltf {
-                    path: path.to_owned(),
-                    reason: format!("node {name}: index out of range"),
-                });
-            }
-            let triangles = indices
-                .chunks_exact(3)
-                .map(|t| {
-                    if mirrored {
-                        [t[0], t[2], t[1]]
-                    } else {
-                        [t[0], t[1], t[2]]
-                    }
-                })
-                .collect();
-            let pbr = prim.material().pbr_metallic_roughness();
-            let c = pbr.base_color_factor();
-            mesh.materials.push(Material {
-                name: prim.material().name().unwrap_or("default").to_owned(),
-                base_color: c,
-                roughness: pbr.roughness_factor(),
-                metallic: pbr.metallic_factor(),
-            });
-            mesh.parts.push(MeshPart {
-                name: format!("{name}/{k}"),
-                material: mesh.materials.len() - 1,
-                positions,
-                triangles,
-            });
-        }
+fn bad(path: &Path, e: GltfError) -> EvalError {
+    match e {
+        GltfError::Io { path, source } => EvalError::Io { path, source },
+        other => EvalError::BadGltf {
+            path: path.to_owned(),
+            reason: other.to_string(),
+        },
     }
-    let children = node
-        .children()
-        .map(|c| read_node(&c, &world, buffers, path))
-        .collect::<Result<Vec<_>, _>>()?;
-    Ok(GlbNode {
+}
+
+/// A node instance of the shared reader as a [`GlbNode`]: one part per triangle primitive
+/// (named `<node>/<primitive index>`) with its own material.
+fn convert(file: &GltfFile, node: &GltfNode) -> GlbNode {
+    // Node names become object ids that `eval` prints: never let one drive the terminal.
+    let name = node.name.as_deref().map_or_else(
+        || format!("node_{}", node.index),
+        |n| scenethesis_scene_graph::printable(n).into_owned(),
+    );
+    let mut mesh = Mesh::default();
+    for p in &node.primitives {
+        let m = file.material(p.material);
+        let material_name = m.name.clone().unwrap_or_else(|| "default".into());
+        mesh.materials.push(m.to_material(material_name));
+        mesh.parts.push(MeshPart {
+            name: format!("{name}/{}", p.index),
+            material: mesh.materials.len() - 1,
+            positions: p.positions.clone(),
+            triangles: p.triangles.clone(),
+        });
+    }
+    GlbNode {
         name,
-        world,
+        world: node.world,
         mesh,
-        children,
-    })
+        children: node.children.iter().map(|c| convert(file, c)).collect(),
+    }
 }

@@ -21,6 +21,7 @@
 pub mod collision;
 mod error;
 pub mod glb;
+pub mod limits;
 mod load;
 mod metrics;
 pub mod raster;

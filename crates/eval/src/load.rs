@@ -15,6 +15,9 @@ const SUPPORT_GAP: f64 = 0.02;
 
 /// Loads whatever `path` is: an output folder (holding `scene.json`), a `scene.json` file, or a
 /// `.glb` / `.gltf` scene.
+///
+/// The scene is checked against [`crate::limits`] ([`EvalScene::check_limits`]) before it is
+/// returned, as are the scenes of [`load_folder`] and [`load_glb`].
 pub fn load_path(path: &Path) -> Result<EvalScene, EvalError> {
     if path.is_dir() {
         return load_folder(path);
@@ -46,6 +49,15 @@ pub fn load_folder(dir: &Path) -> Result<EvalScene, EvalError> {
 }
 
 fn load_scene_file(json: &Path, glb: Option<std::path::PathBuf>) -> Result<EvalScene, EvalError> {
+    let scene = load_scene_file_unchecked(json, glb)?;
+    scene.check_limits()?;
+    Ok(scene)
+}
+
+fn load_scene_file_unchecked(
+    json: &Path,
+    glb: Option<std::path::PathBuf>,
+) -> Result<EvalScene, EvalError> {
     let scene = Scene::read_json(json)?;
     match glb.filter(|g| g.is_file()) {
         Some(glb_path) => {
@@ -78,6 +90,12 @@ fn load_scene_file(json: &Path, glb: Option<std::path::PathBuf>) -> Result<EvalS
 /// are inferred: an object whose bottom is within 2 cm of the floor stands on the ground,
 /// otherwise on the highest object below it.
 pub fn load_glb(path: &Path) -> Result<EvalScene, EvalError> {
+    let scene = load_glb_unchecked(path)?;
+    scene.check_limits()?;
+    Ok(scene)
+}
+
+fn load_glb_unchecked(path: &Path) -> Result<EvalScene, EvalError> {
     let glb = GlbScene::read(path)?;
     // Exporters often wrap a whole scene in one mesh-less root node: look through it.
     let mut roots = &glb.roots;
@@ -129,6 +147,19 @@ pub fn load_glb(path: &Path) -> Result<EvalScene, EvalError> {
             path: path.to_owned(),
             reason: "no floor node and no objects".into(),
         })?;
+    // Support inference compares every pair of objects: check the counts first.
+    if objects.len() > crate::limits::MAX_OBJECTS || walls.len() > crate::limits::MAX_WALLS {
+        return Err(EvalError::OverLimit {
+            what: path.display().to_string(),
+            reason: format!(
+                "{} objects and {} wall pieces, limits {} and {}",
+                objects.len(),
+                walls.len(),
+                crate::limits::MAX_OBJECTS,
+                crate::limits::MAX_WALLS
+            ),
+        });
+    }
     infer_support(&mut objects, &walls);
     Ok(EvalScene {
         objects,

@@ -1,5 +1,6 @@
 //! The evaluation input: objects with world-space meshes, their support links, and the room.
 
+use scenethesis_assets::import::{AssetResolver, ResolveError};
 use scenethesis_assets::{catalog, Placement};
 use scenethesis_scene_graph::{
     Aabb, Architecture, Mesh, ParentRef, Relation, RelationKind, Scene, SceneObject,
@@ -120,7 +121,102 @@ impl EvalScene {
     /// A scene from a scene graph whose objects all use built-in procedural assets,
     /// regenerated from their generator and seed.
     pub fn from_scene_procedural(scene: &Scene) -> Result<Self, EvalError> {
-        Self::from_scene(scene, procedural_mesh)
+        let mut resolver = AssetResolver::new();
+        Self::from_scene(scene, |o| resolve(&mut resolver, o))
+    }
+
+    /// Checks the scene against [`crate::limits`]: object and wall counts, triangles per object,
+    /// finite vertex coordinates within ±[`crate::limits::MAX_COORDINATE`] m and valid triangle
+    /// indices, finite room numbers. Evaluating a scene that passes does bounded work and
+    /// cannot panic in the geometry libraries.
+    pub fn check_limits(&self) -> Result<(), EvalError> {
+        use crate::limits::{MAX_COORDINATE, MAX_OBJECTS, MAX_TRIANGLES_PER_OBJECT, MAX_WALLS};
+        let over = |what: &str, reason: String| EvalError::OverLimit {
+            what: scenethesis_scene_graph::printable(what).into_owned(),
+            reason,
+        };
+        if self.objects.len() > MAX_OBJECTS {
+            return Err(over(
+                "scene",
+                format!(
+                    "{} objects, more than the limit of {MAX_OBJECTS}",
+                    self.objects.len()
+                ),
+            ));
+        }
+        let arch = &self.architecture;
+        if arch.walls.len() > MAX_WALLS {
+            return Err(over(
+                "scene",
+                format!(
+                    "{} walls, more than the limit of {MAX_WALLS}",
+                    arch.walls.len()
+                ),
+            ));
+        }
+        let ok = |v: f64| v.is_finite() && v.abs() <= MAX_COORDINATE;
+        if !arch
+            .floor
+            .min
+            .iter()
+            .chain(arch.floor.max.iter())
+            .all(|&v| ok(v))
+        {
+            return Err(over(
+                "floor",
+                format!("corners must be finite and within ±{MAX_COORDINATE} m"),
+            ));
+        }
+        for w in &arch.walls {
+            let numbers = [
+                w.start.x,
+                w.start.y,
+                w.end.x,
+                w.end.y,
+                w.height,
+                w.thickness,
+            ];
+            if !numbers.iter().all(|&v| ok(v)) {
+                return Err(over(
+                    &format!("wall {}", w.id),
+                    format!("end points, height and thickness must be finite and within ±{MAX_COORDINATE} m"),
+                ));
+            }
+        }
+        for o in &self.objects {
+            let what = format!("object {}", o.id);
+            if o.mesh.triangle_count() > MAX_TRIANGLES_PER_OBJECT {
+                return Err(over(
+                    &what,
+                    format!(
+                        "{} triangles, more than the limit of {MAX_TRIANGLES_PER_OBJECT}",
+                        o.mesh.triangle_count()
+                    ),
+                ));
+            }
+            if !o.yaw.is_finite() {
+                return Err(over(&what, "the yaw is not a finite number".into()));
+            }
+            for part in &o.mesh.parts {
+                if let Some(v) = part.positions.iter().flatten().find(|&&v| !ok(v as f64)) {
+                    return Err(over(
+                        &what,
+                        format!("a vertex coordinate is {v}, expected a finite number within ±{MAX_COORDINATE} m"),
+                    ));
+                }
+                let n = part.positions.len();
+                if part.triangles.iter().flatten().any(|&i| i as usize >= n) {
+                    return Err(over(
+                        &what,
+                        format!(
+                            "part {} has a triangle index beyond its {n} vertices",
+                            part.name
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
     }
 
     /// The object with this id.
@@ -129,20 +225,22 @@ impl EvalScene {
     }
 }
 
-/// The asset-frame mesh of a procedural object, regenerated from its generator and seed.
+/// The asset-frame mesh of an object, regenerated from its generator and seed (procedural) or
+/// imported again from its asset folder (imported; see
+/// [`scenethesis_assets::import::AssetResolver`]).
 pub fn procedural_mesh(object: &SceneObject) -> Result<Mesh, EvalError> {
-    match &object.asset {
-        scenethesis_scene_graph::AssetRef::Procedural { generator, seed } => {
-            let category =
-                catalog::category(generator).ok_or_else(|| EvalError::UnknownGenerator {
-                    object: object.id.clone(),
-                    generator: generator.clone(),
-                })?;
-            Ok(catalog::generate(category, *seed).mesh)
-        }
-        scenethesis_scene_graph::AssetRef::Imported { id, path } => Err(EvalError::MissingMesh {
-            object: object.id.clone(),
-            reason: format!("imported asset {id} ({path}) and no scene.glb to take its mesh from"),
-        }),
-    }
+    resolve(&mut AssetResolver::new(), object)
+}
+
+fn resolve(resolver: &mut AssetResolver, object: &SceneObject) -> Result<Mesh, EvalError> {
+    resolver.mesh(&object.asset).map_err(|e| match e {
+        ResolveError::UnknownGenerator { generator } => EvalError::UnknownGenerator {
+            object: scenethesis_scene_graph::printable(&object.id).into_owned(),
+            generator,
+        },
+        other => EvalError::MissingMesh {
+            object: scenethesis_scene_graph::printable(&object.id).into_owned(),
+            reason: other.to_string(),
+        },
+    })
 }

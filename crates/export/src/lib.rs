@@ -32,7 +32,9 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
-use scenethesis_scene_graph::{write_file_atomic, Mesh, RelationKind, Scene, SceneObject};
+use scenethesis_scene_graph::{
+    limits, printable, write_file_atomic, Mesh, RelationKind, Scene, SceneObject,
+};
 
 pub use geometry::MassProperties;
 
@@ -59,10 +61,19 @@ pub enum ExportError {
         reason: String,
     },
     /// An object's pose is not finite or its scale is not positive.
-    #[error("object `{id}` has an invalid pose (non-finite numbers or scale ≤ 0)")]
+    #[error("object `{id}` has an invalid pose (expected finite numbers, a scale in (0, 10] and coordinates within ±1000 m; see docs/limits.md)")]
     InvalidPose {
         /// The object's id.
         id: String,
+    },
+    /// A floor, wall or door holds a value outside what the formats can hold (non-finite, or
+    /// beyond the limits of `docs/limits.md`).
+    #[error("{element}: field `{field}` must be finite and within ±1000 m (see docs/limits.md)")]
+    InvalidArchitecture {
+        /// The floor, wall or door id.
+        element: String,
+        /// The field.
+        field: &'static str,
     },
     /// A file could not be written.
     #[error("cannot write {path}")]
@@ -104,12 +115,22 @@ impl<'a> ExportScene<'a> {
                     id: object.id.clone(),
                 })?;
             check_mesh(&object.id, mesh)?;
-            if !object.pose.is_finite() || object.pose.scale <= 0.0 {
+            let pose = &object.pose;
+            let in_range = pose.is_finite()
+                && pose.scale > 0.0
+                && pose.scale <= limits::MAX_SCALE
+                && pose.yaw.abs() <= 1000.0
+                && pose
+                    .translation
+                    .iter()
+                    .all(|v| v.abs() <= limits::MAX_COORDINATE);
+            if !in_range {
                 return Err(ExportError::InvalidPose {
-                    id: object.id.clone(),
+                    id: printable(&object.id).into_owned(),
                 });
             }
         }
+        check_architecture(scene)?;
         Ok(Self {
             scene,
             meshes,
@@ -156,7 +177,49 @@ impl<'a> ExportScene<'a> {
     }
 }
 
+/// Floor, walls and doors: every number finite and within the coordinate limit, so that no
+/// format (GLB stores `f32`) receives a value it cannot hold.
+fn check_architecture(scene: &Scene) -> Result<(), ExportError> {
+    let ok = |v: f64| v.is_finite() && v.abs() <= limits::MAX_COORDINATE;
+    let bad = |element: &str, field| ExportError::InvalidArchitecture {
+        element: printable(element).into_owned(),
+        field,
+    };
+    let arch = &scene.architecture;
+    if !arch
+        .floor
+        .min
+        .iter()
+        .chain(arch.floor.max.iter())
+        .all(|&v| ok(v))
+    {
+        return Err(bad(&arch.floor.id, "min/max"));
+    }
+    for w in &arch.walls {
+        if ![
+            w.start.x,
+            w.start.y,
+            w.end.x,
+            w.end.y,
+            w.height,
+            w.thickness,
+        ]
+        .iter()
+        .all(|&v| ok(v))
+        {
+            return Err(bad(&w.id, "start/end/height/thickness"));
+        }
+    }
+    for d in &arch.doors {
+        if ![d.offset, d.width, d.height].iter().all(|&v| ok(v)) {
+            return Err(bad(&d.id, "offset/width/height"));
+        }
+    }
+    Ok(())
+}
+
 fn check_mesh(id: &str, mesh: &Mesh) -> Result<(), ExportError> {
+    let id = &*printable(id);
     let invalid = |reason: String| ExportError::InvalidMesh {
         id: id.to_owned(),
         reason,
@@ -168,7 +231,7 @@ fn check_mesh(id: &str, mesh: &Mesh) -> Result<(), ExportError> {
         if part.material >= mesh.materials.len() {
             return Err(invalid(format!(
                 "part `{}` uses material {} but the mesh has {} material(s)",
-                part.name,
+                printable(&part.name),
                 part.material,
                 mesh.materials.len()
             )));
@@ -177,13 +240,16 @@ fn check_mesh(id: &str, mesh: &Mesh) -> Result<(), ExportError> {
         if let Some(t) = part.triangles.iter().find(|t| t.iter().any(|&i| i >= n)) {
             return Err(invalid(format!(
                 "part `{}` has triangle {t:?} indexing past its {n} vertices",
-                part.name
+                printable(&part.name)
             )));
         }
-        if part.positions.iter().flatten().any(|v| !v.is_finite()) {
+        if part.positions.iter().flatten().any(|v| {
+            !v.is_finite() || v.abs() as f64 > scenethesis_scene_graph::limits::MAX_OBJECT_SIZE
+        }) {
             return Err(invalid(format!(
-                "part `{}` has a non-finite vertex position",
-                part.name
+                "part `{}` has a vertex position that is not finite or beyond ±{} m",
+                printable(&part.name),
+                scenethesis_scene_graph::limits::MAX_OBJECT_SIZE
             )));
         }
     }

@@ -457,3 +457,48 @@ fn formats_write_their_files() {
     assert!(dir.join("meshes/table_top.obj").exists());
     scene.write_json_atomic(&dir.join("scene.json")).unwrap();
 }
+
+#[test]
+fn values_no_format_can_hold_are_refused_before_writing() {
+    let (mut scene, meshes) = scene();
+    // 1e39 overflows the f32 a GLB stores.
+    scene.objects[0].pose.translation.x = 1e39;
+    let err = ExportScene::new(&scene, &meshes).unwrap_err();
+    assert!(
+        matches!(&err, ExportError::InvalidPose { id } if id == "table"),
+        "{err}"
+    );
+    let (mut scene, meshes) = crate::scene();
+    scene.architecture.walls[0].height = f64::INFINITY;
+    let err = ExportScene::new(&scene, &meshes).unwrap_err();
+    assert!(err.to_string().contains("wall_0"), "{err}");
+    let (scene, mut meshes) = crate::scene();
+    meshes.get_mut("mug").unwrap().parts[0].positions[0][1] = f32::NAN;
+    let err = ExportScene::new(&scene, &meshes).unwrap_err();
+    assert!(matches!(&err, ExportError::InvalidMesh { id, .. } if id == "mug"));
+}
+
+#[test]
+fn ids_and_names_are_escaped_in_every_text_format() {
+    use scenethesis_export::{mjcf, usd};
+    let (mut scene, mut meshes) = scene();
+    let evil = "mug\u{1b}[2J\"<x>&\n";
+    let mesh = meshes.remove("mug").unwrap();
+    meshes.insert(evil.to_owned(), mesh);
+    for o in &mut scene.objects {
+        if o.id == "mug" {
+            o.id = evil.to_owned();
+            o.category = "cup\u{7}".into();
+        }
+    }
+    let export = ExportScene::new(&scene, &meshes).unwrap();
+    let usda = usd::to_usda(&export);
+    assert!(
+        !usda.contains('\u{1b}') && !usda.contains('\u{7}'),
+        "raw control characters in USD"
+    );
+    assert!(usda.contains("\\x1b"), "escaped in the USD string");
+    let xml = mjcf::to_mjcf(&export);
+    assert!(!xml.contains('\u{1b}') && !xml.contains('\u{7}'));
+    assert!(!xml.contains("<x>"), "no raw markup from an id");
+}

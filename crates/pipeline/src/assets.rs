@@ -5,7 +5,9 @@ use std::path::{Path, PathBuf};
 use std::sync::{Mutex, PoisonError};
 
 use scenethesis_agents::PlannedObject;
-use scenethesis_assets::import::{import_directory, ImportWarning, MANIFEST_FILE};
+use scenethesis_assets::import::{
+    import_directory, AssetResolver, ImportWarning, ResolveError, MANIFEST_FILE,
+};
 use scenethesis_assets::{catalog, Asset};
 use scenethesis_retrieval::AssetIndex;
 use scenethesis_scene_graph::{AssetRef, Mesh};
@@ -116,7 +118,7 @@ pub struct RetrievalSource {
     imported: BTreeMap<String, Asset>,
     /// Asset directories re-imported for references not in `imported` (a saved scene being
     /// exported), each read once however many of its assets the scene uses.
-    reimported: Mutex<BTreeMap<PathBuf, Vec<Asset>>>,
+    reimported: Mutex<AssetResolver>,
 }
 
 impl std::fmt::Debug for RetrievalSource {
@@ -198,16 +200,12 @@ impl RetrievalSource {
         if let Some(a) = self.imported.get(id) {
             return Ok(a.clone());
         }
-        let dir = asset_directory(path);
-        let mut reimported = self
-            .reimported
+        let _ = path;
+        self.reimported
             .lock()
-            .unwrap_or_else(PoisonError::into_inner);
-        if !reimported.contains_key(&dir) {
-            let assets = reimport(asset, &dir)?;
-            reimported.insert(dir.clone(), assets);
-        }
-        find_imported(asset, id, &dir, &reimported[&dir])
+            .unwrap_or_else(PoisonError::into_inner)
+            .asset(asset)
+            .map_err(|e| unresolvable(asset, e))
     }
 }
 
@@ -250,50 +248,22 @@ impl AssetSource for RetrievalSource {
     }
 }
 
-/// Loads the imported asset `asset` (with these `id` and `path`) by importing the directory
-/// its file lies in again (so the manifest's units, axes and front apply) and picking it by id.
-fn load_imported(asset: &AssetRef, id: &str, path: &str) -> Result<Asset, AssetError> {
-    let dir = asset_directory(path);
-    find_imported(asset, id, &dir, &reimport(asset, &dir)?)
+/// Loads the imported asset `asset` through the assets crate's resolver (its asset folder
+/// imported again, so the manifest's units, axes and front apply).
+fn load_imported(asset: &AssetRef, _id: &str, _path: &str) -> Result<Asset, AssetError> {
+    AssetResolver::new()
+        .asset(asset)
+        .map_err(|e| unresolvable(asset, e))
 }
 
-/// The directory an imported asset's file lies in.
-fn asset_directory(path: &str) -> PathBuf {
-    Path::new(path)
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."))
-        .to_owned()
-}
-
-/// Every asset of `dir`, imported again to resolve `asset`.
-fn reimport(asset: &AssetRef, dir: &Path) -> Result<Vec<Asset>, AssetError> {
-    import_directory(dir)
-        .map(|report| report.assets)
-        .map_err(|e| AssetError::Unresolvable {
-            asset: asset.to_string(),
-            reason: format!("cannot re-import its directory {}: {e}", dir.display()),
-        })
-}
-
-/// The asset with `id` among those re-imported from `dir`.
-fn find_imported(
-    asset: &AssetRef,
-    id: &str,
-    dir: &Path,
-    assets: &[Asset],
-) -> Result<Asset, AssetError> {
-    assets
-        .iter()
-        .find(|a| matches!(&a.info.source, AssetRef::Imported { id: found, .. } if found == id))
-        .cloned()
-        .ok_or_else(|| AssetError::Unresolvable {
-            asset: asset.to_string(),
-            reason: format!(
-                "the directory {} no longer holds an asset with id `{id}`",
-                dir.display()
-            ),
-        })
+fn unresolvable(asset: &AssetRef, e: ResolveError) -> AssetError {
+    AssetError::Unresolvable {
+        asset: scenethesis_scene_graph::printable(&asset.to_string()).into_owned(),
+        reason: match e {
+            ResolveError::Imported { reason, .. } => reason,
+            other => other.to_string(),
+        },
+    }
 }
 
 /// A stable per-object seed: FNV-1a of the object id, mixed with the variant.

@@ -562,14 +562,34 @@ fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<(), PipelineError>
     })
 }
 
-/// An error with its causes, `: `-separated.
+/// An error with its causes, `: `-separated; a cause whose text the message already holds
+/// (many errors quote their source) is not repeated.
 pub fn error_chain(e: &dyn std::error::Error) -> String {
     let mut s = e.to_string();
     let mut source = e.source();
     while let Some(cause) = source {
-        s.push_str(": ");
-        s.push_str(&cause.to_string());
+        let text = cause.to_string();
+        if !text.is_empty() && !s.contains(&text) {
+            s.push_str(": ");
+            s.push_str(&text);
+        }
         source = cause.source();
     }
     s
+}
+
+#[cfg(test)]
+mod error_chain_tests {
+    use super::*;
+
+    #[test]
+    fn quoted_causes_are_not_repeated() {
+        let e = PipelineError::Plan(scenethesis_agents::PlanError::EmptyPrompt);
+        assert_eq!(error_chain(&e), e.to_string(), "the plan error's text once");
+        let io = PipelineError::Write {
+            path: PathBuf::from("/x/scene.json"),
+            source: std::io::Error::other("disk full"),
+        };
+        assert_eq!(error_chain(&io), "cannot write /x/scene.json: disk full");
+    }
 }

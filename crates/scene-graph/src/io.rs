@@ -11,7 +11,7 @@ pub enum SceneIoError {
     Read {
         /// The file.
         path: PathBuf,
-        /// The OS error.
+        /// The OS error (or the size limit that was exceeded).
         #[source]
         source: std::io::Error,
     },
@@ -61,9 +61,21 @@ impl Scene {
 
     /// Reads, parses and validates a `scene.json` file.
     pub fn read_json(path: &Path) -> Result<Scene, SceneIoError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SceneIoError::Read {
+        let bytes = read_bounded(path, crate::limits::MAX_SCENE_JSON_BYTES).map_err(|source| {
+            SceneIoError::Read {
+                path: path.to_owned(),
+                source,
+            }
+        })?;
+        let text = String::from_utf8(bytes).map_err(|e| SceneIoError::Read {
             path: path.to_owned(),
-            source,
+            source: std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!(
+                    "not UTF-8 text (invalid byte at offset {})",
+                    e.utf8_error().valid_up_to()
+                ),
+            ),
         })?;
         let scene = Scene::from_json_str(&text).map_err(|source| SceneIoError::Parse {
             path: path.to_owned(),
@@ -87,6 +99,52 @@ impl Scene {
             }
         })
     }
+}
+
+/// Reads a whole file, refusing one larger than `limit` bytes (checked while reading, so a
+/// pipe or a file that grows is never read without bound). Directories, devices (such as
+/// `/dev/zero`) and sockets are refused. The error names the limit; the caller adds the path.
+pub fn read_bounded(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let file = std::fs::File::open(path)?;
+    let meta = file.metadata()?;
+    if meta.is_dir() {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            "is a directory, expected a file",
+        ));
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        let t = meta.file_type();
+        if t.is_char_device() || t.is_block_device() || t.is_socket() {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                "is a device or socket, expected a regular file",
+            ));
+        }
+    }
+    let too_large = || {
+        std::io::Error::new(
+            std::io::ErrorKind::FileTooLarge,
+            format!("larger than the limit of {limit} bytes (see docs/limits.md)"),
+        )
+    };
+    if meta.is_file() && meta.len() > limit {
+        return Err(too_large());
+    }
+    let capacity = if meta.is_file() {
+        meta.len().min(limit)
+    } else {
+        0
+    };
+    let mut bytes = Vec::with_capacity(usize::try_from(capacity).unwrap_or(0));
+    file.take(limit.saturating_add(1)).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > limit {
+        return Err(too_large());
+    }
+    Ok(bytes)
 }
 
 /// Writes `bytes` to `path` atomically: into a temporary file in the same directory, flushed to

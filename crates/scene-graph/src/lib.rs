@@ -18,6 +18,7 @@ mod architecture;
 mod camera;
 mod hash;
 mod io;
+pub mod limits;
 mod mesh;
 mod object;
 mod pose;
@@ -29,12 +30,12 @@ pub use aabb::Aabb;
 pub use architecture::{Architecture, DoorOpening, Environment, Floor, Wall};
 pub use camera::{Camera, Intrinsics, Projection};
 pub use hash::fnv1a64;
-pub use io::{write_file_atomic, SceneIoError};
+pub use io::{read_bounded, write_file_atomic, SceneIoError};
 pub use mesh::{Material, Mesh, MeshPart};
 pub use object::{AssetRef, ParentRef, Relation, RelationKind, SceneObject, GROUND_ID};
 pub use pose::Pose;
 pub use scene::{Scene, FORMAT_VERSION};
-pub use validate::ValidationError;
+pub use validate::{is_printable_id, printable, ValidationError};
 
 /// Re-export of the linear-algebra crate used in this crate's public types.
 pub use nalgebra;

@@ -1,6 +1,43 @@
+use std::borrow::Cow;
 use std::collections::HashMap;
 
-use crate::{Aabb, ParentRef, Scene, FORMAT_VERSION, GROUND_ID};
+use crate::limits::{
+    MAX_COORDINATE, MAX_DOORS, MAX_ID_BYTES, MAX_OBJECTS, MAX_OBJECT_SIZE, MAX_RELATIONS,
+    MAX_SCALE, MAX_WALLS, MAX_WALL_HEIGHT, MAX_WALL_THICKNESS, MIN_SCALE,
+};
+use crate::{Aabb, AssetRef, ParentRef, Scene, FORMAT_VERSION, GROUND_ID};
+
+/// `text` safe to print on a terminal or write into a log line: control characters (escape
+/// sequences, newlines, carriage returns, bidi overrides are not the only danger, but the control
+/// characters are what can drive a terminal) are replaced by Rust-style escapes such as `\u{1b}`.
+/// Text without control characters is returned unchanged.
+pub fn printable(text: &str) -> Cow<'_, str> {
+    if !text.chars().any(needs_escape) {
+        return Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len() + 8);
+    for c in text.chars() {
+        if needs_escape(c) {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
+        }
+    }
+    Cow::Owned(out)
+}
+
+/// Whether `c` must not reach a terminal raw: C0/C1 controls, DEL and the bidirectional
+/// formatting characters that reorder what the reader sees.
+fn needs_escape(c: char) -> bool {
+    c.is_control()
+        || matches!(c, '\u{200e}' | '\u{200f}' | '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}')
+}
+
+/// Whether `id` is usable as an id: 1 to [`MAX_ID_BYTES`] bytes of printable characters (no
+/// control or bidi formatting characters, no leading or trailing white space).
+pub fn is_printable_id(id: &str) -> bool {
+    !id.is_empty() && id.len() <= MAX_ID_BYTES && !id.chars().any(needs_escape) && id.trim() == id
+}
 
 /// One rule a scene breaks, naming the object (or architecture element) and field at fault.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -24,6 +61,34 @@ pub enum ValidationError {
     ReservedId {
         /// The offending id.
         id: String,
+    },
+    /// An id or name holds characters the tools cannot print or write safely, or is too long.
+    #[error("{owner}: field `{field}` is {shown}, expected 1 to {max} bytes of printable characters without leading or trailing spaces", max = MAX_ID_BYTES)]
+    UnprintableId {
+        /// Which element (e.g. `object #3`).
+        owner: String,
+        /// The field (`id`, `category`, ...).
+        field: &'static str,
+        /// The value, escaped and shortened for printing.
+        shown: String,
+    },
+    /// More elements of one kind than the tools handle.
+    #[error("the scene has {count} {what}, more than the limit of {limit} (see docs/limits.md)")]
+    TooMany {
+        /// What is counted (`objects`, `walls`, ...).
+        what: &'static str,
+        /// How many there are.
+        count: usize,
+        /// The limit.
+        limit: usize,
+    },
+    /// An object's procedural generator is not one this build knows.
+    #[error("object `{id}`: asset.generator `{generator}` is not a built-in generator")]
+    UnknownGenerator {
+        /// The object id.
+        id: String,
+        /// The generator named in the file.
+        generator: String,
     },
     /// Two elements share one id.
     #[error("id `{id}` is used more than once (by {first} and {second})")]
@@ -52,7 +117,7 @@ pub enum ValidationError {
         scale: f64,
     },
     /// A number is outside its allowed range.
-    #[error("{owner}: field `{field}` is {value}, expected {expected}")]
+    #[error("{owner}: field `{field}` is {}, expected {expected}", show_number(*value))]
     OutOfRange {
         /// The object or element id.
         owner: String,
@@ -114,8 +179,37 @@ pub enum ValidationError {
 impl Scene {
     /// Checks every rule of a well-formed scene and returns all problems found, each naming the
     /// object or element and field at fault. Never panics, whatever the contents.
+    ///
+    /// Besides the structural rules, every number must lie within the ranges of
+    /// [`crate::limits`] (documented in `docs/limits.md`), which bound the work of every tool
+    /// that reads a scene, and every id must be printable ([`is_printable_id`]). A scene with
+    /// more objects, walls or doors than the limits is reported with that one problem only.
     pub fn validate(&self) -> Result<(), Vec<ValidationError>> {
         let mut errors = Vec::new();
+        let arch = &self.architecture;
+        for (what, count, limit) in [
+            ("objects", self.objects.len(), MAX_OBJECTS),
+            ("walls", arch.walls.len(), MAX_WALLS),
+            ("doors", arch.doors.len(), MAX_DOORS),
+        ] {
+            if count > limit {
+                errors.push(ValidationError::TooMany { what, count, limit });
+            }
+        }
+        if let Some(o) = self
+            .objects
+            .iter()
+            .find(|o| o.relations.len() > MAX_RELATIONS)
+        {
+            errors.push(ValidationError::TooMany {
+                what: "relations on one object",
+                count: o.relations.len(),
+                limit: MAX_RELATIONS,
+            });
+        }
+        if !errors.is_empty() {
+            return Err(errors);
+        }
         if self.format_version != FORMAT_VERSION {
             errors.push(ValidationError::UnsupportedVersion {
                 found: self.format_version,
@@ -147,6 +241,23 @@ impl Scene {
         }
     }
 
+    /// Problems with procedural generators: every `procedural` asset must name a generator for
+    /// which `known` returns true (the asset library passes its catalogue lookup).
+    pub fn generator_errors(&self, known: impl Fn(&str) -> bool) -> Vec<ValidationError> {
+        self.objects
+            .iter()
+            .filter_map(|o| match &o.asset {
+                AssetRef::Procedural { generator, .. } if !known(generator) => {
+                    Some(ValidationError::UnknownGenerator {
+                        id: printable(&o.id).into_owned(),
+                        generator: shorten(generator),
+                    })
+                }
+                _ => None,
+            })
+            .collect()
+    }
+
     fn check_ids(&self, errors: &mut Vec<ValidationError>) {
         let arch = &self.architecture;
         let mut seen: HashMap<&str, &'static str> = HashMap::new();
@@ -157,13 +268,20 @@ impl Scene {
         let mut counts: HashMap<&'static str, usize> = HashMap::new();
         for (kind, id) in elements {
             let n = counts.entry(kind).or_default();
-            if id.is_empty() {
+            if !id.is_empty() && !is_printable_id(id) {
+                errors.push(ValidationError::UnprintableId {
+                    owner: format!("{kind} #{n}"),
+                    field: "id",
+                    shown: shorten(id),
+                });
+            } else if id.is_empty() {
                 errors.push(ValidationError::EmptyId {
                     owner: format!("{kind} #{n}"),
                 });
             } else if id == GROUND_ID {
                 errors.push(ValidationError::ReservedId { id: id.to_owned() });
             } else if let Some(first) = seen.insert(id, kind) {
+                let id = &*printable(id);
                 errors.push(ValidationError::DuplicateId {
                     id: id.to_owned(),
                     first,
@@ -184,6 +302,18 @@ impl Scene {
             .all(|v| v.is_finite()))
         {
             errors.push(non_finite(&floor.id, "min/max"));
+        } else if let Some(v) = floor
+            .min
+            .iter()
+            .chain(floor.max.iter())
+            .find(|v| v.abs() > MAX_COORDINATE)
+        {
+            errors.push(out_of_range(
+                &floor.id,
+                "min/max",
+                *v,
+                "coordinates within ±1000 m (limits::MAX_COORDINATE)",
+            ));
         } else {
             let e = floor.extent();
             for (v, field) in [(e.x, "max.x - min.x"), (e.y, "max.z - min.z")] {
@@ -204,6 +334,30 @@ impl Scene {
             if !numbers.iter().all(|v| v.is_finite()) {
                 errors.push(non_finite(&wall.id, "start/end/height/thickness"));
                 continue;
+            }
+            if let Some(v) = numbers[..4].iter().find(|v| v.abs() > MAX_COORDINATE) {
+                errors.push(out_of_range(
+                    &wall.id,
+                    "start/end",
+                    *v,
+                    "coordinates within ±1000 m (limits::MAX_COORDINATE)",
+                ));
+            }
+            if wall.height > MAX_WALL_HEIGHT {
+                errors.push(out_of_range(
+                    &wall.id,
+                    "height",
+                    wall.height,
+                    "at most 100 m (limits::MAX_WALL_HEIGHT)",
+                ));
+            }
+            if wall.thickness > MAX_WALL_THICKNESS {
+                errors.push(out_of_range(
+                    &wall.id,
+                    "thickness",
+                    wall.thickness,
+                    "at most 10 m (limits::MAX_WALL_THICKNESS)",
+                ));
             }
             if wall.length() <= 0.0 {
                 errors.push(out_of_range(
@@ -237,6 +391,14 @@ impl Scene {
             {
                 errors.push(non_finite(&door.id, "offset/width/height"));
                 continue;
+            }
+            if door.height > MAX_WALL_HEIGHT {
+                errors.push(out_of_range(
+                    &door.id,
+                    "height",
+                    door.height,
+                    "at most 100 m (limits::MAX_WALL_HEIGHT)",
+                ));
             }
             if door.width <= 0.0 {
                 errors.push(out_of_range(
@@ -276,21 +438,69 @@ impl Scene {
 
     fn check_objects(&self, errors: &mut Vec<ValidationError>) {
         for object in &self.objects {
-            let id = &object.id;
+            let id = &*printable(&object.id);
             let pose = &object.pose;
+            for (field, value) in
+                [("category", object.category.as_str())]
+                    .into_iter()
+                    .chain(match &object.asset {
+                        AssetRef::Procedural { generator, .. } => {
+                            Some(("asset.generator", generator.as_str()))
+                        }
+                        AssetRef::Imported { id, .. } => Some(("asset.id", id.as_str())),
+                    })
+            {
+                if !is_printable_id(value) {
+                    errors.push(ValidationError::UnprintableId {
+                        owner: format!("object `{id}`"),
+                        field,
+                        shown: shorten(value),
+                    });
+                }
+            }
+            if let AssetRef::Imported { path, .. } = &object.asset {
+                if path.is_empty() || path.chars().any(needs_escape) || path.len() > 4096 {
+                    errors.push(ValidationError::UnprintableId {
+                        owner: format!("object `{id}`"),
+                        field: "asset.path",
+                        shown: shorten(path),
+                    });
+                }
+            }
             if !pose.scale.is_finite() {
                 errors.push(non_finite(id, "pose.scale"));
             } else if pose.scale <= 0.0 {
                 errors.push(ValidationError::NonPositiveScale {
-                    id: id.clone(),
+                    id: id.to_owned(),
                     scale: pose.scale,
                 });
+            } else if !(MIN_SCALE..=MAX_SCALE).contains(&pose.scale) {
+                errors.push(out_of_range(
+                    id,
+                    "pose.scale",
+                    pose.scale,
+                    "a scale from 0.01 to 10 (limits::MIN_SCALE..=MAX_SCALE)",
+                ));
             }
             if !pose.yaw.is_finite() {
                 errors.push(non_finite(id, "pose.yaw"));
+            } else if pose.yaw.abs() > 1000.0 {
+                errors.push(out_of_range(
+                    id,
+                    "pose.yaw",
+                    pose.yaw,
+                    "an angle within ±1000 rad",
+                ));
             }
             if !pose.translation.iter().all(|v| v.is_finite()) {
                 errors.push(non_finite(id, "pose.translation"));
+            } else if let Some(v) = pose.translation.iter().find(|v| v.abs() > MAX_COORDINATE) {
+                errors.push(out_of_range(
+                    id,
+                    "pose.translation",
+                    *v,
+                    "coordinates within ±1000 m (limits::MAX_COORDINATE)",
+                ));
             }
             if !bounds_finite(&object.local_bounds) {
                 errors.push(non_finite(id, "local_bounds"));
@@ -301,6 +511,29 @@ impl Scene {
                     (object.local_bounds.max - object.local_bounds.min).min(),
                     "min <= max on every axis",
                 ));
+            } else if let Some(v) = object
+                .local_bounds
+                .min
+                .iter()
+                .chain(object.local_bounds.max.iter())
+                .find(|v| v.abs() > MAX_OBJECT_SIZE)
+            {
+                errors.push(out_of_range(
+                    id,
+                    "local_bounds",
+                    *v,
+                    "coordinates within ±50 m of the asset origin (limits::MAX_OBJECT_SIZE)",
+                ));
+            } else if (MIN_SCALE..=MAX_SCALE).contains(&pose.scale)
+                && (object.local_bounds.max - object.local_bounds.min).max() * pose.scale
+                    > MAX_OBJECT_SIZE
+            {
+                errors.push(out_of_range(
+                    id,
+                    "pose.scale",
+                    pose.scale,
+                    "a scaled size of at most 50 m on every axis (limits::MAX_OBJECT_SIZE)",
+                ));
             }
             for relation in &object.relations {
                 let t = relation.target.as_str();
@@ -309,9 +542,9 @@ impl Scene {
                     || self.architecture.ids().any(|a| a == t);
                 if !exists {
                     errors.push(ValidationError::MissingRelationTarget {
-                        id: id.clone(),
+                        id: id.to_owned(),
                         kind: relation.kind.to_string(),
-                        target: t.to_owned(),
+                        target: shorten(t),
                     });
                 }
             }
@@ -323,9 +556,28 @@ fn bounds_finite(b: &Aabb) -> bool {
     b.min.iter().chain(b.max.iter()).all(|v| v.is_finite())
 }
 
+/// A number as printed in messages: plain when moderate, in exponent form when huge or tiny
+/// (so 1e308 does not print as 309 digits).
+fn show_number(v: f64) -> String {
+    if v != 0.0 && (v.abs() >= 1e6 || v.abs() < 1e-6) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
+/// `text` escaped for printing and cut to at most 80 characters.
+fn shorten(text: &str) -> String {
+    let p = printable(text);
+    match p.char_indices().nth(80) {
+        Some((cut, _)) => format!("{}…", &p[..cut]),
+        None => p.into_owned(),
+    }
+}
+
 fn non_finite(owner: &str, field: &'static str) -> ValidationError {
     ValidationError::NonFinite {
-        owner: owner.to_owned(),
+        owner: printable(owner).into_owned(),
         field,
     }
 }
@@ -337,9 +589,89 @@ fn out_of_range(
     expected: &'static str,
 ) -> ValidationError {
     ValidationError::OutOfRange {
-        owner: owner.to_owned(),
+        owner: printable(owner).into_owned(),
         field,
         value,
         expected,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_support::{object, scene_with};
+    use crate::RelationKind;
+
+    fn problems(scene: &Scene) -> Vec<String> {
+        scene
+            .validate()
+            .err()
+            .unwrap_or_default()
+            .iter()
+            .map(ToString::to_string)
+            .collect()
+    }
+
+    #[test]
+    fn huge_poses_and_scales_are_refused_with_their_field() {
+        let mut far = object("sofa", ParentRef::Ground, RelationKind::OnFloor);
+        far.pose.translation.x = 1e308;
+        let p = problems(&scene_with(vec![far]));
+        assert_eq!(p.len(), 1, "{p:?}");
+        assert!(
+            p[0].contains("sofa") && p[0].contains("pose.translation") && p[0].contains("1e308"),
+            "{p:?}"
+        );
+        let mut big = object("sofa", ParentRef::Ground, RelationKind::OnFloor);
+        big.pose.scale = 100.0;
+        let p = problems(&scene_with(vec![big]));
+        assert_eq!(p.len(), 1, "{p:?}");
+        assert!(p[0].contains("pose.scale"), "{p:?}");
+        let mut wide = object("rug", ParentRef::Ground, RelationKind::OnFloor);
+        wide.local_bounds.max.x = 30.0;
+        wide.pose.scale = 2.0;
+        let p = problems(&scene_with(vec![wide]));
+        assert!(p[0].contains("scaled size"), "{p:?}");
+    }
+
+    #[test]
+    fn control_characters_in_ids_are_refused_and_escaped() {
+        let evil = object(
+            "chair\u{1b}]0;pwned\u{7}",
+            ParentRef::Ground,
+            RelationKind::OnFloor,
+        );
+        let mut spaced = object(" lamp", ParentRef::Ground, RelationKind::OnFloor);
+        spaced.category = "lamp\nrm -rf".into();
+        let p = problems(&scene_with(vec![evil, spaced]));
+        assert_eq!(p.len(), 3, "{p:?}");
+        assert!(
+            p.iter().all(|m| !m.contains('\u{1b}') && !m.contains('\n')),
+            "{p:?}"
+        );
+        assert!(p[0].contains("\\u{1b}"), "{p:?}");
+        assert!(p.iter().any(|m| m.contains("field `category`")), "{p:?}");
+        assert_eq!(printable("plain"), "plain");
+        assert_eq!(printable("a\u{202e}b"), "a\\u{202e}b");
+        assert!(is_printable_id("sofa_0") && !is_printable_id("") && !is_printable_id("a\tb"));
+    }
+
+    #[test]
+    fn counts_over_the_limits_are_one_problem() {
+        let objects: Vec<_> = (0..=MAX_OBJECTS)
+            .map(|k| object(&format!("o{k}"), ParentRef::Ground, RelationKind::OnFloor))
+            .collect();
+        let p = problems(&scene_with(objects));
+        assert_eq!(p.len(), 1, "{p:?}");
+        assert!(p[0].contains("limit of 2000"), "{p:?}");
+    }
+
+    #[test]
+    fn unknown_generators_are_reported_by_the_caller_lookup() {
+        let scene = scene_with(vec![object("a", ParentRef::Ground, RelationKind::OnFloor)]);
+        assert!(scene.generator_errors(|g| g == "box").is_empty());
+        let e = scene.generator_errors(|_| false);
+        assert_eq!(e.len(), 1);
+        assert!(e[0].to_string().contains("`box`"), "{}", e[0]);
     }
 }

@@ -5,9 +5,10 @@ use nalgebra::{Point3, Vector3};
 use proptest::prelude::*;
 use scenethesis_scene_graph::*;
 
-fn finite() -> impl Strategy<Value = f64> {
+/// Finite coordinates within `limits::MAX_COORDINATE`, which `validate` enforces.
+fn in_limits() -> impl Strategy<Value = f64> {
     prop_oneof![
-        -1e6..1e6f64,
+        -1000.0..1000.0f64,
         -10.0..10.0f64,
         Just(0.0),
         Just(-0.0),
@@ -27,10 +28,10 @@ fn forest_scene() -> impl Strategy<Value = Scene> {
             proptest::collection::vec(
                 (
                     any::<u32>(),
-                    finite(),
-                    finite(),
-                    finite(),
-                    0.01..50.0f64,
+                    in_limits(),
+                    in_limits(),
+                    in_limits(),
+                    0.01..10.0f64,
                     -7.0..7.0f64,
                     relation_kind(),
                     any::<u64>(),

@@ -62,13 +62,32 @@ fn main() -> ExitCode {
     match run(cli.command) {
         Ok(()) => ExitCode::SUCCESS,
         Err(err) => {
-            eprintln!("error: {err}");
-            for cause in err.chain().skip(1) {
-                eprintln!("  caused by: {cause}");
+            for (k, line) in error_lines(&err).iter().enumerate() {
+                if k == 0 {
+                    eprintln!("error: {line}");
+                } else {
+                    eprintln!("  caused by: {line}");
+                }
             }
             ExitCode::FAILURE
         }
     }
+}
+
+/// The lines to print for an error chain: each cause once, leaving out a cause whose text the
+/// messages printed before it already contain (many errors quote their source), with control
+/// characters escaped so that no id or file content can drive the terminal.
+fn error_lines(err: &anyhow::Error) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    for cause in err.chain() {
+        let text = cause.to_string();
+        let text = text.trim();
+        if text.is_empty() || lines.iter().any(|l| l.contains(text)) {
+            continue;
+        }
+        lines.push(scenethesis_scene_graph::printable(text).into_owned());
+    }
+    lines
 }
 
 fn init_logging(verbose: u8) {
@@ -98,5 +117,26 @@ fn run(command: Command) -> Result<()> {
         Command::Validate { path } => commands::validate::run(path),
         Command::Render(args) => commands::render::run(args),
         Command::Roundtrip(args) => commands::roundtrip::run(args),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn error_chains_print_each_cause_once_and_escaped() {
+        let io = std::io::Error::other("disk full");
+        let err = anyhow::Error::new(io)
+            .context("cannot write /x/scene.json: disk full")
+            .context("generation failed\x1b[31m");
+        let lines = error_lines(&err);
+        assert_eq!(
+            lines,
+            vec![
+                "generation failed\\u{1b}[31m".to_owned(),
+                "cannot write /x/scene.json: disk full".to_owned()
+            ]
+        );
     }
 }

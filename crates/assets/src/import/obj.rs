@@ -7,14 +7,31 @@ use std::path::Path;
 
 use scenethesis_scene_graph::{Material, Mesh, MeshPart};
 
+use super::limits::{
+    MAX_FILE_COORDINATE, MAX_MTL_BYTES, MAX_OBJ_BYTES, MAX_TRIANGLES, MAX_VERTICES,
+};
 use super::MeshLoadError;
 
-/// Loads an `.obj` file (and the `.mtl` files it names, if they can be read).
-pub(super) fn load(path: &Path) -> Result<Mesh, MeshLoadError> {
-    let bytes = std::fs::read(path)?;
+/// Loads an `.obj` file (and the `.mtl` files it names, if they can be read and lie inside
+/// `root`; one that does not is ignored with a warning in the log).
+pub(super) fn load(path: &Path, root: &Path) -> Result<Mesh, MeshLoadError> {
+    let bytes = scenethesis_scene_graph::read_bounded(path, MAX_OBJ_BYTES)?;
     let text = String::from_utf8_lossy(&bytes);
     let base = path.parent().unwrap_or_else(|| Path::new("."));
-    parse(&text, |name| std::fs::read_to_string(base.join(name)).ok())
+    parse(&text, |name| {
+        let resolved = match super::gltf_file::resolve_inside(base, root, name) {
+            Ok(p) => p,
+            Err(reason) => {
+                tracing::warn!(
+                    "{}: ignoring material library: {reason}",
+                    scenethesis_scene_graph::printable(&path.display().to_string())
+                );
+                return None;
+            }
+        };
+        let bytes = scenethesis_scene_graph::read_bounded(&resolved, MAX_MTL_BYTES).ok()?;
+        Some(String::from_utf8_lossy(&bytes).into_owned())
+    })
 }
 
 /// Parses OBJ text; `read_mtl` returns the text of a material library by its file name.
@@ -27,6 +44,7 @@ pub(super) fn parse(
     let mut parts = Parts::default();
     let mut group = String::from("mesh");
     let mut current_material = String::new();
+    let mut triangles = 0usize;
 
     for (n, raw) in text.lines().enumerate() {
         let line = raw.split('#').next().unwrap_or("").trim();
@@ -43,12 +61,22 @@ pub(super) fn parse(
                     let f = fields
                         .next()
                         .ok_or_else(|| err("vertex needs three coordinates".into()))?;
-                    *c = f
-                        .parse()
-                        .map_err(|_| err(format!("bad coordinate `{f}`")))?;
-                    if !c.is_finite() {
-                        return Err(err(format!("coordinate `{f}` is not finite")));
+                    *c = f.parse().map_err(|_| {
+                        err(format!(
+                            "bad coordinate `{}`",
+                            scenethesis_scene_graph::printable(f)
+                        ))
+                    })?;
+                    if !c.is_finite() || c.abs() > MAX_FILE_COORDINATE as f32 {
+                        return Err(err(format!(
+                            "coordinate `{f}` is not a finite number within ±{MAX_FILE_COORDINATE}"
+                        )));
                     }
+                }
+                if vertices.len() >= MAX_VERTICES {
+                    return Err(err(format!(
+                        "more than the limit of {MAX_VERTICES} vertices"
+                    )));
                 }
                 vertices.push(p);
             }
@@ -56,9 +84,12 @@ pub(super) fn parse(
                 let mut face = Vec::new();
                 for token in fields {
                     let first = token.split('/').next().unwrap_or("");
-                    let i: i64 = first
-                        .parse()
-                        .map_err(|_| err(format!("bad face index `{token}`")))?;
+                    let i: i64 = first.parse().map_err(|_| {
+                        err(format!(
+                            "bad face index `{}`",
+                            scenethesis_scene_graph::printable(token)
+                        ))
+                    })?;
                     let count = vertices.len() as i64;
                     let resolved = if i > 0 { i - 1 } else { count + i };
                     if i == 0 || resolved < 0 || resolved >= count {
@@ -70,6 +101,12 @@ pub(super) fn parse(
                 }
                 if face.len() < 3 {
                     return Err(err("a face needs at least three vertices".into()));
+                }
+                triangles += face.len() - 2;
+                if triangles > MAX_TRIANGLES {
+                    return Err(err(format!(
+                        "more than the limit of {MAX_TRIANGLES} triangles"
+                    )));
                 }
                 for k in 1..face.len() - 1 {
                     let t = [face[0], face[k], face[k + 1]];

@@ -312,7 +312,10 @@ fn broken_and_missing_files_are_skipped_with_a_warning_naming_them() {
         .iter()
         .zip(["broken.glb", "missing.obj", "bad.obj"])
     {
-        assert!(w.path.ends_with(name), "{w}");
+        assert!(
+            w.path.ends_with(name) || w.path.ends_with(MANIFEST_FILE),
+            "{w}"
+        );
         assert!(w.to_string().contains(name));
     }
     assert!(
@@ -325,11 +328,28 @@ fn broken_and_missing_files_are_skipped_with_a_warning_naming_them() {
 #[test]
 fn manifest_errors_and_directories_without_a_manifest() {
     let dir = tempfile::tempdir().unwrap();
-    write(dir.path(), MANIFEST_FILE, b"[{\"file\": 3}]");
+    write(dir.path(), MANIFEST_FILE, b"{\"file\": 3}");
     let e = import_directory(dir.path()).unwrap_err();
     assert!(e.to_string().contains("assets.json"), "{e}");
+    assert!(e.to_string().contains("`assets` array"), "{e}");
+    // A bad entry is skipped with a warning naming the entry and the field.
+    write(
+        dir.path(),
+        MANIFEST_FILE,
+        b"[{\"file\": 3, \"category\": \"x\"}]",
+    );
+    let report = import_directory(dir.path()).unwrap();
+    assert!(report.assets.is_empty());
+    assert_eq!(report.warnings.len(), 1);
+    let w = report.warnings[0].to_string();
+    assert!(w.contains("entry #0") && w.contains("field `file`"), "{w}");
+    assert!(!w.contains("untagged"), "{w}");
     let dir = tempfile::tempdir().unwrap();
-    let (doc, bin) = table_in_centimetres();
+    let (doc, bin) = gltf_document(
+        &[vec![box_prim([0.0; 3], [0.4, 0.5, 0.4], 0)]],
+        json!([{"mesh": 0}]),
+        None,
+    );
     write(dir.path(), "stool.glb", &glb_bytes(&doc, &bin));
     write(dir.path(), "notes.txt", b"not a mesh");
     let report = import_directory(dir.path()).unwrap();
@@ -341,4 +361,268 @@ fn manifest_errors_and_directories_without_a_manifest() {
         "one note that no manifest was found"
     );
     assert!(import_directory(dir.path().join("nope")).is_err());
+}
+
+/// A one-triangle glTF document with the given nodes, positions and (optional) buffer URI.
+fn triangle_doc(
+    nodes: serde_json::Value,
+    positions: Vec<[f32; 3]>,
+) -> (serde_json::Value, Vec<u8>) {
+    let prim = Prim {
+        positions,
+        indices: vec![0, 1, 2],
+        material: 0,
+    };
+    gltf_document(&[vec![prim]], nodes, None)
+}
+
+fn good_triangle() -> Vec<[f32; 3]> {
+    vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
+}
+
+fn import_one(dir: &Path, name: &str, bytes: &[u8], entry: serde_json::Value) -> ImportReport {
+    write(dir, name, bytes);
+    write(dir, MANIFEST_FILE, json!([entry]).to_string().as_bytes());
+    import_directory(dir).unwrap()
+}
+
+fn only_warning(report: &ImportReport) -> String {
+    assert!(report.assets.is_empty(), "nothing may be imported");
+    assert_eq!(report.warnings.len(), 1, "{:?}", report.warnings);
+    report.warnings[0].to_string()
+}
+
+#[test]
+fn a_node_cycle_is_refused_not_a_stack_overflow() {
+    let dir = tempfile::tempdir().unwrap();
+    let nodes = json!([
+        {"name": "a", "mesh": 0, "children": [1]},
+        {"name": "b", "children": [0]}
+    ]);
+    let (doc, bin) = triangle_doc(nodes, good_triangle());
+    // glTF validation may refuse the cycle itself; either way it is a warning, not a crash.
+    let r = import_one(
+        dir.path(),
+        "cycle.glb",
+        &glb_bytes(&doc, &bin),
+        json!({"file": "cycle.glb", "category": "x"}),
+    );
+    let w = only_warning(&r);
+    assert!(w.contains("cycle.glb"), "{w}");
+    // Exponential sharing (each node lists the next twice) is bounded by the instance limit.
+    let mut nodes = Vec::new();
+    for k in 0..40 {
+        nodes.push(json!({"mesh": 0, "children": [k + 1, k + 1]}));
+    }
+    nodes.push(json!({"mesh": 0}));
+    let (doc, bin) = triangle_doc(json!(nodes), good_triangle());
+    let r = import_one(
+        dir.path(),
+        "fan.glb",
+        &glb_bytes(&doc, &bin),
+        json!({"file": "fan.glb", "category": "x"}),
+    );
+    let w = only_warning(&r);
+    assert!(w.contains("limit"), "{w}");
+}
+
+#[test]
+fn nan_vertices_absurd_transforms_and_zero_area_meshes_are_skipped() {
+    let dir = tempfile::tempdir().unwrap();
+    let nan = vec![[0.0, 0.0, 0.0], [f32::NAN, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let (doc, bin) = triangle_doc(json!([{"mesh": 0}]), nan);
+    let w = only_warning(&import_one(
+        dir.path(),
+        "nan.glb",
+        &glb_bytes(&doc, &bin),
+        json!({"file": "nan.glb", "category": "x"}),
+    ));
+    assert!(w.contains("accessors[0]") && w.contains("NaN"), "{w}");
+    let (doc, bin) = triangle_doc(
+        json!([{"mesh": 0, "scale": [1e30, 1e30, 1e30]}]),
+        good_triangle(),
+    );
+    let w = only_warning(&import_one(
+        dir.path(),
+        "huge.glb",
+        &glb_bytes(&doc, &bin),
+        json!({"file": "huge.glb", "category": "x"}),
+    ));
+    assert!(w.contains("nodes[0]"), "{w}");
+    let (doc, bin) = triangle_doc(
+        json!([{"mesh": 0, "translation": [1e300, 0.0, 0.0]}]),
+        good_triangle(),
+    );
+    let w = only_warning(&import_one(
+        dir.path(),
+        "far.glb",
+        &glb_bytes(&doc, &bin),
+        json!({"file": "far.glb", "category": "x"}),
+    ));
+    assert!(w.contains("out of range"), "{w}");
+    let (doc, bin) = triangle_doc(
+        json!([{"mesh": 0, "translation": [1e20, 0.0, 0.0]}]),
+        good_triangle(),
+    );
+    let w = only_warning(&import_one(
+        dir.path(),
+        "farther.glb",
+        &glb_bytes(&doc, &bin),
+        json!({"file": "farther.glb", "category": "x"}),
+    ));
+    assert!(w.contains("nodes[0]"), "{w}");
+    let flat = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]];
+    let (doc, bin) = triangle_doc(json!([{"mesh": 0}]), flat);
+    let w = only_warning(&import_one(
+        dir.path(),
+        "flat.glb",
+        &glb_bytes(&doc, &bin),
+        json!({"file": "flat.glb", "category": "x"}),
+    ));
+    assert!(w.contains("zero surface area"), "{w}");
+    // 60 m wide once scaled: over the asset size limit.
+    let (doc, bin) = triangle_doc(json!([{"mesh": 0}]), good_triangle());
+    let w = only_warning(&import_one(
+        dir.path(),
+        "big.glb",
+        &glb_bytes(&doc, &bin),
+        json!({"file": "big.glb", "category": "x", "unit_scale": 60.0}),
+    ));
+    assert!(w.contains("larger than the limit"), "{w}");
+}
+
+#[test]
+fn truncated_files_and_dev_zero_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let (doc, bin) = table_in_centimetres();
+    let bytes = glb_bytes(&doc, &bin);
+    for cut in [10, 40, bytes.len() / 2, bytes.len() - 4] {
+        let w = only_warning(&import_one(
+            dir.path(),
+            "cut.glb",
+            &bytes[..cut],
+            json!({"file": "cut.glb", "category": "x"}),
+        ));
+        assert!(w.contains("cut.glb"), "{w}");
+    }
+    #[cfg(unix)]
+    {
+        let e = GltfFile::read(Path::new("/dev/zero"), None).unwrap_err();
+        assert!(e.to_string().contains("expected a regular file"), "{e}");
+        let big = dir.path().join("big.glb");
+        std::fs::write(&big, vec![0u8; 2000]).unwrap();
+        let e = scenethesis_scene_graph::read_bounded(&big, 1000).unwrap_err();
+        assert_eq!(e.kind(), std::io::ErrorKind::FileTooLarge);
+        assert!(e.to_string().contains("limit of 1000 bytes"), "{e}");
+    }
+}
+
+#[test]
+fn asset_packs_cannot_reach_outside_their_folder() {
+    let outer = tempfile::tempdir().unwrap();
+    let pack = outer.path().join("pack");
+    std::fs::create_dir(&pack).unwrap();
+    let (doc, bin) = table_in_centimetres();
+    write(outer.path(), "secret.glb", &glb_bytes(&doc, &bin));
+    write(outer.path(), "secret.bin", &bin);
+    let abs = outer.path().join("secret.glb");
+    let (gltf_doc, _) = gltf_document(
+        &[vec![box_prim([0.0; 3], [1.0; 3], 0)]],
+        json!([{"mesh": 0}]),
+        Some("../secret.bin"),
+    );
+    write(
+        &pack,
+        "escape.gltf",
+        serde_json::to_string(&gltf_doc).unwrap().as_bytes(),
+    );
+    write(&pack, "ok.glb", &glb_bytes(&doc, &bin));
+    write(
+        &pack,
+        MANIFEST_FILE,
+        json!([
+            {"file": "../secret.glb", "category": "a"},
+            {"file": abs.to_str().unwrap(), "category": "b"},
+            {"file": "escape.gltf", "category": "c"},
+            {"file": "ok.glb", "category": "d", "scale_range": [2.0, 1.0]},
+            {"file": "ok.glb", "category": "e", "up_axis": "z", "unit_scale": 0.01}
+        ])
+        .to_string()
+        .as_bytes(),
+    );
+    let report = import_directory(&pack).unwrap();
+    assert_eq!(report.assets.len(), 1, "{:?}", report.warnings);
+    assert_eq!(report.assets[0].info.category, "e");
+    match &report.assets[0].info.source {
+        scenethesis_scene_graph::AssetRef::Imported { path, .. } => {
+            assert!(Path::new(path).is_absolute(), "stored canonical: {path}");
+        }
+        other => panic!("{other:?}"),
+    }
+    let text: Vec<String> = report.warnings.iter().map(|w| w.to_string()).collect();
+    assert_eq!(text.len(), 4, "{text:?}");
+    assert!(
+        text[0].contains("entry #0") && text[0].contains("outside the asset folder"),
+        "{}",
+        text[0]
+    );
+    assert!(
+        text[1].contains("entry #1") && text[1].contains("absolute"),
+        "{}",
+        text[1]
+    );
+    assert!(
+        text[2].contains("buffers[0].uri") && text[2].contains("outside the asset folder"),
+        "{}",
+        text[2]
+    );
+    assert!(
+        text[3].contains("entry #3") && text[3].contains("scale_range"),
+        "{}",
+        text[3]
+    );
+}
+
+#[test]
+fn the_resolver_finds_imported_assets_from_any_working_directory() {
+    let dir = tempfile::tempdir().unwrap();
+    let (doc, bin) = table_in_centimetres();
+    write(dir.path(), "table.glb", &glb_bytes(&doc, &bin));
+    write(
+        dir.path(),
+        MANIFEST_FILE,
+        json!([{"file": "table.glb", "id": "t", "category": "side_table", "up_axis": "z", "unit_scale": 0.01}])
+            .to_string()
+            .as_bytes(),
+    );
+    let report = import_directory(dir.path()).unwrap();
+    let source = report.assets[0].info.source.clone();
+    let mut resolver = AssetResolver::new();
+    let mesh = resolver.mesh(&source).unwrap();
+    assert_eq!(mesh, report.assets[0].mesh);
+    let missing = scenethesis_scene_graph::AssetRef::Imported {
+        id: "nope".into(),
+        path: dir.path().join("table.glb").display().to_string(),
+    };
+    let e = resolver.mesh(&missing).unwrap_err().to_string();
+    assert!(e.contains("no longer holds"), "{e}");
+    let unknown = scenethesis_scene_graph::AssetRef::Procedural {
+        generator: "warp_drive".into(),
+        seed: 1,
+    };
+    assert!(resolver.mesh(&unknown).is_err());
+}
+
+#[test]
+fn a_position_accessor_index_past_the_end_is_an_error_not_a_panic_in_gltf_json() {
+    // Found by the fuzz target: the gltf crate's own validation indexes this without a check.
+    let doc = json!({
+        "asset": {"version": "2.0"},
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 5}}]}],
+        "nodes": [{"mesh": 0}],
+    });
+    let e = GltfFile::from_slice(doc.to_string().as_bytes(), Path::new("."), Path::new("."))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("meshes[0].primitives[0].attributes"), "{e}");
 }

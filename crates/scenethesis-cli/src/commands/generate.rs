@@ -133,7 +133,10 @@ fn pipeline(previews: bool, assets_dir: Option<&Path>) -> Result<Pipeline> {
         let (source, warnings) = RetrievalSource::from_directory(dir)
             .with_context(|| format!("importing assets from {}", dir.display()))?;
         for w in &warnings {
-            eprintln!("warning: {}: {}", w.path.display(), w.reason);
+            eprintln!(
+                "warning: {}",
+                scenethesis_scene_graph::printable(&w.to_string())
+            );
         }
         eprintln!(
             "imported {} assets from {}",

@@ -7,10 +7,11 @@ use std::sync::Arc;
 
 use anyhow::{Context, Result};
 use scenethesis_assets::catalog;
+use scenethesis_assets::import::AssetResolver;
 use scenethesis_render::{
     views, BackendChoice, Instance, PreparedScene, RenderScene, Renderer, RendererOptions,
 };
-use scenethesis_scene_graph::{write_file_atomic, AssetRef, Camera, Mesh, Scene};
+use scenethesis_scene_graph::{write_file_atomic, Camera, Mesh, Scene};
 
 /// An image size written `WIDTHxHEIGHT`, e.g. `800x600`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -78,9 +79,16 @@ pub fn run(args: RenderArgs) -> Result<()> {
         return write_guidance(&scene, &file, &dir, &args);
     }
     let (render_scene, skipped) = render_scene(&scene);
-    for reason in &skipped {
-        tracing::warn!("{reason}");
-        eprintln!("warning: {reason}");
+    if !skipped.is_empty() {
+        // Previews that leave objects out would silently replace correct ones: refuse.
+        for reason in &skipped {
+            eprintln!("  - {reason}");
+        }
+        anyhow::bail!(
+            "cannot render {}: {} object(s) have no mesh (listed above); previews left unchanged",
+            file.display(),
+            skipped.len()
+        );
     }
     let renderer = open_renderer(args.backend)?;
     let prepared = renderer
@@ -177,41 +185,36 @@ pub fn open_renderer(backend: Option<BackendChoice>) -> Result<Renderer> {
     Renderer::new(options).context("cannot render")
 }
 
-/// The scene's objects with their meshes regenerated from their procedural assets, in the
-/// scene's architecture; objects whose mesh cannot be made (imported assets, unknown
-/// generators) are left out, each with a message naming it.
+/// The scene's objects with their meshes (procedural assets regenerated, imported assets
+/// imported again from their asset folder, both through
+/// [`scenethesis_assets::import::AssetResolver`]), in the scene's architecture; objects whose
+/// mesh cannot be made (unknown generators, missing asset files) are left out, each with a
+/// message naming it.
 pub fn render_scene(scene: &Scene) -> (RenderScene, Vec<String>) {
-    let mut meshes: BTreeMap<(String, u64), Arc<Mesh>> = BTreeMap::new();
+    let mut resolver = AssetResolver::new();
+    let mut meshes: BTreeMap<String, Arc<Mesh>> = BTreeMap::new();
     let mut instances = Vec::new();
     let mut skipped = Vec::new();
     for object in &scene.objects {
-        match &object.asset {
-            AssetRef::Procedural { generator, seed } => {
-                let key = (generator.clone(), *seed);
-                let mesh = match meshes.get(&key) {
-                    Some(mesh) => mesh.clone(),
-                    None => match catalog::category(generator) {
-                        Some(category) => {
-                            let mesh = Arc::new(catalog::generate(category, *seed).mesh);
-                            meshes.insert(key, mesh.clone());
-                            mesh
-                        }
-                        None => {
-                            skipped.push(format!(
-                                "skipping object `{}`: no built-in generator `{generator}`",
-                                object.id
-                            ));
-                            continue;
-                        }
-                    },
-                };
-                instances.push(Instance::new(object.id.clone(), mesh, object.pose));
-            }
-            AssetRef::Imported { id, path } => skipped.push(format!(
-                "skipping object `{}`: imported asset `{id}` ({path}) cannot be rendered yet",
-                object.id
-            )),
-        }
+        let key = object.asset.to_string();
+        let mesh = match meshes.get(&key) {
+            Some(mesh) => mesh.clone(),
+            None => match resolver.mesh(&object.asset) {
+                Ok(mesh) => {
+                    let mesh = Arc::new(mesh);
+                    meshes.insert(key, mesh.clone());
+                    mesh
+                }
+                Err(e) => {
+                    skipped.push(format!(
+                        "object `{}`: {e}",
+                        scenethesis_scene_graph::printable(&object.id)
+                    ));
+                    continue;
+                }
+            },
+        };
+        instances.push(Instance::new(object.id.clone(), mesh, object.pose));
     }
     (
         RenderScene::with_architecture(instances, scene.architecture.clone()),

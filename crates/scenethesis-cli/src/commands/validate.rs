@@ -27,13 +27,27 @@ pub fn run(path: PathBuf) -> Result<()> {
         }
         Err(err) => return Err(err).context("validation failed"),
     };
+    let unknown = scene.generator_errors(|g| scenethesis_assets::catalog::category(g).is_some());
+    if !unknown.is_empty() {
+        for problem in &unknown {
+            eprintln!("  - {problem}");
+        }
+        return Err(anyhow::anyhow!(
+            "{} names {} unknown procedural generator(s), listed above",
+            file.display(),
+            unknown.len()
+        ));
+    }
     let order = scene.bfs_order().context("cannot order the scene graph")?;
-    let ids: Vec<&str> = order.iter().map(|o| o.id.as_str()).collect();
+    let ids: Vec<String> = order
+        .iter()
+        .map(|o| scenethesis_scene_graph::printable(&o.id).into_owned())
+        .collect();
     println!(
         "{}: valid scene, {} objects, anchor {}, {} walls, {} doors",
         file.display(),
         scene.objects.len(),
-        scene.anchor.as_deref().unwrap_or("(none)"),
+        scenethesis_scene_graph::printable(scene.anchor.as_deref().unwrap_or("(none)")),
         scene.architecture.walls.len(),
         scene.architecture.doors.len()
     );

@@ -1,0 +1,212 @@
+//! One byte-mutation fuzz target per parser: GLB, glTF (JSON with a data URI), OBJ,
+//! `scene.json`, `assets.json` and plan files. Each must return (an error is fine) without
+//! panicking on every mutated input; each target stops after its time budget.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+
+use proptest::prelude::*;
+use scenethesis_assets::catalog;
+use scenethesis_assets::import::{import_directory, parse_obj, GltfFile, MANIFEST_FILE};
+use scenethesis_fuzz::{config, mutate, mutations, Budget};
+use scenethesis_scene_graph::{AssetRef, Mesh, Scene};
+
+/// Seconds per target in CI.
+const SECONDS: f64 = 3.0;
+
+fn fixture(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fixtures/scenes")
+        .join(name)
+}
+
+fn living_room() -> &'static Scene {
+    static SCENE: OnceLock<Scene> = OnceLock::new();
+    SCENE.get_or_init(|| Scene::read_json(&fixture("valid_living_room.json")).unwrap())
+}
+
+fn meshes(scene: &Scene) -> BTreeMap<String, Mesh> {
+    scene
+        .objects
+        .iter()
+        .filter_map(|o| match &o.asset {
+            AssetRef::Procedural { generator, seed } => catalog::category(generator)
+                .map(|c| (o.id.clone(), catalog::generate(c, *seed).mesh)),
+            AssetRef::Imported { .. } => None,
+        })
+        .collect()
+}
+
+/// The living room exported as GLB: a real file of our own writer.
+fn glb_seed() -> &'static [u8] {
+    static SEED: OnceLock<Vec<u8>> = OnceLock::new();
+    SEED.get_or_init(|| {
+        let scene = living_room();
+        let meshes = meshes(scene);
+        let export = scenethesis_export::ExportScene::new(scene, &meshes).unwrap();
+        scenethesis_export::glb::to_glb(&export)
+    })
+}
+
+/// A one-triangle `.gltf` with its buffer in a base64 data URI.
+const GLTF_SEED: &str = r#"{"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],
+"nodes":[{"name":"root","children":[1],"translation":[0,1,0]},{"name":"tri","mesh":0,"scale":[2,2,2]}],
+"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1,"material":0}]}],
+"materials":[{"name":"m","pbrMetallicRoughness":{"baseColorFactor":[1,0,0,1]}}],
+"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},
+{"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"}],
+"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":6}],
+"buffers":[{"byteLength":42,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIA"}]}"#;
+
+const OBJ_SEED: &str = "# a unit box\no box\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\nusemtl wood\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\ng top\nf 4 8 7 3\nf -8/1/1 -4/2/2 -1/3/3 -5/4/4\nf 2 3 7 6\n";
+
+fn manifest_seed() -> String {
+    r#"[{"file": "box.obj", "id": "crate", "category": "storage_box", "synonyms": ["box"], "up_axis": "z", "unit_scale": 0.5, "front": "-x", "placement": "floor", "scale_range": [0.9, 1.1]},
+{"file": "box.obj", "category": "side_table", "support_surfaces": [{"name": "top", "kind": "top", "polygon": [[-0.2, -0.2], [0.2, -0.2], [0.2, 0.2]], "height": 0.5, "clearance": 0.3}]}]"#
+        .to_owned()
+}
+
+fn plan_seed() -> &'static [u8] {
+    static SEED: OnceLock<Vec<u8>> = OnceLock::new();
+    SEED.get_or_init(|| {
+        use scenethesis_agents::{KnowledgePlanner, PlanRequest, Planner};
+        let planner = KnowledgePlanner::new();
+        let request = PlanRequest::new(
+            "a cozy living room with a sofa, a coffee table and two lamps",
+            planner.known_categories(),
+            7,
+        );
+        serde_json::to_vec_pretty(&planner.plan(&request).unwrap()).unwrap()
+    })
+}
+
+#[test]
+fn every_seed_is_a_valid_input() {
+    // The targets below would prove little if their seeds were already rejected.
+    let dir = Path::new(".");
+    let file = GltfFile::from_slice(glb_seed(), dir, dir).unwrap();
+    assert!(!file.roots.is_empty());
+    let file = GltfFile::from_slice(GLTF_SEED.as_bytes(), dir, dir).unwrap();
+    assert_eq!(file.roots[0].children[0].primitives[0].triangles.len(), 1);
+    assert_eq!(parse_obj(OBJ_SEED).unwrap().triangle_count(), 12);
+    living_room().validate().unwrap();
+    let tmp = tempfile::tempdir().unwrap();
+    std::fs::write(tmp.path().join("box.obj"), OBJ_SEED).unwrap();
+    std::fs::write(tmp.path().join(MANIFEST_FILE), manifest_seed()).unwrap();
+    let report = import_directory(tmp.path()).unwrap();
+    assert_eq!(report.assets.len(), 2, "{:?}", report.warnings);
+    serde_json::from_slice::<scenethesis_agents::Plan>(plan_seed()).unwrap();
+}
+
+proptest! {
+    #![proptest_config(config(300))]
+
+    #[test]
+    fn glb_reader_survives_mutations(edits in mutations()) {
+        static BUDGET: OnceLock<Budget> = OnceLock::new();
+        if BUDGET.get_or_init(|| Budget::new(SECONDS)).spent() {
+            return Ok(());
+        }
+        let bytes = mutate(glb_seed(), &edits);
+        let dir = Path::new(".");
+        let _ = GltfFile::from_slice(&bytes, dir, dir);
+        if let Ok(scene) = scenethesis_eval::glb::GlbScene::from_slice(&bytes, Path::new("fuzz.glb")) {
+            for root in &scene.roots {
+                let _ = root.subtree_mesh();
+            }
+        }
+    }
+
+    #[test]
+    fn glb_scene_loading_for_eval_survives_mutations(edits in mutations()) {
+        static BUDGET: OnceLock<Budget> = OnceLock::new();
+        if BUDGET.get_or_init(|| Budget::new(SECONDS)).spent() {
+            return Ok(());
+        }
+        let tmp = tempfile::tempdir().unwrap();
+        let path = tmp.path().join("scene.glb");
+        std::fs::write(&path, mutate(glb_seed(), &edits)).unwrap();
+        if let Ok(scene) = scenethesis_eval::load_glb(&path) {
+            prop_assert!(scene.check_limits().is_ok());
+        }
+    }
+
+    #[test]
+    fn gltf_json_reader_survives_mutations(edits in mutations()) {
+        static BUDGET: OnceLock<Budget> = OnceLock::new();
+        if BUDGET.get_or_init(|| Budget::new(SECONDS)).spent() {
+            return Ok(());
+        }
+        let bytes = mutate(GLTF_SEED.as_bytes(), &edits);
+        let tmp = tempfile::tempdir().unwrap();
+        let _ = GltfFile::from_slice(&bytes, tmp.path(), tmp.path());
+    }
+
+    #[test]
+    fn obj_parser_survives_mutations(edits in mutations()) {
+        static BUDGET: OnceLock<Budget> = OnceLock::new();
+        if BUDGET.get_or_init(|| Budget::new(SECONDS)).spent() {
+            return Ok(());
+        }
+        let bytes = mutate(OBJ_SEED.as_bytes(), &edits);
+        if let Ok(mesh) = parse_obj(&String::from_utf8_lossy(&bytes)) {
+            prop_assert!(mesh.parts.iter().flat_map(|p| p.positions.iter().flatten()).all(|v| v.is_finite()));
+        }
+    }
+
+    #[test]
+    fn scene_json_reader_survives_mutations(edits in mutations()) {
+        static BUDGET: OnceLock<Budget> = OnceLock::new();
+        if BUDGET.get_or_init(|| Budget::new(SECONDS)).spent() {
+            return Ok(());
+        }
+        static SEED: OnceLock<String> = OnceLock::new();
+        let seed = SEED.get_or_init(|| living_room().to_json_string());
+        let bytes = mutate(seed.as_bytes(), &edits);
+        let Ok(scene) = Scene::from_json_str(&String::from_utf8_lossy(&bytes)) else {
+            return Ok(());
+        };
+        if scene.validate().is_err() {
+            return Ok(());
+        }
+        // A valid scene must be usable by every tool without a panic.
+        prop_assert!(scene.bfs_order().is_ok());
+        if let Ok(eval) = scenethesis_eval::EvalScene::from_scene_procedural(&scene) {
+            prop_assert!(eval.check_limits().is_ok(), "a valid scene is within the evaluator's limits");
+        }
+        let meshes = meshes(&scene);
+        if let Ok(export) = scenethesis_export::ExportScene::new(&scene, &meshes) {
+            let usda = scenethesis_export::usd::to_usda(&export);
+            prop_assert!(!usda.contains(char::from(0x1b)), "raw escape in USD");
+            let _ = scenethesis_export::mjcf::to_mjcf(&export);
+        }
+    }
+
+    #[test]
+    fn assets_json_reader_survives_mutations(edits in mutations()) {
+        static BUDGET: OnceLock<Budget> = OnceLock::new();
+        if BUDGET.get_or_init(|| Budget::new(SECONDS)).spent() {
+            return Ok(());
+        }
+        let tmp = tempfile::tempdir().unwrap();
+        std::fs::write(tmp.path().join("box.obj"), OBJ_SEED).unwrap();
+        std::fs::write(tmp.path().join(MANIFEST_FILE), mutate(manifest_seed().as_bytes(), &edits)).unwrap();
+        if let Ok(report) = import_directory(tmp.path()) {
+            for a in &report.assets {
+                prop_assert!(a.info.scale_range[0] <= a.info.scale_range[1]);
+                prop_assert!(a.info.size.iter().all(|v| v.is_finite()));
+            }
+        }
+    }
+
+    #[test]
+    fn plan_reader_survives_mutations(edits in mutations()) {
+        static BUDGET: OnceLock<Budget> = OnceLock::new();
+        if BUDGET.get_or_init(|| Budget::new(SECONDS)).spent() {
+            return Ok(());
+        }
+        let bytes = mutate(plan_seed(), &edits);
+        let _ = serde_json::from_slice::<scenethesis_agents::Plan>(&bytes);
+    }
+}
