@@ -314,6 +314,9 @@ pub(crate) fn convert(
         objects,
         constraints,
         description,
+        assumptions: Vec::new(),
+        limits: Vec::new(),
+        requested: Vec::new(),
         notes: {
             let mut n = vec![format!(
                 "model interpretation: {}",
