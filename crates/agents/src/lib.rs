@@ -10,11 +10,14 @@
 //!   (or open ground), floor objects placed by their relations while one connected walkway
 //!   reaches the door and every object, and children packed onto their parents' support
 //!   surfaces.
+//! - [`FixedPlanner`] returns a plan written beforehand (a hand-edited `plan.json`), checked
+//!   field by field by [`check_plan`].
 //! - [`relation_holds`] checks a scene relation geometrically.
 //!
 //! An LLM planner and a vision guide implement the same traits.
 #![warn(missing_docs)]
 
+mod fixed;
 mod guide;
 pub mod knowledge;
 mod plan;
@@ -23,6 +26,7 @@ mod prompt;
 mod relations;
 mod text;
 
+pub use fixed::{check_plan, FixedPlanner, PlanFileError, PlanIssue};
 pub use guide::{
     AssetLookup, CatalogAssets, DroppedObject, Guide, GuideError, GuidedLayout, NominalAssets,
     ProceduralGuide, WalkwayReport,

@@ -155,6 +155,10 @@ impl KnowledgePlanner {
 }
 
 impl Planner for KnowledgePlanner {
+    fn name(&self) -> &str {
+        "knowledge"
+    }
+
     fn plan(&self, request: &PlanRequest) -> Result<Plan, PlanError> {
         let prompt = request.prompt.trim();
         let knowledge = &self.knowledge;

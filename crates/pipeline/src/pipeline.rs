@@ -15,10 +15,10 @@ use scenethesis_physics_opt::{
 use scenethesis_scene_graph::{Mesh, ParentRef, Scene};
 use serde::{Deserialize, Serialize};
 
-use crate::assets::{AssetSource, RetrievalSource};
 use crate::judge::{GeometricJudge, Judge, JudgeInput, Verdict};
 use crate::report::{ObjectIssue, Replan, ReplanAction, Report, StageTiming};
 use crate::PipelineError;
+use scenethesis_retrieval::{AssetQuery, AssetSource, RetrievalSource};
 
 /// The stages of a run, in order.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -72,22 +72,27 @@ impl std::fmt::Display for Stage {
     }
 }
 
-/// Receives progress events; the CLI draws them, libraries can ignore them ([`NoProgress`]).
+/// Receives progress events; the CLI draws them, libraries can ignore them (pass `&mut ()`).
+/// Both methods do nothing by default.
 pub trait Progress {
     /// A stage starts; `round` is 0 for the first attempt and counts re-plans after it.
-    fn stage_started(&mut self, stage: Stage, round: usize);
+    fn stage_started(&mut self, stage: Stage, round: usize) {
+        let _ = (stage, round);
+    }
     /// A stage ended after `elapsed`, with a short note (e.g. "24 objects").
-    fn stage_finished(&mut self, stage: Stage, round: usize, elapsed: Duration, note: &str);
+    fn stage_finished(&mut self, stage: Stage, round: usize, elapsed: Duration, note: &str) {
+        let _ = (stage, round, elapsed, note);
+    }
 }
 
-/// Ignores progress.
+/// The null progress: ignores every event.
+impl Progress for () {}
+
+/// Ignores progress (the same as `()`).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct NoProgress;
 
-impl Progress for NoProgress {
-    fn stage_started(&mut self, _: Stage, _: usize) {}
-    fn stage_finished(&mut self, _: Stage, _: usize, _: Duration, _: &str) {}
-}
+impl Progress for NoProgress {}
 
 /// Settings of a run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -158,9 +163,9 @@ pub trait PreviewRenderer: Send + Sync {
 /// the procedural guide,
 /// the projected Gauss–Newton optimizer and the geometric judge.
 pub struct Pipeline {
-    planner: Box<dyn Planner + Send + Sync>,
+    planner: Box<dyn Planner>,
     assets: Box<dyn AssetSource>,
-    guide: Box<dyn Guide + Send + Sync>,
+    guide: Box<dyn Guide>,
     optimizer: Box<dyn Optimizer>,
     judge: Box<dyn Judge>,
     renderer: Option<Box<dyn PreviewRenderer>>,
@@ -169,7 +174,9 @@ pub struct Pipeline {
 impl std::fmt::Debug for Pipeline {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Pipeline")
+            .field("planner", &self.planner.name())
             .field("assets", &self.assets.name())
+            .field("guide", &self.guide.name())
             .field("optimizer", &self.optimizer.name())
             .field("judge", &self.judge.name())
             .field("renderer", &self.renderer.as_ref().map(|r| r.name()))
@@ -222,7 +229,7 @@ impl Pipeline {
     }
 
     /// Replaces the planner.
-    pub fn with_planner(mut self, planner: impl Planner + Send + Sync + 'static) -> Self {
+    pub fn with_planner(mut self, planner: impl Planner + 'static) -> Self {
         self.planner = Box::new(planner);
         self
     }
@@ -234,7 +241,7 @@ impl Pipeline {
     }
 
     /// Replaces the guide.
-    pub fn with_guide(mut self, guide: impl Guide + Send + Sync + 'static) -> Self {
+    pub fn with_guide(mut self, guide: impl Guide + 'static) -> Self {
         self.guide = Box::new(guide);
         self
     }
@@ -262,6 +269,18 @@ impl Pipeline {
         self.assets.as_ref()
     }
 
+    /// The planner's plan for `prompt` with `seed`, over the asset source's categories: the
+    /// plan [`Pipeline::generate`] starts from (what `scenethesis plan` writes).
+    pub fn plan(&self, prompt: &str, seed: u64) -> Result<Plan, PipelineError> {
+        let request = PlanRequest::new(prompt, self.assets.categories(), seed);
+        Ok(self.planner.plan(&request)?)
+    }
+
+    /// The planner's name.
+    pub fn planner_name(&self) -> &str {
+        self.planner.name()
+    }
+
     /// Generates a scene for `prompt` with `seed`: plans, retrieves assets, lays out, optimizes
     /// and judges; while the judge rejects the scene and re-plans remain, moves the objects at
     /// fault (new asset variants and a new layout seed) and then drops them (those the prompt
@@ -282,8 +301,7 @@ impl Pipeline {
 
         progress.stage_started(Stage::Plan, 0);
         let t = Instant::now();
-        let request = PlanRequest::new(prompt, self.assets.categories(), seed);
-        let original_plan = self.planner.plan(&request)?;
+        let original_plan = self.plan(prompt, seed)?;
         timed(Stage::Plan, t);
         progress.stage_finished(
             Stage::Plan,
@@ -313,7 +331,10 @@ impl Pipeline {
                 let variant = variants.get(&object.id).copied().unwrap_or(0);
                 let key = (object.id.clone(), variant);
                 if !assets.contains_key(&key) {
-                    let asset = self.assets.retrieve(object, seed.wrapping_add(variant))?;
+                    let asset = self.assets.retrieve(
+                        &AssetQuery::new(&object.id, &object.category),
+                        seed.wrapping_add(variant),
+                    )?;
                     assets.insert(key.clone(), asset);
                 }
                 infos.insert(object.id.clone(), assets[&key].info.clone());
@@ -517,6 +538,8 @@ impl Pipeline {
             options_digest: options.digest(self.assets.name()),
             scene_type: best.plan.scene_type.clone(),
             accepted: best.verdict.accepted,
+            planner: self.planner.name().to_owned(),
+            guide: self.guide.name().to_owned(),
             judge: self.judge.name().to_owned(),
             optimizer: best.placement.optimizer.clone(),
             asset_source: self.assets.name().to_owned(),

@@ -17,6 +17,10 @@
 #![warn(missing_docs)]
 
 mod index;
+mod source;
 pub mod text;
 
 pub use index::{AssetIndex, Candidate, EmbedError, MatchReason, TextEmbedder, ALIASES};
+pub use source::{
+    object_seed, AssetError, AssetQuery, AssetSource, CatalogSource, RetrievalSource,
+};

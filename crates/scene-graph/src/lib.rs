@@ -28,7 +28,7 @@ mod validate;
 pub use aabb::Aabb;
 pub use architecture::{Architecture, DoorOpening, Environment, Floor, Wall};
 pub use camera::{Camera, Intrinsics, Projection};
-pub use hash::fnv1a64;
+pub use hash::{fnv1a64, fnv1a64_from, mix64, FNV_OFFSET_BASIS, GOLDEN_GAMMA};
 pub use io::{write_file_atomic, SceneIoError};
 pub use mesh::{Material, Mesh, MeshPart};
 pub use object::{AssetRef, ParentRef, Relation, RelationKind, SceneObject, GROUND_ID};

@@ -317,6 +317,10 @@ fn wrap(yaw: f64) -> f64 {
 }
 
 impl Guide for ProceduralGuide {
+    fn name(&self) -> &str {
+        "procedural"
+    }
+
     /// Lays the plan out; when the anchor, a stated (hard) object or a parent of other objects
     /// finds no room, the room grows by 12 % and the layout is redone (at most twice).
     fn layout(
@@ -734,6 +738,7 @@ impl ProceduralGuide {
                     .map(|i| plan.objects[i].id.clone())
                     .collect(),
             },
+            guidance: None,
         })
     }
 }

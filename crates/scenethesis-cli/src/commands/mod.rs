@@ -5,5 +5,6 @@ pub mod batch;
 pub mod eval;
 pub mod export;
 pub mod generate;
+pub mod plan;
 pub mod render;
 pub mod validate;
