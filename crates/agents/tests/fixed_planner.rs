@@ -157,7 +157,9 @@ fn syntax_errors_name_the_field_and_the_file() {
             assert!(message.contains("hovering"), "{message}");
             let shown = e.to_string();
             assert!(
-                shown.starts_with(&format!("plan file plan.json: field `objects[{i}].support`")),
+                shown.starts_with(&format!(
+                    "plan file plan.json: field `objects[{i}].support`"
+                )),
                 "{shown}"
             );
         }
