@@ -34,17 +34,18 @@ mod pipeline;
 mod plan_file;
 #[cfg(feature = "render")]
 mod render;
+mod replan;
 mod report;
+mod stage;
 
 pub use error::PipelineError;
 pub use out_dir::{Existing, OutputDir};
 pub use output::{export_folder, resolve_meshes, welded_objects, REPORT_JSON, SCENE_JSON};
-pub use pipeline::{
-    GenerateOptions, GeneratedScene, NoProgress, Pipeline, PreviewRenderer, Progress, Stage,
-};
+pub use pipeline::{GenerateOptions, GeneratedScene, Pipeline, PreviewRenderer};
 pub use plan_file::{plan_json, write_plan, PLAN_JSON};
 #[cfg(feature = "render")]
 pub use render::WgpuPreviews;
+pub use replan::replan_action;
 pub use report::{ObjectIssue, Replan, ReplanAction, Report, StageTiming};
 /// The judge stage (its own crate, `scenethesis-judge`), re-exported for compatibility.
 pub use scenethesis_judge as judge;
@@ -54,6 +55,7 @@ pub use scenethesis_judge::{
 pub use scenethesis_retrieval::{
     object_seed, AssetError, AssetQuery, AssetSource, CatalogSource, RetrievalSource,
 };
+pub use stage::{NoProgress, Progress, Stage};
 
 pub use scenethesis_agents::{check_plan, FixedPlanner, Plan, PlanFileError, PlanIssue};
 pub use scenethesis_export::Format;

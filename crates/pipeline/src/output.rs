@@ -10,8 +10,9 @@ use scenethesis_scene_graph::{Mesh, Scene, SceneIoError};
 
 use crate::error::PipelineError;
 use crate::out_dir::OutputDir;
-use crate::pipeline::{GeneratedScene, Stage};
+use crate::pipeline::GeneratedScene;
 use crate::report::StageTiming;
+use crate::stage::Stage;
 use scenethesis_retrieval::AssetSource;
 
 /// The scene graph file of an output folder.

@@ -2,7 +2,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use scenethesis_agents::{
     DroppedObject, Guide, KnowledgePlanner, Plan, PlanRequest, Planner, ProceduralGuide,
@@ -12,87 +12,15 @@ use scenethesis_physics_opt::{
     optimize_scene, OptimizeSettings, Optimizer, Placement, PrepareSettings, PreparedAsset,
     ProjectedGaussNewton, SceneProblem,
 };
-use scenethesis_scene_graph::{Mesh, ParentRef, Scene};
+use scenethesis_scene_graph::{Mesh, Scene};
 use serde::{Deserialize, Serialize};
 
 use crate::judge::{GeometricJudge, Judge, JudgeInput, Verdict};
+use crate::replan::{drop_objects, replan_action};
 use crate::report::{ObjectIssue, Replan, ReplanAction, Report, StageTiming};
+use crate::stage::{Progress, Stage};
 use crate::PipelineError;
 use scenethesis_retrieval::{AssetQuery, AssetSource, RetrievalSource};
-
-/// The stages of a run, in order.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Stage {
-    /// Prompt → plan.
-    Plan,
-    /// One asset per planned object.
-    Retrieve,
-    /// Plan → initial layout.
-    Guide,
-    /// Physics-aware pose optimization.
-    Optimize,
-    /// Geometric checks, deciding whether to re-plan.
-    Judge,
-    /// Preview images.
-    Render,
-    /// Writing the output folder.
-    Export,
-}
-
-impl Stage {
-    /// Every stage, in order.
-    pub const ALL: [Stage; 7] = [
-        Stage::Plan,
-        Stage::Retrieve,
-        Stage::Guide,
-        Stage::Optimize,
-        Stage::Judge,
-        Stage::Render,
-        Stage::Export,
-    ];
-
-    /// The stage's name as in `report.json`.
-    pub fn as_str(&self) -> &'static str {
-        match self {
-            Stage::Plan => "plan",
-            Stage::Retrieve => "retrieve",
-            Stage::Guide => "guide",
-            Stage::Optimize => "optimize",
-            Stage::Judge => "judge",
-            Stage::Render => "render",
-            Stage::Export => "export",
-        }
-    }
-}
-
-impl std::fmt::Display for Stage {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.as_str())
-    }
-}
-
-/// Receives progress events; the CLI draws them, libraries can ignore them (pass `&mut ()`).
-/// Both methods do nothing by default.
-pub trait Progress {
-    /// A stage starts; `round` is 0 for the first attempt and counts re-plans after it.
-    fn stage_started(&mut self, stage: Stage, round: usize) {
-        let _ = (stage, round);
-    }
-    /// A stage ended after `elapsed`, with a short note (e.g. "24 objects").
-    fn stage_finished(&mut self, stage: Stage, round: usize, elapsed: Duration, note: &str) {
-        let _ = (stage, round, elapsed, note);
-    }
-}
-
-/// The null progress: ignores every event.
-impl Progress for () {}
-
-/// Ignores progress (the same as `()`).
-#[derive(Debug, Clone, Copy, Default)]
-pub struct NoProgress;
-
-impl Progress for NoProgress {}
 
 /// Settings of a run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -450,33 +378,7 @@ impl Pipeline {
                 break;
             }
 
-            // Re-plan: first move the offenders (new asset variants, new layout seed); from
-            // the second re-plan on, drop them (never the anchor) with everything they hold.
-            // Objects the prompt asked for are dropped last: while other offenders remain, or
-            // until the final re-plan, they are moved again instead.
-            let movable: Vec<String> = offenders
-                .iter()
-                .filter(|id| **id != plan.anchor)
-                .cloned()
-                .collect();
-            let requested = |id: &String| plan.object(id).is_some_and(|o| o.hard);
-            let (asked_for, optional): (Vec<String>, Vec<String>) =
-                movable.iter().cloned().partition(requested);
-            let last_chance = round + 1 == options.max_replans;
-            let to_drop: Vec<String> = if round == 0 || movable.is_empty() {
-                Vec::new()
-            } else if !optional.is_empty() {
-                optional
-            } else if last_chance {
-                asked_for
-            } else {
-                Vec::new()
-            };
-            let action = if to_drop.is_empty() {
-                ReplanAction::Move
-            } else {
-                ReplanAction::Drop
-            };
+            let (action, to_drop) = replan_action(&plan, &offenders, round, options.max_replans);
             for id in offenders.iter().filter(|id| !to_drop.contains(id)) {
                 *variants.entry(id.clone()).or_default() += 1;
             }
@@ -572,32 +474,4 @@ impl Pipeline {
             report,
         })
     }
-}
-
-/// Removes `ids` and every object resting on them (recursively) from the plan, with the
-/// relations and constraints that mention them; returns what was removed.
-fn drop_objects(plan: &mut Plan, ids: &[String]) -> BTreeSet<String> {
-    let mut gone: BTreeSet<String> = ids.iter().cloned().collect();
-    loop {
-        let more: Vec<String> = plan
-            .objects
-            .iter()
-            .filter(|o| !gone.contains(&o.id))
-            .filter(|o| matches!(&o.parent, ParentRef::Object(p) if gone.contains(p)))
-            .map(|o| o.id.clone())
-            .collect();
-        if more.is_empty() {
-            break;
-        }
-        gone.extend(more);
-    }
-    plan.objects.retain(|o| !gone.contains(&o.id));
-    for object in &mut plan.objects {
-        object.relations.retain(|r| !gone.contains(&r.target));
-    }
-    plan.constraints.retain(|c| {
-        !gone.contains(&c.subject)
-            && !matches!(&c.target, scenethesis_agents::ConstraintTarget::Object(t) if gone.contains(t))
-    });
-    gone
 }

@@ -4,7 +4,7 @@ use scenethesis_agents::DroppedObject;
 use serde::{Deserialize, Serialize};
 
 use crate::judge::Verdict;
-use crate::pipeline::Stage;
+use crate::stage::Stage;
 
 /// What the judge did before a re-plan.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
