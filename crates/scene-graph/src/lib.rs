@@ -24,6 +24,7 @@ mod pose;
 mod scene;
 mod traversal;
 mod validate;
+mod walkway;
 
 pub use aabb::Aabb;
 pub use architecture::{Architecture, DoorOpening, Environment, Floor, Wall};
@@ -35,6 +36,7 @@ pub use object::{AssetRef, ParentRef, Relation, RelationKind, SceneObject, GROUN
 pub use pose::Pose;
 pub use scene::{Scene, FORMAT_VERSION};
 pub use validate::ValidationError;
+pub use walkway::ROBOT_RADIUS;
 
 /// Re-export of the linear-algebra crate used in this crate's public types.
 pub use nalgebra;

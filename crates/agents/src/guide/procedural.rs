@@ -19,8 +19,7 @@ use super::{AssetLookup, DroppedObject, Guide, GuideError, GuidedLayout, Walkway
 use crate::knowledge::{Knowledge, NominalShape};
 use crate::plan::{Plan, PlannedObject, Zone};
 
-/// Robot radius of the Walk and Reach metrics (0.3 m diameter).
-pub const ROBOT_RADIUS: f64 = 0.15;
+use scenethesis_scene_graph::ROBOT_RADIUS;
 /// How far the guide grows footprints for its own walk check: the robot radius plus half a
 /// raster cell and a centimetre, so that slivers the metric raster may close never count as
 /// passages.
