@@ -58,6 +58,7 @@
 
 mod aabb;
 mod architecture;
+mod asset;
 mod camera;
 mod hash;
 mod io;
@@ -71,6 +72,7 @@ mod walkway;
 
 pub use aabb::Aabb;
 pub use architecture::{Architecture, DoorOpening, Environment, Floor, Wall};
+pub use asset::{Asset, AssetInfo, Placement, SupportSurface, SurfaceKind};
 pub use camera::{Camera, Intrinsics, Projection};
 pub use hash::{fnv1a64, fnv1a64_from, mix64, FNV_OFFSET_BASIS, GOLDEN_GAMMA};
 pub use io::{write_file_atomic, SceneIoError};
