@@ -23,7 +23,6 @@ pub mod knowledge;
 mod plan;
 mod planner;
 mod prompt;
-mod relations;
 mod text;
 
 pub use fixed::{check_plan, FixedPlanner, PlanFileError, PlanIssue};
@@ -37,4 +36,5 @@ pub use plan::{
     Zone, BACK_WALL, FRONT_WALL, LEFT_WALL, RIGHT_WALL,
 };
 pub use planner::KnowledgePlanner;
-pub use relations::relation_holds;
+/// Relation semantics live in the shared model (`scenethesis-scene-graph`); re-exported here.
+pub use scenethesis_scene_graph::relation_holds;
