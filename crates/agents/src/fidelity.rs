@@ -5,7 +5,7 @@ use scenethesis_scene_graph::{Relation, RelationKind, Scene, GROUND_ID};
 use serde::{Deserialize, Serialize};
 
 use crate::plan::{ConstraintTarget, Plan, PlanConstraint};
-use crate::relations::relation_holds;
+use scenethesis_scene_graph::relation_holds;
 
 /// A requested object some of whose instances are not in the scene.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]

@@ -10,6 +10,8 @@
 //!   (or open ground), floor objects placed by their relations while one connected walkway
 //!   reaches the door and every object, and children packed onto their parents' support
 //!   surfaces.
+//! - [`FixedPlanner`] returns a plan written beforehand (a hand-edited `plan.json`), checked
+//!   field by field by [`check_plan`].
 //! - [`relation_holds`] checks a scene relation geometrically; [`check_prompt`] checks that a
 //!   scene holds every object its prompt names and every relation it states.
 //!
@@ -17,16 +19,17 @@
 #![warn(missing_docs)]
 
 mod fidelity;
+mod fixed;
 mod guide;
 pub mod knowledge;
 pub mod places;
 mod plan;
 mod planner;
 mod prompt;
-mod relations;
 mod text;
 
 pub use fidelity::{check_prompt, constraint_holds, BrokenRelation, MissingObject, PromptCheck};
+pub use fixed::{check_plan, FixedPlanner, PlanFileError, PlanIssue};
 pub use guide::{
     AssetLookup, CatalogAssets, DroppedObject, Guide, GuideError, GuidedLayout, NominalAssets,
     ProceduralGuide, WalkwayReport,
@@ -39,4 +42,5 @@ pub use plan::{
     MAX_PLANNED_OBJECTS, MAX_PROMPT_CHARS, RIGHT_WALL,
 };
 pub use planner::KnowledgePlanner;
-pub use relations::relation_holds;
+/// Relation semantics live in the shared model (`scenethesis-scene-graph`); re-exported here.
+pub use scenethesis_scene_graph::relation_holds;

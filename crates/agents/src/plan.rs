@@ -276,7 +276,12 @@ pub enum PlanError {
 /// implements the same trait by prompting a model with the request (prompt and available
 /// categories) and parsing its answer into a [`Plan`] (which is serde-serializable for that
 /// purpose). Implementations must be deterministic for a fixed request and provider.
-pub trait Planner {
+///
+/// [`crate::FixedPlanner`] is the second implementation: it returns a plan read from a file.
+pub trait Planner: Send + Sync {
+    /// A short name for reports (`report.json` records it).
+    fn name(&self) -> &str;
+
     /// Plans the scene for `request`.
     fn plan(&self, request: &PlanRequest) -> Result<Plan, PlanError>;
 }

@@ -232,11 +232,9 @@ pub fn generate(category: &Category, seed: u64) -> Asset {
     asset
 }
 
-/// A stable 64-bit FNV-1a hash of a name, so categories sharing a seed still differ.
+/// A stable hash of a name (the project's FNV-1a), so categories sharing a seed still differ.
 fn name_hash(name: &str) -> u64 {
-    name.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
-        (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3)
-    })
+    scenethesis_scene_graph::fnv1a64(name.as_bytes())
 }
 
 #[cfg(test)]

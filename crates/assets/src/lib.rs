@@ -11,10 +11,11 @@
 pub mod catalog;
 mod furniture;
 pub mod import;
-mod info;
 mod items;
 mod outdoor;
 pub mod primitives;
 mod random;
 
-pub use info::{Asset, AssetInfo, Placement, SupportSurface, SurfaceKind};
+/// The asset metadata types live in `scenethesis-scene-graph` (every stage needs them, the
+/// generators are one provider); re-exported here.
+pub use scenethesis_scene_graph::{Asset, AssetInfo, Placement, SupportSurface, SurfaceKind};

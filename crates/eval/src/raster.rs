@@ -9,8 +9,8 @@ use crate::scene::{EvalObject, EvalScene};
 pub const RASTER_SIZE: usize = 256;
 /// Margin (m) added on every side of the floor's bounding square.
 pub const RASTER_MARGIN: f64 = 0.2;
-/// Robot radius (m): half of its 0.3 m diameter.
-pub const ROBOT_RADIUS: f64 = 0.15;
+/// Robot radius (m): half of its 0.3 m diameter (the shared constant of `scenethesis-scene-graph`).
+pub use scenethesis_scene_graph::ROBOT_RADIUS;
 /// For Walk, only objects whose bounding-box centre is below this height (m) are obstacles.
 pub const WALK_HEIGHT_LIMIT: f64 = 1.5;
 

@@ -48,6 +48,7 @@ Ids are the category with a number: shelf_0, shelf_1, ...";
 #[derive(Debug)]
 pub struct LlmPlanner<M> {
     model: M,
+    label: String,
     fallback: KnowledgePlanner,
     min_objects: usize,
 }
@@ -64,6 +65,7 @@ impl<M: ChatModel> LlmPlanner<M> {
     /// A planner asking `model`, completing weak plans from the built-in knowledge.
     pub fn new(model: M) -> Self {
         Self {
+            label: format!("llm:{}", model.name()),
             model,
             fallback: KnowledgePlanner::new(),
             min_objects: MIN_OBJECTS,
@@ -82,11 +84,6 @@ impl<M: ChatModel> LlmPlanner<M> {
         self
     }
 
-    /// `llm:<model name>`, for reports.
-    pub fn name(&self) -> String {
-        format!("llm:{}", self.model.name())
-    }
-
     /// The model.
     pub fn model(&self) -> &M {
         &self.model
@@ -100,7 +97,7 @@ impl<M: ChatModel> LlmPlanner<M> {
             Err(e) if usable_failure(&e) => return Ok(Round::Unusable(e.to_string())),
             Err(e) => {
                 return Err(PlanError::Provider {
-                    provider: self.name(),
+                    provider: self.label.clone(),
                     message: e.to_string(),
                 })
             }
@@ -133,7 +130,7 @@ impl<M: ChatModel> LlmPlanner<M> {
             Err(e) => {
                 if converted.plan.anchor.is_empty() || converted.plan.objects.is_empty() {
                     return Err(PlanError::InvalidPlan {
-                        provider: self.name(),
+                        provider: self.label.clone(),
                         message: format!(
                             "{reasons}; the offline knowledge cannot complete it either: {e}"
                         ),
@@ -225,7 +222,7 @@ impl<M: ChatModel> LlmPlanner<M> {
         ));
         if plan.anchor.is_empty() {
             return Err(PlanError::InvalidPlan {
-                provider: self.name(),
+                provider: self.label.clone(),
                 message: format!("{reasons}; no anchor could be found"),
             });
         }
@@ -256,6 +253,11 @@ fn user_message(request: &PlanRequest) -> String {
 }
 
 impl<M: ChatModel> Planner for LlmPlanner<M> {
+    /// `llm:<model name>`, for reports.
+    fn name(&self) -> &str {
+        &self.label
+    }
+
     fn plan(&self, request: &PlanRequest) -> Result<Plan, PlanError> {
         if !request.prompt.chars().any(char::is_alphanumeric) {
             return Err(PlanError::EmptyPrompt);
@@ -310,7 +312,7 @@ impl<M: ChatModel> Planner for LlmPlanner<M> {
                     .fallback
                     .plan(request)
                     .map_err(|e| PlanError::InvalidPlan {
-                        provider: self.name(),
+                        provider: self.label.clone(),
                         message: format!(
                             "{critique}; the offline knowledge cannot plan it either: {e}"
                         ),

@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use nalgebra::{Point3, Vector3};
-use scenethesis_assets::Placement as AssetPlacement;
+use scenethesis_scene_graph::Placement as AssetPlacement;
 use scenethesis_scene_graph::{Architecture, ParentRef, Pose, RelationKind, Scene, SceneObject};
 use scenethesis_sdf::{BoxSdf, SignedDistance};
 use serde::{Deserialize, Serialize};

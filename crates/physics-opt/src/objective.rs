@@ -499,7 +499,7 @@ mod tests {
     use std::sync::Arc;
 
     use scenethesis_assets::primitives::cuboid;
-    use scenethesis_assets::Placement;
+    use scenethesis_scene_graph::Placement;
     use scenethesis_scene_graph::{Material, Mesh};
     use scenethesis_sdf::BoxSdf;
 

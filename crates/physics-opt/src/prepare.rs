@@ -5,8 +5,8 @@
 use std::sync::Arc;
 
 use nalgebra::{Point3, Vector3};
-use scenethesis_assets::{Asset, Placement, SupportSurface};
 use scenethesis_scene_graph::{Aabb, Mesh};
+use scenethesis_scene_graph::{Asset, Placement, SupportSurface};
 use scenethesis_sdf::{sampling, GridSdf, MeshSdf, SignedDistance};
 use serde::{Deserialize, Serialize};
 

@@ -3,8 +3,8 @@
 //! geometry.
 
 use nalgebra::{Point2, Point3, Vector3};
-use scenethesis_assets::{SupportSurface, SurfaceKind};
 use scenethesis_scene_graph::{Architecture, Pose, RelationKind};
+use scenethesis_scene_graph::{SupportSurface, SurfaceKind};
 use serde::{Deserialize, Serialize};
 
 use crate::params::world_point;

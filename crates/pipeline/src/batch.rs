@@ -25,8 +25,9 @@ use scenethesis_scene_graph::write_file_atomic;
 use serde::{Deserialize, Serialize};
 
 use crate::output::REPORT_JSON;
-use crate::pipeline::{GenerateOptions, NoProgress, Pipeline};
+use crate::pipeline::{GenerateOptions, Pipeline};
 use crate::report::Report;
+use crate::stage::NoProgress;
 use crate::PipelineError;
 
 /// One slice of a batch: shard `index` of `count` (0-based).

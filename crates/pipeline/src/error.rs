@@ -7,8 +7,8 @@ use scenethesis_export::ExportError;
 use scenethesis_physics_opt::PhysicsOptError;
 use scenethesis_scene_graph::SceneIoError;
 
-use crate::assets::AssetError;
 use crate::judge::JudgeError;
+use scenethesis_retrieval::AssetError;
 
 /// Why a run, an export or a batch failed.
 #[derive(Debug, thiserror::Error)]

@@ -26,29 +26,38 @@
 
 #![warn(missing_docs)]
 
-mod assets;
 pub mod batch;
 mod error;
-pub mod judge;
 pub mod out_dir;
 mod output;
 mod pipeline;
+mod plan_file;
 #[cfg(feature = "render")]
 mod render;
+mod replan;
 mod report;
 #[cfg(feature = "render")]
 pub mod roundtrip;
+mod stage;
 
-pub use assets::{object_seed, AssetError, AssetSource, CatalogSource, RetrievalSource};
 pub use error::PipelineError;
-pub use judge::{Failure, FailureKind, GeometricJudge, Judge, JudgeError, JudgeInput, Verdict};
 pub use out_dir::{Existing, OutputDir};
 pub use output::{export_folder, resolve_meshes, welded_objects, REPORT_JSON, SCENE_JSON};
-pub use pipeline::{
-    GenerateOptions, GeneratedScene, NoProgress, Pipeline, PreviewRenderer, Progress, Stage,
-};
+pub use pipeline::{GenerateOptions, GeneratedScene, Pipeline, PreviewRenderer};
+pub use plan_file::{plan_json, write_plan, PLAN_JSON};
 #[cfg(feature = "render")]
 pub use render::WgpuPreviews;
+pub use replan::replan_action;
 pub use report::{ObjectIssue, Replan, ReplanAction, Report, StageTiming};
+/// The judge stage (its own crate, `scenethesis-judge`), re-exported for compatibility.
+pub use scenethesis_judge as judge;
+pub use scenethesis_judge::{
+    AcceptAll, Failure, FailureKind, GeometricJudge, Judge, JudgeError, JudgeInput, Verdict,
+};
+pub use scenethesis_retrieval::{
+    object_seed, AssetError, AssetQuery, AssetSource, CatalogSource, RetrievalSource,
+};
+pub use stage::{NoProgress, Progress, Stage};
 
+pub use scenethesis_agents::{check_plan, FixedPlanner, Plan, PlanFileError, PlanIssue};
 pub use scenethesis_export::Format;

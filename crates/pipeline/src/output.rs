@@ -8,11 +8,12 @@ use scenethesis_eval::EvalObject;
 use scenethesis_export::{ExportError, ExportScene, Format};
 use scenethesis_scene_graph::{Mesh, Scene, SceneIoError};
 
-use crate::assets::AssetSource;
 use crate::error::PipelineError;
 use crate::out_dir::OutputDir;
-use crate::pipeline::{GeneratedScene, Stage};
+use crate::pipeline::GeneratedScene;
 use crate::report::StageTiming;
+use crate::stage::Stage;
+use scenethesis_retrieval::AssetSource;
 
 /// The scene graph file of an output folder.
 pub const SCENE_JSON: &str = "scene.json";

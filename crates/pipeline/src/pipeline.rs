@@ -2,7 +2,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use scenethesis_agents::{
     DroppedObject, Guide, KnowledgePlanner, Plan, PlanRequest, Planner, ProceduralGuide,
@@ -12,82 +12,15 @@ use scenethesis_physics_opt::{
     optimize_scene, OptimizeSettings, Optimizer, Placement, PrepareSettings, PreparedAsset,
     ProjectedGaussNewton, SceneProblem,
 };
-use scenethesis_scene_graph::{Mesh, ParentRef, Scene};
+use scenethesis_scene_graph::{Mesh, Scene};
 use serde::{Deserialize, Serialize};
 
-use crate::assets::{AssetSource, RetrievalSource};
 use crate::judge::{GeometricJudge, Judge, JudgeInput, Verdict};
+use crate::replan::{drop_objects, replan_action};
 use crate::report::{ObjectIssue, Replan, ReplanAction, Report, StageTiming};
+use crate::stage::{Progress, Stage};
 use crate::PipelineError;
-
-/// The stages of a run, in order.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Stage {
-    /// Prompt → plan.
-    Plan,
-    /// One asset per planned object.
-    Retrieve,
-    /// Plan → initial layout.
-    Guide,
-    /// Physics-aware pose optimization.
-    Optimize,
-    /// Geometric checks, deciding whether to re-plan.
-    Judge,
-    /// Preview images.
-    Render,
-    /// Writing the output folder.
-    Export,
-}
-
-impl Stage {
-    /// Every stage, in order.
-    pub const ALL: [Stage; 7] = [
-        Stage::Plan,
-        Stage::Retrieve,
-        Stage::Guide,
-        Stage::Optimize,
-        Stage::Judge,
-        Stage::Render,
-        Stage::Export,
-    ];
-
-    /// The stage's name as in `report.json`.
-    pub fn as_str(&self) -> &'static str {
-        match self {
-            Stage::Plan => "plan",
-            Stage::Retrieve => "retrieve",
-            Stage::Guide => "guide",
-            Stage::Optimize => "optimize",
-            Stage::Judge => "judge",
-            Stage::Render => "render",
-            Stage::Export => "export",
-        }
-    }
-}
-
-impl std::fmt::Display for Stage {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.as_str())
-    }
-}
-
-/// Receives progress events; the CLI draws them, libraries can ignore them ([`NoProgress`]).
-pub trait Progress {
-    /// A stage starts; `round` is 0 for the first attempt and counts re-plans after it.
-    fn stage_started(&mut self, stage: Stage, round: usize);
-    /// A stage ended after `elapsed`, with a short note (e.g. "24 objects").
-    fn stage_finished(&mut self, stage: Stage, round: usize, elapsed: Duration, note: &str);
-}
-
-/// Ignores progress.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct NoProgress;
-
-impl Progress for NoProgress {
-    fn stage_started(&mut self, _: Stage, _: usize) {}
-    fn stage_finished(&mut self, _: Stage, _: usize, _: Duration, _: &str) {}
-}
+use scenethesis_retrieval::{AssetQuery, AssetSource, RetrievalSource};
 
 /// Settings of a run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -158,9 +91,9 @@ pub trait PreviewRenderer: Send + Sync {
 /// the procedural guide,
 /// the projected Gauss–Newton optimizer and the geometric judge.
 pub struct Pipeline {
-    planner: Box<dyn Planner + Send + Sync>,
+    planner: Box<dyn Planner>,
     assets: Box<dyn AssetSource>,
-    guide: Box<dyn Guide + Send + Sync>,
+    guide: Box<dyn Guide>,
     optimizer: Box<dyn Optimizer>,
     judge: Box<dyn Judge>,
     renderer: Option<Box<dyn PreviewRenderer>>,
@@ -169,7 +102,9 @@ pub struct Pipeline {
 impl std::fmt::Debug for Pipeline {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Pipeline")
+            .field("planner", &self.planner.name())
             .field("assets", &self.assets.name())
+            .field("guide", &self.guide.name())
             .field("optimizer", &self.optimizer.name())
             .field("judge", &self.judge.name())
             .field("renderer", &self.renderer.as_ref().map(|r| r.name()))
@@ -222,7 +157,7 @@ impl Pipeline {
     }
 
     /// Replaces the planner.
-    pub fn with_planner(mut self, planner: impl Planner + Send + Sync + 'static) -> Self {
+    pub fn with_planner(mut self, planner: impl Planner + 'static) -> Self {
         self.planner = Box::new(planner);
         self
     }
@@ -234,7 +169,7 @@ impl Pipeline {
     }
 
     /// Replaces the guide.
-    pub fn with_guide(mut self, guide: impl Guide + Send + Sync + 'static) -> Self {
+    pub fn with_guide(mut self, guide: impl Guide + 'static) -> Self {
         self.guide = Box::new(guide);
         self
     }
@@ -262,6 +197,18 @@ impl Pipeline {
         self.assets.as_ref()
     }
 
+    /// The planner's plan for `prompt` with `seed`, over the asset source's categories: the
+    /// plan [`Pipeline::generate`] starts from (what `scenethesis plan` writes).
+    pub fn plan(&self, prompt: &str, seed: u64) -> Result<Plan, PipelineError> {
+        let request = PlanRequest::new(prompt, self.assets.categories(), seed);
+        Ok(self.planner.plan(&request)?)
+    }
+
+    /// The planner's name.
+    pub fn planner_name(&self) -> &str {
+        self.planner.name()
+    }
+
     /// Generates a scene for `prompt` with `seed`: plans, retrieves assets, lays out, optimizes
     /// and judges; while the judge rejects the scene and re-plans remain, moves the objects at
     /// fault (new asset variants and a new layout seed) and then drops them (those the prompt
@@ -282,8 +229,7 @@ impl Pipeline {
 
         progress.stage_started(Stage::Plan, 0);
         let t = Instant::now();
-        let request = PlanRequest::new(prompt, self.assets.categories(), seed);
-        let original_plan = self.planner.plan(&request)?;
+        let original_plan = self.plan(prompt, seed)?;
         timed(Stage::Plan, t);
         progress.stage_finished(
             Stage::Plan,
@@ -313,7 +259,10 @@ impl Pipeline {
                 let variant = variants.get(&object.id).copied().unwrap_or(0);
                 let key = (object.id.clone(), variant);
                 if !assets.contains_key(&key) {
-                    let asset = self.assets.retrieve(object, seed.wrapping_add(variant))?;
+                    let asset = self.assets.retrieve(
+                        &AssetQuery::new(&object.id, &object.category),
+                        seed.wrapping_add(variant),
+                    )?;
                     assets.insert(key.clone(), asset);
                 }
                 infos.insert(object.id.clone(), assets[&key].info.clone());
@@ -429,36 +378,7 @@ impl Pipeline {
                 break;
             }
 
-            // Re-plan: first move the offenders (new asset variants, new layout seed); from
-            // the second re-plan on, drop them (never the anchor) with everything they hold.
-            // Objects the prompt asked for are dropped last: while other offenders remain, or
-            // until the final re-plan, they are moved again instead.
-            let movable: Vec<String> = offenders
-                .iter()
-                .filter(|id| **id != plan.anchor)
-                .cloned()
-                .collect();
-            let requested = |id: &String| {
-                plan.object(id).is_some_and(|o| o.hard)
-                    || plan.requested.iter().any(|r| r.ids.contains(id))
-            };
-            let (asked_for, optional): (Vec<String>, Vec<String>) =
-                movable.iter().cloned().partition(requested);
-            let last_chance = round + 1 == options.max_replans;
-            let to_drop: Vec<String> = if round == 0 || movable.is_empty() {
-                Vec::new()
-            } else if !optional.is_empty() {
-                optional
-            } else if last_chance {
-                asked_for
-            } else {
-                Vec::new()
-            };
-            let action = if to_drop.is_empty() {
-                ReplanAction::Move
-            } else {
-                ReplanAction::Drop
-            };
+            let (action, to_drop) = replan_action(&plan, &offenders, round, options.max_replans);
             for id in offenders.iter().filter(|id| !to_drop.contains(id)) {
                 *variants.entry(id.clone()).or_default() += 1;
             }
@@ -520,6 +440,8 @@ impl Pipeline {
             options_digest: options.digest(self.assets.name()),
             scene_type: best.plan.scene_type.clone(),
             accepted: best.verdict.accepted,
+            planner: self.planner.name().to_owned(),
+            guide: self.guide.name().to_owned(),
             judge: self.judge.name().to_owned(),
             optimizer: best.placement.optimizer.clone(),
             asset_source: self.assets.name().to_owned(),
@@ -555,32 +477,4 @@ impl Pipeline {
             report,
         })
     }
-}
-
-/// Removes `ids` and every object resting on them (recursively) from the plan, with the
-/// relations and constraints that mention them; returns what was removed.
-fn drop_objects(plan: &mut Plan, ids: &[String]) -> BTreeSet<String> {
-    let mut gone: BTreeSet<String> = ids.iter().cloned().collect();
-    loop {
-        let more: Vec<String> = plan
-            .objects
-            .iter()
-            .filter(|o| !gone.contains(&o.id))
-            .filter(|o| matches!(&o.parent, ParentRef::Object(p) if gone.contains(p)))
-            .map(|o| o.id.clone())
-            .collect();
-        if more.is_empty() {
-            break;
-        }
-        gone.extend(more);
-    }
-    plan.objects.retain(|o| !gone.contains(&o.id));
-    for object in &mut plan.objects {
-        object.relations.retain(|r| !gone.contains(&r.target));
-    }
-    plan.constraints.retain(|c| {
-        !gone.contains(&c.subject)
-            && !matches!(&c.target, scenethesis_agents::ConstraintTarget::Object(t) if gone.contains(t))
-    });
-    gone
 }

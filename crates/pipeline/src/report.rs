@@ -4,7 +4,7 @@ use scenethesis_agents::{DroppedObject, PromptCheck};
 use serde::{Deserialize, Serialize};
 
 use crate::judge::Verdict;
-use crate::pipeline::Stage;
+use crate::stage::Stage;
 
 /// What the judge did before a re-plan.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -68,6 +68,12 @@ pub struct Report {
     pub scene_type: String,
     /// Whether the judge accepted the final scene.
     pub accepted: bool,
+    /// The planner's name (`Planner::name`; empty in reports written before it was recorded).
+    #[serde(default)]
+    pub planner: String,
+    /// The guide's name (`Guide::name`; empty in reports written before it was recorded).
+    #[serde(default)]
+    pub guide: String,
     /// The judge's name.
     pub judge: String,
     /// The optimizer's name.

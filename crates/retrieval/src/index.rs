@@ -459,19 +459,14 @@ fn cosine(a: &[f32], b: &[f32]) -> f32 {
     }
 }
 
-/// FNV-1a hash of a string (stable across platforms and runs).
+/// The project's FNV-1a hash of a string (stable across platforms and runs).
 fn fnv(s: &str) -> u64 {
-    s.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
-        (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3)
-    })
+    scenethesis_scene_graph::fnv1a64(s.as_bytes())
 }
 
-/// SplitMix64 finaliser: spreads nearby seeds over the whole range.
-fn mix(mut z: u64) -> u64 {
-    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
+/// One SplitMix64 step: spreads nearby seeds over the whole range.
+fn mix(z: u64) -> u64 {
+    scenethesis_scene_graph::mix64(z.wrapping_add(scenethesis_scene_graph::GOLDEN_GAMMA))
 }
 
 #[cfg(test)]

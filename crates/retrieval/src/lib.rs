@@ -15,10 +15,32 @@
 //! Every query is normalised first (case, `_`/`-`, plurals). Candidates that score the same are
 //! ordered by the search seed, and a built-in category's candidate carries a procedural seed
 //! derived from the search seed, so different seeds give varied but reproducible scenes.
+//!
+//! ```
+//! use scenethesis_retrieval::{AssetIndex, AssetQuery, AssetSource, MatchReason, RetrievalSource};
+//!
+//! let index = AssetIndex::builtin();
+//! let best = &index.search("couch", 1, 0)[0];
+//! assert_eq!(best.category, "sofa");
+//! assert!(matches!(best.reason, MatchReason::Synonym(_)));
+//! // The same query and seed always rank the same way.
+//! assert_eq!(index.search("couch", 3, 7), index.search("couch", 3, 7));
+//!
+//! // The pipeline's asset source: one asset per planned object.
+//! let source = RetrievalSource::default();
+//! let asset = source.retrieve(&AssetQuery::new("sofa_0", "sofa"), 0)?;
+//! assert_eq!(asset.info.category, "sofa");
+//! assert!(asset.mesh.triangle_count() > 0);
+//! # Ok::<(), scenethesis_retrieval::AssetError>(())
+//! ```
 
 #![warn(missing_docs)]
 
 mod index;
+mod source;
 pub mod text;
 
 pub use index::{AssetIndex, Candidate, EmbedError, MatchReason, TextEmbedder};
+pub use source::{
+    object_seed, AssetError, AssetQuery, AssetSource, CatalogSource, RetrievalSource,
+};

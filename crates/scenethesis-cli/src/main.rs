@@ -26,6 +26,9 @@ enum Command {
     /// Generate a simulation-ready scene from a prompt (offline by default): scene.glb,
     /// scene.json, previews and report.json in the output folder.
     Generate(commands::generate::GenerateArgs),
+    /// Plan a prompt without building it: writes the editable plan (objects, anchor, supports,
+    /// relations, room) as JSON; `generate --plan` builds a scene from it.
+    Plan(commands::plan::PlanArgs),
     /// Export a generated folder to another format (usd, mjcf, urdf, glb).
     Export(commands::export::ExportArgs),
     /// Generate many prompts × seeds into one folder each; resumable and shardable.
@@ -110,6 +113,7 @@ fn init_logging(verbose: u8) {
 fn run(command: Command) -> Result<()> {
     match command {
         Command::Generate(args) => commands::generate::run(args),
+        Command::Plan(args) => commands::plan::run(args),
         Command::Export(args) => commands::export::run(args),
         Command::Batch(args) => commands::batch::run(args),
         Command::Assets { command } => commands::assets::run(command),

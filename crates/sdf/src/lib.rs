@@ -16,6 +16,26 @@
 //! - [`SceneSdf`]: many posed objects (5-DoF [`Pose`]), queried with objects excluded; moving an
 //!   object only changes its transform.
 //! - [`sampling`]: seeded surface and bottom-band sampling and clustering of penetrating points.
+//!
+//! The exact field of a 1 m cube next to the analytic one:
+//!
+//! ```
+//! use nalgebra::{Point3, Vector3};
+//! use scenethesis_scene_graph::MeshPart;
+//! use scenethesis_sdf::{BoxSdf, MeshSdf, SignedDistance};
+//!
+//! let cube = MeshPart::cuboid("cube", 0, [-0.5; 3], [0.5; 3]);
+//! let sdf = MeshSdf::new(&cube.positions, &cube.triangles)?;
+//! let exact = BoxSdf::new(Vector3::new(0.5, 0.5, 0.5));
+//! for p in [Point3::origin(), Point3::new(1.5, 0.0, 0.0), Point3::new(0.2, 0.45, -0.1)] {
+//!     assert!((sdf.signed_distance(&p) - exact.distance(&p)).abs() < 1e-5);
+//! }
+//! assert!(sdf.contains(&Point3::new(0.4, 0.4, 0.4)));
+//! // Outside, the gradient points away from the surface.
+//! let (d, g) = sdf.distance_and_gradient(&Point3::new(0.0, 2.0, 0.0));
+//! assert!((d - 1.5).abs() < 1e-5 && (g.y - 1.0).abs() < 1e-4);
+//! # Ok::<(), scenethesis_sdf::SdfError>(())
+//! ```
 
 #![warn(missing_docs)]
 

@@ -59,6 +59,10 @@ pub struct GuidedLayout {
     pub dropped: Vec<DroppedObject>,
     /// Walkway figures of the final floor.
     pub walkway: WalkwayReport,
+    /// What the guide saw, for the optimizer to align the assets to (camera, image, optional
+    /// depth, per-object masks). Guides that read no image (the [`ProceduralGuide`]) give
+    /// `None`, and the pipeline then optimizes without alignment terms.
+    pub guidance: Option<scenethesis_correspondence::Guidance>,
 }
 
 /// Why a plan could not be laid out.
@@ -100,7 +104,10 @@ pub enum GuideError {
 /// trait by generating a guidance image for the plan's description, segmenting it, lifting the
 /// masks with depth to 3D boxes and matching them to the planned objects. The same plan,
 /// assets and seed must give the identical scene.
-pub trait Guide {
+pub trait Guide: Send + Sync {
+    /// A short name for reports (`report.json` records it).
+    fn name(&self) -> &str;
+
     /// Lays out `plan` with the assets' metadata, seeded by `seed`.
     fn layout(
         &self,

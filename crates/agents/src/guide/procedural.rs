@@ -19,8 +19,7 @@ use super::{AssetLookup, DroppedObject, Guide, GuideError, GuidedLayout, Walkway
 use crate::knowledge::{Knowledge, NominalShape};
 use crate::plan::{Plan, PlannedObject, Zone};
 
-/// Robot radius of the Walk and Reach metrics (0.3 m diameter).
-pub const ROBOT_RADIUS: f64 = 0.15;
+use scenethesis_scene_graph::ROBOT_RADIUS;
 /// How far the guide grows footprints for its own walk check: the robot radius plus half a
 /// raster cell and a centimetre, so that slivers the metric raster may close never count as
 /// passages.
@@ -317,6 +316,10 @@ fn wrap(yaw: f64) -> f64 {
 }
 
 impl Guide for ProceduralGuide {
+    fn name(&self) -> &str {
+        "procedural"
+    }
+
     /// Lays the plan out; when the anchor, a stated (hard) object or a parent of other objects
     /// finds no room, the room grows by 12 % and the layout is redone (at most twice).
     fn layout(
@@ -734,6 +737,7 @@ impl ProceduralGuide {
                     .map(|i| plan.objects[i].id.clone())
                     .collect(),
             },
+            guidance: None,
         })
     }
 }

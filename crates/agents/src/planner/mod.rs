@@ -95,6 +95,10 @@ impl KnowledgePlanner {
 }
 
 impl Planner for KnowledgePlanner {
+    fn name(&self) -> &str {
+        "knowledge"
+    }
+
     fn plan(&self, request: &PlanRequest) -> Result<Plan, PlanError> {
         let reading = interpret::interpret(self, request)?;
         let mut rng = ChaCha8Rng::seed_from_u64(request.seed ^ 0x5ce7_e515_9a11_0001);

@@ -7,14 +7,20 @@ use std::time::Duration;
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use scenethesis_pipeline::{
-    export_folder, Format, GenerateOptions, OutputDir, Pipeline, Progress, RetrievalSource, Stage,
+    export_folder, FixedPlanner, Format, GenerateOptions, OutputDir, Pipeline, Progress,
+    RetrievalSource, Stage,
 };
 
 /// Arguments of `scenethesis generate`.
 #[derive(Debug, clap::Args)]
 pub struct GenerateArgs {
-    /// What to build, e.g. "a cozy living room with reading materials".
-    pub prompt: String,
+    /// What to build, e.g. "a cozy living room with reading materials" (or give --plan).
+    #[arg(required_unless_present = "plan", conflicts_with = "plan")]
+    pub prompt: Option<String>,
+    /// Build from a saved (possibly hand-edited) plan instead of a prompt: the JSON that
+    /// `scenethesis plan` writes (docs/plan.md). The plan's prompt is the scene's prompt.
+    #[arg(long, value_name = "PLAN_JSON")]
+    pub plan: Option<PathBuf>,
     /// Output folder; written atomically. An earlier scenethesis output there is replaced once
     /// the new scene is complete; a folder holding anything else is refused (see --force), and
     /// a file is never replaced.
@@ -161,12 +167,24 @@ fn pipeline(previews: bool, assets_dir: Option<&Path>) -> Result<Pipeline> {
 pub fn run(args: GenerateArgs) -> Result<()> {
     // The output path is checked before any work.
     let out = OutputDir::prepare(&args.out, args.force)?;
-    let pipeline = args.pipeline.pipeline()?;
+    let mut pipeline = args.pipeline.pipeline()?;
+    let prompt = match &args.plan {
+        Some(path) => {
+            let planner = FixedPlanner::from_file(path)?;
+            let prompt = planner.as_plan().prompt.clone();
+            pipeline = pipeline.with_planner(planner);
+            prompt
+        }
+        None => args.prompt.clone().unwrap_or_default(),
+    };
     let options = args.pipeline.options();
     let mut progress = StageProgress::on_stderr();
     let mut generated = pipeline
-        .generate(&args.prompt, args.seed, &options, &mut progress)
-        .with_context(|| format!("generating \"{}\"", args.prompt))?;
+        .generate(&prompt, args.seed, &options, &mut progress)
+        .with_context(|| match &args.plan {
+            Some(path) => format!("generating from the plan {}", path.display()),
+            None => format!("generating \"{prompt}\""),
+        })?;
     println!("{}", generated.report.summary_line());
     let rejected = !generated.report.accepted;
     if rejected && !args.strict {

@@ -1,4 +1,4 @@
-use scenethesis_scene_graph::{AssetRef, Mesh};
+use crate::{AssetRef, Mesh};
 use serde::{Deserialize, Serialize};
 
 /// Where an asset is normally placed.

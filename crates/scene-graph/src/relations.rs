@@ -1,7 +1,7 @@
 //! Geometric checks of scene relations, for tests, the judge and reports.
 
+use crate::{Relation, RelationKind, Scene, SceneObject, GROUND_ID};
 use nalgebra::Vector2;
-use scenethesis_scene_graph::{Relation, RelationKind, Scene, SceneObject, GROUND_ID};
 
 /// Tolerance for resting contact, in metres.
 const CONTACT: f64 = 0.02;

@@ -3,11 +3,11 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use scenethesis_agents::{check_prompt, relation_holds, Plan};
+use scenethesis_agents::{check_prompt, Plan};
 use scenethesis_eval::{
     evaluate_with_cache, DecompositionCache, EvalError, EvalScene, SceneMetrics,
 };
-use scenethesis_scene_graph::{Mesh, ParentRef, Relation, Scene, GROUND_ID};
+use scenethesis_scene_graph::{relation_holds, Mesh, ParentRef, Relation, Scene, GROUND_ID};
 use serde::{Deserialize, Serialize};
 
 /// What the judge looks at.

@@ -1,15 +1,17 @@
 //! The retrieve stage's seam: where each planned object's asset (mesh and metadata) comes from.
+//!
+//! It lives here, beside the index, so that a provider crate can implement it without
+//! depending on the pipeline that calls it.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, PoisonError};
 
-use scenethesis_agents::PlannedObject;
+use crate::index::AssetIndex;
 use scenethesis_assets::import::{
     import_directory, AssetResolver, ImportWarning, ResolveError, MANIFEST_FILE,
 };
 use scenethesis_assets::{catalog, Asset};
-use scenethesis_retrieval::AssetIndex;
 use scenethesis_scene_graph::{AssetRef, Mesh};
 
 /// Why an asset could not be retrieved or regenerated.
@@ -45,6 +47,22 @@ pub enum AssetError {
     },
 }
 
+/// What an asset source is asked for: one planned object, by id and category.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct AssetQuery<'a> {
+    /// The planned object's id (it seeds the choice among equal candidates).
+    pub id: &'a str,
+    /// The category the object must be.
+    pub category: &'a str,
+}
+
+impl<'a> AssetQuery<'a> {
+    /// A query for object `id` of `category`.
+    pub fn new(id: &'a str, category: &'a str) -> Self {
+        Self { id, category }
+    }
+}
+
 /// Where assets come from: the categories offered to the planner, one asset per planned object,
 /// and the mesh behind an [`AssetRef`] stored in a `scene.json` (to re-export a saved scene).
 pub trait AssetSource: Send + Sync {
@@ -57,7 +75,7 @@ pub trait AssetSource: Send + Sync {
     /// The asset for `object`. `variant` selects among equally good candidates (a different
     /// seed of a procedural generator, the next-ranked retrieval hit); the same object and
     /// variant always give the same asset.
-    fn retrieve(&self, object: &PlannedObject, variant: u64) -> Result<Asset, AssetError>;
+    fn retrieve(&self, object: &AssetQuery<'_>, variant: u64) -> Result<Asset, AssetError>;
 
     /// The asset-frame mesh behind a reference this source produced.
     fn mesh(&self, asset: &AssetRef) -> Result<Mesh, AssetError>;
@@ -79,16 +97,13 @@ impl AssetSource for CatalogSource {
         catalog::categories().map(|c| c.name.to_owned()).collect()
     }
 
-    fn retrieve(&self, object: &PlannedObject, variant: u64) -> Result<Asset, AssetError> {
-        let category = catalog::category(&object.category).ok_or_else(|| AssetError::NoAsset {
-            id: object.id.clone(),
-            category: object.category.clone(),
+    fn retrieve(&self, object: &AssetQuery<'_>, variant: u64) -> Result<Asset, AssetError> {
+        let category = catalog::category(object.category).ok_or_else(|| AssetError::NoAsset {
+            id: object.id.to_owned(),
+            category: object.category.to_owned(),
             source_name: self.name().to_owned(),
         })?;
-        Ok(catalog::generate(
-            category,
-            object_seed(&object.id, variant),
-        ))
+        Ok(catalog::generate(category, object_seed(object.id, variant)))
     }
 
     fn mesh(&self, asset: &AssetRef) -> Result<Mesh, AssetError> {
@@ -106,7 +121,7 @@ impl AssetSource for CatalogSource {
     }
 }
 
-/// Retrieval through a [`scenethesis_retrieval::AssetIndex`]: each planned object's category is
+/// Retrieval through an [`AssetIndex`]: each planned object's category is
 /// the query and the best candidate is used. Built-in candidates are generated with a
 /// procedural seed drawn from the object's id and the variant; imported (bring-your-own)
 /// assets — see [`RetrievalSource::with_imported`] — rank above the built-in generator of the
@@ -218,16 +233,16 @@ impl AssetSource for RetrievalSource {
         self.index.categories().map(str::to_owned).collect()
     }
 
-    fn retrieve(&self, object: &PlannedObject, variant: u64) -> Result<Asset, AssetError> {
+    fn retrieve(&self, object: &AssetQuery<'_>, variant: u64) -> Result<Asset, AssetError> {
         let no_asset = || AssetError::NoAsset {
-            id: object.id.clone(),
-            category: object.category.clone(),
+            id: object.id.to_owned(),
+            category: object.category.to_owned(),
             source_name: self.name().to_owned(),
         };
-        let seed = object_seed(&object.id, variant);
+        let seed = object_seed(object.id, variant);
         let hit = self
             .index
-            .search(&object.category, 1, seed)
+            .search(object.category, 1, seed)
             .into_iter()
             .next()
             .ok_or_else(no_asset)?;
@@ -266,14 +281,9 @@ fn unresolvable(asset: &AssetRef, e: ResolveError) -> AssetError {
     }
 }
 
-/// A stable per-object seed: FNV-1a of the object id, mixed with the variant.
+/// A stable per-object seed: the project's FNV-1a of the object id, mixed with the variant.
 pub fn object_seed(id: &str, variant: u64) -> u64 {
-    let h = id.bytes().fold(0xcbf2_9ce4_8422_2325_u64, |h, b| {
-        (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3)
-    });
-    // splitmix64 finaliser so neighbouring variants give unrelated seeds.
-    let mut z = h ^ variant.wrapping_mul(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
+    use scenethesis_scene_graph::{fnv1a64, mix64, GOLDEN_GAMMA};
+    // The SplitMix64 output function so neighbouring variants give unrelated seeds.
+    mix64(fnv1a64(id.as_bytes()) ^ variant.wrapping_mul(GOLDEN_GAMMA))
 }

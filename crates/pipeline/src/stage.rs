@@ -1,0 +1,79 @@
+//! The stages of a run and the progress events about them.
+
+use std::time::Duration;
+
+use serde::{Deserialize, Serialize};
+
+/// The stages of a run, in order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Stage {
+    /// Prompt → plan.
+    Plan,
+    /// One asset per planned object.
+    Retrieve,
+    /// Plan → initial layout.
+    Guide,
+    /// Physics-aware pose optimization.
+    Optimize,
+    /// Geometric checks, deciding whether to re-plan.
+    Judge,
+    /// Preview images.
+    Render,
+    /// Writing the output folder.
+    Export,
+}
+
+impl Stage {
+    /// Every stage, in order.
+    pub const ALL: [Stage; 7] = [
+        Stage::Plan,
+        Stage::Retrieve,
+        Stage::Guide,
+        Stage::Optimize,
+        Stage::Judge,
+        Stage::Render,
+        Stage::Export,
+    ];
+
+    /// The stage's name as in `report.json`.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Stage::Plan => "plan",
+            Stage::Retrieve => "retrieve",
+            Stage::Guide => "guide",
+            Stage::Optimize => "optimize",
+            Stage::Judge => "judge",
+            Stage::Render => "render",
+            Stage::Export => "export",
+        }
+    }
+}
+
+impl std::fmt::Display for Stage {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.pad(self.as_str())
+    }
+}
+
+/// Receives progress events; the CLI draws them, libraries can ignore them (pass `&mut ()`).
+/// Both methods do nothing by default.
+pub trait Progress {
+    /// A stage starts; `round` is 0 for the first attempt and counts re-plans after it.
+    fn stage_started(&mut self, stage: Stage, round: usize) {
+        let _ = (stage, round);
+    }
+    /// A stage ended after `elapsed`, with a short note (e.g. "24 objects").
+    fn stage_finished(&mut self, stage: Stage, round: usize, elapsed: Duration, note: &str) {
+        let _ = (stage, round, elapsed, note);
+    }
+}
+
+/// The null progress: ignores every event.
+impl Progress for () {}
+
+/// Ignores progress (the same as `()`).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NoProgress;
+
+impl Progress for NoProgress {}

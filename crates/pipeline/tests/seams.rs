@@ -1,0 +1,169 @@
+//! Every stage seam proven by a second implementation: the pipeline runs with a fixed planner
+//! (a saved plan), a guide that is not the procedural one, a judge that accepts everything and
+//! the null progress, and reports which ran.
+
+use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use scenethesis_agents::{AssetLookup, Guide, GuideError, GuidedLayout, Plan, ProceduralGuide};
+use scenethesis_pipeline::{
+    plan_json, write_plan, AcceptAll, FixedPlanner, GenerateOptions, Judge, JudgeInput, Pipeline,
+    PipelineError,
+};
+
+const PROMPT: &str = "a small office with a desk, a chair and a bookshelf with books";
+
+/// A guide of its own name that delegates the layout to the procedural guide and counts its
+/// calls: a stand-in for any other guide.
+struct CountingGuide {
+    inner: ProceduralGuide,
+    calls: AtomicUsize,
+}
+
+impl Guide for CountingGuide {
+    fn name(&self) -> &str {
+        "counting"
+    }
+
+    fn layout(
+        &self,
+        plan: &Plan,
+        assets: &dyn AssetLookup,
+        seed: u64,
+    ) -> Result<GuidedLayout, GuideError> {
+        self.calls.fetch_add(1, Ordering::SeqCst);
+        let layout = self.inner.layout(plan, assets, seed)?;
+        assert!(
+            layout.guidance.is_none(),
+            "the procedural guide reads no image"
+        );
+        Ok(layout)
+    }
+}
+
+fn options() -> GenerateOptions {
+    GenerateOptions {
+        max_replans: 3,
+        previews: false,
+        ..GenerateOptions::default()
+    }
+}
+
+#[test]
+fn planner_guide_and_judge_swap_together() {
+    let offline = Pipeline::offline();
+    let plan = offline
+        .plan(PROMPT, 5)
+        .expect("the knowledge planner plans");
+    let tmp = tempfile::tempdir().unwrap();
+    let path = tmp.path().join("plan.json");
+    write_plan(&path, &plan, false).unwrap();
+    let fixed = FixedPlanner::from_file(&path).expect("a written plan reads back");
+    assert_eq!(fixed.as_plan(), &plan);
+
+    let guide = CountingGuide {
+        inner: ProceduralGuide::default(),
+        calls: AtomicUsize::new(0),
+    };
+    let pipeline = Pipeline::offline()
+        .with_planner(fixed)
+        .with_guide(guide)
+        .with_judge(AcceptAll::new());
+    // The prompt given to `generate` is ignored by the fixed planner.
+    let scene = pipeline
+        .generate("ignored", 5, &options(), &mut ())
+        .expect("the swapped pipeline generates");
+    let report = &scene.report;
+    assert_eq!(report.planner, "fixed");
+    assert_eq!(report.guide, "counting");
+    assert_eq!(report.judge, "accept-all");
+    assert!(report.accepted);
+    assert_eq!(report.attempts, 1, "an accepting judge never re-plans");
+    assert!(report.verdict.failures.is_empty());
+    assert_eq!(report.verdict.metrics.objects, scene.scene.objects.len());
+    assert_eq!(scene.plan, plan);
+    for object in &scene.scene.objects {
+        assert!(
+            plan.object(&object.id).is_some(),
+            "{} not planned",
+            object.id
+        );
+    }
+
+    // The default pipeline names its own stages.
+    let default = offline
+        .generate(PROMPT, 5, &options(), &mut ())
+        .expect("offline generation");
+    assert_eq!(default.report.planner, "knowledge");
+    assert_eq!(default.report.guide, "procedural");
+    assert_eq!(default.report.judge, "geometric");
+    // Same plan, same seed, same first layout: the fixed plan reproduces the first attempt.
+    if default.report.chosen_attempt == 0 {
+        assert_eq!(default.scene.objects, scene.scene.objects);
+    }
+}
+
+#[test]
+fn the_accept_all_judge_accepts_what_the_geometric_judge_rejects() {
+    let pipeline = Pipeline::offline();
+    let mut generated = pipeline
+        .generate(PROMPT, 1, &options(), &mut ())
+        .expect("offline generation");
+    // Push the second object into the first: a collision.
+    let first = generated.scene.objects[0].pose.translation;
+    generated.scene.objects[1].pose.translation = first;
+    let input = JudgeInput {
+        plan: &generated.plan,
+        scene: &generated.scene,
+        meshes: &generated.meshes,
+    };
+    let strict = scenethesis_pipeline::GeometricJudge::default()
+        .judge(&input)
+        .unwrap();
+    assert!(!strict.accepted);
+    let lenient = AcceptAll::new().judge(&input).unwrap();
+    assert!(lenient.accepted);
+    assert!(lenient.failures.is_empty());
+    assert_eq!(
+        lenient.metrics, strict.metrics,
+        "both measure the same scene"
+    );
+}
+
+#[test]
+fn a_plan_with_an_unavailable_category_fails_in_the_plan_stage() {
+    let mut plan = Pipeline::offline().plan(PROMPT, 0).unwrap();
+    plan.objects[1].category = "hoverboard".into();
+    let fixed = FixedPlanner::from_json(&plan_json(&plan), Path::new("edited.json")).unwrap();
+    let err = Pipeline::offline()
+        .with_planner(fixed)
+        .generate("", 0, &options(), &mut ())
+        .unwrap_err();
+    assert!(matches!(err, PipelineError::Plan(_)), "{err}");
+    let text = format!("{err}");
+    assert!(text.contains("objects[1].category"), "{text}");
+}
+
+#[test]
+fn write_plan_is_atomic_and_never_replaces_without_force() {
+    let plan = Pipeline::offline().plan(PROMPT, 0).unwrap();
+    let tmp = tempfile::tempdir().unwrap();
+    let path = tmp.path().join("plan.json");
+    write_plan(&path, &plan, false).unwrap();
+    let before = std::fs::read_to_string(&path).unwrap();
+    assert_eq!(before, plan_json(&plan));
+    let err = write_plan(&path, &plan, false).unwrap_err();
+    assert!(err.to_string().contains("already exists"), "{err}");
+    let mut other = plan.clone();
+    other.notes.push("edited".into());
+    write_plan(&path, &other, true).unwrap();
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), plan_json(&other));
+    // No temporary file is left behind.
+    let names: Vec<_> = std::fs::read_dir(tmp.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(names, vec![std::ffi::OsString::from("plan.json")]);
+    let err = write_plan(tmp.path(), &plan, true).unwrap_err();
+    assert!(err.to_string().contains("is a directory"), "{err}");
+}
