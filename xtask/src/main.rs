@@ -3,7 +3,8 @@
 //! - `cargo xtask ci` runs the same checks as `.ci/run` (without installing system packages);
 //! - `cargo xtask bench [--json] [FILTER]` runs every crate's criterion benchmarks in release
 //!   mode and prints their figures — mean time per iteration and, where a benchmark declares a
-//!   throughput, elements per second — as a table or as one JSON object.
+//!   throughput, elements per second — as a table or as one JSON object; it also runs the
+//!   vision round trip over the benchmark prompts (`roundtrip/none`, `roundtrip/default`).
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -91,6 +92,9 @@ fn bench(args: &[String]) -> Result<()> {
     }
     let mut figures = collect_figures(&criterion_dir)?;
     add_end_to_end_median(&mut figures);
+    if filter.is_empty() || filter.iter().any(|f| "roundtrip".contains(f)) {
+        add_roundtrip(&root, &target, json_out, &mut figures)?;
+    }
     if json_out {
         println!(
             "{}",
@@ -100,6 +104,111 @@ fn bench(args: &[String]) -> Result<()> {
         for (name, value) in &figures {
             println!("{name:<60} {value}");
         }
+    }
+    Ok(())
+}
+
+/// The vision round trip over the benchmark prompts (`fixtures/prompts/benchmark.txt`, seed 0):
+/// each prompt is generated with the release binary (no previews), then `scenethesis roundtrip
+/// --json` runs unperturbed and with the default perturbation. Adds `roundtrip/none` and
+/// `roundtrip/default`: the median over prompts of each scene's median errors, the mean
+/// parent accuracy, and object counts.
+fn add_roundtrip(
+    root: &Path,
+    target: &Path,
+    json_out: bool,
+    figures: &mut BTreeMap<String, Value>,
+) -> Result<()> {
+    let mut build = Command::new(env!("CARGO"));
+    build
+        .current_dir(root)
+        .args(["build", "--release", "--quiet", "-p", "scenethesis-cli"]);
+    if json_out {
+        build.stdout(std::process::Stdio::null());
+    }
+    if !build
+        .status()
+        .context("cannot build scenethesis")?
+        .success()
+    {
+        bail!("building scenethesis failed");
+    }
+    let exe = target.join("release").join("scenethesis");
+    let prompts_file = root.join("fixtures/prompts/benchmark.txt");
+    let text = std::fs::read_to_string(&prompts_file)
+        .with_context(|| format!("cannot read {}", prompts_file.display()))?;
+    let prompts: Vec<&str> = text
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !l.starts_with('#'))
+        .collect();
+    let scratch = target.join("xtask-roundtrip");
+    let _ = std::fs::remove_dir_all(&scratch);
+    std::fs::create_dir_all(&scratch)?;
+    let mut rows: BTreeMap<&str, Vec<Value>> = BTreeMap::new();
+    for (k, prompt) in prompts.iter().enumerate() {
+        let dir = scratch.join(format!("p{k:02}"));
+        let out = Command::new(&exe)
+            .arg("generate")
+            .arg(prompt)
+            .args(["--seed", "0", "--no-preview", "--out"])
+            .arg(&dir)
+            .output()
+            .context("cannot run scenethesis generate")?;
+        if !out.status.success() && !dir.join("scene.json").exists() {
+            bail!(
+                "generate {prompt:?} failed: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+        }
+        for perturb in ["none", "default"] {
+            let out = Command::new(&exe)
+                .arg("roundtrip")
+                .arg(&dir)
+                .args(["--perturb", perturb, "--json"])
+                .output()
+                .context("cannot run scenethesis roundtrip")?;
+            if !out.status.success() {
+                bail!(
+                    "roundtrip of {prompt:?} failed: {}",
+                    String::from_utf8_lossy(&out.stderr)
+                );
+            }
+            rows.entry(perturb)
+                .or_default()
+                .push(serde_json::from_slice(&out.stdout)?);
+        }
+    }
+    let median = |mut v: Vec<f64>| -> f64 {
+        v.retain(|x| x.is_finite());
+        if v.is_empty() {
+            return f64::NAN;
+        }
+        v.sort_by(f64::total_cmp);
+        let n = v.len();
+        if n % 2 == 1 {
+            v[n / 2]
+        } else {
+            (v[n / 2 - 1] + v[n / 2]) / 2.0
+        }
+    };
+    for (perturb, reports) in rows {
+        let field =
+            |name: &str| -> Vec<f64> { reports.iter().filter_map(|r| r[name].as_f64()).collect() };
+        let parent = field("parent_accuracy");
+        figures.insert(
+            format!("roundtrip/{perturb}"),
+            json!({
+                "prompts": reports.len(),
+                "objects": reports.iter().filter_map(|r| r["objects"].as_u64()).sum::<u64>(),
+                "missing": reports.iter().filter_map(|r| r["missing"].as_array().map(Vec::len)).sum::<usize>(),
+                "translation_median_m": median(field("translation_median_m")),
+                "yaw_median_deg": median(field("yaw_median_deg")),
+                "size_error_median": median(field("size_error_median")),
+                "iou_median": median(field("iou_median")),
+                "parent_accuracy": parent.iter().sum::<f64>() / parent.len().max(1) as f64,
+            }),
+        );
     }
     Ok(())
 }

@@ -307,9 +307,20 @@ impl FixedPlanner {
     /// Reads and checks the plan in the JSON file `path` (the format of `scenethesis plan`,
     /// documented in `docs/plan.md`).
     pub fn from_file(path: &Path) -> Result<Self, PlanFileError> {
-        let text = std::fs::read_to_string(path).map_err(|source| PlanFileError::Read {
+        let read_err = |source| PlanFileError::Read {
             path: path.to_owned(),
             source,
+        };
+        let bytes = scenethesis_scene_graph::read_bounded(
+            path,
+            scenethesis_scene_graph::limits::MAX_PLAN_JSON_BYTES,
+        )
+        .map_err(read_err)?;
+        let text = String::from_utf8(bytes).map_err(|_| {
+            read_err(std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                "is not UTF-8 text",
+            ))
         })?;
         Self::from_json(&text, path)
     }

@@ -227,7 +227,11 @@ pub struct PromptsFile {
 /// Reads a prompts file: one prompt per line; blank lines and lines starting with `#` are
 /// ignored; a line that is not valid UTF-8 is skipped and reported with its line number.
 pub fn read_prompts(path: &Path) -> Result<PromptsFile, PipelineError> {
-    let bytes = std::fs::read(path).map_err(|source| PipelineError::Read {
+    let bytes = scenethesis_scene_graph::read_bounded(
+        path,
+        scenethesis_scene_graph::limits::MAX_PROMPTS_FILE_BYTES,
+    )
+    .map_err(|source| PipelineError::Read {
         path: path.to_owned(),
         source,
     })?;

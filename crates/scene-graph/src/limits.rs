@@ -4,6 +4,10 @@
 
 /// Largest `scene.json` read, in bytes (64 MiB).
 pub const MAX_SCENE_JSON_BYTES: u64 = 64 * 1024 * 1024;
+/// Largest `plan.json` read, in bytes (16 MiB).
+pub const MAX_PLAN_JSON_BYTES: u64 = 16 * 1024 * 1024;
+/// Largest batch prompts file read, in bytes (64 MiB).
+pub const MAX_PROMPTS_FILE_BYTES: u64 = 64 * 1024 * 1024;
 /// Most objects in one scene.
 pub const MAX_OBJECTS: usize = 2000;
 /// Most walls in one scene.
