@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 use anyhow::{Context, Result};
-use scenethesis_language::LlmPlanner;
+use scenethesis_language::{LlmPlanner, VlmJudge};
 use scenethesis_models::{CacheMode, Cached, ChatModel, ResponseCache, UsageMeter, UsageReport};
 use scenethesis_openai::{ApiKey, ClientConfig, OpenAiChat, OpenAiClient, Overrides};
 use scenethesis_pipeline::Pipeline;
@@ -178,7 +178,12 @@ impl ProviderArgs {
             pipeline = pipeline.with_planner(LlmPlanner::new(model));
         }
         if judge == JudgeChoice::Vlm {
-            anyhow::bail!("--judge vlm is not available in this build yet");
+            let chat = client.vlm().context("choosing the judge's model")?;
+            let (model, meter) = self.wrap(chat)?;
+            providers.meters.push(meter);
+            let renderer = scenethesis_pipeline::WgpuPreviews::from_env()
+                .context("--judge vlm needs a renderer for the previews it shows the model")?;
+            pipeline = pipeline.with_judge(VlmJudge::new(model, renderer));
         }
         Ok((pipeline, providers))
     }
