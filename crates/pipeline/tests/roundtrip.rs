@@ -30,7 +30,10 @@ fn unperturbed_round_trip_recovers_the_scene() {
     let report = roundtrip(&renderer, &generated.scene, &generated.meshes, &opts).unwrap();
     // Never invented: every scene object is either compared or listed missing, once.
     assert_eq!(report.objects + report.missing.len(), report.scene_objects);
-    assert!(report.objects * 3 >= report.scene_objects * 2, "{report:#?}");
+    assert!(
+        report.objects * 3 >= report.scene_objects * 2,
+        "{report:#?}"
+    );
     assert!(report.translation_median_m < 0.03, "{report:#?}");
     assert!(report.yaw_median_deg < 5.0, "{report:#?}");
     assert!(report.parent_accuracy >= 0.9, "{report:#?}");

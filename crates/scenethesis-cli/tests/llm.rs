@@ -469,3 +469,47 @@ fn an_llm_planner_without_a_model_name_says_how_to_set_one() {
     assert!(stderr.contains("SCENETHESIS_LLM_MODEL"), "{stderr}");
     assert!(!out_dir.exists());
 }
+
+#[test]
+fn a_vlm_judge_reviews_rendered_previews_and_the_review_is_reported() {
+    let review = json!({"category_accuracy": 0.92, "orientation_alignment": 0.81,
+                        "spatial_coherence": 0.88, "objects": [],
+                        "summary": "a plausible garage"});
+    let server = Server::start((
+        200,
+        "application/json",
+        completion(&review.to_string()),
+        Duration::ZERO,
+    ));
+    let tmp = tempfile::tempdir().unwrap();
+    let out_dir = tmp.path().join("garage");
+    let out = scenethesis(&[
+        "generate",
+        "a garage",
+        "--judge",
+        "vlm",
+        "--vlm-model",
+        "eye-1",
+        "--base-url",
+        &server.base_url,
+        "--no-preview",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    let log = text(&out);
+    if log.contains("needs a renderer") {
+        eprintln!("skipped: no renderer on this machine: {log}");
+        return;
+    }
+    assert!(out.status.success(), "{log}");
+    assert!(server.requests() >= 1);
+    let report: Value =
+        serde_json::from_slice(&std::fs::read(out_dir.join("report.json")).unwrap()).unwrap();
+    assert_eq!(report["judge"], "geometric+vlm:openai-compatible/eye-1");
+    let r = &report["verdict"]["review"];
+    assert_eq!(r["spatial_coherence"], 0.88, "{report}");
+    assert_eq!(r["accepted"], true);
+    assert!(!r["views"].as_array().unwrap().is_empty());
+    assert_eq!(report["providers"][0]["model"], "eye-1");
+    assert!(!files_contain(&out_dir, KEY));
+}
