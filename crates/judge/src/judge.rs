@@ -39,6 +39,9 @@ pub enum FailureKind {
     Walk,
     /// An object the prompt asked for is not in the scene.
     MissingObject,
+    /// A vision-language model scored the rendered scene below a threshold (wrong categories,
+    /// orientations or spatial coherence).
+    Visual,
 }
 
 /// One reason a scene was rejected.
@@ -64,6 +67,10 @@ pub struct Verdict {
     pub metrics: SceneMetrics,
     /// Relations of the plan that were checked.
     pub relations_checked: usize,
+    /// A model's review of the rendered scene (scores, per-object reasons), when a model judge
+    /// looked at it; absent for the geometric judge.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub review: Option<serde_json::Value>,
 }
 
 impl Verdict {
@@ -88,6 +95,14 @@ pub enum JudgeError {
     /// An object of the scene has no mesh.
     #[error("object `{0}` has no mesh to judge")]
     MissingMesh(String),
+    /// A model judge's provider failed (the message names the endpoint and model).
+    #[error("judge `{judge}` failed: {message}")]
+    Provider {
+        /// The judge's name.
+        judge: String,
+        /// What failed.
+        message: String,
+    },
 }
 
 /// Stage 5: accepts or rejects a scene with reasons.
@@ -250,6 +265,7 @@ impl Judge for GeometricJudge {
             failures,
             metrics,
             relations_checked,
+            review: None,
         })
     }
 }

@@ -53,11 +53,17 @@
 //! assert_eq!(plan.description, prompt, "a detailed prompt is kept as written");
 //! # Ok::<(), scenethesis_agents::PlanError>(())
 //! ```
+//!
+//! [`VlmJudge`] (a pipeline `Judge`) runs the geometric judge first, then shows a
+//! vision-language model rendered previews and rejects scenes it scores below
+//! [`VlmThresholds`], with per-object reasons the pipeline's re-plan acts on.
 #![warn(missing_docs)]
 
 mod convert;
 mod planner;
 mod schema;
+mod vlm_judge;
 
 pub use planner::{LlmPlanner, MIN_OBJECTS};
 pub use schema::plan_schema;
+pub use vlm_judge::{review_schema, ObjectReason, VlmJudge, VlmReview, VlmThresholds};

@@ -6,7 +6,7 @@ use std::collections::BTreeSet;
 use scenethesis_agents::{
     KnowledgePlanner, Plan, PlanError, PlanRequest, PlannedObject, Planner, Zone,
 };
-use scenethesis_models::{ChatModel, ChatRequest, Message, ProviderError, ProviderErrorKind};
+use scenethesis_models::{ChatModel, ChatRequest, Message};
 use scenethesis_scene_graph::ParentRef;
 
 use crate::convert::{convert, order, Answer, Converted};
@@ -44,7 +44,9 @@ Ids are the category with a number: shelf_0, shelf_1, ...";
 /// lacks, no usable anchor) is re-asked once with the problems listed; if it is still weak,
 /// the plan is completed from the offline [`KnowledgePlanner`] (missing anchor, objects up to
 /// [`MIN_OBJECTS`]) with a note, so a run does not fail because the model is small. Provider
-/// failures (unreachable, timeouts, HTTP errors) are errors: no plan is invented.
+/// failures (unreachable, timeouts, HTTP errors, an answer that is not JSON or violates the
+/// plan schema after the client's repair round) are errors naming the endpoint and model: no
+/// plan is invented from an answer that cannot be read.
 #[derive(Debug)]
 pub struct LlmPlanner<M> {
     model: M,
@@ -94,7 +96,6 @@ impl<M: ChatModel> LlmPlanner<M> {
         chat.seed = Some(request.seed);
         let response = match self.model.chat(&chat) {
             Ok(r) => r,
-            Err(e) if usable_failure(&e) => return Ok(Round::Unusable(e.to_string())),
             Err(e) => {
                 return Err(PlanError::Provider {
                     provider: self.label.clone(),
@@ -228,14 +229,6 @@ impl<M: ChatModel> LlmPlanner<M> {
         }
         Ok(converted.plan)
     }
-}
-
-/// Failures that mean "the model answered, but badly": handled by re-asking and completing.
-fn usable_failure(e: &ProviderError) -> bool {
-    matches!(
-        e.kind,
-        ProviderErrorKind::Schema { .. } | ProviderErrorKind::Malformed { .. }
-    )
 }
 
 fn user_message(request: &PlanRequest) -> String {

@@ -418,39 +418,45 @@ fn a_detailed_prompt_keeps_what_the_user_stated() {
 }
 
 #[test]
-fn garbage_twice_falls_back_to_offline_or_fails_clearly() {
+fn garbage_after_the_repair_round_is_a_provider_error() {
+    // Not JSON even after the client's repair round: an error naming endpoint and model, no
+    // plan invented from offline knowledge.
     let server = TestServer::scripted(vec![Reply::json(
         200,
         &openai_completion("m", "I am a small model and I like rooms."),
     )]);
-    let plan = LlmPlanner::new(chat(&server))
+    let err = LlmPlanner::new(chat(&server))
         .plan(&request("a cozy living room"))
-        .unwrap();
+        .unwrap_err();
     assert_eq!(
         server.requests().len(),
-        4,
-        "two rounds, each with its repair round"
+        2,
+        "one answer and its repair round"
     );
-    assert!(
-        plan.notes
-            .last()
-            .unwrap()
-            .contains("planned from offline knowledge"),
-        "{:?}",
-        plan.notes
-    );
-    assert!(plan.objects.len() >= 15);
+    let PlanError::Provider { provider, message } = &err else {
+        panic!("{err}")
+    };
+    assert_eq!(provider, "llm:openai-compatible/planner-model");
+    assert!(message.contains("(model `planner-model`)"), "{message}");
+    assert!(message.contains("malformed"), "{message}");
 
-    let server = TestServer::scripted(vec![Reply::json(200, &openai_completion("m", "no"))]);
+    // A server answering something that is not a chat completion at all.
+    let server = TestServer::scripted(vec![Reply::raw(200, "text/html", "<html>gateway</html>")]);
     let err = LlmPlanner::new(chat(&server))
-        .plan(&request("zxqv blorp"))
+        .plan(&request("a pharmacy"))
         .unwrap_err();
-    assert!(matches!(err, PlanError::InvalidPlan { .. }), "{err}");
-    assert!(
-        err.to_string()
-            .contains("llm:openai-compatible/planner-model"),
-        "{err}"
-    );
+    assert!(matches!(err, PlanError::Provider { .. }), "{err}");
+    assert!(err.to_string().contains("<html>gateway</html>"), "{err}");
+
+    // Schema-violating JSON twice (answer and repair): an error quoting the violation.
+    let server = TestServer::scripted(vec![Reply::json(
+        200,
+        &openai_completion("m", r#"{"objects": 3}"#),
+    )]);
+    let err = LlmPlanner::new(chat(&server))
+        .plan(&request("a pharmacy"))
+        .unwrap_err();
+    assert!(err.to_string().contains("violates the schema"), "{err}");
 }
 
 #[test]

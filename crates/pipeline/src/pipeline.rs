@@ -468,6 +468,7 @@ impl Pipeline {
                 })
                 .collect(),
             total_seconds: started.elapsed().as_secs_f64(),
+            providers: Vec::new(),
         };
         Ok(GeneratedScene {
             scene: best.scene,

@@ -116,6 +116,10 @@ pub struct Report {
     pub timings: Vec<StageTiming>,
     /// Seconds from the prompt to the finished scene in memory (before writing files).
     pub total_seconds: f64,
+    /// What the run used of each model provider (provider without credentials, model,
+    /// requests, tokens, cache hits); absent for offline runs, which use none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub providers: Vec<scenethesis_models::UsageReport>,
 }
 
 impl Report {

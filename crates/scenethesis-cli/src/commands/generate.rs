@@ -57,6 +57,9 @@ pub struct PipelineArgs {
     /// `assets.json`); they are preferred over the built-in generators of their category.
     #[arg(long, value_name = "DIR")]
     pub assets: Option<PathBuf>,
+    /// Planner, judge and model provider selection (offline by default).
+    #[command(flatten)]
+    pub providers: super::providers::ProviderArgs,
 }
 
 impl PipelineArgs {
@@ -72,7 +75,14 @@ impl PipelineArgs {
     /// The offline pipeline over the built-in library plus the `--assets` folder, with previews
     /// unless `--no-preview`.
     pub fn pipeline(&self) -> Result<Pipeline> {
-        pipeline(!self.no_preview, self.assets.as_deref())
+        Ok(self.pipeline_with_providers()?.0)
+    }
+
+    /// [`PipelineArgs::pipeline`] with the planner and judge the provider flags select, and
+    /// the models in use (for `report.json`).
+    pub fn pipeline_with_providers(&self) -> Result<(Pipeline, super::providers::Providers)> {
+        self.providers
+            .apply(pipeline(!self.no_preview, self.assets.as_deref())?)
     }
 }
 
@@ -167,7 +177,7 @@ fn pipeline(previews: bool, assets_dir: Option<&Path>) -> Result<Pipeline> {
 pub fn run(args: GenerateArgs) -> Result<()> {
     // The output path is checked before any work.
     let out = OutputDir::prepare(&args.out, args.force)?;
-    let mut pipeline = args.pipeline.pipeline()?;
+    let (mut pipeline, providers) = args.pipeline.pipeline_with_providers()?;
     let prompt = match &args.plan {
         Some(path) => {
             let planner = FixedPlanner::from_file(path)?;
@@ -185,6 +195,7 @@ pub fn run(args: GenerateArgs) -> Result<()> {
             Some(path) => format!("generating from the plan {}", path.display()),
             None => format!("generating \"{prompt}\""),
         })?;
+    generated.report.providers = providers.usage();
     println!("{}", generated.report.summary_line());
     let rejected = !generated.report.accepted;
     if rejected && !args.strict {

@@ -6,6 +6,7 @@ pub mod eval;
 pub mod export;
 pub mod generate;
 pub mod plan;
+pub mod providers;
 pub mod render;
 pub mod roundtrip;
 pub mod validate;

@@ -6,6 +6,7 @@ use anyhow::{Context, Result};
 use scenethesis_pipeline::write_plan;
 
 use crate::commands::generate::PipelineArgs;
+use crate::commands::providers::ProviderArgs;
 
 /// Arguments of `scenethesis plan`.
 #[derive(Debug, clap::Args)]
@@ -25,6 +26,9 @@ pub struct PlanArgs {
     /// Bring your own assets: their categories are offered to the planner, as in `generate`.
     #[arg(long, value_name = "DIR")]
     pub assets: Option<PathBuf>,
+    /// Model providers (`--planner llm` plans with a chat model; see "Using an LLM").
+    #[command(flatten)]
+    pub providers: ProviderArgs,
 }
 
 /// Runs `scenethesis plan`.
@@ -33,6 +37,7 @@ pub fn run(args: PlanArgs) -> Result<()> {
         max_replans: 0,
         no_preview: true,
         assets: args.assets.clone(),
+        providers: args.providers.clone(),
     }
     .pipeline()?;
     let plan = pipeline

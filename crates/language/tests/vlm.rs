@@ -1,0 +1,198 @@
+//! The VLM judge against a model served over real HTTP on 127.0.0.1: a low-scoring review
+//! rejects the scene with the model's per-object reasons and the pipeline re-plans; the next
+//! review accepts it; scores land in the report; provider failures are errors.
+
+mod support;
+
+use std::collections::BTreeMap;
+use std::time::Duration;
+
+use scenethesis_language::{VlmJudge, VlmThresholds};
+use scenethesis_openai::{ClientConfig, OpenAiChat, OpenAiClient};
+use scenethesis_pipeline::{
+    FailureKind, GenerateOptions, NoProgress, Pipeline, PipelineError, PreviewRenderer,
+};
+use scenethesis_scene_graph::{Mesh, Scene};
+use serde_json::{json, Value};
+use support::{openai_completion, Reply, TestServer};
+
+/// A small real PNG of one colour.
+fn png(width: u32, height: u32, rgb: [u8; 3]) -> Vec<u8> {
+    let img = image::RgbImage::from_pixel(width, height, image::Rgb(rgb));
+    let mut out = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut out, image::ImageFormat::Png).unwrap();
+    out.into_inner()
+}
+
+/// Draws one flat image per call, named like the real previews.
+struct FlatRenderer;
+
+impl PreviewRenderer for FlatRenderer {
+    fn name(&self) -> String {
+        "flat".into()
+    }
+    fn render(
+        &self,
+        scene: &Scene,
+        _: &BTreeMap<String, Mesh>,
+        size: [u32; 2],
+    ) -> Result<Vec<(String, Vec<u8>)>, String> {
+        let shade = (scene.objects.len() * 10).min(255) as u8;
+        Ok(vec![
+            ("preview.png".into(), png(size[0], size[1], [shade, 90, 40])),
+            (
+                "preview_top.png".into(),
+                png(size[0], size[1], [40, shade, 90]),
+            ),
+        ])
+    }
+}
+
+fn chat(server: &TestServer) -> OpenAiChat {
+    let mut c = ClientConfig::new(&server.base_url);
+    c.timeout = Duration::from_secs(5);
+    c.max_attempts = 1;
+    OpenAiClient::new(c).unwrap().chat("vision-model")
+}
+
+/// The id of the first object listed in a judge request's text.
+fn first_listed_object(request: &Value) -> String {
+    let parts = request["messages"][1]["content"].as_array().unwrap();
+    let text = parts[0]["text"].as_str().unwrap();
+    let line = text.lines().find(|l| l.starts_with("- ")).unwrap();
+    line[2..].split(' ').next().unwrap().to_owned()
+}
+
+fn options() -> GenerateOptions {
+    GenerateOptions {
+        previews: false,
+        ..GenerateOptions::default()
+    }
+}
+
+#[test]
+fn a_low_review_re_plans_with_the_models_reasons_then_accepts() {
+    let server = TestServer::start(|i, request| {
+        let body = request.json();
+        let review = if i == 0 {
+            let id = first_listed_object(&body);
+            json!({"category_accuracy": 0.9, "orientation_alignment": 0.3,
+                   "spatial_coherence": 0.7,
+                   "objects": [{"id": id, "reason": "it faces the wall"},
+                               {"id": "ghost_9", "reason": "not in the scene"}],
+                   "summary": "one object is turned the wrong way"})
+        } else {
+            json!({"category_accuracy": 0.9, "orientation_alignment": 0.8,
+                   "spatial_coherence": 0.85, "objects": [], "summary": "a tidy garage"})
+        };
+        Reply::json(200, &openai_completion("vision-model", &review.to_string()))
+    });
+    let judge = VlmJudge::new(chat(&server), FlatRenderer).with_preview_size([64, 48]);
+    let pipeline = Pipeline::offline().with_judge(judge);
+    let generated = pipeline
+        .generate("a garage", 0, &options(), &mut NoProgress)
+        .unwrap();
+    let report = &generated.report;
+    assert_eq!(report.judge, "geometric+vlm:openai-compatible/vision-model");
+    let requests = server.requests();
+    assert!(requests.len() >= 2, "asked again after the re-plan");
+    // The model saw both previews as PNG data URLs.
+    let first = requests[0].json();
+    let parts = first["messages"][1]["content"].as_array().unwrap();
+    let images: Vec<&str> = parts
+        .iter()
+        .filter_map(|p| p["image_url"]["url"].as_str())
+        .collect();
+    assert_eq!(images.len(), 2);
+    assert!(images
+        .iter()
+        .all(|u| u.starts_with("data:image/png;base64,")));
+    assert!(first.to_string().contains("scene_review"));
+    // The rejection became a re-plan with the model's reason, on the blamed object only.
+    let blamed = first_listed_object(&first);
+    let replan = report
+        .replans
+        .iter()
+        .find(|r| r.reasons.iter().any(|s| s.contains("it faces the wall")))
+        .expect("a re-plan carries the model's reason");
+    assert_eq!(replan.objects, vec![blamed.clone()]);
+    assert!(replan.reasons.iter().all(|r| !r.contains("ghost_9")));
+    assert!(replan.reasons[0].contains("orientation alignment 0.30"));
+    // The final verdict holds the accepting review.
+    assert!(report.accepted, "{:?}", report.verdict.failures);
+    let review = report.verdict.review.as_ref().expect("review recorded");
+    assert_eq!(review["orientation_alignment"], 0.8);
+    assert_eq!(review["accepted"], true);
+    assert_eq!(review["views"], json!(["preview.png", "preview_top.png"]));
+    assert_eq!(review["model"], "openai-compatible/vision-model");
+}
+
+#[test]
+fn thresholds_decide_and_failures_are_visual() {
+    let server = TestServer::scripted(vec![Reply::json(
+        200,
+        &openai_completion(
+            "vision-model",
+            &json!({"category_accuracy": 0.5, "orientation_alignment": 0.5,
+                    "spatial_coherence": 0.5, "objects": [], "summary": "so-so"})
+            .to_string(),
+        ),
+    )]);
+    // Lenient thresholds: accepted.
+    let lenient = VlmThresholds {
+        category_accuracy: 0.4,
+        orientation_alignment: 0.4,
+        spatial_coherence: 0.4,
+    };
+    let judge = VlmJudge::new(chat(&server), FlatRenderer)
+        .with_preview_size([32, 32])
+        .with_thresholds(lenient);
+    let report = Pipeline::offline()
+        .with_judge(judge)
+        .generate("a garage", 0, &options(), &mut NoProgress)
+        .unwrap()
+        .report;
+    assert!(report.accepted);
+    assert_eq!(report.verdict.review.as_ref().unwrap()["accepted"], true);
+
+    // Default thresholds (0.6): every attempt is rejected with one scene-wide visual failure.
+    let judge = VlmJudge::new(chat(&server), FlatRenderer).with_preview_size([32, 32]);
+    let mut opts = options();
+    opts.max_replans = 1;
+    let report = Pipeline::offline()
+        .with_judge(judge)
+        .generate("a garage", 0, &opts, &mut NoProgress)
+        .unwrap()
+        .report;
+    assert!(!report.accepted);
+    let visual: Vec<_> = report
+        .verdict
+        .failures
+        .iter()
+        .filter(|f| f.kind == FailureKind::Visual)
+        .collect();
+    assert_eq!(visual.len(), 1, "{:?}", report.verdict.failures);
+    assert!(visual[0].objects.is_empty());
+    assert!(visual[0].detail.contains("so-so"));
+}
+
+#[test]
+fn a_failing_vision_model_is_an_error_naming_endpoint_and_model() {
+    let server = TestServer::scripted(vec![Reply::json(
+        500,
+        &json!({"error": {"message": "vision tower crashed"}}),
+    )]);
+    let judge = VlmJudge::new(chat(&server), FlatRenderer).with_preview_size([32, 32]);
+    let err = Pipeline::offline()
+        .with_judge(judge)
+        .generate("a garage", 0, &options(), &mut NoProgress)
+        .unwrap_err();
+    assert!(matches!(err, PipelineError::Judge(_)), "{err}");
+    let text = err.to_string();
+    assert!(
+        text.contains(&format!("{}/chat/completions", server.base_url)),
+        "{text}"
+    );
+    assert!(text.contains("vision-model"), "{text}");
+    assert!(text.contains("HTTP 500"), "{text}");
+}

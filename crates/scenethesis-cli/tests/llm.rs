@@ -1,0 +1,515 @@
+//! `scenethesis generate --planner llm` against a chat server on 127.0.0.1 that the tests start
+//! and stop: a plan for a prompt the offline planner does not know, `report.json` naming the
+//! provider and model (never the key), a byte-identical replay from `--llm-cache` with the
+//! server gone, and provider failures (HTTP 500, garbage, a reply slower than the timeout,
+//! connection refused) that give one error naming endpoint and model and write no folder.
+
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::{TcpListener, TcpStream};
+use std::path::Path;
+use std::process::{Command, Output};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::Arc;
+use std::thread::JoinHandle;
+use std::time::Duration;
+
+use serde_json::{json, Value};
+
+const KEY: &str = "sk-test-4f9c1e0b7d2a-never-print-me";
+
+/// What the server answers: status, content type, body, delay.
+type Answer = (u16, &'static str, Vec<u8>, Duration);
+
+/// A tiny HTTP/1.1 server answering every request with the same reply; dropping it stops it.
+struct Server {
+    base_url: String,
+    addr: std::net::SocketAddr,
+    requests: Arc<AtomicUsize>,
+    stop: Arc<AtomicBool>,
+    thread: Option<JoinHandle<()>>,
+}
+
+impl Server {
+    fn start(answer: Answer) -> Self {
+        let listener = TcpListener::bind("127.0.0.1:0").expect("bind 127.0.0.1");
+        let addr = listener.local_addr().unwrap();
+        let stop = Arc::new(AtomicBool::new(false));
+        let requests = Arc::new(AtomicUsize::new(0));
+        let answer = Arc::new(answer);
+        let thread = {
+            let (stop, requests) = (stop.clone(), requests.clone());
+            std::thread::spawn(move || {
+                for stream in listener.incoming() {
+                    if stop.load(Ordering::SeqCst) {
+                        break;
+                    }
+                    let Ok(stream) = stream else { continue };
+                    let (answer, requests) = (answer.clone(), requests.clone());
+                    std::thread::spawn(move || serve(stream, &answer, &requests));
+                }
+            })
+        };
+        Self {
+            base_url: format!("http://{addr}/v1"),
+            addr,
+            requests,
+            stop,
+            thread: Some(thread),
+        }
+    }
+
+    fn requests(&self) -> usize {
+        self.requests.load(Ordering::SeqCst)
+    }
+}
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        self.stop.store(true, Ordering::SeqCst);
+        let _ = TcpStream::connect(self.addr);
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
+    }
+}
+
+fn serve(stream: TcpStream, answer: &Answer, requests: &AtomicUsize) {
+    let mut reader = BufReader::new(match stream.try_clone() {
+        Ok(s) => s,
+        Err(_) => return,
+    });
+    let mut line = String::new();
+    if reader.read_line(&mut line).unwrap_or(0) == 0 {
+        return;
+    }
+    let mut length = 0usize;
+    loop {
+        let mut h = String::new();
+        if reader.read_line(&mut h).unwrap_or(0) == 0 {
+            return;
+        }
+        let h = h.trim_end();
+        if h.is_empty() {
+            break;
+        }
+        if let Some((k, v)) = h.split_once(':') {
+            if k.trim().eq_ignore_ascii_case("content-length") {
+                length = v.trim().parse().unwrap_or(0);
+            }
+        }
+    }
+    let mut body = vec![0; length];
+    if reader.read_exact(&mut body).is_err() {
+        return;
+    }
+    requests.fetch_add(1, Ordering::SeqCst);
+    let (status, content_type, reply, delay) = answer;
+    std::thread::sleep(*delay);
+    let mut out = stream;
+    let head = format!(
+        "HTTP/1.1 {status} X\r\nContent-Type: {content_type}\r\nContent-Length: {}\r\nConnection: close\r\n\r\n",
+        reply.len()
+    );
+    let _ = out.write_all(head.as_bytes());
+    let _ = out.write_all(reply);
+    let _ = out.flush();
+}
+
+/// An object of the plan answer; `place` is [support, parent, zone, wall].
+fn obj(id: &str, category: &str, layer: &str, place: [&str; 4], relations: Value) -> Value {
+    json!({"id": id, "category": category, "layer": layer, "support": place[0],
+           "parent": place[1], "zone": place[2], "wall": place[3], "relations": relations,
+           "stated": false})
+}
+
+/// A model's plan for "a pharmacy" (the offline planner has no pharmacy).
+fn pharmacy_plan() -> Value {
+    let mut objects = vec![
+        obj(
+            "checkout_counter_0",
+            "checkout_counter",
+            "middle",
+            ["on-floor", "ground", "center", "any"],
+            json!([]),
+        ),
+        obj(
+            "cash_register_0",
+            "cash register",
+            "middle",
+            ["on", "checkout_counter_0", "supported", "any"],
+            json!([]),
+        ),
+        obj(
+            "drinks_fridge_0",
+            "drinks_fridge",
+            "background",
+            ["against-wall", "ground", "wall", "wall_0"],
+            json!([]),
+        ),
+        obj(
+            "plant_0",
+            "potted plants",
+            "background",
+            ["on-floor", "ground", "corner", "any"],
+            json!([]),
+        ),
+        obj(
+            "shopping_basket_0",
+            "shopping_basket",
+            "foreground",
+            ["on-floor", "ground", "relative", "any"],
+            json!([{"kind": "beside", "target": "checkout_counter_0"}]),
+        ),
+    ];
+    for (i, wall) in ["wall_1", "wall_3", "wall_0", "wall_1"].iter().enumerate() {
+        objects.push(obj(
+            &format!("store_shelf_{i}"),
+            "store_shelf",
+            "background",
+            ["against-wall", "ground", "wall", wall],
+            json!([]),
+        ));
+    }
+    for i in 0..2 {
+        objects.push(obj(
+            &format!("display_shelf_{i}"),
+            "display_shelf",
+            "middle",
+            ["on-floor", "ground", "rows", "any"],
+            json!([]),
+        ));
+    }
+    for i in 0..4 {
+        let parent = format!("store_shelf_{}", i % 2);
+        objects.push(obj(
+            &format!("bottle_{i}"),
+            "bottles",
+            "background",
+            ["on", &parent, "supported", "any"],
+            json!([]),
+        ));
+    }
+    for i in 0..2 {
+        objects.push(obj(
+            &format!("box_{i}"),
+            "medicine boxes",
+            "middle",
+            ["on", "display_shelf_0", "supported", "any"],
+            json!([]),
+        ));
+    }
+    json!({
+        "interpretation": "a small retail pharmacy with a checkout counter",
+        "detailed": false,
+        "scene_type": "Pharmacy",
+        "environment": "indoor",
+        "room_width": 8.5,
+        "room_depth": 6.0,
+        "anchor": "checkout_counter_0",
+        "objects": objects,
+        "unavailable": [],
+        "description": "Background: shelves of medicine along the side walls and a drinks fridge at the back. Middle ground: the checkout counter with a cash register, display shelves in rows. Foreground: a shopping basket."
+    })
+}
+
+/// A chat completion in OpenAI's shape holding `content`.
+fn completion(content: &str) -> Vec<u8> {
+    json!({
+        "id": "chatcmpl-AbC123", "object": "chat.completion", "created": 1764100000,
+        "model": "pharmacist-7b",
+        "choices": [{"index": 0, "finish_reason": "stop",
+                     "message": {"role": "assistant", "content": content, "refusal": null}}],
+        "usage": {"prompt_tokens": 900, "completion_tokens": 700, "total_tokens": 1600}
+    })
+    .to_string()
+    .into_bytes()
+}
+
+/// Runs the binary with a clean provider environment and a known API key.
+fn scenethesis(args: &[&str]) -> Output {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_scenethesis"));
+    for var in [
+        "OPENAI_BASE_URL",
+        "SCENETHESIS_LLM_MODEL",
+        "SCENETHESIS_VLM_MODEL",
+        "SCENETHESIS_IMAGE_MODEL",
+        "RUST_LOG",
+    ] {
+        cmd.env_remove(var);
+    }
+    cmd.env("OPENAI_API_KEY", KEY)
+        .args(args)
+        .output()
+        .expect("run scenethesis")
+}
+
+fn text(out: &Output) -> String {
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    )
+}
+
+/// A config file making failures fast: one attempt, short timeout.
+fn fast_config(dir: &Path) -> String {
+    let path = dir.join("llm.toml");
+    std::fs::write(
+        &path,
+        "max_attempts = 1\ntimeout_secs = 1.0\nbudget_secs = 5.0\nbackoff_ms = 10\n",
+    )
+    .unwrap();
+    path.to_string_lossy().into_owned()
+}
+
+fn generate_llm(base_url: &str, out: &Path, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "generate",
+        "a pharmacy",
+        "--planner",
+        "llm",
+        "--base-url",
+        base_url,
+        "--llm-model",
+        "pharmacist-7b",
+        "--no-preview",
+        "--max-replans",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    scenethesis(&args)
+}
+
+fn files_contain(dir: &Path, needle: &str) -> bool {
+    std::fs::read_dir(dir).unwrap().flatten().any(|e| {
+        let p = e.path();
+        if p.is_dir() {
+            files_contain(&p, needle)
+        } else {
+            std::fs::read(&p)
+                .map(|b| String::from_utf8_lossy(&b).contains(needle))
+                .unwrap_or(false)
+        }
+    })
+}
+
+#[test]
+fn an_llm_plans_a_pharmacy_and_the_cache_replays_it_without_the_server() {
+    let tmp = tempfile::tempdir().unwrap();
+    let cache = tmp.path().join("cache");
+    let cache_arg = cache.to_str().unwrap().to_owned();
+    let first = tmp.path().join("first");
+    let server = Server::start((
+        200,
+        "application/json",
+        completion(&pharmacy_plan().to_string()),
+        Duration::ZERO,
+    ));
+    let out = generate_llm(&server.base_url, &first, &["--llm-cache", &cache_arg]);
+    let log = text(&out);
+    assert!(out.status.success(), "{log}");
+    assert!(server.requests() >= 1);
+    assert!(!log.contains(KEY), "the key leaked into the output: {log}");
+
+    let report: Value =
+        serde_json::from_slice(&std::fs::read(first.join("report.json")).unwrap()).unwrap();
+    assert_eq!(report["scene_type"], "pharmacy", "{report}");
+    assert_eq!(report["accepted"], true, "{}", report["verdict"]);
+    let providers = report["providers"].as_array().expect("providers recorded");
+    assert_eq!(providers.len(), 1, "{report}");
+    let p = &providers[0];
+    assert_eq!(p["model"], "pharmacist-7b");
+    assert_eq!(p["provider"], server.base_url.as_str());
+    assert_eq!(p["requests"], server.requests() as u64);
+    assert_eq!(p["cache_hits"], 0);
+    assert_eq!(p["prompt_tokens"], 900 * server.requests() as u64);
+    assert!(
+        !files_contain(&first, KEY),
+        "the key is in the output folder"
+    );
+    assert!(
+        !files_contain(&cache, KEY),
+        "the key is in the response cache"
+    );
+    let scene = std::fs::read(first.join("scene.json")).unwrap();
+    let served = server.requests();
+    drop(server);
+
+    // The server is gone: replay from the cache, byte for byte.
+    let dead = {
+        let l = TcpListener::bind("127.0.0.1:0").unwrap();
+        format!("http://{}/v1", l.local_addr().unwrap())
+    };
+    let second = tmp.path().join("second");
+    let out = generate_llm(&dead, &second, &["--llm-cache", &cache_arg, "--llm-replay"]);
+    assert!(out.status.success(), "{}", text(&out));
+    assert_eq!(std::fs::read(second.join("scene.json")).unwrap(), scene);
+    let report: Value =
+        serde_json::from_slice(&std::fs::read(second.join("report.json")).unwrap()).unwrap();
+    let p = &report["providers"][0];
+    assert_eq!(p["requests"], 0, "{report}");
+    assert_eq!(p["cache_hits"], served as u64, "{report}");
+}
+
+#[test]
+fn the_offline_default_reads_no_provider_configuration_and_reports_none() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out_dir = tmp.path().join("garage");
+    // A broken base URL in the environment does not matter offline.
+    let out = Command::new(env!("CARGO_BIN_EXE_scenethesis"))
+        .env("OPENAI_BASE_URL", "not a url")
+        .env("OPENAI_API_KEY", KEY)
+        .args([
+            "generate",
+            "a garage",
+            "--no-preview",
+            "--out",
+            out_dir.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", text(&out));
+    let report: Value =
+        serde_json::from_slice(&std::fs::read(out_dir.join("report.json")).unwrap()).unwrap();
+    assert!(report.get("providers").is_none(), "{report}");
+}
+
+/// A failing provider: non-zero exit, one error naming endpoint and model, no folder.
+fn assert_fails_cleanly(base_url: &str, needle: &str) {
+    let tmp = tempfile::tempdir().unwrap();
+    let out_dir = tmp.path().join("pharmacy");
+    let config = fast_config(tmp.path());
+    let out = generate_llm(base_url, &out_dir, &["--llm-config", &config]);
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(!out.status.success(), "{stderr}");
+    assert!(stderr.starts_with("error: "), "{stderr}");
+    assert_eq!(
+        stderr.matches("error: ").count(),
+        1,
+        "one error, not several: {stderr}"
+    );
+    assert!(
+        stderr.contains(&format!("{base_url}/chat/completions")),
+        "the endpoint is named: {stderr}"
+    );
+    assert!(
+        stderr.contains("pharmacist-7b"),
+        "the model is named: {stderr}"
+    );
+    assert!(stderr.contains(needle), "{stderr}");
+    assert!(!stderr.contains(KEY), "the key leaked: {stderr}");
+    assert!(!out_dir.exists(), "no output folder on a provider failure");
+}
+
+#[test]
+fn provider_failures_give_one_clear_error_and_no_output() {
+    let server = Server::start((
+        500,
+        "application/json",
+        br#"{"error": {"message": "CUDA out of memory"}}"#.to_vec(),
+        Duration::ZERO,
+    ));
+    assert_fails_cleanly(&server.base_url, "HTTP 500");
+    drop(server);
+
+    let server = Server::start((
+        200,
+        "text/html",
+        b"<html><body>502 Bad Gateway</body></html>".to_vec(),
+        Duration::ZERO,
+    ));
+    assert_fails_cleanly(&server.base_url, "malformed");
+    drop(server);
+
+    let server = Server::start((
+        200,
+        "application/json",
+        completion(r#"{"objects": "a counter and some shelves"}"#),
+        Duration::ZERO,
+    ));
+    assert_fails_cleanly(&server.base_url, "violates the schema");
+    drop(server);
+
+    let server = Server::start((
+        200,
+        "application/json",
+        completion(&pharmacy_plan().to_string()),
+        Duration::from_secs(3),
+    ));
+    assert_fails_cleanly(&server.base_url, "no answer within");
+    drop(server);
+
+    let refused = {
+        let l = TcpListener::bind("127.0.0.1:0").unwrap();
+        format!("http://{}/v1", l.local_addr().unwrap())
+    };
+    assert_fails_cleanly(&refused, "unreachable");
+}
+
+#[test]
+fn an_llm_planner_without_a_model_name_says_how_to_set_one() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out_dir = tmp.path().join("x");
+    let out = scenethesis(&[
+        "generate",
+        "a pharmacy",
+        "--planner",
+        "llm",
+        "--base-url",
+        "http://127.0.0.1:9/v1",
+        "--no-preview",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(!out.status.success());
+    assert!(stderr.contains("--llm-model"), "{stderr}");
+    assert!(stderr.contains("SCENETHESIS_LLM_MODEL"), "{stderr}");
+    assert!(!out_dir.exists());
+}
+
+#[test]
+fn a_vlm_judge_reviews_rendered_previews_and_the_review_is_reported() {
+    let review = json!({"category_accuracy": 0.92, "orientation_alignment": 0.81,
+                        "spatial_coherence": 0.88, "objects": [],
+                        "summary": "a plausible garage"});
+    let server = Server::start((
+        200,
+        "application/json",
+        completion(&review.to_string()),
+        Duration::ZERO,
+    ));
+    let tmp = tempfile::tempdir().unwrap();
+    let out_dir = tmp.path().join("garage");
+    let out = scenethesis(&[
+        "generate",
+        "a garage",
+        "--judge",
+        "vlm",
+        "--vlm-model",
+        "eye-1",
+        "--base-url",
+        &server.base_url,
+        "--no-preview",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    let log = text(&out);
+    if log.contains("needs a renderer") {
+        eprintln!("skipped: no renderer on this machine: {log}");
+        return;
+    }
+    assert!(out.status.success(), "{log}");
+    assert!(server.requests() >= 1);
+    let report: Value =
+        serde_json::from_slice(&std::fs::read(out_dir.join("report.json")).unwrap()).unwrap();
+    assert_eq!(report["judge"], "geometric+vlm:openai-compatible/eye-1");
+    let r = &report["verdict"]["review"];
+    assert_eq!(r["spatial_coherence"], 0.88, "{report}");
+    assert_eq!(r["accepted"], true);
+    assert!(!r["views"].as_array().unwrap().is_empty());
+    assert_eq!(report["providers"][0]["model"], "eye-1");
+    assert!(!files_contain(&out_dir, KEY));
+}
