@@ -13,7 +13,7 @@ use scenethesis_scene_graph::{
     Aabb, Architecture, Environment, ParentRef, Pose, Relation, RelationKind, Scene, SceneObject,
 };
 
-use super::geometry::{Footprint, Raster};
+use super::geometry::{Footprint, Raster, RasterExt};
 use super::surfaces::place_children;
 use super::{AssetLookup, DroppedObject, Guide, GuideError, GuidedLayout, WalkwayReport};
 use crate::knowledge::{Knowledge, NominalShape};
@@ -153,7 +153,10 @@ impl FloorState<'_> {
             // Tall objects too: the Reach raster counts every object as an obstacle.
             r.stamp(&mut walk, &p.fp, walk_grow(r.cell));
         }
-        let (alabels, asizes) = r.components(&aisle);
+        let scenethesis_scene_graph::Components {
+            labels: alabels,
+            sizes: asizes,
+        } = r.components4(&aisle);
         let main = match self.door_aisle {
             Some(d) => alabels[d],
             None => (1..asizes.len())
@@ -167,7 +170,10 @@ impl FloorState<'_> {
                 unreachable.push(p.plan_index);
             }
         }
-        let (wlabels, wsizes) = r.components(&walk);
+        let scenethesis_scene_graph::Components {
+            labels: wlabels,
+            sizes: wsizes,
+        } = r.components4(&walk);
         let total: usize = wsizes.iter().sum();
         let largest = (1..wsizes.len())
             .max_by_key(|&l| (wsizes[l], usize::MAX - l))
@@ -280,8 +286,8 @@ fn metric_components(floor: [f64; 4], obstacles: &[Footprint]) -> (Raster, Vec<u
             }
         });
     }
-    let (labels, sizes) = raster.components8(&free);
-    (raster, labels, sizes)
+    let c = raster.components8(&free);
+    (raster, c.labels, c.sizes)
 }
 
 fn seat_like(category: &str) -> bool {
