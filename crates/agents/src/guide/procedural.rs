@@ -1,37 +1,28 @@
 //! The offline procedural guide: rule-based floor layout with a walkway check, then children
 //! packed onto their parents' support surfaces.
 
-use std::collections::{BTreeMap, BTreeSet};
 use std::f64::consts::{FRAC_PI_2, PI};
 
-use nalgebra::Vector3;
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use scenethesis_assets::AssetInfo;
-use scenethesis_scene_graph::{
-    Aabb, Architecture, Environment, ParentRef, Pose, Relation, RelationKind, Scene, SceneObject,
-};
+use scenethesis_scene_graph::{ParentRef, RelationKind};
 
-use super::geometry::{Footprint, Raster, RasterExt};
+use super::assemble::{build_scene, ground_poses};
+use super::geometry::Footprint;
+use super::place_floor::{placement_order, positional_target};
+use super::room::{asset_infos, Room};
 use super::surfaces::place_children;
-use super::{AssetLookup, DroppedObject, Guide, GuideError, GuidedLayout, WalkwayReport};
+use super::walkway::{drop_pocket_closers, FloorState};
+use super::{AssetLookup, Guide, GuideError, GuidedLayout, WalkwayReport};
 use crate::knowledge::{Knowledge, NominalShape};
 use crate::plan::{Plan, PlannedObject, Zone};
 
-use scenethesis_scene_graph::ROBOT_RADIUS;
-/// How far the guide grows footprints for its own walk check: the robot radius plus half a
-/// raster cell and a centimetre, so that slivers the metric raster may close never count as
-/// passages.
-fn walk_grow(cell: f64) -> f64 {
-    ROBOT_RADIUS + cell / 2.0 + 0.01
-}
-/// Minimum share of the free floor the largest walkable component must hold.
-const MIN_WALK: f64 = 0.995;
 /// Door opening width in metres.
-const DOOR_WIDTH: f64 = 0.9;
+pub(super) const DOOR_WIDTH: f64 = 0.9;
 /// Centre height of wall-mounted objects.
-const WALL_MOUNT_HEIGHT: f64 = 1.6;
+pub(super) const WALL_MOUNT_HEIGHT: f64 = 1.6;
 
 /// Lays out plans by rules: the anchor against its wall or in the middle, storage against the
 /// walls facing into the room, seats facing the anchor, tables in front of it, chairs around
@@ -62,15 +53,15 @@ impl ProceduralGuide {
 
 /// A wall (or, outdoors, an edge of the ground) that objects can back onto.
 #[derive(Debug, Clone)]
-struct Side {
-    id: Option<String>,
+pub(super) struct Side {
+    pub(super) id: Option<String>,
     /// Point on the inner face at the middle of the wall.
-    face: [f64; 2],
+    pub(super) face: [f64; 2],
     /// Unit normal into the room.
-    normal: [f64; 2],
+    pub(super) normal: [f64; 2],
     /// Unit direction along the wall.
-    along: [f64; 2],
-    half_len: f64,
+    pub(super) along: [f64; 2],
+    pub(super) half_len: f64,
 }
 
 impl Side {
@@ -95,199 +86,20 @@ impl Side {
 }
 
 #[derive(Debug, Clone)]
-struct Candidate {
-    fp: Footprint,
-    wall: Option<String>,
+pub(super) struct Candidate {
+    pub(super) fp: Footprint,
+    pub(super) wall: Option<String>,
 }
 
 #[derive(Debug, Clone)]
-struct Placed {
-    plan_index: usize,
-    fp: Footprint,
-    height: f64,
+pub(super) struct Placed {
+    pub(super) plan_index: usize,
+    pub(super) fp: Footprint,
+    pub(super) height: f64,
     /// Checked from the front (objects backed onto a wall) rather than from any side.
-    front_access: bool,
-    wall: Option<String>,
-    mounted: bool,
-}
-
-struct FloorState<'a> {
-    raster: Raster,
-    aisle_radius: f64,
-    aisle_base: Vec<bool>,
-    walk_base: Vec<bool>,
-    door_aisle: Option<usize>,
-    door_walk: Option<usize>,
-    door_zone: Option<Footprint>,
-    floor: [f64; 4],
-    placed: Vec<Placed>,
-    plan: &'a Plan,
-}
-
-impl FloorState<'_> {
-    fn inside_floor(&self, fp: &Footprint, margin: f64) -> bool {
-        fp.corners().iter().all(|c| {
-            c[0] >= self.floor[0] + margin - 1e-9
-                && c[0] <= self.floor[2] - margin + 1e-9
-                && c[1] >= self.floor[1] + margin - 1e-9
-                && c[1] <= self.floor[3] - margin + 1e-9
-        })
-    }
-
-    fn collides(&self, fp: &Footprint, gap: f64) -> bool {
-        self.placed
-            .iter()
-            .filter(|p| !p.mounted)
-            .any(|p| p.fp.overlaps(fp, gap))
-            || self.door_zone.is_some_and(|d| d.overlaps(fp, 0.0))
-    }
-
-    /// Walkway evaluation with an optional extra object: (accepted, walk ratio, door reachable,
-    /// unreachable plan indices).
-    fn evaluate(&self, extra: Option<&Placed>) -> (bool, f64, bool, Vec<usize>) {
-        let r = &self.raster;
-        let mut aisle = self.aisle_base.clone();
-        let mut walk = self.walk_base.clone();
-        if let Some(p) = extra.filter(|p| !p.mounted) {
-            r.stamp(&mut aisle, &p.fp, self.aisle_radius);
-            // Tall objects too: the Reach raster counts every object as an obstacle.
-            r.stamp(&mut walk, &p.fp, walk_grow(r.cell));
-        }
-        let scenethesis_scene_graph::Components {
-            labels: alabels,
-            sizes: asizes,
-        } = r.components4(&aisle);
-        let main = match self.door_aisle {
-            Some(d) => alabels[d],
-            None => (1..asizes.len())
-                .max_by_key(|&l| (asizes[l], usize::MAX - l))
-                .unwrap_or(0) as u32,
-        };
-        let door_ok = main != 0;
-        let mut unreachable = Vec::new();
-        for p in self.placed.iter().chain(extra) {
-            if main == 0 || !self.reachable(p, &alabels, main) {
-                unreachable.push(p.plan_index);
-            }
-        }
-        let scenethesis_scene_graph::Components {
-            labels: wlabels,
-            sizes: wsizes,
-        } = r.components4(&walk);
-        let total: usize = wsizes.iter().sum();
-        let largest = (1..wsizes.len())
-            .max_by_key(|&l| (wsizes[l], usize::MAX - l))
-            .unwrap_or(0);
-        let ratio = if total == 0 {
-            0.0
-        } else {
-            wsizes[largest] as f64 / total as f64
-        };
-        let door_walk = self
-            .door_walk
-            .is_none_or(|d| wlabels[d] == largest as u32 && largest != 0);
-        let ok = door_ok && unreachable.is_empty() && ratio >= MIN_WALK && door_walk;
-        (ok, ratio, door_ok, unreachable)
-    }
-
-    fn reachable(&self, p: &Placed, labels: &[u32], main: u32) -> bool {
-        let r = &self.raster;
-        let reach = self.aisle_radius + 1.5 * r.cell;
-        let zone = if p.front_access {
-            let depth = reach + r.cell;
-            let centre = p.fp.to_world(0.0, p.fp.hz + depth / 2.0);
-            Footprint {
-                cx: centre[0],
-                cz: centre[1],
-                yaw: p.fp.yaw,
-                hx: (p.fp.hx * 0.8).max(r.cell),
-                hz: depth / 2.0,
-            }
-        } else {
-            Footprint {
-                hx: p.fp.hx + reach,
-                hz: p.fp.hz + reach,
-                ..p.fp
-            }
-        };
-        let mut found = false;
-        r.for_cells_in(&zone, 0.0, |idx| found |= labels[idx] == main);
-        found
-    }
-
-    /// Recomputes the walkway rasters from the placed objects.
-    fn rebuild(&mut self) {
-        let grow = walk_grow(self.raster.cell);
-        self.aisle_base = self.raster.floor_mask(self.aisle_radius);
-        self.walk_base = self.raster.floor_mask(grow);
-        for (door, mask) in [
-            (self.door_aisle, &mut self.aisle_base),
-            (self.door_walk, &mut self.walk_base),
-        ] {
-            if let Some(d) = door {
-                mask[d] = true;
-            }
-        }
-        let placed = std::mem::take(&mut self.placed);
-        for p in placed {
-            self.commit(p);
-        }
-    }
-
-    fn commit(&mut self, p: Placed) {
-        if !p.mounted {
-            self.raster
-                .stamp(&mut self.aisle_base, &p.fp, self.aisle_radius);
-            self.raster
-                .stamp(&mut self.walk_base, &p.fp, walk_grow(self.raster.cell));
-        }
-        self.placed.push(p);
-    }
-
-    fn placed_of(&self, plan_index: usize) -> Option<&Placed> {
-        self.placed.iter().find(|p| p.plan_index == plan_index)
-    }
-
-    fn index_of(&self, id: &str) -> Option<usize> {
-        self.plan.objects.iter().position(|o| o.id == id)
-    }
-}
-
-/// Free-floor components by the Walk metric's rules: a 256 × 256 raster over the floor's
-/// bounding square plus 0.2 m, the floor eroded by the robot radius, footprints grown (round)
-/// by it, 8-connected.
-fn metric_components(floor: [f64; 4], obstacles: &[Footprint]) -> (Raster, Vec<u32>, Vec<usize>) {
-    let side = (floor[2] - floor[0]).max(floor[3] - floor[1]) + 0.4;
-    let (cx, cz) = ((floor[0] + floor[2]) / 2.0, (floor[1] + floor[3]) / 2.0);
-    let raster = Raster::new(
-        cx - side / 2.0,
-        cz - side / 2.0,
-        cx + side / 2.0,
-        cz + side / 2.0,
-        side / 256.0,
-    );
-    let r = ROBOT_RADIUS;
-    let mut free = vec![false; raster.nx * raster.nz];
-    for j in 0..raster.nz {
-        for i in 0..raster.nx {
-            let [x, z] = raster.center(i, j);
-            free[j * raster.nx + i] =
-                x >= floor[0] + r && x <= floor[2] - r && z >= floor[1] + r && z <= floor[3] - r;
-        }
-    }
-    for fp in obstacles {
-        raster.for_cells_in(fp, r, |idx| {
-            let (i, j) = (idx % raster.nx, idx / raster.nx);
-            let [x, z] = raster.center(i, j);
-            let [lx, lz] = fp.to_local(x, z);
-            let (ex, ez) = ((lx.abs() - fp.hx).max(0.0), (lz.abs() - fp.hz).max(0.0));
-            if ex.hypot(ez) <= r {
-                free[idx] = false;
-            }
-        });
-    }
-    let c = raster.components8(&free);
-    (raster, c.labels, c.sizes)
+    pub(super) front_access: bool,
+    pub(super) wall: Option<String>,
+    pub(super) mounted: bool,
 }
 
 fn seat_like(category: &str) -> bool {
@@ -310,7 +122,7 @@ fn yaw_toward(from: [f64; 2], to: [f64; 2]) -> f64 {
     (to[0] - from[0]).atan2(to[1] - from[1])
 }
 
-fn wrap(yaw: f64) -> f64 {
+pub(super) fn wrap(yaw: f64) -> f64 {
     let mut y = yaw % (2.0 * PI);
     if y > PI {
         y -= 2.0 * PI;
@@ -358,380 +170,31 @@ impl Guide for ProceduralGuide {
 }
 
 impl ProceduralGuide {
+    /// One layout of the plan in its room, phase by phase: the room and the assets, the floor
+    /// objects placed while the walkway stays open, the final walkway check by the metric's
+    /// rules, the children on their parents, and the scene.
     fn layout_once(
         &self,
         plan: &Plan,
         assets: &dyn AssetLookup,
         seed: u64,
     ) -> Result<GuidedLayout, GuideError> {
-        let [width, depth] = plan.room_size;
-        if !(width.is_finite() && depth.is_finite() && width >= 1.5 && depth >= 1.5) {
-            return Err(GuideError::InvalidPlan(format!(
-                "room_size {width} × {depth} m: expected at least 1.5 m each way"
-            )));
-        }
+        let room = Room::of(plan)?;
         let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x9e37_79b9_7f4a_7c15);
-        let indoor = plan.environment == Environment::Indoor;
-        let architecture = if indoor {
-            Architecture::rectangular_room(width, depth, plan.wall_height.max(2.2), DOOR_WIDTH)
-        } else {
-            Architecture::open_ground(width, depth)
-        };
-        let (hw, hd) = (width / 2.0, depth / 2.0);
-
-        // Metadata for every object.
-        let mut infos: Vec<AssetInfo> = Vec::with_capacity(plan.objects.len());
-        for o in &plan.objects {
-            let info = assets
-                .asset_info(o)
-                .ok_or_else(|| GuideError::MissingAsset {
-                    id: o.id.clone(),
-                    category: o.category.clone(),
-                })?;
-            infos.push(info);
-        }
-        for o in &plan.objects {
-            if let ParentRef::Object(p) = &o.parent {
-                if plan.object(p).is_none() {
-                    return Err(GuideError::InvalidPlan(format!(
-                        "object `{}`: parent `{p}` is not planned",
-                        o.id
-                    )));
-                }
-            }
-        }
-
-        let sides: Vec<Side> = {
-            let (x, z) = (hw, hd);
-            let id = |i: usize| indoor.then(|| format!("wall_{i}"));
-            vec![
-                Side {
-                    id: id(0),
-                    face: [0.0, -z],
-                    normal: [0.0, 1.0],
-                    along: [1.0, 0.0],
-                    half_len: x,
-                },
-                Side {
-                    id: id(1),
-                    face: [-x, 0.0],
-                    normal: [1.0, 0.0],
-                    along: [0.0, 1.0],
-                    half_len: z,
-                },
-                Side {
-                    id: id(2),
-                    face: [0.0, z],
-                    normal: [0.0, -1.0],
-                    along: [1.0, 0.0],
-                    half_len: x,
-                },
-                Side {
-                    id: id(3),
-                    face: [x, 0.0],
-                    normal: [-1.0, 0.0],
-                    along: [0.0, 1.0],
-                    half_len: z,
-                },
-            ]
-        };
-
-        let aisle_radius = (plan.aisle / 2.0).max(0.3);
-        let raster = Raster::new(-hw, -hd, hw, hd, self.cell);
-        let mut aisle_base = raster.floor_mask(aisle_radius);
-        let mut walk_base = raster.floor_mask(walk_grow(self.cell));
-        let door_zone = indoor.then(|| {
-            let clear = plan.door_clearance.max(0.6);
-            Footprint {
-                cx: 0.0,
-                cz: hd - clear / 2.0,
-                yaw: 0.0,
-                hx: DOOR_WIDTH / 2.0 + 0.2,
-                hz: clear / 2.0,
-            }
-        });
-        let door_cell = |r: f64| {
-            if indoor {
-                raster
-                    .cell_of(0.0, hd - r - self.cell * 1.5)
-                    .map(|(i, j)| j * raster.nx + i)
-            } else {
-                None
-            }
-        };
-        let (door_aisle, door_walk) = (door_cell(aisle_radius), door_cell(walk_grow(self.cell)));
-        if let (Some(a), Some(w)) = (door_aisle, door_walk) {
-            aisle_base[a] = true;
-            walk_base[w] = true;
-        }
-        let mut state = FloorState {
-            raster,
-            aisle_radius,
-            aisle_base,
-            walk_base,
-            door_aisle,
-            door_walk,
-            door_zone,
-            floor: [-hw, -hd, hw, hd],
-            placed: Vec::new(),
-            plan,
-        };
-
-        // Floor objects in placement order.
-        let class = |i: usize| -> u8 {
-            let o = &plan.objects[i];
-            if o.id == plan.anchor {
-                return 0;
-            }
-            match &o.zone {
-                Zone::Relative => 1,
-                Zone::Corner => 2,
-                Zone::Wall { wall: Some(_) } => 3,
-                Zone::Wall { wall: None } => 4,
-                Zone::Center => 5,
-                Zone::Rows => 6,
-                Zone::Free => 7,
-                Zone::WallMounted => 8,
-                Zone::Supported => 9,
-            }
-        };
-        let mut order: Vec<usize> = (0..plan.objects.len())
-            .filter(|&i| plan.objects[i].parent == ParentRef::Ground)
-            .collect();
-        order.sort_by_key(|&i| (class(i), !plan.objects[i].hard, i));
-        let order = chain_dependents(plan, order);
-
-        let mut dropped: Vec<DroppedObject> = Vec::new();
-        let mut attempted = vec![false; plan.objects.len()];
-        let mut pending = order;
-        while !pending.is_empty() {
-            let mut next = Vec::new();
-            let mut progress = false;
-            for &i in &pending {
-                let o = &plan.objects[i];
-                // A relative object waits for its target.
-                if let Some(target) = positional_target(o) {
-                    if let Some(t) = state.index_of(target) {
-                        if !attempted[t] && plan.objects[t].parent == ParentRef::Ground {
-                            next.push(i);
-                            continue;
-                        }
-                    }
-                }
-                attempted[i] = true;
-                progress = true;
-                let candidates = self.candidates(&state, o, &infos[i], &sides, &infos, &mut rng);
-                let mounted = o.zone == Zone::WallMounted;
-                let (hx, hz) = (infos[i].size[0] as f64 / 2.0, infos[i].size[2] as f64 / 2.0);
-                let mut accepted = None;
-                let mut tried = 0;
-                for c in candidates {
-                    if !mounted {
-                        if !state.inside_floor(&c.fp, 0.0) || state.collides(&c.fp, 0.02) {
-                            continue;
-                        }
-                    } else if !self.mount_ok(&state, &c.fp) {
-                        continue;
-                    }
-                    let p = Placed {
-                        plan_index: i,
-                        fp: c.fp,
-                        height: infos[i].size[1] as f64,
-                        front_access: c.wall.is_some()
-                            || matches!(
-                                o.zone,
-                                Zone::Wall { .. } | Zone::Corner | Zone::WallMounted
-                            ),
-                        wall: c.wall.clone(),
-                        mounted,
-                    };
-                    tried += 1;
-                    if tried > 160 {
-                        break;
-                    }
-                    if state.evaluate(Some(&p)).0 {
-                        accepted = Some(p);
-                        break;
-                    }
-                }
-                let _ = (hx, hz);
-                match accepted {
-                    Some(p) => state.commit(p),
-                    None => dropped.push(DroppedObject {
-                        id: o.id.clone(),
-                        reason: if tried == 0 {
-                            "no free spot for its footprint".into()
-                        } else {
-                            "every free spot would block the walkway, the door or another object's access".into()
-                        },
-                    }),
-                }
-            }
-            if !progress {
-                // Targets that never get placed: place the waiting ones without them.
-                for &i in &next {
-                    attempted[i] = true;
-                }
-                for &i in &next {
-                    let o = &plan.objects[i];
-                    let candidates = self.free_candidates(&state, &infos[i], &mut rng, None);
-                    let mut ok = false;
-                    for c in candidates.into_iter().take(200) {
-                        if !state.inside_floor(&c.fp, 0.0) || state.collides(&c.fp, 0.02) {
-                            continue;
-                        }
-                        let p = Placed {
-                            plan_index: i,
-                            fp: c.fp,
-                            height: infos[i].size[1] as f64,
-                            front_access: false,
-                            wall: None,
-                            mounted: false,
-                        };
-                        if state.evaluate(Some(&p)).0 {
-                            state.commit(p);
-                            ok = true;
-                            break;
-                        }
-                    }
-                    if !ok {
-                        dropped.push(DroppedObject {
-                            id: o.id.clone(),
-                            reason: "its target was not placed and no free spot remained".into(),
-                        });
-                    }
-                }
-                break;
-            }
-            pending = next;
-        }
+        let infos = asset_infos(plan, assets)?;
+        let mut state = FloorState::new(plan, &room, self.cell);
+        let order = placement_order(plan);
+        let mut dropped =
+            self.place_floor_objects(&mut state, order, &infos, &room.sides, &mut rng);
         if state.placed.iter().all(|p| p.mounted) {
+            let [width, depth] = plan.room_size;
             return Err(GuideError::NothingFits { width, depth });
         }
-
-        // Final check by the metric's own raster rules; objects that close off a pocket of
-        // floor are dropped, newest and softest first.
-        for _ in 0..8 {
-            let walk_obstacles: Vec<Footprint> = state
-                .placed
-                .iter()
-                .filter(|p| !p.mounted && p.height / 2.0 < 1.5)
-                .map(|p| p.fp)
-                .collect();
-            let (raster, labels, sizes) = metric_components(state.floor, &walk_obstacles);
-            let total: usize = sizes.iter().sum();
-            let main = (1..sizes.len()).max_by_key(|&l| sizes[l]).unwrap_or(0);
-            if total == 0 || sizes[main] as f64 >= MIN_WALK * total as f64 {
-                break;
-            }
-            let px = raster.cell;
-            let culprit = state
-                .placed
-                .iter()
-                .enumerate()
-                .filter(|(_, p)| !p.mounted && plan.objects[p.plan_index].id != plan.anchor)
-                .filter(|(_, p)| {
-                    let mut touches_pocket = false;
-                    raster.for_cells_in(&p.fp, ROBOT_RADIUS + 1.5 * px, |idx| {
-                        touches_pocket |= labels[idx] != 0 && labels[idx] as usize != main;
-                    });
-                    touches_pocket
-                })
-                .max_by_key(|(k, p)| (!plan.objects[p.plan_index].hard, *k))
-                .map(|(k, _)| k);
-            let Some(k) = culprit else { break };
-            let p = state.placed.remove(k);
-            dropped.push(DroppedObject {
-                id: plan.objects[p.plan_index].id.clone(),
-                reason: "it closed off a pocket of floor from the walkway".into(),
-            });
-            state.rebuild();
-        }
-
-        // Poses of ground objects.
-        let mut poses: BTreeMap<usize, Pose> = BTreeMap::new();
-        let mut walls: BTreeMap<usize, String> = BTreeMap::new();
-        for p in &state.placed {
-            let y = if p.mounted {
-                (WALL_MOUNT_HEIGHT - p.height / 2.0).max(0.5)
-            } else {
-                0.0
-            };
-            poses.insert(
-                p.plan_index,
-                Pose::new(1.0, wrap(p.fp.yaw), Vector3::new(p.fp.cx, y, p.fp.cz)),
-            );
-            if let Some(w) = &p.wall {
-                walls.insert(p.plan_index, w.clone());
-            }
-        }
-
-        // Children on, in and under their parents.
-        let child_drops = place_children(plan, &infos, &mut poses, &mut rng);
-        dropped.extend(child_drops);
-
-        // The scene.
+        drop_pocket_closers(&mut state, &mut dropped);
+        let (mut poses, walls) = ground_poses(&state);
+        dropped.extend(place_children(plan, &infos, &mut poses, &mut rng));
         let (_, ratio, door_ok, unreachable) = state.evaluate(None);
-        let mut scene = Scene::new(architecture);
-        scene.prompt = plan.prompt.clone();
-        scene.seed = seed;
-        let present: BTreeMap<&str, usize> = poses
-            .keys()
-            .map(|&i| (plan.objects[i].id.as_str(), i))
-            .collect();
-        for (i, o) in plan.objects.iter().enumerate() {
-            let Some(pose) = poses.get(&i) else { continue };
-            let info = &infos[i];
-            let [sx, sy, sz] = info.size.map(f64::from);
-            let mut support = o.support;
-            let mut relations: Vec<Relation> = o
-                .relations
-                .iter()
-                .filter(|r| {
-                    present.contains_key(r.target.as_str())
-                        || scene.architecture.wall(&r.target).is_some()
-                        || r.target == scenethesis_scene_graph::GROUND_ID
-                })
-                .cloned()
-                .collect();
-            if o.parent == ParentRef::Ground {
-                match walls.get(&i) {
-                    Some(w) => {
-                        support = RelationKind::AgainstWall;
-                        relations.retain(|r| r.kind != RelationKind::AgainstWall);
-                        relations.insert(0, Relation::new(RelationKind::AgainstWall, w.clone()));
-                    }
-                    None => {
-                        if support == RelationKind::AgainstWall {
-                            support = RelationKind::OnFloor;
-                        }
-                        relations.retain(|r| r.kind != RelationKind::AgainstWall);
-                    }
-                }
-            }
-            scene.objects.push(SceneObject {
-                id: o.id.clone(),
-                category: o.category.clone(),
-                asset: info.source.clone(),
-                pose: *pose,
-                parent: o.parent.clone(),
-                support,
-                relations,
-                local_bounds: Aabb::new(
-                    nalgebra::Point3::new(-sx / 2.0, 0.0, -sz / 2.0),
-                    nalgebra::Point3::new(sx / 2.0, sy, sz / 2.0),
-                ),
-            });
-        }
-        scene.anchor = if present.contains_key(plan.anchor.as_str()) {
-            Some(plan.anchor.clone())
-        } else {
-            scene
-                .objects
-                .iter()
-                .find(|o| o.parent == ParentRef::Ground && !o.id.is_empty())
-                .map(|o| o.id.clone())
-        };
+        let scene = build_scene(plan, seed, room, &infos, &poses, &walls);
         Ok(GuidedLayout {
             scene,
             dropped,
@@ -748,101 +211,8 @@ impl ProceduralGuide {
     }
 }
 
-/// The object a relative placement positions against (the first positional relation).
-/// Reorders floor objects so each object placed relative to another comes right after its
-/// target (depth first), dependents whose chain holds a prompt-requested (hard) object first.
-/// Otherwise objects placed in between take the spots around a target before a requested
-/// object that is waiting for it ("an armchair next to the floor lamp") gets its turn.
-fn chain_dependents(plan: &Plan, order: Vec<usize>) -> Vec<usize> {
-    let in_order: BTreeSet<usize> = order.iter().copied().collect();
-    let index_of: BTreeMap<&str, usize> = plan
-        .objects
-        .iter()
-        .enumerate()
-        .map(|(i, o)| (o.id.as_str(), i))
-        .collect();
-    // Each object's target among the floor objects being ordered, by plan index.
-    let target: Vec<Option<usize>> = (0..plan.objects.len())
-        .map(|i| {
-            positional_target(&plan.objects[i])
-                .and_then(|t| index_of.get(t).copied())
-                .filter(|t| in_order.contains(t) && *t != i)
-        })
-        .collect();
-    let mut dependents: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
-    for &i in &order {
-        if let Some(t) = target[i] {
-            dependents.entry(t).or_default().push(i);
-        }
-    }
-    fn holds_hard(
-        plan: &Plan,
-        dependents: &BTreeMap<usize, Vec<usize>>,
-        i: usize,
-        depth: usize,
-    ) -> bool {
-        plan.objects[i].hard
-            || (depth < 16
-                && dependents.get(&i).is_some_and(|d| {
-                    d.iter()
-                        .any(|&j| holds_hard(plan, dependents, j, depth + 1))
-                }))
-    }
-    let hard: Vec<bool> = (0..plan.objects.len())
-        .map(|i| holds_hard(plan, &dependents, i, 0))
-        .collect();
-    for list in dependents.values_mut() {
-        // A stable sort keeps the class/hard/index order among equals.
-        list.sort_by_key(|&j| !hard[j]);
-    }
-    let mut out = Vec::with_capacity(order.len());
-    let mut emitted = vec![false; plan.objects.len()];
-    fn emit(
-        i: usize,
-        dependents: &BTreeMap<usize, Vec<usize>>,
-        emitted: &mut [bool],
-        out: &mut Vec<usize>,
-    ) {
-        if emitted[i] {
-            return;
-        }
-        emitted[i] = true;
-        out.push(i);
-        if let Some(list) = dependents.get(&i) {
-            for &j in list {
-                emit(j, dependents, emitted, out);
-            }
-        }
-    }
-    for &i in &order {
-        // Roots first; a dependent is emitted with its target (cycles fall back to order).
-        if target[i].is_none() {
-            emit(i, &dependents, &mut emitted, &mut out);
-        }
-    }
-    for &i in &order {
-        emit(i, &dependents, &mut emitted, &mut out);
-    }
-    out
-}
-
-fn positional_target(o: &PlannedObject) -> Option<&str> {
-    if o.zone != Zone::Relative {
-        return None;
-    }
-    o.relations
-        .iter()
-        .find(|r| {
-            !matches!(
-                r.kind,
-                RelationKind::AgainstWall | RelationKind::LeftOf | RelationKind::RightOf
-            )
-        })
-        .map(|r| r.target.as_str())
-}
-
 impl ProceduralGuide {
-    fn mount_ok(&self, state: &FloorState<'_>, fp: &Footprint) -> bool {
+    pub(super) fn mount_ok(&self, state: &FloorState<'_>, fp: &Footprint) -> bool {
         // Not over another mounted object, and free floor in front.
         if state
             .placed
@@ -868,7 +238,7 @@ impl ProceduralGuide {
             && !state.door_zone.is_some_and(|d| d.overlaps(&band, 0.0))
     }
 
-    fn candidates(
+    pub(super) fn candidates(
         &self,
         state: &FloorState<'_>,
         o: &PlannedObject,
@@ -1143,7 +513,7 @@ impl ProceduralGuide {
         out
     }
 
-    fn free_candidates(
+    pub(super) fn free_candidates(
         &self,
         state: &FloorState<'_>,
         info: &AssetInfo,
