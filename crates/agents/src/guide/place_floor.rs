@@ -251,3 +251,48 @@ pub(super) fn positional_target(o: &PlannedObject) -> Option<&str> {
         })
         .map(|r| r.target.as_str())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{KnowledgePlanner, PlanRequest, Planner};
+
+    fn plan(prompt: &str) -> Plan {
+        let available: Vec<String> = scenethesis_assets::catalog::categories()
+            .map(|c| c.name.to_owned())
+            .collect();
+        KnowledgePlanner::new()
+            .plan(&PlanRequest::new(prompt, available, 0))
+            .unwrap_or_else(|e| panic!("{prompt}: {e}"))
+    }
+
+    #[test]
+    fn anchor_first_each_floor_object_once_and_relative_ones_after_their_target() {
+        for prompt in [
+            "a cozy living room with reading materials",
+            "a kitchen",
+            "a garage",
+        ] {
+            let plan = plan(prompt);
+            let order = placement_order(&plan);
+            let floor: BTreeSet<usize> = (0..plan.objects.len())
+                .filter(|&i| plan.objects[i].parent == ParentRef::Ground)
+                .collect();
+            assert_eq!(order.len(), floor.len(), "{prompt}: {order:?}");
+            assert_eq!(order.iter().copied().collect::<BTreeSet<_>>(), floor);
+            assert_eq!(plan.objects[order[0]].id, plan.anchor, "{prompt}");
+            for (k, &i) in order.iter().enumerate() {
+                let Some(t) = positional_target(&plan.objects[i]) else {
+                    continue;
+                };
+                if let Some(pos) = order.iter().position(|&j| plan.objects[j].id == t) {
+                    assert!(
+                        pos < k,
+                        "{prompt}: `{}` before its target `{t}`",
+                        plan.objects[i].id
+                    );
+                }
+            }
+        }
+    }
+}

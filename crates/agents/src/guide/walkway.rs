@@ -21,15 +21,25 @@ pub(super) const MIN_WALK: f64 = 0.995;
 
 /// The floor objects placed so far and the walkway rasters they leave.
 pub(super) struct FloorState<'a> {
+    /// The guide's raster over the floor.
     pub(super) raster: Raster,
+    /// Half the aisle width (at least 0.3 m): how far the aisle keeps from footprints.
     pub(super) aisle_radius: f64,
+    /// Free cells of the aisle raster with every placed floor object stamped in.
     pub(super) aisle_base: Vec<bool>,
+    /// Free cells of the walk raster with every placed floor object stamped in.
     pub(super) walk_base: Vec<bool>,
+    /// The aisle cell just inside the door (indoors).
     pub(super) door_aisle: Option<usize>,
+    /// The walk cell just inside the door (indoors).
     pub(super) door_walk: Option<usize>,
+    /// The clearance in front of the door that no floor object may take (indoors).
     pub(super) door_zone: Option<Footprint>,
+    /// The floor rectangle [min x, min z, max x, max z].
     pub(super) floor: [f64; 4],
+    /// The objects placed so far (floor and wall-mounted), in placement order.
     pub(super) placed: Vec<Placed>,
+    /// The plan being laid out.
     pub(super) plan: &'a Plan,
 }
 
