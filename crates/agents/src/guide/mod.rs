@@ -1,6 +1,7 @@
 //! Stage 2 of the method: a [`Plan`] becomes an initial scene graph with poses.
 
 mod assemble;
+mod candidates;
 mod geometry;
 mod lookup;
 mod place_floor;

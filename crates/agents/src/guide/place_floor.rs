@@ -8,7 +8,8 @@ use rand_chacha::ChaCha8Rng;
 use scenethesis_assets::AssetInfo;
 use scenethesis_scene_graph::{ParentRef, RelationKind};
 
-use super::procedural::{Placed, ProceduralGuide, Side};
+use super::candidates::Side;
+use super::procedural::{Placed, ProceduralGuide};
 use super::walkway::FloorState;
 use super::DroppedObject;
 use crate::plan::{Plan, PlannedObject, Zone};

@@ -4,7 +4,8 @@
 use scenethesis_assets::AssetInfo;
 use scenethesis_scene_graph::{Architecture, Environment, ParentRef};
 
-use super::procedural::{Side, DOOR_WIDTH};
+use super::candidates::Side;
+use super::procedural::DOOR_WIDTH;
 use super::{AssetLookup, GuideError};
 use crate::plan::Plan;
 
