@@ -21,27 +21,7 @@ pub const CATEGORIES_TOML: &str = include_str!("../data/categories.toml");
 /// The path of the table in the source tree, for messages.
 const TABLE_FILE: &str = "crates/assets/data/categories.toml";
 
-/// A builder of one asset from the seeded generator it is given.
-pub type Generator = fn(&mut ChaCha8Rng) -> Asset;
-
-/// One built-in category: its names, placement and generator.
-#[derive(Debug, Clone, Copy)]
-pub struct Category {
-    /// Canonical name (see `docs/asset-categories.md`).
-    pub name: &'static str,
-    /// Other names people use for the category (`bookcase` for `bookshelf`): the `words` of its
-    /// row in [`CATEGORIES_TOML`], which retrieval and the planner both resolve to it.
-    pub synonyms: &'static [&'static str],
-    /// Where the category is normally placed.
-    pub placement: Placement,
-    /// Documented extent of the generated assets in metres, as `[min, max]` along x (width),
-    /// y (height) and z (depth), over all seeds at scale 1. Crate tests check that every
-    /// generated asset's [`crate::AssetInfo::size`] lies inside it.
-    pub size_range: [[f32; 2]; 3],
-    /// Builds one asset; all randomness comes from the seeded generator passed in. The
-    /// registry fills in [`crate::AssetInfo::source`], `category` and `synonyms` afterwards.
-    pub generate: Generator,
-}
+pub use crate::category::{Category, Generator};
 
 /// A category table that cannot be used, naming the row and field at fault.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -9,6 +9,7 @@
 //! wherever possible, so that per-part convex hulls (physics engines, MuJoCo) keep cavities open.
 
 pub mod catalog;
+mod category;
 mod furniture;
 pub mod import;
 mod items;

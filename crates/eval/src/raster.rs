@@ -3,6 +3,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use scenethesis_scene_graph::FloorRaster;
+
 use crate::scene::{EvalObject, EvalScene};
 
 /// Raster resolution in pixels along each side.
@@ -155,43 +157,18 @@ pub fn wall_pieces(scene: &EvalScene) -> Vec<WallPiece> {
     out
 }
 
-/// The pixel grid over the floor's bounding square plus the margin.
-#[derive(Debug, Clone, Copy)]
-struct Grid {
-    origin: [f64; 2],
-    pixel: f64,
-}
-
-impl Grid {
-    fn center(&self, i: usize, j: usize) -> (f64, f64) {
-        (
-            self.origin[0] + (i as f64 + 0.5) * self.pixel,
-            self.origin[1] + (j as f64 + 0.5) * self.pixel,
-        )
-    }
-
-    /// Pixel index range covering the (x, z) box, clamped to the grid.
-    fn range(&self, b: [f64; 4]) -> (std::ops::Range<usize>, std::ops::Range<usize>) {
-        let to = |v: f64, o: f64| ((v - o) / self.pixel).floor();
-        let clamp = |v: f64| v.clamp(0.0, RASTER_SIZE as f64) as usize;
-        let i0 = clamp(to(b[0], self.origin[0]));
-        let i1 = clamp(to(b[2], self.origin[0]) + 1.0);
-        let j0 = clamp(to(b[1], self.origin[1]));
-        let j1 = clamp(to(b[3], self.origin[1]) + 1.0);
-        (i0..i1, j0..j1)
-    }
-}
-
 /// Computes Walk and Reach exactly as `metrics.md` defines them.
 pub fn walk_and_reach(scene: &EvalScene) -> WalkReach {
     let floor = &scene.architecture.floor;
     let ext = floor.extent();
     let side = ext.x.max(ext.y).max(0.0) + 2.0 * RASTER_MARGIN;
     let center = nalgebra::center(&floor.min, &floor.max);
-    let grid = Grid {
-        origin: [center.x - side / 2.0, center.y - side / 2.0],
-        pixel: side / RASTER_SIZE as f64,
-    };
+    let grid = FloorRaster::square(
+        center.x - side / 2.0,
+        center.y - side / 2.0,
+        side,
+        RASTER_SIZE,
+    );
     let n = RASTER_SIZE;
     let r = ROBOT_RADIUS;
     // The floor eroded by the robot, minus the walls grown by the robot.
@@ -199,7 +176,7 @@ pub fn walk_and_reach(scene: &EvalScene) -> WalkReach {
     let mut free = vec![false; n * n];
     for j in 0..n {
         for i in 0..n {
-            let (x, z) = grid.center(i, j);
+            let [x, z] = grid.center(i, j);
             let inside = x - floor.min.x >= r
                 && floor.max.x - x >= r
                 && z - floor.min.y >= r
@@ -213,16 +190,12 @@ pub fn walk_and_reach(scene: &EvalScene) -> WalkReach {
         .iter()
         .map(|o| match footprint(o) {
             Some(rect) => {
-                let (is, js) = grid.range(rect.bounds(r));
                 let mut px = Vec::new();
-                for j in js {
-                    for i in is.clone() {
-                        let (x, z) = grid.center(i, j);
-                        if rect.distance(x, z) <= r {
-                            px.push(j * n + i);
-                        }
-                    }
-                }
+                grid.for_cells_where(
+                    rect.bounds(r),
+                    |x, z| rect.distance(x, z) <= r,
+                    |p| px.push(p),
+                );
                 px
             }
             None => Vec::new(),
@@ -238,7 +211,9 @@ pub fn walk_and_reach(scene: &EvalScene) -> WalkReach {
             }
         }
     }
-    let (_, areas) = components(&walkable);
+    let walk_parts = grid.components8(&walkable);
+    // Component areas in label order (label k is at index k - 1).
+    let areas = &walk_parts.sizes[1..];
     let total: usize = areas.iter().sum();
     let walk = if total == 0 {
         0.0
@@ -253,11 +228,17 @@ pub fn walk_and_reach(scene: &EvalScene) -> WalkReach {
             reach_free[p] = false;
         }
     }
-    let (reach_labels, reach_areas) = components(&reach_free);
+    let reach_parts = grid.components8(&reach_free);
+    let reach_areas = &reach_parts.sizes[1..];
     let reach_total: usize = reach_areas.iter().sum();
     let touched: Vec<Vec<usize>> = grown
         .iter()
-        .map(|px| touched_components(px, &reach_labels))
+        .map(|px| {
+            grid.touched_labels(px, &reach_parts.labels)
+                .into_iter()
+                .map(|l| l as usize - 1)
+                .collect()
+        })
         .collect();
     let reach_over = |members: &[usize]| -> Option<f64> {
         if members.is_empty() {
@@ -275,7 +256,7 @@ pub fn walk_and_reach(scene: &EvalScene) -> WalkReach {
         Some(
             count
                 .iter()
-                .zip(&reach_areas)
+                .zip(reach_areas)
                 .map(|(&k, &a)| k as f64 / members.len() as f64 * a as f64 / reach_total as f64)
                 .sum(),
         )
@@ -293,68 +274,8 @@ pub fn walk_and_reach(scene: &EvalScene) -> WalkReach {
         walk,
         reach_floor: reach_over(&floor_members),
         reach_all: reach_over(&all_members),
-        walkable_area: total as f64 * grid.pixel * grid.pixel,
+        walkable_area: total as f64 * grid.cell * grid.cell,
         walk_components: areas.len(),
         unreachable_floor_objects,
     }
-}
-
-const NO_LABEL: u32 = u32::MAX;
-
-/// 8-connected component labels of the set pixels and each component's pixel count.
-fn components(mask: &[bool]) -> (Vec<u32>, Vec<usize>) {
-    let n = RASTER_SIZE;
-    let mut labels = vec![NO_LABEL; mask.len()];
-    let mut areas = Vec::new();
-    let mut stack = Vec::new();
-    for start in 0..mask.len() {
-        if !mask[start] || labels[start] != NO_LABEL {
-            continue;
-        }
-        let label = areas.len() as u32;
-        let mut area = 0;
-        labels[start] = label;
-        stack.push(start);
-        while let Some(p) = stack.pop() {
-            area += 1;
-            let (i, j) = ((p % n) as isize, (p / n) as isize);
-            for dj in -1..=1 {
-                for di in -1..=1 {
-                    let (a, b) = (i + di, j + dj);
-                    if a < 0 || b < 0 || a >= n as isize || b >= n as isize {
-                        continue;
-                    }
-                    let q = b as usize * n + a as usize;
-                    if mask[q] && labels[q] == NO_LABEL {
-                        labels[q] = label;
-                        stack.push(q);
-                    }
-                }
-            }
-        }
-        areas.push(area);
-    }
-    (labels, areas)
-}
-
-/// The components a pixel set touches once dilated by one pixel (8-neighbourhood), sorted.
-fn touched_components(pixels: &[usize], labels: &[u32]) -> Vec<usize> {
-    let n = RASTER_SIZE as isize;
-    let mut out = std::collections::BTreeSet::new();
-    for &p in pixels {
-        let (i, j) = ((p as isize) % n, (p as isize) / n);
-        for dj in -1..=1 {
-            for di in -1..=1 {
-                let (a, b) = (i + di, j + dj);
-                if a < 0 || b < 0 || a >= n || b >= n {
-                    continue;
-                }
-                let l = labels[(b * n + a) as usize];
-                if l != NO_LABEL {
-                    out.insert(l as usize);
-                }
-            }
-        }
-    }
-    out.into_iter().collect()
 }

@@ -27,6 +27,7 @@
 #![warn(missing_docs)]
 
 mod alignment;
+mod contact;
 mod driver;
 mod objective;
 mod obstacles;
@@ -39,10 +40,9 @@ pub mod support;
 mod verify;
 
 pub use alignment::PoseAlignment;
+pub use contact::{cluster_contacts, CollisionState, Contact};
 pub use driver::{architecture_fields, optimize_scene, OptimizeSettings, SceneProblem};
-pub use objective::{
-    CollisionState, Contact, LossSettings, Losses, ObjectProblem, RoomBounds, Stage,
-};
+pub use objective::{LossSettings, Losses, ObjectProblem, RoomBounds, Stage};
 pub use obstacles::Obstacles;
 pub use optimizer::{LearningRates, Optimizer, Sgd, StageOutcome};
 pub use prepare::{PrepareSettings, PreparedAsset};

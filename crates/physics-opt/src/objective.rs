@@ -7,6 +7,7 @@ use scenethesis_scene_graph::{Aabb, Architecture, Pose};
 use serde::{Deserialize, Serialize};
 
 use crate::alignment::PoseAlignment;
+use crate::contact::{cluster_contacts, CollisionState, Contact};
 use crate::obstacles::box_distance;
 use crate::obstacles::Obstacles;
 use crate::params::{rotate_y, unrotate_y, world_point, PoseVector, SCALE, TX, TY, TZ};
@@ -115,53 +116,6 @@ pub enum Stage {
     Alignment,
     /// Stage 2: collision and stability.
     Physics,
-}
-
-/// A penetration between the object and an obstacle, found from either side: one of the
-/// object's surface points inside (or within the margin of) an obstacle, or one of an already
-/// placed object's surface points inside the object.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Contact {
-    /// The contact point in the object's asset frame (scale 1), for clustering.
-    pub local: Point3<f64>,
-    /// The contact point in world coordinates.
-    pub world: Point3<f64>,
-    /// Signed distance between the point and the other body (negative inside).
-    pub distance: f64,
-    /// How much it violates the margin: `margin − distance` (positive).
-    pub violation: f64,
-    /// Index of the obstacle in the [`Obstacles`].
-    pub obstacle: usize,
-    /// Unit direction in which moving the object separates this contact fastest: the
-    /// obstacle's outward gradient for the object's own points, minus the object's gradient
-    /// for an obstacle's points inside the object.
-    pub push: Vector3<f64>,
-    /// Whether the point belongs to the obstacle (found inside the object).
-    pub foreign: bool,
-}
-
-/// The collision state of an object at a pose.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct CollisionState {
-    /// Every violating surface point.
-    pub contacts: Vec<Contact>,
-    /// The contacts grouped into clusters of nearby points (indices into `contacts`).
-    pub clusters: Vec<Vec<usize>>,
-}
-
-impl CollisionState {
-    /// Whether no point violates the margin.
-    pub fn is_free(&self) -> bool {
-        self.contacts.is_empty()
-    }
-
-    /// The largest violation, 0 when free.
-    pub fn worst_violation(&self) -> f64 {
-        self.contacts
-            .iter()
-            .map(|c| c.violation)
-            .fold(0.0, f64::max)
-    }
 }
 
 /// The loss terms at one pose.
@@ -307,9 +261,11 @@ impl ObjectProblem<'_> {
             .filter(|c| band.is_none_or(|top| c.world.y > top))
             .copied()
             .collect();
-        let mut clusters = self
-            .asset
-            .cluster(&clustered, self.settings.cluster_link_spacings);
+        let mut clusters = cluster_contacts(
+            &clustered,
+            self.asset.sample_spacing(),
+            self.settings.cluster_link_spacings,
+        );
         // Map cluster members back to indices into `contacts`.
         if clustered.len() != contacts.len() {
             let index: Vec<usize> = contacts

@@ -10,7 +10,6 @@ use scenethesis_scene_graph::{Asset, Placement, SupportSurface};
 use scenethesis_sdf::{sampling, GridSdf, MeshSdf, SignedDistance};
 use serde::{Deserialize, Serialize};
 
-use crate::objective::Contact;
 use crate::PhysicsOptError;
 
 /// How densely to sample an asset.
@@ -259,18 +258,6 @@ impl PreparedAsset {
     /// Where the asset is normally placed.
     pub fn placement(&self) -> Placement {
         self.placement
-    }
-
-    /// Groups contacts into clusters of surface samples closer than `link_spacings` mean
-    /// spacings to each other (the paper's `N_cluster`: separate penetration regions).
-    pub fn cluster(&self, contacts: &[Contact], link_spacings: f64) -> Vec<Vec<usize>> {
-        let points: Vec<Point3<f32>> = contacts.iter().map(|c| c.local.cast::<f32>()).collect();
-        let distances = vec![-1.0f32; points.len()];
-        sampling::negative_clusters(
-            &points,
-            &distances,
-            (self.sample_spacing * link_spacings) as f32,
-        )
     }
 }
 

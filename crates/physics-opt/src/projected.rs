@@ -7,7 +7,8 @@ use nalgebra::{Matrix5, Vector3};
 use scenethesis_scene_graph::Pose;
 use serde::{Deserialize, Serialize};
 
-use crate::objective::{CollisionState, ObjectProblem, Stage};
+use crate::contact::CollisionState;
+use crate::objective::{ObjectProblem, Stage};
 use crate::optimizer::{lowest_residual, Optimizer, StageOutcome};
 use crate::params::{from_vector, to_vector, PoseVector};
 use crate::support::{horizontal, Support};

@@ -79,48 +79,22 @@ impl Footprint {
     }
 }
 
-/// A square-cell raster over the floor rectangle.
-#[derive(Debug, Clone)]
-pub(crate) struct Raster {
-    pub x0: f64,
-    pub z0: f64,
-    pub cell: f64,
-    pub nx: usize,
-    pub nz: usize,
+/// The shared floor raster of the scene graph, used for the guide's walkway checks.
+pub(crate) use scenethesis_scene_graph::FloorRaster as Raster;
+
+/// The guide's footprint-based operations on the shared floor raster.
+pub(crate) trait RasterExt {
+    /// Free cells of the raster's rectangle eroded by `inset` (true inside, false near the
+    /// border).
+    fn floor_mask(&self, inset: f64) -> Vec<bool>;
+    /// Clears the cells whose centres lie in `fp` grown by `grow`.
+    fn stamp(&self, mask: &mut [bool], fp: &Footprint, grow: f64);
+    /// Calls `f` with the index of every cell whose centre lies in `fp` grown by `grow`.
+    fn for_cells_in(&self, fp: &Footprint, grow: f64, f: impl FnMut(usize));
 }
 
-impl Raster {
-    /// A raster of `cell`-sized cells over [x0, x1] × [z0, z1].
-    pub fn new(x0: f64, z0: f64, x1: f64, z1: f64, cell: f64) -> Self {
-        let nx = ((x1 - x0) / cell).ceil().max(1.0) as usize;
-        let nz = ((z1 - z0) / cell).ceil().max(1.0) as usize;
-        Self {
-            x0,
-            z0,
-            cell,
-            nx,
-            nz,
-        }
-    }
-
-    /// Centre of cell (i, j).
-    pub fn center(&self, i: usize, j: usize) -> [f64; 2] {
-        [
-            self.x0 + (i as f64 + 0.5) * self.cell,
-            self.z0 + (j as f64 + 0.5) * self.cell,
-        ]
-    }
-
-    /// The cell holding a world point, if on the raster.
-    pub fn cell_of(&self, x: f64, z: f64) -> Option<(usize, usize)> {
-        let i = ((x - self.x0) / self.cell).floor();
-        let j = ((z - self.z0) / self.cell).floor();
-        (i >= 0.0 && j >= 0.0 && (i as usize) < self.nx && (j as usize) < self.nz)
-            .then_some((i as usize, j as usize))
-    }
-
-    /// Free cells of the floor eroded by `inset` (all true inside, false near the border).
-    pub fn floor_mask(&self, inset: f64) -> Vec<bool> {
+impl RasterExt for Raster {
+    fn floor_mask(&self, inset: f64) -> Vec<bool> {
         let (x1, z1) = (
             self.x0 + self.nx as f64 * self.cell,
             self.z0 + self.nz as f64 * self.cell,
@@ -138,102 +112,12 @@ impl Raster {
         mask
     }
 
-    /// Clears the cells whose centres lie in `fp` grown by `grow`.
-    pub fn stamp(&self, mask: &mut [bool], fp: &Footprint, grow: f64) {
+    fn stamp(&self, mask: &mut [bool], fp: &Footprint, grow: f64) {
         self.for_cells_in(fp, grow, |idx| mask[idx] = false);
     }
 
-    /// Calls `f` with the index of every cell whose centre lies in `fp` grown by `grow`.
-    pub fn for_cells_in(&self, fp: &Footprint, grow: f64, mut f: impl FnMut(usize)) {
-        let [bx0, bz0, bx1, bz1] = fp.bounds(grow);
-        let i0 = (((bx0 - self.x0) / self.cell).floor().max(0.0)) as usize;
-        let j0 = (((bz0 - self.z0) / self.cell).floor().max(0.0)) as usize;
-        let i1 = ((((bx1 - self.x0) / self.cell).ceil()).max(0.0) as usize).min(self.nx);
-        let j1 = ((((bz1 - self.z0) / self.cell).ceil()).max(0.0) as usize).min(self.nz);
-        for j in j0..j1 {
-            for i in i0..i1 {
-                let [x, z] = self.center(i, j);
-                if fp.contains(x, z, grow) {
-                    f(j * self.nx + i);
-                }
-            }
-        }
-    }
-
-    /// 8-connected components of the free cells, labelled like [`Raster::components`].
-    pub fn components8(&self, mask: &[bool]) -> (Vec<u32>, Vec<usize>) {
-        let mut labels = vec![0u32; mask.len()];
-        let mut sizes = vec![0usize];
-        let mut stack = Vec::new();
-        for start in 0..mask.len() {
-            if !mask[start] || labels[start] != 0 {
-                continue;
-            }
-            let label = sizes.len() as u32;
-            let mut size = 0;
-            labels[start] = label;
-            stack.push(start);
-            while let Some(idx) = stack.pop() {
-                size += 1;
-                let (i, j) = ((idx % self.nx) as i64, (idx / self.nx) as i64);
-                for dj in -1..=1 {
-                    for di in -1..=1 {
-                        let (a, b) = (i + di, j + dj);
-                        if a < 0 || b < 0 || a >= self.nx as i64 || b >= self.nz as i64 {
-                            continue;
-                        }
-                        let n = b as usize * self.nx + a as usize;
-                        if mask[n] && labels[n] == 0 {
-                            labels[n] = label;
-                            stack.push(n);
-                        }
-                    }
-                }
-            }
-            sizes.push(size);
-        }
-        (labels, sizes)
-    }
-
-    /// 4-connected components of the free cells: a label per cell (0 = blocked) and the size
-    /// of each label (index 0 unused).
-    pub fn components(&self, mask: &[bool]) -> (Vec<u32>, Vec<usize>) {
-        let mut labels = vec![0u32; mask.len()];
-        let mut sizes = vec![0usize];
-        let mut stack = Vec::new();
-        for start in 0..mask.len() {
-            if !mask[start] || labels[start] != 0 {
-                continue;
-            }
-            let label = sizes.len() as u32;
-            let mut size = 0;
-            labels[start] = label;
-            stack.push(start);
-            while let Some(idx) = stack.pop() {
-                size += 1;
-                let (i, j) = (idx % self.nx, idx / self.nx);
-                let mut visit = |n: usize| {
-                    if mask[n] && labels[n] == 0 {
-                        labels[n] = label;
-                        stack.push(n);
-                    }
-                };
-                if i > 0 {
-                    visit(idx - 1);
-                }
-                if i + 1 < self.nx {
-                    visit(idx + 1);
-                }
-                if j > 0 {
-                    visit(idx - self.nx);
-                }
-                if j + 1 < self.nz {
-                    visit(idx + self.nx);
-                }
-            }
-            sizes.push(size);
-        }
-        (labels, sizes)
+    fn for_cells_in(&self, fp: &Footprint, grow: f64, f: impl FnMut(usize)) {
+        self.for_cells_where(fp.bounds(grow), |x, z| fp.contains(x, z, grow), f);
     }
 }
 
@@ -276,7 +160,7 @@ mod tests {
             hz: 0.6,
         };
         r.stamp(&mut mask, &wall, 0.0);
-        let (_, sizes) = r.components(&mask);
+        let sizes = r.components4(&mask).sizes;
         assert_eq!(sizes.len(), 3, "two components: {sizes:?}");
     }
 }

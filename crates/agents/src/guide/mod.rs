@@ -1,9 +1,14 @@
 //! Stage 2 of the method: a [`Plan`] becomes an initial scene graph with poses.
 
+mod assemble;
+mod candidates;
 mod geometry;
 mod lookup;
+mod place_floor;
 mod procedural;
+mod room;
 mod surfaces;
+mod walkway;
 
 pub use lookup::{CatalogAssets, NominalAssets};
 pub use procedural::ProceduralGuide;

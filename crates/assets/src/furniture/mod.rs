@@ -5,7 +5,7 @@
 //! family of boards with compartments — plus special cases. Every part is a convex primitive;
 //! cavities (compartments, knee holes, the space under a table) come from arrangements of parts.
 //! Each generator's doc comment gives the parameter ranges of its main body in metres; the
-//! `size_range` of its row in the category table ([`crate::catalog::Category::size_range`])
+//! `size_range` of its row in the category table ([`crate::category::Category::size_range`])
 //! gives the full extent over all seeds, including doors left open, lifted lids and protruding
 //! parts, and crate tests check it.
 
@@ -22,7 +22,7 @@ mod wall;
 
 use rand_chacha::ChaCha8Rng;
 
-use crate::catalog::Generator;
+use crate::category::Generator;
 use crate::primitives::{pick_material, AssetBuilder, Palette};
 
 /// The default range of uniform scale furniture may be given.

@@ -11,7 +11,7 @@ mod kitchen;
 mod lab;
 mod tableware;
 
-use crate::catalog::Generator;
+use crate::category::Generator;
 
 /// The container and small-item generators of the registry, by category name (their rows are
 /// in `data/categories.toml`).

@@ -5,7 +5,7 @@ use std::f32::consts::{FRAC_PI_2, PI, TAU};
 
 use rand_chacha::ChaCha8Rng;
 
-use crate::catalog::Generator;
+use crate::category::Generator;
 use crate::items::builder::Builder;
 use crate::primitives::{arc, convex_hull, rect, rotated_ellipsoid, rotation, rounded_box};
 use crate::random::{color, uniform, uniform3};

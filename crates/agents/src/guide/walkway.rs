@@ -1,0 +1,301 @@
+//! The walkway the guide keeps open while it places floor objects: an aisle from the door to
+//! every object's access side and one connected free floor, checked on the guide's raster and,
+//! at the end, by the Walk metric's own raster rules.
+
+use scenethesis_scene_graph::ROBOT_RADIUS;
+
+use super::geometry::{Footprint, Raster, RasterExt};
+use super::procedural::{Placed, DOOR_WIDTH};
+use super::room::Room;
+use super::DroppedObject;
+use crate::plan::Plan;
+
+/// How far the guide grows footprints for its own walk check: the robot radius plus half a
+/// raster cell and a centimetre, so that slivers the metric raster may close never count as
+/// passages.
+pub(super) fn walk_grow(cell: f64) -> f64 {
+    ROBOT_RADIUS + cell / 2.0 + 0.01
+}
+/// Minimum share of the free floor the largest walkable component must hold.
+pub(super) const MIN_WALK: f64 = 0.995;
+
+/// The floor objects placed so far and the walkway rasters they leave.
+pub(super) struct FloorState<'a> {
+    /// The guide's raster over the floor.
+    pub(super) raster: Raster,
+    /// Half the aisle width (at least 0.3 m): how far the aisle keeps from footprints.
+    pub(super) aisle_radius: f64,
+    /// Free cells of the aisle raster with every placed floor object stamped in.
+    pub(super) aisle_base: Vec<bool>,
+    /// Free cells of the walk raster with every placed floor object stamped in.
+    pub(super) walk_base: Vec<bool>,
+    /// The aisle cell just inside the door (indoors).
+    pub(super) door_aisle: Option<usize>,
+    /// The walk cell just inside the door (indoors).
+    pub(super) door_walk: Option<usize>,
+    /// The clearance in front of the door that no floor object may take (indoors).
+    pub(super) door_zone: Option<Footprint>,
+    /// The floor rectangle [min x, min z, max x, max z].
+    pub(super) floor: [f64; 4],
+    /// The objects placed so far (floor and wall-mounted), in placement order.
+    pub(super) placed: Vec<Placed>,
+    /// The plan being laid out.
+    pub(super) plan: &'a Plan,
+}
+
+impl<'a> FloorState<'a> {
+    /// The empty floor of `room` on a raster of `cell` metres, with the door's clearance kept
+    /// free and the door cells marked walkable.
+    pub(super) fn new(plan: &'a Plan, room: &Room, cell: f64) -> Self {
+        let [hw, hd] = room.half;
+        let indoor = room.indoor;
+        let aisle_radius = (plan.aisle / 2.0).max(0.3);
+        let raster = Raster::new(-hw, -hd, hw, hd, cell);
+        let mut aisle_base = raster.floor_mask(aisle_radius);
+        let mut walk_base = raster.floor_mask(walk_grow(cell));
+        let door_zone = indoor.then(|| {
+            let clear = plan.door_clearance.max(0.6);
+            Footprint {
+                cx: 0.0,
+                cz: hd - clear / 2.0,
+                yaw: 0.0,
+                hx: DOOR_WIDTH / 2.0 + 0.2,
+                hz: clear / 2.0,
+            }
+        });
+        let door_cell = |r: f64| {
+            if indoor {
+                raster
+                    .cell_of(0.0, hd - r - cell * 1.5)
+                    .map(|(i, j)| j * raster.nx + i)
+            } else {
+                None
+            }
+        };
+        let (door_aisle, door_walk) = (door_cell(aisle_radius), door_cell(walk_grow(cell)));
+        if let (Some(a), Some(w)) = (door_aisle, door_walk) {
+            aisle_base[a] = true;
+            walk_base[w] = true;
+        }
+        FloorState {
+            raster,
+            aisle_radius,
+            aisle_base,
+            walk_base,
+            door_aisle,
+            door_walk,
+            door_zone,
+            floor: [-hw, -hd, hw, hd],
+            placed: Vec::new(),
+            plan,
+        }
+    }
+}
+
+impl FloorState<'_> {
+    pub(super) fn inside_floor(&self, fp: &Footprint, margin: f64) -> bool {
+        fp.corners().iter().all(|c| {
+            c[0] >= self.floor[0] + margin - 1e-9
+                && c[0] <= self.floor[2] - margin + 1e-9
+                && c[1] >= self.floor[1] + margin - 1e-9
+                && c[1] <= self.floor[3] - margin + 1e-9
+        })
+    }
+
+    pub(super) fn collides(&self, fp: &Footprint, gap: f64) -> bool {
+        self.placed
+            .iter()
+            .filter(|p| !p.mounted)
+            .any(|p| p.fp.overlaps(fp, gap))
+            || self.door_zone.is_some_and(|d| d.overlaps(fp, 0.0))
+    }
+
+    /// Walkway evaluation with an optional extra object: (accepted, walk ratio, door reachable,
+    /// unreachable plan indices).
+    pub(super) fn evaluate(&self, extra: Option<&Placed>) -> (bool, f64, bool, Vec<usize>) {
+        let r = &self.raster;
+        let mut aisle = self.aisle_base.clone();
+        let mut walk = self.walk_base.clone();
+        if let Some(p) = extra.filter(|p| !p.mounted) {
+            r.stamp(&mut aisle, &p.fp, self.aisle_radius);
+            // Tall objects too: the Reach raster counts every object as an obstacle.
+            r.stamp(&mut walk, &p.fp, walk_grow(r.cell));
+        }
+        let scenethesis_scene_graph::Components {
+            labels: alabels,
+            sizes: asizes,
+        } = r.components4(&aisle);
+        let main = match self.door_aisle {
+            Some(d) => alabels[d],
+            None => (1..asizes.len())
+                .max_by_key(|&l| (asizes[l], usize::MAX - l))
+                .unwrap_or(0) as u32,
+        };
+        let door_ok = main != 0;
+        let mut unreachable = Vec::new();
+        for p in self.placed.iter().chain(extra) {
+            if main == 0 || !self.reachable(p, &alabels, main) {
+                unreachable.push(p.plan_index);
+            }
+        }
+        let scenethesis_scene_graph::Components {
+            labels: wlabels,
+            sizes: wsizes,
+        } = r.components4(&walk);
+        let total: usize = wsizes.iter().sum();
+        let largest = (1..wsizes.len())
+            .max_by_key(|&l| (wsizes[l], usize::MAX - l))
+            .unwrap_or(0);
+        let ratio = if total == 0 {
+            0.0
+        } else {
+            wsizes[largest] as f64 / total as f64
+        };
+        let door_walk = self
+            .door_walk
+            .is_none_or(|d| wlabels[d] == largest as u32 && largest != 0);
+        let ok = door_ok && unreachable.is_empty() && ratio >= MIN_WALK && door_walk;
+        (ok, ratio, door_ok, unreachable)
+    }
+
+    pub(super) fn reachable(&self, p: &Placed, labels: &[u32], main: u32) -> bool {
+        let r = &self.raster;
+        let reach = self.aisle_radius + 1.5 * r.cell;
+        let zone = if p.front_access {
+            let depth = reach + r.cell;
+            let centre = p.fp.to_world(0.0, p.fp.hz + depth / 2.0);
+            Footprint {
+                cx: centre[0],
+                cz: centre[1],
+                yaw: p.fp.yaw,
+                hx: (p.fp.hx * 0.8).max(r.cell),
+                hz: depth / 2.0,
+            }
+        } else {
+            Footprint {
+                hx: p.fp.hx + reach,
+                hz: p.fp.hz + reach,
+                ..p.fp
+            }
+        };
+        let mut found = false;
+        r.for_cells_in(&zone, 0.0, |idx| found |= labels[idx] == main);
+        found
+    }
+
+    /// Recomputes the walkway rasters from the placed objects.
+    pub(super) fn rebuild(&mut self) {
+        let grow = walk_grow(self.raster.cell);
+        self.aisle_base = self.raster.floor_mask(self.aisle_radius);
+        self.walk_base = self.raster.floor_mask(grow);
+        for (door, mask) in [
+            (self.door_aisle, &mut self.aisle_base),
+            (self.door_walk, &mut self.walk_base),
+        ] {
+            if let Some(d) = door {
+                mask[d] = true;
+            }
+        }
+        let placed = std::mem::take(&mut self.placed);
+        for p in placed {
+            self.commit(p);
+        }
+    }
+
+    pub(super) fn commit(&mut self, p: Placed) {
+        if !p.mounted {
+            self.raster
+                .stamp(&mut self.aisle_base, &p.fp, self.aisle_radius);
+            self.raster
+                .stamp(&mut self.walk_base, &p.fp, walk_grow(self.raster.cell));
+        }
+        self.placed.push(p);
+    }
+
+    pub(super) fn placed_of(&self, plan_index: usize) -> Option<&Placed> {
+        self.placed.iter().find(|p| p.plan_index == plan_index)
+    }
+
+    pub(super) fn index_of(&self, id: &str) -> Option<usize> {
+        self.plan.objects.iter().position(|o| o.id == id)
+    }
+}
+
+/// Free-floor components by the Walk metric's rules: a 256 × 256 raster over the floor's
+/// bounding square plus 0.2 m, the floor eroded by the robot radius, footprints grown (round)
+/// by it, 8-connected.
+fn metric_components(floor: [f64; 4], obstacles: &[Footprint]) -> (Raster, Vec<u32>, Vec<usize>) {
+    let side = (floor[2] - floor[0]).max(floor[3] - floor[1]) + 0.4;
+    let (cx, cz) = ((floor[0] + floor[2]) / 2.0, (floor[1] + floor[3]) / 2.0);
+    let raster = Raster::new(
+        cx - side / 2.0,
+        cz - side / 2.0,
+        cx + side / 2.0,
+        cz + side / 2.0,
+        side / 256.0,
+    );
+    let r = ROBOT_RADIUS;
+    let mut free = vec![false; raster.nx * raster.nz];
+    for j in 0..raster.nz {
+        for i in 0..raster.nx {
+            let [x, z] = raster.center(i, j);
+            free[j * raster.nx + i] =
+                x >= floor[0] + r && x <= floor[2] - r && z >= floor[1] + r && z <= floor[3] - r;
+        }
+    }
+    for fp in obstacles {
+        raster.for_cells_in(fp, r, |idx| {
+            let (i, j) = (idx % raster.nx, idx / raster.nx);
+            let [x, z] = raster.center(i, j);
+            let [lx, lz] = fp.to_local(x, z);
+            let (ex, ez) = ((lx.abs() - fp.hx).max(0.0), (lz.abs() - fp.hz).max(0.0));
+            if ex.hypot(ez) <= r {
+                free[idx] = false;
+            }
+        });
+    }
+    let c = raster.components8(&free);
+    (raster, c.labels, c.sizes)
+}
+
+/// The final check by the metric's own raster rules: objects that close off a pocket of floor
+/// are dropped (at most eight), newest and softest first, and reported in `dropped`.
+pub(super) fn drop_pocket_closers(state: &mut FloorState<'_>, dropped: &mut Vec<DroppedObject>) {
+    let plan = state.plan;
+    for _ in 0..8 {
+        let walk_obstacles: Vec<Footprint> = state
+            .placed
+            .iter()
+            .filter(|p| !p.mounted && p.height / 2.0 < 1.5)
+            .map(|p| p.fp)
+            .collect();
+        let (raster, labels, sizes) = metric_components(state.floor, &walk_obstacles);
+        let total: usize = sizes.iter().sum();
+        let main = (1..sizes.len()).max_by_key(|&l| sizes[l]).unwrap_or(0);
+        if total == 0 || sizes[main] as f64 >= MIN_WALK * total as f64 {
+            break;
+        }
+        let px = raster.cell;
+        let culprit = state
+            .placed
+            .iter()
+            .enumerate()
+            .filter(|(_, p)| !p.mounted && plan.objects[p.plan_index].id != plan.anchor)
+            .filter(|(_, p)| {
+                let mut touches_pocket = false;
+                raster.for_cells_in(&p.fp, ROBOT_RADIUS + 1.5 * px, |idx| {
+                    touches_pocket |= labels[idx] != 0 && labels[idx] as usize != main;
+                });
+                touches_pocket
+            })
+            .max_by_key(|(k, p)| (!plan.objects[p.plan_index].hard, *k))
+            .map(|(k, _)| k);
+        let Some(k) = culprit else { break };
+        let p = state.placed.remove(k);
+        dropped.push(DroppedObject {
+            id: plan.objects[p.plan_index].id.clone(),
+            reason: "it closed off a pocket of floor from the walkway".into(),
+        });
+        state.rebuild();
+    }
+}
