@@ -44,6 +44,8 @@ mod config;
 mod embed;
 mod http;
 mod images;
+#[cfg(feature = "test-server")]
+pub mod testing;
 
 use std::sync::Arc;
 

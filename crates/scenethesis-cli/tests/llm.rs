@@ -4,15 +4,11 @@
 //! server gone, and provider failures (HTTP 500, garbage, a reply slower than the timeout,
 //! connection refused) that give one error naming endpoint and model and write no folder.
 
-use std::io::{BufRead, BufReader, Read, Write};
-use std::net::{TcpListener, TcpStream};
 use std::path::Path;
 use std::process::{Command, Output};
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::Arc;
-use std::thread::JoinHandle;
 use std::time::Duration;
 
+use scenethesis_openai::testing::{Reply, TestServer};
 use serde_json::{json, Value};
 
 const KEY: &str = "sk-test-4f9c1e0b7d2a-never-print-me";
@@ -20,99 +16,26 @@ const KEY: &str = "sk-test-4f9c1e0b7d2a-never-print-me";
 /// What the server answers: status, content type, body, delay.
 type Answer = (u16, &'static str, Vec<u8>, Duration);
 
-/// A tiny HTTP/1.1 server answering every request with the same reply; dropping it stops it.
-struct Server {
-    base_url: String,
-    addr: std::net::SocketAddr,
-    requests: Arc<AtomicUsize>,
-    stop: Arc<AtomicBool>,
-    thread: Option<JoinHandle<()>>,
-}
+/// The openai crate's loopback test server, answering every request with the same reply.
+struct Server(TestServer);
 
 impl Server {
-    fn start(answer: Answer) -> Self {
-        let listener = TcpListener::bind("127.0.0.1:0").expect("bind 127.0.0.1");
-        let addr = listener.local_addr().unwrap();
-        let stop = Arc::new(AtomicBool::new(false));
-        let requests = Arc::new(AtomicUsize::new(0));
-        let answer = Arc::new(answer);
-        let thread = {
-            let (stop, requests) = (stop.clone(), requests.clone());
-            std::thread::spawn(move || {
-                for stream in listener.incoming() {
-                    if stop.load(Ordering::SeqCst) {
-                        break;
-                    }
-                    let Ok(stream) = stream else { continue };
-                    let (answer, requests) = (answer.clone(), requests.clone());
-                    std::thread::spawn(move || serve(stream, &answer, &requests));
-                }
-            })
-        };
-        Self {
-            base_url: format!("http://{addr}/v1"),
-            addr,
-            requests,
-            stop,
-            thread: Some(thread),
-        }
+    fn start((status, content_type, body, delay): Answer) -> Self {
+        let reply = Reply::raw(status, content_type, body).delayed(delay);
+        Self(TestServer::start(move |_, _| reply.clone()))
     }
 
     fn requests(&self) -> usize {
-        self.requests.load(Ordering::SeqCst)
+        self.0.requests().len()
     }
 }
 
-impl Drop for Server {
-    fn drop(&mut self) {
-        self.stop.store(true, Ordering::SeqCst);
-        let _ = TcpStream::connect(self.addr);
-        if let Some(t) = self.thread.take() {
-            let _ = t.join();
-        }
-    }
-}
+impl std::ops::Deref for Server {
+    type Target = TestServer;
 
-fn serve(stream: TcpStream, answer: &Answer, requests: &AtomicUsize) {
-    let mut reader = BufReader::new(match stream.try_clone() {
-        Ok(s) => s,
-        Err(_) => return,
-    });
-    let mut line = String::new();
-    if reader.read_line(&mut line).unwrap_or(0) == 0 {
-        return;
+    fn deref(&self) -> &TestServer {
+        &self.0
     }
-    let mut length = 0usize;
-    loop {
-        let mut h = String::new();
-        if reader.read_line(&mut h).unwrap_or(0) == 0 {
-            return;
-        }
-        let h = h.trim_end();
-        if h.is_empty() {
-            break;
-        }
-        if let Some((k, v)) = h.split_once(':') {
-            if k.trim().eq_ignore_ascii_case("content-length") {
-                length = v.trim().parse().unwrap_or(0);
-            }
-        }
-    }
-    let mut body = vec![0; length];
-    if reader.read_exact(&mut body).is_err() {
-        return;
-    }
-    requests.fetch_add(1, Ordering::SeqCst);
-    let (status, content_type, reply, delay) = answer;
-    std::thread::sleep(*delay);
-    let mut out = stream;
-    let head = format!(
-        "HTTP/1.1 {status} X\r\nContent-Type: {content_type}\r\nContent-Length: {}\r\nConnection: close\r\n\r\n",
-        reply.len()
-    );
-    let _ = out.write_all(head.as_bytes());
-    let _ = out.write_all(reply);
-    let _ = out.flush();
 }
 
 /// An object of the plan answer; `place` is [support, parent, zone, wall].
