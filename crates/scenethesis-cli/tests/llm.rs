@@ -262,7 +262,7 @@ fn an_llm_plans_a_pharmacy_and_the_cache_replays_it_without_the_server() {
 
     // The server is gone: replay from the cache, byte for byte.
     let dead = {
-        let l = TcpListener::bind("127.0.0.1:0").unwrap();
+        let l = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
         format!("http://{}/v1", l.local_addr().unwrap())
     };
     let second = tmp.path().join("second");
@@ -365,7 +365,7 @@ fn provider_failures_give_one_clear_error_and_no_output() {
     drop(server);
 
     let refused = {
-        let l = TcpListener::bind("127.0.0.1:0").unwrap();
+        let l = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
         format!("http://{}/v1", l.local_addr().unwrap())
     };
     assert_fails_cleanly(&refused, "unreachable");
