@@ -1,5 +1,5 @@
-//! The LLM planner against a model served over real HTTP on 127.0.0.1: a plan for a prompt
-//! the offline planner does not know, a weak plan completed from offline knowledge, a detailed
+//! The LLM planner against a model served over real HTTP on 127.0.0.1: a model's own plan for
+//! "a pharmacy", a weak plan completed from offline knowledge, a detailed
 //! prompt kept as written, and provider failures.
 
 mod support;

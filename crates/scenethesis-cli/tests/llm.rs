@@ -1,5 +1,5 @@
 //! `scenethesis generate --planner llm` against a chat server on 127.0.0.1 that the tests start
-//! and stop: a plan for a prompt the offline planner does not know, `report.json` naming the
+//! and stop: a model's own plan for "a pharmacy", `report.json` naming the
 //! provider and model (never the key), a byte-identical replay from `--llm-cache` with the
 //! server gone, and provider failures (HTTP 500, garbage, a reply slower than the timeout,
 //! connection refused) that give one error naming endpoint and model and write no folder.
@@ -45,7 +45,7 @@ fn obj(id: &str, category: &str, layer: &str, place: [&str; 4], relations: Value
            "stated": false})
 }
 
-/// A model's plan for "a pharmacy" (the offline planner has no pharmacy).
+/// A model's plan for "a pharmacy" (its own, not the offline thesaurus reading).
 fn pharmacy_plan() -> Value {
     let mut objects = vec![
         obj(
