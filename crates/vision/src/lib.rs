@@ -47,6 +47,7 @@ pub mod boxes;
 mod error;
 pub mod files;
 pub mod footprint;
+mod lifted_box;
 pub mod metrology;
 pub mod points;
 pub mod support;

@@ -8,7 +8,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::boxes::LiftedBox;
+use crate::lifted_box::LiftedBox;
 
 /// How a lifted box is held up.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
