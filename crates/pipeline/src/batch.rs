@@ -24,7 +24,7 @@ use scenethesis_eval::{MetricsSummary, SceneMetrics};
 use scenethesis_scene_graph::write_file_atomic;
 use serde::{Deserialize, Serialize};
 
-use crate::output::REPORT_JSON;
+use crate::out_dir::REPORT_JSON;
 use crate::pipeline::{GenerateOptions, Pipeline};
 use crate::report::Report;
 use crate::stage::NoProgress;

@@ -17,8 +17,11 @@ use std::ffi::OsString;
 use std::path::{Component, Path, PathBuf};
 
 use crate::error::PipelineError;
-use crate::output::{REPORT_JSON, SCENE_JSON};
 
+/// The scene graph file of an output folder.
+pub const SCENE_JSON: &str = "scene.json";
+/// The report file of an output folder.
+pub const REPORT_JSON: &str = "report.json";
 /// Longest file name most file systems accept, in bytes.
 const NAME_MAX: usize = 255;
 /// Room the temporary names need beside the output's own name: `.` + `.partial-` + a process

@@ -9,16 +9,11 @@ use scenethesis_export::{ExportError, ExportScene, Format};
 use scenethesis_scene_graph::{Mesh, Scene, SceneIoError};
 
 use crate::error::PipelineError;
-use crate::out_dir::OutputDir;
+use crate::out_dir::{OutputDir, REPORT_JSON, SCENE_JSON};
 use crate::pipeline::GeneratedScene;
 use crate::report::StageTiming;
 use crate::stage::Stage;
 use scenethesis_retrieval::AssetSource;
-
-/// The scene graph file of an output folder.
-pub const SCENE_JSON: &str = "scene.json";
-/// The report file of an output folder.
-pub const REPORT_JSON: &str = "report.json";
 
 /// The objects the physics formats should weld to the world: the same rule the stability metric
 /// uses (wall and ceiling categories, and anything standing against a wall high above the
