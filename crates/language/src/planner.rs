@@ -251,7 +251,22 @@ impl<M: ChatModel> Planner for LlmPlanner<M> {
         &self.label
     }
 
+    /// The model's plan (re-asked once, completed from offline knowledge when weak), with the
+    /// objects its prompt names read by the offline planner (`requested`), so a requested
+    /// object the model left out is reported, and judged, as missing.
     fn plan(&self, request: &PlanRequest) -> Result<Plan, PlanError> {
+        let mut plan = self.model_plan(request)?;
+        if plan.requested.is_empty() {
+            plan.requested = self
+                .fallback
+                .requested_in(&plan, &request.available_categories);
+        }
+        Ok(plan)
+    }
+}
+
+impl<M: ChatModel> LlmPlanner<M> {
+    fn model_plan(&self, request: &PlanRequest) -> Result<Plan, PlanError> {
         if !request.prompt.chars().any(char::is_alphanumeric) {
             return Err(PlanError::EmptyPrompt);
         }

@@ -139,6 +139,39 @@ fn pharmacy() -> Value {
 }
 
 #[test]
+fn the_objects_a_prompt_names_are_checked_against_the_models_plan() {
+    // The model plans its own pharmacy and ignores the mirror and two of the three chairs
+    // the prompt asks for: the plan's `requested` (read offline) says so, object by object,
+    // so the judge and report.json count them as missing.
+    let mut clean = pharmacy();
+    clean["objects"].as_array_mut().unwrap().pop();
+    let server = TestServer::scripted(vec![Reply::json(
+        200,
+        &openai_completion("gpt-4o", &clean.to_string()),
+    )]);
+    let planner = LlmPlanner::new(chat(&server));
+    let plan = planner
+        .plan(&request("a pharmacy with a mirror and three chairs"))
+        .unwrap();
+    let find = |words: &str| {
+        plan.requested
+            .iter()
+            .find(|r| r.words == words)
+            .unwrap_or_else(|| panic!("`{words}` is requested: {:?}", plan.requested))
+    };
+    let mirror = find("mirror");
+    assert_eq!((mirror.count, mirror.ids.len()), (1, 0), "{mirror:?}");
+    assert_eq!(mirror.category.as_deref(), Some("mirror"));
+    let chairs = find("chair");
+    assert_eq!(chairs.count, 3);
+    assert_eq!(chairs.ids, vec!["chair_0".to_owned()]);
+    assert!(
+        chairs.note.as_deref().unwrap_or("").contains("1 of the 3"),
+        "{chairs:?}"
+    );
+}
+
+#[test]
 fn the_offline_planner_only_assumes_what_a_pharmacy_is() {
     // The offline planner reads "a pharmacy" through its thesaurus of places and says what it
     // assumed; the LLM planner below plans the model's own pharmacy instead.
