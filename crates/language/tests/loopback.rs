@@ -139,10 +139,10 @@ fn pharmacy() -> Value {
 }
 
 #[test]
-fn the_objects_a_prompt_names_are_checked_against_the_models_plan() {
+fn objects_the_prompt_names_and_the_model_left_out_are_added() {
     // The model plans its own pharmacy and ignores the mirror and two of the three chairs
-    // the prompt asks for: the plan's `requested` (read offline) says so, object by object,
-    // so the judge and report.json count them as missing.
+    // the prompt asks for: the prompt is read offline (`requested`) and what the model left
+    // out is added as the offline knowledge plans it, with a note.
     let mut clean = pharmacy();
     clean["objects"].as_array_mut().unwrap().pop();
     let server = TestServer::scripted(vec![Reply::json(
@@ -160,14 +160,22 @@ fn the_objects_a_prompt_names_are_checked_against_the_models_plan() {
             .unwrap_or_else(|| panic!("`{words}` is requested: {:?}", plan.requested))
     };
     let mirror = find("mirror");
-    assert_eq!((mirror.count, mirror.ids.len()), (1, 0), "{mirror:?}");
+    assert_eq!(mirror.count, 1, "{mirror:?}");
     assert_eq!(mirror.category.as_deref(), Some("mirror"));
     let chairs = find("chair");
     assert_eq!(chairs.count, 3);
-    assert_eq!(chairs.ids, vec!["chair_0".to_owned()]);
+    assert_eq!(chairs.ids[0], "chair_0", "the model's own chair counts");
+    for r in [mirror, chairs] {
+        assert_eq!(r.ids.len() as u32, r.count, "{r:?}");
+        assert!(r.note.is_none(), "{r:?}");
+        for id in &r.ids {
+            assert!(plan.object(id).is_some(), "`{id}` is planned");
+        }
+    }
     assert!(
-        chairs.note.as_deref().unwrap_or("").contains("1 of the 3"),
-        "{chairs:?}"
+        plan.notes.iter().any(|n| n.contains("the model left out")),
+        "{:?}",
+        plan.notes
     );
 }
 
@@ -418,7 +426,7 @@ fn a_detailed_prompt_keeps_what_the_user_stated() {
         plan.description, prompt,
         "a detailed prompt is not up-sampled"
     );
-    assert_eq!(plan.objects.len(), 4);
+    assert_eq!(plan.objects.len(), 4, "{:?}", plan.notes);
     let has = |subject: &str, kind: RelationKind, target: ConstraintTarget| {
         plan.constraints
             .iter()

@@ -79,7 +79,8 @@ impl super::KnowledgePlanner {
     /// category: for a plan written by someone else (a model, a person), so the judge and the
     /// report can tell whether every requested object made it into the scene. Each mention takes
     /// up to its count of not yet taken objects of its category (or of the category standing in
-    /// for it under `available`); fewer than asked for is reported in the mention's note.
+    /// for it under `available`), then of its kinds (`office_chair` for "chair", the members of
+    /// a generic noun such as "lamp"); fewer than asked for is reported in the mention's note.
     pub fn requested_in(&self, plan: &Plan, available: &BTreeSet<String>) -> Vec<RequestedObject> {
         let analysis = analyze(
             &plan.prompt,
@@ -104,10 +105,29 @@ impl super::KnowledgePlanner {
                     if *c != m.category {
                         notes.push(format!("`{}` is not available; using `{c}`", m.category));
                     }
+                    // The category itself first, then its kinds (`office_chair` for `chair`,
+                    // a generic noun's list).
+                    let generic = &self.knowledge.vocabulary.generic;
+                    let kind_of = |category: &str| {
+                        category.ends_with(&format!("_{c}"))
+                            || [&m.category, c].iter().any(|g| {
+                                generic
+                                    .get(*g)
+                                    .is_some_and(|l| l.iter().any(|x| x == category))
+                            })
+                    };
+                    let free = |o: &&crate::plan::PlannedObject| !taken.contains(o.id.as_str());
                     let ids: Vec<String> = plan
                         .objects
                         .iter()
-                        .filter(|o| o.category == *c && !taken.contains(o.id.as_str()))
+                        .filter(free)
+                        .filter(|o| o.category == *c)
+                        .chain(
+                            plan.objects
+                                .iter()
+                                .filter(free)
+                                .filter(|o| o.category != *c && kind_of(&o.category)),
+                        )
                         .take(m.count as usize)
                         .map(|o| o.id.clone())
                         .collect();
