@@ -331,7 +331,15 @@ impl Pipeline {
         let verdict = clock.run(
             Stage::Judge,
             round,
-            || judge(self.judge.as_ref(), plan, &scene, &meshes),
+            || {
+                judge(
+                    self.judge.as_ref(),
+                    plan,
+                    &scene,
+                    &meshes,
+                    layout.guidance.as_ref(),
+                )
+            },
             verdict_note,
         )?;
         Ok(Attempt {
