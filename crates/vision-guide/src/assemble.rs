@@ -190,13 +190,9 @@ pub fn build_scene(
             Some((_, inward)) => facing(b, inward),
             None => facing(b, Vector2::new(eye.x - b.center.x, eye.z - b.center.z)),
         };
-        let y = if parent == ParentRef::Ground && support_kind != RelationKind::AgainstWall {
-            0.0
-        } else if parent == ParentRef::Ground && b.bottom() < 0.1 {
-            0.0
-        } else {
-            b.bottom().max(0.0)
-        };
+        let on_floor = parent == ParentRef::Ground
+            && (support_kind != RelationKind::AgainstWall || b.bottom() < 0.1);
+        let y = if on_floor { 0.0 } else { b.bottom().max(0.0) };
         let mut relations: Vec<Relation> = object
             .relations
             .iter()

@@ -130,7 +130,7 @@ pub fn boxes_request(plan: &Plan, image: ImageData, seed: u64) -> ChatRequest {
 /// Reads the model's answer: boxes of planned objects, by id (or, when the model answers with a
 /// category, the first planned object of it not yet boxed). Boxes of unknown objects, repeated
 /// ids and empty boxes are left out and said in the second list.
-pub fn parse_boxes(plan: &Plan, answer: &Value) -> (Vec<ObjectBox>, Vec<(String, String)>) {
+pub fn parse_boxes(plan: &Plan, answer: &Value) -> Boxes {
     let mut boxes: Vec<ObjectBox> = Vec::new();
     let mut notes = Vec::new();
     let items = answer
@@ -192,13 +192,16 @@ pub fn parse_boxes(plan: &Plan, answer: &Value) -> (Vec<ObjectBox>, Vec<(String,
     (boxes, notes)
 }
 
+/// Boxes of planned objects, and `(name, why)` for each answer entry left out.
+pub type Boxes = (Vec<ObjectBox>, Vec<(String, String)>);
+
 /// Asks `vlm` for the boxes; the error names the model.
 pub fn ask_boxes(
     vlm: &dyn ChatModel,
     plan: &Plan,
     image: ImageData,
     seed: u64,
-) -> Result<(Vec<ObjectBox>, Vec<(String, String)>), String> {
+) -> Result<Boxes, String> {
     let answer = vlm
         .chat(&boxes_request(plan, image, seed))
         .map_err(|e| e.to_string())?;
