@@ -90,6 +90,11 @@ impl Providers {
     pub fn usage(&self) -> Vec<UsageReport> {
         self.meters.iter().map(UsageMeter::snapshot).collect()
     }
+
+    /// Records one more model (the vision guide's image model and VLM).
+    pub fn add(&mut self, meter: UsageMeter) {
+        self.meters.push(meter);
+    }
 }
 
 impl ProviderArgs {
@@ -112,7 +117,7 @@ impl ProviderArgs {
     }
 
     /// The client configuration: flags over environment over --llm-config.
-    fn config(&self) -> Result<ClientConfig> {
+    pub(crate) fn config(&self) -> Result<ClientConfig> {
         let api_key = match &self.api_key_env {
             Some(var) => {
                 let key = std::env::var(var).ok().filter(|k| !k.trim().is_empty());
@@ -142,7 +147,7 @@ impl ProviderArgs {
 
     /// Wraps `chat` in the response cache when --llm-cache is given; its meter counts requests,
     /// tokens and cache hits.
-    fn wrap(&self, chat: OpenAiChat) -> Result<(Box<dyn ChatModel>, UsageMeter)> {
+    pub(crate) fn wrap(&self, chat: OpenAiChat) -> Result<(Box<dyn ChatModel>, UsageMeter)> {
         let meter = chat.meter().clone();
         let Some(dir) = &self.llm_cache else {
             return Ok((Box::new(chat), meter));
