@@ -142,36 +142,69 @@ fn generate_from_given_guidance_files_recovers_the_rendered_scene() {
     }
 }
 
-/// The VLM's boxes, read off the rendered instance masks (the test plays the model).
-fn boxes_from_masks(g: &Path) -> Value {
-    let ids = image::open(g.join("ids.png")).unwrap().into_luma16();
-    let labels: Value =
-        serde_json::from_slice(&std::fs::read(g.join("labels.json")).unwrap()).unwrap();
-    let (w, h) = ids.dimensions();
+/// The scene rendered from the camera the vision guide renders the empty room with (the photo
+/// view framing the room alone; the scene's own photo view frames its tall objects too): the
+/// PNG the image server answers the edit with, and the VLM's answer — each object's box read
+/// off the render's instance buffer (the test plays the model).
+fn furnished_render(scene_dir: &Path) -> (Vec<u8>, Value) {
+    use scenethesis_render::{views, Instance, RenderScene, Renderer};
+    let scene = scenethesis_scene_graph::Scene::read_json(&scene_dir.join("scene.json")).unwrap();
+    let meshes = scenethesis_pipeline::resolve_meshes(
+        &scene,
+        &scenethesis_pipeline::RetrievalSource::default(),
+    )
+    .unwrap();
+    let [w, h] = [768u32, 512];
+    let empty = RenderScene::with_architecture(Vec::new(), scene.architecture.clone());
+    let camera = views::photo_view(&empty, w, h);
+    let instances = scene
+        .objects
+        .iter()
+        .map(|o| {
+            Instance::new(
+                o.id.clone(),
+                std::sync::Arc::new(meshes[&o.id].clone()),
+                o.pose,
+            )
+        })
+        .collect();
+    let full = RenderScene::with_architecture(instances, scene.architecture.clone());
+    let renderer = Renderer::from_env().unwrap();
+    let frame = renderer
+        .render_prepared(&renderer.prepare(&full).unwrap(), &camera)
+        .unwrap();
+    let mut png = Vec::new();
+    image::DynamicImage::ImageRgba8(frame.color.clone())
+        .to_rgb8()
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .unwrap();
     let mut out = Vec::new();
-    for (value, label) in labels.as_object().unwrap() {
-        let v: u16 = value.parse().unwrap();
+    for o in &scene.objects {
+        let Some(index) = frame.index_of(&o.id) else {
+            continue;
+        };
         let mut b = [u32::MAX, u32::MAX, 0, 0];
-        for (x, y, p) in ids.enumerate_pixels() {
-            if p.0[0] == v {
+        for (i, &v) in frame.instance.iter().enumerate() {
+            if v == index {
+                let (x, y) = (i as u32 % w, i as u32 / w);
                 b = [b[0].min(x), b[1].min(y), b[2].max(x + 1), b[3].max(y + 1)];
             }
         }
         if b[2] > b[0] {
-            out.push(json!({"id": label["id"], "box": [
+            out.push(json!({"id": o.id, "box": [
                 b[0] as f64 / w as f64, b[1] as f64 / h as f64,
                 b[2] as f64 / w as f64, b[3] as f64 / h as f64]}));
         }
     }
-    json!({ "objects": out })
+    (png, json!({ "objects": out }))
 }
 
 #[test]
 fn generate_online_edits_the_empty_room_and_lifts_the_vlm_boxes() {
-    let (scene, g) = base();
-    let render = std::fs::read(g.join("rgb.png")).unwrap();
-    let edited = ImageData::from_bytes(render.clone(), "rgb.png").unwrap();
-    let answer = boxes_from_masks(g).to_string();
+    let (scene, _) = base();
+    let (render, boxes) = furnished_render(scene);
+    let edited = ImageData::from_bytes(render.clone(), "the furnished render").unwrap();
+    let answer = boxes.to_string();
     let server = TestServer::start(move |_, request| {
         if request.path.ends_with("/images/edits") {
             Reply::json(200, &openai_image(&edited))
