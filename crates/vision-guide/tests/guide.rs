@@ -307,3 +307,98 @@ fn without_masks_or_a_vlm_the_error_says_what_to_give() {
         "{e}"
     );
 }
+
+/// A segmenter answering each box with the true mask of its object (the test plays the model),
+/// optionally at a wrong size.
+struct TrueMasks(BTreeMap<String, Mask>, bool);
+
+impl scenethesis_models::Segmenter for TrueMasks {
+    fn name(&self) -> String {
+        "test/true-masks".into()
+    }
+    fn segment(
+        &self,
+        image: &scenethesis_models::ImageData,
+        boxes: &[scenethesis_models::BoxPrompt],
+    ) -> Result<Vec<scenethesis_models::Mask>, ProviderError> {
+        assert!(
+            image.bytes.starts_with(b"\x89PNG"),
+            "the segmenter gets the image"
+        );
+        Ok(boxes
+            .iter()
+            .map(|b| {
+                let m = &self.0[&b.label];
+                let (w, h) = if self.1 { (W / 2, H) } else { (W, H) };
+                scenethesis_models::Mask {
+                    label: b.label.clone(),
+                    width: w,
+                    height: h,
+                    pixels: m.flags()[..(w * h) as usize].to_vec(),
+                    score: 0.9,
+                }
+            })
+            .collect())
+    }
+}
+
+/// A depth model answering with the ray-cast depth (the test plays the model).
+struct CastDepth(DepthMap);
+
+impl scenethesis_models::DepthEstimator for CastDepth {
+    fn name(&self) -> String {
+        "test/cast-depth".into()
+    }
+    fn estimate(
+        &self,
+        _image: &scenethesis_models::ImageData,
+        intrinsics: Option<scenethesis_models::Intrinsics>,
+    ) -> Result<scenethesis_models::DepthMap, ProviderError> {
+        let k = intrinsics.expect("the known camera's intrinsics are passed on");
+        Ok(scenethesis_models::DepthMap {
+            width: self.0.width(),
+            height: self.0.height(),
+            metres: self.0.values().to_vec(),
+            intrinsics: k,
+        })
+    }
+}
+
+#[test]
+fn vlm_boxes_refined_by_a_segmenter_with_model_depth_recover_the_layout() {
+    let plan = plan("a bedroom with a bed, a nightstand and a wardrobe");
+    let assets = CatalogAssets::new(0);
+    let truth = truth(&plan, &assets);
+    let (g, masks) = given(&plan, &truth, false, false);
+    let (depth, _) = cast(&truth, &camera(&plan));
+    let layout = VisionGuide::from_files(g)
+        .with_vlm(BoxesFromMasks(masks.clone()))
+        .with_segmenter(TrueMasks(masks.clone(), false))
+        .with_depth_estimator(CastDepth(depth.clone()))
+        .layout(&plan, &assets, 0)
+        .unwrap();
+    layout.scene.validate().unwrap();
+    let guidance = layout.guidance.unwrap();
+    assert_eq!(guidance.depth.as_ref(), Some(&depth));
+    let mut errors: Vec<f64> = layout
+        .scene
+        .objects
+        .iter()
+        .map(|o| (o.pose.translation - truth.object(&o.id).unwrap().pose.translation).norm())
+        .collect();
+    errors.sort_by(|a, b| a.total_cmp(b));
+    assert!(errors[errors.len() / 2] < 0.1, "{errors:?}");
+
+    // A segmenter answering at the wrong size is named in the error.
+    let (g, _) = given(&plan, &truth, true, false);
+    let e = VisionGuide::from_files(g)
+        .with_vlm(BoxesFromMasks(masks.clone()))
+        .with_segmenter(TrueMasks(masks, true))
+        .layout(&plan, &assets, 0)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("test/true-masks") && e.contains("160 × 240"),
+        "{e}"
+    );
+}
