@@ -193,7 +193,26 @@ impl Pipeline {
     /// fault (new asset variants and a new layout seed) and then drops them (those the prompt
     /// asked for last), keeping the best attempt. Deterministic for the same prompt, seed,
     /// options and providers.
+    ///
+    /// The report's `providers` lists what the run used of each model, counted on the calling
+    /// thread ([`scenethesis_models::metered`]), so parallel runs sharing providers each report
+    /// their own use.
     pub fn generate(
+        &self,
+        prompt: &str,
+        seed: u64,
+        options: &GenerateOptions,
+        progress: &mut dyn Progress,
+    ) -> Result<GeneratedScene, PipelineError> {
+        let (generated, used) =
+            scenethesis_models::metered(|| self.run(prompt, seed, options, progress));
+        let mut generated = generated?;
+        generated.report.providers = used;
+        Ok(generated)
+    }
+
+    /// [`Pipeline::generate`] without the usage accounting.
+    fn run(
         &self,
         prompt: &str,
         seed: u64,
@@ -317,7 +336,15 @@ impl Pipeline {
         let verdict = clock.run(
             Stage::Judge,
             round,
-            || judge(self.judge.as_ref(), plan, &scene, &meshes),
+            || {
+                judge(
+                    self.judge.as_ref(),
+                    plan,
+                    &scene,
+                    &meshes,
+                    layout.guidance.as_ref(),
+                )
+            },
             verdict_note,
         )?;
         Ok(Attempt {

@@ -8,7 +8,7 @@ use scenethesis_openai::OpenAiClient;
 use scenethesis_pipeline::Pipeline;
 use scenethesis_vision_guide::{GivenGuidance, GuidanceFiles, VisionGuide};
 
-use super::providers::{ProviderArgs, Providers};
+use super::providers::ProviderArgs;
 
 /// Size of the empty-room render the image model edits (3:2, so a 1536 × 1024 answer of
 /// GPT image models is resampled to it).
@@ -63,13 +63,8 @@ impl GuideArgs {
 
     /// Installs the selected guide. The procedural default leaves `pipeline` as it is; the
     /// vision guide reads and checks its files first (any problem stops the run before anything
-    /// is written) and adds the models it uses to `providers`.
-    pub fn apply(
-        &self,
-        pipeline: Pipeline,
-        models: &ProviderArgs,
-        providers: &mut Providers,
-    ) -> Result<Pipeline> {
+    /// is written). The models it uses report their use in `report.json` like the others.
+    pub fn apply(&self, pipeline: Pipeline, models: &ProviderArgs) -> Result<Pipeline> {
         if self.choice() == GuideChoice::Procedural {
             if let Some(image) = &self.guide_image {
                 anyhow::bail!(
@@ -99,9 +94,7 @@ impl GuideArgs {
                     let chat = client
                         .vlm()
                         .context("the vision guide boxes the objects of --guide-image without --guide-masks with a vision-language model")?;
-                    let (vlm, meter) = models.wrap(chat)?;
-                    providers.add(meter);
-                    guide.with_vlm(vlm)
+                    guide.with_vlm(models.wrap(chat)?)
                 }
             }
             None => {
@@ -109,12 +102,10 @@ impl GuideArgs {
                 let images = client.image_model().context(
                     "--guide vision without --guide-image has an image model furnish the empty room",
                 )?;
-                providers.add(images.meter().clone());
                 let chat = client
                     .vlm()
                     .context("the vision guide boxes the objects with a vision-language model")?;
-                let (vlm, meter) = models.wrap(chat)?;
-                providers.add(meter);
+                let vlm = models.wrap(chat)?;
                 let renderer = scenethesis_pipeline::WgpuRoomRenderer::from_env().context(
                     "--guide vision without --guide-image renders the empty room and needs a renderer",
                 )?;
