@@ -1,6 +1,7 @@
 //! [`VisionGuide`]: the [`Guide`] that reads a guidance image.
 
 use std::collections::BTreeMap;
+use std::sync::Mutex;
 
 use scenethesis_agents::{
     room_architecture, AssetLookup, DroppedObject, Guide, GuideError, GuidedLayout, Plan,
@@ -28,14 +29,26 @@ enum ImageSource {
         renderer: Box<dyn RoomRenderer>,
         generator: Box<dyn ImageGenerator>,
         size: [u32; 2],
+        /// The last edit and the room it was made for: re-plan rounds lay out the same room
+        /// (with objects moved or dropped) and reuse it rather than ask for a new picture.
+        last: Mutex<Option<Edited>>,
     },
+}
+
+/// An edited room image with its camera, for the room it shows.
+#[derive(Clone)]
+struct Edited {
+    room: Architecture,
+    image: RgbImage,
+    png: Vec<u8>,
+    camera: Camera,
 }
 
 /// The vision guide: a guidance image and the plan's objects become the initial scene graph.
 ///
 /// 1. **Image and camera**: the given image (with its `camera.json`), or our render of the
 ///    plan's empty room edited by an image model into the described scene (the render's
-///    camera). A given image without a camera gets one estimated from the floor of its depth
+///    camera; re-plan rounds of the same room reuse the edit). A given image without a camera gets one estimated from the floor of its depth
 ///    ([`crate::camera`]).
 /// 2. **Depth**: the given depth map, else the depth model's, else none (single-view
 ///    metrology under the known camera).
@@ -94,6 +107,7 @@ impl VisionGuide {
             renderer: Box::new(renderer),
             generator: Box::new(generator),
             size,
+            last: Mutex::new(None),
         })
     }
 
@@ -187,7 +201,13 @@ impl VisionGuide {
                 renderer,
                 generator,
                 size,
+                last,
             } => {
+                let mut last = last.lock().unwrap_or_else(|e| e.into_inner());
+                if let Some(e) = last.as_ref().filter(|e| &e.room == architecture) {
+                    let e = e.clone();
+                    return Ok((e.image, e.png, Some(e.camera), None, None, Vec::new()));
+                }
                 let view = renderer
                     .render_room(architecture, *size)
                     .map_err(|e| provider(renderer.name(), e))?;
@@ -215,6 +235,12 @@ impl VisionGuide {
                 } else {
                     png_bytes(&image)
                 };
+                *last = Some(Edited {
+                    room: architecture.clone(),
+                    image: image.clone(),
+                    png: png.clone(),
+                    camera: view.camera,
+                });
                 Ok((image, png, Some(view.camera), None, None, Vec::new()))
             }
         }

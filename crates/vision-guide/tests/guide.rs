@@ -402,3 +402,107 @@ fn vlm_boxes_refined_by_a_segmenter_with_model_depth_recover_the_layout() {
         "{e}"
     );
 }
+
+/// The empty room seen from the test camera (a grey image; the test plays the renderer).
+struct TestRoom(Camera);
+
+impl scenethesis_vision_guide::RoomRenderer for TestRoom {
+    fn name(&self) -> String {
+        "test/room".into()
+    }
+    fn render_room(
+        &self,
+        _architecture: &scenethesis_scene_graph::Architecture,
+        size: [u32; 2],
+    ) -> Result<scenethesis_vision_guide::RoomView, String> {
+        assert_eq!(size, [W, H]);
+        Ok(scenethesis_vision_guide::RoomView {
+            camera: self.0,
+            image: RgbImage::new(W, H, vec![200; (W * H * 3) as usize]).unwrap(),
+        })
+    }
+}
+
+/// An image model answering every edit with an image of `size` (counting the edits).
+struct Painter {
+    size: [u32; 2],
+    edits: std::sync::Arc<std::sync::atomic::AtomicUsize>,
+}
+
+impl scenethesis_models::ImageGenerator for Painter {
+    fn name(&self) -> String {
+        "test/painter".into()
+    }
+    fn generate(
+        &self,
+        _: &scenethesis_models::ImageRequest,
+    ) -> Result<scenethesis_models::GeneratedImage, ProviderError> {
+        unreachable!("the vision guide edits the room's render")
+    }
+    fn edit(
+        &self,
+        request: &scenethesis_models::ImageEditRequest,
+    ) -> Result<scenethesis_models::GeneratedImage, ProviderError> {
+        assert!(request.prompt.starts_with("Furnish this empty room"));
+        self.edits.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+        let img = RgbImage::new(
+            self.size[0],
+            self.size[1],
+            vec![90; (self.size[0] * self.size[1] * 3) as usize],
+        )
+        .unwrap();
+        Ok(scenethesis_models::GeneratedImage {
+            image: scenethesis_models::ImageData::from_bytes(png_bytes(&img), "painted").unwrap(),
+            revised_prompt: None,
+        })
+    }
+}
+
+#[test]
+fn the_edit_path_lifts_under_the_render_camera_and_reuses_the_edit_across_rounds() {
+    let plan = plan("a bedroom with a bed, a nightstand and a wardrobe");
+    let assets = CatalogAssets::new(0);
+    let truth = truth(&plan, &assets);
+    let (_, masks) = given(&plan, &truth, false, false);
+    let edits = std::sync::Arc::new(std::sync::atomic::AtomicUsize::new(0));
+    // The painter answers at twice the size (same aspect): resampled to the camera's.
+    let guide = VisionGuide::edit_render(
+        TestRoom(camera(&plan)),
+        Painter {
+            size: [2 * W, 2 * H],
+            edits: edits.clone(),
+        },
+        [W, H],
+    )
+    .with_vlm(BoxesFromMasks(masks.clone()));
+    let first = guide.layout(&plan, &assets, 0).unwrap();
+    let again = guide.layout(&plan, &assets, 7).unwrap();
+    assert_eq!(edits.load(std::sync::atomic::Ordering::SeqCst), 1);
+    let g = first.guidance.unwrap();
+    assert_eq!(g.camera, camera(&plan));
+    assert_eq!((g.image.width(), g.image.height()), (W, H));
+    assert_eq!(
+        g.image.get(5, 5),
+        Some([90, 90, 90]),
+        "the edited image, not the render"
+    );
+    assert_eq!(first.scene.objects.len(), again.scene.objects.len());
+
+    // Another aspect ratio is refused, naming the image model.
+    let e = VisionGuide::edit_render(
+        TestRoom(camera(&plan)),
+        Painter {
+            size: [W, W],
+            edits,
+        },
+        [W, H],
+    )
+    .with_vlm(BoxesFromMasks(masks))
+    .layout(&plan, &assets, 0)
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("test/painter") && e.contains(&format!("{W} × {W}")),
+        "{e}"
+    );
+}
