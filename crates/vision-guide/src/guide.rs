@@ -31,7 +31,7 @@ enum ImageSource {
         size: [u32; 2],
         /// The last edit and the room it was made for: re-plan rounds lay out the same room
         /// (with objects moved or dropped) and reuse it rather than ask for a new picture.
-        last: Mutex<Option<Edited>>,
+        last: Box<Mutex<Option<Edited>>>,
     },
 }
 
@@ -107,7 +107,7 @@ impl VisionGuide {
             renderer: Box::new(renderer),
             generator: Box::new(generator),
             size,
-            last: Mutex::new(None),
+            last: Box::new(Mutex::new(None)),
         })
     }
 
