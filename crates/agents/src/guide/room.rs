@@ -81,6 +81,13 @@ impl Room {
     }
 }
 
+/// The empty room a plan asks for (floor, walls and door indoors, open ground outdoors), as every
+/// guide lays it out: the procedural guide places objects in it, the vision guide renders it
+/// and lifts objects into it. Rooms smaller than 1.5 m either way are refused.
+pub fn room_architecture(plan: &Plan) -> Result<Architecture, GuideError> {
+    Room::of(plan).map(|room| room.architecture)
+}
+
 /// The asset metadata of every planned object, in plan order, after checking that every
 /// parent is planned.
 pub(super) fn asset_infos(

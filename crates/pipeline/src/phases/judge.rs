@@ -18,6 +18,8 @@ pub(crate) struct Attempt {
     pub(crate) placement: Placement,
     pub(crate) verdict: Verdict,
     pub(crate) guide_dropped: Vec<DroppedObject>,
+    /// What the guide saw (vision guides), handed on to the result.
+    pub(crate) guidance: Option<scenethesis_correspondence::Guidance>,
     pub(crate) round: usize,
 }
 
