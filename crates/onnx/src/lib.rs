@@ -1,16 +1,16 @@
 //! Depth estimation and box-prompted segmentation through ONNX Runtime, implementing the
 //! [`scenethesis_models`] provider traits with the models' real pre- and post-processing.
 //!
-//! - [`OnnxDepth`] (a [`DepthEstimator`](scenethesis_models::DepthEstimator)) runs a
+//! - `OnnxDepth` (a [`DepthEstimator`](scenethesis_models::DepthEstimator)) runs a
 //!   Depth-Anything-V2-style model; the expected signature and processing are in [`depth`].
-//! - [`OnnxSegmenter`] (a [`Segmenter`](scenethesis_models::Segmenter)) runs a SAM / MobileSAM
+//! - `OnnxSegmenter` (a [`Segmenter`](scenethesis_models::Segmenter)) runs a SAM / MobileSAM
 //!   encoder + prompt decoder pair; see [`segment`].
-//! - [`Runtime`] loads the ONNX Runtime shared library at run time from `ORT_DYLIB_PATH` or an
+//! - `Runtime` loads the ONNX Runtime shared library at run time from `ORT_DYLIB_PATH` or an
 //!   explicit path. Nothing is downloaded at build or run time: the library and the model files
 //!   are the user's (`pip install onnxruntime` ships the library in
 //!   `onnxruntime/capi/libonnxruntime.so.<version>`).
 //!
-//! The providers and [`Runtime`] need the `runtime` feature (which brings in `ort` with dynamic
+//! The providers and `Runtime` need the `runtime` feature (which brings in `ort` with dynamic
 //! loading only); without it the crate holds the configuration types and the pure pre/post-
 //! processing, so depending crates build without ONNX Runtime.
 //!
