@@ -30,6 +30,7 @@ pub mod batch;
 mod error;
 pub mod out_dir;
 mod output;
+mod phases;
 mod pipeline;
 mod plan_file;
 #[cfg(feature = "render")]

@@ -72,15 +72,9 @@ impl PipelineArgs {
         }
     }
 
-    /// The offline pipeline over the built-in library plus the `--assets` folder, with previews
-    /// unless `--no-preview`.
+    /// The pipeline over the built-in library plus the `--assets` folder, with previews unless
+    /// `--no-preview`, and the planner and judge the provider flags select (offline by default).
     pub fn pipeline(&self) -> Result<Pipeline> {
-        Ok(self.pipeline_with_providers()?.0)
-    }
-
-    /// [`PipelineArgs::pipeline`] with the planner and judge the provider flags select, and
-    /// the models in use (for `report.json`).
-    pub fn pipeline_with_providers(&self) -> Result<(Pipeline, super::providers::Providers)> {
         self.providers
             .apply(pipeline(!self.no_preview, self.assets.as_deref())?)
     }
@@ -177,7 +171,7 @@ fn pipeline(previews: bool, assets_dir: Option<&Path>) -> Result<Pipeline> {
 pub fn run(args: GenerateArgs) -> Result<()> {
     // The output path is checked before any work.
     let out = OutputDir::prepare(&args.out, args.force)?;
-    let (mut pipeline, providers) = args.pipeline.pipeline_with_providers()?;
+    let mut pipeline = args.pipeline.pipeline()?;
     let prompt = match &args.plan {
         Some(path) => {
             let planner = FixedPlanner::from_file(path)?;
@@ -195,7 +189,6 @@ pub fn run(args: GenerateArgs) -> Result<()> {
             Some(path) => format!("generating from the plan {}", path.display()),
             None => format!("generating \"{prompt}\""),
         })?;
-    generated.report.providers = providers.usage();
     println!("{}", generated.report.summary_line());
     let rejected = !generated.report.accepted;
     if rejected && !args.strict {
