@@ -148,6 +148,7 @@ mod tests {
                     target_pixel: camera.project(&x).unwrap().pixel,
                     target_point: Some(x),
                     confidence: 0.9,
+                    kind: Default::default(),
                 }
             })
             .collect();
