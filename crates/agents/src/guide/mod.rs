@@ -7,6 +7,7 @@ mod lookup;
 mod place_floor;
 mod procedural;
 mod room;
+mod shared;
 mod surfaces;
 mod walkway;
 

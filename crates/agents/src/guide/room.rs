@@ -5,7 +5,7 @@ use scenethesis_assets::AssetInfo;
 use scenethesis_scene_graph::{Architecture, Environment, ParentRef};
 
 use super::candidates::Side;
-use super::procedural::DOOR_WIDTH;
+use super::shared::DOOR_WIDTH;
 use super::{AssetLookup, GuideError};
 use crate::plan::Plan;
 
