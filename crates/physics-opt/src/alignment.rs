@@ -235,6 +235,36 @@ impl PoseAlignment {
             .sum()
     }
 
+    /// Sets the confidence of every pair whose pixel or metre error at `pose` exceeds `k`
+    /// times its Huber threshold to 0 (so plain least squares on the rest agrees with the
+    /// robust fit); returns how many pairs were dropped.
+    pub fn trim_outliers(&mut self, pose: &Pose, options: &FitOptions, k: f64) -> usize {
+        let mut tags = Vec::new();
+        let r = self.rows(pose, None, Some(&mut tags));
+        let weights = self.huber_weights(&r, &tags, options);
+        let mut bad = std::collections::BTreeSet::new();
+        for (t, w) in tags.iter().zip(&weights) {
+            // Huber weight δ/e below 1/k means e > k·δ.
+            if *w < 1.0 / k {
+                bad.insert(t.pair);
+            }
+        }
+        let min = self.min_confidence;
+        let mut dropped = 0;
+        for (index, c) in self
+            .correspondences
+            .iter_mut()
+            .filter(|c| c.confidence >= min)
+            .enumerate()
+        {
+            if bad.contains(&index) {
+                c.confidence = 0.0;
+                dropped += 1;
+            }
+        }
+        dropped
+    }
+
     /// Minimises the robust loss from `start` by Levenberg–Marquardt on iteratively reweighted
     /// residuals, keeping the scale in `options.scale_range` (or fixed). Gravity stays fixed:
     /// only scale, yaw and translation move.

@@ -179,6 +179,18 @@ pub fn align_to_guidance(
         let view = rasterize(mesh, &best.0, camera, window_at(&best.0));
         alignment.correspondences = lift(&matcher.match_view(&view, target), &view, target);
     }
+    let depth = camera
+        .project(&best.0.transform_point(&mesh.bounds()?.center()))
+        .map_or(1.0, |p| p.depth);
+    let trim = FitOptions {
+        scale_range,
+        huber_m: settings
+            .fit
+            .huber_m
+            .max(2.0 * (settings.depth_noise * depth).max(0.01)),
+        ..settings.fit
+    };
+    alignment.trim_outliers(&best.0, &trim, 2.0);
     Some(GuidedPose {
         pose: best.0,
         alignment,
