@@ -33,6 +33,7 @@ pub mod correspond;
 mod error;
 pub mod out_dir;
 mod output;
+mod phases;
 mod pipeline;
 mod plan_file;
 #[cfg(feature = "render")]
