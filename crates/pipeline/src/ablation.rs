@@ -317,15 +317,6 @@ fn row(
             completed: false,
         };
         iou.push(posed.iou(tb));
-        if std::env::var_os("CORR_DEBUG").is_some() {
-            eprintln!(
-                "{stage:?} {id} t={:.3} y={:.1} s={:.2} iou={:.2}",
-                t.last().unwrap(),
-                y.last().unwrap(),
-                s.last().unwrap(),
-                iou.last().unwrap()
-            );
-        }
     }
     let scene = with_poses(recovered, poses);
     let eval = EvalScene {
