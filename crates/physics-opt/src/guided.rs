@@ -72,6 +72,56 @@ pub struct GuidedPose {
     pub rounds: usize,
 }
 
+/// `pose` shifted horizontally so that the asset's visible silhouette (rendered pixels not
+/// hidden by nearer guidance) has the mask's pixel centroid and the mask's median depth.
+fn recentred(mesh: &Mesh, pose: &Pose, target: &TargetRegion<'_>, window: Window) -> Option<Pose> {
+    let view = rasterize(mesh, pose, target.camera, window);
+    let median = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v.get(v.len() / 2).copied()
+    };
+    let (mut rx, mut ry, mut rd) = (Vec::new(), Vec::new(), Vec::new());
+    for y in 0..view.depth.height() {
+        for x in 0..view.depth.width() {
+            let Some(d) = view.depth.get(x, y) else {
+                continue;
+            };
+            let (gx, gy) = view.to_guidance(x, y);
+            let hidden = !target.mask.contains(gx, gy)
+                && target.depth_at(gx, gy).is_some_and(|t| t < d - 0.05);
+            if !hidden {
+                rx.push(gx as f64);
+                ry.push(gy as f64);
+                rd.push(d as f64);
+            }
+        }
+    }
+    let (mut mx, mut my, mut md) = (Vec::new(), Vec::new(), Vec::new());
+    for (x, y) in target.mask.pixels() {
+        mx.push(x as f64);
+        my.push(y as f64);
+        if let Some(d) = target.depth_at(x, y) {
+            md.push(d as f64);
+        }
+    }
+    if rx.is_empty() || mx.is_empty() {
+        return None;
+    }
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+    let centre = pose.transform_point(&mesh.bounds()?.center());
+    let p = target.camera.project(&centre)?;
+    let depth = match (median(md), median(rd)) {
+        (Some(m), Some(r)) => p.depth + (m - r),
+        _ => p.depth,
+    };
+    let pixel = p.pixel + nalgebra::Vector2::new(mean(&mx) - mean(&rx), mean(&my) - mean(&ry));
+    let moved = target.camera.unproject(&pixel, depth.max(0.05));
+    let mut out = *pose;
+    out.translation.x += moved.x - centre.x;
+    out.translation.z += moved.z - centre.z;
+    Some(out)
+}
+
 /// Aligns `mesh`, starting at `start`, to its object's guidance `target`: yaw hypotheses ranked
 /// by [`ShapeMatcher`] scores (a facing `hint` settles ties such as front/back), then rounds of
 /// matching with `matcher` and robust fitting of the pose-alignment loss. The scale stays in
@@ -107,6 +157,17 @@ pub fn align_to_guidance(
     };
     let start_score = score_at(start);
     let mut best = (*start, start_score);
+    // A lift thrown off by stray depth (a mask spilling onto the wall behind) can leave the
+    // object far from its mask: try the start moved so that its visible silhouette's centroid
+    // and median depth match the mask's.
+    if let Some(moved) = recentred(mesh, start, target, window_at(start)) {
+        let score = score_at(&moved);
+        if score.score > best.1.score {
+            best = (moved, score);
+        }
+    }
+    let start_pose = best.0;
+    let start = &start_pose;
     if settings.yaw_candidates > 1 {
         let step = std::f64::consts::TAU / settings.yaw_candidates as f64;
         let yaws: Vec<f64> = (0..settings.yaw_candidates)
