@@ -6,11 +6,9 @@ use std::collections::BTreeMap;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::{Point3, Vector3};
-use scenethesis_correspondence::{
-    rasterize, DepthMap, Guidance, Mask, RgbImage, ShapeMatcher, Window,
-};
+use scenethesis_correspondence::{Guidance, ShapeMatcher};
 use scenethesis_physics_opt::GuidedSettings;
-use scenethesis_pipeline::correspond::correspond;
+use scenethesis_pipeline::correspond::{correspond, rasterized_guidance};
 use scenethesis_pipeline::{
     resolve_meshes, GenerateOptions, NoProgress, Pipeline, RetrievalSource,
 };
@@ -21,8 +19,7 @@ const PROMPT: &str = "a living room with a grey three-seat sofa against the back
      either side of the table turned toward the sofa, a tall bookshelf in the corner with books \
      and a plant inside its shelves, and a floor lamp beside the sofa";
 
-/// Guidance of `scene` seen from a corner of the room, drawn by the CPU rasterizer: the
-/// nearest object's id per pixel gives the masks, its depth the depth map.
+/// Guidance of `scene` seen from a corner of the room at eye height.
 fn guidance(scene: &Scene, meshes: &BTreeMap<String, Mesh>) -> Guidance {
     let floor = &scene.architecture.floor;
     let camera = Camera::look_at(
@@ -35,39 +32,7 @@ fn guidance(scene: &Scene, meshes: &BTreeMap<String, Mesh>) -> Guidance {
         ),
         Vector3::y(),
     );
-    let window = Window::full(&camera);
-    let views: Vec<(String, scenethesis_correspondence::RenderedView)> = scene
-        .objects
-        .iter()
-        .filter_map(|o| {
-            Some((
-                o.id.clone(),
-                rasterize(meshes.get(&o.id)?, &o.pose, &camera, window),
-            ))
-        })
-        .collect();
-    let mut masks: BTreeMap<String, Mask> = views
-        .iter()
-        .map(|(id, _)| (id.clone(), Mask::new(640, 480)))
-        .collect();
-    let depth = DepthMap::from_fn(640, 480, |x, y| {
-        let nearest = views
-            .iter()
-            .filter_map(|(id, v)| v.depth.get(x, y).map(|d| (d, id)))
-            .min_by(|a, b| a.0.total_cmp(&b.0));
-        match nearest {
-            Some((d, id)) => {
-                masks
-                    .get_mut(id)
-                    .expect("every view has a mask")
-                    .set(x, y, true);
-                d
-            }
-            None => 0.0,
-        }
-    });
-    let image = RgbImage::new(640, 480, vec![128; 640 * 480 * 3]).expect("sized");
-    Guidance::new(camera, image, Some(depth), masks).expect("consistent guidance")
+    rasterized_guidance(scene, meshes, &camera)
 }
 
 fn bench_correspond(c: &mut Criterion) {

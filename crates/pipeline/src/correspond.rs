@@ -88,3 +88,48 @@ pub fn correspond(
         .into_iter()
         .collect()
 }
+
+/// Guidance of `scene` seen by `camera`, drawn by the CPU rasterizer: each pixel belongs to the
+/// nearest object's mask and holds its depth (0 where no object is; no architecture, a grey
+/// image). For tests and benchmarks of the correspond stage without a GPU.
+pub fn rasterized_guidance(
+    scene: &Scene,
+    meshes: &BTreeMap<String, Mesh>,
+    camera: &scenethesis_scene_graph::Camera,
+) -> Guidance {
+    use scenethesis_correspondence::{rasterize, Mask, RgbImage, Window};
+    let (w, h) = (camera.intrinsics.width, camera.intrinsics.height);
+    let window = Window::full(camera);
+    let views: Vec<(&str, scenethesis_correspondence::RenderedView)> = scene
+        .objects
+        .iter()
+        .filter_map(|o| {
+            Some((
+                o.id.as_str(),
+                rasterize(meshes.get(&o.id)?, &o.pose, camera, window),
+            ))
+        })
+        .collect();
+    let mut masks: BTreeMap<String, Mask> = views
+        .iter()
+        .map(|(id, _)| (id.to_string(), Mask::new(w, h)))
+        .collect();
+    let depth = DepthMap::from_fn(w, h, |x, y| {
+        let nearest = views
+            .iter()
+            .filter_map(|(id, v)| v.depth.get(x, y).map(|d| (d, *id)))
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        match nearest {
+            Some((d, id)) => {
+                if let Some(m) = masks.get_mut(id) {
+                    m.set(x, y, true);
+                }
+                d
+            }
+            None => 0.0,
+        }
+    });
+    let image = RgbImage::new(w, h, vec![128; w as usize * h as usize * 3])
+        .expect("the image has the camera's size");
+    Guidance::new(*camera, image, Some(depth), masks).expect("every buffer has the camera's size")
+}
