@@ -26,7 +26,10 @@
 
 #![warn(missing_docs)]
 
+#[cfg(feature = "render")]
+pub mod ablation;
 pub mod batch;
+pub mod correspond;
 mod error;
 pub mod out_dir;
 mod output;

@@ -4,13 +4,17 @@ use std::collections::BTreeMap;
 use std::time::Instant;
 
 use scenethesis_agents::{Guide, KnowledgePlanner, Plan, PlanRequest, Planner, ProceduralGuide};
-use scenethesis_physics_opt::{OptimizeSettings, Optimizer, PrepareSettings, ProjectedGaussNewton};
+use scenethesis_correspondence::Matcher;
+use scenethesis_physics_opt::{
+    GuidedSettings, OptimizeSettings, Optimizer, PrepareSettings, ProjectedGaussNewton,
+};
 use scenethesis_retrieval::{AssetSource, RetrievalSource};
 use scenethesis_scene_graph::{Mesh, Scene};
 use serde::{Deserialize, Serialize};
 
 use crate::judge::{GeometricJudge, Judge};
 use crate::phases::clock::StageClock;
+use crate::phases::correspond::correspond;
 use crate::phases::judge::{judge, verdict_note, Attempt};
 use crate::phases::layout::lay_out;
 use crate::phases::optimize::optimize;
@@ -101,6 +105,7 @@ pub struct Pipeline {
     optimizer: Box<dyn Optimizer>,
     judge: Box<dyn Judge>,
     renderer: Option<Box<dyn PreviewRenderer>>,
+    matcher: Option<(Box<dyn Matcher>, GuidedSettings)>,
 }
 
 impl std::fmt::Debug for Pipeline {
@@ -112,6 +117,7 @@ impl std::fmt::Debug for Pipeline {
             .field("optimizer", &self.optimizer.name())
             .field("judge", &self.judge.name())
             .field("renderer", &self.renderer.as_ref().map(|r| r.name()))
+            .field("matcher", &self.matcher.as_ref().map(|(m, _)| m.name()))
             .finish_non_exhaustive()
     }
 }
@@ -132,6 +138,7 @@ impl Pipeline {
             optimizer: Box::new(ProjectedGaussNewton::default()),
             judge: Box::new(GeometricJudge::default()),
             renderer: None,
+            matcher: None,
         }
     }
 
@@ -162,6 +169,18 @@ impl Pipeline {
     /// Replaces the judge.
     pub fn with_judge(mut self, judge: impl Judge + 'static) -> Self {
         self.judge = Box::new(judge);
+        self
+    }
+
+    /// Sets the matcher of the correspond stage (e.g. `scenethesis_correspondence::ShapeMatcher`) and its settings: when
+    /// the guide hands over guidance, every object is aligned to it before optimization.
+    /// Without a matcher (the default) the stage does not run.
+    pub fn with_matcher(
+        mut self,
+        matcher: impl Matcher + 'static,
+        settings: GuidedSettings,
+    ) -> Self {
+        self.matcher = Some((Box::new(matcher), settings));
         self
     }
 
@@ -313,12 +332,32 @@ impl Pipeline {
             },
         )?;
         let mut scene = layout.scene;
+        let alignments = match (&layout.guidance, &self.matcher) {
+            (Some(guidance), Some((matcher, settings))) => clock.run(
+                Stage::Correspond,
+                round,
+                || {
+                    correspond(
+                        &mut scene,
+                        guidance,
+                        &retrieved,
+                        cache,
+                        matcher.as_ref(),
+                        settings,
+                        options,
+                    )
+                },
+                |a| format!("{} objects aligned", a.len()),
+            )?,
+            _ => BTreeMap::new(),
+        };
         let (placement, meshes) = clock.run(
             Stage::Optimize,
             round,
             || {
                 optimize(
                     &mut scene,
+                    &alignments,
                     &retrieved,
                     cache,
                     self.optimizer.as_ref(),
