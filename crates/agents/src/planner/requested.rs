@@ -55,17 +55,7 @@ pub(super) fn requested(
             note: (!notes.is_empty()).then(|| notes.join("; ")),
         });
     }
-    for words in &reading.analysis.unavailable {
-        out.push(RequestedObject {
-            words: words.clone(),
-            category: None,
-            count: 1,
-            ids: Vec::new(),
-            note: Some(format!(
-                "the library has nothing close to \"{words}\"; left out"
-            )),
-        });
-    }
+    out.extend(reading.analysis.unavailable.iter().map(|w| unavailable(w)));
     for (category, n) in &drafting.cut {
         limits.push(format!(
             "{n} × `{category}` left out: a plan holds at most {MAX_PLANNED_OBJECTS} objects"
@@ -155,17 +145,20 @@ impl super::KnowledgePlanner {
                 note: (!notes.is_empty()).then(|| notes.join("; ")),
             });
         }
-        for words in &analysis.unavailable {
-            out.push(RequestedObject {
-                words: words.clone(),
-                category: None,
-                count: 1,
-                ids: Vec::new(),
-                note: Some(format!(
-                    "the library has nothing close to \"{words}\"; left out"
-                )),
-            });
-        }
+        out.extend(analysis.unavailable.iter().map(|w| unavailable(w)));
         out
+    }
+}
+
+/// A noun of the prompt the library has nothing close to.
+fn unavailable(words: &str) -> RequestedObject {
+    RequestedObject {
+        words: words.to_owned(),
+        category: None,
+        count: 1,
+        ids: Vec::new(),
+        note: Some(format!(
+            "the library has nothing close to \"{words}\"; left out"
+        )),
     }
 }
