@@ -405,11 +405,12 @@ fn only_mounted_objects_are_welded_and_a_floating_one_stays_free() {
     assert!(usd.contains("custom string scenethesis:parent = \"wall_1\""));
     assert!(usd.contains("custom string scenethesis:support = \"mounted\""));
     let urdf = scenethesis_export::urdf::to_urdf(&ExportScene::new(&scene, &meshes).unwrap(), "m");
-    assert_eq!(
-        urdf.urdf.matches("type=\"fixed\"").count(),
-        1,
-        "the painting"
-    );
+    assert!(urdf
+        .urdf
+        .contains("<joint name=\"painting_joint\" type=\"fixed\">"));
+    assert!(urdf
+        .urdf
+        .contains("<joint name=\"table_joint\" type=\"floating\">"));
 
     // The same painting at the same height on the ground link, leaning on nothing: it floats,
     // and the exports keep it a free body (the simulation shows the defect; nothing welds it).
@@ -425,7 +426,9 @@ fn only_mounted_objects_are_welded_and_a_floating_one_stays_free() {
     assert_eq!(xml.matches("<freejoint ").count(), 6);
     assert!(xml.contains("<freejoint name=\"painting\""));
     let urdf = scenethesis_export::urdf::to_urdf(&export, "m");
-    assert!(!urdf.urdf.contains("type=\"fixed\""));
+    assert!(urdf
+        .urdf
+        .contains("<joint name=\"painting_joint\" type=\"floating\">"));
 }
 
 #[test]
