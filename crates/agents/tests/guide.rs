@@ -61,13 +61,14 @@ fn check_scene(prompt: &str, scene: &Scene) {
             );
         }
     }
-    // Children sit on their parents and never overlap their siblings on a surface.
+    // Children sit on their parents (or hang on their walls) and never overlap their siblings
+    // on a surface (or a wall).
     for o in scene
         .objects
         .iter()
         .filter(|o| o.parent != ParentRef::Ground)
     {
-        let parent = o.parent.object_id().unwrap();
+        let parent = o.parent.as_str();
         let held = relation_holds(scene, &o.id, &Relation::new(o.support, parent)).unwrap();
         assert!(held, "{prompt}: {} is not {} {parent}", o.id, o.support);
         for s in scene
