@@ -4,7 +4,8 @@
 //! - `cargo xtask bench [--json] [FILTER]` runs every crate's criterion benchmarks in release
 //!   mode and prints their figures — mean time per iteration and, where a benchmark declares a
 //!   throughput, elements per second — as a table or as one JSON object; it also runs the
-//!   vision round trip over the benchmark prompts (`roundtrip/none`, `roundtrip/default`).
+//!   vision round trip over the benchmark prompts (`roundtrip/none`, `roundtrip/default`) and the
+//!   optimizer ablation against ground truth (`roundtrip/ablation`).
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -112,7 +113,9 @@ fn bench(args: &[String]) -> Result<()> {
 /// each prompt is generated with the release binary (no previews), then `scenethesis roundtrip
 /// --json` runs unperturbed and with the default perturbation. Adds `roundtrip/none` and
 /// `roundtrip/default`: the median over prompts of each scene's median errors, the mean
-/// parent accuracy, and object counts.
+/// parent accuracy, and object counts. Adds `roundtrip/ablation`: `scenethesis roundtrip
+/// --ablation --perturb default --json` per prompt, each stage's (raw, alignment, collision,
+/// stability) median over prompts of the scene medians and mean over prompts of Col-O / Inst-O.
 fn add_roundtrip(
     root: &Path,
     target: &Path,
@@ -146,6 +149,7 @@ fn add_roundtrip(
     let _ = std::fs::remove_dir_all(&scratch);
     std::fs::create_dir_all(&scratch)?;
     let mut rows: BTreeMap<&str, Vec<Value>> = BTreeMap::new();
+    let mut ablations: Vec<Value> = Vec::new();
     for (k, prompt) in prompts.iter().enumerate() {
         let dir = scratch.join(format!("p{k:02}"));
         let out = Command::new(&exe)
@@ -178,6 +182,19 @@ fn add_roundtrip(
                 .or_default()
                 .push(serde_json::from_slice(&out.stdout)?);
         }
+        let out = Command::new(&exe)
+            .arg("roundtrip")
+            .arg(&dir)
+            .args(["--ablation", "--perturb", "default", "--json"])
+            .output()
+            .context("cannot run scenethesis roundtrip --ablation")?;
+        if !out.status.success() {
+            bail!(
+                "ablation of {prompt:?} failed: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+        }
+        ablations.push(serde_json::from_slice(&out.stdout)?);
     }
     let median = |mut v: Vec<f64>| -> f64 {
         v.retain(|x| x.is_finite());
@@ -210,6 +227,36 @@ fn add_roundtrip(
             }),
         );
     }
+    // The ablation: per stage, the median over prompts of each scene's medians, and the mean
+    // over prompts of Col-O and Inst-O.
+    let mut ablation_rows = Vec::new();
+    for stage in ["raw", "alignment", "collision", "stability"] {
+        let reports: Vec<&Value> = ablations
+            .iter()
+            .filter_map(|a| {
+                a["rows"]
+                    .as_array()?
+                    .iter()
+                    .find(|r| r["stage"].as_str() == Some(stage))
+            })
+            .collect();
+        let field =
+            |name: &str| -> Vec<f64> { reports.iter().filter_map(|r| r[name].as_f64()).collect() };
+        let mean = |v: Vec<f64>| v.iter().sum::<f64>() / v.len().max(1) as f64;
+        ablation_rows.push(json!({
+            "stage": stage,
+            "translation_median_m": median(field("translation_median_m")),
+            "yaw_median_deg": median(field("yaw_median_deg")),
+            "scale_error_median": median(field("scale_error_median")),
+            "iou_median": median(field("iou_median")),
+            "col_o": mean(field("col_o")),
+            "inst_o": mean(field("inst_o")),
+        }));
+    }
+    figures.insert(
+        "roundtrip/ablation".to_owned(),
+        json!({ "prompts": ablations.len(), "rows": ablation_rows }),
+    );
     Ok(())
 }
 

@@ -6,6 +6,12 @@
 //!   point), the unit the pose-alignment loss of `scenethesis-physics-opt` consumes.
 //! - [`Guidance`]: what a guide saw — the [`Camera`](scenethesis_scene_graph::Camera), the
 //!   colour image ([`RgbImage`]), an optional metric [`DepthMap`] and one [`Mask`] per object id.
+//! - [`Matcher`]: the seam that pairs an asset rendered at its current pose ([`RenderedView`])
+//!   with its object's guidance region ([`TargetRegion`]); [`lift`] turns the pixel pairs into
+//!   [`Correspondence`]s. [`ShapeMatcher`] is the default: silhouette and depth agreement, so
+//!   it works when the asset does not look like the photographed object.
+//! - [`rasterize`]: a small CPU depth rasterizer of an asset's mesh in a window of the guidance
+//!   camera, cheap enough to render every yaw hypothesis of every object.
 //!
 //! This crate has no GPU, HTTP or model-runtime dependency: renders and model outputs arrive
 //! as plain buffers.
@@ -27,7 +33,13 @@
 #![warn(missing_docs)]
 
 mod guidance;
+mod matcher;
 mod pair;
+mod raster;
+pub mod shape;
 
 pub use guidance::{DepthMap, Guidance, GuidanceError, Mask, RgbImage};
-pub use pair::Correspondence;
+pub use matcher::{lift, MatchKind, Matcher, PixelMatch, TargetRegion};
+pub use pair::{Correspondence, PairKind};
+pub use raster::{projected_bbox, rasterize, RenderedView, Window};
+pub use shape::{ShapeMatcher, ShapeScore};

@@ -3,6 +3,20 @@
 use nalgebra::{Point2, Point3};
 use serde::{Deserialize, Serialize};
 
+/// Which residuals a [`Correspondence`] contributes to the pose-alignment loss.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PairKind {
+    /// The 2D distance between the projected asset point and the target pixel, plus the 3D
+    /// distance to the target point when one is known (the paper's pair).
+    #[default]
+    Point,
+    /// Only the difference in depth (along the camera's optical axis) between the posed asset
+    /// point and the target point: a point-to-plane term for surface pixels whose exact partner
+    /// is unknown, which does not hold the object back when it slides sideways.
+    Depth,
+}
+
 /// One matched pair: a point on the asset and where the guidance image sees it.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Correspondence {
@@ -17,4 +31,7 @@ pub struct Correspondence {
     /// Matching confidence in [0, 1]; consumers ignore pairs below their threshold (the paper
     /// uses τ = 0.6).
     pub confidence: f64,
+    /// Which residuals the pair contributes ([`PairKind::Point`] unless stated).
+    #[serde(default)]
+    pub kind: PairKind,
 }

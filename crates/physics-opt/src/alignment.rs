@@ -1,12 +1,46 @@
 //! Pose alignment: 2D pixel and 3D point distances of correspondences between an object's
 //! asset and the guidance image, under the guide's pinhole camera.
 
-use nalgebra::Vector3;
-use scenethesis_correspondence::Correspondence;
+use nalgebra::{Matrix5, Vector3};
+use scenethesis_correspondence::{Correspondence, PairKind};
 use scenethesis_scene_graph::{Camera, Pose};
 use serde::{Deserialize, Serialize};
 
-use crate::params::{world_point, world_point_jacobian, PoseVector};
+use crate::params::{from_vector, to_vector, world_point, world_point_jacobian, PoseVector, SCALE};
+
+/// Which pair a residual row belongs to, and whether it is measured in pixels.
+#[derive(Debug, Clone, Copy)]
+struct RowTag {
+    pair: usize,
+    pixels: bool,
+}
+
+/// Options of [`PoseAlignment::fit`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct FitOptions {
+    /// Levenberg–Marquardt iterations at most.
+    pub iterations: usize,
+    /// Huber threshold of a pair's pixel error, pixels (≤ 0: plain least squares).
+    pub huber_px: f64,
+    /// Huber threshold of a pair's 3D or depth error, metres (≤ 0: plain least squares).
+    pub huber_m: f64,
+    /// The allowed scale range.
+    pub scale_range: [f64; 2],
+    /// Keep the starting scale.
+    pub fix_scale: bool,
+}
+
+impl Default for FitOptions {
+    fn default() -> Self {
+        Self {
+            iterations: 30,
+            huber_px: 2.0,
+            huber_m: 0.05,
+            scale_range: [0.0, f64::INFINITY],
+            fix_scale: false,
+        }
+    }
+}
 
 /// The pose-alignment objective of one object:
 /// `L_pose = λ_2d · mean ‖π(x_k) − q_k‖² + λ_3d · mean ‖x_k − X_k‖²`, where `x_k` is the posed
@@ -48,8 +82,20 @@ impl PoseAlignment {
 
     /// Stacked weighted residuals `r` (so that `L_pose = Σ r²`) and, when `jacobian` is given,
     /// their derivatives with respect to the pose vector, one row per residual. Pairs whose
-    /// point falls behind the camera contribute only their 3D residual.
-    pub fn residuals(&self, pose: &Pose, mut jacobian: Option<&mut Vec<PoseVector>>) -> Vec<f64> {
+    /// point falls behind the camera contribute only their 3D residual; depth pairs
+    /// ([`PairKind::Depth`]) contribute one row, the depth difference along the optical axis.
+    pub fn residuals(&self, pose: &Pose, jacobian: Option<&mut Vec<PoseVector>>) -> Vec<f64> {
+        self.rows(pose, jacobian, None)
+    }
+
+    /// [`Self::residuals`], also recording for every row which pair it belongs to and whether
+    /// it is a pixel row (else a metre row).
+    fn rows(
+        &self,
+        pose: &Pose,
+        mut jacobian: Option<&mut Vec<PoseVector>>,
+        mut tags: Option<&mut Vec<RowTag>>,
+    ) -> Vec<f64> {
         let n = self.active().count().max(1) as f64;
         let w2 = (self.weight_2d / n).sqrt();
         let w3 = (self.weight_3d / n).sqrt();
@@ -60,16 +106,43 @@ impl PoseAlignment {
         if let Some(j) = jacobian.as_deref_mut() {
             j.clear();
         }
-        for c in self.active() {
+        if let Some(t) = tags.as_deref_mut() {
+            t.clear();
+        }
+        let mut tag = |pair: usize, pixels: bool, count: usize| {
+            if let Some(t) = tags.as_deref_mut() {
+                for _ in 0..count {
+                    t.push(RowTag { pair, pixels });
+                }
+            }
+        };
+        for (index, c) in self.active().enumerate() {
             let x = world_point(pose, &c.asset_point);
             let dx = world_point_jacobian(pose, &c.asset_point);
             let local = cam_from_world * (x - cam.position);
             let depth = -local.z;
+            if c.kind == PairKind::Depth {
+                let Some(target) = c.target_point else {
+                    continue;
+                };
+                let target_depth = -(cam_from_world * (target - cam.position)).z;
+                out.push(w3 * (depth - target_depth));
+                tag(index, false, 1);
+                if let Some(j) = jacobian.as_deref_mut() {
+                    let mut row = PoseVector::zeros();
+                    for (col, d) in dx.iter().enumerate() {
+                        row[col] = -w3 * (cam_from_world * d).z;
+                    }
+                    j.push(row);
+                }
+                continue;
+            }
             if depth > 1e-6 {
                 let u = k.cx + k.fx * local.x / depth;
                 let v = k.cy - k.fy * local.y / depth;
                 out.push(w2 * (u - c.target_pixel.x));
                 out.push(w2 * (v - c.target_pixel.y));
+                tag(index, true, 2);
                 if let Some(j) = jacobian.as_deref_mut() {
                     // u = cx + fx·x/(−z), v = cy + fy·y/z in the camera frame.
                     let du = Vector3::new(k.fx / depth, 0.0, k.fx * local.x / (depth * depth));
@@ -87,6 +160,7 @@ impl PoseAlignment {
             }
             if let Some(target) = c.target_point {
                 let r = x - target;
+                tag(index, false, 3);
                 for axis in 0..3 {
                     out.push(w3 * r[axis]);
                     if let Some(j) = jacobian.as_deref_mut() {
@@ -100,6 +174,163 @@ impl PoseAlignment {
             }
         }
         out
+    }
+
+    /// Per-row robust weights (Huber): each pair's pixel rows and metre rows are judged by
+    /// their unweighted error norm against `options.huber_px` / `options.huber_m`.
+    fn huber_weights(&self, r: &[f64], tags: &[RowTag], options: &FitOptions) -> Vec<f64> {
+        let n = self.active().count().max(1) as f64;
+        let w2 = (self.weight_2d / n).sqrt().max(1e-300);
+        let w3 = (self.weight_3d / n).sqrt().max(1e-300);
+        let mut norms: std::collections::HashMap<(usize, bool), f64> = Default::default();
+        for (ri, t) in r.iter().zip(tags) {
+            let raw = ri / if t.pixels { w2 } else { w3 };
+            *norms.entry((t.pair, t.pixels)).or_default() += raw * raw;
+        }
+        tags.iter()
+            .map(|t| {
+                let e = norms[&(t.pair, t.pixels)].sqrt();
+                let delta = if t.pixels {
+                    options.huber_px
+                } else {
+                    options.huber_m
+                };
+                if e <= delta || delta <= 0.0 {
+                    1.0
+                } else {
+                    delta / e
+                }
+            })
+            .collect()
+    }
+
+    /// The robust (Huber) loss at `pose`: each pair's pixel and metre errors count
+    /// quadratically up to their threshold and linearly beyond it.
+    pub fn robust_loss(&self, pose: &Pose, options: &FitOptions) -> f64 {
+        let mut tags = Vec::new();
+        let r = self.rows(pose, None, Some(&mut tags));
+        let n = self.active().count().max(1) as f64;
+        let w2 = (self.weight_2d / n).sqrt().max(1e-300);
+        let w3 = (self.weight_3d / n).sqrt().max(1e-300);
+        let mut norms: std::collections::BTreeMap<(usize, bool), f64> = Default::default();
+        for (ri, t) in r.iter().zip(&tags) {
+            let raw = ri / if t.pixels { w2 } else { w3 };
+            *norms.entry((t.pair, t.pixels)).or_default() += raw * raw;
+        }
+        norms
+            .iter()
+            .map(|(&(_, pixels), &e2)| {
+                let (w, delta) = if pixels {
+                    (self.weight_2d / n, options.huber_px)
+                } else {
+                    (self.weight_3d / n, options.huber_m)
+                };
+                let e = e2.sqrt();
+                w * if e <= delta || delta <= 0.0 {
+                    e2
+                } else {
+                    2.0 * delta * e - delta * delta
+                }
+            })
+            .sum()
+    }
+
+    /// Sets the confidence of every pair whose pixel or metre error at `pose` exceeds `k`
+    /// times its Huber threshold to 0 (so plain least squares on the rest agrees with the
+    /// robust fit); returns how many pairs were dropped.
+    pub fn trim_outliers(&mut self, pose: &Pose, options: &FitOptions, k: f64) -> usize {
+        let mut tags = Vec::new();
+        let r = self.rows(pose, None, Some(&mut tags));
+        let weights = self.huber_weights(&r, &tags, options);
+        let mut bad = std::collections::BTreeSet::new();
+        for (t, w) in tags.iter().zip(&weights) {
+            // Huber weight δ/e below 1/k means e > k·δ.
+            if *w < 1.0 / k {
+                bad.insert(t.pair);
+            }
+        }
+        let min = self.min_confidence;
+        let mut dropped = 0;
+        for (index, c) in self
+            .correspondences
+            .iter_mut()
+            .filter(|c| c.confidence >= min)
+            .enumerate()
+        {
+            if bad.contains(&index) {
+                c.confidence = 0.0;
+                dropped += 1;
+            }
+        }
+        dropped
+    }
+
+    /// Minimises the robust loss from `start` by Levenberg–Marquardt on iteratively reweighted
+    /// residuals, keeping the scale in `options.scale_range` (or fixed). Gravity stays fixed:
+    /// only scale, yaw and translation move.
+    pub fn fit(&self, start: &Pose, options: &FitOptions) -> Pose {
+        let clamp = |p: Pose| {
+            let mut p = p;
+            p.scale = if options.fix_scale {
+                start.scale
+            } else {
+                p.scale
+                    .clamp(options.scale_range[0], options.scale_range[1])
+            };
+            p
+        };
+        let mut pose = clamp(*start);
+        let mut cost = self.robust_loss(&pose, options);
+        let mut lambda = 1e-3;
+        let (mut jac, mut tags) = (Vec::new(), Vec::new());
+        for _ in 0..options.iterations {
+            let r = self.rows(&pose, Some(&mut jac), Some(&mut tags));
+            if r.is_empty() {
+                break;
+            }
+            let weights = self.huber_weights(&r, &tags, options);
+            let mut jtj = Matrix5::<f64>::zeros();
+            let mut jtr = PoseVector::zeros();
+            for ((ri, row), w) in r.iter().zip(&jac).zip(&weights) {
+                jtj += row * row.transpose() * *w;
+                jtr += row * (*ri * *w);
+            }
+            if options.fix_scale {
+                for k in 0..5 {
+                    jtj[(SCALE, k)] = 0.0;
+                    jtj[(k, SCALE)] = 0.0;
+                }
+                jtj[(SCALE, SCALE)] = 1.0;
+                jtr[SCALE] = 0.0;
+            }
+            let mut improved = false;
+            for _ in 0..10 {
+                let mut a = jtj;
+                for k in 0..5 {
+                    a[(k, k)] += lambda * jtj[(k, k)].max(1e-9) + 1e-12;
+                }
+                let Some(chol) = a.cholesky() else {
+                    lambda *= 10.0;
+                    continue;
+                };
+                let step = chol.solve(&(-jtr));
+                let candidate = clamp(from_vector(&(to_vector(&pose) + step)));
+                let c = self.robust_loss(&candidate, options);
+                if c < cost {
+                    let moved = (to_vector(&candidate) - to_vector(&pose)).amax();
+                    pose = candidate;
+                    cost = c;
+                    lambda = (lambda / 3.0).max(1e-9);
+                    improved = moved > 1e-9;
+                    break;
+                }
+                lambda *= 4.0;
+            }
+            if !improved {
+                break;
+            }
+        }
+        pose
     }
 
     /// The loss `L_pose` at `pose`.
@@ -122,7 +353,6 @@ impl PoseAlignment {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::params::{from_vector, to_vector};
     use nalgebra::Point3;
     use scenethesis_scene_graph::Intrinsics;
 
@@ -148,6 +378,7 @@ mod tests {
                     target_pixel: camera.project(&x).unwrap().pixel,
                     target_point: Some(x),
                     confidence: 0.9,
+                    kind: Default::default(),
                 }
             })
             .collect();

@@ -29,6 +29,7 @@
 mod alignment;
 mod contact;
 mod driver;
+mod guided;
 mod objective;
 mod obstacles;
 mod optimizer;
@@ -39,9 +40,10 @@ mod report;
 pub mod support;
 mod verify;
 
-pub use alignment::PoseAlignment;
+pub use alignment::{FitOptions, PoseAlignment};
 pub use contact::{cluster_contacts, CollisionState, Contact};
 pub use driver::{architecture_fields, optimize_scene, OptimizeSettings, SceneProblem};
+pub use guided::{align_to_guidance, GuidedPose, GuidedSettings};
 pub use objective::{LossSettings, Losses, ObjectProblem, RoomBounds, Stage};
 pub use obstacles::Obstacles;
 pub use optimizer::{LearningRates, Optimizer, Sgd, StageOutcome};

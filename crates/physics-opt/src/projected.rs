@@ -45,6 +45,14 @@ pub struct ProjectedGaussNewton {
     /// The physics stage stops when the object is collision-free and its lowest bottom point
     /// is within this of the target clearance, metres.
     pub resting_tolerance: f64,
+    /// Settle objects on their support (the stability loss). Off, the physics stage only
+    /// resolves collisions: the "+collision" row of the alignment ablation.
+    #[serde(default = "yes")]
+    pub stability: bool,
+}
+
+fn yes() -> bool {
+    true
 }
 
 impl Default for ProjectedGaussNewton {
@@ -56,6 +64,7 @@ impl Default for ProjectedGaussNewton {
             overshoot: 2.5e-4,
             min_horizontal_normal: 0.3,
             resting_tolerance: 2.5e-4,
+            stability: true,
         }
     }
 }
@@ -146,8 +155,13 @@ impl ProjectedGaussNewton {
         let mut iterations = 0;
         while iterations < self.physics_iterations {
             iterations += 1;
-            pose = self.settle_vertically(problem, pose);
+            if self.stability {
+                pose = self.settle_vertically(problem, pose);
+            }
             let state = problem.collision(&pose);
+            if state.is_free() && !self.stability {
+                break;
+            }
             if state.is_free() {
                 let rest = lowest_residual(&problem.stability_residuals(&pose));
                 if rest.is_none_or(|r| r.abs() <= self.resting_tolerance) {

@@ -349,6 +349,7 @@ fn alignment_recovers_a_pose_from_synthetic_correspondences() {
                 target_pixel: camera.project(&x).unwrap().pixel,
                 target_point: Some(x),
                 confidence: 0.9,
+                kind: Default::default(),
             }
         })
         .collect();

@@ -4,13 +4,17 @@ use std::collections::BTreeMap;
 use std::time::Instant;
 
 use scenethesis_agents::{Guide, KnowledgePlanner, Plan, PlanRequest, Planner, ProceduralGuide};
-use scenethesis_physics_opt::{OptimizeSettings, Optimizer, PrepareSettings, ProjectedGaussNewton};
+use scenethesis_correspondence::Matcher;
+use scenethesis_physics_opt::{
+    GuidedSettings, OptimizeSettings, Optimizer, PrepareSettings, ProjectedGaussNewton,
+};
 use scenethesis_retrieval::{AssetSource, RetrievalSource};
 use scenethesis_scene_graph::{Mesh, Scene};
 use serde::{Deserialize, Serialize};
 
 use crate::judge::{GeometricJudge, Judge};
 use crate::phases::clock::StageClock;
+use crate::phases::correspond::correspond;
 use crate::phases::judge::{judge, verdict_note, Attempt};
 use crate::phases::layout::lay_out;
 use crate::phases::optimize::optimize;
@@ -71,6 +75,10 @@ pub struct GeneratedScene {
     pub previews: Vec<(String, Vec<u8>)>,
     /// Metrics, verdict, re-plans and timings.
     pub report: Report,
+    /// What the guide of the chosen attempt saw — camera, guidance image, depth and masks —
+    /// when it read an image (the vision guide); `None` for the procedural guide. A VLM judge
+    /// can compare the scene with this image.
+    pub guidance: Option<scenethesis_correspondence::Guidance>,
 }
 
 /// A preview renderer: turns a finished scene into named PNG images.
@@ -97,6 +105,7 @@ pub struct Pipeline {
     optimizer: Box<dyn Optimizer>,
     judge: Box<dyn Judge>,
     renderer: Option<Box<dyn PreviewRenderer>>,
+    matcher: Option<(Box<dyn Matcher>, GuidedSettings)>,
 }
 
 impl std::fmt::Debug for Pipeline {
@@ -108,6 +117,7 @@ impl std::fmt::Debug for Pipeline {
             .field("optimizer", &self.optimizer.name())
             .field("judge", &self.judge.name())
             .field("renderer", &self.renderer.as_ref().map(|r| r.name()))
+            .field("matcher", &self.matcher.as_ref().map(|(m, _)| m.name()))
             .finish_non_exhaustive()
     }
 }
@@ -128,6 +138,7 @@ impl Pipeline {
             optimizer: Box::new(ProjectedGaussNewton::default()),
             judge: Box::new(GeometricJudge::default()),
             renderer: None,
+            matcher: None,
         }
     }
 
@@ -161,6 +172,18 @@ impl Pipeline {
         self
     }
 
+    /// Sets the matcher of the correspond stage (e.g. `scenethesis_correspondence::ShapeMatcher`) and its settings: when
+    /// the guide hands over guidance, every object is aligned to it before optimization.
+    /// Without a matcher (the default) the stage does not run.
+    pub fn with_matcher(
+        mut self,
+        matcher: impl Matcher + 'static,
+        settings: GuidedSettings,
+    ) -> Self {
+        self.matcher = Some((Box::new(matcher), settings));
+        self
+    }
+
     /// Sets the preview renderer.
     pub fn with_renderer(mut self, renderer: impl PreviewRenderer + 'static) -> Self {
         self.renderer = Some(Box::new(renderer));
@@ -189,7 +212,26 @@ impl Pipeline {
     /// fault (new asset variants and a new layout seed) and then drops them (those the prompt
     /// asked for last), keeping the best attempt. Deterministic for the same prompt, seed,
     /// options and providers.
+    ///
+    /// The report's `providers` lists what the run used of each model, counted on the calling
+    /// thread ([`scenethesis_models::metered`]), so parallel runs sharing providers each report
+    /// their own use.
     pub fn generate(
+        &self,
+        prompt: &str,
+        seed: u64,
+        options: &GenerateOptions,
+        progress: &mut dyn Progress,
+    ) -> Result<GeneratedScene, PipelineError> {
+        let (generated, used) =
+            scenethesis_models::metered(|| self.run(prompt, seed, options, progress));
+        let mut generated = generated?;
+        generated.report.providers = used;
+        Ok(generated)
+    }
+
+    /// [`Pipeline::generate`] without the usage accounting.
+    fn run(
         &self,
         prompt: &str,
         seed: u64,
@@ -255,6 +297,7 @@ impl Pipeline {
             plan: best.plan,
             previews,
             report,
+            guidance: best.guidance,
         })
     }
 
@@ -289,12 +332,32 @@ impl Pipeline {
             },
         )?;
         let mut scene = layout.scene;
+        let alignments = match (&layout.guidance, &self.matcher) {
+            (Some(guidance), Some((matcher, settings))) => clock.run(
+                Stage::Correspond,
+                round,
+                || {
+                    correspond(
+                        &mut scene,
+                        guidance,
+                        &retrieved,
+                        cache,
+                        matcher.as_ref(),
+                        settings,
+                        options,
+                    )
+                },
+                |a| format!("{} objects aligned", a.len()),
+            )?,
+            _ => BTreeMap::new(),
+        };
         let (placement, meshes) = clock.run(
             Stage::Optimize,
             round,
             || {
                 optimize(
                     &mut scene,
+                    &alignments,
                     &retrieved,
                     cache,
                     self.optimizer.as_ref(),
@@ -312,7 +375,15 @@ impl Pipeline {
         let verdict = clock.run(
             Stage::Judge,
             round,
-            || judge(self.judge.as_ref(), plan, &scene, &meshes),
+            || {
+                judge(
+                    self.judge.as_ref(),
+                    plan,
+                    &scene,
+                    &meshes,
+                    layout.guidance.as_ref(),
+                )
+            },
             verdict_note,
         )?;
         Ok(Attempt {
@@ -322,6 +393,7 @@ impl Pipeline {
             placement,
             verdict,
             guide_dropped: layout.dropped,
+            guidance: layout.guidance,
             round,
         })
     }

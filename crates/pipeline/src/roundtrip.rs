@@ -275,7 +275,10 @@ fn morph(mask: &Mask, r: i64, dilate: bool) -> Mask {
 }
 
 /// The true box of every object: its asset-frame bounds under its pose.
-fn true_boxes(scene: &Scene, meshes: &BTreeMap<String, Mesh>) -> BTreeMap<String, LiftedBox> {
+pub(crate) fn true_boxes(
+    scene: &Scene,
+    meshes: &BTreeMap<String, Mesh>,
+) -> BTreeMap<String, LiftedBox> {
     let mut out = BTreeMap::new();
     for o in &scene.objects {
         let Some(aabb) = meshes.get(&o.id).and_then(|m| m.bounds()) else {
@@ -330,12 +333,12 @@ pub fn yaw_symmetry(mesh: &Mesh) -> f64 {
 }
 
 /// Yaw error in degrees modulo `period` radians.
-fn yaw_error(a: f64, b: f64, period: f64) -> f64 {
+pub(crate) fn yaw_error(a: f64, b: f64, period: f64) -> f64 {
     let d = (a - b).rem_euclid(period);
     d.min(period - d).to_degrees()
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
+pub(crate) fn median(mut v: Vec<f64>) -> f64 {
     if v.is_empty() {
         return f64::NAN;
     }

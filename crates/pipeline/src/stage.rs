@@ -14,6 +14,9 @@ pub enum Stage {
     Retrieve,
     /// Plan → initial layout.
     Guide,
+    /// Matching each object's asset against the guidance image and aligning its pose (only
+    /// when the guide produced guidance and a matcher is configured).
+    Correspond,
     /// Physics-aware pose optimization.
     Optimize,
     /// Geometric checks, deciding whether to re-plan.
@@ -26,10 +29,11 @@ pub enum Stage {
 
 impl Stage {
     /// Every stage, in order.
-    pub const ALL: [Stage; 7] = [
+    pub const ALL: [Stage; 8] = [
         Stage::Plan,
         Stage::Retrieve,
         Stage::Guide,
+        Stage::Correspond,
         Stage::Optimize,
         Stage::Judge,
         Stage::Render,
@@ -42,6 +46,7 @@ impl Stage {
             Stage::Plan => "plan",
             Stage::Retrieve => "retrieve",
             Stage::Guide => "guide",
+            Stage::Correspond => "correspond",
             Stage::Optimize => "optimize",
             Stage::Judge => "judge",
             Stage::Render => "render",

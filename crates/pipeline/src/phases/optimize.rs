@@ -3,15 +3,17 @@
 
 use std::collections::BTreeMap;
 
-use scenethesis_physics_opt::{optimize_scene, Optimizer, Placement, SceneProblem};
+use scenethesis_physics_opt::{optimize_scene, Optimizer, Placement, PoseAlignment, SceneProblem};
 use scenethesis_scene_graph::{Mesh, Scene};
 
 use super::retrieve::{AssetCache, Retrieved};
 use crate::{GenerateOptions, PipelineError};
 
-/// Optimizes `scene` in place; returns the placement report and each object's mesh.
+/// Optimizes `scene` in place, with the pose-alignment correspondences of `alignments` (by
+/// object id; empty without guidance); returns the placement report and each object's mesh.
 pub(crate) fn optimize(
     scene: &mut Scene,
+    alignments: &BTreeMap<String, PoseAlignment>,
     retrieved: &Retrieved,
     cache: &mut AssetCache,
     optimizer: &dyn Optimizer,
@@ -31,6 +33,9 @@ pub(crate) fn optimize(
             })?;
         problem.set_asset(&object.id, cache.prepared(key, &options.prepare)?);
         meshes.insert(object.id.clone(), cache.asset(key).mesh.clone());
+    }
+    for (id, alignment) in alignments {
+        problem.set_alignment(id, alignment.clone());
     }
     let placement = optimize_scene(&problem, optimizer, &options.optimize)?;
     placement.apply_to(scene);

@@ -1,0 +1,262 @@
+//! Pose alignment to a guidance image with matches refreshed while the pose moves: discrete
+//! yaw hypotheses scored by shape agreement, then rounds of (render the asset at its current
+//! pose → match → lift → robust fit of the alignment loss), keeping the best-agreeing pose.
+
+use nalgebra::Point3;
+use scenethesis_correspondence::shape::{pick_yaw, search_yaw, shape_score};
+use scenethesis_correspondence::{
+    lift, projected_bbox, rasterize, Matcher, ShapeMatcher, ShapeScore, TargetRegion, Window,
+};
+use scenethesis_scene_graph::{Mesh, Pose};
+use serde::{Deserialize, Serialize};
+
+use crate::alignment::{FitOptions, PoseAlignment};
+
+/// Settings of [`align_to_guidance`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GuidedSettings {
+    /// Yaw hypotheses, evenly spaced over the full turn from the starting yaw (0 or 1: keep
+    /// the starting yaw).
+    pub yaw_candidates: usize,
+    /// Candidates within this fraction of the best score count as tied; a facing hint picks
+    /// among them.
+    pub hint_tie: f64,
+    /// Match refresh rounds (render, match, lift, fit) at most.
+    pub refreshes: usize,
+    /// Robust fit per round.
+    pub fit: FitOptions,
+    /// Weight of the 2D term per squared pixel.
+    pub weight_2d: f64,
+    /// Depth noise σ as a fraction of the object's depth: the 3D/depth weight is `1/σ²`.
+    pub depth_noise: f64,
+    /// Margin around the mask's pixel box that the renders cover, as a fraction of its larger
+    /// side (at least 6 pixels).
+    pub window_margin: f64,
+    /// Masks with fewer pixels are not matched.
+    pub min_mask_pixels: usize,
+    /// Rounds stop once the pose moves less than this (metres and radians).
+    pub tolerance: f64,
+}
+
+impl Default for GuidedSettings {
+    fn default() -> Self {
+        Self {
+            yaw_candidates: 24,
+            hint_tie: 0.03,
+            refreshes: 10,
+            fit: FitOptions {
+                iterations: 12,
+                ..FitOptions::default()
+            },
+            weight_2d: 1.0,
+            depth_noise: 0.03,
+            window_margin: 0.25,
+            min_mask_pixels: 30,
+            tolerance: 1e-3,
+        }
+    }
+}
+
+/// What [`align_to_guidance`] found for one object.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GuidedPose {
+    /// The aligned pose.
+    pub pose: Pose,
+    /// The correspondences matched at that pose, for the optimizer's alignment stage.
+    pub alignment: PoseAlignment,
+    /// Shape agreement at the starting pose.
+    pub start_score: ShapeScore,
+    /// Shape agreement at the aligned pose.
+    pub score: ShapeScore,
+    /// Refresh rounds run.
+    pub rounds: usize,
+}
+
+/// `pose` shifted horizontally so that the asset's visible silhouette (rendered pixels not
+/// hidden by nearer guidance) has the mask's pixel centroid and the mask's median depth.
+fn recentred(mesh: &Mesh, pose: &Pose, target: &TargetRegion<'_>, window: Window) -> Option<Pose> {
+    let view = rasterize(mesh, pose, target.camera, window);
+    let median = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v.get(v.len() / 2).copied()
+    };
+    let (mut rx, mut ry, mut rd) = (Vec::new(), Vec::new(), Vec::new());
+    for y in 0..view.depth.height() {
+        for x in 0..view.depth.width() {
+            let Some(d) = view.depth.get(x, y) else {
+                continue;
+            };
+            let (gx, gy) = view.to_guidance(x, y);
+            let hidden = !target.mask.contains(gx, gy)
+                && target.depth_at(gx, gy).is_some_and(|t| t < d - 0.05);
+            if !hidden {
+                rx.push(gx as f64);
+                ry.push(gy as f64);
+                rd.push(d as f64);
+            }
+        }
+    }
+    let (mut mx, mut my, mut md) = (Vec::new(), Vec::new(), Vec::new());
+    for (x, y) in target.mask.pixels() {
+        mx.push(x as f64);
+        my.push(y as f64);
+        if let Some(d) = target.depth_at(x, y) {
+            md.push(d as f64);
+        }
+    }
+    if rx.is_empty() || mx.is_empty() {
+        return None;
+    }
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+    let centre = pose.transform_point(&mesh.bounds()?.center());
+    let p = target.camera.project(&centre)?;
+    let depth = match (median(md), median(rd)) {
+        (Some(m), Some(r)) => p.depth + (m - r),
+        _ => p.depth,
+    };
+    let pixel = p.pixel + nalgebra::Vector2::new(mean(&mx) - mean(&rx), mean(&my) - mean(&ry));
+    let moved = target.camera.unproject(&pixel, depth.max(0.05));
+    let mut out = *pose;
+    out.translation.x += moved.x - centre.x;
+    out.translation.z += moved.z - centre.z;
+    Some(out)
+}
+
+/// Aligns `mesh`, starting at `start`, to its object's guidance `target`: yaw hypotheses ranked
+/// by [`ShapeMatcher`] scores (a facing `hint` settles ties such as front/back), then rounds of
+/// matching with `matcher` and robust fitting of the pose-alignment loss. The scale stays in
+/// `scale_range`. Returns the best-scoring pose seen (never worse than the start), or `None`
+/// when the mask is too small or the asset is not in view.
+pub fn align_to_guidance(
+    mesh: &Mesh,
+    start: &Pose,
+    scale_range: [f64; 2],
+    target: &TargetRegion<'_>,
+    matcher: &dyn Matcher,
+    hint: Option<f64>,
+    settings: &GuidedSettings,
+) -> Option<GuidedPose> {
+    let camera = target.camera;
+    let (w, h) = (camera.intrinsics.width, camera.intrinsics.height);
+    if target.mask.area() < settings.min_mask_pixels {
+        return None;
+    }
+    let bbox = target.mask.bounding_box()?;
+    let side = (bbox.2 - bbox.0).max(bbox.3 - bbox.1) as f64;
+    let margin = ((side * settings.window_margin) as u32).max(6);
+    let mask_window = Window::around(bbox, margin, w, h)?;
+    let window_at = |pose: &Pose| {
+        projected_bbox(mesh, pose, camera)
+            .and_then(|b| Window::around(b, 2, w, h))
+            .map_or(mask_window, |p| p.union(&mask_window))
+    };
+    let scorer = ShapeMatcher::default();
+    let score_at = |pose: &Pose| {
+        let view = rasterize(mesh, pose, camera, window_at(pose));
+        shape_score(&view, target, &scorer)
+    };
+    let start_score = score_at(start);
+    let mut best = (*start, start_score);
+    // A lift thrown off by stray depth (a mask spilling onto the wall behind) can leave the
+    // object far from its mask: try the start moved so that its visible silhouette's centroid
+    // and median depth match the mask's.
+    if let Some(moved) = recentred(mesh, start, target, window_at(start)) {
+        let score = score_at(&moved);
+        if score.score > best.1.score {
+            best = (moved, score);
+        }
+    }
+    let start_pose = best.0;
+    let start = &start_pose;
+    if settings.yaw_candidates > 1 {
+        let step = std::f64::consts::TAU / settings.yaw_candidates as f64;
+        let yaws: Vec<f64> = (0..settings.yaw_candidates)
+            .map(|k| start.yaw + k as f64 * step)
+            .collect();
+        // One window for every hypothesis: the mask's, grown to what the asset can cover.
+        let radius = mesh.bounds().map_or(0.0, |b| {
+            let e = b.max - b.min;
+            (e.x * e.x + e.z * e.z).sqrt() / 2.0
+        }) * start.scale;
+        let pivot = mesh.bounds().map_or(Point3::origin(), |b| b.center());
+        let centre = start.transform_point(&pivot);
+        let reach = camera.project(&centre).map(|p| {
+            let r = (camera.intrinsics.fx * radius / p.depth).ceil() as u32 + 2;
+            let (x, y) = (p.pixel.x.max(0.0) as u32, p.pixel.y.max(0.0) as u32);
+            Window::around((x, y, x + 1, y + 1), r, w, h)
+        });
+        let window = match reach.flatten() {
+            Some(r) => r.union(&window_at(start)),
+            None => window_at(start),
+        };
+        let candidates = search_yaw(mesh, start, camera, target, window, &yaws, &scorer);
+        if let Some(pick) = pick_yaw(&candidates, hint, settings.hint_tie) {
+            let score = score_at(&pick.pose);
+            if score.score > best.1.score {
+                best = (pick.pose, score);
+            }
+        }
+    }
+    let mut pose = best.0;
+    let mut alignment = PoseAlignment::new(*camera, Vec::new());
+    let mut rounds = 0;
+    for _ in 0..settings.refreshes {
+        rounds += 1;
+        let view = rasterize(mesh, &pose, camera, window_at(&pose));
+        let pairs = lift(&matcher.match_view(&view, target), &view, target);
+        let depth = camera
+            .project(&pose.transform_point(&mesh.bounds()?.center()))
+            .map_or(1.0, |p| p.depth);
+        let sigma = (settings.depth_noise * depth).max(0.01);
+        alignment = PoseAlignment {
+            weight_2d: settings.weight_2d,
+            weight_3d: 1.0 / (sigma * sigma),
+            ..PoseAlignment::new(*camera, pairs)
+        };
+        if alignment.active().count() < 6 {
+            break;
+        }
+        let fit = FitOptions {
+            scale_range,
+            huber_m: settings.fit.huber_m.max(2.0 * sigma),
+            ..settings.fit
+        };
+        let next = alignment.fit(&pose, &fit);
+        let moved = (next.translation - pose.translation)
+            .norm()
+            .max((next.yaw - pose.yaw).abs())
+            .max((next.scale - pose.scale).abs());
+        pose = next;
+        let score = score_at(&pose);
+        if score.score > best.1.score {
+            best = (pose, score);
+        }
+        if moved < settings.tolerance {
+            break;
+        }
+    }
+    if best.0 != pose {
+        // Hand the optimizer the matches of the pose kept.
+        let view = rasterize(mesh, &best.0, camera, window_at(&best.0));
+        alignment.correspondences = lift(&matcher.match_view(&view, target), &view, target);
+    }
+    let depth = camera
+        .project(&best.0.transform_point(&mesh.bounds()?.center()))
+        .map_or(1.0, |p| p.depth);
+    let trim = FitOptions {
+        scale_range,
+        huber_m: settings
+            .fit
+            .huber_m
+            .max(2.0 * (settings.depth_noise * depth).max(0.01)),
+        ..settings.fit
+    };
+    alignment.trim_outliers(&best.0, &trim, 2.0);
+    Some(GuidedPose {
+        pose: best.0,
+        alignment,
+        start_score,
+        score: best.1,
+        rounds,
+    })
+}

@@ -1,0 +1,135 @@
+//! The correspond stage: between the guide and the optimizer, every object the guidance
+//! shows is matched against its mask and depth ([`Matcher`], by default the shape matcher) and
+//! its pose aligned with matches refreshed while it moves
+//! ([`scenethesis_physics_opt::align_to_guidance`]). The aligned poses become the optimizer's
+//! starting poses and the final matches its pose-alignment term, so the optimizer runs the
+//! paper's two stages: alignment first, then the physical losses.
+
+use std::collections::BTreeMap;
+
+use rayon::prelude::*;
+use scenethesis_correspondence::{DepthMap, Guidance, Matcher, TargetRegion};
+use scenethesis_physics_opt::{align_to_guidance, GuidedPose, GuidedSettings};
+use scenethesis_scene_graph::{Mesh, RelationKind, Scene, SceneObject};
+
+/// The yaw that turns `object`'s front (+Z) the way the plan says, when it says so: toward the
+/// target of a `facing` relation (an object of `scene`), or away from the wall of an
+/// `against-wall` relation. This settles the front/back ambiguity of silhouettes.
+pub fn facing_hint(scene: &Scene, object: &SceneObject) -> Option<f64> {
+    let here = object.pose.translation;
+    for r in &object.relations {
+        match r.kind {
+            RelationKind::Facing => {
+                if let Some(t) = scene.object(&r.target) {
+                    let d = t.pose.translation - here;
+                    if d.x.hypot(d.z) > 1e-6 {
+                        return Some(d.x.atan2(d.z));
+                    }
+                }
+            }
+            RelationKind::AgainstWall => {
+                if let Some(w) = scene.architecture.walls.iter().find(|w| w.id == r.target) {
+                    let n = w.inward_normal();
+                    return Some(n.x.atan2(n.y));
+                }
+            }
+            _ => {}
+        }
+    }
+    None
+}
+
+/// Aligns every object of `scene` that has a mesh in `meshes` and a mask in `guidance`,
+/// starting from its pose in `scene`, with scale kept within `scale_ranges` (by object id,
+/// default ×0.7–×1.4 of the starting scale). `depth_scale` multiplies the guidance depth first
+/// (the global scale the guide calibrated on the floor; 1 when the depth is already metric).
+/// Objects run in parallel; the result does not depend on the thread count.
+pub fn correspond(
+    scene: &Scene,
+    meshes: &BTreeMap<String, Mesh>,
+    scale_ranges: &BTreeMap<String, [f64; 2]>,
+    guidance: &Guidance,
+    depth_scale: f64,
+    matcher: &dyn Matcher,
+    settings: &GuidedSettings,
+) -> BTreeMap<String, GuidedPose> {
+    let scaled;
+    let depth = match &guidance.depth {
+        Some(d) if (depth_scale - 1.0).abs() > 1e-12 => {
+            scaled = DepthMap::from_fn(d.width(), d.height(), |u, v| {
+                d.get(u, v)
+                    .map_or(f32::NAN, |z| (z as f64 * depth_scale) as f32)
+            });
+            Some(&scaled)
+        }
+        other => other.as_ref(),
+    };
+    scene
+        .objects
+        .par_iter()
+        .filter_map(|object| {
+            let mesh = meshes.get(&object.id)?;
+            let mask = guidance.masks.get(&object.id)?;
+            let target = TargetRegion {
+                camera: &guidance.camera,
+                mask,
+                depth,
+            };
+            let s = object.pose.scale;
+            let range = scale_ranges
+                .get(&object.id)
+                .copied()
+                .unwrap_or([0.7 * s, 1.4 * s]);
+            let hint = facing_hint(scene, object);
+            align_to_guidance(mesh, &object.pose, range, &target, matcher, hint, settings)
+                .map(|g| (object.id.clone(), g))
+        })
+        .collect::<Vec<_>>()
+        .into_iter()
+        .collect()
+}
+
+/// Guidance of `scene` seen by `camera`, drawn by the CPU rasterizer: each pixel belongs to the
+/// nearest object's mask and holds its depth (0 where no object is; no architecture, a grey
+/// image). For tests and benchmarks of the correspond stage without a GPU.
+pub fn rasterized_guidance(
+    scene: &Scene,
+    meshes: &BTreeMap<String, Mesh>,
+    camera: &scenethesis_scene_graph::Camera,
+) -> Guidance {
+    use scenethesis_correspondence::{rasterize, Mask, RgbImage, Window};
+    let (w, h) = (camera.intrinsics.width, camera.intrinsics.height);
+    let window = Window::full(camera);
+    let views: Vec<(&str, scenethesis_correspondence::RenderedView)> = scene
+        .objects
+        .iter()
+        .filter_map(|o| {
+            Some((
+                o.id.as_str(),
+                rasterize(meshes.get(&o.id)?, &o.pose, camera, window),
+            ))
+        })
+        .collect();
+    let mut masks: BTreeMap<String, Mask> = views
+        .iter()
+        .map(|(id, _)| (id.to_string(), Mask::new(w, h)))
+        .collect();
+    let depth = DepthMap::from_fn(w, h, |x, y| {
+        let nearest = views
+            .iter()
+            .filter_map(|(id, v)| v.depth.get(x, y).map(|d| (d, *id)))
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        match nearest {
+            Some((d, id)) => {
+                if let Some(m) = masks.get_mut(id) {
+                    m.set(x, y, true);
+                }
+                d
+            }
+            None => 0.0,
+        }
+    });
+    let image = RgbImage::new(w, h, vec![128; w as usize * h as usize * 3])
+        .expect("the image has the camera's size");
+    Guidance::new(*camera, image, Some(depth), masks).expect("every buffer has the camera's size")
+}

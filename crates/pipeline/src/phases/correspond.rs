@@ -1,0 +1,49 @@
+//! Correspond: when the guide produced guidance and a matcher is configured, every object the
+//! guidance shows is matched against its mask and depth and its pose aligned
+//! ([`crate::correspond::correspond`]); the aligned poses replace the guide's and the final
+//! matches become the optimizer's pose-alignment term (stage 1 of its two stages).
+
+use std::collections::BTreeMap;
+
+use scenethesis_correspondence::{Guidance, Matcher};
+use scenethesis_physics_opt::{GuidedSettings, PoseAlignment};
+use scenethesis_scene_graph::Scene;
+
+use super::retrieve::{AssetCache, Retrieved};
+use crate::{GenerateOptions, PipelineError};
+
+/// Aligns `scene`'s poses to `guidance` in place (its depth taken as metric); returns the
+/// correspondences per aligned object.
+pub(crate) fn correspond(
+    scene: &mut Scene,
+    guidance: &Guidance,
+    retrieved: &Retrieved,
+    cache: &mut AssetCache,
+    matcher: &dyn Matcher,
+    settings: &GuidedSettings,
+    options: &GenerateOptions,
+) -> Result<BTreeMap<String, PoseAlignment>, PipelineError> {
+    let mut meshes = BTreeMap::new();
+    let mut ranges = BTreeMap::new();
+    for object in &scene.objects {
+        let Some(key) = retrieved.chosen.get(&object.id) else {
+            continue;
+        };
+        ranges.insert(
+            object.id.clone(),
+            cache.prepared(key, &options.prepare)?.scale_range(),
+        );
+        meshes.insert(object.id.clone(), cache.asset(key).mesh.clone());
+    }
+    let guided =
+        crate::correspond::correspond(scene, &meshes, &ranges, guidance, 1.0, matcher, settings);
+    for object in &mut scene.objects {
+        if let Some(g) = guided.get(&object.id) {
+            object.pose = g.pose;
+        }
+    }
+    Ok(guided
+        .into_iter()
+        .map(|(id, g)| (id, g.alignment))
+        .collect())
+}
