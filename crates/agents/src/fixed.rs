@@ -146,7 +146,25 @@ pub fn check_plan(plan: &Plan, categories: Option<&BTreeSet<String>>) -> Result<
                 ));
             }
         }
+        let wall_parent = |wall: &str| {
+            PlanIssue::new(
+                field("parent"),
+                format!(
+                    "`{wall}` is a wall; a plan hangs an object on a wall with parent `ground` and \
+                     zone `wall-mounted` (the layout picks the wall, and scene.json then names it \
+                     as the parent with support `mounted`)"
+                ),
+            )
+        };
         match &object.parent {
+            ParentRef::Wall(wall) => return Err(wall_parent(wall)),
+            ParentRef::Ground if object.support == RelationKind::Mounted => {
+                return Err(PlanIssue::new(
+                    field("support"),
+                    "`mounted` is what scene.json says of an object hanging on a wall; in a plan \
+                     give it support `against-wall` and zone `wall-mounted`",
+                ));
+            }
             ParentRef::Ground => {
                 if !matches!(
                     object.support,
@@ -172,6 +190,7 @@ pub fn check_plan(plan: &Plan, categories: Option<&BTreeSet<String>>) -> Result<
                 match index.get(parent.as_str()) {
                     Some(&p) if p < i => {}
                     Some(_) => unreachable!("ids are unique and this one was just inserted"),
+                    None if WALLS.contains(&parent.as_str()) => return Err(wall_parent(parent)),
                     None => {
                         let known = plan.objects.iter().any(|o| &o.id == parent);
                         return Err(PlanIssue::new(

@@ -121,6 +121,28 @@ fn a_support_that_does_not_fit_the_parent_is_refused() {
 }
 
 #[test]
+fn a_plan_hangs_objects_by_zone_not_by_a_wall_parent_or_a_mounted_support() {
+    // Support `mounted` on the ground: refused, pointing at the zone.
+    let mut p = knowledge_plan();
+    let last = p.objects.len() - 1;
+    p.objects[last].parent = ParentRef::Ground;
+    p.objects[last].support = RelationKind::Mounted;
+    let (field, message) = invalid(&p);
+    assert_eq!(field, format!("objects[{last}].support"));
+    assert!(message.contains("wall-mounted"), "{message}");
+    // A wall id as parent: refused the same way, not as an unknown object.
+    let mut p = knowledge_plan();
+    p.objects[last].parent = ParentRef::Object("wall_0".into());
+    p.objects[last].support = RelationKind::On;
+    let (field, message) = invalid(&p);
+    assert_eq!(field, format!("objects[{last}].parent"));
+    assert!(
+        message.contains("`wall_0` is a wall") && message.contains("wall-mounted"),
+        "{message}"
+    );
+}
+
+#[test]
 fn an_unknown_category_fails_when_planning_with_the_sources_categories() {
     let mut p = knowledge_plan();
     p.objects[2].category = "hoverboard".into();

@@ -34,7 +34,7 @@ fn check_scene(prompt: &str, scene: &Scene) {
     let ground: Vec<&SceneObject> = scene
         .objects
         .iter()
-        .filter(|o| o.parent == ParentRef::Ground)
+        .filter(|o| matches!(o.parent, ParentRef::Ground | ParentRef::Wall(_)))
         .collect();
     for o in &ground {
         let b = o.world_aabb();
@@ -61,13 +61,14 @@ fn check_scene(prompt: &str, scene: &Scene) {
             );
         }
     }
-    // Children sit on their parents and never overlap their siblings on a surface.
+    // Children sit on their parents (or hang on their walls) and never overlap their siblings
+    // on a surface (or a wall).
     for o in scene
         .objects
         .iter()
         .filter(|o| o.parent != ParentRef::Ground)
     {
-        let parent = o.parent.object_id().unwrap();
+        let parent = o.parent.as_str();
         let held = relation_holds(scene, &o.id, &Relation::new(o.support, parent)).unwrap();
         assert!(held, "{prompt}: {} is not {} {parent}", o.id, o.support);
         for s in scene
@@ -329,4 +330,47 @@ fn nominal_assets_lay_out_plans_before_retrieval() {
         .layout(&plan, &NominalAssets::default(), 4)
         .unwrap();
     check_scene("a hospital ward (nominal)", &guided.scene);
+}
+
+#[test]
+fn wall_mounted_objects_name_their_wall_and_hang_on_it() {
+    use scenethesis_agents::Zone;
+    for prompt in [
+        "a museum gallery",
+        "a bedroom with a bed, a wardrobe, a mirror and a painting above the bed",
+    ] {
+        let (plan, guided) = layout(prompt, 0);
+        let scene = &guided.scene;
+        let mut mounted = 0;
+        for o in &scene.objects {
+            let planned = plan.objects.iter().find(|p| p.id == o.id).unwrap();
+            if planned.zone != Zone::WallMounted {
+                assert!(!o.fixed_to_world(), "{prompt}: {} is welded", o.id);
+                assert!(o.parent.wall_id().is_none(), "{prompt}: {}", o.id);
+                continue;
+            }
+            mounted += 1;
+            let wall = o
+                .parent
+                .wall_id()
+                .unwrap_or_else(|| panic!("{prompt}: {} hangs on no wall: {}", o.id, o.parent));
+            assert!(scene.architecture.wall(wall).is_some());
+            assert_eq!(o.support, RelationKind::Mounted, "{prompt}: {}", o.id);
+            assert!(o.fixed_to_world());
+            assert!(
+                o.relations
+                    .iter()
+                    .all(|r| r.kind != RelationKind::AgainstWall),
+                "{prompt}: {} repeats its wall as a relation",
+                o.id
+            );
+            assert_eq!(
+                relation_holds(scene, &o.id, &Relation::new(RelationKind::Mounted, wall)),
+                Some(true),
+                "{prompt}: {} is not on {wall}",
+                o.id
+            );
+        }
+        assert!(mounted > 0, "{prompt}: nothing hangs on a wall");
+    }
 }

@@ -6,7 +6,7 @@ use nalgebra::Point2;
 use scenethesis_scene_graph::{Aabb, Architecture, Environment, Floor, Mesh, Scene, Wall};
 
 use crate::glb::GlbScene;
-use crate::scene::{is_mounted_category, EvalObject, EvalScene, WALL_MOUNT_MIN_BOTTOM};
+use crate::scene::{EvalObject, EvalScene, WALL_MOUNT_MIN_BOTTOM};
 use crate::EvalError;
 
 /// Gap (m) under which an object counts as resting on the floor or on the object below it when
@@ -131,7 +131,6 @@ fn load_glb_unchecked(path: &Path) -> Result<EvalScene, EvalError> {
                     parent: None,
                     support: None,
                     relations: Vec::new(),
-                    welded: false,
                 });
             }
         }
@@ -287,14 +286,16 @@ fn wall_from_box(id: &str, b: &Aabb) -> Wall {
     }
 }
 
-/// Fills parents and wall mounting for objects of a scene that states neither.
+/// Fills parents and wall mounting for objects of a scene that states neither: an object with
+/// nothing beneath it that touches a wall and whose bottom is above [`WALL_MOUNT_MIN_BOTTOM`]
+/// hangs on that wall (support `mounted`, so welded); anything else off the floor and
+/// unsupported stays without a support and is simulated, so it falls.
 fn infer_support(objects: &mut [EvalObject], walls: &[Wall]) {
     use scenethesis_scene_graph::RelationKind;
     let boxes: Vec<Aabb> = objects.iter().map(EvalObject::aabb).collect();
     let ids: Vec<String> = objects.iter().map(|o| o.id.clone()).collect();
     for (i, object) in objects.iter_mut().enumerate() {
         let b = &boxes[i];
-        object.welded = is_mounted_category(&object.category);
         if b.min.y <= SUPPORT_GAP {
             object.support = Some(RelationKind::OnFloor);
             continue;
@@ -327,8 +328,7 @@ fn infer_support(objects: &mut [EvalObject], walls: &[Wall]) {
                         && wb.min.z - 0.05 <= b.max.z
                 });
                 if near_wall && b.min.y > WALL_MOUNT_MIN_BOTTOM {
-                    object.welded = true;
-                    object.support = Some(RelationKind::AgainstWall);
+                    object.support = Some(RelationKind::Mounted);
                 }
             }
         }

@@ -45,7 +45,7 @@ pub struct SceneMetrics {
     pub stability_tested: usize,
     /// The unstable objects with how far they moved and turned.
     pub unstable: Vec<UnstableObject>,
-    /// Wall- or ceiling-mounted objects, welded and excluded from stability.
+    /// Objects mounted on a wall (support `mounted`), welded and excluded from stability.
     pub welded: Vec<String>,
     /// Objects without volume, excluded from stability.
     pub stability_skipped: Vec<String>,

@@ -1,15 +1,14 @@
 //! The evaluation input: objects with world-space meshes, their support links, and the room.
 
 use scenethesis_assets::import::{AssetResolver, ResolveError};
-use scenethesis_assets::{catalog, Placement};
 use scenethesis_scene_graph::{
-    Aabb, Architecture, Mesh, ParentRef, Relation, RelationKind, Scene, SceneObject,
+    Aabb, Architecture, Mesh, Relation, RelationKind, Scene, SceneObject,
 };
 
 use crate::EvalError;
 
-/// Height (m) above which an object standing against a wall with no object beneath it counts as
-/// wall-mounted.
+/// Height (m) above which an object of a foreign scene (one without `scene.json`) that touches
+/// a wall with nothing beneath it is taken to hang on that wall (support `mounted`).
 pub const WALL_MOUNT_MIN_BOTTOM: f64 = 0.3;
 
 /// One movable object to evaluate.
@@ -25,23 +24,20 @@ pub struct EvalObject {
     /// Yaw (radians about +Y) of the object's own frame; its footprint is the box of the mesh
     /// in this frame, projected on the floor.
     pub yaw: f64,
-    /// The object it rests on, or `None` for the ground.
+    /// The object it rests on, or `None` for the ground or the wall it hangs on (both are
+    /// reached from the floor).
     pub parent: Option<String>,
-    /// How it rests on its parent (`on-floor`, `on`, `inside`, `under`, `against-wall`), when
-    /// known.
+    /// How it rests on its parent (`on-floor`, `on`, `inside`, `under`, `against-wall`,
+    /// `mounted`), when known.
     pub support: Option<RelationKind>,
     /// Further spatial relations the scene states for it.
     pub relations: Vec<Relation>,
-    /// Wall- or ceiling-mounted: fixed in the simulation and excluded from the stability rates.
-    pub welded: bool,
 }
 
 impl EvalObject {
-    /// An object from a scene-graph object and its asset-frame mesh (posed here).
-    ///
-    /// It is welded when its category is a wall or ceiling category of the built-in library, or
-    /// when it stands `against-wall` on the ground with its bottom above
-    /// [`WALL_MOUNT_MIN_BOTTOM`].
+    /// An object from a scene-graph object and its asset-frame mesh (posed here). It is welded
+    /// exactly when the scene says it is fixed to the world
+    /// ([`SceneObject::fixed_to_world`]: mounted on a wall).
     pub fn from_scene_object(object: &SceneObject, asset_mesh: &Mesh) -> Self {
         Self::from_scene_object_world(object, asset_mesh.transformed(&object.pose))
     }
@@ -49,13 +45,6 @@ impl EvalObject {
     /// Like [`EvalObject::from_scene_object`] with a mesh that is already in world coordinates.
     pub fn from_scene_object_world(object: &SceneObject, world_mesh: Mesh) -> Self {
         let parent = object.parent.object_id().map(str::to_owned);
-        let bottom = world_mesh
-            .bounds()
-            .map_or(object.world_aabb().min.y, |b| b.min.y);
-        let welded = is_mounted_category(&object.category)
-            || (object.parent == ParentRef::Ground
-                && object.support == RelationKind::AgainstWall
-                && bottom > WALL_MOUNT_MIN_BOTTOM);
         Self {
             id: object.id.clone(),
             category: object.category.clone(),
@@ -64,7 +53,6 @@ impl EvalObject {
             parent,
             support: Some(object.support),
             relations: object.relations.clone(),
-            welded,
         }
     }
 
@@ -76,20 +64,18 @@ impl EvalObject {
         })
     }
 
-    /// Whether the object stands on the ground.
+    /// Whether the object stands on the ground or hangs on a wall (no object holds it).
     pub fn on_ground(&self) -> bool {
         self.parent.is_none()
     }
-}
 
-/// Whether the built-in library places this category on a wall or a ceiling.
-pub fn is_mounted_category(category: &str) -> bool {
-    catalog::category(category)
-        .map(|c| matches!(c.placement, Placement::Wall | Placement::Ceiling))
-        .unwrap_or(matches!(
-            category,
-            "painting" | "whiteboard" | "mirror" | "wall_shelf" | "pendant_lamp"
-        ))
+    /// Whether the object is welded in the simulation and left out of the stability rates:
+    /// exactly when its support is `mounted`, the shared rule of
+    /// [`RelationKind::fixes_to_world`]. An object floating without that support is simulated
+    /// like any other, and falls.
+    pub fn welded(&self) -> bool {
+        self.support.is_some_and(|s| s.fixes_to_world())
+    }
 }
 
 /// A whole scene ready for evaluation: world-space objects and the room.

@@ -47,7 +47,7 @@ pub struct UnstableObject {
 pub struct StabilityReport {
     /// Objects simulated as free bodies (the denominator of Inst-O).
     pub tested: usize,
-    /// Wall- or ceiling-mounted objects, welded in place and excluded.
+    /// Objects mounted on a wall (support `mounted`), welded in place and excluded.
     pub welded: Vec<String>,
     /// Objects without any volume to simulate (no triangles or a flat mesh), excluded.
     pub skipped: Vec<String>,
@@ -322,7 +322,7 @@ pub fn simulate(scene: &EvalScene, cache: &DecompositionCache) -> StabilityRepor
             report.skipped.push(object.id.clone());
             continue;
         }
-        let builder = if object.welded {
+        let builder = if object.welded() {
             report.welded.push(object.id.clone());
             RigidBodyBuilder::fixed()
         } else {
@@ -336,7 +336,7 @@ pub fn simulate(scene: &EvalScene, cache: &DecompositionCache) -> StabilityRepor
                 &mut world.bodies,
             );
         }
-        if !object.welded {
+        if !object.welded() {
             bodies.push((object.id.clone(), handle));
         }
     }

@@ -222,22 +222,38 @@ fn small_objects_in_the_middle_of_a_table_count_only_in_reach_all() {
 }
 
 #[test]
-fn wall_mounted_objects_are_welded_and_excluded_from_stability() {
-    let painting = place(
-        "painting",
-        "painting",
-        &block(0.8, 0.6, 0.03),
-        at(0.0, 1.4, -1.985, 0.0),
-        None,
-        RelationKind::AgainstWall,
-    );
-    let mut painting = painting;
-    painting.welded = scenethesis_eval::is_mounted_category("painting");
-    assert!(painting.welded);
-    let m = evaluate(&room(vec![painting]));
+fn mounted_objects_are_welded_and_floating_ones_are_unstable() {
+    let painting = |support| {
+        place(
+            "painting",
+            "painting",
+            &block(0.8, 0.6, 0.03),
+            at(0.0, 1.4, -1.985, 0.0),
+            None,
+            support,
+        )
+    };
+    // Mounted on the back wall: welded, excluded from Inst-O, still a floor-reached object.
+    let mounted = painting(RelationKind::Mounted);
+    assert!(mounted.welded());
+    let m = evaluate(&room(vec![mounted]));
     assert_eq!(m.welded, ["painting"]);
     assert_eq!(m.stability_tested, 0);
     assert!(m.unstable.is_empty());
+    assert_eq!(m.inst_o, 0.0);
+    assert_eq!(m.reach_floor, Some(1.0));
+
+    // The same painting at the same height without a mounted support floats: it is simulated,
+    // falls, and counts in Inst-O (a wall category is not welded by its name).
+    let floating = painting(RelationKind::AgainstWall);
+    assert!(!floating.welded());
+    let m = evaluate(&room(vec![floating]));
+    assert!(m.welded.is_empty());
+    assert_eq!(m.stability_tested, 1);
+    assert_eq!(m.unstable.len(), 1, "{:?}", m.unstable);
+    assert_eq!(m.unstable[0].id, "painting");
+    assert_eq!(m.inst_o, 1.0);
+    assert!(m.inst_s);
 }
 
 #[test]

@@ -10,7 +10,7 @@
 //!   object with translate / rotateY / scale ops, `Mesh` prims per part bound to
 //!   `UsdPreviewSurface` materials.
 //! - **MuJoCo MJCF** ([`mjcf::to_mjcf`]): Z-up as MuJoCo expects, one body per object with a
-//!   free joint (objects hanging on walls are welded to the world), one convex mesh geom per
+//!   free joint (objects mounted on walls are welded to the world: no joint), one convex mesh geom per
 //!   part, density 1000 kg/m³, friction 0.5, a floor plane and static wall boxes.
 //! - **URDF** ([`urdf::to_urdf`]): Z-up as ROS expects, a `world` root link, a link per object
 //!   with visual and collision meshes per part (OBJ files beside the URDF), mass and inertia
@@ -65,14 +65,12 @@ pub mod mjcf;
 pub mod urdf;
 pub mod usd;
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeMap;
 use std::fmt;
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
-use scenethesis_scene_graph::{
-    limits, printable, write_file_atomic, Mesh, RelationKind, Scene, SceneObject,
-};
+use scenethesis_scene_graph::{limits, printable, write_file_atomic, Mesh, Scene, SceneObject};
 
 pub use geometry::MassProperties;
 
@@ -129,7 +127,7 @@ pub enum ExportError {
 pub enum Dynamics {
     /// A free rigid body under gravity (six degrees of freedom).
     Free,
-    /// Welded to the world: wall-hung and ceiling-hung objects.
+    /// Welded to the world: objects mounted on a wall.
     Fixed,
 }
 
@@ -138,7 +136,6 @@ pub enum Dynamics {
 pub struct ExportScene<'a> {
     scene: &'a Scene,
     meshes: &'a BTreeMap<String, Mesh>,
-    fixed: BTreeSet<String>,
 }
 
 impl<'a> ExportScene<'a> {
@@ -169,22 +166,7 @@ impl<'a> ExportScene<'a> {
             }
         }
         check_architecture(scene)?;
-        Ok(Self {
-            scene,
-            meshes,
-            fixed: BTreeSet::new(),
-        })
-    }
-
-    /// Marks objects as welded to the world in the physics formats, in addition to those
-    /// [`ExportScene::dynamics`] fixes by itself.
-    pub fn with_fixed<I, S>(mut self, ids: I) -> Self
-    where
-        I: IntoIterator<Item = S>,
-        S: Into<String>,
-    {
-        self.fixed.extend(ids.into_iter().map(Into::into));
-        self
+        Ok(Self { scene, meshes })
     }
 
     /// The scene being exported.
@@ -197,17 +179,12 @@ impl<'a> ExportScene<'a> {
         &self.meshes[&object.id]
     }
 
-    /// Whether an object is a free body or welded to the world. Objects marked with
-    /// [`ExportScene::with_fixed`] are fixed, and so is anything held by a wall rather than
-    /// standing on something: support `against-wall` with its lowest point more than 1 cm above
-    /// the floor (a painting, a wall shelf). Everything else is free.
+    /// Whether an object is a free body or welded to the world: fixed exactly when the scene
+    /// says it is fixed to the world ([`SceneObject::fixed_to_world`]: support `mounted`, its
+    /// parent a wall). Everything else is free, including an object that floats: the
+    /// simulation then shows the defect instead of hiding it.
     pub fn dynamics(&self, object: &SceneObject) -> Dynamics {
-        if self.fixed.contains(&object.id) {
-            return Dynamics::Fixed;
-        }
-        let hanging =
-            object.support == RelationKind::AgainstWall && object.world_aabb().min.y > 0.01;
-        if hanging {
+        if object.fixed_to_world() {
             Dynamics::Fixed
         } else {
             Dynamics::Free

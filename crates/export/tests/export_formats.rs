@@ -192,10 +192,10 @@ fn scene() -> (Scene, BTreeMap<String, Mesh>) {
             "painting",
             "painting",
             &meshes["painting"],
-            // On the left wall (x = −2.5), facing +x.
+            // Mounted on the left wall (x = −2.5), facing +x.
             Pose::new(1.0, FRAC_PI_2, Vector3::new(-2.48, 1.4, 0.0)),
-            ground(),
-            RelationKind::AgainstWall,
+            ParentRef::Wall("wall_1".into()),
+            RelationKind::Mounted,
         ),
     ];
     scene.anchor = Some("table".into());
@@ -383,6 +383,8 @@ fn mjcf_has_free_bodies_mesh_geoms_and_static_architecture() {
     assert!(xml.contains("density=\"1000\" friction=\"0.5 0.005 0.0001\""));
     assert_eq!(xml.matches("<body ").count(), 6);
     assert_eq!(xml.matches("<freejoint ").count(), 5, "painting is welded");
+    assert!(!xml.contains("<freejoint name=\"painting\""));
+    assert!(xml.contains("<freejoint name=\"table\""));
     let parts: usize = meshes.values().map(|m| m.parts.len()).sum();
     assert_eq!(xml.matches("type=\"mesh\"").count(), parts);
     assert_eq!(xml.matches("<mesh name=").count(), parts);
@@ -391,6 +393,42 @@ fn mjcf_has_free_bodies_mesh_geoms_and_static_architecture() {
     // The table stands at scene (0, 0, −1.5): MuJoCo (0, 1.5, 0).
     assert!(xml.contains("<body name=\"table\" pos=\"0 1.5 0\""));
     assert!(xml.contains("<mesh name=\"crate_bottom\" scale=\"1.2 1.2 1.2\""));
+}
+
+#[test]
+fn only_mounted_objects_are_welded_and_a_floating_one_stays_free() {
+    let (mut scene, meshes) = scene();
+    assert_eq!(scene.validate(), Ok(()));
+    let painting = scene.object("painting").unwrap();
+    assert!(painting.fixed_to_world());
+    let usd = scenethesis_export::usd::to_usda(&ExportScene::new(&scene, &meshes).unwrap());
+    assert!(usd.contains("custom string scenethesis:parent = \"wall_1\""));
+    assert!(usd.contains("custom string scenethesis:support = \"mounted\""));
+    let urdf = scenethesis_export::urdf::to_urdf(&ExportScene::new(&scene, &meshes).unwrap(), "m");
+    assert!(urdf
+        .urdf
+        .contains("<joint name=\"painting_joint\" type=\"fixed\">"));
+    assert!(urdf
+        .urdf
+        .contains("<joint name=\"table_joint\" type=\"floating\">"));
+
+    // The same painting at the same height on the ground link, leaning on nothing: it floats,
+    // and the exports keep it a free body (the simulation shows the defect; nothing welds it).
+    let p = scene.object_mut("painting").unwrap();
+    p.parent = ParentRef::Ground;
+    p.support = RelationKind::AgainstWall;
+    let export = ExportScene::new(&scene, &meshes).unwrap();
+    assert_eq!(
+        export.dynamics(scene.object("painting").unwrap()),
+        Dynamics::Free
+    );
+    let xml = scenethesis_export::mjcf::to_mjcf(&export);
+    assert_eq!(xml.matches("<freejoint ").count(), 6);
+    assert!(xml.contains("<freejoint name=\"painting\""));
+    let urdf = scenethesis_export::urdf::to_urdf(&export, "m");
+    assert!(urdf
+        .urdf
+        .contains("<joint name=\"painting_joint\" type=\"floating\">"));
 }
 
 #[test]

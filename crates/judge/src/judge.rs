@@ -8,7 +8,7 @@ use scenethesis_correspondence::Guidance;
 use scenethesis_eval::{
     evaluate_with_cache, DecompositionCache, EvalError, EvalScene, SceneMetrics,
 };
-use scenethesis_scene_graph::{relation_holds, Mesh, ParentRef, Relation, Scene, GROUND_ID};
+use scenethesis_scene_graph::{relation_holds, Mesh, ParentRef, Relation, Scene};
 use serde::{Deserialize, Serialize};
 
 /// What the judge looks at.
@@ -214,11 +214,12 @@ impl Judge for GeometricJudge {
             if scene.object(&planned.id).is_none() {
                 continue;
             }
-            let support_target = match &planned.parent {
-                ParentRef::Ground => GROUND_ID.to_owned(),
-                ParentRef::Object(id) => id.clone(),
+            // The plan's support, or for an object the layout hung on a wall, the scene's:
+            // mounted on that wall (back on it, off the floor).
+            let support = match scene.object(&planned.id) {
+                Some(o) if o.fixed_to_world() => Relation::new(o.support, o.parent.as_str()),
+                _ => Relation::new(planned.support, planned.parent.as_str()),
             };
-            let support = Relation::new(planned.support, support_target);
             for relation in std::iter::once(&support).chain(&planned.relations) {
                 match relation_holds(scene, &planned.id, relation) {
                     Some(true) => relations_checked += 1,

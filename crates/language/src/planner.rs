@@ -182,6 +182,7 @@ impl<M: ChatModel> LlmPlanner<M> {
             }
             let parent = match &o.parent {
                 ParentRef::Ground => Some(ParentRef::Ground),
+                ParentRef::Wall(w) => Some(ParentRef::Wall(w.clone())),
                 ParentRef::Object(p) => renamed
                     .iter()
                     .find(|(from, _)| from == p)
@@ -299,6 +300,7 @@ impl<M: ChatModel> LlmPlanner<M> {
             {
                 let parent = match &source.parent {
                     ParentRef::Ground => Some(ParentRef::Ground),
+                    ParentRef::Wall(w) => Some(ParentRef::Wall(w.clone())),
                     ParentRef::Object(p) => offline.object(p).and_then(|p| {
                         plan.objects
                             .iter()

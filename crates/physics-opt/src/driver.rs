@@ -7,7 +7,6 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use nalgebra::{Point3, Vector3};
-use scenethesis_scene_graph::Placement as AssetPlacement;
 use scenethesis_scene_graph::{Architecture, ParentRef, Pose, RelationKind, Scene, SceneObject};
 use scenethesis_sdf::{BoxSdf, SignedDistance};
 use serde::{Deserialize, Serialize};
@@ -116,7 +115,7 @@ pub fn optimize_scene(
             }
             _ => object.pose,
         };
-        let support = resolve_support(problem, object, asset, &start, &finals);
+        let support = resolve_support(problem, object, &start, &finals);
         let alignment = problem.alignments.get(&object.id);
         let mut object_problem = ObjectProblem {
             id: &object.id,
@@ -183,20 +182,18 @@ pub fn optimize_scene(
 }
 
 /// What `object` rests on, given the final poses of the objects placed before it: nothing for
-/// wall and ceiling assets, the floor for ground objects and for `on-floor` / `against-wall`
-/// objects linked to another object, else the parent's support surface of the fitting kind
-/// nearest to the object's foot (or the parent's geometry when it has none).
+/// an object fixed to the world ([`SceneObject::fixed_to_world`]: mounted on a wall, so no
+/// stability term pulls it down; collisions still push it), the floor for ground objects and
+/// for `on-floor` / `against-wall` objects linked to another object, else the parent's support
+/// surface of the fitting kind nearest to the object's foot (or the parent's geometry when it
+/// has none).
 fn resolve_support(
     problem: &SceneProblem,
     object: &SceneObject,
-    asset: &PreparedAsset,
     start: &Pose,
     finals: &BTreeMap<&str, Pose>,
 ) -> Support {
-    if matches!(
-        asset.placement(),
-        AssetPlacement::Wall | AssetPlacement::Ceiling
-    ) {
+    if object.fixed_to_world() {
         return Support::Free;
     }
     let on_floor = matches!(
@@ -205,7 +202,9 @@ fn resolve_support(
     );
     match &object.parent {
         _ if on_floor => Support::Surface(SupportPlane::floor(&problem.scene.architecture)),
-        ParentRef::Ground => Support::Surface(SupportPlane::floor(&problem.scene.architecture)),
+        ParentRef::Ground | ParentRef::Wall(_) => {
+            Support::Surface(SupportPlane::floor(&problem.scene.architecture))
+        }
         ParentRef::Object(parent) => {
             let (Some(parent_pose), Some(parent_asset)) =
                 (finals.get(parent.as_str()), problem.assets.get(parent))

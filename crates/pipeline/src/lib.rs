@@ -48,7 +48,7 @@ mod stage;
 
 pub use error::PipelineError;
 pub use out_dir::{Existing, OutputDir, REPORT_JSON, SCENE_JSON};
-pub use output::{export_folder, resolve_meshes, welded_objects};
+pub use output::{export_folder, resolve_meshes};
 pub use pipeline::{GenerateOptions, GeneratedScene, Pipeline, PreviewRenderer};
 pub use plan_file::{plan_json, write_plan, PLAN_JSON};
 #[cfg(feature = "render")]

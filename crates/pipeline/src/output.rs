@@ -4,7 +4,6 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use scenethesis_eval::EvalObject;
 use scenethesis_export::{ExportError, ExportScene, Format};
 use scenethesis_scene_graph::{Mesh, Scene, SceneIoError};
 
@@ -14,22 +13,6 @@ use crate::pipeline::GeneratedScene;
 use crate::report::StageTiming;
 use crate::stage::Stage;
 use scenethesis_retrieval::AssetSource;
-
-/// The objects the physics formats should weld to the world: the same rule the stability metric
-/// uses (wall and ceiling categories, and anything standing against a wall high above the
-/// floor).
-pub fn welded_objects(scene: &Scene, meshes: &BTreeMap<String, Mesh>) -> Vec<String> {
-    scene
-        .objects
-        .iter()
-        .filter(|o| {
-            meshes
-                .get(&o.id)
-                .is_some_and(|m| EvalObject::from_scene_object(o, m).welded)
-        })
-        .map(|o| o.id.clone())
-        .collect()
-}
 
 impl GeneratedScene {
     /// Writes the output folder `dir` after checking it with [`OutputDir::prepare`] (without
@@ -55,8 +38,7 @@ impl GeneratedScene {
     }
 
     fn write_files(&mut self, tmp: &Path, started: Instant) -> Result<(), PipelineError> {
-        let welded = welded_objects(&self.scene, &self.meshes);
-        let export = ExportScene::new(&self.scene, &self.meshes)?.with_fixed(welded);
+        let export = ExportScene::new(&self.scene, &self.meshes)?;
         Format::Glb.write(&export, tmp)?;
         self.scene.write_json_atomic(&tmp.join(SCENE_JSON))?;
         for (file, png) in &self.previews {
@@ -109,8 +91,7 @@ pub fn export_folder(
 ) -> Result<Vec<PathBuf>, PipelineError> {
     let scene = Scene::read_json(&dir.join(SCENE_JSON))?;
     let meshes = resolve_meshes(&scene, assets)?;
-    let welded = welded_objects(&scene, &meshes);
-    let export = ExportScene::new(&scene, &meshes)?.with_fixed(welded);
+    let export = ExportScene::new(&scene, &meshes)?;
     let mut written = Vec::new();
     for format in formats {
         written.push(format.write(&export, dir)?);

@@ -59,7 +59,8 @@ pub struct ObjectResult {
     pub size_error: f64,
     /// Intersection over union of the recovered and true boxes.
     pub iou: f64,
-    /// The true support parent (`ground`, an object id, or `mounted`).
+    /// The true support parent (`ground`, an object id, or `mounted` for an object hanging on
+    /// a wall or standing more than 10 cm off the floor on nothing).
     pub true_parent: String,
     /// The recovered support parent, in the same terms.
     pub recovered_parent: String,
@@ -388,7 +389,7 @@ pub fn compare(
         .map(|s| {
             let p = match (s.kind, &s.parent) {
                 (SupportKind::Ground, _) => "ground".to_string(),
-                (SupportKind::Unsupported, _) => "mounted".to_string(),
+                (SupportKind::Unsupported | SupportKind::Mounted, _) => "mounted".to_string(),
                 (_, Some(p)) => p.clone(),
                 (_, None) => "ground".to_string(),
             };
@@ -419,6 +420,7 @@ pub fn compare(
             (rel(bx, tx) + rel(b.half_extents.y, t.half_extents.y) + rel(bz, tz)) / 3.0;
         let true_parent = match &object.parent {
             ParentRef::Object(id) => id.clone(),
+            ParentRef::Wall(_) => "mounted".to_string(),
             ParentRef::Ground if t.bottom() > 0.1 => "mounted".to_string(),
             ParentRef::Ground => "ground".to_string(),
         };

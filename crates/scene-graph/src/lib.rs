@@ -2,7 +2,9 @@
 //!
 //! A [`Scene`] holds the room's [`Architecture`] (floor, walls, door openings), the movable
 //! [`SceneObject`]s with their 5-DoF [`Pose`]s (uniform scale, yaw about +Y, translation), the
-//! anchor object, parent links rooted at the ground, and spatial [`Relation`]s. It reads and
+//! anchor object, parent links rooted at the ground (an object hung on a wall names the wall as
+//! its parent, with support `mounted`: [`SceneObject::fixed_to_world`]), and spatial
+//! [`Relation`]s. It reads and
 //! writes `scene.json` ([`Scene::from_json_str`], [`Scene::write_json_atomic`]), checks itself
 //! ([`Scene::validate`]) and walks its hierarchy breadth-first from the ground
 //! ([`Scene::bfs_order`]). The pinhole [`Camera`] and the triangle [`Mesh`] with per-part

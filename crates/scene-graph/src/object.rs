@@ -20,9 +20,10 @@ pub struct SceneObject {
     pub asset: AssetRef,
     /// The object's 5-DoF pose in world coordinates.
     pub pose: Pose,
-    /// What the object rests on: the ground or another object.
+    /// What holds the object: the ground, another object, or the wall it hangs on.
     pub parent: ParentRef,
-    /// How the object rests on its parent (`on-floor`, `on`, `inside`, `under`, `against-wall`).
+    /// How the object rests on its parent (`on-floor`, `against-wall`, `on`, `inside`, `under`,
+    /// or `mounted` on a wall).
     pub support: RelationKind,
     /// Further spatial relations the layout should satisfy.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -35,6 +36,17 @@ impl SceneObject {
     /// The world-space axis-aligned box of the posed asset.
     pub fn world_aabb(&self) -> Aabb {
         self.local_bounds.transformed(&self.pose)
+    }
+
+    /// Whether the object is fixed to the world (welded in a simulation, never moved by
+    /// gravity): exactly when its support is [`RelationKind::Mounted`], i.e. it hangs on the
+    /// wall its parent names ([`Scene::validate`](crate::Scene::validate) checks that the two
+    /// go together). Every other object is a free body: one that floats without a mounted
+    /// support is a defect, not something to weld.
+    ///
+    /// This is the one rule the optimizer, the evaluation, the judge and the exporters share.
+    pub fn fixed_to_world(&self) -> bool {
+        self.support.fixes_to_world()
     }
 }
 
@@ -67,45 +79,81 @@ impl fmt::Display for AssetRef {
     }
 }
 
-/// An object's parent: the ground or another object, serialized as `"ground"` or the id.
+/// An object's parent: the ground, another object, or a wall of the room. Serialized as a plain
+/// string: `"ground"`, the object's id or the wall's id.
+///
+/// Object ids never equal architecture ids ([`Scene::validate`](crate::Scene::validate) refuses
+/// the collision), so the string alone says which it is once the walls are known: a bare
+/// `ParentRef` deserializes every id other than `ground` as [`ParentRef::Object`], and
+/// deserializing a whole [`Scene`](crate::Scene) turns the ids of its walls into
+/// [`ParentRef::Wall`] ([`ParentRef::resolve`]).
 #[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum ParentRef {
     /// The ground plane, root of the scene graph.
     Ground,
     /// Another object, by id.
     Object(String),
+    /// A wall of the scene's architecture, by id: the object hangs on it (support
+    /// [`RelationKind::Mounted`]). Walls stand on the ground, so such an object is a root of
+    /// the hierarchy like a ground object.
+    Wall(String),
 }
 
 impl ParentRef {
-    /// The parent's object id, or `None` for the ground.
+    /// The parent's object id, or `None` for the ground or a wall.
     pub fn object_id(&self) -> Option<&str> {
         match self {
-            ParentRef::Ground => None,
             ParentRef::Object(id) => Some(id),
+            ParentRef::Ground | ParentRef::Wall(_) => None,
+        }
+    }
+
+    /// The wall's id when the parent is a wall.
+    pub fn wall_id(&self) -> Option<&str> {
+        match self {
+            ParentRef::Wall(id) => Some(id),
+            ParentRef::Ground | ParentRef::Object(_) => None,
+        }
+    }
+
+    /// The id as written in `scene.json`: `ground`, the object's id or the wall's id.
+    pub fn as_str(&self) -> &str {
+        match self {
+            ParentRef::Ground => GROUND_ID,
+            ParentRef::Object(id) | ParentRef::Wall(id) => id,
+        }
+    }
+
+    /// The parent named by `id` in a scene whose architecture has walls with the ids for which
+    /// `is_wall` returns true: `ground`, a wall, or else an object.
+    pub fn resolve(id: &str, is_wall: impl Fn(&str) -> bool) -> Self {
+        if id == GROUND_ID {
+            ParentRef::Ground
+        } else if is_wall(id) {
+            ParentRef::Wall(id.to_owned())
+        } else {
+            ParentRef::Object(id.to_owned())
         }
     }
 }
 
 impl fmt::Display for ParentRef {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.object_id().unwrap_or(GROUND_ID))
+        f.write_str(self.as_str())
     }
 }
 
 impl Serialize for ParentRef {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        s.serialize_str(self.object_id().unwrap_or(GROUND_ID))
+        s.serialize_str(self.as_str())
     }
 }
 
 impl<'de> Deserialize<'de> for ParentRef {
+    /// `ground` or an object id; wall ids are told apart by the scene ([`ParentRef::resolve`]).
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         let s = String::deserialize(d)?;
-        Ok(if s == GROUND_ID {
-            ParentRef::Ground
-        } else {
-            ParentRef::Object(s)
-        })
+        Ok(ParentRef::resolve(&s, |_| false))
     }
 }
 
@@ -123,6 +171,9 @@ pub enum RelationKind {
     OnFloor,
     /// Back against a wall (target: a wall id, or the ground for "any wall").
     AgainstWall,
+    /// Hanging on a wall, off the floor (target: the wall id, also the object's parent). The
+    /// only support that fixes an object to the world ([`RelationKind::fixes_to_world`]).
+    Mounted,
     /// Next to the target, side by side.
     Beside,
     /// In front of the target (along the target's front direction).
@@ -141,12 +192,13 @@ pub enum RelationKind {
 
 impl RelationKind {
     /// Every relation kind, in declaration order.
-    pub const ALL: [RelationKind; 12] = [
+    pub const ALL: [RelationKind; 13] = [
         RelationKind::On,
         RelationKind::Inside,
         RelationKind::Under,
         RelationKind::OnFloor,
         RelationKind::AgainstWall,
+        RelationKind::Mounted,
         RelationKind::Beside,
         RelationKind::InFrontOf,
         RelationKind::Behind,
@@ -164,6 +216,7 @@ impl RelationKind {
             RelationKind::Under => "under",
             RelationKind::OnFloor => "on-floor",
             RelationKind::AgainstWall => "against-wall",
+            RelationKind::Mounted => "mounted",
             RelationKind::Beside => "beside",
             RelationKind::InFrontOf => "in-front-of",
             RelationKind::Behind => "behind",
@@ -183,7 +236,14 @@ impl RelationKind {
                 | RelationKind::Under
                 | RelationKind::OnFloor
                 | RelationKind::AgainstWall
+                | RelationKind::Mounted
         )
+    }
+
+    /// Whether an object with this support is fixed to the world: only [`RelationKind::Mounted`].
+    /// Read it through [`SceneObject::fixed_to_world`] when a scene object is at hand.
+    pub fn fixes_to_world(&self) -> bool {
+        matches!(self, RelationKind::Mounted)
     }
 }
 

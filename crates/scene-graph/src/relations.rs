@@ -48,20 +48,24 @@ fn faces(o: &SceneObject, t: &SceneObject) -> bool {
 /// centre over the target's box. *Left of* / *right of* are seen facing the target's front
 /// (left = the target's local −X); *facing* allows 50° of yaw error; *beside* and *around*
 /// need the boxes within 1 m and 0.6 m; *against-wall* needs the back within 0.1 m of the
-/// wall's inner face (target `ground` means any wall).
+/// wall's inner face (target `ground` means any wall); *mounted* needs the same of the target
+/// wall and the bottom off the floor (more than the 2 cm contact tolerance above it).
 pub fn relation_holds(scene: &Scene, subject: &str, relation: &Relation) -> Option<bool> {
     let o = scene.object(subject)?;
     let ob = o.world_aabb();
     if relation.kind == RelationKind::OnFloor {
         return Some(ob.min.y.abs() <= CONTACT);
     }
-    if relation.kind == RelationKind::AgainstWall {
+    if matches!(
+        relation.kind,
+        RelationKind::AgainstWall | RelationKind::Mounted
+    ) {
         let walls: Vec<_> = if relation.target == GROUND_ID {
             scene.architecture.walls.iter().collect()
         } else {
             vec![scene.architecture.wall(&relation.target)?]
         };
-        return Some(walls.iter().any(|w| {
+        let backed = walls.iter().any(|w| {
             let n = w.inward_normal();
             let face = w.start + n * (w.thickness / 2.0);
             let nearest = ob
@@ -70,7 +74,9 @@ pub fn relation_holds(scene: &Scene, subject: &str, relation: &Relation) -> Opti
                 .map(|c| (Vector2::new(c.x, c.z) - face.coords).dot(&n))
                 .fold(f64::MAX, f64::min);
             (-CONTACT..=0.1).contains(&nearest)
-        }));
+        });
+        let off_floor = relation.kind == RelationKind::AgainstWall || ob.min.y > CONTACT;
+        return Some(backed && off_floor);
     }
     let t = scene.object(&relation.target)?;
     let tb = t.world_aabb();
@@ -102,6 +108,8 @@ pub fn relation_holds(scene: &Scene, subject: &str, relation: &Relation) -> Opti
         RelationKind::RightOf => d.dot(&right(t)) > 0.0,
         RelationKind::Facing => faces(o, t),
         RelationKind::Around => gap_xz(o, t) <= 0.6 && faces(o, t),
-        RelationKind::OnFloor | RelationKind::AgainstWall => unreachable!("handled above"),
+        RelationKind::OnFloor | RelationKind::AgainstWall | RelationKind::Mounted => {
+            unreachable!("handled above")
+        }
     })
 }

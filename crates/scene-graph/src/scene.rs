@@ -10,7 +10,12 @@ use crate::{Aabb, Architecture, ParentRef, SceneObject};
 pub const FORMAT_VERSION: u32 = 1;
 
 /// A whole scene: architecture, objects, anchor and hierarchy.
+///
+/// Deserializing a scene reads each object's `parent` string against the architecture: the id
+/// of one of its walls becomes [`ParentRef::Wall`] (a mounted object), `ground` the ground, and
+/// anything else an object id.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(from = "SceneFile")]
 pub struct Scene {
     /// Version of the `scene.json` format; [`FORMAT_VERSION`] for scenes built here.
     pub format_version: u32,
@@ -73,6 +78,49 @@ impl Scene {
             .iter()
             .map(SceneObject::world_aabb)
             .reduce(|a, b| a.union(&b))
+    }
+}
+
+/// `scene.json` as parsed, before parents are resolved against the walls.
+#[derive(Deserialize)]
+struct SceneFile {
+    format_version: u32,
+    #[serde(default)]
+    prompt: String,
+    #[serde(default)]
+    seed: u64,
+    architecture: Architecture,
+    #[serde(default)]
+    anchor: Option<String>,
+    #[serde(with = "object_map")]
+    objects: Vec<SceneObject>,
+}
+
+impl From<SceneFile> for Scene {
+    fn from(file: SceneFile) -> Self {
+        let SceneFile {
+            format_version,
+            prompt,
+            seed,
+            architecture,
+            anchor,
+            mut objects,
+        } = file;
+        for object in &mut objects {
+            if let ParentRef::Object(id) = &object.parent {
+                if architecture.wall(id).is_some() {
+                    object.parent = ParentRef::Wall(id.clone());
+                }
+            }
+        }
+        Scene {
+            format_version,
+            prompt,
+            seed,
+            architecture,
+            anchor,
+            objects,
+        }
     }
 }
 

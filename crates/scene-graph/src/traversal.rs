@@ -4,8 +4,9 @@ use crate::{ParentRef, Scene, SceneObject, ValidationError};
 
 impl Scene {
     /// The objects in breadth-first order from the ground: the anchor first, then the other
-    /// ground objects in stored order, then their children level by level, so that every parent
-    /// comes before its children. Fails on an unknown parent or a parent cycle (objects that
+    /// ground objects and the objects mounted on walls (walls stand on the ground) in stored
+    /// order, then their children level by level, so that every parent comes before its
+    /// children. Fails on an unknown parent or a parent cycle (objects that
     /// cannot be reached from the ground).
     pub fn bfs_order(&self) -> Result<Vec<&SceneObject>, ValidationError> {
         if let Some(err) = self.parent_link_errors().into_iter().next() {
@@ -15,7 +16,7 @@ impl Scene {
         let mut roots: Vec<&SceneObject> = Vec::new();
         for object in &self.objects {
             match &object.parent {
-                ParentRef::Ground => roots.push(object),
+                ParentRef::Ground | ParentRef::Wall(_) => roots.push(object),
                 ParentRef::Object(p) => children.entry(p.as_str()).or_default().push(object),
             }
         }

@@ -5,7 +5,7 @@ use crate::limits::{
     MAX_COORDINATE, MAX_DOORS, MAX_ID_BYTES, MAX_OBJECTS, MAX_OBJECT_SIZE, MAX_RELATIONS,
     MAX_SCALE, MAX_WALLS, MAX_WALL_HEIGHT, MAX_WALL_THICKNESS, MIN_SCALE,
 };
-use crate::{Aabb, AssetRef, ParentRef, Scene, FORMAT_VERSION, GROUND_ID};
+use crate::{Aabb, AssetRef, ParentRef, RelationKind, Scene, FORMAT_VERSION, GROUND_ID};
 
 /// `text` safe to print on a terminal or write into a log line: control characters (escape
 /// sequences, newlines, carriage returns, bidi overrides are not the only danger, but the control
@@ -128,13 +128,35 @@ pub enum ValidationError {
         /// What was expected.
         expected: &'static str,
     },
-    /// An object's parent is not an object of the scene.
-    #[error("object `{id}`: parent `{parent}` is not an object of this scene (nor `ground`)")]
+    /// An object's parent is not an object or wall of the scene.
+    #[error(
+        "object `{id}`: parent `{parent}` is not an object or wall of this scene (nor `ground`)"
+    )]
     UnknownParent {
         /// The object id.
         id: String,
         /// The missing parent id.
         parent: String,
+    },
+    /// An object's support is `mounted` but its parent is not a wall.
+    #[error("object `{id}`: support `mounted` needs a wall of this scene as parent, but the parent is `{parent}`")]
+    MountedOffWall {
+        /// The object id.
+        id: String,
+        /// The parent it names instead.
+        parent: String,
+    },
+    /// An object hangs on a wall (its parent is a wall id) with a support other than `mounted`.
+    #[error(
+        "object `{id}`: parent `{wall}` is a wall, so support must be `mounted`, not `{support}`"
+    )]
+    WallParentNotMounted {
+        /// The object id.
+        id: String,
+        /// The wall id.
+        wall: String,
+        /// The support found.
+        support: String,
     },
     /// Objects whose parents form a loop, so they never reach the ground.
     #[error("objects {ids:?} form a parent cycle and never reach the ground")]
@@ -437,6 +459,7 @@ impl Scene {
     }
 
     fn check_objects(&self, errors: &mut Vec<ValidationError>) {
+        let arch = &self.architecture;
         for object in &self.objects {
             let id = &*printable(&object.id);
             let pose = &object.pose;
@@ -535,6 +558,29 @@ impl Scene {
                     "a scaled size of at most 50 m on every axis (limits::MAX_OBJECT_SIZE)",
                 ));
             }
+            match &object.parent {
+                ParentRef::Wall(wall) => {
+                    if arch.wall(wall).is_none() {
+                        errors.push(ValidationError::UnknownParent {
+                            id: id.to_owned(),
+                            parent: shorten(wall),
+                        });
+                    } else if object.support != RelationKind::Mounted {
+                        errors.push(ValidationError::WallParentNotMounted {
+                            id: id.to_owned(),
+                            wall: shorten(wall),
+                            support: object.support.to_string(),
+                        });
+                    }
+                }
+                parent if object.support == RelationKind::Mounted => {
+                    errors.push(ValidationError::MountedOffWall {
+                        id: id.to_owned(),
+                        parent: shorten(parent.as_str()),
+                    });
+                }
+                _ => {}
+            }
             for relation in &object.relations {
                 let t = relation.target.as_str();
                 let exists = t == GROUND_ID
@@ -600,7 +646,6 @@ fn out_of_range(
 mod tests {
     use super::*;
     use crate::test_support::{object, scene_with};
-    use crate::RelationKind;
 
     fn problems(scene: &Scene) -> Vec<String> {
         scene

@@ -21,7 +21,8 @@ fn relation_kind() -> impl Strategy<Value = RelationKind> {
 }
 
 /// A scene of `n` objects whose parent links always point to an earlier object or the ground
-/// (so they form a forest), stored in a random order.
+/// (so they form a forest), or to a wall for the objects whose support is `mounted`, stored in a
+/// random order.
 fn forest_scene() -> impl Strategy<Value = Scene> {
     (1usize..24).prop_flat_map(|n| {
         (
@@ -54,7 +55,9 @@ fn forest_scene() -> impl Strategy<Value = Scene> {
                 for (i, (parent_pick, x, y, z, scale, yaw, kind, asset_seed)) in
                     specs.into_iter().enumerate()
                 {
-                    let parent = if i == 0 || parent_pick % 3 == 0 {
+                    let parent = if kind == RelationKind::Mounted {
+                        ParentRef::Wall(format!("wall_{}", parent_pick % 4))
+                    } else if i == 0 || parent_pick % 3 == 0 {
                         ParentRef::Ground
                     } else {
                         ParentRef::Object(format!("obj_{}", parent_pick as usize % i))

@@ -108,7 +108,10 @@ pub fn build_scene(
             Some((SupportKind::Under, Some(p))) => {
                 (ParentRef::Object(p), RelationKind::Under, None)
             }
-            Some((SupportKind::Unsupported, _)) => {
+            Some((SupportKind::Mounted, Some(w))) if architecture.wall(&w).is_some() => {
+                (ParentRef::Wall(w), RelationKind::Mounted, None)
+            }
+            Some((SupportKind::Unsupported | SupportKind::Mounted, _)) => {
                 let planned_parent = object
                     .parent
                     .object_id()
@@ -118,11 +121,11 @@ pub fn build_scene(
                     .get(&b.id)
                     .is_some_and(|i| i.placement == Placement::Wall);
                 match (planned_parent, mounts) {
-                    (_, true) => (
-                        ParentRef::Ground,
-                        RelationKind::AgainstWall,
-                        wall.clone().map(|w| w.0),
-                    ),
+                    // A wall asset with a wall behind it hangs on that wall.
+                    (_, true) => match &wall {
+                        Some((w, _)) => (ParentRef::Wall(w.clone()), RelationKind::Mounted, None),
+                        None => (ParentRef::Ground, RelationKind::AgainstWall, None),
+                    },
                     (Some(p), false) => (ParentRef::Object(p), object.support, None),
                     (None, false) => (ParentRef::Ground, RelationKind::OnFloor, None),
                 }
@@ -152,7 +155,7 @@ pub fn build_scene(
                 continue;
             }
             let ready = match parent {
-                ParentRef::Ground => true,
+                ParentRef::Ground | ParentRef::Wall(_) => true,
                 ParentRef::Object(p) => done.contains(p),
             };
             if ready {

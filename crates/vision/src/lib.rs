@@ -55,6 +55,8 @@ pub mod support;
 pub use boxes::{lift_scene, LiftOptions, LiftedBox, LiftedScene};
 pub use error::LiftError;
 pub use footprint::{min_area_rectangle, FloorRectangle};
-pub use support::{infer_supports, SupportGuess, SupportKind};
+pub use support::{
+    infer_supports, mount_on_walls, SupportGuess, SupportKind, MOUNT_MIN_BOTTOM, MOUNT_WALL_REACH,
+};
 
 pub use scenethesis_correspondence::Guidance;

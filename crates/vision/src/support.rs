@@ -9,6 +9,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::lifted_box::LiftedBox;
+use scenethesis_scene_graph::Wall;
 
 /// How a lifted box is held up.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -25,6 +26,10 @@ pub enum SupportKind {
     Under,
     /// Nothing below it: mounted on a wall, or lifted wrongly.
     Unsupported,
+    /// Hangs on the wall named as its parent: its back touches the wall and its bottom is well
+    /// above the floor ([`mount_on_walls`] turns unsupported boxes into mounted ones when the
+    /// room's walls are known). In `scene.json` this is parent = the wall id, support `mounted`.
+    Mounted,
 }
 
 /// The inferred support of one box.
@@ -32,7 +37,8 @@ pub enum SupportKind {
 pub struct SupportGuess {
     /// The supported box's object id.
     pub id: String,
-    /// The supporting object's id; `None` for the ground or when unsupported.
+    /// The supporting object's id, or the wall's id when mounted; `None` for the ground or when
+    /// unsupported.
     pub parent: Option<String>,
     /// How it is supported.
     pub kind: SupportKind,
@@ -130,4 +136,104 @@ pub fn infer_supports(boxes: &[LiftedBox], gap: f64) -> Vec<SupportGuess> {
     }
     out.sort_by(|a, b| a.id.cmp(&b.id));
     out
+}
+
+/// How far (metres) a box's back may be from a wall's inner face, either side, and still hang
+/// on it: lifted boxes are a few centimetres off, and a frame sits proud of the wall.
+pub const MOUNT_WALL_REACH: f64 = 0.12;
+
+/// How high (metres) the bottom of a box with nothing below it must be to hang on a wall rather
+/// than be a floor object lifted wrongly.
+pub const MOUNT_MIN_BOTTOM: f64 = 0.3;
+
+/// Turns every [`SupportKind::Unsupported`] guess whose box backs onto one of `walls` (the
+/// footprint corner nearest the wall within [`MOUNT_WALL_REACH`] of its inner face, the box
+/// overlapping the wall along its length) and whose bottom is above [`MOUNT_MIN_BOTTOM`] into
+/// [`SupportKind::Mounted`] with that wall as parent (the nearest wall when several qualify).
+/// Other guesses are left as they are.
+pub fn mount_on_walls(guesses: &mut [SupportGuess], boxes: &[LiftedBox], walls: &[Wall]) {
+    for guess in guesses
+        .iter_mut()
+        .filter(|g| g.kind == SupportKind::Unsupported)
+    {
+        let Some(b) = boxes.iter().find(|b| b.id == guess.id) else {
+            continue;
+        };
+        if b.bottom() <= MOUNT_MIN_BOTTOM {
+            continue;
+        }
+        let corners = b.footprint().corners();
+        let mut best: Option<(f64, &Wall)> = None;
+        for wall in walls.iter().filter(|w| w.length() > 0.0) {
+            let (n, d) = (wall.inward_normal(), wall.direction());
+            let face = wall.start + n * (wall.thickness / 2.0);
+            let off = |p: &nalgebra::Point2<f64>| (p - face).dot(&n);
+            let along = |p: &nalgebra::Point2<f64>| (p - wall.start).dot(&d);
+            let nearest = corners.iter().map(off).fold(f64::MAX, f64::min);
+            let (lo, hi) = corners
+                .iter()
+                .map(along)
+                .fold((f64::MAX, f64::MIN), |(lo, hi), a| (lo.min(a), hi.max(a)));
+            let overlaps = hi > 0.0 && lo < wall.length();
+            if overlaps
+                && nearest.abs() <= MOUNT_WALL_REACH
+                && best.is_none_or(|(e, _)| nearest.abs() < e)
+            {
+                best = Some((nearest.abs(), wall));
+            }
+        }
+        if let Some((_, wall)) = best {
+            guess.kind = SupportKind::Mounted;
+            guess.parent = Some(wall.id.clone());
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lifted_box::DepthSource;
+    use nalgebra::{Point3, Vector3};
+    use scenethesis_scene_graph::Architecture;
+
+    fn lifted(id: &str, center: [f64; 3], half: [f64; 3]) -> LiftedBox {
+        LiftedBox {
+            id: id.into(),
+            center: Point3::new(center[0], center[1], center[2]),
+            half_extents: Vector3::new(half[0], half[1], half[2]),
+            yaw: 0.0,
+            points: 100,
+            depth_source: DepthSource::Measured,
+            completed: false,
+        }
+    }
+
+    #[test]
+    fn a_high_box_against_a_wall_hangs_on_it_and_others_do_not() {
+        // 6 × 4 m room: the back wall `wall_0` has its inner face at z = −2.
+        let room = Architecture::rectangular_room(6.0, 4.0, 2.8, 0.9);
+        let boxes = vec![
+            // A painting 1.3–1.9 m up, its back 1 cm off the back wall.
+            lifted("painting", [0.5, 1.6, -1.97], [0.4, 0.3, 0.02]),
+            // The same 1 m out into the room: floating, a lifting error.
+            lifted("ghost", [0.5, 1.6, -0.97], [0.4, 0.3, 0.02]),
+            // Against the wall but only 10 cm up: not mounted.
+            lifted("low", [-1.5, 0.3, -1.9], [0.3, 0.2, 0.1]),
+            // On the floor against the wall: stands on the ground.
+            lifted("cabinet", [2.0, 0.5, -1.8], [0.4, 0.5, 0.2]),
+        ];
+        let mut guesses = infer_supports(&boxes, 0.06);
+        mount_on_walls(&mut guesses, &boxes, &room.walls);
+        let kind = |id: &str| {
+            let g = guesses.iter().find(|g| g.id == id).unwrap();
+            (g.kind, g.parent.clone())
+        };
+        assert_eq!(
+            kind("painting"),
+            (SupportKind::Mounted, Some("wall_0".into()))
+        );
+        assert_eq!(kind("ghost"), (SupportKind::Unsupported, None));
+        assert_eq!(kind("low"), (SupportKind::Unsupported, None));
+        assert_eq!(kind("cabinet"), (SupportKind::Ground, None));
+    }
 }

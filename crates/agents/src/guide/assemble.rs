@@ -1,6 +1,7 @@
 //! The layout becomes a scene: ground objects' poses from their footprints (mounted ones at
 //! their hanging height), then one scene object per placed plan object with its support and the
-//! relations whose targets survived.
+//! relations whose targets survived. A wall-mounted object names its wall as parent, with
+//! support `mounted`.
 
 use std::collections::BTreeMap;
 
@@ -13,12 +14,23 @@ use super::shared::{wrap, WALL_MOUNT_HEIGHT};
 use super::walkway::FloorState;
 use crate::plan::Plan;
 
-/// The poses of the placed floor objects by plan index, and the wall each one backs onto.
+/// Where a placed floor object's back is: against a wall (standing on the floor) or mounted
+/// on it (hanging, off the floor).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(super) enum WallContact {
+    /// Standing on the floor with its back against the wall of this id.
+    Against(String),
+    /// Hanging on the wall of this id.
+    Mounted(String),
+}
+
+/// The poses of the placed floor objects by plan index, and the wall each one backs onto or
+/// hangs on.
 pub(super) fn ground_poses(
     state: &FloorState<'_>,
-) -> (BTreeMap<usize, Pose>, BTreeMap<usize, String>) {
+) -> (BTreeMap<usize, Pose>, BTreeMap<usize, WallContact>) {
     let mut poses: BTreeMap<usize, Pose> = BTreeMap::new();
-    let mut walls: BTreeMap<usize, String> = BTreeMap::new();
+    let mut walls: BTreeMap<usize, WallContact> = BTreeMap::new();
     for p in &state.placed {
         let y = if p.mounted {
             (WALL_MOUNT_HEIGHT - p.height / 2.0).max(0.5)
@@ -30,7 +42,12 @@ pub(super) fn ground_poses(
             Pose::new(1.0, wrap(p.fp.yaw), Vector3::new(p.fp.cx, y, p.fp.cz)),
         );
         if let Some(w) = &p.wall {
-            walls.insert(p.plan_index, w.clone());
+            let contact = if p.mounted {
+                WallContact::Mounted(w.clone())
+            } else {
+                WallContact::Against(w.clone())
+            };
+            walls.insert(p.plan_index, contact);
         }
     }
     (poses, walls)
@@ -44,7 +61,7 @@ pub(super) fn build_scene(
     room: Room,
     infos: &[AssetInfo],
     poses: &BTreeMap<usize, Pose>,
-    walls: &BTreeMap<usize, String>,
+    walls: &BTreeMap<usize, WallContact>,
 ) -> Scene {
     let mut scene = Scene::new(room.architecture);
     scene.prompt = plan.prompt.clone();
@@ -68,12 +85,20 @@ pub(super) fn build_scene(
             })
             .cloned()
             .collect();
+        let mut parent = o.parent.clone();
         if o.parent == ParentRef::Ground {
             match walls.get(&i) {
-                Some(w) => {
+                Some(WallContact::Against(w)) => {
                     support = RelationKind::AgainstWall;
                     relations.retain(|r| r.kind != RelationKind::AgainstWall);
                     relations.insert(0, Relation::new(RelationKind::AgainstWall, w.clone()));
+                }
+                Some(WallContact::Mounted(w)) => {
+                    // The wall holds it: it names the wall as parent, and the parent link says
+                    // what an `against-wall` relation would repeat.
+                    parent = ParentRef::Wall(w.clone());
+                    support = RelationKind::Mounted;
+                    relations.retain(|r| r.kind != RelationKind::AgainstWall);
                 }
                 None => {
                     if support == RelationKind::AgainstWall {
@@ -88,7 +113,7 @@ pub(super) fn build_scene(
             category: o.category.clone(),
             asset: info.source.clone(),
             pose: *pose,
-            parent: o.parent.clone(),
+            parent,
             support,
             relations,
             local_bounds: Aabb::new(

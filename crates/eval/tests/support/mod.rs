@@ -101,7 +101,6 @@ pub fn place(
         parent: parent.map(str::to_owned),
         support: Some(support),
         relations: Vec::new(),
-        welded: false,
     }
 }
 

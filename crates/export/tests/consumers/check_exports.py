@@ -10,9 +10,12 @@ meshes/). Checks:
   * OpenUSD (pip: usd-core): Usd.Stage.Open succeeds, upAxis is Y, metersPerUnit is 1, every
     object is an Xform whose world bounding box matches scene.json's world_aabb.
   * MuJoCo (pip: mujoco): MjModel.from_xml_path loads the MJCF, every body starts where
-    scene.json puts it, and after simulating S seconds (default 2) every free body moved less
-    than M metres (default 0.01) and nothing became NaN.
-  * URDF: the XML parses, every link named by an object id exists, every mesh file exists.
+    scene.json puts it, exactly the objects mounted on a wall (support `mounted`, parent a wall
+    id) are welded (no joint) and every other one has a free joint, and after simulating S
+    seconds (default 2) every free body moved less than M metres (default 0.01) and nothing
+    became NaN.
+  * URDF: the XML parses, every link named by an object id exists, every mesh file exists,
+    mounted objects hang from `world` on a fixed joint and the others on floating ones.
 Exits 1 with one line per failure when anything is wrong.
 """
 
@@ -101,6 +104,20 @@ def z_up(p):
     return (p[0], -p[2], p[1])
 
 
+def mounted_ids(scene):
+    """The objects scene.json says hang on a wall: support `mounted`, parent a wall id."""
+    walls = {w["id"] for w in scene["architecture"].get("walls", [])}
+    out = set()
+    for oid, obj in scene["objects"].items():
+        if obj["support"] == "mounted":
+            if obj["parent"] not in walls:
+                fail(f"scene.json: {oid} is mounted on {obj['parent']!r}, which is not a wall")
+            out.add(oid)
+        elif obj["parent"] in walls:
+            fail(f"scene.json: {oid} names wall {obj['parent']} as parent with support {obj['support']}")
+    return out
+
+
 def check_mjcf(path, scene, seconds, tolerance):
     import mujoco
     import numpy as np
@@ -113,11 +130,16 @@ def check_mjcf(path, scene, seconds, tolerance):
         if model.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE:
             free_bodies.append(model.jnt_bodyid[j])
     names = {mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, b): b for b in range(1, model.nbody)}
+    mounted = mounted_ids(scene)
+    free_set = set(free_bodies)
     for oid, obj in scene["objects"].items():
         b = names.get(oid)
         if b is None:
             fail(f"{path}: no body named {oid}")
             continue
+        if (oid in mounted) == (b in free_set):
+            fail(f"{path}: body {oid} is {'free' if b in free_set else 'welded'}, but scene.json says "
+                 f"{'mounted' if oid in mounted else 'not mounted'}")
         want = np.array(z_up(obj["pose"]["translation"]))
         if np.linalg.norm(data.xpos[b] - want) > 1e-4:
             fail(f"{path}: body {oid} starts at {data.xpos[b]}, scene.json says {want}")
@@ -140,7 +162,8 @@ def check_mjcf(path, scene, seconds, tolerance):
     moves.sort(reverse=True)
     top = ", ".join(f"{n} {d * 1000:.1f} mm" for d, _, n in moves[:3])
     ok(
-        f"mjcf: loaded {model.nbody - 1} bodies ({len(free_bodies)} free), {model.ngeom} geoms; "
+        f"mjcf: loaded {model.nbody - 1} bodies ({len(free_bodies)} free, {len(mounted)} welded "
+        f"mounted), {model.ngeom} geoms; "
         f"after {seconds} s largest moves: {top}"
     )
 
@@ -159,6 +182,12 @@ def check_urdf(path, scene):
             missing.append(str(f))
     if missing:
         fail(f"{path}: missing mesh files {missing[:5]}")
+    mounted = mounted_ids(scene)
+    kinds = {j.find("child").get("link"): j.get("type") for j in joints if j.find("child") is not None}
+    for oid in scene["objects"]:
+        want = "fixed" if oid in mounted else "floating"
+        if kinds.get(oid) != want:
+            fail(f"{path}: joint of {oid} is {kinds.get(oid)}, expected {want}")
     ok(f"urdf: {len(links)} links, {len(joints)} joints, all mesh files present")
 
 
