@@ -172,7 +172,7 @@ pub fn check_arrangement_with(rules: &ArrangementRules, scene: &Scene) -> Arrang
         floor
             .iter()
             .copied()
-            .filter(|o| names.iter().any(|n| *n == o.category))
+            .filter(|o| names.contains(&o.category))
             .collect()
     };
     let holds = |o: &SceneObject, kind: RelationKind, target: &str| {
@@ -190,16 +190,19 @@ pub fn check_arrangement_with(rules: &ArrangementRules, scene: &Scene) -> Arrang
             if near.is_empty() {
                 continue;
             }
-            let failure =
-                (!near.iter().any(|t| holds(s, RelationKind::Facing, &t.id))).then(|| {
-                    format!(
-                        "faces none of {}",
-                        near.iter()
-                            .map(|t| format!("`{}`", t.id))
-                            .collect::<Vec<_>>()
-                            .join(", ")
-                    )
-                });
+            let failure = (!near.iter().any(|t| {
+                holds(s, RelationKind::Facing, &t.id)
+                    || (holds(s, RelationKind::InFrontOf, &t.id) && squarely_toward(s, t))
+            }))
+            .then(|| {
+                format!(
+                    "faces none of {}",
+                    near.iter()
+                        .map(|t| format!("`{}`", t.id))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )
+            });
             check.record(&r.rule, &s.id, failure);
         }
     }
@@ -276,6 +279,11 @@ fn front(o: &SceneObject) -> Vector2<f64> {
 
 fn right(o: &SceneObject) -> Vector2<f64> {
     Vector2::new(o.pose.yaw.cos(), -o.pose.yaw.sin())
+}
+
+/// `s` is turned within 50° of straight at `t`'s front face (its front opposite `t`'s).
+fn squarely_toward(s: &SceneObject, t: &SceneObject) -> bool {
+    -front(s).dot(&front(t)) >= 50f64.to_radians().cos()
 }
 
 fn gap_xz(a: &SceneObject, b: &SceneObject) -> f64 {
