@@ -2,7 +2,7 @@
 //! optimizer leaves below every object: it rests each object `support_clearance` (1.25 mm)
 //! above its support, and the stability simulation lets it fall that far. A frustum-shaped
 //! base simulated as a many-sided convex hull rocked after that drop (a table lamp tilted by
-//! up to 0.1 rad, a stanchion slid 1.3 cm, a palm tree 2.4 cm); a flat cylindrical foot rests still.
+//! up to 0.1 rad, a stanchion slid 1.3 cm, a palm tree 2.4 cm, a beach umbrella 2 cm); a flat cylindrical foot rests still.
 
 mod support;
 
@@ -19,7 +19,13 @@ const SETTLE_DROP: f64 = 0.00125;
 fn round_based_assets_stand_still_after_the_settle_drop() {
     let cache = DecompositionCache::default();
     let mut failures = Vec::new();
-    for name in ["stanchion", "table_lamp", "floor_lamp", "palm_tree"] {
+    for name in [
+        "stanchion",
+        "table_lamp",
+        "floor_lamp",
+        "palm_tree",
+        "beach_umbrella",
+    ] {
         let category = catalog::categories()
             .find(|c| c.name == name)
             .expect("category exists");

@@ -69,7 +69,10 @@ fn beach_umbrella(rng: &mut ChaCha8Rng) -> Asset {
     let base = b.material("base", [0.25, 0.25, 0.27], 0.7);
     // A weighted base (≈ 25 kg at water density) and a thin canopy keep the centre of mass low,
     // as a free-standing umbrella needs.
-    b.frustum("base", base, [0.0, 0.0], 0.3, 0.24, 0.0, 0.11, 20);
+    // A flat round foot under the weighted cone (see `palm_tree`): the foot rests still in
+    // simulation where a 20-sided frustum hull slid 2 cm after the optimizer's settle drop.
+    b.frustum("base_foot", base, [0.0, 0.0], 0.3, 0.3, 0.0, 0.02, 24);
+    b.frustum("base", base, [0.0, 0.0], 0.3, 0.24, 0.02, 0.11, 20);
     b.frustum("pole", pole, [0.0, 0.0], 0.019, 0.019, 0.02, h + 0.05, 12);
     let panels = 8;
     let thick = 0.003;
