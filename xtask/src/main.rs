@@ -4,8 +4,10 @@
 //! - `cargo xtask bench [--json] [FILTER]` runs every crate's criterion benchmarks in release
 //!   mode and prints their figures — mean time per iteration and, where a benchmark declares a
 //!   throughput, elements per second — as a table or as one JSON object; it also runs the
-//!   vision round trip over the benchmark prompts (`roundtrip/none`, `roundtrip/default`) and the
-//!   optimizer ablation against ground truth (`roundtrip/ablation`).
+//!   vision round trip over the benchmark prompts (`roundtrip/none`, `roundtrip/default`), the
+//!   optimizer ablation against ground truth (`roundtrip/ablation`) and the content of the
+//!   benchmark scenes over seeds 0–3 (`rooms/…`: acceptance, stated relations held,
+//!   functional-arrangement rules held, category-set diversity).
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -96,6 +98,9 @@ fn bench(args: &[String]) -> Result<()> {
     if filter.is_empty() || filter.iter().any(|f| "roundtrip".contains(f)) {
         add_roundtrip(&root, &target, json_out, &mut figures)?;
     }
+    if filter.is_empty() || filter.iter().any(|f| "rooms".contains(f)) {
+        add_rooms(&root, &target, json_out, &mut figures)?;
+    }
     if json_out {
         println!(
             "{}",
@@ -122,29 +127,9 @@ fn add_roundtrip(
     json_out: bool,
     figures: &mut BTreeMap<String, Value>,
 ) -> Result<()> {
-    let mut build = Command::new(env!("CARGO"));
-    build
-        .current_dir(root)
-        .args(["build", "--release", "--quiet", "-p", "scenethesis-cli"]);
-    if json_out {
-        build.stdout(std::process::Stdio::null());
-    }
-    if !build
-        .status()
-        .context("cannot build scenethesis")?
-        .success()
-    {
-        bail!("building scenethesis failed");
-    }
-    let exe = target.join("release").join("scenethesis");
-    let prompts_file = root.join("fixtures/prompts/benchmark.txt");
-    let text = std::fs::read_to_string(&prompts_file)
-        .with_context(|| format!("cannot read {}", prompts_file.display()))?;
-    let prompts: Vec<&str> = text
-        .lines()
-        .map(str::trim)
-        .filter(|l| !l.is_empty() && !l.starts_with('#'))
-        .collect();
+    let exe = release_cli(root, target, json_out)?;
+    let prompts_text = benchmark_prompts(root)?;
+    let prompts = prompt_lines(&prompts_text);
     let scratch = target.join("xtask-roundtrip");
     let _ = std::fs::remove_dir_all(&scratch);
     std::fs::create_dir_all(&scratch)?;
@@ -152,19 +137,7 @@ fn add_roundtrip(
     let mut ablations: Vec<Value> = Vec::new();
     for (k, prompt) in prompts.iter().enumerate() {
         let dir = scratch.join(format!("p{k:02}"));
-        let out = Command::new(&exe)
-            .arg("generate")
-            .arg(prompt)
-            .args(["--seed", "0", "--no-preview", "--out"])
-            .arg(&dir)
-            .output()
-            .context("cannot run scenethesis generate")?;
-        if !out.status.success() && !dir.join("scene.json").exists() {
-            bail!(
-                "generate {prompt:?} failed: {}",
-                String::from_utf8_lossy(&out.stderr)
-            );
-        }
+        generate(&exe, prompt, 0, &dir)?;
         for perturb in ["none", "default"] {
             let out = Command::new(&exe)
                 .arg("roundtrip")
@@ -196,19 +169,6 @@ fn add_roundtrip(
         }
         ablations.push(serde_json::from_slice(&out.stdout)?);
     }
-    let median = |mut v: Vec<f64>| -> f64 {
-        v.retain(|x| x.is_finite());
-        if v.is_empty() {
-            return f64::NAN;
-        }
-        v.sort_by(f64::total_cmp);
-        let n = v.len();
-        if n % 2 == 1 {
-            v[n / 2]
-        } else {
-            (v[n / 2 - 1] + v[n / 2]) / 2.0
-        }
-    };
     for (perturb, reports) in rows {
         let field =
             |name: &str| -> Vec<f64> { reports.iter().filter_map(|r| r[name].as_f64()).collect() };
@@ -258,6 +218,208 @@ fn add_roundtrip(
         json!({ "prompts": ablations.len(), "rows": ablation_rows }),
     );
     Ok(())
+}
+
+/// Seeds over which the benchmark scenes' content is measured (`rooms/…`).
+const ROOM_SEEDS: u64 = 4;
+
+/// The content of the benchmark scenes (`fixtures/prompts/benchmark.txt`), each prompt generated
+/// with the release binary (no previews) at seeds 0–3. Adds one `rooms/pNN` figure per prompt —
+/// seed 0's acceptance, objects, stated relations held / stated and their share, functional
+/// arrangement rules held / checked, and the mean pairwise Jaccard similarity of the category
+/// sets over the seeds — and `rooms/all`: accepted prompts at seed 0, the pooled relation and
+/// rule shares at seed 0, and the mean of the per-prompt Jaccard similarities (issue #16's
+/// target is ≤ 0.75).
+fn add_rooms(
+    root: &Path,
+    target: &Path,
+    json_out: bool,
+    figures: &mut BTreeMap<String, Value>,
+) -> Result<()> {
+    let exe = release_cli(root, target, json_out)?;
+    let prompts_text = benchmark_prompts(root)?;
+    let prompts = prompt_lines(&prompts_text);
+    let scratch = target.join("xtask-rooms");
+    let _ = std::fs::remove_dir_all(&scratch);
+    std::fs::create_dir_all(&scratch)?;
+    let (mut accepted, mut held, mut stated, mut rules_held, mut rules) = (0, 0, 0, 0, 0);
+    let mut jaccards = Vec::new();
+    for (k, prompt) in prompts.iter().enumerate() {
+        let mut sets: Vec<std::collections::BTreeSet<String>> = Vec::new();
+        let mut first: Option<Value> = None;
+        for seed in 0..ROOM_SEEDS {
+            let dir = scratch.join(format!("p{k:02}-s{seed}"));
+            generate(&exe, prompt, seed, &dir)?;
+            let report: Value = serde_json::from_str(
+                &std::fs::read_to_string(dir.join("report.json")).with_context(|| {
+                    format!("cannot read {}", dir.join("report.json").display())
+                })?,
+            )?;
+            sets.push(
+                report["verdict"]["metrics"]["category_names"]
+                    .as_array()
+                    .map(|a| {
+                        a.iter()
+                            .filter_map(|c| c.as_str().map(str::to_owned))
+                            .collect()
+                    })
+                    .unwrap_or_default(),
+            );
+            if seed == 0 {
+                first = Some(report);
+            }
+        }
+        let report = first.expect("seed 0 generated");
+        let jaccard = mean_pairwise_jaccard(&sets);
+        jaccards.push(jaccard);
+        let p_held = report["prompt_check"]["relations_held"]
+            .as_u64()
+            .unwrap_or(0);
+        let p_stated = report["prompt_check"]["relations_stated"]
+            .as_u64()
+            .unwrap_or(0);
+        let arrangement = &report["verdict"]["arrangement"];
+        let r_held = arrangement["held"].as_u64().unwrap_or(0);
+        let r_checked = arrangement["checked"].as_u64().unwrap_or(0);
+        let ok = report["accepted"].as_bool().unwrap_or(false);
+        accepted += usize::from(ok);
+        held += p_held;
+        stated += p_stated;
+        rules_held += r_held;
+        rules += r_checked;
+        figures.insert(
+            format!("rooms/p{k:02}"),
+            json!({
+                "prompt": prompt,
+                "accepted": ok,
+                "objects": report["objects"],
+                "relations_held": p_held,
+                "relations_stated": p_stated,
+                "relations_share": share(p_held, p_stated),
+                "rules_held": r_held,
+                "rules_checked": r_checked,
+                "rules_share": share(r_held, r_checked),
+                "jaccard_mean": jaccard,
+                "seeds": ROOM_SEEDS,
+            }),
+        );
+    }
+    figures.insert(
+        "rooms/all".to_owned(),
+        json!({
+            "prompts": prompts.len(),
+            "accepted": accepted,
+            "relations_held": held,
+            "relations_stated": stated,
+            "relations_share": share(held, stated),
+            "rules_held": rules_held,
+            "rules_checked": rules,
+            "rules_share": share(rules_held, rules),
+            "jaccard_mean": jaccards.iter().sum::<f64>() / jaccards.len().max(1) as f64,
+            "jaccard_max": jaccards.iter().copied().fold(f64::NAN, f64::max),
+        }),
+    );
+    Ok(())
+}
+
+/// `held / total`, or null when nothing was counted.
+fn share(held: u64, total: u64) -> Value {
+    if total == 0 {
+        Value::Null
+    } else {
+        json!(held as f64 / total as f64)
+    }
+}
+
+/// Mean over all pairs of sets of |A ∩ B| / |A ∪ B| (1 for fewer than two sets).
+fn mean_pairwise_jaccard(sets: &[std::collections::BTreeSet<String>]) -> f64 {
+    let mut sum = 0.0;
+    let mut pairs = 0;
+    for (i, a) in sets.iter().enumerate() {
+        for b in &sets[i + 1..] {
+            let union = a.union(b).count();
+            let inter = a.intersection(b).count();
+            sum += if union == 0 {
+                1.0
+            } else {
+                inter as f64 / union as f64
+            };
+            pairs += 1;
+        }
+    }
+    if pairs == 0 {
+        1.0
+    } else {
+        sum / f64::from(pairs)
+    }
+}
+
+/// Builds the release `scenethesis` binary and returns its path.
+fn release_cli(root: &Path, target: &Path, json_out: bool) -> Result<PathBuf> {
+    let mut build = Command::new(env!("CARGO"));
+    build
+        .current_dir(root)
+        .args(["build", "--release", "--quiet", "-p", "scenethesis-cli"]);
+    if json_out {
+        build.stdout(std::process::Stdio::null());
+    }
+    if !build
+        .status()
+        .context("cannot build scenethesis")?
+        .success()
+    {
+        bail!("building scenethesis failed");
+    }
+    Ok(target.join("release").join("scenethesis"))
+}
+
+/// The text of `fixtures/prompts/benchmark.txt`.
+fn benchmark_prompts(root: &Path) -> Result<String> {
+    let prompts_file = root.join("fixtures/prompts/benchmark.txt");
+    std::fs::read_to_string(&prompts_file)
+        .with_context(|| format!("cannot read {}", prompts_file.display()))
+}
+
+/// The prompts of a prompts file: non-empty lines that are not `#` comments.
+fn prompt_lines(text: &str) -> Vec<&str> {
+    text.lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !l.starts_with('#'))
+        .collect()
+}
+
+/// `scenethesis generate PROMPT --seed SEED --no-preview --out DIR`; an unaccepted scene is
+/// still a result (its folder is written), a run that writes no scene is an error.
+fn generate(exe: &Path, prompt: &str, seed: u64, dir: &Path) -> Result<()> {
+    let out = Command::new(exe)
+        .arg("generate")
+        .arg(prompt)
+        .args(["--seed", &seed.to_string(), "--no-preview", "--out"])
+        .arg(dir)
+        .output()
+        .context("cannot run scenethesis generate")?;
+    if !out.status.success() && !dir.join("scene.json").exists() {
+        bail!(
+            "generate {prompt:?} (seed {seed}) failed: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    Ok(())
+}
+
+/// The median of the finite values (NaN when there are none).
+fn median(mut v: Vec<f64>) -> f64 {
+    v.retain(|x| x.is_finite());
+    if v.is_empty() {
+        return f64::NAN;
+    }
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        (v[n / 2 - 1] + v[n / 2]) / 2.0
+    }
 }
 
 /// Group of the end-to-end benchmark (one function per prompt) in `crates/pipeline`.

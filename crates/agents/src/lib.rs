@@ -13,11 +13,15 @@
 //! - [`FixedPlanner`] returns a plan written beforehand (a hand-edited `plan.json`), checked
 //!   field by field by [`check_plan`].
 //! - [`relation_holds`] checks a scene relation geometrically; [`check_prompt`] checks that a
-//!   scene holds every object its prompt names and every relation it states.
+//!   scene holds every object its prompt names and every relation it states;
+//!   [`check_arrangement`] checks the functional-arrangement rules (`knowledge/arrangement.toml`:
+//!   seating faces what it serves, a bed's head against a wall, kitchen runs, …) with the same
+//!   relation code.
 //!
 //! An LLM planner and a vision guide implement the same traits.
 #![warn(missing_docs)]
 
+pub mod arrangement;
 mod fidelity;
 mod fixed;
 mod guide;
@@ -28,6 +32,7 @@ mod planner;
 mod prompt;
 mod text;
 
+pub use arrangement::{check_arrangement, ArrangementCheck, BrokenRule};
 pub use fidelity::{check_prompt, constraint_holds, BrokenRelation, MissingObject, PromptCheck};
 pub use fixed::{check_plan, FixedPlanner, PlanFileError, PlanIssue};
 pub use guide::{

@@ -144,8 +144,64 @@ fn denser_home_rooms_stay_walkable_and_reachable() {
                 laid.dropped
             );
             counts.push(laid.scene.objects.len());
+            // Issue #16: home rooms hold about as many objects as real ones (30–60).
+            if matches!(room, "bathroom" | "laundry room") {
+                assert!(
+                    laid.scene.objects.len() >= 30,
+                    "{prompt} #{seed}: only {} objects",
+                    laid.scene.objects.len()
+                );
+            }
         }
         report.push(format!("{room:<13} objects per seed {counts:?}"));
     }
     println!("{}", report.join("\n"));
+}
+
+/// Mean over the pairs of seeds of the Jaccard similarity of the plans' category sets.
+fn plan_jaccard(prompt: &str, seeds: u64) -> f64 {
+    let sets: Vec<BTreeSet<String>> = (0..seeds)
+        .map(|seed| {
+            common::plan(prompt, seed)
+                .objects
+                .iter()
+                .map(|o| o.category.clone())
+                .collect()
+        })
+        .collect();
+    let (mut sum, mut pairs) = (0.0, 0);
+    for (i, a) in sets.iter().enumerate() {
+        for b in &sets[i + 1..] {
+            sum += a.intersection(b).count() as f64 / a.union(b).count().max(1) as f64;
+            pairs += 1;
+        }
+    }
+    sum / f64::from(pairs)
+}
+
+/// Issue #16: seeds 0–3 of a benchmark prompt differ in what the room holds, not only where:
+/// the mean pairwise Jaccard similarity of the planned category sets is at most 0.75 on
+/// average over the benchmark prompts (the final scenes are measured by `cargo xtask bench
+/// --json`, `rooms/all`).
+#[test]
+fn benchmark_plans_vary_between_seeds() {
+    let prompts: Vec<&str> = include_str!("../../../fixtures/prompts/benchmark.txt")
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !l.starts_with('#'))
+        .collect();
+    let mut lines = Vec::new();
+    let mut total = 0.0;
+    for prompt in &prompts {
+        let j = plan_jaccard(prompt, 4);
+        total += j;
+        lines.push(format!("{j:.2} {prompt}"));
+    }
+    let mean = total / prompts.len() as f64;
+    println!("{}\nmean {mean:.3}", lines.join("\n"));
+    assert!(
+        mean <= 0.75,
+        "mean Jaccard {mean:.3}:\n{}",
+        lines.join("\n")
+    );
 }

@@ -40,6 +40,7 @@ impl Judge for AcceptAll {
             failures: Vec::new(),
             metrics: evaluate_with_cache(&scene, &self.cache),
             relations_checked: 0,
+            arrangement: None,
             review: None,
         })
     }

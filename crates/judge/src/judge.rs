@@ -3,7 +3,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use scenethesis_agents::{check_prompt, Plan};
+use scenethesis_agents::{check_arrangement, check_prompt, ArrangementCheck, Plan};
 use scenethesis_correspondence::Guidance;
 use scenethesis_eval::{
     evaluate_with_cache, DecompositionCache, EvalError, EvalScene, SceneMetrics,
@@ -71,6 +71,11 @@ pub struct Verdict {
     pub metrics: SceneMetrics,
     /// Relations of the plan that were checked.
     pub relations_checked: usize,
+    /// The functional-arrangement rules (seating faces what it serves, a bed's head against a
+    /// wall, …) checked on the scene: reported, not a reason to reject. Absent when the judge
+    /// did not check them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub arrangement: Option<ArrangementCheck>,
     /// A model's review of the rendered scene (scores, per-object reasons), when a model judge
     /// looked at it; absent for the geometric judge.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -270,6 +275,7 @@ impl Judge for GeometricJudge {
             failures,
             metrics,
             relations_checked,
+            arrangement: Some(check_arrangement(scene)),
             review: None,
         })
     }

@@ -155,11 +155,59 @@ pub struct JobOutcome {
     pub objects: Option<usize>,
     /// Seconds of generation (finished jobs; from its report).
     pub seconds: Option<f64>,
+    /// Relations the prompt states and how many hold in the scene (finished jobs; from its
+    /// report's `prompt_check`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub relations: Option<RelationsHeld>,
     /// Why it failed.
     pub error: Option<String>,
     /// Anything else worth knowing (e.g. an earlier scene of another prompt was replaced).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub note: Option<String>,
+}
+
+/// Relations a prompt states and how many of them hold: one scene's, or pooled over scenes.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct RelationsHeld {
+    /// Stated relations that hold in the scene.
+    pub held: u32,
+    /// Relations the prompt states.
+    pub stated: u32,
+    /// `held / stated`; absent when the prompt states none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub share: Option<f64>,
+}
+
+impl RelationsHeld {
+    /// Held / stated, with the share computed.
+    pub fn new(held: u32, stated: u32) -> Self {
+        Self {
+            held,
+            stated,
+            share: (stated > 0).then(|| f64::from(held) / f64::from(stated)),
+        }
+    }
+
+    /// The stated relations of a finished scene's report.
+    pub fn of(report: &Report) -> Self {
+        Self::new(
+            report.prompt_check.relations_held,
+            report.prompt_check.relations_stated,
+        )
+    }
+}
+
+/// One prompt's stated relations held, pooled over its finished seeds.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PromptRelations {
+    /// 0-based index of the prompt among the prompts.
+    pub prompt_index: usize,
+    /// The prompt.
+    pub prompt: String,
+    /// Finished scenes (seeds) of the prompt.
+    pub scenes: usize,
+    /// Its stated relations held over those scenes.
+    pub relations: RelationsHeld,
 }
 
 /// What a batch reports while it runs.
@@ -184,6 +232,12 @@ pub struct BatchSummary {
     pub metrics: MetricsSummary,
     /// Median seconds per scene over the finished scenes.
     pub median_seconds: Option<f64>,
+    /// Stated relations held over the finished scenes (each job's own share is in `jobs`).
+    #[serde(default)]
+    pub relations: RelationsHeld,
+    /// Stated relations held per prompt, pooled over its finished seeds, in prompt order.
+    #[serde(default)]
+    pub prompts: Vec<PromptRelations>,
     /// Every job of the batch; those not finished yet have no figures.
     pub jobs: Vec<JobOutcome>,
 }
@@ -431,6 +485,7 @@ pub fn run_batch(
             accepted: report.map(|r| r.accepted),
             objects: report.map(|r| r.objects),
             seconds: report.map(|r| r.total_seconds),
+            relations: report.map(RelationsHeld::of),
             error,
             note: None,
         };
@@ -509,6 +564,7 @@ fn summarize(all: &[BatchJob], out: &Path, ran: &[JobOutcome], digest: &str) -> 
     let mut metrics: Vec<SceneMetrics> = Vec::new();
     let mut seconds: Vec<f64> = Vec::new();
     let mut accepted = 0;
+    let (mut held, mut stated) = (0, 0);
     let jobs: Vec<JobOutcome> = all
         .iter()
         .map(|job| {
@@ -518,12 +574,16 @@ fn summarize(all: &[BatchJob], out: &Path, ran: &[JobOutcome], digest: &str) -> 
                     metrics.push(report.verdict.metrics.clone());
                     seconds.push(report.total_seconds);
                     accepted += usize::from(report.accepted);
+                    let relations = RelationsHeld::of(&report);
+                    held += relations.held;
+                    stated += relations.stated;
                     JobOutcome {
                         job: job.clone(),
                         status: ran_here.map_or(JobStatus::Skipped, |o| o.status),
                         accepted: Some(report.accepted),
                         objects: Some(report.objects),
                         seconds: Some(report.total_seconds),
+                        relations: Some(relations),
                         error: None,
                         note: ran_here.and_then(|o| o.note.clone()),
                     }
@@ -534,6 +594,7 @@ fn summarize(all: &[BatchJob], out: &Path, ran: &[JobOutcome], digest: &str) -> 
                     accepted: None,
                     objects: None,
                     seconds: None,
+                    relations: None,
                     error: Some("not finished (another shard, or not run yet)".into()),
                     note: None,
                 }),
@@ -549,12 +610,37 @@ fn summarize(all: &[BatchJob], out: &Path, ran: &[JobOutcome], digest: &str) -> 
             (seconds[n / 2 - 1] + seconds[n / 2]) / 2.0
         }
     });
+    let mut prompts: Vec<PromptRelations> = Vec::new();
+    for job in &jobs {
+        let Some(r) = job.relations else { continue };
+        let at = match prompts
+            .iter()
+            .position(|p| p.prompt_index == job.job.prompt_index)
+        {
+            Some(at) => at,
+            None => {
+                prompts.push(PromptRelations {
+                    prompt_index: job.job.prompt_index,
+                    prompt: job.job.prompt.clone(),
+                    scenes: 0,
+                    relations: RelationsHeld::default(),
+                });
+                prompts.len() - 1
+            }
+        };
+        let p = &mut prompts[at];
+        p.scenes += 1;
+        p.relations = RelationsHeld::new(p.relations.held + r.held, p.relations.stated + r.stated);
+    }
+    prompts.sort_by_key(|p| p.prompt_index);
     BatchSummary {
         total_jobs: all.len(),
         finished: metrics.len(),
         accepted,
         metrics: MetricsSummary::from_scenes(&metrics),
         median_seconds,
+        relations: RelationsHeld::new(held, stated),
+        prompts,
         jobs,
     }
 }

@@ -128,6 +128,18 @@ pub(super) fn candidates(
             for k in order {
                 out.extend(wall_candidates(&sides[k], hx, hz, rng));
             }
+            if let Some(t) = facing {
+                // Places on the other walls from which the object would not face its target
+                // (a television on a side wall, turned away from the sofa) come last.
+                let faces = |c: &Candidate| {
+                    let d = [t.fp.cx - c.fp.cx, t.fp.cz - c.fp.cz];
+                    let len = (d[0] * d[0] + d[1] * d[1]).sqrt();
+                    len > 1e-9
+                        && (c.fp.yaw.sin() * d[0] + c.fp.yaw.cos() * d[1]) / len
+                            >= 50f64.to_radians().cos()
+                };
+                out.sort_by_key(|c| !faces(c));
+            }
         }
         Zone::Corner => out.extend(corner_candidates(sides, hx, hz, rng)),
         Zone::Center => out.extend(center_candidates(state, hx, hz, rng, is_anchor)),

@@ -1057,7 +1057,19 @@ pub(super) fn stanchion(rng: &mut ChaCha8Rng) -> Asset {
     let dark = mat(&mut b, Palette::CoatedMetal, rng);
     let h = uniform(rng, 0.9, 1.0);
     let r = uniform(rng, 0.15, 0.18);
-    b.part(frustum("base", dark, [0.0, 0.0], r, 0.8 * r, 0.0, 0.04, 24));
+    // A flat round foot under a bevelled top (see `table_lamp`): the cylinder rests still in
+    // the stability simulation, a frustum hull on the floor rocks after settling 1.25 mm.
+    b.part(cylinder("base", dark, [0.0, 0.0], r, 0.0, 0.015, 24));
+    b.part(frustum(
+        "base_top",
+        dark,
+        [0.0, 0.0],
+        r,
+        0.8 * r,
+        0.015,
+        0.04,
+        24,
+    ));
     b.part(cylinder(
         "post",
         metal,

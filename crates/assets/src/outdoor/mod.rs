@@ -69,7 +69,10 @@ fn beach_umbrella(rng: &mut ChaCha8Rng) -> Asset {
     let base = b.material("base", [0.25, 0.25, 0.27], 0.7);
     // A weighted base (≈ 25 kg at water density) and a thin canopy keep the centre of mass low,
     // as a free-standing umbrella needs.
-    b.frustum("base", base, [0.0, 0.0], 0.3, 0.24, 0.0, 0.11, 20);
+    // A flat round foot under the weighted cone (see `palm_tree`): the foot rests still in
+    // simulation where a 20-sided frustum hull slid 2 cm after the optimizer's settle drop.
+    b.frustum("base_foot", base, [0.0, 0.0], 0.3, 0.3, 0.0, 0.02, 24);
+    b.frustum("base", base, [0.0, 0.0], 0.3, 0.24, 0.02, 0.11, 20);
     b.frustum("pole", pole, [0.0, 0.0], 0.019, 0.019, 0.02, h + 0.05, 12);
     let panels = 8;
     let thick = 0.003;
@@ -248,7 +251,13 @@ fn palm_tree(rng: &mut ChaCha8Rng) -> Asset {
     for i in 0..=segs {
         let u = i as f32 / segs as f32;
         let off = h * lean * u * u;
-        trunk.push([off * lean_dir.cos(), h * u, off * lean_dir.sin()]);
+        // The trunk starts inside the footing, so only the footing's flat foot meets the
+        // ground.
+        trunk.push([
+            off * lean_dir.cos(),
+            (h * u).max(0.05),
+            off * lean_dir.sin(),
+        ]);
     }
     for (k, w) in trunk.windows(2).enumerate() {
         let r0 = 0.2 - 0.08 * k as f32 / segs as f32;
@@ -256,7 +265,11 @@ fn palm_tree(rng: &mut ChaCha8Rng) -> Asset {
         b.tube(&format!("trunk_{k}"), bark, w[0], w[1], r0, r1, 12);
     }
     // The root flare and its soil: a wide, heavy footing so the tree stands free in simulation.
-    b.frustum("root_flare", bark, [0.0, 0.0], 0.55, 0.22, 0.0, 0.3, 16);
+    // Its foot is a flat cylinder (a round primitive in the stability simulation); a
+    // many-sided frustum hull standing on the ground slid by up to 2.4 cm after the
+    // optimizer's 1.25 mm settle drop.
+    b.frustum("root_foot", bark, [0.0, 0.0], 0.55, 0.55, 0.0, 0.05, 24);
+    b.frustum("root_flare", bark, [0.0, 0.0], 0.55, 0.22, 0.05, 0.3, 16);
     let top = trunk[segs];
     let fronds = 7 + (uniform(rng, 0.0, 3.99) as usize);
     let frond_len = uniform(rng, 1.8, 2.8);

@@ -6,7 +6,9 @@ use std::sync::{Arc, Mutex};
 
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
-use scenethesis_pipeline::batch::{self, BatchEvent, BatchOptions, JobOutcome, JobStatus, Shard};
+use scenethesis_pipeline::batch::{
+    self, BatchEvent, BatchOptions, JobOutcome, JobStatus, RelationsHeld, Shard,
+};
 
 /// Arguments of `scenethesis batch`.
 #[derive(Debug, clap::Args)]
@@ -108,10 +110,11 @@ pub fn run(args: BatchArgs) -> Result<()> {
     );
     let m = &summary.metrics;
     println!(
-        "{}/{} scenes finished, {} accepted, {failed} failed; Col-O {:.1}% Col-S {:.0}% Inst-O {:.1}% Inst-S {:.0}% Walk {:.3}; median {:.2} s/scene",
+        "{}/{} scenes finished, {} accepted, {failed} failed; relations {}; Col-O {:.1}% Col-S {:.0}% Inst-O {:.1}% Inst-S {:.0}% Walk {:.3}; median {:.2} s/scene",
         summary.finished,
         summary.total_jobs,
         summary.accepted,
+        relations_text(summary.relations),
         m.col_o * 100.0,
         m.col_s * 100.0,
         m.inst_o * 100.0,
@@ -135,11 +138,19 @@ pub fn run(args: BatchArgs) -> Result<()> {
 }
 
 /// One progress line per finished job (none for jobs an interrupt kept from starting).
+/// "H/S held (P %)" for stated relations, or "none stated".
+fn relations_text(r: RelationsHeld) -> String {
+    match r.share {
+        Some(share) => format!("{}/{} held ({:.0} %)", r.held, r.stated, share * 100.0),
+        None => "none stated".to_owned(),
+    }
+}
+
 fn outcome_line(o: &JobOutcome) -> Option<String> {
     let line = match o.status {
         JobStatus::Skipped => format!("skip {} (already finished)", o.job.folder),
         JobStatus::Generated => format!(
-            "done {} — {}, {} objects, {:.2} s{}",
+            "done {} — {}, {} objects, relations {}, {:.2} s{}",
             o.job.folder,
             if o.accepted == Some(true) {
                 "accepted"
@@ -147,6 +158,7 @@ fn outcome_line(o: &JobOutcome) -> Option<String> {
                 "NOT accepted"
             },
             o.objects.unwrap_or(0),
+            o.relations.map_or("n/a".to_owned(), relations_text),
             o.seconds.unwrap_or(0.0),
             o.note
                 .as_deref()
