@@ -157,17 +157,6 @@ pub fn align_to_guidance(
     };
     let start_score = score_at(start);
     let mut best = (*start, start_score);
-    // A lift thrown off by stray depth (a mask spilling onto the wall behind) can leave the
-    // object far from its mask: try the start moved so that its visible silhouette's centroid
-    // and median depth match the mask's.
-    if let Some(moved) = recentred(mesh, start, target, window_at(start)) {
-        let score = score_at(&moved);
-        if score.score > best.1.score {
-            best = (moved, score);
-        }
-    }
-    let start_pose = best.0;
-    let start = &start_pose;
     if settings.yaw_candidates > 1 {
         let step = std::f64::consts::TAU / settings.yaw_candidates as f64;
         let yaws: Vec<f64> = (0..settings.yaw_candidates)
@@ -195,6 +184,15 @@ pub fn align_to_guidance(
             if score.score > best.1.score {
                 best = (pick.pose, score);
             }
+        }
+    }
+    // A lift thrown off by stray depth (a mask spilling onto the wall behind) can leave the
+    // object far from its mask: try the best pose so far moved so that its visible silhouette's centroid
+    // and median depth match the mask's.
+    if let Some(moved) = recentred(mesh, &best.0, target, window_at(&best.0)) {
+        let score = score_at(&moved);
+        if score.score > best.1.score {
+            best = (moved, score);
         }
     }
     let mut pose = best.0;
