@@ -68,4 +68,7 @@ pub use scenethesis_retrieval::{
 pub use stage::{NoProgress, Progress, Stage};
 
 pub use scenethesis_agents::{check_plan, FixedPlanner, Plan, PlanFileError, PlanIssue};
+/// The correspond stage's default matcher and its settings ([`Pipeline::with_matcher`]).
+pub use scenethesis_correspondence::ShapeMatcher;
 pub use scenethesis_export::Format;
+pub use scenethesis_physics_opt::GuidedSettings;

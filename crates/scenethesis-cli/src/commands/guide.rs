@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use scenethesis_openai::OpenAiClient;
-use scenethesis_pipeline::Pipeline;
+use scenethesis_pipeline::{GuidedSettings, Pipeline, ShapeMatcher};
 use scenethesis_vision_guide::{GivenGuidance, GuidanceFiles, VisionGuide};
 
 use super::providers::ProviderArgs;
@@ -22,6 +22,16 @@ pub enum GuideChoice {
     /// Layout lifted from a guidance image (given with --guide-image, or drawn by the image
     /// model into a render of the empty room).
     Vision,
+}
+
+/// How the correspond stage matches assets to the guidance image.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum MatcherChoice {
+    /// Silhouette and depth agreement of each asset rendered at its pose (the default).
+    #[default]
+    Shape,
+    /// No correspond stage: the optimizer starts from the lifted poses.
+    None,
 }
 
 /// The guide flags of `generate`.
@@ -49,6 +59,10 @@ pub struct GuideArgs {
     /// floor of the depth.
     #[arg(long, value_name = "CAMERA_JSON", requires = "guide_image")]
     pub camera: Option<PathBuf>,
+    /// With the vision guide: align each asset to the guidance before optimizing (`shape`,
+    /// the default) or not (`none`).
+    #[arg(long, value_enum, value_name = "MATCHER", default_value_t = MatcherChoice::Shape)]
+    pub matcher: MatcherChoice,
 }
 
 impl GuideArgs {
@@ -112,7 +126,13 @@ impl GuideArgs {
                 VisionGuide::edit_render(renderer, images, EDIT_SIZE).with_vlm(vlm)
             }
         };
-        Ok(pipeline.with_guide(guide))
+        let pipeline = pipeline.with_guide(guide);
+        Ok(match self.matcher {
+            MatcherChoice::Shape => {
+                pipeline.with_matcher(ShapeMatcher::default(), GuidedSettings::default())
+            }
+            MatcherChoice::None => pipeline,
+        })
     }
 }
 
