@@ -71,6 +71,10 @@ pub struct GeneratedScene {
     pub previews: Vec<(String, Vec<u8>)>,
     /// Metrics, verdict, re-plans and timings.
     pub report: Report,
+    /// What the guide of the chosen attempt saw — camera, guidance image, depth and masks —
+    /// when it read an image (the vision guide); `None` for the procedural guide. A VLM judge
+    /// can compare the scene with this image.
+    pub guidance: Option<scenethesis_correspondence::Guidance>,
 }
 
 /// A preview renderer: turns a finished scene into named PNG images.
@@ -274,6 +278,7 @@ impl Pipeline {
             plan: best.plan,
             previews,
             report,
+            guidance: best.guidance,
         })
     }
 
@@ -331,7 +336,15 @@ impl Pipeline {
         let verdict = clock.run(
             Stage::Judge,
             round,
-            || judge(self.judge.as_ref(), plan, &scene, &meshes),
+            || {
+                judge(
+                    self.judge.as_ref(),
+                    plan,
+                    &scene,
+                    &meshes,
+                    layout.guidance.as_ref(),
+                )
+            },
             verdict_note,
         )?;
         Ok(Attempt {
@@ -341,6 +354,7 @@ impl Pipeline {
             placement,
             verdict,
             guide_dropped: layout.dropped,
+            guidance: layout.guidance,
             round,
         })
     }

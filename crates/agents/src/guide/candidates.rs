@@ -11,44 +11,11 @@ use scenethesis_assets::AssetInfo;
 use scenethesis_scene_graph::RelationKind;
 
 use super::geometry::Footprint;
-use super::place_floor::positional_target;
+use super::room::Side;
+use super::shared::positional_target;
 use super::walkway::FloorState;
 use crate::knowledge::{Knowledge, NominalShape};
 use crate::plan::{PlannedObject, Zone};
-
-/// A wall (or, outdoors, an edge of the ground) that objects can back onto.
-#[derive(Debug, Clone)]
-pub(super) struct Side {
-    pub(super) id: Option<String>,
-    /// Point on the inner face at the middle of the wall.
-    pub(super) face: [f64; 2],
-    /// Unit normal into the room.
-    pub(super) normal: [f64; 2],
-    /// Unit direction along the wall.
-    pub(super) along: [f64; 2],
-    pub(super) half_len: f64,
-}
-
-impl Side {
-    fn yaw(&self) -> f64 {
-        self.normal[0].atan2(self.normal[1])
-    }
-
-    fn footprint_at(&self, s: f64, hx: f64, hz: f64) -> Footprint {
-        let gap = 0.01;
-        Footprint {
-            cx: self.face[0] + self.along[0] * s + self.normal[0] * (hz + gap),
-            cz: self.face[1] + self.along[1] * s + self.normal[1] * (hz + gap),
-            yaw: self.yaw(),
-            hx,
-            hz,
-        }
-    }
-
-    fn limit(&self, hx: f64) -> f64 {
-        self.half_len - hx - 0.01
-    }
-}
 
 /// A spot an object could take: its footprint and the wall it backs onto, if any.
 #[derive(Debug, Clone)]

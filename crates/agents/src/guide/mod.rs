@@ -13,6 +13,7 @@ mod walkway;
 
 pub use lookup::{CatalogAssets, NominalAssets};
 pub use procedural::ProceduralGuide;
+pub use room::room_architecture;
 
 use std::collections::BTreeMap;
 

@@ -6,13 +6,15 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use rand_chacha::ChaCha8Rng;
 use scenethesis_assets::AssetInfo;
-use scenethesis_scene_graph::{ParentRef, RelationKind};
+use scenethesis_scene_graph::ParentRef;
 
-use super::candidates::{candidates, free_candidates, mount_ok, Side};
+use super::candidates::{candidates, free_candidates, mount_ok};
+use super::room::Side;
+use super::shared::positional_target;
 use super::shared::Placed;
 use super::walkway::FloorState;
 use super::DroppedObject;
-use crate::plan::{Plan, PlannedObject, Zone};
+use crate::plan::{Plan, Zone};
 
 /// The plan indices of the floor objects in the order they are placed.
 pub(super) fn placement_order(plan: &Plan) -> Vec<usize> {
@@ -229,22 +231,6 @@ fn chain_dependents(plan: &Plan, order: Vec<usize>) -> Vec<usize> {
         emit(i, &dependents, &mut emitted, &mut out);
     }
     out
-}
-
-/// The object a relative placement positions against (the first positional relation).
-pub(super) fn positional_target(o: &PlannedObject) -> Option<&str> {
-    if o.zone != Zone::Relative {
-        return None;
-    }
-    o.relations
-        .iter()
-        .find(|r| {
-            !matches!(
-                r.kind,
-                RelationKind::AgainstWall | RelationKind::LeftOf | RelationKind::RightOf
-            )
-        })
-        .map(|r| r.target.as_str())
 }
 
 #[cfg(test)]

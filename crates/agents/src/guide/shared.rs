@@ -1,9 +1,12 @@
 //! Facts every phase of the procedural guide shares: the door and wall-mount dimensions, a
-//! floor object once placed, and yaw wrapping.
+//! floor object once placed, yaw wrapping and the target a relative placement is made against.
 
 use std::f64::consts::PI;
 
+use scenethesis_scene_graph::RelationKind;
+
 use super::geometry::Footprint;
+use crate::plan::{PlannedObject, Zone};
 
 /// Door opening width in metres.
 pub(super) const DOOR_WIDTH: f64 = 0.9;
@@ -32,4 +35,20 @@ pub(super) fn wrap(yaw: f64) -> f64 {
         y += 2.0 * PI;
     }
     y
+}
+
+/// The object a relative placement positions against (the first positional relation).
+pub(super) fn positional_target(o: &PlannedObject) -> Option<&str> {
+    if o.zone != Zone::Relative {
+        return None;
+    }
+    o.relations
+        .iter()
+        .find(|r| {
+            !matches!(
+                r.kind,
+                RelationKind::AgainstWall | RelationKind::LeftOf | RelationKind::RightOf
+            )
+        })
+        .map(|r| r.target.as_str())
 }

@@ -3,6 +3,7 @@
 use std::collections::BTreeMap;
 
 use scenethesis_agents::{DroppedObject, Plan};
+use scenethesis_correspondence::Guidance;
 use scenethesis_physics_opt::Placement;
 use scenethesis_scene_graph::{Mesh, Scene};
 
@@ -17,6 +18,8 @@ pub(crate) struct Attempt {
     pub(crate) placement: Placement,
     pub(crate) verdict: Verdict,
     pub(crate) guide_dropped: Vec<DroppedObject>,
+    /// What the guide saw (vision guides), handed on to the result.
+    pub(crate) guidance: Option<scenethesis_correspondence::Guidance>,
     pub(crate) round: usize,
 }
 
@@ -34,17 +37,20 @@ impl Attempt {
     }
 }
 
-/// The judge's verdict on `scene` laid out from `plan`.
+/// The judge's verdict on `scene` laid out from `plan` (and from `guidance`, when the guide
+/// had one).
 pub(crate) fn judge(
     judge: &dyn Judge,
     plan: &Plan,
     scene: &Scene,
     meshes: &BTreeMap<String, Mesh>,
+    guidance: Option<&Guidance>,
 ) -> Result<Verdict, PipelineError> {
     Ok(judge.judge(&JudgeInput {
         plan,
         scene,
         meshes,
+        guidance,
     })?)
 }
 

@@ -35,6 +35,9 @@ pub struct GenerateArgs {
     /// Pipeline options shared with `batch`.
     #[command(flatten)]
     pub pipeline: PipelineArgs,
+    /// Guide selection and guidance files.
+    #[command(flatten)]
+    pub guide: super::guide::GuideArgs,
     /// Also write these formats into the folder (comma-separated: usd, mjcf, urdf).
     #[arg(long, value_delimiter = ',')]
     pub export: Vec<Format>,
@@ -172,6 +175,7 @@ pub fn run(args: GenerateArgs) -> Result<()> {
     // The output path is checked before any work.
     let out = OutputDir::prepare(&args.out, args.force)?;
     let mut pipeline = args.pipeline.pipeline()?;
+    pipeline = args.guide.apply(pipeline, &args.pipeline.providers)?;
     let prompt = match &args.plan {
         Some(path) => {
             let planner = FixedPlanner::from_file(path)?;

@@ -5,6 +5,8 @@ pub mod batch;
 pub mod eval;
 pub mod export;
 pub mod generate;
+pub mod guide;
+pub mod onnx;
 pub mod plan;
 pub mod providers;
 pub mod render;

@@ -99,7 +99,7 @@ impl ProviderArgs {
     }
 
     /// The client configuration: flags over environment over --llm-config.
-    fn config(&self) -> Result<ClientConfig> {
+    pub(crate) fn config(&self) -> Result<ClientConfig> {
         let api_key = match &self.api_key_env {
             Some(var) => {
                 let key = std::env::var(var).ok().filter(|k| !k.trim().is_empty());
@@ -129,7 +129,7 @@ impl ProviderArgs {
 
     /// Wraps `chat` in the response cache when --llm-cache is given; its meter counts requests,
     /// tokens and cache hits (each run's share goes into its `report.json`).
-    fn wrap(&self, chat: OpenAiChat) -> Result<Box<dyn ChatModel>> {
+    pub(crate) fn wrap(&self, chat: OpenAiChat) -> Result<Box<dyn ChatModel>> {
         let meter = chat.meter().clone();
         let Some(dir) = &self.llm_cache else {
             return Ok(Box::new(chat));
