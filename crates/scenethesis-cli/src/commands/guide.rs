@@ -63,6 +63,9 @@ pub struct GuideArgs {
     /// the default) or not (`none`).
     #[arg(long, value_enum, value_name = "MATCHER", default_value_t = MatcherChoice::Shape)]
     pub matcher: MatcherChoice,
+    /// Depth and segmentation models run through ONNX Runtime (feature `onnx`).
+    #[command(flatten)]
+    pub onnx: Box<super::onnx::OnnxArgs>,
 }
 
 impl GuideArgs {
@@ -86,8 +89,10 @@ impl GuideArgs {
                     image.display()
                 );
             }
+            self.onnx.reject_unused()?;
             return Ok(pipeline);
         }
+        let onnx = self.onnx.load()?;
         let guide = match &self.guide_image {
             Some(image) => {
                 let files = GuidanceFiles {
@@ -126,7 +131,7 @@ impl GuideArgs {
                 VisionGuide::edit_render(renderer, images, EDIT_SIZE).with_vlm(vlm)
             }
         };
-        let pipeline = pipeline.with_guide(guide);
+        let pipeline = pipeline.with_guide(onnx.install(guide));
         Ok(match self.matcher {
             MatcherChoice::Shape => {
                 pipeline.with_matcher(ShapeMatcher::default(), GuidedSettings::default())

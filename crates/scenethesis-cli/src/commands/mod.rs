@@ -6,6 +6,7 @@ pub mod eval;
 pub mod export;
 pub mod generate;
 pub mod guide;
+pub mod onnx;
 pub mod plan;
 pub mod providers;
 pub mod render;
