@@ -55,6 +55,6 @@ pub mod support;
 pub use boxes::{lift_scene, LiftOptions, LiftedBox, LiftedScene};
 pub use error::LiftError;
 pub use footprint::{min_area_rectangle, FloorRectangle};
-pub use support::{infer_supports, SupportGuess, SupportKind};
+pub use support::{infer_supports, infer_supports_within, SupportGuess, SupportKind};
 
 pub use scenethesis_correspondence::Guidance;
