@@ -31,8 +31,8 @@ mod text;
 pub use fidelity::{check_prompt, constraint_holds, BrokenRelation, MissingObject, PromptCheck};
 pub use fixed::{check_plan, FixedPlanner, PlanFileError, PlanIssue};
 pub use guide::{
-    AssetLookup, CatalogAssets, DroppedObject, Guide, GuideError, GuidedLayout, NominalAssets,
-    ProceduralGuide, WalkwayReport,
+    room_architecture, AssetLookup, CatalogAssets, DroppedObject, Guide, GuideError, GuidedLayout,
+    NominalAssets, ProceduralGuide, WalkwayReport,
 };
 pub use knowledge::{Knowledge, KnowledgeError};
 pub use places::{Family, PlaceKind, Thesaurus};

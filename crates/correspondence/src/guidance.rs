@@ -113,6 +113,27 @@ impl RgbImage {
         let i = (y as usize * self.width as usize + x as usize) * 3;
         Some([self.data[i], self.data[i + 1], self.data[i + 2]])
     }
+
+    /// The image as PNG file bytes (8-bit RGB).
+    ///
+    /// ```
+    /// use scenethesis_correspondence::RgbImage;
+    /// let red = RgbImage::new(2, 1, vec![255, 0, 0, 255, 0, 0]).unwrap();
+    /// assert_eq!(&red.to_png()[1..4], b"PNG");
+    /// ```
+    pub fn to_png(&self) -> Vec<u8> {
+        let mut bytes = Vec::new();
+        image::write_buffer_with_format(
+            &mut std::io::Cursor::new(&mut bytes),
+            &self.data,
+            self.width,
+            self.height,
+            image::ExtendedColorType::Rgb8,
+            image::ImageFormat::Png,
+        )
+        .expect("an in-memory PNG of a checked RGB buffer encodes");
+        bytes
+    }
 }
 
 /// Metric depth along the camera's optical axis (its −Z), in metres, rows top to bottom.

@@ -4,6 +4,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use scenethesis_agents::{check_prompt, Plan};
+use scenethesis_correspondence::Guidance;
 use scenethesis_eval::{
     evaluate_with_cache, DecompositionCache, EvalError, EvalScene, SceneMetrics,
 };
@@ -19,6 +20,9 @@ pub struct JudgeInput<'a> {
     pub scene: &'a Scene,
     /// Every object's mesh in its asset frame, by object id.
     pub meshes: &'a BTreeMap<String, Mesh>,
+    /// The guidance the layout was lifted from (image, camera, depth, masks), when the guide
+    /// worked from one; a judge that sees images can compare the scene with it.
+    pub guidance: Option<&'a Guidance>,
 }
 
 /// The kind of a judged failure.

@@ -251,7 +251,103 @@ impl<M: ChatModel> Planner for LlmPlanner<M> {
         &self.label
     }
 
+    /// The model's plan (re-asked once, completed from offline knowledge when weak), with the
+    /// objects its prompt names read by the offline planner (`requested`), so a requested
+    /// object the model left out is reported, and judged, as missing.
     fn plan(&self, request: &PlanRequest) -> Result<Plan, PlanError> {
+        let mut plan = self.model_plan(request)?;
+        if plan.requested.is_empty() {
+            plan.requested = self
+                .fallback
+                .requested_in(&plan, &request.available_categories);
+            self.add_left_out(&mut plan, request);
+        }
+        Ok(plan)
+    }
+}
+
+impl<M: ChatModel> LlmPlanner<M> {
+    /// Adds the instances of requested objects the model left out, as the offline planner
+    /// plans them for the same prompt (on a parent of the same category when they stand on
+    /// one; one the model's plan lacks leaves them out), and notes what was added.
+    fn add_left_out(&self, plan: &mut Plan, request: &PlanRequest) {
+        let short: Vec<usize> = (0..plan.requested.len())
+            .filter(|&i| {
+                let r = &plan.requested[i];
+                r.category.is_some() && (r.ids.len() as u32) < r.count
+            })
+            .collect();
+        if short.is_empty() {
+            return;
+        }
+        let Ok(offline) = self.fallback.plan(request) else {
+            return;
+        };
+        let mut taken: BTreeSet<String> = plan.objects.iter().map(|o| o.id.clone()).collect();
+        let mut added = Vec::new();
+        for i in short {
+            let words = plan.requested[i].words.clone();
+            let Some(model) = offline.requested.iter().find(|r| r.words == words) else {
+                continue;
+            };
+            let missing = plan.requested[i].count as usize - plan.requested[i].ids.len();
+            for source in model
+                .ids
+                .iter()
+                .filter_map(|id| offline.object(id))
+                .take(missing)
+            {
+                let parent = match &source.parent {
+                    ParentRef::Ground => Some(ParentRef::Ground),
+                    ParentRef::Object(p) => offline.object(p).and_then(|p| {
+                        plan.objects
+                            .iter()
+                            .find(|o| o.category == p.category)
+                            .map(|o| ParentRef::Object(o.id.clone()))
+                    }),
+                };
+                let Some(parent) = parent else { continue };
+                let mut n = 0;
+                while taken.contains(&format!("{}_{n}", source.category)) {
+                    n += 1;
+                }
+                let id = format!("{}_{n}", source.category);
+                taken.insert(id.clone());
+                let mut copy = source.clone();
+                copy.id = id.clone();
+                copy.parent = parent;
+                copy.relations.retain(|r| r.target.starts_with("wall_"));
+                if copy.zone == Zone::Relative && copy.relations.is_empty() {
+                    copy.zone = Zone::Free;
+                }
+                plan.objects.push(copy);
+                plan.requested[i].ids.push(id.clone());
+                added.push(id);
+            }
+            let r = &mut plan.requested[i];
+            if r.ids.len() as u32 == r.count {
+                let kept: Vec<&str> = r
+                    .note
+                    .as_deref()
+                    .unwrap_or("")
+                    .split("; ")
+                    .filter(|part| !part.is_empty() && !part.starts_with("the plan holds"))
+                    .collect();
+                r.note = (!kept.is_empty()).then(|| kept.join("; "));
+            }
+        }
+        if !added.is_empty() {
+            plan.objects = order(std::mem::take(&mut plan.objects), &plan.anchor.clone());
+            plan.notes.push(format!(
+                "added what the prompt names and the model left out, as the offline knowledge plans it: {}",
+                added.join(", ")
+            ));
+        }
+    }
+}
+
+impl<M: ChatModel> LlmPlanner<M> {
+    fn model_plan(&self, request: &PlanRequest) -> Result<Plan, PlanError> {
         if !request.prompt.chars().any(char::is_alphanumeric) {
             return Err(PlanError::EmptyPrompt);
         }

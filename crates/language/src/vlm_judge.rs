@@ -1,5 +1,6 @@
 //! [`VlmJudge`]: the geometric judge first, then a vision-language model looking at rendered
-//! previews of the scene, as the paper's VLM judge does.
+//! previews of the scene (and the guidance image, when the guide had one), as the paper's VLM
+//! judge does.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -18,6 +19,13 @@ metres with +Y up and the front of the room towards +Z, yaw in degrees about +Y)
 away from walls, screens towards seats) and `spatial_coherence` (is the arrangement plausible as \
 a whole). List under `objects` every object that is wrong, with its id and the reason in one \
 sentence. Physics (collisions, stability) is checked elsewhere; judge what a person would see.";
+
+/// The name the guidance image goes by in the judge's message and its review's `views`.
+const GUIDANCE_VIEW: &str = "guidance.png";
+const GUIDANCE_NOTE: &str =
+    "\nThe first image (guidance.png) is the guidance image the layout was \
+lifted from: the scene should show the same objects in the same arrangement; judge \
+`spatial_coherence` against it.";
 
 /// Scores below which the [`VlmJudge`] rejects a scene.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -200,17 +208,27 @@ impl<M: ChatModel> VlmJudge<M> {
                 o.pose.yaw.to_degrees()
             ));
         }
+        let mut views: Vec<&str> = previews.iter().map(|(n, _)| n.as_str()).collect();
+        if input.guidance.is_some() {
+            views.insert(0, GUIDANCE_VIEW);
+        }
         let mut user = Message::user(format!(
-            "Prompt: {}\nScene description: {}\nObjects ({}):\n{listing}Views: {}",
+            "Prompt: {}\nScene description: {}\nObjects ({}):\n{listing}Views: {}{}",
             input.scene.prompt.trim(),
             input.plan.description.trim(),
             input.scene.objects.len(),
-            previews
-                .iter()
-                .map(|(n, _)| n.as_str())
-                .collect::<Vec<_>>()
-                .join(", ")
+            views.join(", "),
+            if input.guidance.is_some() {
+                GUIDANCE_NOTE
+            } else {
+                ""
+            }
         ));
+        if let Some(guidance) = input.guidance {
+            let image = ImageData::from_bytes(guidance.image.to_png(), GUIDANCE_VIEW)
+                .map_err(|e| self.provider_error(format!("{GUIDANCE_VIEW}: {e}")))?;
+            user = user.with_image(image);
+        }
         for (name, png) in &previews {
             let image = ImageData::from_bytes(png.clone(), name)
                 .map_err(|e| self.provider_error(format!("preview {name}: {e}")))?;
@@ -253,7 +271,12 @@ impl<M: ChatModel> VlmJudge<M> {
             accepted: c >= t.category_accuracy
                 && o >= t.orientation_alignment
                 && s >= t.spatial_coherence,
-            views: previews.into_iter().map(|(n, _)| n).collect(),
+            views: input
+                .guidance
+                .map(|_| GUIDANCE_VIEW.to_owned())
+                .into_iter()
+                .chain(previews.into_iter().map(|(n, _)| n))
+                .collect(),
         })
     }
 }

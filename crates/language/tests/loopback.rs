@@ -139,6 +139,47 @@ fn pharmacy() -> Value {
 }
 
 #[test]
+fn objects_the_prompt_names_and_the_model_left_out_are_added() {
+    // The model plans its own pharmacy and ignores the mirror and two of the three chairs
+    // the prompt asks for: the prompt is read offline (`requested`) and what the model left
+    // out is added as the offline knowledge plans it, with a note.
+    let mut clean = pharmacy();
+    clean["objects"].as_array_mut().unwrap().pop();
+    let server = TestServer::scripted(vec![Reply::json(
+        200,
+        &openai_completion("gpt-4o", &clean.to_string()),
+    )]);
+    let planner = LlmPlanner::new(chat(&server));
+    let plan = planner
+        .plan(&request("a pharmacy with a mirror and three chairs"))
+        .unwrap();
+    let find = |words: &str| {
+        plan.requested
+            .iter()
+            .find(|r| r.words == words)
+            .unwrap_or_else(|| panic!("`{words}` is requested: {:?}", plan.requested))
+    };
+    let mirror = find("mirror");
+    assert_eq!(mirror.count, 1, "{mirror:?}");
+    assert_eq!(mirror.category.as_deref(), Some("mirror"));
+    let chairs = find("chair");
+    assert_eq!(chairs.count, 3);
+    assert_eq!(chairs.ids[0], "chair_0", "the model's own chair counts");
+    for r in [mirror, chairs] {
+        assert_eq!(r.ids.len() as u32, r.count, "{r:?}");
+        assert!(r.note.is_none(), "{r:?}");
+        for id in &r.ids {
+            assert!(plan.object(id).is_some(), "`{id}` is planned");
+        }
+    }
+    assert!(
+        plan.notes.iter().any(|n| n.contains("the model left out")),
+        "{:?}",
+        plan.notes
+    );
+}
+
+#[test]
 fn the_offline_planner_only_assumes_what_a_pharmacy_is() {
     // The offline planner reads "a pharmacy" through its thesaurus of places and says what it
     // assumed; the LLM planner below plans the model's own pharmacy instead.
@@ -385,7 +426,7 @@ fn a_detailed_prompt_keeps_what_the_user_stated() {
         plan.description, prompt,
         "a detailed prompt is not up-sampled"
     );
-    assert_eq!(plan.objects.len(), 4);
+    assert_eq!(plan.objects.len(), 4, "{:?}", plan.notes);
     let has = |subject: &str, kind: RelationKind, target: ConstraintTarget| {
         plan.constraints
             .iter()

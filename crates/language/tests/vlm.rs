@@ -177,6 +177,88 @@ fn thresholds_decide_and_failures_are_visual() {
 }
 
 #[test]
+fn the_judge_sees_the_guidance_image_first_when_there_is_one() {
+    use scenethesis_correspondence::{Guidance, RgbImage};
+    use scenethesis_pipeline::{Judge, JudgeInput};
+    use scenethesis_scene_graph::{Camera, Intrinsics};
+
+    let server = TestServer::start(|_, _| {
+        Reply::json(
+            200,
+            &openai_completion(
+                "vision-model",
+                &json!({"category_accuracy": 0.9, "orientation_alignment": 0.9,
+                        "spatial_coherence": 0.9, "objects": [], "summary": "matches"})
+                .to_string(),
+            ),
+        )
+    });
+    let generated = Pipeline::offline()
+        .generate("a garage", 0, &options(), &mut NoProgress)
+        .unwrap();
+    let (w, h) = (24, 16);
+    let pixels: Vec<u8> = (0..w * h * 3).map(|i| (i * 7 % 251) as u8).collect();
+    let camera = Camera::look_at(
+        Intrinsics::from_vertical_fov(w, h, 1.0),
+        nalgebra::Point3::new(0.0, 1.5, 4.0),
+        nalgebra::Point3::origin(),
+        nalgebra::Vector3::y(),
+    );
+    let guidance = Guidance::new(
+        camera,
+        RgbImage::new(w, h, pixels.clone()).unwrap(),
+        None,
+        BTreeMap::new(),
+    )
+    .unwrap();
+    let judge = VlmJudge::new(chat(&server), FlatRenderer).with_preview_size([32, 32]);
+    let mut input = JudgeInput {
+        plan: &generated.plan,
+        scene: &generated.scene,
+        meshes: &generated.meshes,
+        guidance: Some(&guidance),
+    };
+    let verdict = judge.judge(&input).unwrap();
+    assert!(verdict.accepted);
+    let sent = server.requests()[0].json();
+    let parts = sent["messages"][1]["content"].as_array().unwrap();
+    let images: Vec<&str> = parts
+        .iter()
+        .filter_map(|p| p["image_url"]["url"].as_str())
+        .collect();
+    assert_eq!(images.len(), 3, "the guidance image and two previews");
+    let first = image::load_from_memory(
+        &scenethesis_models::ImageData::from_data_url(images[0], "sent")
+            .unwrap()
+            .bytes,
+    )
+    .unwrap()
+    .to_rgb8();
+    assert_eq!(
+        first.as_raw(),
+        &pixels,
+        "the guidance image comes first, unchanged"
+    );
+    assert!(parts[0]["text"].as_str().unwrap().contains("guidance.png"));
+    assert_eq!(
+        verdict.review.as_ref().unwrap()["views"][0],
+        "guidance.png",
+        "{:?}",
+        verdict.review
+    );
+
+    // Without guidance: only the previews.
+    input.guidance = None;
+    judge.judge(&input).unwrap();
+    let sent = server.requests()[1].json();
+    let parts = sent["messages"][1]["content"].as_array().unwrap();
+    assert_eq!(
+        parts.iter().filter(|p| p["image_url"].is_object()).count(),
+        2
+    );
+}
+
+#[test]
 fn a_failing_vision_model_is_an_error_naming_endpoint_and_model() {
     let server = TestServer::scripted(vec![Reply::json(
         500,

@@ -82,4 +82,4 @@ pub use providers::{
     ImageRequest, Intrinsics, Mask, Segmenter, TextEmbedder,
 };
 pub use schema::{JsonSchema, SchemaError, SchemaViolation};
-pub use usage::{UsageMeter, UsageReport};
+pub use usage::{metered, UsageMeter, UsageReport};

@@ -1,5 +1,8 @@
-//! A usage meter: requests, tokens and cache hits of one model, for `report.json`.
+//! A usage meter: requests, tokens and cache hits of one model, for `report.json`; and
+//! [`metered`], which attributes what meters record on one thread to one run, so runs sharing
+//! a provider in parallel (a batch) each report their own use.
 
+use std::cell::RefCell;
 use std::sync::{Arc, Mutex, PoisonError};
 
 use serde::{Deserialize, Serialize};
@@ -43,9 +46,28 @@ impl UsageMeter {
         }
     }
 
-    fn update(&self, f: impl FnOnce(&mut UsageReport)) {
+    fn update(&self, f: impl Fn(&mut UsageReport)) {
         let mut guard = self.inner.lock().unwrap_or_else(PoisonError::into_inner);
         f(&mut guard);
+        RUN_SCOPES.with_borrow_mut(|scopes| {
+            for scope in scopes.iter_mut() {
+                let entry = match scope
+                    .iter()
+                    .position(|r| r.provider == guard.provider && r.model == guard.model)
+                {
+                    Some(i) => &mut scope[i],
+                    None => {
+                        scope.push(UsageReport {
+                            provider: guard.provider.clone(),
+                            model: guard.model.clone(),
+                            ..UsageReport::default()
+                        });
+                        scope.last_mut().expect("just pushed")
+                    }
+                };
+                f(entry);
+            }
+        });
     }
 
     /// Counts one request sent to the provider and the tokens it reported.
@@ -84,6 +106,41 @@ impl UsageMeter {
     }
 }
 
+thread_local! {
+    /// The open [`metered`] scopes of this thread, innermost last.
+    static RUN_SCOPES: RefCell<Vec<Vec<UsageReport>>> = const { RefCell::new(Vec::new()) };
+}
+
+/// Runs `work` and returns, beside its result, what every [`UsageMeter`] recorded on this
+/// thread while it ran: one report per provider and model, in the order they were first used.
+/// Meters keep their shared totals as well; scopes nest (an outer scope also counts what an
+/// inner one saw). Requests made on other threads are not attributed to this scope.
+///
+/// ```
+/// use scenethesis_models::{metered, TokenUsage, UsageMeter};
+/// let meter = UsageMeter::new("http://127.0.0.1:8000/v1", "small-model");
+/// meter.record_request(TokenUsage::default());
+/// let ((), used) = metered(|| meter.record_cache_hit());
+/// assert_eq!((used[0].requests, used[0].cache_hits), (0, 1));
+/// assert_eq!(meter.snapshot().requests, 1);
+/// ```
+pub fn metered<R>(work: impl FnOnce() -> R) -> (R, Vec<UsageReport>) {
+    struct Scope;
+    impl Drop for Scope {
+        fn drop(&mut self) {
+            RUN_SCOPES.with_borrow_mut(|scopes| {
+                scopes.pop();
+            });
+        }
+    }
+    RUN_SCOPES.with_borrow_mut(|scopes| scopes.push(Vec::new()));
+    let scope = Scope;
+    let result = work();
+    let used = RUN_SCOPES.with_borrow_mut(|scopes| scopes.last_mut().map(std::mem::take));
+    drop(scope);
+    (result, used.unwrap_or_default())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -119,5 +176,27 @@ mod tests {
             (4, 4, 1, 40, 8)
         );
         assert_eq!(r.model, "m");
+    }
+
+    #[test]
+    fn a_scope_sees_only_its_own_thread_and_nests() {
+        let meter = UsageMeter::new("p", "m");
+        let other = meter.clone();
+        let ((), outer) = metered(|| {
+            meter.record_request(TokenUsage::default());
+            std::thread::spawn(move || other.record_request(TokenUsage::default()))
+                .join()
+                .unwrap();
+            let ((), inner) = metered(|| meter.record_retry());
+            assert_eq!(
+                (inner.len(), inner[0].retries, inner[0].requests),
+                (1, 1, 0)
+            );
+        });
+        assert_eq!(outer.len(), 1);
+        assert_eq!((outer[0].requests, outer[0].retries), (1, 1));
+        assert_eq!(meter.snapshot().requests, 2);
+        let ((), none) = metered(|| ());
+        assert!(none.is_empty());
     }
 }

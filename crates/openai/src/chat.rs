@@ -9,6 +9,7 @@ use scenethesis_models::{
 };
 use serde_json::{json, Map, Value};
 
+use crate::config::ServerKind;
 use crate::http::{shorten, Body, On5xx, Transport};
 
 const PATH: &str = "/chat/completions";
@@ -194,6 +195,9 @@ impl OpenAiChat {
                             "strict": is_strict_compatible(&schema.schema),
                         }}),
                     );
+                    if self.transport.config().server == ServerKind::Vllm {
+                        body.insert("structured_outputs".into(), json!({"json": schema.schema}));
+                    }
                 }
                 OutputFormat::JsonObject => {
                     body.insert(

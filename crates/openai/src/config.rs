@@ -20,6 +20,9 @@ pub const ENV_IMAGE_MODEL: &str = "SCENETHESIS_IMAGE_MODEL";
 pub const ENV_EMBEDDING_MODEL: &str = "SCENETHESIS_EMBEDDING_MODEL";
 
 /// The base URL used when none is configured.
+/// Environment variable naming the server software (`vllm`), for its request extras.
+pub const ENV_SERVER: &str = "SCENETHESIS_LLM_SERVER";
+/// The default base URL (OpenAI).
 pub const DEFAULT_BASE_URL: &str = "https://api.openai.com/v1";
 
 /// An API key. It prints as `***` in `Debug` and has no `Display`, so it cannot reach logs,
@@ -127,6 +130,33 @@ struct FileConfig {
     max_attempts: Option<u32>,
     budget_secs: Option<f64>,
     backoff_ms: Option<u64>,
+    server: Option<String>,
+}
+
+/// The server software behind an OpenAI-compatible endpoint, where it needs request fields
+/// beyond OpenAI's own.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum ServerKind {
+    /// Any OpenAI-compatible server: OpenAI's request fields only.
+    #[default]
+    OpenAiCompatible,
+    /// vLLM: structured requests also send `structured_outputs: {"json": schema}`, the field
+    /// vLLM 0.12+ constrains decoding with (it replaced `guided_json`).
+    Vllm,
+}
+
+impl ServerKind {
+    /// Parses a configured name: `openai` (or `openai-compatible`, `ollama`, `llama.cpp`,
+    /// `lmstudio`: no extras) or `vllm`.
+    pub fn parse(name: &str) -> Option<Self> {
+        match name.trim().to_ascii_lowercase().as_str() {
+            "vllm" => Some(Self::Vllm),
+            "openai" | "openai-compatible" | "ollama" | "llama.cpp" | "llamacpp" | "lmstudio" => {
+                Some(Self::OpenAiCompatible)
+            }
+            _ => None,
+        }
+    }
 }
 
 /// A resolved client configuration. Its `Debug` output shows the base URL without
@@ -153,6 +183,9 @@ pub struct ClientConfig {
     pub budget: Duration,
     /// First backoff delay; doubled after each retry unless the server sends `Retry-After`.
     pub backoff: Duration,
+    /// The server software, for request fields beyond OpenAI's (`server` in the file,
+    /// `SCENETHESIS_LLM_SERVER`).
+    pub server: ServerKind,
 }
 
 impl fmt::Debug for ClientConfig {
@@ -168,6 +201,7 @@ impl fmt::Debug for ClientConfig {
             .field("max_attempts", &self.max_attempts)
             .field("budget", &self.budget)
             .field("backoff", &self.backoff)
+            .field("server", &self.server)
             .finish()
     }
 }
@@ -187,6 +221,7 @@ impl ClientConfig {
             max_attempts: 4,
             budget: Duration::from_secs(300),
             backoff: Duration::from_millis(500),
+            server: ServerKind::OpenAiCompatible,
         }
     }
 
@@ -286,6 +321,19 @@ impl ClientConfig {
         }
         if let Some(ms) = file_config.backoff_ms {
             config.backoff = Duration::from_millis(ms);
+        }
+        let (server, origin) = match env(ENV_SERVER) {
+            Some(name) => (Some(name), ENV_SERVER.to_string()),
+            None => (file_config.server, file_origin()),
+        };
+        if let Some(name) = server {
+            config.server = ServerKind::parse(&name).ok_or_else(|| ConfigError::Invalid {
+                field: "server",
+                origin,
+                message: format!(
+                    "expected `vllm` or `openai` (also ollama, llama.cpp, lmstudio), found `{name}`"
+                ),
+            })?;
         }
         Ok(config)
     }

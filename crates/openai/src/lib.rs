@@ -51,8 +51,9 @@ use std::sync::Arc;
 
 pub use chat::{OpenAiChat, OutputFormat};
 pub use config::{
-    redact_url, ApiKey, ClientConfig, ConfigError, Overrides, DEFAULT_BASE_URL, ENV_API_KEY,
-    ENV_BASE_URL, ENV_EMBEDDING_MODEL, ENV_IMAGE_MODEL, ENV_LLM_MODEL, ENV_VLM_MODEL,
+    redact_url, ApiKey, ClientConfig, ConfigError, Overrides, ServerKind, DEFAULT_BASE_URL,
+    ENV_API_KEY, ENV_BASE_URL, ENV_EMBEDDING_MODEL, ENV_IMAGE_MODEL, ENV_LLM_MODEL, ENV_SERVER,
+    ENV_VLM_MODEL,
 };
 pub use embed::OpenAiEmbedder;
 pub use images::OpenAiImages;

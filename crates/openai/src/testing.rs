@@ -308,3 +308,13 @@ pub fn llamacpp_completion(model: &str, content: &str) -> Value {
         "timings": {"prompt_n": 40, "prompt_ms": 50.1, "predicted_n": 12, "predicted_ms": 90.2}
     })
 }
+
+/// An image answer in OpenAI's shape (`/v1/images/generations` and `/v1/images/edits`): the
+/// image as `data[0].b64_json`.
+pub fn openai_image(image: &scenethesis_models::ImageData) -> Value {
+    serde_json::json!({
+        "created": 1764100000,
+        "data": [{"b64_json": image.to_base64()}],
+        "usage": {"input_tokens": 300, "output_tokens": 4160, "total_tokens": 4460}
+    })
+}

@@ -10,7 +10,9 @@ use scenethesis_models::{
     CacheMode, Cached, ChatModel, ChatRequest, ImageData, ImageEditRequest, ImageGenerator,
     ImageRequest, JsonSchema, Message, ProviderErrorKind, ResponseCache, TextEmbedder,
 };
-use scenethesis_openai::{ApiKey, ClientConfig, OpenAiClient, OutputFormat};
+use scenethesis_openai::{
+    ApiKey, ClientConfig, OpenAiClient, OutputFormat, Overrides, ServerKind, ENV_SERVER,
+};
 use serde_json::{json, Value};
 use support::{
     llamacpp_completion, ollama_completion, openai_completion, png, vllm_completion, Reply,
@@ -151,6 +153,36 @@ fn vllm_and_ollama_shapes_with_an_image_part() {
             "{shape}"
         );
     }
+}
+
+#[test]
+fn a_vllm_server_gets_structured_outputs_and_others_do_not() {
+    for (server_kind, expect_extra) in [(ServerKind::Vllm, true), (ServerKind::default(), false)] {
+        let server = TestServer::scripted(vec![Reply::json(200, &vllm_completion("m", GOOD))]);
+        let mut c = config(&server);
+        c.server = server_kind;
+        let chat = OpenAiClient::new(c).unwrap().chat("m");
+        chat.chat(&request()).unwrap();
+        let sent = server.requests()[0].json();
+        assert_eq!(sent["response_format"]["type"], "json_schema");
+        if expect_extra {
+            assert_eq!(
+                sent["structured_outputs"]["json"],
+                room_schema().schema,
+                "vLLM constrains decoding with structured_outputs"
+            );
+        } else {
+            assert!(sent.get("structured_outputs").is_none(), "{sent}");
+        }
+    }
+    // Chosen by name in the environment or the config file; a wrong name is an error naming
+    // the field.
+    let env = |name: &str| (name == ENV_SERVER).then(|| "vLLM".to_owned());
+    let c = ClientConfig::resolve_with(&Overrides::default(), &env, None).unwrap();
+    assert_eq!(c.server, ServerKind::Vllm);
+    let env = |name: &str| (name == ENV_SERVER).then(|| "tgi".to_owned());
+    let err = ClientConfig::resolve_with(&Overrides::default(), &env, None).unwrap_err();
+    assert!(err.to_string().contains("server"), "{err}");
 }
 
 #[test]

@@ -30,12 +30,15 @@ pub mod batch;
 mod error;
 pub mod out_dir;
 mod output;
+mod phases;
 mod pipeline;
 mod plan_file;
 #[cfg(feature = "render")]
 mod render;
 mod replan;
 mod report;
+#[cfg(feature = "render")]
+mod room_view;
 #[cfg(feature = "render")]
 pub mod roundtrip;
 mod stage;
@@ -49,6 +52,8 @@ pub use plan_file::{plan_json, write_plan, PLAN_JSON};
 pub use render::WgpuPreviews;
 pub use replan::replan_action;
 pub use report::{ObjectIssue, Replan, ReplanAction, Report, StageTiming};
+#[cfg(feature = "render")]
+pub use room_view::WgpuRoomRenderer;
 /// The judge stage (its own crate, `scenethesis-judge`), re-exported for compatibility.
 pub use scenethesis_judge as judge;
 pub use scenethesis_judge::{

@@ -1,26 +1,26 @@
 //! The pipeline: plan → retrieve → guide → optimize → judge (→ re-plan) → render.
 
-use std::collections::{BTreeMap, BTreeSet};
-use std::sync::Arc;
+use std::collections::BTreeMap;
 use std::time::Instant;
 
-use scenethesis_agents::{
-    DroppedObject, Guide, KnowledgePlanner, Plan, PlanRequest, Planner, ProceduralGuide,
-};
-use scenethesis_assets::{Asset, AssetInfo};
-use scenethesis_physics_opt::{
-    optimize_scene, OptimizeSettings, Optimizer, Placement, PrepareSettings, PreparedAsset,
-    ProjectedGaussNewton, SceneProblem,
-};
+use scenethesis_agents::{Guide, KnowledgePlanner, Plan, PlanRequest, Planner, ProceduralGuide};
+use scenethesis_physics_opt::{OptimizeSettings, Optimizer, PrepareSettings, ProjectedGaussNewton};
+use scenethesis_retrieval::{AssetSource, RetrievalSource};
 use scenethesis_scene_graph::{Mesh, Scene};
 use serde::{Deserialize, Serialize};
 
-use crate::judge::{GeometricJudge, Judge, JudgeInput, Verdict};
-use crate::replan::{drop_objects, replan_action};
-use crate::report::{ObjectIssue, Replan, ReplanAction, Report, StageTiming};
+use crate::judge::{GeometricJudge, Judge};
+use crate::phases::clock::StageClock;
+use crate::phases::judge::{judge, verdict_note, Attempt};
+use crate::phases::layout::lay_out;
+use crate::phases::optimize::optimize;
+use crate::phases::previews::previews;
+use crate::phases::retrieve::AssetCache;
+use crate::phases::rework::rework;
+use crate::phases::summary::{report, RunRecord};
+use crate::report::{Replan, Report};
 use crate::stage::{Progress, Stage};
 use crate::PipelineError;
-use scenethesis_retrieval::{AssetQuery, AssetSource, RetrievalSource};
 
 /// Settings of a run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -71,6 +71,10 @@ pub struct GeneratedScene {
     pub previews: Vec<(String, Vec<u8>)>,
     /// Metrics, verdict, re-plans and timings.
     pub report: Report,
+    /// What the guide of the chosen attempt saw — camera, guidance image, depth and masks —
+    /// when it read an image (the vision guide); `None` for the procedural guide. A VLM judge
+    /// can compare the scene with this image.
+    pub guidance: Option<scenethesis_correspondence::Guidance>,
 }
 
 /// A preview renderer: turns a finished scene into named PNG images.
@@ -115,31 +119,6 @@ impl std::fmt::Debug for Pipeline {
 impl Default for Pipeline {
     fn default() -> Self {
         Self::offline()
-    }
-}
-
-/// One attempt's outcome, kept to pick the best when nothing is accepted.
-struct Attempt {
-    plan: Plan,
-    scene: Scene,
-    meshes: BTreeMap<String, Mesh>,
-    placement: Placement,
-    verdict: Verdict,
-    guide_dropped: Vec<DroppedObject>,
-    round: usize,
-}
-
-impl Attempt {
-    /// Fewer failures first, then more objects.
-    fn better_than(&self, other: &Attempt) -> bool {
-        let key = |a: &Attempt| {
-            (
-                !a.verdict.accepted,
-                a.verdict.failures.len(),
-                usize::MAX - a.scene.objects.len(),
-            )
-        };
-        key(self) < key(other)
     }
 }
 
@@ -214,6 +193,10 @@ impl Pipeline {
     /// fault (new asset variants and a new layout seed) and then drops them (those the prompt
     /// asked for last), keeping the best attempt. Deterministic for the same prompt, seed,
     /// options and providers.
+    ///
+    /// The report's `providers` lists what the run used of each model, counted on the calling
+    /// thread ([`scenethesis_models::metered`]), so parallel runs sharing providers each report
+    /// their own use.
     pub fn generate(
         &self,
         prompt: &str,
@@ -221,261 +204,158 @@ impl Pipeline {
         options: &GenerateOptions,
         progress: &mut dyn Progress,
     ) -> Result<GeneratedScene, PipelineError> {
-        let started = Instant::now();
-        let mut timings: BTreeMap<Stage, f64> = BTreeMap::new();
-        let mut timed = |stage: Stage, since: Instant| {
-            *timings.entry(stage).or_default() += since.elapsed().as_secs_f64();
-        };
+        let (generated, used) =
+            scenethesis_models::metered(|| self.run(prompt, seed, options, progress));
+        let mut generated = generated?;
+        generated.report.providers = used;
+        Ok(generated)
+    }
 
-        progress.stage_started(Stage::Plan, 0);
-        let t = Instant::now();
-        let original_plan = self.plan(prompt, seed)?;
-        timed(Stage::Plan, t);
-        progress.stage_finished(
+    /// [`Pipeline::generate`] without the usage accounting.
+    fn run(
+        &self,
+        prompt: &str,
+        seed: u64,
+        options: &GenerateOptions,
+        progress: &mut dyn Progress,
+    ) -> Result<GeneratedScene, PipelineError> {
+        let started = Instant::now();
+        let mut clock = StageClock::new(progress);
+        let original_plan = clock.run(
             Stage::Plan,
             0,
-            t.elapsed(),
-            &format!(
-                "{} ({} objects)",
-                original_plan.scene_type,
-                original_plan.objects.len()
-            ),
-        );
+            || self.plan(prompt, seed),
+            |plan| format!("{} ({} objects)", plan.scene_type, plan.objects.len()),
+        )?;
 
         let mut plan = original_plan.clone();
-        let mut variants: BTreeMap<String, u64> = BTreeMap::new();
-        let mut assets: BTreeMap<(String, u64), Asset> = BTreeMap::new();
-        let mut prepared: BTreeMap<String, Arc<PreparedAsset>> = BTreeMap::new();
+        let mut cache = AssetCache::default();
         let mut replans: Vec<Replan> = Vec::new();
         let mut best: Option<Attempt> = None;
-
         for round in 0..=options.max_replans {
-            // Retrieve.
-            progress.stage_started(Stage::Retrieve, round);
-            let t = Instant::now();
-            let mut infos: BTreeMap<String, AssetInfo> = BTreeMap::new();
-            let mut chosen: BTreeMap<String, (String, u64)> = BTreeMap::new();
-            for object in &plan.objects {
-                let variant = variants.get(&object.id).copied().unwrap_or(0);
-                let key = (object.id.clone(), variant);
-                if !assets.contains_key(&key) {
-                    let asset = self.assets.retrieve(
-                        &AssetQuery::new(&object.id, &object.category),
-                        seed.wrapping_add(variant),
-                    )?;
-                    assets.insert(key.clone(), asset);
-                }
-                infos.insert(object.id.clone(), assets[&key].info.clone());
-                chosen.insert(object.id.clone(), key);
-            }
-            timed(Stage::Retrieve, t);
-            progress.stage_finished(
-                Stage::Retrieve,
-                round,
-                t.elapsed(),
-                &format!("{} assets", infos.len()),
-            );
-
-            // Guide.
-            progress.stage_started(Stage::Guide, round);
-            let t = Instant::now();
-            let layout_seed = seed.wrapping_add(round as u64 * 0x9e37_79b9);
-            let layout = self.guide.layout(&plan, &infos, layout_seed)?;
-            let mut scene = layout.scene;
-            scene.prompt = prompt.to_owned();
-            scene.seed = seed;
-            timed(Stage::Guide, t);
-            progress.stage_finished(
-                Stage::Guide,
-                round,
-                t.elapsed(),
-                &format!(
-                    "{} placed, {} dropped",
-                    scene.objects.len(),
-                    layout.dropped.len()
-                ),
-            );
-
-            // Optimize.
-            progress.stage_started(Stage::Optimize, round);
-            let t = Instant::now();
-            let mut meshes = BTreeMap::new();
-            let mut problem = SceneProblem::new(scene.clone());
-            for object in &scene.objects {
-                let key = chosen
-                    .get(&object.id)
-                    .ok_or_else(|| PipelineError::Inconsistent {
-                        detail: format!(
-                            "the guide returned object `{}` that the plan does not hold",
-                            object.id
-                        ),
-                    })?;
-                let asset = &assets[key];
-                let asset_key = asset.info.source.to_string();
-                let prep = match prepared.get(&asset_key) {
-                    Some(p) => p.clone(),
-                    None => {
-                        let p = Arc::new(PreparedAsset::from_asset(asset, &options.prepare)?);
-                        prepared.insert(asset_key, p.clone());
-                        p
-                    }
-                };
-                problem.set_asset(&object.id, prep);
-                meshes.insert(object.id.clone(), asset.mesh.clone());
-            }
-            let placement = optimize_scene(&problem, self.optimizer.as_ref(), &options.optimize)?;
-            placement.apply_to(&mut scene);
-            timed(Stage::Optimize, t);
-            let failing = placement.failures().count();
-            progress.stage_finished(
-                Stage::Optimize,
-                round,
-                t.elapsed(),
-                &format!("{} objects, {failing} with issues", placement.objects.len()),
-            );
-
-            // Judge.
-            progress.stage_started(Stage::Judge, round);
-            let t = Instant::now();
-            let verdict = self.judge.judge(&JudgeInput {
-                plan: &plan,
-                scene: &scene,
-                meshes: &meshes,
-            })?;
-            timed(Stage::Judge, t);
-            progress.stage_finished(
-                Stage::Judge,
-                round,
-                t.elapsed(),
-                &if verdict.accepted {
-                    "accepted".to_owned()
-                } else {
-                    format!("{} failure(s)", verdict.failures.len())
-                },
-            );
-
-            let attempt = Attempt {
-                plan: plan.clone(),
-                scene,
-                meshes,
-                placement,
-                verdict,
-                guide_dropped: layout.dropped,
-                round,
-            };
+            let attempt =
+                self.attempt(&plan, &mut cache, &mut clock, prompt, seed, round, options)?;
             let accepted = attempt.verdict.accepted;
-            let offenders = attempt.verdict.offenders();
-            let reasons: Vec<String> = attempt
-                .verdict
-                .failures
-                .iter()
-                .map(|f| f.detail.clone())
-                .collect();
+            if !accepted && round < options.max_replans {
+                replans.push(rework(
+                    &mut plan,
+                    &mut cache,
+                    &attempt,
+                    seed,
+                    options.max_replans,
+                ));
+            }
             if best.as_ref().is_none_or(|b| attempt.better_than(b)) {
                 best = Some(attempt);
             }
-            if accepted || round == options.max_replans {
+            if accepted {
                 break;
             }
-
-            let (action, to_drop) = replan_action(&plan, &offenders, round, options.max_replans);
-            for id in offenders.iter().filter(|id| !to_drop.contains(id)) {
-                *variants.entry(id.clone()).or_default() += 1;
-            }
-            let objects = match action {
-                ReplanAction::Move => offenders.clone(),
-                ReplanAction::Drop => drop_objects(&mut plan, &to_drop).into_iter().collect(),
-            };
-            replans.push(Replan {
-                after_round: round,
-                action,
-                objects,
-                reasons,
-                layout_seed: seed.wrapping_add((round as u64 + 1) * 0x9e37_79b9),
-            });
         }
 
         let best = best.expect("at least one attempt ran");
-        let mut previews = Vec::new();
-        let mut notes = Vec::new();
-        if options.previews {
-            match &self.renderer {
-                Some(renderer) => {
-                    progress.stage_started(Stage::Render, best.round);
-                    let t = Instant::now();
-                    match renderer.render(&best.scene, &best.meshes, options.preview_size) {
-                        Ok(images) => previews = images,
-                        Err(e) => notes.push(format!("previews skipped: {e}")),
-                    }
-                    timed(Stage::Render, t);
-                    progress.stage_finished(
-                        Stage::Render,
-                        best.round,
-                        t.elapsed(),
-                        &format!("{} image(s) with {}", previews.len(), renderer.name()),
-                    );
-                }
-                None => notes.push("previews skipped: no renderer configured".into()),
-            }
-        }
-
-        let object_issues = best
-            .placement
-            .failures()
-            .map(|r| ObjectIssue {
-                id: r.id.clone(),
-                issues: r.issues.iter().map(|i| i.to_string()).collect(),
-            })
-            .collect();
-        let present: BTreeSet<&str> = best.scene.objects.iter().map(|o| o.id.as_str()).collect();
-        let missing_from_plan: Vec<String> = original_plan
-            .objects
-            .iter()
-            .filter(|o| !present.contains(o.id.as_str()))
-            .map(|o| o.id.clone())
-            .collect();
-        let report = Report {
-            prompt: prompt.to_owned(),
-            seed,
-            options_digest: options.digest(self.assets.name()),
-            scene_type: best.plan.scene_type.clone(),
-            accepted: best.verdict.accepted,
-            planner: self.planner.name().to_owned(),
-            guide: self.guide.name().to_owned(),
-            judge: self.judge.name().to_owned(),
-            optimizer: best.placement.optimizer.clone(),
-            asset_source: self.assets.name().to_owned(),
-            attempts: replans.len() + 1,
-            chosen_attempt: best.round,
-            planned_objects: original_plan.objects.len(),
-            objects: best.scene.objects.len(),
-            not_in_scene: missing_from_plan,
-            guide_dropped: best.guide_dropped.clone(),
-            replans,
-            verdict: best.verdict.clone(),
-            optimizer_issues: object_issues,
-            plan_notes: best.plan.notes.clone(),
-            assumptions: original_plan.assumptions.clone(),
-            limits: original_plan.limits.clone(),
-            prompt_check: scenethesis_agents::check_prompt(&original_plan, &best.scene),
-            notes,
-            timings: Stage::ALL
-                .iter()
-                .filter_map(|s| {
-                    timings
-                        .get(s)
-                        .map(|&seconds| StageTiming { stage: *s, seconds })
-                })
-                .collect(),
-            total_seconds: started.elapsed().as_secs_f64(),
-            providers: Vec::new(),
-        };
+        let (previews, notes) = previews(self.renderer.as_deref(), &best, options, &mut clock);
+        let report = report(
+            &best,
+            RunRecord {
+                prompt,
+                seed,
+                options_digest: options.digest(self.assets.name()),
+                planner: self.planner.name(),
+                guide: self.guide.name(),
+                judge: self.judge.name(),
+                asset_source: self.assets.name(),
+                original_plan: &original_plan,
+                replans,
+                notes,
+                timings: clock.timings(),
+                total_seconds: started.elapsed().as_secs_f64(),
+            },
+        );
         Ok(GeneratedScene {
             scene: best.scene,
             meshes: best.meshes,
             plan: best.plan,
             previews,
             report,
+            guidance: best.guidance,
+        })
+    }
+
+    /// One round: retrieve, lay out, optimize and judge `plan`.
+    #[allow(clippy::too_many_arguments)]
+    fn attempt(
+        &self,
+        plan: &Plan,
+        cache: &mut AssetCache,
+        clock: &mut StageClock<'_>,
+        prompt: &str,
+        seed: u64,
+        round: usize,
+        options: &GenerateOptions,
+    ) -> Result<Attempt, PipelineError> {
+        let retrieved = clock.run(
+            Stage::Retrieve,
+            round,
+            || cache.retrieve(self.assets.as_ref(), plan, seed),
+            |r| format!("{} assets", r.infos.len()),
+        )?;
+        let layout = clock.run(
+            Stage::Guide,
+            round,
+            || lay_out(self.guide.as_ref(), plan, &retrieved, prompt, seed, round),
+            |l| {
+                format!(
+                    "{} placed, {} dropped",
+                    l.scene.objects.len(),
+                    l.dropped.len()
+                )
+            },
+        )?;
+        let mut scene = layout.scene;
+        let (placement, meshes) = clock.run(
+            Stage::Optimize,
+            round,
+            || {
+                optimize(
+                    &mut scene,
+                    &retrieved,
+                    cache,
+                    self.optimizer.as_ref(),
+                    options,
+                )
+            },
+            |(p, _)| {
+                format!(
+                    "{} objects, {} with issues",
+                    p.objects.len(),
+                    p.failures().count()
+                )
+            },
+        )?;
+        let verdict = clock.run(
+            Stage::Judge,
+            round,
+            || {
+                judge(
+                    self.judge.as_ref(),
+                    plan,
+                    &scene,
+                    &meshes,
+                    layout.guidance.as_ref(),
+                )
+            },
+            verdict_note,
+        )?;
+        Ok(Attempt {
+            plan: plan.clone(),
+            scene,
+            meshes,
+            placement,
+            verdict,
+            guide_dropped: layout.dropped,
+            guidance: layout.guidance,
+            round,
         })
     }
 }

@@ -168,6 +168,7 @@ fn generate_writes_a_complete_deterministic_folder() {
             plan: &b.plan,
             scene: &broken,
             meshes: &b.meshes,
+            guidance: None,
         })
         .unwrap();
     assert!(!verdict.accepted);

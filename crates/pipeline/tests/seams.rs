@@ -116,6 +116,7 @@ fn the_accept_all_judge_accepts_what_the_geometric_judge_rejects() {
         plan: &generated.plan,
         scene: &generated.scene,
         meshes: &generated.meshes,
+        guidance: None,
     };
     let strict = scenethesis_pipeline::GeometricJudge::default()
         .judge(&input)

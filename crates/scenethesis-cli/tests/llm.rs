@@ -277,6 +277,60 @@ fn an_llm_plans_a_pharmacy_and_the_cache_replays_it_without_the_server() {
 }
 
 #[test]
+fn each_batch_job_reports_its_own_use_of_the_model() {
+    let tmp = tempfile::tempdir().unwrap();
+    let server = Server::start((
+        200,
+        "application/json",
+        completion(&pharmacy_plan().to_string()),
+        Duration::ZERO,
+    ));
+    let prompts = tmp.path().join("prompts.txt");
+    std::fs::write(&prompts, "a pharmacy\n").unwrap();
+    let out_dir = tmp.path().join("batch");
+    let out = scenethesis(&[
+        "batch",
+        prompts.to_str().unwrap(),
+        "--out",
+        out_dir.to_str().unwrap(),
+        "--seeds",
+        "2",
+        "--jobs",
+        "2",
+        "--planner",
+        "llm",
+        "--base-url",
+        &server.base_url,
+        "--llm-model",
+        "pharmacist-7b",
+        "--no-preview",
+        "--max-replans",
+        "1",
+    ]);
+    assert!(out.status.success(), "{}", text(&out));
+    let mut reports = Vec::new();
+    for entry in std::fs::read_dir(&out_dir).unwrap().flatten() {
+        let path = entry.path().join("report.json");
+        if path.is_file() {
+            reports.push(serde_json::from_slice::<Value>(&std::fs::read(path).unwrap()).unwrap());
+        }
+    }
+    assert_eq!(reports.len(), 2, "two jobs, two folders");
+    let mut total = 0;
+    for report in &reports {
+        let providers = report["providers"].as_array().expect("providers recorded");
+        assert_eq!(providers.len(), 1, "{report}");
+        assert_eq!(providers[0]["model"], "pharmacist-7b");
+        let requests = providers[0]["requests"].as_u64().unwrap();
+        assert!(requests >= 1, "each job planned with the model: {report}");
+        assert_eq!(providers[0]["prompt_tokens"], 900 * requests, "{report}");
+        total += requests;
+    }
+    // The jobs ran in parallel on one shared client; each counted only its own requests.
+    assert_eq!(total, server.requests() as u64);
+}
+
+#[test]
 fn the_offline_default_reads_no_provider_configuration_and_reports_none() {
     let tmp = tempfile::tempdir().unwrap();
     let out_dir = tmp.path().join("garage");

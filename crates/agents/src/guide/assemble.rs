@@ -8,8 +8,8 @@ use nalgebra::Vector3;
 use scenethesis_assets::AssetInfo;
 use scenethesis_scene_graph::{Aabb, ParentRef, Pose, Relation, RelationKind, Scene, SceneObject};
 
-use super::procedural::{wrap, WALL_MOUNT_HEIGHT};
 use super::room::Room;
+use super::shared::{wrap, WALL_MOUNT_HEIGHT};
 use super::walkway::FloorState;
 use crate::plan::Plan;
 

@@ -11,45 +11,11 @@ use scenethesis_assets::AssetInfo;
 use scenethesis_scene_graph::RelationKind;
 
 use super::geometry::Footprint;
-use super::place_floor::positional_target;
-use super::procedural::ProceduralGuide;
+use super::room::Side;
+use super::shared::positional_target;
 use super::walkway::FloorState;
 use crate::knowledge::{Knowledge, NominalShape};
 use crate::plan::{PlannedObject, Zone};
-
-/// A wall (or, outdoors, an edge of the ground) that objects can back onto.
-#[derive(Debug, Clone)]
-pub(super) struct Side {
-    pub(super) id: Option<String>,
-    /// Point on the inner face at the middle of the wall.
-    pub(super) face: [f64; 2],
-    /// Unit normal into the room.
-    pub(super) normal: [f64; 2],
-    /// Unit direction along the wall.
-    pub(super) along: [f64; 2],
-    pub(super) half_len: f64,
-}
-
-impl Side {
-    fn yaw(&self) -> f64 {
-        self.normal[0].atan2(self.normal[1])
-    }
-
-    fn footprint_at(&self, s: f64, hx: f64, hz: f64) -> Footprint {
-        let gap = 0.01;
-        Footprint {
-            cx: self.face[0] + self.along[0] * s + self.normal[0] * (hz + gap),
-            cz: self.face[1] + self.along[1] * s + self.normal[1] * (hz + gap),
-            yaw: self.yaw(),
-            hx,
-            hz,
-        }
-    }
-
-    fn limit(&self, hx: f64) -> f64 {
-        self.half_len - hx - 0.01
-    }
-}
 
 /// A spot an object could take: its footprint and the wall it backs onto, if any.
 #[derive(Debug, Clone)]
@@ -78,597 +44,577 @@ fn yaw_toward(from: [f64; 2], to: [f64; 2]) -> f64 {
     (to[0] - from[0]).atan2(to[1] - from[1])
 }
 
-impl ProceduralGuide {
-    pub(super) fn mount_ok(&self, state: &FloorState<'_>, fp: &Footprint) -> bool {
-        // Not over another mounted object, and free floor in front.
-        if state
-            .placed
-            .iter()
-            .filter(|p| p.mounted)
-            .any(|p| p.fp.overlaps(fp, 0.1))
-        {
-            return false;
-        }
-        let front = fp.to_world(0.0, fp.hz + 0.35);
-        let band = Footprint {
-            cx: front[0],
-            cz: front[1],
-            yaw: fp.yaw,
-            hx: fp.hx,
-            hz: 0.35,
-        };
-        !state
-            .placed
-            .iter()
-            .filter(|p| !p.mounted)
-            .any(|p| p.fp.overlaps(&band, 0.0))
-            && !state.door_zone.is_some_and(|d| d.overlaps(&band, 0.0))
+pub(super) fn mount_ok(state: &FloorState<'_>, fp: &Footprint) -> bool {
+    // Not over another mounted object, and free floor in front.
+    if state
+        .placed
+        .iter()
+        .filter(|p| p.mounted)
+        .any(|p| p.fp.overlaps(fp, 0.1))
+    {
+        return false;
     }
+    let front = fp.to_world(0.0, fp.hz + 0.35);
+    let band = Footprint {
+        cx: front[0],
+        cz: front[1],
+        yaw: fp.yaw,
+        hx: fp.hx,
+        hz: 0.35,
+    };
+    !state
+        .placed
+        .iter()
+        .filter(|p| !p.mounted)
+        .any(|p| p.fp.overlaps(&band, 0.0))
+        && !state.door_zone.is_some_and(|d| d.overlaps(&band, 0.0))
+}
 
-    pub(super) fn candidates(
-        &self,
-        state: &FloorState<'_>,
-        o: &PlannedObject,
-        info: &AssetInfo,
-        sides: &[Side],
-        infos: &[AssetInfo],
-        rng: &mut ChaCha8Rng,
-    ) -> Vec<Candidate> {
-        let (hx, hz) = (info.size[0] as f64 / 2.0, info.size[2] as f64 / 2.0);
-        let plan = state.plan;
-        let is_anchor = o.id == plan.anchor;
-        let mut out = Vec::new();
-        if is_anchor && matches!(o.zone, Zone::Wall { .. }) {
-            out.extend(self.anchor_wall_candidates(o, sides, hx, hz, rng));
-            return out;
-        }
-        match &o.zone {
-            Zone::Wall { wall: Some(w) } => {
-                if let Some(side) = sides.iter().find(|s| s.id.as_deref() == Some(w)) {
-                    out.extend(self.wall_candidates(side, hx, hz, rng));
-                }
-            }
-            Zone::Wall { wall: None } => {
-                // Opposite a target: the wall facing it first.
-                let facing = o
-                    .relations
-                    .iter()
-                    .find(|r| r.kind == RelationKind::Facing)
-                    .and_then(|r| state.index_of(&r.target))
-                    .and_then(|t| state.placed_of(t));
-                let mut order: Vec<usize> = (0..sides.len()).collect();
-                order.shuffle(rng);
-                if let Some(t) = facing {
-                    let (_, f) = t.fp.axes();
-                    order.sort_by(|&a, &b| {
-                        let da = sides[a].normal[0] * f[0] + sides[a].normal[1] * f[1];
-                        let db = sides[b].normal[0] * f[0] + sides[b].normal[1] * f[1];
-                        da.total_cmp(&db)
-                    });
-                    let side = &sides[order[0]];
-                    let s_t = (t.fp.cx - side.face[0]) * side.along[0]
-                        + (t.fp.cz - side.face[1]) * side.along[1];
-                    let lim = side.limit(hx);
-                    if lim > 0.0 {
-                        let mut ss: Vec<f64> = (0..=(2.0 * lim / 0.1) as usize)
-                            .map(|k| -lim + k as f64 * 0.1)
-                            .collect();
-                        ss.sort_by(|a, b| (a - s_t).abs().total_cmp(&(b - s_t).abs()));
-                        out.extend(ss.into_iter().map(|s| Candidate {
-                            fp: side.footprint_at(s, hx, hz),
-                            wall: side.id.clone(),
-                        }));
-                    }
-                    order.remove(0);
-                }
-                for k in order {
-                    out.extend(self.wall_candidates(&sides[k], hx, hz, rng));
-                }
-            }
-            Zone::Corner => out.extend(self.corner_candidates(sides, hx, hz, rng)),
-            Zone::Center => out.extend(self.center_candidates(state, hx, hz, rng, is_anchor)),
-            Zone::Rows => out.extend(self.row_candidates(state, hx, hz)),
-            Zone::Free => {}
-            Zone::WallMounted => {
-                let mut order: Vec<usize> = (0..sides.len()).collect();
-                order.shuffle(rng);
-                for k in order {
-                    out.extend(self.wall_candidates(
-                        &sides[k],
-                        hx,
-                        (info.size[2] as f64 / 2.0).max(0.005),
-                        rng,
-                    ));
-                }
-            }
-            Zone::Relative => out.extend(self.relative_candidates(state, o, hx, hz, infos, rng)),
-            Zone::Supported => {}
-        }
-        if matches!(
-            o.zone,
-            Zone::Free | Zone::Relative | Zone::Center | Zone::Rows
-        ) || (is_anchor && out.is_empty())
-        {
-            let anchor_toward = state
-                .index_of(&plan.anchor)
-                .and_then(|a| state.placed_of(a))
-                .map(|p| [p.fp.cx, p.fp.cz]);
-            let facing = seat_like(&o.category).then_some(anchor_toward).flatten();
-            out.extend(self.free_candidates(state, info, rng, facing));
-        }
-        out
+pub(super) fn candidates(
+    state: &FloorState<'_>,
+    o: &PlannedObject,
+    info: &AssetInfo,
+    sides: &[Side],
+    infos: &[AssetInfo],
+    rng: &mut ChaCha8Rng,
+) -> Vec<Candidate> {
+    let (hx, hz) = (info.size[0] as f64 / 2.0, info.size[2] as f64 / 2.0);
+    let plan = state.plan;
+    let is_anchor = o.id == plan.anchor;
+    let mut out = Vec::new();
+    if is_anchor && matches!(o.zone, Zone::Wall { .. }) {
+        out.extend(anchor_wall_candidates(o, sides, hx, hz, rng));
+        return out;
     }
-
-    fn anchor_wall_candidates(
-        &self,
-        o: &PlannedObject,
-        sides: &[Side],
-        hx: f64,
-        hz: f64,
-        rng: &mut ChaCha8Rng,
-    ) -> Vec<Candidate> {
-        let wall = match &o.zone {
-            Zone::Wall { wall: Some(w) } => w.clone(),
-            _ => "wall_0".to_owned(),
-        };
-        let mut out = Vec::new();
-        let mut order: Vec<&Side> = sides
-            .iter()
-            .filter(|s| s.id.as_deref() == Some(wall.as_str()))
-            .collect();
-        if o.relations
-            .iter()
-            .all(|r| r.kind != RelationKind::AgainstWall)
-        {
-            order.extend(
-                sides
-                    .iter()
-                    .filter(|s| s.id.as_deref() != Some(wall.as_str())),
-            );
+    match &o.zone {
+        Zone::Wall { wall: Some(w) } => {
+            if let Some(side) = sides.iter().find(|s| s.id.as_deref() == Some(w)) {
+                out.extend(wall_candidates(side, hx, hz, rng));
+            }
         }
-        for side in order {
-            let lim = side.limit(hx);
-            if lim < 0.0 {
-                continue;
-            }
-            let jitter = rng.random_range(-0.25..=0.25) * lim.min(1.2);
-            let mut ss: Vec<f64> = vec![jitter];
-            let mut k = 1.0;
-            while k * 0.1 <= 2.0 * lim {
-                ss.push(jitter + k * 0.1);
-                ss.push(jitter - k * 0.1);
-                k += 1.0;
-            }
-            out.extend(
-                ss.into_iter()
-                    .filter(|s| s.abs() <= lim)
-                    .map(|s| Candidate {
+        Zone::Wall { wall: None } => {
+            // Opposite a target: the wall facing it first.
+            let facing = o
+                .relations
+                .iter()
+                .find(|r| r.kind == RelationKind::Facing)
+                .and_then(|r| state.index_of(&r.target))
+                .and_then(|t| state.placed_of(t));
+            let mut order: Vec<usize> = (0..sides.len()).collect();
+            order.shuffle(rng);
+            if let Some(t) = facing {
+                let (_, f) = t.fp.axes();
+                order.sort_by(|&a, &b| {
+                    let da = sides[a].normal[0] * f[0] + sides[a].normal[1] * f[1];
+                    let db = sides[b].normal[0] * f[0] + sides[b].normal[1] * f[1];
+                    da.total_cmp(&db)
+                });
+                let side = &sides[order[0]];
+                let s_t = (t.fp.cx - side.face[0]) * side.along[0]
+                    + (t.fp.cz - side.face[1]) * side.along[1];
+                let lim = side.limit(hx);
+                if lim > 0.0 {
+                    let mut ss: Vec<f64> = (0..=(2.0 * lim / 0.1) as usize)
+                        .map(|k| -lim + k as f64 * 0.1)
+                        .collect();
+                    ss.sort_by(|a, b| (a - s_t).abs().total_cmp(&(b - s_t).abs()));
+                    out.extend(ss.into_iter().map(|s| Candidate {
                         fp: side.footprint_at(s, hx, hz),
                         wall: side.id.clone(),
-                    }),
-            );
+                    }));
+                }
+                order.remove(0);
+            }
+            for k in order {
+                out.extend(wall_candidates(&sides[k], hx, hz, rng));
+            }
         }
-        out
+        Zone::Corner => out.extend(corner_candidates(sides, hx, hz, rng)),
+        Zone::Center => out.extend(center_candidates(state, hx, hz, rng, is_anchor)),
+        Zone::Rows => out.extend(row_candidates(state, hx, hz)),
+        Zone::Free => {}
+        Zone::WallMounted => {
+            let mut order: Vec<usize> = (0..sides.len()).collect();
+            order.shuffle(rng);
+            for k in order {
+                out.extend(wall_candidates(
+                    &sides[k],
+                    hx,
+                    (info.size[2] as f64 / 2.0).max(0.005),
+                    rng,
+                ));
+            }
+        }
+        Zone::Relative => out.extend(relative_candidates(state, o, hx, hz, infos, rng)),
+        Zone::Supported => {}
     }
+    if matches!(
+        o.zone,
+        Zone::Free | Zone::Relative | Zone::Center | Zone::Rows
+    ) || (is_anchor && out.is_empty())
+    {
+        let anchor_toward = state
+            .index_of(&plan.anchor)
+            .and_then(|a| state.placed_of(a))
+            .map(|p| [p.fp.cx, p.fp.cz]);
+        let facing = seat_like(&o.category).then_some(anchor_toward).flatten();
+        out.extend(free_candidates(state, info, rng, facing));
+    }
+    out
+}
 
-    fn wall_candidates(
-        &self,
-        side: &Side,
-        hx: f64,
-        hz: f64,
-        rng: &mut ChaCha8Rng,
-    ) -> Vec<Candidate> {
+fn anchor_wall_candidates(
+    o: &PlannedObject,
+    sides: &[Side],
+    hx: f64,
+    hz: f64,
+    rng: &mut ChaCha8Rng,
+) -> Vec<Candidate> {
+    let wall = match &o.zone {
+        Zone::Wall { wall: Some(w) } => w.clone(),
+        _ => "wall_0".to_owned(),
+    };
+    let mut out = Vec::new();
+    let mut order: Vec<&Side> = sides
+        .iter()
+        .filter(|s| s.id.as_deref() == Some(wall.as_str()))
+        .collect();
+    if o.relations
+        .iter()
+        .all(|r| r.kind != RelationKind::AgainstWall)
+    {
+        order.extend(
+            sides
+                .iter()
+                .filter(|s| s.id.as_deref() != Some(wall.as_str())),
+        );
+    }
+    for side in order {
         let lim = side.limit(hx);
         if lim < 0.0 {
-            return Vec::new();
+            continue;
         }
-        let steps = (2.0 * lim / 0.1).floor() as usize;
-        let mut ss: Vec<f64> = (0..=steps).map(|k| -lim + k as f64 * 0.1).collect();
-        ss.push(lim);
-        if rng.random_bool(0.5) {
-            ss.reverse();
+        let jitter = rng.random_range(-0.25..=0.25) * lim.min(1.2);
+        let mut ss: Vec<f64> = vec![jitter];
+        let mut k = 1.0;
+        while k * 0.1 <= 2.0 * lim {
+            ss.push(jitter + k * 0.1);
+            ss.push(jitter - k * 0.1);
+            k += 1.0;
         }
-        ss.into_iter()
-            .map(|s| Candidate {
-                fp: side.footprint_at(s, hx, hz),
-                wall: side.id.clone(),
-            })
-            .collect()
-    }
-
-    fn corner_candidates(
-        &self,
-        sides: &[Side],
-        hx: f64,
-        hz: f64,
-        rng: &mut ChaCha8Rng,
-    ) -> Vec<Candidate> {
-        let mut out = Vec::new();
-        let mut options: Vec<(usize, f64)> = (0..sides.len())
-            .flat_map(|k| [(k, -1.0), (k, 1.0)])
-            .collect();
-        options.shuffle(rng);
-        for (k, sign) in options {
-            let side = &sides[k];
-            let lim = side.limit(hx);
-            if lim < 0.0 {
-                continue;
-            }
-            for back in [0.0, 0.1, 0.2] {
-                out.push(Candidate {
-                    fp: side.footprint_at(sign * (lim - back), hx, hz),
+        out.extend(
+            ss.into_iter()
+                .filter(|s| s.abs() <= lim)
+                .map(|s| Candidate {
+                    fp: side.footprint_at(s, hx, hz),
                     wall: side.id.clone(),
+                }),
+        );
+    }
+    out
+}
+
+fn wall_candidates(side: &Side, hx: f64, hz: f64, rng: &mut ChaCha8Rng) -> Vec<Candidate> {
+    let lim = side.limit(hx);
+    if lim < 0.0 {
+        return Vec::new();
+    }
+    let steps = (2.0 * lim / 0.1).floor() as usize;
+    let mut ss: Vec<f64> = (0..=steps).map(|k| -lim + k as f64 * 0.1).collect();
+    ss.push(lim);
+    if rng.random_bool(0.5) {
+        ss.reverse();
+    }
+    ss.into_iter()
+        .map(|s| Candidate {
+            fp: side.footprint_at(s, hx, hz),
+            wall: side.id.clone(),
+        })
+        .collect()
+}
+
+fn corner_candidates(sides: &[Side], hx: f64, hz: f64, rng: &mut ChaCha8Rng) -> Vec<Candidate> {
+    let mut out = Vec::new();
+    let mut options: Vec<(usize, f64)> = (0..sides.len())
+        .flat_map(|k| [(k, -1.0), (k, 1.0)])
+        .collect();
+    options.shuffle(rng);
+    for (k, sign) in options {
+        let side = &sides[k];
+        let lim = side.limit(hx);
+        if lim < 0.0 {
+            continue;
+        }
+        for back in [0.0, 0.1, 0.2] {
+            out.push(Candidate {
+                fp: side.footprint_at(sign * (lim - back), hx, hz),
+                wall: side.id.clone(),
+            });
+        }
+    }
+    out
+}
+
+fn center_candidates(
+    state: &FloorState<'_>,
+    hx: f64,
+    hz: f64,
+    rng: &mut ChaCha8Rng,
+    anchor: bool,
+) -> Vec<Candidate> {
+    let [x0, z0, x1, z1] = state.floor;
+    let (w, d) = (x1 - x0, z1 - z0);
+    // Long side along the room's long side; flipped at random for variety.
+    let base = if (hx >= hz) == (w >= d) {
+        0.0
+    } else {
+        FRAC_PI_2
+    };
+    let yaw = if rng.random_bool(0.5) {
+        base
+    } else {
+        base + PI
+    };
+    let (cx, cz) = (
+        (x0 + x1) / 2.0 + rng.random_range(-0.2..=0.2),
+        (z0 + z1) / 2.0 - if anchor { 0.1 * d } else { 0.0 } + rng.random_range(-0.2..=0.2),
+    );
+    let mut out = vec![];
+    for ring in 0..16 {
+        let radius = ring as f64 * 0.15;
+        let n = if ring == 0 { 1 } else { 8 + ring * 2 };
+        let phase = rng.random_range(0.0..(2.0 * PI));
+        for k in 0..n {
+            let a = phase + k as f64 / n as f64 * 2.0 * PI;
+            for y in [yaw, yaw + FRAC_PI_2] {
+                out.push(Candidate {
+                    fp: Footprint {
+                        cx: cx + radius * a.cos(),
+                        cz: cz + radius * a.sin(),
+                        yaw: y,
+                        hx,
+                        hz,
+                    },
+                    wall: None,
                 });
             }
         }
-        out
     }
+    out
+}
 
-    fn center_candidates(
-        &self,
-        state: &FloorState<'_>,
-        hx: f64,
-        hz: f64,
-        rng: &mut ChaCha8Rng,
-        anchor: bool,
-    ) -> Vec<Candidate> {
-        let [x0, z0, x1, z1] = state.floor;
-        let (w, d) = (x1 - x0, z1 - z0);
-        // Long side along the room's long side; flipped at random for variety.
-        let base = if (hx >= hz) == (w >= d) {
-            0.0
-        } else {
-            FRAC_PI_2
-        };
-        let yaw = if rng.random_bool(0.5) {
-            base
-        } else {
-            base + PI
-        };
-        let (cx, cz) = (
-            (x0 + x1) / 2.0 + rng.random_range(-0.2..=0.2),
-            (z0 + z1) / 2.0 - if anchor { 0.1 * d } else { 0.0 } + rng.random_range(-0.2..=0.2),
-        );
-        let mut out = vec![];
-        for ring in 0..16 {
-            let radius = ring as f64 * 0.15;
-            let n = if ring == 0 { 1 } else { 8 + ring * 2 };
-            let phase = rng.random_range(0.0..(2.0 * PI));
-            for k in 0..n {
-                let a = phase + k as f64 / n as f64 * 2.0 * PI;
-                for y in [yaw, yaw + FRAC_PI_2] {
-                    out.push(Candidate {
-                        fp: Footprint {
-                            cx: cx + radius * a.cos(),
-                            cz: cz + radius * a.sin(),
-                            yaw: y,
-                            hx,
-                            hz,
-                        },
-                        wall: None,
-                    });
-                }
-            }
-        }
-        out
+fn row_candidates(state: &FloorState<'_>, hx: f64, hz: f64) -> Vec<Candidate> {
+    let [x0, z0, x1, z1] = state.floor;
+    let (sx, sz) = (2.0 * hx + 1.0, 2.0 * hz + 1.5);
+    let (ax0, ax1) = (x0 + 0.9 + hx, x1 - 0.9 - hx);
+    let (az0, az1) = (z0 + 1.9 + hz, z1 - 1.3 - hz);
+    let mut out = Vec::new();
+    if ax1 < ax0 || az1 < az0 {
+        return out;
     }
-
-    fn row_candidates(&self, state: &FloorState<'_>, hx: f64, hz: f64) -> Vec<Candidate> {
-        let [x0, z0, x1, z1] = state.floor;
-        let (sx, sz) = (2.0 * hx + 1.0, 2.0 * hz + 1.5);
-        let (ax0, ax1) = (x0 + 0.9 + hx, x1 - 0.9 - hx);
-        let (az0, az1) = (z0 + 1.9 + hz, z1 - 1.3 - hz);
-        let mut out = Vec::new();
-        if ax1 < ax0 || az1 < az0 {
-            return out;
-        }
-        let cols = ((ax1 - ax0) / sx).floor() as usize + 1;
-        let rows = ((az1 - az0) / sz).floor() as usize + 1;
-        let off_x = (ax1 - ax0 - (cols - 1) as f64 * sx) / 2.0;
-        for r in 0..rows {
-            for c in 0..cols {
-                let fp = Footprint {
-                    cx: ax0 + off_x + c as f64 * sx,
-                    cz: az0 + r as f64 * sz,
-                    yaw: 0.0,
-                    hx,
-                    hz,
-                };
-                out.push(Candidate { fp, wall: None });
-            }
-        }
-        out
-    }
-
-    pub(super) fn free_candidates(
-        &self,
-        state: &FloorState<'_>,
-        info: &AssetInfo,
-        rng: &mut ChaCha8Rng,
-        face: Option<[f64; 2]>,
-    ) -> Vec<Candidate> {
-        let (hx, hz) = (info.size[0] as f64 / 2.0, info.size[2] as f64 / 2.0);
-        let [x0, z0, x1, z1] = state.floor;
-        let r = hx.max(hz) + 0.05;
-        let mut out = Vec::new();
-        if x1 - x0 <= 2.0 * r || z1 - z0 <= 2.0 * r {
-            return out;
-        }
-        for _ in 0..240 {
-            let x = rng.random_range(x0 + r..=x1 - r);
-            let z = rng.random_range(z0 + r..=z1 - r);
-            let yaw = match face {
-                Some(t) => yaw_toward([x, z], t),
-                None => rng.random_range(0..4) as f64 * FRAC_PI_2,
+    let cols = ((ax1 - ax0) / sx).floor() as usize + 1;
+    let rows = ((az1 - az0) / sz).floor() as usize + 1;
+    let off_x = (ax1 - ax0 - (cols - 1) as f64 * sx) / 2.0;
+    for r in 0..rows {
+        for c in 0..cols {
+            let fp = Footprint {
+                cx: ax0 + off_x + c as f64 * sx,
+                cz: az0 + r as f64 * sz,
+                yaw: 0.0,
+                hx,
+                hz,
             };
-            out.push(Candidate {
-                fp: Footprint {
-                    cx: x,
-                    cz: z,
-                    yaw,
-                    hx,
-                    hz,
-                },
-                wall: None,
-            });
+            out.push(Candidate { fp, wall: None });
         }
-        out
     }
+    out
+}
 
-    fn relative_candidates(
-        &self,
-        state: &FloorState<'_>,
-        o: &PlannedObject,
-        hx: f64,
-        hz: f64,
-        infos: &[AssetInfo],
-        rng: &mut ChaCha8Rng,
-    ) -> Vec<Candidate> {
-        let _ = infos;
-        let plan = state.plan;
-        let mut out = Vec::new();
-        let Some(target_id) = positional_target(o) else {
-            return out;
+pub(super) fn free_candidates(
+    state: &FloorState<'_>,
+    info: &AssetInfo,
+    rng: &mut ChaCha8Rng,
+    face: Option<[f64; 2]>,
+) -> Vec<Candidate> {
+    let (hx, hz) = (info.size[0] as f64 / 2.0, info.size[2] as f64 / 2.0);
+    let [x0, z0, x1, z1] = state.floor;
+    let r = hx.max(hz) + 0.05;
+    let mut out = Vec::new();
+    if x1 - x0 <= 2.0 * r || z1 - z0 <= 2.0 * r {
+        return out;
+    }
+    for _ in 0..240 {
+        let x = rng.random_range(x0 + r..=x1 - r);
+        let z = rng.random_range(z0 + r..=z1 - r);
+        let yaw = match face {
+            Some(t) => yaw_toward([x, z], t),
+            None => rng.random_range(0..4) as f64 * FRAC_PI_2,
         };
-        let Some(ti) = state.index_of(target_id) else {
-            return out;
-        };
-        let Some(t) = state.placed_of(ti) else {
-            return out;
-        };
-        let kind = o
-            .relations
-            .iter()
-            .find(|r| {
-                r.target == target_id
-                    && !matches!(
-                        r.kind,
-                        RelationKind::AgainstWall | RelationKind::LeftOf | RelationKind::RightOf
-                    )
-            })
-            .map(|r| r.kind)
-            .unwrap_or(RelationKind::Beside);
-        let side_rel = o
-            .relations
-            .iter()
-            .find(|r| matches!(r.kind, RelationKind::LeftOf | RelationKind::RightOf))
-            .map(|r| r.kind);
-        let facing = o
-            .relations
-            .iter()
-            .find(|r| r.kind == RelationKind::Facing && r.target != target_id)
-            .or_else(|| o.relations.iter().find(|r| r.kind == RelationKind::Facing))
-            .and_then(|r| state.index_of(&r.target))
-            .and_then(|i| state.placed_of(i))
-            .map(|p| [p.fp.cx, p.fp.cz]);
-        let (r_t, f_t) = t.fp.axes();
-        let tc = [t.fp.cx, t.fp.cz];
-        // Which of the objects sharing this relation to the target this one is.
-        let peers: Vec<&PlannedObject> = plan
-            .objects
-            .iter()
-            .filter(|p| {
-                p.zone == Zone::Relative
-                    && positional_target(p) == Some(target_id)
-                    && p.relations
-                        .iter()
-                        .any(|r| r.kind == kind && r.target == target_id)
-            })
-            .collect();
-        let k = peers.iter().position(|p| p.id == o.id).unwrap_or(0);
-        let n = peers.len().max(1);
-        let seat = seat_like(&o.category);
-        let mk = |c: [f64; 2], yaw: f64| Candidate {
+        out.push(Candidate {
             fp: Footprint {
-                cx: c[0],
-                cz: c[1],
+                cx: x,
+                cz: z,
                 yaw,
                 hx,
                 hz,
             },
             wall: None,
-        };
-        let add = |a: [f64; 2], s: f64, b: [f64; 2]| [a[0] + s * b[0], a[1] + s * b[1]];
-        // Half extent along `dir` of this object's footprint turned to `yaw`.
-        let extent_at = |yaw: f64, dir: [f64; 2]| {
-            Footprint {
-                cx: 0.0,
-                cz: 0.0,
-                yaw,
-                hx,
-                hz,
-            }
-            .extent_along(dir)
-        };
-        match kind {
-            RelationKind::InFrontOf | RelationKind::Behind => {
-                let dir = if kind == RelationKind::InFrontOf {
-                    1.0
-                } else {
-                    -1.0
-                };
-                let yaw = match facing {
-                    Some(_) => None,
-                    None if seat && kind == RelationKind::InFrontOf => Some(t.fp.yaw + PI),
-                    None => Some(t.fp.yaw),
-                };
-                let base_gap = if seat { 0.06 } else { 0.45 };
-                let lateral = if n > 1 {
-                    ((k as f64 + 0.5) / n as f64 * 2.0 - 1.0) * t.fp.hx
-                } else {
-                    rng.random_range(-0.05..=0.05)
-                };
-                for gap in [
-                    base_gap,
-                    base_gap + 0.1,
-                    base_gap + 0.25,
-                    base_gap + 0.45,
-                    base_gap + 0.7,
-                ] {
-                    for dl in [0.0, 0.2, -0.2, 0.4, -0.4] {
-                        let probe =
-                            add(add(tc, dir * (t.fp.hz + gap + hz), f_t), lateral + dl, r_t);
-                        let y = yaw.unwrap_or_else(|| yaw_toward(probe, facing.unwrap_or(tc)));
-                        let e = extent_at(y, f_t);
-                        let c = add(add(tc, dir * (t.fp.hz + gap + e), f_t), lateral + dl, r_t);
-                        out.push(mk(c, y));
-                    }
+        });
+    }
+    out
+}
+
+fn relative_candidates(
+    state: &FloorState<'_>,
+    o: &PlannedObject,
+    hx: f64,
+    hz: f64,
+    infos: &[AssetInfo],
+    rng: &mut ChaCha8Rng,
+) -> Vec<Candidate> {
+    let _ = infos;
+    let plan = state.plan;
+    let mut out = Vec::new();
+    let Some(target_id) = positional_target(o) else {
+        return out;
+    };
+    let Some(ti) = state.index_of(target_id) else {
+        return out;
+    };
+    let Some(t) = state.placed_of(ti) else {
+        return out;
+    };
+    let kind = o
+        .relations
+        .iter()
+        .find(|r| {
+            r.target == target_id
+                && !matches!(
+                    r.kind,
+                    RelationKind::AgainstWall | RelationKind::LeftOf | RelationKind::RightOf
+                )
+        })
+        .map(|r| r.kind)
+        .unwrap_or(RelationKind::Beside);
+    let side_rel = o
+        .relations
+        .iter()
+        .find(|r| matches!(r.kind, RelationKind::LeftOf | RelationKind::RightOf))
+        .map(|r| r.kind);
+    let facing = o
+        .relations
+        .iter()
+        .find(|r| r.kind == RelationKind::Facing && r.target != target_id)
+        .or_else(|| o.relations.iter().find(|r| r.kind == RelationKind::Facing))
+        .and_then(|r| state.index_of(&r.target))
+        .and_then(|i| state.placed_of(i))
+        .map(|p| [p.fp.cx, p.fp.cz]);
+    let (r_t, f_t) = t.fp.axes();
+    let tc = [t.fp.cx, t.fp.cz];
+    // Which of the objects sharing this relation to the target this one is.
+    let peers: Vec<&PlannedObject> = plan
+        .objects
+        .iter()
+        .filter(|p| {
+            p.zone == Zone::Relative
+                && positional_target(p) == Some(target_id)
+                && p.relations
+                    .iter()
+                    .any(|r| r.kind == kind && r.target == target_id)
+        })
+        .collect();
+    let k = peers.iter().position(|p| p.id == o.id).unwrap_or(0);
+    let n = peers.len().max(1);
+    let seat = seat_like(&o.category);
+    let mk = |c: [f64; 2], yaw: f64| Candidate {
+        fp: Footprint {
+            cx: c[0],
+            cz: c[1],
+            yaw,
+            hx,
+            hz,
+        },
+        wall: None,
+    };
+    let add = |a: [f64; 2], s: f64, b: [f64; 2]| [a[0] + s * b[0], a[1] + s * b[1]];
+    // Half extent along `dir` of this object's footprint turned to `yaw`.
+    let extent_at = |yaw: f64, dir: [f64; 2]| {
+        Footprint {
+            cx: 0.0,
+            cz: 0.0,
+            yaw,
+            hx,
+            hz,
+        }
+        .extent_along(dir)
+    };
+    match kind {
+        RelationKind::InFrontOf | RelationKind::Behind => {
+            let dir = if kind == RelationKind::InFrontOf {
+                1.0
+            } else {
+                -1.0
+            };
+            let yaw = match facing {
+                Some(_) => None,
+                None if seat && kind == RelationKind::InFrontOf => Some(t.fp.yaw + PI),
+                None => Some(t.fp.yaw),
+            };
+            let base_gap = if seat { 0.06 } else { 0.45 };
+            let lateral = if n > 1 {
+                ((k as f64 + 0.5) / n as f64 * 2.0 - 1.0) * t.fp.hx
+            } else {
+                rng.random_range(-0.05..=0.05)
+            };
+            for gap in [
+                base_gap,
+                base_gap + 0.1,
+                base_gap + 0.25,
+                base_gap + 0.45,
+                base_gap + 0.7,
+            ] {
+                for dl in [0.0, 0.2, -0.2, 0.4, -0.4] {
+                    let probe = add(add(tc, dir * (t.fp.hz + gap + hz), f_t), lateral + dl, r_t);
+                    let y = yaw.unwrap_or_else(|| yaw_toward(probe, facing.unwrap_or(tc)));
+                    let e = extent_at(y, f_t);
+                    let c = add(add(tc, dir * (t.fp.hz + gap + e), f_t), lateral + dl, r_t);
+                    out.push(mk(c, y));
                 }
             }
-            RelationKind::Beside | RelationKind::LeftOf | RelationKind::RightOf => {
-                let sides: Vec<f64> = match side_rel.unwrap_or(kind) {
-                    RelationKind::LeftOf => vec![-1.0],
-                    RelationKind::RightOf => vec![1.0],
-                    _ => {
-                        let first = if (k % 2 == 0) == rng.random_bool(0.5) {
-                            1.0
-                        } else {
-                            -1.0
-                        };
-                        vec![first, -first]
-                    }
-                };
-                for side in sides {
-                    for gap in [0.05, 0.12, 0.25, 0.4, 0.6, 0.9, 1.3] {
-                        let y = match facing {
-                            Some(f) => {
-                                let probe = add(tc, side * (t.fp.hx + gap + hx), r_t);
-                                yaw_toward(probe, f)
-                            }
-                            None => t.fp.yaw,
-                        };
-                        let e_r = extent_at(y, r_t);
-                        let e_f = extent_at(y, f_t);
-                        let along_f = if facing.is_some() { 0.0 } else { e_f - t.fp.hz };
-                        let c = add(add(tc, side * (t.fp.hx + gap + e_r), r_t), along_f, f_t);
-                        out.push(mk(c, y));
-                    }
-                }
-                if side_rel.is_none() {
-                    // Both flanks taken (a corner, a wall, a neighbour): "beside" also holds in
-                    // front, behind or diagonally, as long as the gap stays under a metre.
-                    for gap in [0.08, 0.25, 0.45, 0.7] {
-                        for (a, b) in [
-                            (0.0, 1.0),
-                            (1.0, 1.0),
-                            (-1.0, 1.0),
-                            (0.0, -1.0),
-                            (1.0, -1.0),
-                            (-1.0, -1.0),
-                        ] {
-                            let dir = [a * r_t[0] + b * f_t[0], a * r_t[1] + b * f_t[1]];
-                            let len = (dir[0] * dir[0] + dir[1] * dir[1]).sqrt();
-                            let dir = [dir[0] / len, dir[1] / len];
-                            let probe = add(tc, t.fp.extent_along(dir) + gap + hx.max(hz), dir);
-                            let y = match facing {
-                                Some(f) => yaw_toward(probe, f),
-                                None => t.fp.yaw,
-                            };
-                            let dist = t.fp.extent_along(dir) + gap + extent_at(y, dir);
-                            out.push(mk(add(tc, dist, dir), y));
-                        }
-                    }
-                }
-            }
-            RelationKind::Facing => {
-                let mut angles: Vec<f64> = vec![];
-                for a in [60.0f64, 72.0, 48.0, 84.0, 36.0, 24.0, 96.0, 12.0, 0.0] {
-                    let s = if (k % 2 == 0) == rng.random_bool(0.5) {
+        }
+        RelationKind::Beside | RelationKind::LeftOf | RelationKind::RightOf => {
+            let sides: Vec<f64> = match side_rel.unwrap_or(kind) {
+                RelationKind::LeftOf => vec![-1.0],
+                RelationKind::RightOf => vec![1.0],
+                _ => {
+                    let first = if (k % 2 == 0) == rng.random_bool(0.5) {
                         1.0
                     } else {
                         -1.0
                     };
-                    angles.push(s * a.to_radians());
-                    if a != 0.0 {
-                        angles.push(-s * a.to_radians());
-                    }
+                    vec![first, -first]
                 }
-                for extra in [0.9, 1.2, 0.7, 1.6, 2.1] {
-                    for &a in &angles {
-                        let (sa, ca) = a.sin_cos();
-                        let dir = [f_t[0] * ca + r_t[0] * sa, f_t[1] * ca + r_t[1] * sa];
-                        let dist = t.fp.extent_along(dir) + hx.max(hz) + extra;
-                        let c = add(tc, dist, dir);
-                        out.push(mk(c, yaw_toward(c, tc)));
-                    }
-                }
-            }
-            RelationKind::Around => {
-                let long_x = t.fp.hx >= t.fp.hz;
-                let mut slots: Vec<([f64; 2], f64)> = Vec::new(); // (local normal, along offset)
-                let along_len = if long_x { t.fp.hx } else { t.fp.hz };
-                let per_side = (((2.0 * along_len) / (2.0 * hx + 0.12)).floor() as usize).max(1);
-                let long_normals: [[f64; 2]; 2] = if long_x {
-                    [[0.0, 1.0], [0.0, -1.0]]
-                } else {
-                    [[1.0, 0.0], [-1.0, 0.0]]
-                };
-                for m in 0..per_side {
-                    let off = ((m as f64 + 0.5) / per_side as f64 * 2.0 - 1.0) * along_len;
-                    for nrm in long_normals {
-                        slots.push((nrm, off));
-                    }
-                }
-                let short_len = if long_x { t.fp.hz } else { t.fp.hx };
-                if 2.0 * short_len >= 2.0 * hx * 0.8 {
-                    let ends: [[f64; 2]; 2] = if long_x {
-                        [[1.0, 0.0], [-1.0, 0.0]]
-                    } else {
-                        [[0.0, 1.0], [0.0, -1.0]]
+            };
+            for side in sides {
+                for gap in [0.05, 0.12, 0.25, 0.4, 0.6, 0.9, 1.3] {
+                    let y = match facing {
+                        Some(f) => {
+                            let probe = add(tc, side * (t.fp.hx + gap + hx), r_t);
+                            yaw_toward(probe, f)
+                        }
+                        None => t.fp.yaw,
                     };
-                    for nrm in ends {
-                        slots.push((nrm, 0.0));
-                    }
+                    let e_r = extent_at(y, r_t);
+                    let e_f = extent_at(y, f_t);
+                    let along_f = if facing.is_some() { 0.0 } else { e_f - t.fp.hz };
+                    let c = add(add(tc, side * (t.fp.hx + gap + e_r), r_t), along_f, f_t);
+                    out.push(mk(c, y));
                 }
-                // Spread: reorder so consecutive chairs alternate sides.
-                let start = k % slots.len().max(1);
-                let ordered: Vec<([f64; 2], f64)> = slots
-                    .iter()
-                    .cycle()
-                    .skip(start)
-                    .take(slots.len())
-                    .copied()
-                    .collect();
-                for gap in [0.04, 0.12, 0.25] {
-                    for (nrm, off) in &ordered {
-                        let (lx, lz) = (nrm[0], nrm[1]);
-                        let half_n = if lx != 0.0 { t.fp.hx } else { t.fp.hz };
-                        let (ox, oz) = if lx != 0.0 {
-                            (lx * (half_n + gap + hz), *off)
-                        } else {
-                            (*off, lz * (half_n + gap + hz))
+            }
+            if side_rel.is_none() {
+                // Both flanks taken (a corner, a wall, a neighbour): "beside" also holds in
+                // front, behind or diagonally, as long as the gap stays under a metre.
+                for gap in [0.08, 0.25, 0.45, 0.7] {
+                    for (a, b) in [
+                        (0.0, 1.0),
+                        (1.0, 1.0),
+                        (-1.0, 1.0),
+                        (0.0, -1.0),
+                        (1.0, -1.0),
+                        (-1.0, -1.0),
+                    ] {
+                        let dir = [a * r_t[0] + b * f_t[0], a * r_t[1] + b * f_t[1]];
+                        let len = (dir[0] * dir[0] + dir[1] * dir[1]).sqrt();
+                        let dir = [dir[0] / len, dir[1] / len];
+                        let probe = add(tc, t.fp.extent_along(dir) + gap + hx.max(hz), dir);
+                        let y = match facing {
+                            Some(f) => yaw_toward(probe, f),
+                            None => t.fp.yaw,
                         };
-                        let c = t.fp.to_world(ox, oz);
-                        let toward = t.fp.to_world(
-                            if lx != 0.0 { 0.0 } else { ox },
-                            if lx != 0.0 { oz } else { 0.0 },
-                        );
-                        out.push(mk(c, yaw_toward(c, toward)));
+                        let dist = t.fp.extent_along(dir) + gap + extent_at(y, dir);
+                        out.push(mk(add(tc, dist, dir), y));
                     }
                 }
             }
-            _ => {}
         }
-        out
+        RelationKind::Facing => {
+            let mut angles: Vec<f64> = vec![];
+            for a in [60.0f64, 72.0, 48.0, 84.0, 36.0, 24.0, 96.0, 12.0, 0.0] {
+                let s = if (k % 2 == 0) == rng.random_bool(0.5) {
+                    1.0
+                } else {
+                    -1.0
+                };
+                angles.push(s * a.to_radians());
+                if a != 0.0 {
+                    angles.push(-s * a.to_radians());
+                }
+            }
+            for extra in [0.9, 1.2, 0.7, 1.6, 2.1] {
+                for &a in &angles {
+                    let (sa, ca) = a.sin_cos();
+                    let dir = [f_t[0] * ca + r_t[0] * sa, f_t[1] * ca + r_t[1] * sa];
+                    let dist = t.fp.extent_along(dir) + hx.max(hz) + extra;
+                    let c = add(tc, dist, dir);
+                    out.push(mk(c, yaw_toward(c, tc)));
+                }
+            }
+        }
+        RelationKind::Around => {
+            let long_x = t.fp.hx >= t.fp.hz;
+            let mut slots: Vec<([f64; 2], f64)> = Vec::new(); // (local normal, along offset)
+            let along_len = if long_x { t.fp.hx } else { t.fp.hz };
+            let per_side = (((2.0 * along_len) / (2.0 * hx + 0.12)).floor() as usize).max(1);
+            let long_normals: [[f64; 2]; 2] = if long_x {
+                [[0.0, 1.0], [0.0, -1.0]]
+            } else {
+                [[1.0, 0.0], [-1.0, 0.0]]
+            };
+            for m in 0..per_side {
+                let off = ((m as f64 + 0.5) / per_side as f64 * 2.0 - 1.0) * along_len;
+                for nrm in long_normals {
+                    slots.push((nrm, off));
+                }
+            }
+            let short_len = if long_x { t.fp.hz } else { t.fp.hx };
+            if 2.0 * short_len >= 2.0 * hx * 0.8 {
+                let ends: [[f64; 2]; 2] = if long_x {
+                    [[1.0, 0.0], [-1.0, 0.0]]
+                } else {
+                    [[0.0, 1.0], [0.0, -1.0]]
+                };
+                for nrm in ends {
+                    slots.push((nrm, 0.0));
+                }
+            }
+            // Spread: reorder so consecutive chairs alternate sides.
+            let start = k % slots.len().max(1);
+            let ordered: Vec<([f64; 2], f64)> = slots
+                .iter()
+                .cycle()
+                .skip(start)
+                .take(slots.len())
+                .copied()
+                .collect();
+            for gap in [0.04, 0.12, 0.25] {
+                for (nrm, off) in &ordered {
+                    let (lx, lz) = (nrm[0], nrm[1]);
+                    let half_n = if lx != 0.0 { t.fp.hx } else { t.fp.hz };
+                    let (ox, oz) = if lx != 0.0 {
+                        (lx * (half_n + gap + hz), *off)
+                    } else {
+                        (*off, lz * (half_n + gap + hz))
+                    };
+                    let c = t.fp.to_world(ox, oz);
+                    let toward = t.fp.to_world(
+                        if lx != 0.0 { 0.0 } else { ox },
+                        if lx != 0.0 { oz } else { 0.0 },
+                    );
+                    out.push(mk(c, yaw_toward(c, toward)));
+                }
+            }
+        }
+        _ => {}
     }
+    out
 }

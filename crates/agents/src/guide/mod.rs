@@ -7,11 +7,13 @@ mod lookup;
 mod place_floor;
 mod procedural;
 mod room;
+mod shared;
 mod surfaces;
 mod walkway;
 
 pub use lookup::{CatalogAssets, NominalAssets};
 pub use procedural::ProceduralGuide;
+pub use room::room_architecture;
 
 use std::collections::BTreeMap;
 

@@ -6,13 +6,15 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use rand_chacha::ChaCha8Rng;
 use scenethesis_assets::AssetInfo;
-use scenethesis_scene_graph::{ParentRef, RelationKind};
+use scenethesis_scene_graph::ParentRef;
 
-use super::candidates::Side;
-use super::procedural::{Placed, ProceduralGuide};
+use super::candidates::{candidates, free_candidates, mount_ok};
+use super::room::Side;
+use super::shared::positional_target;
+use super::shared::Placed;
 use super::walkway::FloorState;
 use super::DroppedObject;
-use crate::plan::{Plan, PlannedObject, Zone};
+use crate::plan::{Plan, Zone};
 
 /// The plan indices of the floor objects in the order they are placed.
 pub(super) fn placement_order(plan: &Plan) -> Vec<usize> {
@@ -40,73 +42,68 @@ pub(super) fn placement_order(plan: &Plan) -> Vec<usize> {
     chain_dependents(plan, order)
 }
 
-impl ProceduralGuide {
-    /// Places the floor objects of `order` one by one at their first candidate that fits and
-    /// keeps the walkway open; returns the objects that found no spot.
-    pub(super) fn place_floor_objects(
-        &self,
-        state: &mut FloorState<'_>,
-        order: Vec<usize>,
-        infos: &[AssetInfo],
-        sides: &[Side],
-        rng: &mut ChaCha8Rng,
-    ) -> Vec<DroppedObject> {
-        let plan = state.plan;
-        let mut dropped: Vec<DroppedObject> = Vec::new();
-        let mut attempted = vec![false; plan.objects.len()];
-        let mut pending = order;
-        while !pending.is_empty() {
-            let mut next = Vec::new();
-            let mut progress = false;
-            for &i in &pending {
-                let o = &plan.objects[i];
-                // A relative object waits for its target.
-                if let Some(target) = positional_target(o) {
-                    if let Some(t) = state.index_of(target) {
-                        if !attempted[t] && plan.objects[t].parent == ParentRef::Ground {
-                            next.push(i);
-                            continue;
-                        }
-                    }
-                }
-                attempted[i] = true;
-                progress = true;
-                let candidates = self.candidates(state, o, &infos[i], sides, infos, rng);
-                let mounted = o.zone == Zone::WallMounted;
-                let (hx, hz) = (infos[i].size[0] as f64 / 2.0, infos[i].size[2] as f64 / 2.0);
-                let mut accepted = None;
-                let mut tried = 0;
-                for c in candidates {
-                    if !mounted {
-                        if !state.inside_floor(&c.fp, 0.0) || state.collides(&c.fp, 0.02) {
-                            continue;
-                        }
-                    } else if !self.mount_ok(state, &c.fp) {
+/// Places the floor objects of `order` one by one at their first candidate that fits and
+/// keeps the walkway open; returns the objects that found no spot.
+pub(super) fn place_floor_objects(
+    state: &mut FloorState<'_>,
+    order: Vec<usize>,
+    infos: &[AssetInfo],
+    sides: &[Side],
+    rng: &mut ChaCha8Rng,
+) -> Vec<DroppedObject> {
+    let plan = state.plan;
+    let mut dropped: Vec<DroppedObject> = Vec::new();
+    let mut attempted = vec![false; plan.objects.len()];
+    let mut pending = order;
+    while !pending.is_empty() {
+        let mut next = Vec::new();
+        let mut progress = false;
+        for &i in &pending {
+            let o = &plan.objects[i];
+            // A relative object waits for its target.
+            if let Some(target) = positional_target(o) {
+                if let Some(t) = state.index_of(target) {
+                    if !attempted[t] && plan.objects[t].parent == ParentRef::Ground {
+                        next.push(i);
                         continue;
                     }
-                    let p = Placed {
-                        plan_index: i,
-                        fp: c.fp,
-                        height: infos[i].size[1] as f64,
-                        front_access: c.wall.is_some()
-                            || matches!(
-                                o.zone,
-                                Zone::Wall { .. } | Zone::Corner | Zone::WallMounted
-                            ),
-                        wall: c.wall.clone(),
-                        mounted,
-                    };
-                    tried += 1;
-                    if tried > 160 {
-                        break;
-                    }
-                    if state.evaluate(Some(&p)).0 {
-                        accepted = Some(p);
-                        break;
-                    }
                 }
-                let _ = (hx, hz);
-                match accepted {
+            }
+            attempted[i] = true;
+            progress = true;
+            let candidates = candidates(state, o, &infos[i], sides, infos, rng);
+            let mounted = o.zone == Zone::WallMounted;
+            let (hx, hz) = (infos[i].size[0] as f64 / 2.0, infos[i].size[2] as f64 / 2.0);
+            let mut accepted = None;
+            let mut tried = 0;
+            for c in candidates {
+                if !mounted {
+                    if !state.inside_floor(&c.fp, 0.0) || state.collides(&c.fp, 0.02) {
+                        continue;
+                    }
+                } else if !mount_ok(state, &c.fp) {
+                    continue;
+                }
+                let p = Placed {
+                    plan_index: i,
+                    fp: c.fp,
+                    height: infos[i].size[1] as f64,
+                    front_access: c.wall.is_some()
+                        || matches!(o.zone, Zone::Wall { .. } | Zone::Corner | Zone::WallMounted),
+                    wall: c.wall.clone(),
+                    mounted,
+                };
+                tried += 1;
+                if tried > 160 {
+                    break;
+                }
+                if state.evaluate(Some(&p)).0 {
+                    accepted = Some(p);
+                    break;
+                }
+            }
+            let _ = (hx, hz);
+            match accepted {
                 Some(p) => state.commit(p),
                 None => dropped.push(DroppedObject {
                     id: o.id.clone(),
@@ -117,47 +114,46 @@ impl ProceduralGuide {
                     },
                 }),
             }
-            }
-            if !progress {
-                // Targets that never get placed: place the waiting ones without them.
-                for &i in &next {
-                    attempted[i] = true;
-                }
-                for &i in &next {
-                    let o = &plan.objects[i];
-                    let candidates = self.free_candidates(state, &infos[i], rng, None);
-                    let mut ok = false;
-                    for c in candidates.into_iter().take(200) {
-                        if !state.inside_floor(&c.fp, 0.0) || state.collides(&c.fp, 0.02) {
-                            continue;
-                        }
-                        let p = Placed {
-                            plan_index: i,
-                            fp: c.fp,
-                            height: infos[i].size[1] as f64,
-                            front_access: false,
-                            wall: None,
-                            mounted: false,
-                        };
-                        if state.evaluate(Some(&p)).0 {
-                            state.commit(p);
-                            ok = true;
-                            break;
-                        }
-                    }
-                    if !ok {
-                        dropped.push(DroppedObject {
-                            id: o.id.clone(),
-                            reason: "its target was not placed and no free spot remained".into(),
-                        });
-                    }
-                }
-                break;
-            }
-            pending = next;
         }
-        dropped
+        if !progress {
+            // Targets that never get placed: place the waiting ones without them.
+            for &i in &next {
+                attempted[i] = true;
+            }
+            for &i in &next {
+                let o = &plan.objects[i];
+                let candidates = free_candidates(state, &infos[i], rng, None);
+                let mut ok = false;
+                for c in candidates.into_iter().take(200) {
+                    if !state.inside_floor(&c.fp, 0.0) || state.collides(&c.fp, 0.02) {
+                        continue;
+                    }
+                    let p = Placed {
+                        plan_index: i,
+                        fp: c.fp,
+                        height: infos[i].size[1] as f64,
+                        front_access: false,
+                        wall: None,
+                        mounted: false,
+                    };
+                    if state.evaluate(Some(&p)).0 {
+                        state.commit(p);
+                        ok = true;
+                        break;
+                    }
+                }
+                if !ok {
+                    dropped.push(DroppedObject {
+                        id: o.id.clone(),
+                        reason: "its target was not placed and no free spot remained".into(),
+                    });
+                }
+            }
+            break;
+        }
+        pending = next;
     }
+    dropped
 }
 
 /// Reorders floor objects so each object placed relative to another comes right after its
@@ -235,22 +231,6 @@ fn chain_dependents(plan: &Plan, order: Vec<usize>) -> Vec<usize> {
         emit(i, &dependents, &mut emitted, &mut out);
     }
     out
-}
-
-/// The object a relative placement positions against (the first positional relation).
-pub(super) fn positional_target(o: &PlannedObject) -> Option<&str> {
-    if o.zone != Zone::Relative {
-        return None;
-    }
-    o.relations
-        .iter()
-        .find(|r| {
-            !matches!(
-                r.kind,
-                RelationKind::AgainstWall | RelationKind::LeftOf | RelationKind::RightOf
-            )
-        })
-        .map(|r| r.target.as_str())
 }
 
 #[cfg(test)]

@@ -1,25 +1,17 @@
 //! The offline procedural guide: rule-based floor layout with a walkway check, then children
 //! packed onto their parents' support surfaces.
 
-use std::f64::consts::PI;
-
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use scenethesis_scene_graph::ParentRef;
 
 use super::assemble::{build_scene, ground_poses};
-use super::geometry::Footprint;
-use super::place_floor::placement_order;
+use super::place_floor::{place_floor_objects, placement_order};
 use super::room::{asset_infos, Room};
 use super::surfaces::place_children;
 use super::walkway::{drop_pocket_closers, FloorState};
 use super::{AssetLookup, Guide, GuideError, GuidedLayout, WalkwayReport};
 use crate::plan::Plan;
-
-/// Door opening width in metres.
-pub(super) const DOOR_WIDTH: f64 = 0.9;
-/// Centre height of wall-mounted objects.
-pub(super) const WALL_MOUNT_HEIGHT: f64 = 1.6;
 
 /// Lays out plans by rules: the anchor against its wall or in the middle, storage against the
 /// walls facing into the room, seats facing the anchor, tables in front of it, chairs around
@@ -46,28 +38,6 @@ impl ProceduralGuide {
             cell: cell.clamp(0.02, 0.2),
         }
     }
-}
-
-#[derive(Debug, Clone)]
-pub(super) struct Placed {
-    pub(super) plan_index: usize,
-    pub(super) fp: Footprint,
-    pub(super) height: f64,
-    /// Checked from the front (objects backed onto a wall) rather than from any side.
-    pub(super) front_access: bool,
-    pub(super) wall: Option<String>,
-    pub(super) mounted: bool,
-}
-
-pub(super) fn wrap(yaw: f64) -> f64 {
-    let mut y = yaw % (2.0 * PI);
-    if y > PI {
-        y -= 2.0 * PI;
-    }
-    if y <= -PI {
-        y += 2.0 * PI;
-    }
-    y
 }
 
 impl Guide for ProceduralGuide {
@@ -121,8 +91,7 @@ impl ProceduralGuide {
         let infos = asset_infos(plan, assets)?;
         let mut state = FloorState::new(plan, &room, self.cell);
         let order = placement_order(plan);
-        let mut dropped =
-            self.place_floor_objects(&mut state, order, &infos, &room.sides, &mut rng);
+        let mut dropped = place_floor_objects(&mut state, order, &infos, &room.sides, &mut rng);
         if state.placed.iter().all(|p| p.mounted) {
             let [width, depth] = plan.room_size;
             return Err(GuideError::NothingFits { width, depth });

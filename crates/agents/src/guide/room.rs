@@ -4,8 +4,8 @@
 use scenethesis_assets::AssetInfo;
 use scenethesis_scene_graph::{Architecture, Environment, ParentRef};
 
-use super::candidates::Side;
-use super::procedural::DOOR_WIDTH;
+use super::geometry::Footprint;
+use super::shared::DOOR_WIDTH;
 use super::{AssetLookup, GuideError};
 use crate::plan::Plan;
 
@@ -81,6 +81,13 @@ impl Room {
     }
 }
 
+/// The empty room a plan asks for (floor, walls and door indoors, open ground outdoors), as every
+/// guide lays it out: the procedural guide places objects in it, the vision guide renders it
+/// and lifts objects into it. Rooms smaller than 1.5 m either way are refused.
+pub fn room_architecture(plan: &Plan) -> Result<Architecture, GuideError> {
+    Room::of(plan).map(|room| room.architecture)
+}
+
 /// The asset metadata of every planned object, in plan order, after checking that every
 /// parent is planned.
 pub(super) fn asset_infos(
@@ -108,4 +115,42 @@ pub(super) fn asset_infos(
         }
     }
     Ok(infos)
+}
+
+/// A wall (or, outdoors, an edge of the ground) that objects can back onto.
+#[derive(Debug, Clone)]
+pub(super) struct Side {
+    pub(super) id: Option<String>,
+    /// Point on the inner face at the middle of the wall.
+    pub(super) face: [f64; 2],
+    /// Unit normal into the room.
+    pub(super) normal: [f64; 2],
+    /// Unit direction along the wall.
+    pub(super) along: [f64; 2],
+    pub(super) half_len: f64,
+}
+
+impl Side {
+    /// The yaw of an object backed onto this side, facing into the room.
+    pub(super) fn yaw(&self) -> f64 {
+        self.normal[0].atan2(self.normal[1])
+    }
+
+    /// The footprint of half-extents `hx` × `hz` backed onto this side at `s` along it.
+    pub(super) fn footprint_at(&self, s: f64, hx: f64, hz: f64) -> Footprint {
+        let gap = 0.01;
+        Footprint {
+            cx: self.face[0] + self.along[0] * s + self.normal[0] * (hz + gap),
+            cz: self.face[1] + self.along[1] * s + self.normal[1] * (hz + gap),
+            yaw: self.yaw(),
+            hx,
+            hz,
+        }
+    }
+
+    /// How far along this side (either way from its middle) a footprint of half-width `hx`
+    /// may sit.
+    pub(super) fn limit(&self, hx: f64) -> f64 {
+        self.half_len - hx - 0.01
+    }
 }

@@ -5,8 +5,8 @@
 use scenethesis_scene_graph::ROBOT_RADIUS;
 
 use super::geometry::{Footprint, Raster, RasterExt};
-use super::procedural::{Placed, DOOR_WIDTH};
 use super::room::Room;
+use super::shared::{Placed, DOOR_WIDTH};
 use super::DroppedObject;
 use crate::plan::Plan;
 

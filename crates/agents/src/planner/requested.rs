@@ -1,7 +1,10 @@
 //! Phase 6, requested: every object the prompt names, with how many were asked for and the
 //! planned ids, and the limits that cut the plan.
 
-use crate::plan::{RequestedObject, MAX_COUNT_PER_OBJECT, MAX_PLANNED_OBJECTS};
+use std::collections::BTreeSet;
+
+use crate::plan::{Plan, RequestedObject, MAX_COUNT_PER_OBJECT, MAX_PLANNED_OBJECTS};
+use crate::prompt::analyze;
 
 use super::interpret::Reading;
 use super::Drafting;
@@ -69,4 +72,100 @@ pub(super) fn requested(
         ));
     }
     (out, limits)
+}
+
+impl super::KnowledgePlanner {
+    /// What `plan`'s prompt names, read by this planner and matched to `plan`'s objects by
+    /// category: for a plan written by someone else (a model, a person), so the judge and the
+    /// report can tell whether every requested object made it into the scene. Each mention takes
+    /// up to its count of not yet taken objects of its category (or of the category standing in
+    /// for it under `available`), then of its kinds (`office_chair` for "chair", the members of
+    /// a generic noun such as "lamp"); fewer than asked for is reported in the mention's note.
+    pub fn requested_in(&self, plan: &Plan, available: &BTreeSet<String>) -> Vec<RequestedObject> {
+        let analysis = analyze(
+            &plan.prompt,
+            &self.knowledge,
+            &self.thesaurus.nouns,
+            available,
+        );
+        let mut taken: BTreeSet<&str> = BTreeSet::new();
+        let mut out = Vec::new();
+        for m in &analysis.mentions {
+            let category = self.substitute(&m.category, available);
+            let mut notes = Vec::new();
+            let ids: Vec<String> = match &category {
+                None => {
+                    notes.push(format!(
+                        "the library has no `{}` and nothing close enough",
+                        m.category
+                    ));
+                    Vec::new()
+                }
+                Some(c) => {
+                    if *c != m.category {
+                        notes.push(format!("`{}` is not available; using `{c}`", m.category));
+                    }
+                    // The category itself first, then its kinds (`office_chair` for `chair`,
+                    // a generic noun's list).
+                    let generic = &self.knowledge.vocabulary.generic;
+                    let kind_of = |category: &str| {
+                        category.ends_with(&format!("_{c}"))
+                            || [&m.category, c].iter().any(|g| {
+                                generic
+                                    .get(*g)
+                                    .is_some_and(|l| l.iter().any(|x| x == category))
+                            })
+                    };
+                    let free = |o: &&crate::plan::PlannedObject| !taken.contains(o.id.as_str());
+                    let ids: Vec<String> = plan
+                        .objects
+                        .iter()
+                        .filter(free)
+                        .filter(|o| o.category == *c)
+                        .chain(
+                            plan.objects
+                                .iter()
+                                .filter(free)
+                                .filter(|o| o.category != *c && kind_of(&o.category)),
+                        )
+                        .take(m.count as usize)
+                        .map(|o| o.id.clone())
+                        .collect();
+                    taken.extend(
+                        plan.objects
+                            .iter()
+                            .filter(|o| ids.contains(&o.id))
+                            .map(|o| o.id.as_str()),
+                    );
+                    if ids.len() < m.count as usize {
+                        notes.push(format!(
+                            "the plan holds {} of the {} asked for",
+                            ids.len(),
+                            m.count
+                        ));
+                    }
+                    ids
+                }
+            };
+            out.push(RequestedObject {
+                words: m.words.clone(),
+                category,
+                count: m.count,
+                ids,
+                note: (!notes.is_empty()).then(|| notes.join("; ")),
+            });
+        }
+        for words in &analysis.unavailable {
+            out.push(RequestedObject {
+                words: words.clone(),
+                category: None,
+                count: 1,
+                ids: Vec::new(),
+                note: Some(format!(
+                    "the library has nothing close to \"{words}\"; left out"
+                )),
+            });
+        }
+        out
+    }
 }

@@ -35,6 +35,9 @@ pub struct GenerateArgs {
     /// Pipeline options shared with `batch`.
     #[command(flatten)]
     pub pipeline: PipelineArgs,
+    /// Guide selection and guidance files.
+    #[command(flatten)]
+    pub guide: super::guide::GuideArgs,
     /// Also write these formats into the folder (comma-separated: usd, mjcf, urdf).
     #[arg(long, value_delimiter = ',')]
     pub export: Vec<Format>,
@@ -72,15 +75,9 @@ impl PipelineArgs {
         }
     }
 
-    /// The offline pipeline over the built-in library plus the `--assets` folder, with previews
-    /// unless `--no-preview`.
+    /// The pipeline over the built-in library plus the `--assets` folder, with previews unless
+    /// `--no-preview`, and the planner and judge the provider flags select (offline by default).
     pub fn pipeline(&self) -> Result<Pipeline> {
-        Ok(self.pipeline_with_providers()?.0)
-    }
-
-    /// [`PipelineArgs::pipeline`] with the planner and judge the provider flags select, and
-    /// the models in use (for `report.json`).
-    pub fn pipeline_with_providers(&self) -> Result<(Pipeline, super::providers::Providers)> {
         self.providers
             .apply(pipeline(!self.no_preview, self.assets.as_deref())?)
     }
@@ -177,7 +174,8 @@ fn pipeline(previews: bool, assets_dir: Option<&Path>) -> Result<Pipeline> {
 pub fn run(args: GenerateArgs) -> Result<()> {
     // The output path is checked before any work.
     let out = OutputDir::prepare(&args.out, args.force)?;
-    let (mut pipeline, providers) = args.pipeline.pipeline_with_providers()?;
+    let mut pipeline = args.pipeline.pipeline()?;
+    pipeline = args.guide.apply(pipeline, &args.pipeline.providers)?;
     let prompt = match &args.plan {
         Some(path) => {
             let planner = FixedPlanner::from_file(path)?;
@@ -195,7 +193,6 @@ pub fn run(args: GenerateArgs) -> Result<()> {
             Some(path) => format!("generating from the plan {}", path.display()),
             None => format!("generating \"{prompt}\""),
         })?;
-    generated.report.providers = providers.usage();
     println!("{}", generated.report.summary_line());
     let rejected = !generated.report.accepted;
     if rejected && !args.strict {

@@ -5,6 +5,7 @@ pub mod batch;
 pub mod eval;
 pub mod export;
 pub mod generate;
+pub mod guide;
 pub mod plan;
 pub mod providers;
 pub mod render;

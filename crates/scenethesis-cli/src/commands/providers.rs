@@ -10,7 +10,7 @@ use std::time::Duration;
 
 use anyhow::{Context, Result};
 use scenethesis_language::{LlmPlanner, VlmJudge};
-use scenethesis_models::{CacheMode, Cached, ChatModel, ResponseCache, UsageMeter, UsageReport};
+use scenethesis_models::{CacheMode, Cached, ChatModel, ResponseCache};
 use scenethesis_openai::{ApiKey, ClientConfig, OpenAiChat, OpenAiClient, Overrides};
 use scenethesis_pipeline::Pipeline;
 
@@ -79,19 +79,6 @@ pub struct ProviderArgs {
     pub llm_replay: bool,
 }
 
-/// The models a configured pipeline uses, to record their use in `report.json`.
-#[derive(Debug, Clone, Default)]
-pub struct Providers {
-    meters: Vec<UsageMeter>,
-}
-
-impl Providers {
-    /// What each model was used for so far (empty for offline runs).
-    pub fn usage(&self) -> Vec<UsageReport> {
-        self.meters.iter().map(UsageMeter::snapshot).collect()
-    }
-}
-
 impl ProviderArgs {
     /// The planner these flags select.
     pub fn planner_choice(&self) -> PlannerChoice {
@@ -112,7 +99,7 @@ impl ProviderArgs {
     }
 
     /// The client configuration: flags over environment over --llm-config.
-    fn config(&self) -> Result<ClientConfig> {
+    pub(crate) fn config(&self) -> Result<ClientConfig> {
         let api_key = match &self.api_key_env {
             Some(var) => {
                 let key = std::env::var(var).ok().filter(|k| !k.trim().is_empty());
@@ -141,11 +128,11 @@ impl ProviderArgs {
     }
 
     /// Wraps `chat` in the response cache when --llm-cache is given; its meter counts requests,
-    /// tokens and cache hits.
-    fn wrap(&self, chat: OpenAiChat) -> Result<(Box<dyn ChatModel>, UsageMeter)> {
+    /// tokens and cache hits (each run's share goes into its `report.json`).
+    pub(crate) fn wrap(&self, chat: OpenAiChat) -> Result<Box<dyn ChatModel>> {
         let meter = chat.meter().clone();
         let Some(dir) = &self.llm_cache else {
-            return Ok((Box::new(chat), meter));
+            return Ok(Box::new(chat));
         };
         let mode = if self.llm_replay {
             CacheMode::ReplayOnly
@@ -154,37 +141,31 @@ impl ProviderArgs {
         };
         let cache = ResponseCache::open(dir, mode)
             .with_context(|| format!("opening the response cache {}", dir.display()))?;
-        Ok((
-            Box::new(Cached::new(chat, cache).with_meter(meter.clone())),
-            meter,
-        ))
+        Ok(Box::new(Cached::new(chat, cache).with_meter(meter)))
     }
 
     /// Installs the selected planner and judge into `pipeline`. The offline choices leave it
     /// as it is and read no configuration.
-    pub fn apply(&self, mut pipeline: Pipeline) -> Result<(Pipeline, Providers)> {
+    pub fn apply(&self, mut pipeline: Pipeline) -> Result<Pipeline> {
         let planner = self.planner_choice();
         let judge = self.judge_choice();
-        let mut providers = Providers::default();
         if planner == PlannerChoice::Knowledge && judge == JudgeChoice::Geometric {
-            return Ok((pipeline, providers));
+            return Ok(pipeline);
         }
         let config = self.config()?;
         let client = OpenAiClient::new(config).context("building the model client")?;
         if planner == PlannerChoice::Llm {
             let chat = client.llm().context("choosing the planner's model")?;
-            let (model, meter) = self.wrap(chat)?;
-            providers.meters.push(meter);
+            let model = self.wrap(chat)?;
             pipeline = pipeline.with_planner(LlmPlanner::new(model));
         }
         if judge == JudgeChoice::Vlm {
             let chat = client.vlm().context("choosing the judge's model")?;
-            let (model, meter) = self.wrap(chat)?;
-            providers.meters.push(meter);
+            let model = self.wrap(chat)?;
             let renderer = scenethesis_pipeline::WgpuPreviews::from_env()
                 .context("--judge vlm needs a renderer for the previews it shows the model")?;
             pipeline = pipeline.with_judge(VlmJudge::new(model, renderer));
         }
-        Ok((pipeline, providers))
+        Ok(pipeline)
     }
 }

@@ -1,0 +1,54 @@
+//! Facts every phase of the procedural guide shares: the door and wall-mount dimensions, a
+//! floor object once placed, yaw wrapping and the target a relative placement is made against.
+
+use std::f64::consts::PI;
+
+use scenethesis_scene_graph::RelationKind;
+
+use super::geometry::Footprint;
+use crate::plan::{PlannedObject, Zone};
+
+/// Door opening width in metres.
+pub(super) const DOOR_WIDTH: f64 = 0.9;
+/// Centre height of wall-mounted objects.
+pub(super) const WALL_MOUNT_HEIGHT: f64 = 1.6;
+
+/// A floor (or wall-mounted) object once placed: its plan entry, footprint and height.
+#[derive(Debug, Clone)]
+pub(super) struct Placed {
+    pub(super) plan_index: usize,
+    pub(super) fp: Footprint,
+    pub(super) height: f64,
+    /// Checked from the front (objects backed onto a wall) rather than from any side.
+    pub(super) front_access: bool,
+    pub(super) wall: Option<String>,
+    pub(super) mounted: bool,
+}
+
+/// `yaw` wrapped into (-π, π].
+pub(super) fn wrap(yaw: f64) -> f64 {
+    let mut y = yaw % (2.0 * PI);
+    if y > PI {
+        y -= 2.0 * PI;
+    }
+    if y <= -PI {
+        y += 2.0 * PI;
+    }
+    y
+}
+
+/// The object a relative placement positions against (the first positional relation).
+pub(super) fn positional_target(o: &PlannedObject) -> Option<&str> {
+    if o.zone != Zone::Relative {
+        return None;
+    }
+    o.relations
+        .iter()
+        .find(|r| {
+            !matches!(
+                r.kind,
+                RelationKind::AgainstWall | RelationKind::LeftOf | RelationKind::RightOf
+            )
+        })
+        .map(|r| r.target.as_str())
+}

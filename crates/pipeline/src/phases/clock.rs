@@ -1,0 +1,53 @@
+//! Stage timing and progress: every phase runs inside [`StageClock::run`], which announces it,
+//! times it and adds the time to the run's per-stage totals.
+
+use std::collections::BTreeMap;
+use std::time::Instant;
+
+use crate::report::StageTiming;
+use crate::stage::{Progress, Stage};
+
+/// Announces stages to a [`Progress`] and sums their wall-clock time.
+pub(crate) struct StageClock<'p> {
+    progress: &'p mut dyn Progress,
+    totals: BTreeMap<Stage, f64>,
+}
+
+impl<'p> StageClock<'p> {
+    pub(crate) fn new(progress: &'p mut dyn Progress) -> Self {
+        Self {
+            progress,
+            totals: BTreeMap::new(),
+        }
+    }
+
+    /// Runs `work` as `stage` of `round`; on success the progress hears `note` of its result.
+    pub(crate) fn run<T, E>(
+        &mut self,
+        stage: Stage,
+        round: usize,
+        work: impl FnOnce() -> Result<T, E>,
+        note: impl FnOnce(&T) -> String,
+    ) -> Result<T, E> {
+        self.progress.stage_started(stage, round);
+        let started = Instant::now();
+        let result = work();
+        *self.totals.entry(stage).or_default() += started.elapsed().as_secs_f64();
+        let value = result?;
+        self.progress
+            .stage_finished(stage, round, started.elapsed(), &note(&value));
+        Ok(value)
+    }
+
+    /// The per-stage totals, in stage order.
+    pub(crate) fn timings(&self) -> Vec<StageTiming> {
+        Stage::ALL
+            .iter()
+            .filter_map(|s| {
+                self.totals
+                    .get(s)
+                    .map(|&seconds| StageTiming { stage: *s, seconds })
+            })
+            .collect()
+    }
+}

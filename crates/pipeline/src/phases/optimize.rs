@@ -1,0 +1,38 @@
+//! Optimize: every laid-out object gets its prepared asset, the optimizer moves the poses, and
+//! the scene takes the result.
+
+use std::collections::BTreeMap;
+
+use scenethesis_physics_opt::{optimize_scene, Optimizer, Placement, SceneProblem};
+use scenethesis_scene_graph::{Mesh, Scene};
+
+use super::retrieve::{AssetCache, Retrieved};
+use crate::{GenerateOptions, PipelineError};
+
+/// Optimizes `scene` in place; returns the placement report and each object's mesh.
+pub(crate) fn optimize(
+    scene: &mut Scene,
+    retrieved: &Retrieved,
+    cache: &mut AssetCache,
+    optimizer: &dyn Optimizer,
+    options: &GenerateOptions,
+) -> Result<(Placement, BTreeMap<String, Mesh>), PipelineError> {
+    let mut meshes = BTreeMap::new();
+    let mut problem = SceneProblem::new(scene.clone());
+    for object in &scene.objects {
+        let key = retrieved
+            .chosen
+            .get(&object.id)
+            .ok_or_else(|| PipelineError::Inconsistent {
+                detail: format!(
+                    "the guide returned object `{}` that the plan does not hold",
+                    object.id
+                ),
+            })?;
+        problem.set_asset(&object.id, cache.prepared(key, &options.prepare)?);
+        meshes.insert(object.id.clone(), cache.asset(key).mesh.clone());
+    }
+    let placement = optimize_scene(&problem, optimizer, &options.optimize)?;
+    placement.apply_to(scene);
+    Ok((placement, meshes))
+}

@@ -1,0 +1,44 @@
+//! Re-plan: the pure policy of [`crate::replan`] applied to a rejected attempt — offenders get
+//! a new asset variant, or leave the plan — and recorded for the report.
+
+use scenethesis_agents::Plan;
+
+use super::judge::Attempt;
+use super::layout::layout_seed;
+use super::retrieve::AssetCache;
+use crate::replan::{drop_objects, replan_action};
+use crate::report::{Replan, ReplanAction};
+
+/// Changes `plan` and the asset variants after the rejected `attempt` of `round`; returns the
+/// record of what was done.
+pub(crate) fn rework(
+    plan: &mut Plan,
+    cache: &mut AssetCache,
+    attempt: &Attempt,
+    seed: u64,
+    max_replans: usize,
+) -> Replan {
+    let round = attempt.round;
+    let offenders = attempt.verdict.offenders();
+    let reasons = attempt
+        .verdict
+        .failures
+        .iter()
+        .map(|f| f.detail.clone())
+        .collect();
+    let (action, to_drop) = replan_action(plan, &offenders, round, max_replans);
+    for id in offenders.iter().filter(|id| !to_drop.contains(id)) {
+        cache.next_variant(id);
+    }
+    let objects = match action {
+        ReplanAction::Move => offenders.clone(),
+        ReplanAction::Drop => drop_objects(plan, &to_drop).into_iter().collect(),
+    };
+    Replan {
+        after_round: round,
+        action,
+        objects,
+        reasons,
+        layout_seed: layout_seed(seed, round + 1),
+    }
+}

@@ -1,0 +1,405 @@
+//! `scenethesis generate --guide vision` end to end: from the guidance files `render --guidance`
+//! writes for a generated scene, and online — an image server on 127.0.0.1 answers the edit of
+//! the empty room with that real render and a VLM endpoint answers the objects' boxes — so the
+//! whole path runs without a network. Bad guidance stops the run with one error naming the file,
+//! and nothing is written.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::OnceLock;
+
+use scenethesis_models::ImageData;
+use scenethesis_openai::testing::{openai_completion, openai_image, Reply, TestServer};
+use serde_json::{json, Value};
+
+const PROMPT: &str = "a bedroom with a bed, a nightstand and a wardrobe";
+const KEY: &str = "sk-test-vision-guide-never-print-me";
+
+fn scenethesis(args: &[&str]) -> Output {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_scenethesis"));
+    for var in [
+        "OPENAI_BASE_URL",
+        "SCENETHESIS_LLM_MODEL",
+        "SCENETHESIS_VLM_MODEL",
+        "SCENETHESIS_IMAGE_MODEL",
+        "RUST_LOG",
+    ] {
+        cmd.env_remove(var);
+    }
+    cmd.env("OPENAI_API_KEY", KEY)
+        .args(args)
+        .output()
+        .expect("run scenethesis")
+}
+
+fn text(out: &Output) -> String {
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    )
+}
+
+/// A scene generated offline and its guidance rendered at the vision guide's edit size
+/// (768 × 512), shared by the tests: `(folder, guidance folder)`.
+fn base() -> &'static (PathBuf, PathBuf) {
+    static BASE: OnceLock<(PathBuf, PathBuf)> = OnceLock::new();
+    BASE.get_or_init(|| {
+        let dir = tempfile::tempdir().unwrap().keep();
+        let scene = dir.join("scene");
+        let s = scene.to_str().unwrap();
+        let out = scenethesis(&[
+            "generate",
+            PROMPT,
+            "--out",
+            s,
+            "--no-preview",
+            "--max-replans",
+            "0",
+        ]);
+        assert!(out.status.success(), "{}", text(&out));
+        let out = scenethesis(&["render", s, "--guidance", "--size", "768x512"]);
+        assert!(out.status.success(), "{}", text(&out));
+        (scene.clone(), scene.join("guidance"))
+    })
+}
+
+fn objects(dir: &Path) -> serde_json::Map<String, Value> {
+    let scene: Value =
+        serde_json::from_slice(&std::fs::read(dir.join("scene.json")).unwrap()).unwrap();
+    scene["objects"].as_object().unwrap().clone()
+}
+
+fn translation(o: &Value) -> [f64; 3] {
+    let t = &o["pose"]["translation"];
+    [0, 1, 2].map(|i| t[i].as_f64().unwrap())
+}
+
+fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+fn report(dir: &Path) -> Value {
+    serde_json::from_slice(&std::fs::read(dir.join("report.json")).unwrap()).unwrap()
+}
+
+#[test]
+fn generate_from_given_guidance_files_recovers_the_rendered_scene() {
+    let (scene, g) = base();
+    let dir = tempfile::tempdir().unwrap();
+    let out_dir = dir.path().join("vision");
+    let p = |n: &str| g.join(n).to_string_lossy().into_owned();
+    let out = scenethesis(&[
+        "generate",
+        PROMPT,
+        "--out",
+        out_dir.to_str().unwrap(),
+        "--no-preview",
+        "--max-replans",
+        "0",
+        "--guide-image",
+        &p("rgb.png"),
+        "--guide-masks",
+        &p("ids.png"),
+        "--guide-labels",
+        &p("labels.json"),
+        "--guide-depth",
+        &p("depth.npy"),
+        "--camera",
+        &p("camera.json"),
+    ]);
+    assert!(out.status.success(), "{}", text(&out));
+    let report = report(&out_dir);
+    assert_eq!(report["guide"], "vision");
+    let truth = objects(scene);
+    let got = objects(&out_dir);
+    assert!(got.len() >= 8, "only {} objects recovered", got.len());
+    let mut errors: Vec<f64> = got
+        .iter()
+        .map(|(id, o)| distance(translation(o), translation(&truth[id])))
+        .collect();
+    errors.sort_by(|a, b| a.total_cmp(b));
+    let median = errors[errors.len() / 2];
+    assert!(
+        median < 0.05,
+        "median translation error {median} m: {errors:?}"
+    );
+    for (id, o) in &got {
+        assert_eq!(o["parent"], truth[id]["parent"], "{id}'s parent");
+    }
+    // Every planned object is placed or reported, never invented.
+    let dropped: Vec<&str> = report["guide_dropped"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|d| d["id"].as_str().unwrap())
+        .collect();
+    for id in truth.keys() {
+        assert!(
+            got.contains_key(id) || dropped.contains(&id.as_str()),
+            "{id} is neither placed nor reported"
+        );
+    }
+}
+
+/// The scene rendered from the camera the vision guide renders the empty room with (the photo
+/// view framing the room alone; the scene's own photo view frames its tall objects too): the
+/// PNG the image server answers the edit with, and the VLM's answer — each object's box read
+/// off the render's instance buffer (the test plays the model).
+fn furnished_render(scene_dir: &Path) -> (Vec<u8>, Value) {
+    use scenethesis_render::{views, Instance, RenderScene, Renderer};
+    let scene = scenethesis_scene_graph::Scene::read_json(&scene_dir.join("scene.json")).unwrap();
+    let meshes = scenethesis_pipeline::resolve_meshes(
+        &scene,
+        &scenethesis_pipeline::RetrievalSource::default(),
+    )
+    .unwrap();
+    let [w, h] = [768u32, 512];
+    let empty = RenderScene::with_architecture(Vec::new(), scene.architecture.clone());
+    let camera = views::photo_view(&empty, w, h);
+    let instances = scene
+        .objects
+        .iter()
+        .map(|o| {
+            Instance::new(
+                o.id.clone(),
+                std::sync::Arc::new(meshes[&o.id].clone()),
+                o.pose,
+            )
+        })
+        .collect();
+    let full = RenderScene::with_architecture(instances, scene.architecture.clone());
+    let renderer = Renderer::from_env().unwrap();
+    let frame = renderer
+        .render_prepared(&renderer.prepare(&full).unwrap(), &camera)
+        .unwrap();
+    let mut png = Vec::new();
+    image::DynamicImage::ImageRgba8(frame.color.clone())
+        .to_rgb8()
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .unwrap();
+    let mut out = Vec::new();
+    for o in &scene.objects {
+        let Some(index) = frame.index_of(&o.id) else {
+            continue;
+        };
+        let mut b = [u32::MAX, u32::MAX, 0, 0];
+        for (i, &v) in frame.instance.iter().enumerate() {
+            if v == index {
+                let (x, y) = (i as u32 % w, i as u32 / w);
+                b = [b[0].min(x), b[1].min(y), b[2].max(x + 1), b[3].max(y + 1)];
+            }
+        }
+        if b[2] > b[0] {
+            out.push(json!({"id": o.id, "box": [
+                b[0] as f64 / w as f64, b[1] as f64 / h as f64,
+                b[2] as f64 / w as f64, b[3] as f64 / h as f64]}));
+        }
+    }
+    (png, json!({ "objects": out }))
+}
+
+#[test]
+fn generate_online_edits_the_empty_room_and_lifts_the_vlm_boxes() {
+    let (scene, _) = base();
+    let (render, boxes) = furnished_render(scene);
+    let edited = ImageData::from_bytes(render.clone(), "the furnished render").unwrap();
+    let answer = boxes.to_string();
+    let server = TestServer::start(move |_, request| {
+        if request.path.ends_with("/images/edits") {
+            Reply::json(200, &openai_image(&edited))
+        } else if request.path.ends_with("/chat/completions") {
+            Reply::json(200, &openai_completion("eyes-1", &answer))
+        } else {
+            Reply::json(404, &json!({"error": {"message": "no such endpoint"}}))
+        }
+    });
+    let dir = tempfile::tempdir().unwrap();
+    let out_dir = dir.path().join("online");
+    let out = scenethesis(&[
+        "generate",
+        PROMPT,
+        "--out",
+        out_dir.to_str().unwrap(),
+        "--no-preview",
+        "--max-replans",
+        "0",
+        "--guide",
+        "vision",
+        "--base-url",
+        &server.base_url,
+        "--image-model",
+        "painter-1",
+        "--vlm-model",
+        "eyes-1",
+    ]);
+    assert!(out.status.success(), "{}", text(&out));
+    assert!(!text(&out).contains(KEY), "the key must never be printed");
+    let requests = server.requests();
+    let edits: Vec<_> = requests
+        .iter()
+        .filter(|r| r.path.ends_with("/images/edits"))
+        .collect();
+    assert_eq!(edits.len(), 1, "one edit of the empty room");
+    let body = &edits[0].body;
+    let has = |needle: &[u8]| body.windows(needle.len()).any(|w| w == needle);
+    assert!(has(b"painter-1") && has(b"Furnish this empty room") && has(b"\x89PNG"));
+    let chats: Vec<_> = requests
+        .iter()
+        .filter(|r| r.path.ends_with("/chat/completions"))
+        .collect();
+    assert_eq!(chats.len(), 1, "one VLM request for the boxes");
+    let chat = chats[0].json();
+    assert_eq!(chat["model"], "eyes-1");
+    let sent = chat.to_string();
+    assert!(
+        sent.contains(&format!(
+            "data:image/png;base64,{}",
+            &edited_b64(&render)[..64]
+        )),
+        "the VLM sees the edited image"
+    );
+    let report = report(&out_dir);
+    assert_eq!(report["guide"], "vision");
+    let models: Vec<String> = report["providers"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p.to_string())
+        .collect();
+    assert!(models.iter().any(|m| m.contains("painter-1")), "{models:?}");
+    assert!(models.iter().any(|m| m.contains("eyes-1")), "{models:?}");
+    // Without depth the boxes are placed by metrology under the render's camera: the large
+    // floor objects land near where the render shows them.
+    let truth = objects(scene);
+    let got = objects(&out_dir);
+    for category in ["bed", "wardrobe"] {
+        let (id, o) = got
+            .iter()
+            .find(|(_, o)| o["category"] == category)
+            .unwrap_or_else(|| panic!("no {category} recovered: {:?}", got.keys()));
+        let d = distance(translation(o), translation(&truth[id]));
+        assert!(d < 0.5, "{id} is {d} m from where the render shows it");
+    }
+}
+
+fn edited_b64(bytes: &[u8]) -> String {
+    ImageData::from_bytes(bytes.to_vec(), "png")
+        .unwrap()
+        .to_base64()
+}
+
+/// A copy of the rendered guidance folder to break.
+fn copy_guidance(to: &Path) -> PathBuf {
+    let (_, g) = base();
+    let dst = to.join("g");
+    std::fs::create_dir_all(&dst).unwrap();
+    for f in [
+        "rgb.png",
+        "ids.png",
+        "labels.json",
+        "depth.npy",
+        "camera.json",
+    ] {
+        std::fs::copy(g.join(f), dst.join(f)).unwrap();
+    }
+    dst
+}
+
+fn generate_with(g: &Path, out: &Path) -> Output {
+    let p = |n: &str| g.join(n).to_string_lossy().into_owned();
+    scenethesis(&[
+        "generate",
+        PROMPT,
+        "--out",
+        out.to_str().unwrap(),
+        "--no-preview",
+        "--guide-image",
+        &p("rgb.png"),
+        "--guide-masks",
+        &p("ids.png"),
+        "--guide-labels",
+        &p("labels.json"),
+        "--guide-depth",
+        &p("depth.npy"),
+        "--camera",
+        &p("camera.json"),
+    ])
+}
+
+#[test]
+fn bad_guidance_gets_one_clear_error_and_nothing_is_written() {
+    type Break = fn(&Path);
+    let cases: [(&str, Break, &[&str]); 5] = [
+        (
+            "image of the wrong size",
+            |g| {
+                image::RgbImage::new(320, 240)
+                    .save(g.join("rgb.png"))
+                    .unwrap()
+            },
+            &["rgb.png", "320 × 240", "768 × 512"],
+        ),
+        (
+            "masks not matching the image",
+            |g| {
+                image::ImageBuffer::<image::Luma<u16>, Vec<u16>>::new(100, 50)
+                    .save(g.join("ids.png"))
+                    .unwrap()
+            },
+            &["ids.png", "100 × 50"],
+        ),
+        (
+            "NaN depth",
+            |g| {
+                let mut v = vec![1.5f32; 768 * 512];
+                v[768 * 2 + 5] = f32::NAN;
+                std::fs::write(
+                    g.join("depth.npy"),
+                    scenethesis_vision::files::write_npy(768, 512, &v),
+                )
+                .unwrap()
+            },
+            &["depth.npy", "pixel (5, 2)"],
+        ),
+        (
+            "a camera looking at the ceiling",
+            |g| {
+                let path = g.join("camera.json");
+                let mut c: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+                // Turn the camera half a turn about its own x axis: it now looks up.
+                let q = &c["rotation"];
+                let [x, y, z, w] = [0, 1, 2, 3].map(|i| q[i].as_f64().unwrap());
+                let r = [w, z, -y, -x]; // q * (1, 0, 0, 0) as [i, j, k, w]
+                c["rotation"] = json!(r);
+                std::fs::write(&path, c.to_string()).unwrap()
+            },
+            &["camera.json", "looking down at the floor"],
+        ),
+        (
+            "labels naming unknown categories",
+            |g| {
+                let path = g.join("labels.json");
+                let text = std::fs::read_to_string(&path).unwrap();
+                let text =
+                    text.replacen("\"category\": \"bed\"", "\"category\": \"hovercraft\"", 1);
+                std::fs::write(&path, text).unwrap()
+            },
+            &["labels.json", "`hovercraft`"],
+        ),
+    ];
+    for (what, break_it, needles) in cases {
+        let dir = tempfile::tempdir().unwrap();
+        let g = copy_guidance(dir.path());
+        break_it(&g);
+        let out_dir = dir.path().join("out");
+        let out = generate_with(&g, &out_dir);
+        let t = text(&out);
+        assert!(!out.status.success(), "{what}: accepted\n{t}");
+        for n in needles {
+            assert!(t.contains(n), "{what}: the error does not say `{n}`:\n{t}");
+        }
+        assert!(!t.contains("✔ plan"), "{what}: the run started:\n{t}");
+        assert!(!out_dir.exists(), "{what}: something was written");
+    }
+}

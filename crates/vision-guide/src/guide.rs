@@ -1,0 +1,534 @@
+//! [`VisionGuide`]: the [`Guide`] that reads a guidance image.
+
+use std::collections::BTreeMap;
+use std::sync::Mutex;
+
+use scenethesis_agents::{
+    room_architecture, AssetLookup, DroppedObject, Guide, GuideError, GuidedLayout, Plan,
+    WalkwayReport,
+};
+use scenethesis_assets::AssetInfo;
+use scenethesis_correspondence::{DepthMap, Guidance, Mask, RgbImage};
+use scenethesis_models::{
+    ChatModel, DepthEstimator, ImageData, ImageEditRequest, ImageGenerator, Segmenter,
+};
+use scenethesis_scene_graph::{Architecture, Camera, Intrinsics, Mesh, MeshPart, Scene};
+use scenethesis_vision::{lift_scene, LiftOptions};
+
+use crate::assemble::build_scene;
+use crate::camera::{estimate_from_floor, DEFAULT_VERTICAL_FOV};
+use crate::detect::{ask_boxes, masks_from_boxes, match_labels};
+use crate::source::{decode_to_size, png_bytes, GivenGuidance, RoomRenderer};
+
+/// Where the guidance image comes from.
+enum ImageSource {
+    /// Files the user gave, already read and checked.
+    Given(Box<GivenGuidance>),
+    /// An image model's edit of the plan's empty room, rendered at `size`.
+    EditedRender {
+        renderer: Box<dyn RoomRenderer>,
+        generator: Box<dyn ImageGenerator>,
+        size: [u32; 2],
+        /// The last edit and the room it was made for: re-plan rounds lay out the same room
+        /// (with objects moved or dropped) and reuse it rather than ask for a new picture.
+        last: Box<Mutex<Option<Edited>>>,
+    },
+}
+
+/// An edited room image with its camera, for the room it shows.
+#[derive(Clone)]
+struct Edited {
+    room: Architecture,
+    image: RgbImage,
+    png: Vec<u8>,
+    camera: Camera,
+}
+
+/// The vision guide: a guidance image and the plan's objects become the initial scene graph.
+///
+/// 1. **Image and camera**: the given image (with its `camera.json`), or our render of the
+///    plan's empty room edited by an image model into the described scene (the render's
+///    camera; re-plan rounds of the same room reuse the edit). A given image without a camera gets one estimated from the floor of its depth
+///    ([`crate::camera`]).
+/// 2. **Depth**: the given depth map, else the depth model's, else none (single-view
+///    metrology under the known camera).
+/// 3. **Masks**: the given instance masks matched to the planned objects (by id, else by
+///    category), else one box per visible planned object from the vision-language model, made
+///    masks by the segmenter (or used as masks; with depth, box pixels on the room's floor or
+///    walls are then dropped).
+/// 4. **Lift** ([`scenethesis_vision::lift_scene`]) with the retrieved assets' sizes as priors,
+///    then the scene graph and 5-DoF poses ([`crate::assemble`]).
+///
+/// **Planned objects the image does not show** (no mask, or too few 3D points) are left out
+/// and reported in [`GuidedLayout::dropped`]; they are never invented. Labelled objects the plan
+/// does not hold are reported there too. A user's photo need not show every planned object;
+/// run the procedural guide for a complete layout.
+pub struct VisionGuide {
+    source: ImageSource,
+    vlm: Option<Box<dyn ChatModel>>,
+    segmenter: Option<Box<dyn Segmenter>>,
+    depth: Option<Box<dyn DepthEstimator>>,
+    lift: LiftOptions,
+}
+
+impl std::fmt::Debug for VisionGuide {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("VisionGuide")
+            .field("source", &self.source_name())
+            .field("vlm", &self.vlm.as_ref().map(|m| m.name()))
+            .field("segmenter", &self.segmenter.as_ref().map(|m| m.name()))
+            .field("depth", &self.depth.as_ref().map(|m| m.name()))
+            .finish_non_exhaustive()
+    }
+}
+
+fn provider(name: impl Into<String>, message: impl Into<String>) -> GuideError {
+    GuideError::Provider {
+        provider: name.into(),
+        message: message.into(),
+    }
+}
+
+impl VisionGuide {
+    /// A guide reading the given (already checked) guidance files.
+    pub fn from_files(given: GivenGuidance) -> Self {
+        Self::with_source(ImageSource::Given(Box::new(given)))
+    }
+
+    /// A guide that renders the plan's empty room at `size` pixels with `renderer` and has
+    /// `generator` edit it into the described scene. Needs a vision-language model
+    /// ([`VisionGuide::with_vlm`]) for the objects' boxes.
+    pub fn edit_render(
+        renderer: impl RoomRenderer + 'static,
+        generator: impl ImageGenerator + 'static,
+        size: [u32; 2],
+    ) -> Self {
+        Self::with_source(ImageSource::EditedRender {
+            renderer: Box::new(renderer),
+            generator: Box::new(generator),
+            size,
+            last: Box::new(Mutex::new(None)),
+        })
+    }
+
+    fn with_source(source: ImageSource) -> Self {
+        Self {
+            source,
+            vlm: None,
+            segmenter: None,
+            depth: None,
+            lift: LiftOptions::default(),
+        }
+    }
+
+    /// Boxes of the planned objects from this vision-language model (used when no masks are
+    /// given).
+    pub fn with_vlm(mut self, vlm: impl ChatModel + 'static) -> Self {
+        self.vlm = Some(Box::new(vlm));
+        self
+    }
+
+    /// Masks from the boxes by this box-prompted segmenter.
+    pub fn with_segmenter(mut self, segmenter: impl Segmenter + 'static) -> Self {
+        self.segmenter = Some(Box::new(segmenter));
+        self
+    }
+
+    /// Metric depth from this model when no depth is given.
+    pub fn with_depth_estimator(mut self, depth: impl DepthEstimator + 'static) -> Self {
+        self.depth = Some(Box::new(depth));
+        self
+    }
+
+    /// Lift tuning (priors are set per run from the retrieved assets).
+    pub fn with_lift_options(mut self, options: LiftOptions) -> Self {
+        self.lift = options;
+        self
+    }
+
+    fn source_name(&self) -> String {
+        match &self.source {
+            ImageSource::Given(g) => g.files.image.display().to_string(),
+            ImageSource::EditedRender {
+                renderer,
+                generator,
+                ..
+            } => format!("{} edited by {}", renderer.name(), generator.name()),
+        }
+    }
+
+    /// The image, its PNG bytes, the camera (if known), given depth and given masks.
+    #[allow(clippy::type_complexity)]
+    fn image(
+        &self,
+        plan: &Plan,
+        architecture: &Architecture,
+        seed: u64,
+    ) -> Result<
+        (
+            RgbImage,
+            Vec<u8>,
+            Option<Camera>,
+            Option<DepthMap>,
+            Option<BTreeMap<String, Mask>>,
+            Vec<DroppedObject>,
+        ),
+        GuideError,
+    > {
+        match &self.source {
+            ImageSource::Given(g) => {
+                let (masks, unmatched) = match &g.masks {
+                    Some((masks, labels)) => {
+                        let (m, u) = match_labels(plan, masks, labels);
+                        (Some(m), u)
+                    }
+                    None => (None, Vec::new()),
+                };
+                let dropped = unmatched
+                    .into_iter()
+                    .map(|(id, reason)| DroppedObject { id, reason })
+                    .collect();
+                Ok((
+                    g.image.clone(),
+                    g.image_png.clone(),
+                    g.camera,
+                    g.depth.clone(),
+                    masks,
+                    dropped,
+                ))
+            }
+            ImageSource::EditedRender {
+                renderer,
+                generator,
+                size,
+                last,
+            } => {
+                let mut last = last.lock().unwrap_or_else(|e| e.into_inner());
+                if let Some(e) = last.as_ref().filter(|e| &e.room == architecture) {
+                    let e = e.clone();
+                    return Ok((e.image, e.png, Some(e.camera), None, None, Vec::new()));
+                }
+                let view = renderer
+                    .render_room(architecture, *size)
+                    .map_err(|e| provider(renderer.name(), e))?;
+                let png = png_bytes(&view.image);
+                let request = ImageEditRequest {
+                    prompt: edit_prompt(plan),
+                    image: ImageData::from_bytes(png, "the empty room's render")
+                        .expect("PNG bytes"),
+                    mask: None,
+                    size: *size,
+                    seed: Some(seed),
+                };
+                let edited = generator
+                    .edit(&request)
+                    .map_err(|e| provider(generator.name(), e.to_string()))?;
+                let what = format!("{}: the edited image", generator.name());
+                let size = [view.camera.intrinsics.width, view.camera.intrinsics.height];
+                let image = decode_to_size(&edited.image.bytes, size, &what)
+                    .map_err(|e| provider(generator.name(), e))?;
+                let png = if edited.image.bytes.len() > 8
+                    && (image.width(), image.height()) == (size[0], size[1])
+                    && edited.image.format == scenethesis_models::ImageFormat::Png
+                {
+                    edited.image.bytes.clone()
+                } else {
+                    png_bytes(&image)
+                };
+                *last = Some(Edited {
+                    room: architecture.clone(),
+                    image: image.clone(),
+                    png: png.clone(),
+                    camera: view.camera,
+                });
+                Ok((image, png, Some(view.camera), None, None, Vec::new()))
+            }
+        }
+    }
+}
+
+/// What the image model is asked to draw into the empty room.
+pub fn edit_prompt(plan: &Plan) -> String {
+    let objects: Vec<String> = plan
+        .objects
+        .iter()
+        .map(|o| o.category.replace('_', " "))
+        .collect();
+    format!(
+        "Furnish this empty room into a realistic photograph of a {}: {} It holds: {}. Keep the \
+         camera, the walls, the floor, the door and the lighting exactly as they are; only add \
+         the furniture and objects, standing on the floor or on each other, fully inside the \
+         room.",
+        plan.scene_type.replace('_', " "),
+        plan.description,
+        objects.join(", ")
+    )
+}
+
+fn to_model_intrinsics(k: &Intrinsics) -> scenethesis_models::Intrinsics {
+    scenethesis_models::Intrinsics {
+        fx: k.fx as f32,
+        fy: k.fy as f32,
+        cx: k.cx as f32,
+        cy: k.cy as f32,
+    }
+}
+
+/// Drops box-mask pixels whose depth puts them on the room's structure: the floor (unless the
+/// object is itself flat, under 10 cm) or behind a wall's inner face. Used only for masks that
+/// are plain boxes.
+fn subtract_room(
+    mask: &Mask,
+    camera: &Camera,
+    depth: &DepthMap,
+    architecture: &Architecture,
+    flat: bool,
+) -> Mask {
+    let floor = &architecture.floor;
+    let indoor = !architecture.walls.is_empty();
+    let mut out = mask.clone();
+    for (u, v) in mask.pixels() {
+        let Some(z) = depth.get(u, v) else {
+            continue;
+        };
+        let p = camera.unproject(
+            &nalgebra::Point2::new(u as f64 + 0.5, v as f64 + 0.5),
+            z as f64,
+        );
+        let on_floor = !flat && p.y < 0.03;
+        let m = 0.04;
+        let on_wall = indoor
+            && (p.x < floor.min.x + m
+                || p.x > floor.max.x - m
+                || p.z < floor.min.y + m
+                || p.z > floor.max.y - m);
+        if on_floor || on_wall {
+            out.set(u, v, false);
+        }
+    }
+    out
+}
+
+impl Guide for VisionGuide {
+    fn name(&self) -> &str {
+        "vision"
+    }
+
+    fn layout(
+        &self,
+        plan: &Plan,
+        assets: &dyn AssetLookup,
+        seed: u64,
+    ) -> Result<GuidedLayout, GuideError> {
+        let architecture = room_architecture(plan)?;
+        let mut infos: BTreeMap<String, AssetInfo> = BTreeMap::new();
+        for o in &plan.objects {
+            let info = assets
+                .asset_info(o)
+                .ok_or_else(|| GuideError::MissingAsset {
+                    id: o.id.clone(),
+                    category: o.category.clone(),
+                })?;
+            infos.insert(o.id.clone(), info);
+        }
+        let (image, png, camera, given_depth, given_masks, mut dropped) =
+            self.image(plan, &architecture, seed)?;
+        let (w, h) = (image.width(), image.height());
+        let image_data = ImageData::from_bytes(png, "the guidance image")
+            .map_err(|e| provider("guidance image", e.to_string()))?;
+
+        // Depth: given, else the depth model's, else none.
+        let depth = match (given_depth, &self.depth) {
+            (Some(d), _) => Some(d),
+            (None, Some(model)) => {
+                let k = camera.map(|c| to_model_intrinsics(&c.intrinsics));
+                let d = model
+                    .estimate(&image_data, k)
+                    .map_err(|e| provider(model.name(), e.to_string()))?;
+                if (d.width, d.height) != (w, h) {
+                    return Err(provider(
+                        model.name(),
+                        format!(
+                            "the depth map is {} × {}; expected the guidance image's {w} × {h}",
+                            d.width, d.height
+                        ),
+                    ));
+                }
+                let depth = DepthMap::new(w, h, d.metres.clone())
+                    .map_err(|e| provider(model.name(), e.to_string()))?;
+                Some(depth)
+            }
+            (None, None) => None,
+        };
+
+        // Camera: given or rendered, else estimated from the floor of the depth.
+        let camera = match camera {
+            Some(c) => c,
+            None => {
+                let Some(depth) = &depth else {
+                    return Err(provider(
+                        "camera",
+                        "the guidance image has no camera: give --camera camera.json, or depth \
+                         (--guide-depth or a depth model) to estimate it from the floor",
+                    ));
+                };
+                let k = Intrinsics::from_vertical_fov(w, h, DEFAULT_VERTICAL_FOV);
+                estimate_from_floor(depth, k, &architecture)
+                    .map_err(|e| provider("camera estimate from the floor", e))?
+            }
+        };
+        scenethesis_vision::metrology::check_camera(&camera)
+            .map_err(|e| provider("camera", e.to_string()))?;
+
+        // Masks: given, else boxes from the VLM (segmented, or as they are).
+        let masks = match given_masks {
+            Some(m) => m,
+            None => {
+                let Some(vlm) = &self.vlm else {
+                    return Err(provider(
+                        "vision guide",
+                        "no masks: give --guide-masks ids.png with --guide-labels labels.json, \
+                         or a vision-language model (--vlm-model) to box the objects",
+                    ));
+                };
+                let (boxes, notes) = ask_boxes(vlm.as_ref(), plan, image_data.clone(), seed)
+                    .map_err(|e| provider(vlm.name(), e))?;
+                for (id, note) in notes {
+                    dropped.push(DroppedObject {
+                        id,
+                        reason: format!("{}: {note}", vlm.name()),
+                    });
+                }
+                let seg = self
+                    .segmenter
+                    .as_ref()
+                    .map(|s| (s.as_ref() as &dyn Segmenter, &image_data));
+                let mut masks = masks_from_boxes(&boxes, w, h, seg).map_err(|e| {
+                    provider(
+                        self.segmenter
+                            .as_ref()
+                            .map_or("box masks".into(), |s| s.name()),
+                        e,
+                    )
+                })?;
+                if self.segmenter.is_none() {
+                    if let Some(d) = &depth {
+                        for (id, m) in masks.iter_mut() {
+                            let flat = infos[id].size[1] < 0.1;
+                            *m = subtract_room(m, &camera, d, &architecture, flat);
+                        }
+                    }
+                }
+                masks
+            }
+        };
+        let guidance = Guidance::new(camera, image, depth, masks)
+            .map_err(|e| provider("guidance", e.to_string()))?;
+
+        let mut options = self.lift.clone();
+        options.priors = infos
+            .iter()
+            .filter(|(id, _)| guidance.masks.contains_key(*id))
+            .map(|(id, i)| {
+                let [x, y, z] = i.size.map(f64::from);
+                (id.clone(), nalgebra::Vector3::new(x, y, z))
+            })
+            .collect();
+        let lifted =
+            lift_scene(&guidance, &options).map_err(|e| provider("lift", e.to_string()))?;
+        for o in &plan.objects {
+            if lifted.boxes.iter().any(|b| b.id == o.id) {
+                continue;
+            }
+            let reason = if lifted.missing.contains(&o.id) {
+                "its mask in the guidance image gave too few 3D points to place it"
+            } else {
+                "not found in the guidance image (no mask)"
+            };
+            dropped.push(DroppedObject {
+                id: o.id.clone(),
+                reason: reason.into(),
+            });
+        }
+        if lifted.boxes.is_empty() {
+            return Err(provider(
+                "vision guide",
+                format!(
+                    "none of the {} planned objects was found in the guidance image",
+                    plan.objects.len()
+                ),
+            ));
+        }
+        let scene = build_scene(
+            plan,
+            seed,
+            architecture,
+            &infos,
+            &lifted.boxes,
+            &lifted.supports,
+            camera.position,
+        );
+        let walkway = walkway(&scene, &infos);
+        Ok(GuidedLayout {
+            scene,
+            dropped,
+            walkway,
+            guidance: Some(guidance),
+        })
+    }
+}
+
+/// Walk and reach of the guided floor by the metric's raster rules, with each object as its
+/// asset's box; the door counts as reachable when the floor just inside it is free (no box
+/// footprint within the robot radius of the point 40 cm inside the opening).
+fn walkway(scene: &Scene, infos: &BTreeMap<String, AssetInfo>) -> WalkwayReport {
+    use scenethesis_eval::raster::walk_and_reach;
+    use scenethesis_eval::{EvalObject, EvalScene};
+    let objects = scene
+        .objects
+        .iter()
+        .map(|o| {
+            let [sx, sy, sz] = infos[&o.id].size;
+            let mesh = Mesh {
+                parts: vec![MeshPart::cuboid(
+                    o.id.clone(),
+                    0,
+                    [-sx / 2.0, 0.0, -sz / 2.0],
+                    [sx / 2.0, sy, sz / 2.0],
+                )],
+                materials: vec![scenethesis_scene_graph::Material::new(
+                    "box",
+                    [0.5, 0.5, 0.5],
+                    0.5,
+                )],
+            };
+            EvalObject::from_scene_object(o, &mesh)
+        })
+        .collect();
+    let eval = EvalScene {
+        objects,
+        architecture: scene.architecture.clone(),
+    };
+    let wr = walk_and_reach(&eval);
+    let door_reachable = scene.architecture.doors.iter().all(|d| {
+        let Some(wall) = scene.architecture.wall(&d.wall) else {
+            return true;
+        };
+        let along = (wall.end - wall.start).normalize();
+        let at = wall.start + along * d.offset;
+        let floor = &scene.architecture.floor;
+        let centre = nalgebra::center(&floor.min, &floor.max);
+        let inward = (centre - at).normalize();
+        let p = at + inward * 0.4;
+        eval.objects.iter().filter(|o| o.on_ground()).all(|o| {
+            let b = o.aabb();
+            let r = 0.2;
+            !(p.x > b.min.x - r && p.x < b.max.x + r && p.y > b.min.z - r && p.y < b.max.z + r)
+        })
+    });
+    WalkwayReport {
+        walk_ratio: wr.walk,
+        door_reachable,
+        unreachable: wr.unreachable_floor_objects,
+    }
+}

@@ -1,0 +1,251 @@
+//! Where the guidance image comes from: files the user gives ([`GivenGuidance`], read and
+//! checked up front), or an image model's edit of our render of the plan's empty room
+//! ([`RoomRenderer`] + [`scenethesis_models::ImageGenerator`]), whose camera is then known.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+use scenethesis_correspondence::{DepthMap, Mask, RgbImage};
+use scenethesis_scene_graph::{Architecture, Camera};
+use scenethesis_vision::files::{self, FileError, Labels};
+
+/// Why given guidance files cannot be used. Every variant names the file at fault and what was
+/// expected.
+#[derive(Debug, thiserror::Error)]
+pub enum GuidanceFileError {
+    /// A file could not be read, or its content is invalid.
+    #[error(transparent)]
+    File(#[from] FileError),
+    /// Two files disagree on the image size.
+    #[error("{path}: is {width} × {height} pixels but {other} is {other_width} × {other_height}; every guidance image must have the same size")]
+    SizeMismatch {
+        /// The file that does not fit.
+        path: PathBuf,
+        /// Its width.
+        width: u32,
+        /// Its height.
+        height: u32,
+        /// The file it was compared with.
+        other: PathBuf,
+        /// That file's width.
+        other_width: u32,
+        /// That file's height.
+        other_height: u32,
+    },
+    /// The camera cannot see the floor (it looks level or up, or is below the floor).
+    #[error("{path}: {problem}")]
+    Camera {
+        /// The camera file.
+        path: PathBuf,
+        /// What is wrong and what was expected.
+        problem: String,
+    },
+    /// A label names a category the asset library does not know.
+    #[error("{path}: label {value} (`{id}`) names category `{category}`, which the asset library does not know; expected one of the library's categories (`scenethesis assets` lists them)")]
+    UnknownCategory {
+        /// The labels file.
+        path: PathBuf,
+        /// The instance value.
+        value: u16,
+        /// The label's object id.
+        id: String,
+        /// The unknown category.
+        category: String,
+    },
+    /// Masks were given without labels or the other way round.
+    #[error("{0}")]
+    Incomplete(String),
+}
+
+/// Paths of the guidance files a user gives (`--guide-image`, `--guide-masks`,
+/// `--guide-labels`, `--guide-depth`, `--camera`). Only the image is required.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct GuidanceFiles {
+    /// The colour image (PNG).
+    pub image: PathBuf,
+    /// The 16-bit instance PNG (0 = none); needs `labels`.
+    pub masks: Option<PathBuf>,
+    /// `labels.json` for `masks`.
+    pub labels: Option<PathBuf>,
+    /// Metric depth: `.npy` float32 metres, or a 16-bit PNG in millimetres.
+    pub depth: Option<PathBuf>,
+    /// `camera.json` (the serde form of `scenethesis_scene_graph::Camera`).
+    pub camera: Option<PathBuf>,
+}
+
+/// Guidance read from files and checked: sizes agree, depth is finite and non-negative, the
+/// camera looks down at the floor, labels name known categories.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GivenGuidance {
+    /// The files it was read from (named in later errors and notes).
+    pub files: GuidanceFiles,
+    /// The colour image.
+    pub image: RgbImage,
+    /// The PNG bytes of the image as read (sent to models unchanged).
+    pub image_png: Vec<u8>,
+    /// Metric depth, when given.
+    pub depth: Option<DepthMap>,
+    /// The camera, when given.
+    pub camera: Option<Camera>,
+    /// Masks by label id and the labels, when given.
+    pub masks: Option<(BTreeMap<String, Mask>, Labels)>,
+}
+
+impl GivenGuidance {
+    /// Reads and checks `files`. `categories` are the asset library's categories; a label
+    /// naming another category is refused.
+    pub fn read(
+        files: &GuidanceFiles,
+        categories: &BTreeSet<String>,
+    ) -> Result<Self, GuidanceFileError> {
+        let image_png = files::read_bounded(&files.image)?;
+        let image = files::read_rgb(&files.image)?;
+        let size = (image.width(), image.height());
+        let same = |path: &Path, w: u32, h: u32| -> Result<(), GuidanceFileError> {
+            if (w, h) == size {
+                Ok(())
+            } else {
+                Err(GuidanceFileError::SizeMismatch {
+                    path: path.to_path_buf(),
+                    width: w,
+                    height: h,
+                    other: files.image.clone(),
+                    other_width: size.0,
+                    other_height: size.1,
+                })
+            }
+        };
+        let camera = match &files.camera {
+            Some(path) => {
+                let camera = files::read_camera(path)?;
+                same(path, camera.intrinsics.width, camera.intrinsics.height)?;
+                scenethesis_vision::metrology::check_camera(&camera).map_err(|e| {
+                    GuidanceFileError::Camera {
+                        path: path.clone(),
+                        problem: e.to_string(),
+                    }
+                })?;
+                Some(camera)
+            }
+            None => None,
+        };
+        let depth = match &files.depth {
+            Some(path) => {
+                let depth = files::read_depth(path)?;
+                same(path, depth.width(), depth.height())?;
+                Some(depth)
+            }
+            None => None,
+        };
+        let masks = match (&files.masks, &files.labels) {
+            (Some(ids), Some(labels_path)) => {
+                let (masks, labels) = files::read_masks(ids, labels_path)?;
+                if let Some(m) = masks.values().next() {
+                    same(ids, m.width(), m.height())?;
+                } else {
+                    // No label: still check the instance image's size.
+                    let (w, h) = image_size(ids)?;
+                    same(ids, w, h)?;
+                }
+                for (value, label) in &labels {
+                    if !categories.contains(&label.category) {
+                        return Err(GuidanceFileError::UnknownCategory {
+                            path: labels_path.clone(),
+                            value: *value,
+                            id: label.id.clone(),
+                            category: label.category.clone(),
+                        });
+                    }
+                }
+                Some((masks, labels))
+            }
+            (Some(ids), None) => {
+                return Err(GuidanceFileError::Incomplete(format!(
+                    "{}: an instance image needs its labels (--guide-labels labels.json)",
+                    ids.display()
+                )))
+            }
+            (None, Some(labels)) => {
+                return Err(GuidanceFileError::Incomplete(format!(
+                    "{}: labels need their instance image (--guide-masks ids.png)",
+                    labels.display()
+                )))
+            }
+            (None, None) => None,
+        };
+        Ok(Self {
+            files: files.clone(),
+            image,
+            image_png,
+            depth,
+            camera,
+            masks,
+        })
+    }
+}
+
+fn image_size(path: &Path) -> Result<(u32, u32), FileError> {
+    let bytes = files::read_bounded(path)?;
+    image::ImageReader::with_format(std::io::Cursor::new(bytes), image::ImageFormat::Png)
+        .into_dimensions()
+        .map_err(|e| FileError::Invalid {
+            path: path.to_path_buf(),
+            problem: format!("not a readable PNG image ({e})"),
+        })
+}
+
+/// A render of a plan's empty room: the colour image and the camera it was taken with.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RoomView {
+    /// The camera (the same view the previews use).
+    pub camera: Camera,
+    /// The rendered colour image, the camera's size.
+    pub image: RgbImage,
+}
+
+/// Renders a plan's empty room (floor, walls, door). The pipeline implements it with the
+/// headless renderer; this crate has no GPU dependency.
+pub trait RoomRenderer: Send + Sync {
+    /// A short name for errors and reports.
+    fn name(&self) -> String;
+
+    /// The empty room seen from the photo view, at `size` pixels.
+    fn render_room(&self, architecture: &Architecture, size: [u32; 2]) -> Result<RoomView, String>;
+}
+
+/// Encodes an image as PNG bytes.
+pub fn png_bytes(image: &RgbImage) -> Vec<u8> {
+    let buffer =
+        image::RgbImage::from_raw(image.width(), image.height(), image.as_bytes().to_vec())
+            .expect("an RgbImage holds width × height × 3 bytes");
+    let mut bytes = Vec::new();
+    buffer
+        .write_to(
+            &mut std::io::Cursor::new(&mut bytes),
+            image::ImageFormat::Png,
+        )
+        .expect("PNG encoding into memory cannot fail");
+    bytes
+}
+
+/// Decodes a provider's PNG or JPEG answer to the camera's size `[w, h]`: an image of another
+/// size with the same aspect ratio (within 1 %) is resampled, any other is refused.
+pub fn decode_to_size(bytes: &[u8], size: [u32; 2], what: &str) -> Result<RgbImage, String> {
+    let decoded = image::load_from_memory(bytes)
+        .map_err(|e| format!("{what}: not a readable PNG or JPEG image ({e})"))?
+        .to_rgb8();
+    let (w, h) = decoded.dimensions();
+    let [cw, ch] = size;
+    let decoded = if (w, h) == (cw, ch) {
+        decoded
+    } else {
+        let aspect = |a: u32, b: u32| a as f64 / b.max(1) as f64;
+        if (aspect(w, h) / aspect(cw, ch) - 1.0).abs() > 0.01 {
+            return Err(format!(
+                "{what}: the image is {w} × {h} pixels; expected {cw} × {ch} (the rendered room's size) or the same aspect ratio"
+            ));
+        }
+        image::imageops::resize(&decoded, cw, ch, image::imageops::FilterType::Triangle)
+    };
+    RgbImage::new(cw, ch, decoded.into_raw()).map_err(|e| format!("{what}: {e}"))
+}
