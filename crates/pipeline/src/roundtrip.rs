@@ -328,6 +328,18 @@ pub fn yaw_symmetry(mesh: &Mesh) -> f64 {
     }
 }
 
+/// The yaw of every wall of `architecture`: the yaw that lays a box's own x axis along it.
+pub fn wall_yaws(architecture: &scenethesis_scene_graph::Architecture) -> Vec<f64> {
+    architecture
+        .walls
+        .iter()
+        .map(|w| {
+            let d = w.end - w.start;
+            (-d.y).atan2(d.x)
+        })
+        .collect()
+}
+
 /// Yaw error in degrees modulo `period` radians.
 fn yaw_error(a: f64, b: f64, period: f64) -> f64 {
     let d = (a - b).rem_euclid(period);
@@ -374,8 +386,10 @@ pub fn compare(
     perturb: Perturbation,
 ) -> Result<RoundtripReport, RoundtripError> {
     let truth = true_boxes(scene, meshes);
+    // What the guide knows besides the image: the planned objects' asset sizes and the room.
     let options = LiftOptions {
         priors: truth.iter().map(|(id, b)| (id.clone(), b.size())).collect(),
+        wall_yaws: wall_yaws(&scene.architecture),
         ..LiftOptions::default()
     };
     let lifted = lift_scene(guidance, &options).map_err(RoundtripError::Lift)?;
