@@ -194,6 +194,18 @@ pub fn min_area_rectangle(points: &[Point2<f64>], trim: f64) -> Option<FloorRect
     Some(extents(points, yaw, trim))
 }
 
+/// The rectangle of yaw `yaw` around `points` (world `(x, z)` pairs), with its extents taken
+/// between the `trim` and `1 − trim` quantiles along its axes. `yaw` is folded into
+/// `[-π/4, π/4)` like [`min_area_rectangle`]'s. Panics on an empty input.
+pub fn rectangle_at(points: &[Point2<f64>], yaw: f64, trim: f64) -> FloorRectangle {
+    let q = std::f64::consts::FRAC_PI_2;
+    let mut y = yaw.rem_euclid(q);
+    if y >= q / 2.0 {
+        y -= q;
+    }
+    extents(points, y, trim)
+}
+
 fn extents(points: &[Point2<f64>], yaw: f64, trim: f64) -> FloorRectangle {
     let ax = Vector2::new(yaw.cos(), -yaw.sin());
     let az = Vector2::new(yaw.sin(), yaw.cos());

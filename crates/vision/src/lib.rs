@@ -56,7 +56,8 @@ pub use boxes::{lift_scene, LiftOptions, LiftedBox, LiftedScene};
 pub use error::LiftError;
 pub use footprint::{min_area_rectangle, FloorRectangle};
 pub use support::{
-    infer_supports, mount_on_walls, SupportGuess, SupportKind, MOUNT_MIN_BOTTOM, MOUNT_WALL_REACH,
+    infer_supports, infer_supports_within, mount_on_walls, SupportGuess, SupportKind,
+    MOUNT_MIN_BOTTOM, MOUNT_WALL_REACH,
 };
 
 pub use scenethesis_correspondence::Guidance;

@@ -23,6 +23,20 @@ pub fn mask_points(
     stride: u32,
     radius: u32,
 ) -> Vec<Point3<f64>> {
+    mask_pixel_points(camera, depth, mask, stride, radius)
+        .into_iter()
+        .map(|(_, p)| p)
+        .collect()
+}
+
+/// [`mask_points`] with the pixel `(u, v)` each point was lifted from.
+pub fn mask_pixel_points(
+    camera: &Camera,
+    depth: &DepthMap,
+    mask: &Mask,
+    stride: u32,
+    radius: u32,
+) -> Vec<([u32; 2], Point3<f64>)> {
     let stride = stride.max(1);
     let mut out = Vec::new();
     for (u, v) in mask.pixels() {
@@ -55,9 +69,113 @@ pub fn mask_points(
             }
         };
         let pixel = Point2::new(u as f64 + 0.5, v as f64 + 0.5);
-        out.push(camera.unproject(&pixel, d as f64));
+        out.push(([u, v], camera.unproject(&pixel, d as f64)));
     }
     out
+}
+
+/// How far the surface seen at the top and at the bottom of a point set's silhouette continues
+/// in height over `margin` more pixel rows: the height change per row between the band of the
+/// first `margin + 1` rows and the next band, extrapolated over `margin` rows (never negative).
+/// A top face seen from above gains nothing, a vertical face about `margin` pixels' worth of
+/// height. Returns `(below, above)` in metres.
+pub fn vertical_margins(points: &[([u32; 2], Point3<f64>)], margin: u32) -> (f64, f64) {
+    if points.is_empty() || margin == 0 {
+        return (0.0, 0.0);
+    }
+    let band = margin + 1;
+    let (v0, v1) = points.iter().fold((u32::MAX, 0), |(a, b), (px, _)| {
+        (a.min(px[1]), b.max(px[1]))
+    });
+    let band_y = |from: i64, to: i64| {
+        let mut ys: Vec<f64> = points
+            .iter()
+            .filter(|(px, _)| (from..=to).contains(&(px[1] as i64)))
+            .map(|(_, p)| p.y)
+            .collect();
+        median(&mut ys)
+    };
+    let per_row = |a: Option<f64>, b: Option<f64>| match (a, b) {
+        (Some(a), Some(b)) => ((a - b) / band as f64).max(0.0),
+        _ => 0.0,
+    };
+    let (t, b) = (v0 as i64, v1 as i64);
+    let band = band as i64;
+    let above = per_row(band_y(t, t + band - 1), band_y(t + band, t + 2 * band - 1));
+    let below = per_row(band_y(b - 2 * band + 1, b - band), band_y(b - band + 1, b));
+    (below * margin as f64, above * margin as f64)
+}
+
+/// The pixels of `mask` at least `radius` pixels (in the chessboard metric) inside it: the
+/// mask eroded by a `(2 radius + 1)²` square. Pixels near the image border count as inside
+/// when their in-image neighbours are.
+pub fn interior(mask: &Mask, radius: u32) -> Mask {
+    let (w, h) = (mask.width(), mask.height());
+    if radius == 0 {
+        return mask.clone();
+    }
+    // Separable erosion: rows first, then columns.
+    let r = radius as i64;
+    let run = |len: u32, get: &dyn Fn(u32) -> bool| -> Vec<bool> {
+        (0..len as i64)
+            .map(|i| ((i - r).max(0)..=(i + r).min(len as i64 - 1)).all(|j| get(j as u32)))
+            .collect()
+    };
+    let mut rows = vec![false; (w * h) as usize];
+    for y in 0..h {
+        let line = run(w, &|x| mask.contains(x, y));
+        rows[(y * w) as usize..((y + 1) * w) as usize].copy_from_slice(&line);
+    }
+    let mut out = Mask::new(w, h);
+    for x in 0..w {
+        let line = run(h, &|y| rows[(y * w + x) as usize]);
+        for (y, &inside) in line.iter().enumerate() {
+            if inside {
+                out.set(x, y as u32, true);
+            }
+        }
+    }
+    out
+}
+
+/// The relative per-pixel noise of a depth map: the robust standard deviation (1.4826 × the
+/// median absolute value) of each pixel's relative difference from the median of its valid
+/// 8-neighbours, over every pixel whose neighbours are all valid. A smooth surface, tilted or
+/// not, gives 0 (its depth is locally linear and the median of a symmetric neighbourhood is the
+/// centre's); independent Gaussian noise of σ gives about σ. Depth edges are a minority of
+/// pixels and fall outside the median. `None` when no pixel qualifies.
+pub fn depth_noise(depth: &DepthMap) -> Option<f64> {
+    let (w, h) = (depth.width(), depth.height());
+    let valid = |u: u32, v: u32| depth.get(u, v).filter(|d| d.is_finite() && *d > 0.0);
+    let mut residuals = Vec::new();
+    let mut ring = Vec::with_capacity(8);
+    for v in 1..h.saturating_sub(1) {
+        'pixel: for u in 1..w.saturating_sub(1) {
+            let Some(c) = valid(u, v) else { continue };
+            ring.clear();
+            for (du, dv) in [
+                (-1, -1),
+                (0, -1),
+                (1, -1),
+                (-1, 0),
+                (1, 0),
+                (-1, 1),
+                (0, 1),
+                (1, 1),
+            ] {
+                match valid((u as i64 + du) as u32, (v as i64 + dv) as u32) {
+                    Some(d) => ring.push(d as f64),
+                    None => continue 'pixel,
+                }
+            }
+            ring.sort_by(|a, b| a.total_cmp(b));
+            let m = (ring[3] + ring[4]) / 2.0;
+            residuals.push(((c as f64 - m) / m).abs());
+        }
+    }
+    // The residual of a pixel against the median of 8 noisy neighbours has a standard deviation
+    // of about 1.1 σ.
+    median(&mut residuals).map(|mad| 1.4826 * mad / 1.1)
 }
 
 /// The largest 26-connected cluster of `points` on a voxel grid of edge `voxel` metres
@@ -146,6 +264,41 @@ mod tests {
         let kept = largest_cluster(&pts, 0.05);
         assert_eq!(kept.len(), 100);
         assert!(kept.iter().all(|p| p.z < 1.0));
+    }
+
+    #[test]
+    fn depth_noise_measures_gaussian_noise_and_ignores_tilt() {
+        // A tilted plane: depth linear in u and v.
+        let plane = DepthMap::from_fn(80, 60, |u, v| 2.0 + 0.01 * u as f32 + 0.03 * v as f32);
+        assert!(depth_noise(&plane).unwrap() < 1e-4);
+        // The same plane with 2 % Gaussian noise (Box–Muller from a fixed LCG).
+        let mut state = 12345u64;
+        let mut uniform = move || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((state >> 11) as f64 / (1u64 << 53) as f64).max(1e-12)
+        };
+        let noisy = DepthMap::from_fn(80, 60, |u, v| {
+            let g = (-2.0 * uniform().ln()).sqrt() * (std::f64::consts::TAU * uniform()).cos();
+            ((2.0 + 0.01 * u as f64 + 0.03 * v as f64) * (1.0 + 0.02 * g)) as f32
+        });
+        let sigma = depth_noise(&noisy).unwrap();
+        assert!((0.016..0.024).contains(&sigma), "estimated {sigma}");
+    }
+
+    #[test]
+    fn interior_erodes_by_the_radius() {
+        let mut m = Mask::new(20, 20);
+        for y in 5..15 {
+            for x in 3..15 {
+                m.set(x, y, true);
+            }
+        }
+        let inner = interior(&m, 2);
+        assert_eq!(inner.area(), 8 * 6);
+        assert!(inner.contains(5, 7) && !inner.contains(4, 7) && !inner.contains(5, 6));
+        assert_eq!(interior(&m, 0), m);
     }
 
     #[test]

@@ -69,6 +69,14 @@ fn under(boxes: &[LiftedBox], i: usize) -> Option<usize> {
 /// Infers the support of every box. `gap` is the largest vertical gap in metres between a
 /// child's bottom and its parent's top (or the floor) that still counts as contact.
 pub fn infer_supports(boxes: &[LiftedBox], gap: f64) -> Vec<SupportGuess> {
+    infer_supports_within(boxes, gap, gap)
+}
+
+/// [`infer_supports`] with a second chance: a box that neither stands on the floor nor meets a
+/// top within `gap` rests on the box below it whose top is nearest its bottom, within `reach`
+/// metres either way, when at least 30 % of its footprint lies over that box (noisy depth
+/// scatters bottoms and tops by more than a contact gap). Only what is left is unsupported.
+pub fn infer_supports_within(boxes: &[LiftedBox], gap: f64, reach: f64) -> Vec<SupportGuess> {
     let mut order: Vec<usize> = (0..boxes.len()).collect();
     order.sort_by(|&a, &b| {
         boxes[a]
@@ -105,6 +113,20 @@ pub fn infer_supports(boxes: &[LiftedBox], gap: f64) -> Vec<SupportGuess> {
             if let Some((score, kind)) = candidate {
                 if best.is_none_or(|(s, _, _)| score < s) {
                     best = Some((score, j, kind));
+                }
+            }
+        }
+        if best.is_none() && bottom > gap {
+            for (j, a) in boxes.iter().enumerate() {
+                if j == i || a.bottom() >= bottom - 0.02 {
+                    continue;
+                }
+                let top_gap = (bottom - a.top()).abs();
+                if top_gap <= reach
+                    && foot.fraction_inside(&a.footprint(), 0.05) >= 0.3
+                    && best.is_none_or(|(s, _, _)| top_gap < s)
+                {
+                    best = Some((top_gap, j, SupportKind::On));
                 }
             }
         }
@@ -199,12 +221,12 @@ mod tests {
     fn lifted(id: &str, center: [f64; 3], half: [f64; 3]) -> LiftedBox {
         LiftedBox {
             id: id.into(),
-            center: Point3::new(center[0], center[1], center[2]),
-            half_extents: Vector3::new(half[0], half[1], half[2]),
+            center: Point3::from(center),
+            half_extents: Vector3::from(half),
             yaw: 0.0,
             points: 100,
             depth_source: DepthSource::Measured,
-            completed: false,
+            completed: true,
         }
     }
 
@@ -235,5 +257,27 @@ mod tests {
         assert_eq!(kind("ghost"), (SupportKind::Unsupported, None));
         assert_eq!(kind("low"), (SupportKind::Unsupported, None));
         assert_eq!(kind("cabinet"), (SupportKind::Ground, None));
+    }
+
+    #[test]
+    fn a_bottom_noise_lifted_off_its_table_still_rests_on_it() {
+        // Table top at 0.75; the vase's bottom came out 0.2 m above it.
+        let boxes = [
+            lifted("table", [0.0, 0.375, 0.0], [0.6, 0.375, 0.4]),
+            lifted("vase", [0.1, 1.05, 0.0], [0.08, 0.1, 0.08]),
+            lifted("painting", [0.0, 1.6, -0.38], [0.4, 0.3, 0.02]),
+        ];
+        let strict = infer_supports(&boxes, 0.06);
+        let vase = strict.iter().find(|s| s.id == "vase").unwrap();
+        assert_eq!(vase.kind, SupportKind::Unsupported);
+        let reaching = infer_supports_within(&boxes, 0.06, 0.3);
+        let vase = reaching.iter().find(|s| s.id == "vase").unwrap();
+        assert_eq!(
+            (vase.kind, vase.parent.as_deref()),
+            (SupportKind::On, Some("table"))
+        );
+        // A painting 0.55 m above the table stays mounted.
+        let painting = reaching.iter().find(|s| s.id == "painting").unwrap();
+        assert_eq!(painting.kind, SupportKind::Unsupported);
     }
 }

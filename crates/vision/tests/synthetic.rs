@@ -112,6 +112,9 @@ fn depth_lift_recovers_boxes_and_supports() {
     let guidance = render(&boxes, true);
     let options = LiftOptions {
         priors: priors(&boxes),
+        // The masks are exact: no boundary margin (at 320 × 240 a 2-px margin leaves the
+        // cabinet's top face a sliver whose footprint turns by 20°).
+        mask_margin_px: 0,
         ..LiftOptions::default()
     };
     let lifted = lift_scene(&guidance, &options).unwrap();
@@ -235,6 +238,10 @@ fn noisy_scaled_depth_is_calibrated_on_the_floor() {
     .unwrap();
     let options = LiftOptions {
         priors: priors(&boxes),
+        // Exact masks (see above); and no median filter: a 5 × 5 window cut by the edge of
+        // box_0's small mask (30 × 25 px) bends its outline by 20°.
+        mask_margin_px: 0,
+        noisy_filter_radius: 0,
         ..LiftOptions::default()
     };
     let lifted = lift_scene(&guidance, &options).unwrap();
