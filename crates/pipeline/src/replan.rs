@@ -13,9 +13,10 @@ use crate::report::ReplanAction;
 ///
 /// The first re-plan moves the offenders (new asset variants, a new layout seed). From the
 /// second re-plan on it drops them (never the anchor) with everything they hold. Objects the
-/// prompt asked for (`hard`, or listed in the plan's `requested`) are dropped last: while other offenders remain, or until the final
-/// re-plan, they are moved again instead. With nothing to drop the action is
-/// [`ReplanAction::Move`].
+/// prompt asked for (`hard`, or listed in the plan's `requested`) are never dropped: while
+/// they are the only offenders they are moved again, and the final re-plan makes room for them
+/// by dropping up to three optional floor objects instead (the last in plan order that hold
+/// nothing the prompt asked for). With nothing to drop the action is [`ReplanAction::Move`].
 pub fn replan_action(
     plan: &Plan,
     offenders: &[String],
@@ -37,8 +38,8 @@ pub fn replan_action(
         Vec::new()
     } else if !optional.is_empty() {
         optional
-    } else if last_chance {
-        asked_for
+    } else if last_chance && !asked_for.is_empty() {
+        room_for_requested(plan, &requested)
     } else {
         Vec::new()
     };
@@ -48,6 +49,25 @@ pub fn replan_action(
         ReplanAction::Drop
     };
     (action, to_drop)
+}
+
+/// Up to three optional floor objects to drop so that the objects the prompt asked for find
+/// room: the last in plan order that are not the anchor, not asked for and hold nothing that
+/// is.
+fn room_for_requested(plan: &Plan, requested: &dyn Fn(&String) -> bool) -> Vec<String> {
+    let holds_requested = |id: &str| {
+        plan.objects
+            .iter()
+            .any(|o| o.parent.object_id() == Some(id) && requested(&o.id))
+    };
+    plan.objects
+        .iter()
+        .rev()
+        .filter(|o| o.parent == ParentRef::Ground && o.id != plan.anchor)
+        .filter(|o| !requested(&o.id) && !holds_requested(&o.id))
+        .take(3)
+        .map(|o| o.id.clone())
+        .collect()
 }
 
 /// Removes `ids` and every object resting on them (recursively) from the plan, with the
@@ -129,7 +149,7 @@ mod tests {
     }
 
     #[test]
-    fn requested_objects_are_dropped_only_at_the_last_chance() {
+    fn requested_objects_are_never_dropped_the_last_chance_makes_room() {
         let p = plan();
         let hard = ids(&p, true);
         assert!(!hard.is_empty(), "the prompt asks for a desk and a lamp");
@@ -144,15 +164,27 @@ mod tests {
             replan_action(&p, &mixed, 1, 3),
             (ReplanAction::Drop, optional[..1].to_vec())
         );
-        // Only requested objects: moved until the last re-plan, then dropped.
+        // Only requested objects: moved until the last re-plan, which drops optional floor
+        // objects to make room for them; never the requested objects themselves.
         assert_eq!(
             replan_action(&p, &hard, 1, 3),
             (ReplanAction::Move, Vec::new())
         );
-        assert_eq!(
-            replan_action(&p, &hard, 2, 3),
-            (ReplanAction::Drop, hard.clone())
-        );
+        let (action, freed) = replan_action(&p, &hard, 2, 3);
+        assert_eq!(action, ReplanAction::Drop);
+        assert!(!freed.is_empty() && freed.len() <= 3, "{freed:?}");
+        for id in &freed {
+            let o = p.object(id).unwrap();
+            assert!(
+                !o.hard && o.parent == ParentRef::Ground && *id != p.anchor,
+                "{id}"
+            );
+            assert!(!hard.contains(id));
+            assert!(p
+                .objects
+                .iter()
+                .all(|c| c.parent.object_id() != Some(id.as_str()) || !c.hard));
+        }
     }
 
     #[test]

@@ -73,10 +73,20 @@ pub(crate) fn place_children(
     let mut next_shelf: BTreeMap<usize, usize> = BTreeMap::new();
     let mut dropped = Vec::new();
     let mut done = vec![false; plan.objects.len()];
-    // Largest first, so a small item never blocks a big one on a shared surface.
+    // What the prompt asked for first (a crowded top drops an extra, never the stated mug),
+    // then largest first, so a small item never blocks a big one on a shared surface.
     let area = |i: usize| -(infos[i].size[0] as f64 * infos[i].size[2] as f64);
+    let asked = |i: usize| {
+        let o = &plan.objects[i];
+        o.hard || plan.requested.iter().any(|r| r.ids.contains(&o.id))
+    };
     let mut order: Vec<usize> = (0..plan.objects.len()).collect();
-    order.sort_by(|&a, &b| area(a).total_cmp(&area(b)).then(a.cmp(&b)));
+    order.sort_by(|&a, &b| {
+        asked(b)
+            .cmp(&asked(a))
+            .then(area(a).total_cmp(&area(b)))
+            .then(a.cmp(&b))
+    });
     loop {
         let mut progress = false;
         for &i in &order {
