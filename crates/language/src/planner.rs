@@ -147,15 +147,6 @@ impl<M: ChatModel> LlmPlanner<M> {
         let mut taken: BTreeSet<String> = plan.objects.iter().map(|o| o.id.clone()).collect();
         let mut renamed: Vec<(String, String)> = Vec::new();
         let mut added = 0usize;
-        let fresh_id = |category: &str, taken: &mut BTreeSet<String>| {
-            let mut n = 0;
-            while taken.contains(&format!("{category}_{n}")) {
-                n += 1;
-            }
-            let id = format!("{category}_{n}");
-            taken.insert(id.clone());
-            id
-        };
         if plan.anchor.is_empty() {
             if let Some(a) = offline.object(&offline.anchor) {
                 let id = fresh_id(&a.category, &mut taken);
@@ -230,6 +221,17 @@ impl<M: ChatModel> LlmPlanner<M> {
         }
         Ok(converted.plan)
     }
+}
+
+/// The first `CATEGORY_N` id not in `taken`, which it joins.
+fn fresh_id(category: &str, taken: &mut BTreeSet<String>) -> String {
+    let mut n = 0;
+    while taken.contains(&format!("{category}_{n}")) {
+        n += 1;
+    }
+    let id = format!("{category}_{n}");
+    taken.insert(id.clone());
+    id
 }
 
 fn user_message(request: &PlanRequest) -> String {
@@ -309,12 +311,7 @@ impl<M: ChatModel> LlmPlanner<M> {
                     }),
                 };
                 let Some(parent) = parent else { continue };
-                let mut n = 0;
-                while taken.contains(&format!("{}_{n}", source.category)) {
-                    n += 1;
-                }
-                let id = format!("{}_{n}", source.category);
-                taken.insert(id.clone());
+                let id = fresh_id(&source.category, &mut taken);
                 let mut copy = source.clone();
                 copy.id = id.clone();
                 copy.parent = parent;

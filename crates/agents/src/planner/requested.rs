@@ -78,7 +78,7 @@ impl super::KnowledgePlanner {
             &self.thesaurus.nouns,
             available,
         );
-        let mut taken: BTreeSet<&str> = BTreeSet::new();
+        let mut taken: BTreeSet<String> = BTreeSet::new();
         let mut out = Vec::new();
         for m in &analysis.mentions {
             let category = self.substitute(&m.category, available);
@@ -106,7 +106,7 @@ impl super::KnowledgePlanner {
                                     .is_some_and(|l| l.iter().any(|x| x == category))
                             })
                     };
-                    let free = |o: &&crate::plan::PlannedObject| !taken.contains(o.id.as_str());
+                    let free = |o: &&crate::plan::PlannedObject| !taken.contains(&o.id);
                     let ids: Vec<String> = plan
                         .objects
                         .iter()
@@ -121,12 +121,7 @@ impl super::KnowledgePlanner {
                         .take(m.count as usize)
                         .map(|o| o.id.clone())
                         .collect();
-                    taken.extend(
-                        plan.objects
-                            .iter()
-                            .filter(|o| ids.contains(&o.id))
-                            .map(|o| o.id.as_str()),
-                    );
+                    taken.extend(ids.iter().cloned());
                     if ids.len() < m.count as usize {
                         notes.push(format!(
                             "the plan holds {} of the {} asked for",

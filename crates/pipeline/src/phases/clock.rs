@@ -39,6 +39,25 @@ impl<'p> StageClock<'p> {
         Ok(value)
     }
 
+    /// Runs `work`, which cannot fail, as `stage` of `round`.
+    pub(crate) fn run_infallible<T>(
+        &mut self,
+        stage: Stage,
+        round: usize,
+        work: impl FnOnce() -> T,
+        note: impl FnOnce(&T) -> String,
+    ) -> T {
+        match self.run(
+            stage,
+            round,
+            || Ok::<T, std::convert::Infallible>(work()),
+            note,
+        ) {
+            Ok(value) => value,
+            Err(never) => match never {},
+        }
+    }
+
     /// The per-stage totals, in stage order.
     pub(crate) fn timings(&self) -> Vec<StageTiming> {
         Stage::ALL

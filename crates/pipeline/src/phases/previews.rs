@@ -22,24 +22,17 @@ pub(crate) fn previews(
             vec!["previews skipped: no renderer configured".into()],
         );
     };
-    let rendered = clock.run(
+    let rendered = clock.run_infallible(
         Stage::Render,
         best.round,
-        || {
-            Ok::<_, std::convert::Infallible>(renderer.render(
-                &best.scene,
-                &best.meshes,
-                options.preview_size,
-            ))
-        },
+        || renderer.render(&best.scene, &best.meshes, options.preview_size),
         |result| {
             let count = result.as_ref().map_or(0, Vec::len);
             format!("{count} image(s) with {}", renderer.name())
         },
     );
     match rendered {
-        Ok(Ok(images)) => (images, Vec::new()),
-        Ok(Err(e)) => (Vec::new(), vec![format!("previews skipped: {e}")]),
-        Err(never) => match never {},
+        Ok(images) => (images, Vec::new()),
+        Err(e) => (Vec::new(), vec![format!("previews skipped: {e}")]),
     }
 }
