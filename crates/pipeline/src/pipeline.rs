@@ -393,6 +393,7 @@ impl Pipeline {
             placement,
             verdict,
             guide_dropped: layout.dropped,
+            guide_notes: layout.notes,
             guidance: layout.guidance,
             round,
         })

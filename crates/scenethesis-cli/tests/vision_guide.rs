@@ -205,11 +205,14 @@ fn generate_online_edits_the_empty_room_and_lifts_the_vlm_boxes() {
     let (render, boxes) = furnished_render(scene);
     let edited = ImageData::from_bytes(render.clone(), "the furnished render").unwrap();
     let answer = boxes.to_string();
+    let supports = bed_on_wardrobe(scene);
     let server = TestServer::start(move |_, request| {
         if request.path.ends_with("/images/edits") {
             Reply::json(200, &openai_image(&edited))
         } else if request.path.ends_with("/chat/completions") {
-            Reply::json(200, &openai_completion("eyes-1", &answer))
+            let asks_supports = request.body.windows(15).any(|w| w == b"object_supports");
+            let content = if asks_supports { &supports } else { &answer };
+            Reply::json(200, &openai_completion("eyes-1", content))
         } else {
             Reply::json(404, &json!({"error": {"message": "no such endpoint"}}))
         }
@@ -248,7 +251,12 @@ fn generate_online_edits_the_empty_room_and_lifts_the_vlm_boxes() {
         .iter()
         .filter(|r| r.path.ends_with("/chat/completions"))
         .collect();
-    assert_eq!(chats.len(), 1, "one VLM request for the boxes");
+    assert_eq!(
+        chats.len(),
+        2,
+        "one VLM request for the boxes, one for the supports"
+    );
+    assert!(chats[1].json().to_string().contains("object_supports"));
     let chat = chats[0].json();
     assert_eq!(chat["model"], "eyes-1");
     let sent = chat.to_string();
@@ -269,6 +277,15 @@ fn generate_online_edits_the_empty_room_and_lifts_the_vlm_boxes() {
         .collect();
     assert!(models.iter().any(|m| m.contains("painter-1")), "{models:?}");
     assert!(models.iter().any(|m| m.contains("eyes-1")), "{models:?}");
+    // The model put the bed on the wardrobe: geometry plainly has it on the floor, so it stays
+    // there and the disagreement is in the report's notes.
+    let notes = report["notes"].to_string();
+    let bed = truth_id(scene, "bed");
+    assert!(
+        notes.contains(&format!("support of `{bed}`: the model says `on "))
+            && notes.contains("the geometry is kept"),
+        "{notes}"
+    );
     // Without depth the boxes are placed by metrology under the render's camera: the large
     // floor objects land near where the render shows them.
     let truth = objects(scene);
@@ -281,6 +298,121 @@ fn generate_online_edits_the_empty_room_and_lifts_the_vlm_boxes() {
         let d = distance(translation(o), translation(&truth[id]));
         assert!(d < 0.5, "{id} is {d} m from where the render shows it");
     }
+}
+
+/// With --llm-cache the image model's edit is recorded with the VLM's answer: once the server
+/// is gone, a replay from the cache alone gives the same scene byte for byte.
+#[test]
+fn generate_online_replays_the_image_edit_from_the_cache() {
+    let (scene, _) = base();
+    let (render, boxes) = furnished_render(scene);
+    let edited = ImageData::from_bytes(render, "the furnished render").unwrap();
+    let answer = boxes.to_string();
+    let supports = bed_on_wardrobe(scene);
+    let server = TestServer::start(move |_, request| {
+        if request.path.ends_with("/images/edits") {
+            Reply::json(200, &openai_image(&edited))
+        } else if request.path.ends_with("/chat/completions") {
+            let asks_supports = request.body.windows(15).any(|w| w == b"object_supports");
+            let content = if asks_supports { &supports } else { &answer };
+            Reply::json(200, &openai_completion("eyes-1", content))
+        } else {
+            Reply::json(404, &json!({"error": {"message": "no such endpoint"}}))
+        }
+    });
+    let base_url = server.base_url.clone();
+    let dir = tempfile::tempdir().unwrap();
+    let cache = dir.path().join("cache");
+    let run = |out: &Path, extra: &[&str]| {
+        let mut args = vec![
+            "generate",
+            PROMPT,
+            "--out",
+            out.to_str().unwrap(),
+            "--no-preview",
+            "--max-replans",
+            "0",
+            "--guide",
+            "vision",
+            "--base-url",
+            &base_url,
+            "--image-model",
+            "painter-1",
+            "--vlm-model",
+            "eyes-1",
+            "--llm-cache",
+            cache.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        scenethesis(&args)
+    };
+    let first = dir.path().join("first");
+    let out = run(&first, &[]);
+    assert!(out.status.success(), "{}", text(&out));
+    let requests = server.requests();
+    assert!(requests.iter().any(|r| r.path.ends_with("/images/edits")));
+    drop(server);
+    // The edit is recorded under its model and its input's digest, not with the input itself.
+    let records: Vec<String> = std::fs::read_dir(&cache)
+        .unwrap()
+        .map(|e| std::fs::read_to_string(e.unwrap().path()).unwrap())
+        .collect();
+    let edit = records
+        .iter()
+        .find(|r| r.contains("\"operation\":\"image-edit\""))
+        .expect("the image edit is in the cache");
+    assert!(
+        edit.contains("painter-1") && edit.contains("\"sha256\":"),
+        "{}",
+        &edit[..300.min(edit.len())]
+    );
+    let second = dir.path().join("second");
+    let out = run(&second, &["--llm-replay"]);
+    assert!(
+        out.status.success(),
+        "replay without the server: {}",
+        text(&out)
+    );
+    let a = std::fs::read(first.join("scene.json")).unwrap();
+    let b = std::fs::read(second.join("scene.json")).unwrap();
+    assert!(a == b, "the replay gives the same scene.json");
+    // Without the edit in the cache the replay cannot furnish the room: a clear miss.
+    for r in std::fs::read_dir(&cache).unwrap() {
+        let path = r.unwrap().path();
+        if std::fs::read_to_string(&path)
+            .unwrap()
+            .contains("\"operation\":\"image-edit\"")
+        {
+            std::fs::remove_file(path).unwrap();
+        }
+    }
+    let out = run(&dir.path().join("third"), &["--llm-replay"]);
+    assert!(!out.status.success(), "a replay missing the edit fails");
+    assert!(!dir.path().join("third").exists(), "nothing is written");
+}
+
+fn truth_id(scene_dir: &Path, category: &str) -> String {
+    objects(scene_dir)
+        .into_iter()
+        .find(|(_, o)| o["category"] == category)
+        .map(|(id, _)| id)
+        .unwrap_or_else(|| panic!("no {category} in the scene"))
+}
+
+/// A VLM answer on the supports: every object on the floor but the bed, which it puts on the
+/// wardrobe (impossible for the lifted boxes).
+fn bed_on_wardrobe(scene_dir: &Path) -> String {
+    let supports: Vec<Value> = objects(scene_dir)
+        .iter()
+        .map(|(id, o)| {
+            if o["category"] == "bed" {
+                json!({"id": id, "relation": "on", "parent": truth_id(scene_dir, "wardrobe")})
+            } else {
+                json!({"id": id, "relation": "floor", "parent": ""})
+            }
+        })
+        .collect();
+    json!({ "supports": supports }).to_string()
 }
 
 fn edited_b64(bytes: &[u8]) -> String {

@@ -18,6 +18,7 @@ use scenethesis_vision::{lift_scene, LiftOptions};
 use crate::assemble::build_scene;
 use crate::camera::{estimate_from_floor, DEFAULT_VERTICAL_FOV};
 use crate::detect::{ask_boxes, masks_from_boxes, match_labels};
+use crate::relations::ask_supports;
 use crate::source::{decode_to_size, png_bytes, GivenGuidance, RoomRenderer};
 
 /// Where the guidance image comes from.
@@ -122,7 +123,8 @@ impl VisionGuide {
     }
 
     /// Boxes of the planned objects from this vision-language model (used when no masks are
-    /// given).
+    /// given), and the support relations it states, cross-checked with the lifted geometry
+    /// (always, given masks or not).
     pub fn with_vlm(mut self, vlm: impl ChatModel + 'static) -> Self {
         self.vlm = Some(Box::new(vlm));
         self
@@ -434,8 +436,29 @@ impl Guide for VisionGuide {
                 (id.clone(), nalgebra::Vector3::new(x, y, z))
             })
             .collect();
-        let lifted =
+        let mut lifted =
             lift_scene(&guidance, &options).map_err(|e| provider("lift", e.to_string()))?;
+        // The model's support relations, cross-checked with the lift's: where the geometry is
+        // ambiguous the model decides, where they clearly disagree the geometry is kept and
+        // the disagreement noted.
+        let mut notes = Vec::new();
+        if let (Some(vlm), false) = (&self.vlm, lifted.boxes.is_empty()) {
+            let objects: Vec<(&str, &str)> = lifted
+                .boxes
+                .iter()
+                .filter_map(|b| plan.object(&b.id))
+                .map(|o| (o.id.as_str(), o.category.as_str()))
+                .collect();
+            let (stated, skipped) =
+                ask_supports(vlm.as_ref(), plan, &objects, image_data.clone(), seed)
+                    .map_err(|e| provider(vlm.name(), e))?;
+            for (id, why) in skipped {
+                notes.push(format!("{}: support of `{id}` ignored: {why}", vlm.name()));
+            }
+            for check in lifted.cross_check(&stated, &options) {
+                notes.push(format!("{}: {}", vlm.name(), check.note()));
+            }
+        }
         for o in &plan.objects {
             if lifted.boxes.iter().any(|b| b.id == o.id) {
                 continue;
@@ -474,6 +497,7 @@ impl Guide for VisionGuide {
             dropped,
             walkway,
             guidance: Some(guidance),
+            notes,
         })
     }
 }

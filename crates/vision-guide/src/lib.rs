@@ -17,13 +17,15 @@
 //!
 //! Modules, one phase each: [`source`] (where the image comes from, and file checks),
 //! [`camera`] (a camera estimated from the floor), [`detect`] (masks for the planned objects),
-//! [`assemble`] (boxes → scene graph), and the guide itself.
+//! [`relations`] (the support relations a vision-language model states, cross-checked with the
+//! lift), [`assemble`] (boxes → scene graph), and the guide itself.
 #![warn(missing_docs)]
 
 pub mod assemble;
 pub mod camera;
 pub mod detect;
 mod guide;
+pub mod relations;
 pub mod source;
 
 pub use guide::{edit_prompt, VisionGuide};

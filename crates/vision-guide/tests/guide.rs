@@ -245,6 +245,17 @@ impl ChatModel for BoxesFromMasks {
     }
     fn chat(&self, request: &ChatRequest) -> Result<ChatResponse, ProviderError> {
         let schema = request.schema.as_ref().expect("a structured request");
+        if schema.name == "object_supports" {
+            // States no relation: the lift's supports stand.
+            let json = serde_json::json!({ "supports": [] });
+            return Ok(ChatResponse {
+                text: json.to_string(),
+                json: Some(json),
+                model: "boxes-from-masks".into(),
+                usage: TokenUsage::default(),
+                notes: vec![],
+            });
+        }
         let text = request.messages.last().unwrap().joined_text();
         let objects: Vec<serde_json::Value> = self
             .0

@@ -82,6 +82,10 @@ pub struct LiftOptions {
     /// Move each box resting on another onto that box's top (its bottom at the parent's
     /// top): what holds it up is known better than its noisy height.
     pub settle: bool,
+    /// Take the depth noise's inflation off the footprint: along each of the rectangle's axes
+    /// the trimmed extremes of noisy points sit about z(trim) σ beyond the true faces, σ being
+    /// the noise's spread along that axis (the same correction the heights get).
+    pub footprint_noise_correction: bool,
 }
 
 impl Default for LiftOptions {
@@ -105,6 +109,7 @@ impl Default for LiftOptions {
             interior_min_points: 200,
             support_reach: 0.3,
             settle: true,
+            footprint_noise_correction: false,
         }
     }
 }
@@ -166,6 +171,52 @@ pub struct LiftedScene {
     /// The depth map's relative per-pixel noise ([`crate::points::depth_noise`]; 0 without
     /// depth).
     pub depth_noise: f64,
+}
+
+impl LiftedScene {
+    /// Reconciles the lifted supports with the relations a model `stated`
+    /// ([`crate::cross_check::cross_check`], with `options`' contact gap and support reach):
+    /// where the model's answer is taken, the box is moved to match (onto its new parent's top,
+    /// or down to the floor) and boxes resting on it follow. Returns every disagreement.
+    pub fn cross_check(
+        &mut self,
+        stated: &[SupportGuess],
+        options: &LiftOptions,
+    ) -> Vec<crate::cross_check::SupportCheck> {
+        use crate::cross_check::Decision;
+        let checks = crate::cross_check::cross_check(
+            &self.boxes,
+            &mut self.supports,
+            stated,
+            options.contact_gap,
+            options.support_reach,
+        );
+        let taken: Vec<&str> = checks
+            .iter()
+            .filter(|c| c.decision == Decision::Model)
+            .map(|c| c.id.as_str())
+            .collect();
+        if taken.is_empty() {
+            return checks;
+        }
+        for b in self
+            .boxes
+            .iter_mut()
+            .filter(|b| taken.contains(&b.id.as_str()))
+        {
+            let grounded = self
+                .supports
+                .iter()
+                .any(|s| s.id == b.id && s.kind == SupportKind::Ground);
+            if grounded {
+                b.center.y = b.half_extents.y;
+            }
+        }
+        if options.settle {
+            settle(&mut self.boxes, &self.supports);
+        }
+        checks
+    }
 }
 
 /// How precise one object's points are, for weighing them against a size prior.
@@ -454,6 +505,9 @@ pub fn lift_points_with(
     if let Some(yaw) = snap_to_walls(rect.yaw, &options.wall_yaws, options.yaw_snap) {
         rect = rectangle_at(&floor, yaw, options.trim);
     }
+    if options.footprint_noise_correction && precision.depth_noise > 0.0 {
+        deflate(&mut rect, &kept, eye, precision.depth_noise, options.trim);
+    }
     // The left-out boundary narrows what is seen across the line of sight; along it the
     // near face stays where it is.
     let sight = (rect.center - Point2::new(eye.x, eye.z))
@@ -502,6 +556,36 @@ pub fn lift_points_with(
         depth_source: source,
         completed,
     })
+}
+
+/// Takes the depth noise's inflation off `rect`, the trimmed footprint of `points`: noise of
+/// relative spread `noise` along each ray moves a point across the floor by
+/// `noise · distance · |horizontal ray · axis|` along each of the rectangle's axes, and the
+/// trimmed extremes sit about z(1 − `trim`) of that beyond the true faces. Each half extent
+/// shrinks by it (never below zero), the centre stays.
+pub fn deflate(
+    rect: &mut FloorRectangle,
+    points: &[Point3<f64>],
+    eye: Point3<f64>,
+    noise: f64,
+    trim: f64,
+) {
+    if points.is_empty() {
+        return;
+    }
+    let z = normal_quantile(1.0 - trim.max(1e-6));
+    for (k, axis) in [(0, rect.axis_x()), (1, rect.axis_z())] {
+        let mut spread: Vec<f64> = points
+            .iter()
+            .map(|p| {
+                let ray = p - eye;
+                noise * Vector2::new(ray.x, ray.z).dot(&axis).abs()
+            })
+            .collect();
+        let sigma = median(&mut spread).unwrap_or(0.0);
+        let half = &mut rect.half_extents[k];
+        *half = (*half - z * sigma).max(0.0);
+    }
 }
 
 /// The yaw `yaw` snapped to the nearest of `walls` (modulo 90°) when within `tolerance`.

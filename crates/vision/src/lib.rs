@@ -11,7 +11,8 @@
 //! 3. [`footprint`]: the minimum-area rectangle of the points' floor projection gives yaw and
 //!    horizontal extent.
 //! 4. [`boxes`]: the gravity-aligned box per object ([`LiftedBox`]).
-//! 5. [`support`]: support relations, lowest first, from footprint overlap and height gaps.
+//! 5. [`support`]: support relations, lowest first, from footprint overlap and height gaps;
+//!    [`cross_check`] reconciles them with the relations a vision-language model states.
 //!
 //! Everything here is deterministic and free of GPU, HTTP and model runtimes; the model-backed
 //! pieces (segmentation, monocular depth) produce the [`Guidance`] this crate reads.
@@ -44,6 +45,7 @@
 #![warn(missing_docs)]
 
 pub mod boxes;
+pub mod cross_check;
 mod error;
 pub mod files;
 pub mod footprint;
@@ -53,6 +55,7 @@ pub mod points;
 pub mod support;
 
 pub use boxes::{lift_scene, LiftOptions, LiftedBox, LiftedScene};
+pub use cross_check::{cross_check, Decision, Evidence, SupportCheck};
 pub use error::LiftError;
 pub use footprint::{min_area_rectangle, FloorRectangle};
 pub use support::{

@@ -70,6 +70,9 @@ pub struct GuidedLayout {
     /// depth, per-object masks). Guides that read no image (the [`ProceduralGuide`]) give
     /// `None`, and the pipeline then optimizes without alignment terms.
     pub guidance: Option<scenethesis_correspondence::Guidance>,
+    /// What the guide wants said in the run's report (e.g. where a model's answer and the
+    /// geometry disagreed, and which was kept).
+    pub notes: Vec<String>,
 }
 
 /// Why a plan could not be laid out.

@@ -113,6 +113,7 @@ impl ProceduralGuide {
                     .collect(),
             },
             guidance: None,
+            notes: Vec::new(),
         })
     }
 }

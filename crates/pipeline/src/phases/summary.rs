@@ -65,7 +65,7 @@ pub(crate) fn report(best: &Attempt, run: RunRecord<'_>) -> Report {
         assumptions: run.original_plan.assumptions.clone(),
         limits: run.original_plan.limits.clone(),
         prompt_check: scenethesis_agents::check_prompt(run.original_plan, &best.scene),
-        notes: run.notes,
+        notes: best.guide_notes.iter().cloned().chain(run.notes).collect(),
         timings: run.timings,
         total_seconds: run.total_seconds,
         providers: Vec::new(),

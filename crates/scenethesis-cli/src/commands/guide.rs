@@ -45,7 +45,8 @@ pub struct GuideArgs {
     #[arg(long, value_name = "FILE")]
     pub guide_image: Option<PathBuf>,
     /// Instance masks of the guidance image: a 16-bit PNG of instance values (0 = none);
-    /// needs --guide-labels. Without masks the VLM (--vlm-model) boxes the objects.
+    /// needs --guide-labels. Without masks the VLM (--vlm-model) boxes the objects; with them,
+    /// a --vlm-model given is asked only for the support relations.
     #[arg(long, value_name = "IDS_PNG", requires_all = ["guide_image", "guide_labels"])]
     pub guide_masks: Option<PathBuf>,
     /// Labels of --guide-masks: {"VALUE": {"id": "sofa_0", "category": "sofa"}, …}.
@@ -107,7 +108,16 @@ impl GuideArgs {
                     .context("reading the guidance files")?;
                 let guide = VisionGuide::from_files(given);
                 if self.guide_masks.is_some() {
-                    guide
+                    // Masks given: a VLM named with --vlm-model still cross-checks the supports.
+                    match &models.vlm_model {
+                        Some(_) => {
+                            let chat = client(models)?
+                                .vlm()
+                                .context("the vision guide asks --vlm-model for the supports")?;
+                            guide.with_vlm(models.wrap(chat)?)
+                        }
+                        None => guide,
+                    }
                 } else {
                     let client = client(models)?;
                     let chat = client
@@ -118,9 +128,9 @@ impl GuideArgs {
             }
             None => {
                 let client = client(models)?;
-                let images = client.image_model().context(
+                let images = models.wrap_images(client.image_model().context(
                     "--guide vision without --guide-image has an image model furnish the empty room",
-                )?;
+                )?)?;
                 let chat = client
                     .vlm()
                     .context("the vision guide boxes the objects with a vision-language model")?;
