@@ -4,7 +4,8 @@
 //! whose bottom meets another box's top within a gap tolerance, with most of its footprint over
 //! that box, stands on it; one whose bottom lies between another box's bottom and top, with its
 //! footprint inside, sits inside it (a shelf, a cabinet). Anything else is reported as
-//! unsupported so the caller can decide (a wall-mounted object, or a lifting error).
+//! unsupported so the caller can decide (a wall-mounted object, or a lifting error). A box at
+//! the floor lying mostly over a larger flat one (a mat, a towel) rests on it.
 
 use serde::{Deserialize, Serialize};
 
@@ -64,6 +65,24 @@ fn under(boxes: &[LiftedBox], i: usize) -> Option<usize> {
         }
     }
     best
+}
+
+/// The flat box (a mat, a towel, a rug: its top within `gap` of the floor) a floor-level box
+/// `i` lies on: larger than it and under at least half of its footprint; the largest such.
+/// Both bottoms are at the floor, so the height order cannot tell which holds which.
+fn lying_on(boxes: &[LiftedBox], i: usize, gap: f64) -> Option<usize> {
+    let foot = boxes[i].footprint();
+    boxes
+        .iter()
+        .enumerate()
+        .filter(|(j, a)| {
+            *j != i
+                && a.top() <= gap
+                && a.footprint().area() > foot.area()
+                && foot.fraction_inside(&a.footprint(), 0.0) >= 0.5
+        })
+        .max_by(|(_, a), (_, c)| a.footprint().area().total_cmp(&c.footprint().area()))
+        .map(|(j, _)| j)
 }
 
 /// Infers the support of every box. `gap` is the largest vertical gap in metres between a
@@ -131,6 +150,11 @@ pub fn infer_supports_within(boxes: &[LiftedBox], gap: f64, reach: f64) -> Vec<S
             }
         }
         let guess = match best {
+            _ if bottom <= gap && lying_on(boxes, i, gap).is_some() => SupportGuess {
+                id: b.id.clone(),
+                parent: lying_on(boxes, i, gap).map(|j| boxes[j].id.clone()),
+                kind: SupportKind::On,
+            },
             _ if bottom <= gap => match under(boxes, i) {
                 Some(j) => SupportGuess {
                     id: b.id.clone(),
@@ -279,5 +303,25 @@ mod tests {
         // A painting 0.55 m above the table stays mounted.
         let painting = reaching.iter().find(|s| s.id == "painting").unwrap();
         assert_eq!(painting.kind, SupportKind::Unsupported);
+    }
+
+    #[test]
+    fn objects_at_the_floor_over_a_towel_lie_on_it() {
+        let boxes = [
+            lifted("towel", [0.0, 0.005, 0.0], [0.9, 0.005, 0.5]),
+            lifted("ball", [0.3, 0.11, 0.1], [0.1, 0.1, 0.1]),
+            lifted("keys", [-0.2, 0.015, 0.0], [0.04, 0.005, 0.03]),
+            // Mostly off the towel: on the floor.
+            lifted("bag", [0.95, 0.2, 0.0], [0.2, 0.2, 0.15]),
+        ];
+        let s = infer_supports(&boxes, 0.06);
+        let of = |id: &str| {
+            let g = s.iter().find(|g| g.id == id).unwrap();
+            (g.kind, g.parent.clone())
+        };
+        assert_eq!(of("ball"), (SupportKind::On, Some("towel".into())));
+        assert_eq!(of("keys"), (SupportKind::On, Some("towel".into())));
+        assert_eq!(of("bag"), (SupportKind::Ground, None));
+        assert_eq!(of("towel"), (SupportKind::Ground, None));
     }
 }
