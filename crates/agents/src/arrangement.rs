@@ -21,6 +21,9 @@ pub const ARRANGEMENT_TOML: &str = include_str!("../knowledge/arrangement.toml")
 #[serde(deny_unknown_fields)]
 struct FacesRule {
     rule: String,
+    /// `reject` (default): a broken instance fails the judge; `report`: only reported.
+    #[serde(default)]
+    judge: Severity,
     subject: Vec<String>,
     target: Vec<String>,
     within: f64,
@@ -31,6 +34,9 @@ struct FacesRule {
 #[serde(deny_unknown_fields)]
 struct AgainstRule {
     rule: String,
+    /// `reject` (default): a broken instance fails the judge; `report`: only reported.
+    #[serde(default)]
+    judge: Severity,
     subject: Vec<String>,
 }
 
@@ -39,6 +45,9 @@ struct AgainstRule {
 #[serde(deny_unknown_fields)]
 struct FlanksRule {
     rule: String,
+    /// `reject` (default): a broken instance fails the judge; `report`: only reported.
+    #[serde(default)]
+    judge: Severity,
     subject: Vec<String>,
     target: Vec<String>,
     within: f64,
@@ -50,6 +59,9 @@ struct FlanksRule {
 #[serde(deny_unknown_fields)]
 pub(crate) struct RunsRule {
     pub(crate) rule: String,
+    /// `reject` (default): a broken instance fails the judge; `report`: only reported.
+    #[serde(default)]
+    judge: Severity,
     /// The categories that form the runs.
     pub(crate) members: Vec<String>,
     /// The rule applies only to scenes with one of these on the floor (empty: always).
@@ -97,7 +109,21 @@ impl RunsRule {
 #[serde(deny_unknown_fields)]
 struct OrientedRule {
     rule: String,
+    /// `reject` (default): a broken instance fails the judge; `report`: only reported.
+    #[serde(default)]
+    judge: Severity,
     subject: Vec<String>,
+}
+
+/// What a broken instance of a rule means for the judge.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+enum Severity {
+    /// The judge rejects the scene (and the pipeline re-plans).
+    #[default]
+    Reject,
+    /// Reported in the verdict only.
+    Report,
 }
 
 /// The arrangement rules, as read from TOML.
@@ -167,6 +193,10 @@ impl ArrangementRules {
 pub struct BrokenRule {
     /// The rule, in words.
     pub rule: String,
+    /// Whether the judge rejects a scene for it (`false`: the rule is only reported, see
+    /// `knowledge/arrangement.toml`).
+    #[serde(default = "yes")]
+    pub rejects: bool,
     /// The object it was checked on.
     pub subject: String,
     /// What was measured.
@@ -182,6 +212,10 @@ pub struct ArrangementCheck {
     pub held: u32,
     /// The instances that do not hold.
     pub broken: Vec<BrokenRule>,
+    /// The layout of the scene's runs ([`run_layout`]: `one-wall`, `l-shaped`, `u-shaped`,
+    /// `galley`), when a run rule applies.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub layout: Option<String>,
 }
 
 impl ArrangementCheck {
@@ -190,17 +224,56 @@ impl ArrangementCheck {
         (self.checked > 0).then(|| f64::from(self.held) / f64::from(self.checked))
     }
 
-    fn record(&mut self, rule: &str, subject: &str, failure: Option<String>) {
+    fn record(&mut self, rule: &str, judge: Severity, subject: &str, failure: Option<String>) {
         self.checked += 1;
         match failure {
             None => self.held += 1,
             Some(reason) => self.broken.push(BrokenRule {
                 rule: rule.to_owned(),
+                rejects: judge == Severity::Reject,
                 subject: subject.to_owned(),
                 reason,
             }),
         }
     }
+}
+
+/// The layout of a scene's runs (`[[runs]]` rules that apply), named by the walls their members
+/// stand against: `one-wall` (the back wall), `l-shaped` (the back wall and a side wall),
+/// `u-shaped` (the back wall and both side walls), `galley` (the back wall and the door wall),
+/// else the list of walls; `None` when no run rule applies.
+pub fn run_layout(scene: &Scene) -> Option<String> {
+    let floor: Vec<&SceneObject> = scene
+        .objects
+        .iter()
+        .filter(|o| o.parent == ParentRef::Ground)
+        .collect();
+    let rule = ArrangementRules::builtin()
+        .runs
+        .iter()
+        .find(|r| r.applies(floor.iter().map(|o| o.category.as_str())))?;
+    let walls: std::collections::BTreeSet<&str> = floor
+        .iter()
+        .filter(|o| rule.members.contains(&o.category))
+        .filter_map(|o| {
+            o.relations
+                .iter()
+                .find(|r| r.kind == RelationKind::AgainstWall)
+                .map(|r| r.target.as_str())
+        })
+        .collect();
+    let walls: Vec<&str> = walls.into_iter().collect();
+    Some(match walls.as_slice() {
+        ["wall_0"] => "one-wall".to_owned(),
+        ["wall_0", "wall_1"] | ["wall_0", "wall_3"] => "l-shaped".to_owned(),
+        ["wall_0", "wall_1", "wall_3"] => "u-shaped".to_owned(),
+        ["wall_0", "wall_2"] => "galley".to_owned(),
+        other => other.join("+"),
+    })
+}
+
+fn yes() -> bool {
+    true
 }
 
 /// Checks the built-in arrangement rules on a scene.
@@ -251,14 +324,14 @@ pub fn check_arrangement_with(rules: &ArrangementRules, scene: &Scene) -> Arrang
                         .join(", ")
                 )
             });
-            check.record(&r.rule, &s.id, failure);
+            check.record(&r.rule, r.judge, &s.id, failure);
         }
     }
     for r in &rules.against {
         for s in of(&r.subject) {
             let failure = (!holds(s, RelationKind::AgainstWall, GROUND_ID))
                 .then(|| "its back is not against a wall".to_owned());
-            check.record(&r.rule, &s.id, failure);
+            check.record(&r.rule, r.judge, &s.id, failure);
         }
     }
     for r in &rules.flanks {
@@ -281,7 +354,7 @@ pub fn check_arrangement_with(rules: &ArrangementRules, scene: &Scene) -> Arrang
                         .join(", ")
                 )
             });
-            check.record(&r.rule, &s.id, failure);
+            check.record(&r.rule, r.judge, &s.id, failure);
         }
     }
     for r in &rules.runs {
@@ -300,7 +373,7 @@ pub fn check_arrangement_with(rules: &ArrangementRules, scene: &Scene) -> Arrang
             } else {
                 None
             };
-            check.record(&r.rule, &s.id, failure);
+            check.record(&r.rule, r.judge, &s.id, failure);
         }
     }
     for r in &rules.oriented {
@@ -310,9 +383,10 @@ pub fn check_arrangement_with(rules: &ArrangementRules, scene: &Scene) -> Arrang
             let faces_room = to_centre.norm() < 1e-6 || front_dir(s).dot(&to_centre) > 0.0;
             let failure = (!faces_room && !holds(s, RelationKind::AgainstWall, GROUND_ID))
                 .then(|| "turned away from the room and not against a wall".to_owned());
-            check.record(&r.rule, &s.id, failure);
+            check.record(&r.rule, r.judge, &s.id, failure);
         }
     }
+    check.layout = run_layout(scene);
     check
 }
 

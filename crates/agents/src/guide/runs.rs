@@ -435,7 +435,17 @@ fn lay(
                 x += p.w + RUN_GAP;
             }
         }
-        return Some(out);
+        // A member the plan puts against a particular wall stays on it.
+        let on_its_wall = out.iter().all(|(i, _, side)| {
+            let o = &state.plan.objects[*i];
+            o.relations
+                .iter()
+                .filter(|r| r.kind == RelationKind::AgainstWall)
+                .all(|r| sides[*side].id.as_deref() == Some(r.target.as_str()))
+        });
+        if on_its_wall {
+            return Some(out);
+        }
     }
     None
 }
