@@ -94,12 +94,13 @@ fn classify(view: &RenderedView, target: &TargetRegion<'_>, margin: f64) -> Clas
     }
 }
 
+/// The upper median (the element at `len / 2` in sorted order), by selection (no full sort).
 fn median(v: &mut [f64]) -> f64 {
     if v.is_empty() {
         return 0.0;
     }
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
+    let mid = v.len() / 2;
+    *v.select_nth_unstable_by(mid, f64::total_cmp).1
 }
 
 /// The robust centre and spread (1.4826 · MAD) of the depth differences over the overlap.
