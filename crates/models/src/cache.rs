@@ -325,9 +325,51 @@ impl<M: ImageGenerator> ImageGenerator for Cached<M> {
     }
 
     fn edit(&self, request: &ImageEditRequest) -> Result<GeneratedImage, ProviderError> {
-        self.through("image-edit", &self.inner.name(), request, || {
-            self.inner.edit(request)
-        })
+        self.through(
+            "image-edit",
+            &self.inner.name(),
+            &EditKey::of(request),
+            || self.inner.edit(request),
+        )
+    }
+}
+
+/// What an image edit is recorded under: the request with its input image and mask replaced by
+/// their digests, so a record stays small and names its input without holding it.
+#[derive(Serialize)]
+struct EditKey<'a> {
+    prompt: &'a str,
+    image: ImageDigest,
+    mask: Option<ImageDigest>,
+    size: [u32; 2],
+    seed: Option<u64>,
+}
+
+/// An encoded image named by its format and the SHA-256 of its bytes.
+#[derive(Serialize)]
+struct ImageDigest {
+    format: crate::image::ImageFormat,
+    sha256: String,
+}
+
+impl ImageDigest {
+    fn of(image: &ImageData) -> Self {
+        Self {
+            format: image.format,
+            sha256: sha256_hex(&image.bytes),
+        }
+    }
+}
+
+impl<'a> EditKey<'a> {
+    fn of(request: &'a ImageEditRequest) -> Self {
+        Self {
+            prompt: &request.prompt,
+            image: ImageDigest::of(&request.image),
+            mask: request.mask.as_ref().map(ImageDigest::of),
+            size: request.size,
+            seed: request.seed,
+        }
     }
 }
 
@@ -436,5 +478,85 @@ mod tests {
         assert!(text.contains(&format!("{key}.json")), "{text}");
         assert!(text.contains("is not JSON"), "{text}");
         assert!(std::error::Error::source(&err).is_some());
+    }
+
+    /// An image model that paints a fresh image per call (a counter in its first pixel byte),
+    /// so a replay that went to it would differ.
+    struct Painter(std::sync::atomic::AtomicU8);
+
+    impl ImageGenerator for Painter {
+        fn name(&self) -> String {
+            "test/painter".to_string()
+        }
+        fn generate(&self, _: &ImageRequest) -> Result<GeneratedImage, ProviderError> {
+            unreachable!("the test only edits")
+        }
+        fn edit(&self, request: &ImageEditRequest) -> Result<GeneratedImage, ProviderError> {
+            let n = self.0.fetch_add(1, Ordering::Relaxed);
+            let mut bytes = request.image.bytes.clone();
+            bytes.push(n);
+            Ok(GeneratedImage {
+                image: ImageData {
+                    format: request.image.format,
+                    bytes,
+                },
+                revised_prompt: None,
+            })
+        }
+    }
+
+    #[test]
+    fn image_edits_are_recorded_under_the_input_digest_and_replayed() {
+        let dir = tempfile::tempdir().unwrap();
+        let request = |image: &[u8], size| ImageEditRequest {
+            prompt: "furnish it".to_string(),
+            image: ImageData {
+                format: crate::image::ImageFormat::Png,
+                bytes: image.to_vec(),
+            },
+            mask: None,
+            size,
+            seed: Some(3),
+        };
+        let input = vec![7u8; 4096];
+        let painter = Painter(Default::default());
+        let recording = Cached::new(
+            painter,
+            ResponseCache::open(dir.path(), CacheMode::ReadWrite).unwrap(),
+        );
+        let first = recording.edit(&request(&input, [64, 32])).unwrap();
+        // A second identical request is a hit: the painter is not called again.
+        assert_eq!(recording.edit(&request(&input, [64, 32])).unwrap(), first);
+        assert_eq!(recording.inner().0.load(Ordering::Relaxed), 1);
+        // Another input image or size is another request.
+        let other = recording.edit(&request(&[8u8; 4096], [64, 32])).unwrap();
+        assert_ne!(other, first);
+        recording.edit(&request(&input, [32, 64])).unwrap();
+        assert_eq!(recording.inner().0.load(Ordering::Relaxed), 3);
+        // The record names the input by its digest and does not hold it.
+        let record = fs::read_to_string(dir.path().join(format!(
+            "{}.json",
+            ResponseCache::key(
+                "image-edit",
+                "test/painter",
+                &EditKey::of(&request(&input, [64, 32]))
+            )
+        )))
+        .unwrap();
+        assert!(record.contains(&sha256_hex(&input)), "{record}");
+        // Only the answer's image is held (base64 of 4 kB is 5.5 kB), not the input's as well.
+        assert!(record.len() < 8000, "{} bytes", record.len());
+        // Offline replay answers byte for byte without the provider.
+        let replay = Cached::new(
+            Painter(Default::default()),
+            ResponseCache::open(dir.path(), CacheMode::ReplayOnly).unwrap(),
+        );
+        assert_eq!(replay.edit(&request(&input, [64, 32])).unwrap(), first);
+        assert_eq!(replay.inner().0.load(Ordering::Relaxed), 0);
+        let miss = replay.edit(&request(&input, [16, 16])).unwrap_err();
+        assert!(
+            matches!(miss.kind, ProviderErrorKind::CacheMiss { .. }),
+            "{miss}"
+        );
     }
 }

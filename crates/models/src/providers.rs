@@ -53,6 +53,20 @@ pub trait ImageGenerator: Send + Sync {
     fn edit(&self, request: &ImageEditRequest) -> Result<GeneratedImage, ProviderError>;
 }
 
+impl<M: ImageGenerator + ?Sized> ImageGenerator for Box<M> {
+    fn name(&self) -> String {
+        (**self).name()
+    }
+
+    fn generate(&self, request: &ImageRequest) -> Result<GeneratedImage, ProviderError> {
+        (**self).generate(request)
+    }
+
+    fn edit(&self, request: &ImageEditRequest) -> Result<GeneratedImage, ProviderError> {
+        (**self).edit(request)
+    }
+}
+
 /// A box prompt for segmentation: a label and a box in normalised image coordinates
 /// `[x_min, y_min, x_max, y_max]` in [0, 1], origin top left.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

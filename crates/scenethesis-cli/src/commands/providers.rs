@@ -10,8 +10,8 @@ use std::time::Duration;
 
 use anyhow::{Context, Result};
 use scenethesis_language::{LlmPlanner, VlmJudge};
-use scenethesis_models::{CacheMode, Cached, ChatModel, ResponseCache};
-use scenethesis_openai::{ApiKey, ClientConfig, OpenAiChat, OpenAiClient, Overrides};
+use scenethesis_models::{CacheMode, Cached, ChatModel, ImageGenerator, ResponseCache};
+use scenethesis_openai::{ApiKey, ClientConfig, OpenAiChat, OpenAiClient, OpenAiImages, Overrides};
 use scenethesis_pipeline::Pipeline;
 
 /// Which planner turns the prompt into a plan.
@@ -131,17 +131,36 @@ impl ProviderArgs {
     /// tokens and cache hits (each run's share goes into its `report.json`).
     pub(crate) fn wrap(&self, chat: OpenAiChat) -> Result<Box<dyn ChatModel>> {
         let meter = chat.meter().clone();
+        Ok(match self.cache()? {
+            Some(cache) => Box::new(Cached::new(chat, cache).with_meter(meter)),
+            None => Box::new(chat),
+        })
+    }
+
+    /// The response cache of --llm-cache (read-write, or replay-only with --llm-replay).
+    fn cache(&self) -> Result<Option<ResponseCache>> {
         let Some(dir) = &self.llm_cache else {
-            return Ok(Box::new(chat));
+            return Ok(None);
         };
         let mode = if self.llm_replay {
             CacheMode::ReplayOnly
         } else {
             CacheMode::ReadWrite
         };
-        let cache = ResponseCache::open(dir, mode)
-            .with_context(|| format!("opening the response cache {}", dir.display()))?;
-        Ok(Box::new(Cached::new(chat, cache).with_meter(meter)))
+        ResponseCache::open(dir, mode)
+            .with_context(|| format!("opening the response cache {}", dir.display()))
+            .map(Some)
+    }
+
+    /// Wraps the image model in the response cache when --llm-cache is given, like
+    /// [`Self::wrap`]: an edit is recorded under its model, prompt, size, seed and the digest
+    /// of the image it edits.
+    pub(crate) fn wrap_images(&self, images: OpenAiImages) -> Result<Box<dyn ImageGenerator>> {
+        let meter = images.meter().clone();
+        Ok(match self.cache()? {
+            Some(cache) => Box::new(Cached::new(images, cache).with_meter(meter)),
+            None => Box::new(images),
+        })
     }
 
     /// Installs the selected planner and judge into `pipeline`. The offline choices leave it
