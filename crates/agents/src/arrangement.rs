@@ -8,7 +8,8 @@ use std::sync::OnceLock;
 
 use nalgebra::Vector2;
 use scenethesis_scene_graph::{
-    relation_holds, ParentRef, Relation, RelationKind, Scene, SceneObject, GROUND_ID,
+    floor_centre, floor_gap, front_dir, relation_holds, right_dir, ParentRef, Relation,
+    RelationKind, Scene, SceneObject, GROUND_ID,
 };
 use serde::{Deserialize, Serialize};
 
@@ -20,6 +21,9 @@ pub const ARRANGEMENT_TOML: &str = include_str!("../knowledge/arrangement.toml")
 #[serde(deny_unknown_fields)]
 struct FacesRule {
     rule: String,
+    /// `reject` (default): a broken instance fails the judge; `report`: only reported.
+    #[serde(default)]
+    judge: Severity,
     subject: Vec<String>,
     target: Vec<String>,
     within: f64,
@@ -30,6 +34,9 @@ struct FacesRule {
 #[serde(deny_unknown_fields)]
 struct AgainstRule {
     rule: String,
+    /// `reject` (default): a broken instance fails the judge; `report`: only reported.
+    #[serde(default)]
+    judge: Severity,
     subject: Vec<String>,
 }
 
@@ -38,18 +45,63 @@ struct AgainstRule {
 #[serde(deny_unknown_fields)]
 struct FlanksRule {
     rule: String,
+    /// `reject` (default): a broken instance fails the judge; `report`: only reported.
+    #[serde(default)]
+    judge: Severity,
     subject: Vec<String>,
     target: Vec<String>,
     within: f64,
 }
 
-/// Members along walls, each touching another.
+/// Members along walls, each touching another; also what the procedural guide builds runs
+/// from (`crate::guide`).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RunsRule {
-    rule: String,
-    members: Vec<String>,
-    gap: f64,
+pub(crate) struct RunsRule {
+    pub(crate) rule: String,
+    /// `reject` (default): a broken instance fails the judge; `report`: only reported.
+    #[serde(default)]
+    judge: Severity,
+    /// The categories that form the runs.
+    pub(crate) members: Vec<String>,
+    /// The rule applies only to scenes with one of these on the floor (empty: always).
+    #[serde(default)]
+    pub(crate) with: Vec<String>,
+    /// Largest box gap between touching members, in metres.
+    pub(crate) gap: f64,
+    /// Members that stand at the ends of a run (tall units that would break the worktop).
+    #[serde(default)]
+    pub(crate) ends: Vec<String>,
+    /// Wall-mounted categories that hang above the run.
+    #[serde(default)]
+    pub(crate) above: Vec<String>,
+    /// Free-standing categories that stand in front of the run, facing it.
+    #[serde(default)]
+    pub(crate) island: Vec<String>,
+    /// Run shapes a prompt may name: `one-wall`, `l-shaped`, `u-shaped`, `galley`, each with
+    /// the phrases that name it.
+    #[serde(default)]
+    pub(crate) shapes: std::collections::BTreeMap<String, Vec<String>>,
+}
+
+impl RunsRule {
+    /// Whether the rule applies to a scene holding `categories` on the floor: two or more
+    /// members and one of the `with` categories.
+    pub(crate) fn applies<'a>(
+        &self,
+        categories: impl IntoIterator<Item = &'a str> + Clone,
+    ) -> bool {
+        let members = categories
+            .clone()
+            .into_iter()
+            .filter(|c| self.members.iter().any(|m| m == c))
+            .count();
+        members >= 2
+            && (self.with.is_empty()
+                || categories
+                    .into_iter()
+                    .any(|c| self.with.iter().any(|w| w == c)))
+    }
 }
 
 /// The subject faces the room or stands against a wall.
@@ -57,7 +109,21 @@ struct RunsRule {
 #[serde(deny_unknown_fields)]
 struct OrientedRule {
     rule: String,
+    /// `reject` (default): a broken instance fails the judge; `report`: only reported.
+    #[serde(default)]
+    judge: Severity,
     subject: Vec<String>,
+}
+
+/// What a broken instance of a rule means for the judge.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+enum Severity {
+    /// The judge rejects the scene (and the pipeline re-plans).
+    #[default]
+    Reject,
+    /// Reported in the verdict only.
+    Report,
 }
 
 /// The arrangement rules, as read from TOML.
@@ -71,7 +137,7 @@ pub struct ArrangementRules {
     #[serde(default)]
     flanks: Vec<FlanksRule>,
     #[serde(default)]
-    runs: Vec<RunsRule>,
+    pub(crate) runs: Vec<RunsRule>,
     #[serde(default)]
     oriented: Vec<OrientedRule>,
 }
@@ -103,7 +169,15 @@ impl ArrangementRules {
             names.extend(r.subject.iter().chain(&r.target).map(String::as_str));
         }
         for r in &self.runs {
-            names.extend(r.members.iter().map(String::as_str));
+            names.extend(
+                r.members
+                    .iter()
+                    .chain(&r.with)
+                    .chain(&r.ends)
+                    .chain(&r.above)
+                    .chain(&r.island)
+                    .map(String::as_str),
+            );
         }
         for r in &self.oriented {
             names.extend(r.subject.iter().map(String::as_str));
@@ -119,6 +193,10 @@ impl ArrangementRules {
 pub struct BrokenRule {
     /// The rule, in words.
     pub rule: String,
+    /// Whether the judge rejects a scene for it (`false`: the rule is only reported, see
+    /// `knowledge/arrangement.toml`).
+    #[serde(default = "yes")]
+    pub rejects: bool,
     /// The object it was checked on.
     pub subject: String,
     /// What was measured.
@@ -134,6 +212,10 @@ pub struct ArrangementCheck {
     pub held: u32,
     /// The instances that do not hold.
     pub broken: Vec<BrokenRule>,
+    /// The layout of the scene's runs ([`run_layout`]: `one-wall`, `l-shaped`, `u-shaped`,
+    /// `galley`), when a run rule applies.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub layout: Option<String>,
 }
 
 impl ArrangementCheck {
@@ -142,17 +224,56 @@ impl ArrangementCheck {
         (self.checked > 0).then(|| f64::from(self.held) / f64::from(self.checked))
     }
 
-    fn record(&mut self, rule: &str, subject: &str, failure: Option<String>) {
+    fn record(&mut self, rule: &str, judge: Severity, subject: &str, failure: Option<String>) {
         self.checked += 1;
         match failure {
             None => self.held += 1,
             Some(reason) => self.broken.push(BrokenRule {
                 rule: rule.to_owned(),
+                rejects: judge == Severity::Reject,
                 subject: subject.to_owned(),
                 reason,
             }),
         }
     }
+}
+
+/// The layout of a scene's runs (`[[runs]]` rules that apply), named by the walls their members
+/// stand against: `one-wall` (the back wall), `l-shaped` (the back wall and a side wall),
+/// `u-shaped` (the back wall and both side walls), `galley` (the back wall and the door wall),
+/// else the list of walls; `None` when no run rule applies.
+pub fn run_layout(scene: &Scene) -> Option<String> {
+    let floor: Vec<&SceneObject> = scene
+        .objects
+        .iter()
+        .filter(|o| o.parent == ParentRef::Ground)
+        .collect();
+    let rule = ArrangementRules::builtin()
+        .runs
+        .iter()
+        .find(|r| r.applies(floor.iter().map(|o| o.category.as_str())))?;
+    let walls: std::collections::BTreeSet<&str> = floor
+        .iter()
+        .filter(|o| rule.members.contains(&o.category))
+        .filter_map(|o| {
+            o.relations
+                .iter()
+                .find(|r| r.kind == RelationKind::AgainstWall)
+                .map(|r| r.target.as_str())
+        })
+        .collect();
+    let walls: Vec<&str> = walls.into_iter().collect();
+    Some(match walls.as_slice() {
+        ["wall_0"] => "one-wall".to_owned(),
+        ["wall_0", "wall_1"] | ["wall_0", "wall_3"] => "l-shaped".to_owned(),
+        ["wall_0", "wall_1", "wall_3"] => "u-shaped".to_owned(),
+        ["wall_0", "wall_2"] => "galley".to_owned(),
+        other => other.join("+"),
+    })
+}
+
+fn yes() -> bool {
+    true
 }
 
 /// Checks the built-in arrangement rules on a scene.
@@ -185,7 +306,7 @@ pub fn check_arrangement_with(rules: &ArrangementRules, scene: &Scene) -> Arrang
             let near: Vec<&SceneObject> = targets
                 .iter()
                 .copied()
-                .filter(|t| t.id != s.id && gap_xz(s, t) <= r.within)
+                .filter(|t| t.id != s.id && floor_gap(s, t) <= r.within)
                 .collect();
             if near.is_empty() {
                 continue;
@@ -203,14 +324,14 @@ pub fn check_arrangement_with(rules: &ArrangementRules, scene: &Scene) -> Arrang
                         .join(", ")
                 )
             });
-            check.record(&r.rule, &s.id, failure);
+            check.record(&r.rule, r.judge, &s.id, failure);
         }
     }
     for r in &rules.against {
         for s in of(&r.subject) {
             let failure = (!holds(s, RelationKind::AgainstWall, GROUND_ID))
                 .then(|| "its back is not against a wall".to_owned());
-            check.record(&r.rule, &s.id, failure);
+            check.record(&r.rule, r.judge, &s.id, failure);
         }
     }
     for r in &rules.flanks {
@@ -219,7 +340,7 @@ pub fn check_arrangement_with(rules: &ArrangementRules, scene: &Scene) -> Arrang
             let near: Vec<&SceneObject> = targets
                 .iter()
                 .copied()
-                .filter(|t| gap_xz(s, t) <= r.within)
+                .filter(|t| floor_gap(s, t) <= r.within)
                 .collect();
             if near.is_empty() {
                 continue;
@@ -233,64 +354,45 @@ pub fn check_arrangement_with(rules: &ArrangementRules, scene: &Scene) -> Arrang
                         .join(", ")
                 )
             });
-            check.record(&r.rule, &s.id, failure);
+            check.record(&r.rule, r.judge, &s.id, failure);
         }
     }
     for r in &rules.runs {
-        let members = of(&r.members);
-        if members.len() < 2 {
+        if !r.applies(floor.iter().map(|o| o.category.as_str())) {
             continue;
         }
+        let members = of(&r.members);
         for s in &members {
             let failure = if !holds(s, RelationKind::AgainstWall, GROUND_ID) {
                 Some("not against a wall".to_owned())
             } else if !members
                 .iter()
-                .any(|t| t.id != s.id && gap_xz(s, t) <= r.gap)
+                .any(|t| t.id != s.id && floor_gap(s, t) <= r.gap)
             {
                 Some(format!("touches no other member within {} m", r.gap))
             } else {
                 None
             };
-            check.record(&r.rule, &s.id, failure);
+            check.record(&r.rule, r.judge, &s.id, failure);
         }
     }
     for r in &rules.oriented {
         let centre = room_centre(scene);
         for s in of(&r.subject) {
-            let to_centre = centre - xz(s);
-            let faces_room = to_centre.norm() < 1e-6 || front(s).dot(&to_centre) > 0.0;
+            let to_centre = centre - floor_centre(s);
+            let faces_room = to_centre.norm() < 1e-6 || front_dir(s).dot(&to_centre) > 0.0;
             let failure = (!faces_room && !holds(s, RelationKind::AgainstWall, GROUND_ID))
                 .then(|| "turned away from the room and not against a wall".to_owned());
-            check.record(&r.rule, &s.id, failure);
+            check.record(&r.rule, r.judge, &s.id, failure);
         }
     }
+    check.layout = run_layout(scene);
     check
-}
-
-fn xz(o: &SceneObject) -> Vector2<f64> {
-    let c = o.world_aabb().center();
-    Vector2::new(c.x, c.z)
-}
-
-fn front(o: &SceneObject) -> Vector2<f64> {
-    Vector2::new(o.pose.yaw.sin(), o.pose.yaw.cos())
-}
-
-fn right(o: &SceneObject) -> Vector2<f64> {
-    Vector2::new(o.pose.yaw.cos(), -o.pose.yaw.sin())
 }
 
 /// `s` is turned within 50° of straight at `t`'s front face (its front opposite `t`'s).
 fn squarely_toward(s: &SceneObject, t: &SceneObject) -> bool {
-    -front(s).dot(&front(t)) >= 50f64.to_radians().cos()
-}
-
-fn gap_xz(a: &SceneObject, b: &SceneObject) -> f64 {
-    let (a, b) = (a.world_aabb(), b.world_aabb());
-    let dx = (b.min.x - a.max.x).max(a.min.x - b.max.x).max(0.0);
-    let dz = (b.min.z - a.max.z).max(a.min.z - b.max.z).max(0.0);
-    (dx * dx + dz * dz).sqrt()
+    -front_dir(s).dot(&front_dir(t)) >= 50f64.to_radians().cos()
 }
 
 /// `s` is beside `t` (the relation code's *beside*), off its long side rather than before its
@@ -301,10 +403,10 @@ fn flanks(scene: &Scene, s: &SceneObject, t: &SceneObject) -> bool {
     if relation_holds(scene, &s.id, &beside) != Some(true) {
         return false;
     }
-    let d = xz(s) - xz(t);
+    let d = floor_centre(s) - floor_centre(t);
     let size = t.local_bounds.size() * t.pose.scale;
     let (half_w, half_l) = (size.x / 2.0, size.z / 2.0);
-    d.dot(&right(t)).abs() >= half_w && d.dot(&front(t)).abs() <= half_l
+    d.dot(&right_dir(t)).abs() >= half_w && d.dot(&front_dir(t)).abs() <= half_l
 }
 
 /// The centre of the floor rectangle (the origin when there is no floor).

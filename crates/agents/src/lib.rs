@@ -32,7 +32,7 @@ mod planner;
 mod prompt;
 mod text;
 
-pub use arrangement::{check_arrangement, ArrangementCheck, BrokenRule};
+pub use arrangement::{check_arrangement, run_layout, ArrangementCheck, BrokenRule};
 pub use fidelity::{check_prompt, constraint_holds, BrokenRelation, MissingObject, PromptCheck};
 pub use fixed::{check_plan, FixedPlanner, PlanFileError, PlanIssue};
 pub use guide::{

@@ -41,5 +41,5 @@ pub mod shape;
 pub use guidance::{DepthMap, Guidance, GuidanceError, Mask, RgbImage};
 pub use matcher::{lift, MatchKind, Matcher, PixelMatch, TargetRegion};
 pub use pair::{Correspondence, PairKind};
-pub use raster::{projected_bbox, rasterize, RenderedView, Window};
+pub use raster::{projected_bbox, rasterize, rasterize_coarse, RenderedView, Window};
 pub use shape::{ShapeMatcher, ShapeScore};

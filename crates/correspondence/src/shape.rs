@@ -10,7 +10,7 @@ use nalgebra::{Point2, Vector3};
 use scenethesis_scene_graph::{Camera, Mesh, Pose};
 
 use crate::matcher::{MatchKind, Matcher, PixelMatch, TargetRegion};
-use crate::raster::{rasterize, RenderedView, Window};
+use crate::raster::{rasterize_coarse, RenderedView, Window};
 
 /// Silhouette and depth matching of a rendered asset against its object's mask and depth.
 #[derive(Debug, Clone, PartialEq)]
@@ -94,12 +94,13 @@ fn classify(view: &RenderedView, target: &TargetRegion<'_>, margin: f64) -> Clas
     }
 }
 
+/// The upper median (the element at `len / 2` in sorted order), by selection (no full sort).
 fn median(v: &mut [f64]) -> f64 {
     if v.is_empty() {
         return 0.0;
     }
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
+    let mid = v.len() / 2;
+    *v.select_nth_unstable_by(mid, f64::total_cmp).1
 }
 
 /// The robust centre and spread (1.4826 · MAD) of the depth differences over the overlap.
@@ -159,54 +160,83 @@ pub fn shape_score(
 }
 
 /// For every pixel of a `w × h` grid, the index of the nearest pixel whose flag is set
-/// (`usize::MAX` when none is): two raster passes propagating nearest seeds over 8-neighbours
-/// (exact within a pixel or so for the convex-ish regions of object masks).
+/// (`usize::MAX` when none is), exactly in Euclidean distance: the nearest set pixel of each
+/// column, then per row the lower envelope of the parabolas `(x − x')² + dy(x')²`
+/// (Felzenszwalb–Huttenlocher), linear in the number of pixels.
 pub fn nearest_set_pixel(flags: &[bool], w: usize, h: usize) -> Vec<usize> {
-    let mut near = vec![usize::MAX; w * h];
-    for (i, &f) in flags.iter().enumerate() {
-        if f {
-            near[i] = i;
+    const NONE: u32 = u32::MAX;
+    let mut out = vec![usize::MAX; w * h];
+    if w == 0 || h == 0 || flags.len() < w * h {
+        return out;
+    }
+    // The row of the nearest set pixel in the same column.
+    let mut column = vec![NONE; w * h];
+    for x in 0..w {
+        let mut last = NONE;
+        for y in 0..h {
+            if flags[y * w + x] {
+                last = y as u32;
+            }
+            column[y * w + x] = last;
+        }
+        let mut next = NONE;
+        for y in (0..h).rev() {
+            if flags[y * w + x] {
+                next = y as u32;
+            }
+            let here = &mut column[y * w + x];
+            if next != NONE && (*here == NONE || next as usize - y < y - *here as usize) {
+                *here = next;
+            }
         }
     }
-    let d2 = |i: usize, s: usize| {
-        let (ax, ay) = ((i % w) as i64, (i / w) as i64);
-        let (bx, by) = ((s % w) as i64, (s / w) as i64);
-        (ax - bx).pow(2) + (ay - by).pow(2)
-    };
-    let relax = |near: &mut Vec<usize>, x: usize, y: usize, offsets: &[(i64, i64)]| {
-        let i = y * w + x;
-        for (dx, dy) in offsets {
-            let (nx, ny) = (x as i64 + dx, y as i64 + dy);
-            if nx < 0 || ny < 0 || nx >= w as i64 || ny >= h as i64 {
+    let mut sites = vec![0usize; w];
+    let mut bounds = vec![0f64; w + 1];
+    for y in 0..h {
+        let row = &column[y * w..(y + 1) * w];
+        let height = |x: usize| {
+            let d = row[x] as f64 - y as f64;
+            d * d + (x * x) as f64
+        };
+        let mut count = 0usize;
+        for (q, &r) in row.iter().enumerate() {
+            if r == NONE {
                 continue;
             }
-            let s = near[ny as usize * w + nx as usize];
-            if s != usize::MAX && (near[i] == usize::MAX || d2(i, s) < d2(i, near[i])) {
-                near[i] = s;
+            loop {
+                if count == 0 {
+                    sites[0] = q;
+                    bounds[0] = f64::NEG_INFINITY;
+                    bounds[1] = f64::INFINITY;
+                    count = 1;
+                    break;
+                }
+                let p = sites[count - 1];
+                let s = (height(q) - height(p)) / (2.0 * (q - p) as f64);
+                if s <= bounds[count - 1] {
+                    count -= 1;
+                    continue;
+                }
+                sites[count] = q;
+                bounds[count] = s;
+                bounds[count + 1] = f64::INFINITY;
+                count += 1;
+                break;
             }
         }
-    };
-    let forward = [(-1, 0), (-1, -1), (0, -1), (1, -1)];
-    let backward = [(1, 0), (1, 1), (0, 1), (-1, 1)];
-    for _ in 0..2 {
-        for y in 0..h {
-            for x in 0..w {
-                relax(&mut near, x, y, &forward);
-            }
-            for x in (0..w).rev() {
-                relax(&mut near, x, y, &[(1, 0)]);
-            }
+        if count == 0 {
+            continue;
         }
-        for y in (0..h).rev() {
-            for x in (0..w).rev() {
-                relax(&mut near, x, y, &backward);
+        let mut j = 0;
+        for x in 0..w {
+            while bounds[j + 1] < x as f64 {
+                j += 1;
             }
-            for x in 0..w {
-                relax(&mut near, x, y, &[(-1, 0)]);
-            }
+            let p = sites[j];
+            out[y * w + x] = row[p] as usize * w + p;
         }
     }
-    near
+    out
 }
 
 /// Every `k`-th item so that at most `max` remain.
@@ -229,12 +259,10 @@ impl Matcher for ShapeMatcher {
     /// (the larger of the stated noise and the robust spread) around the median difference.
     fn match_view(&self, view: &RenderedView, target: &TargetRegion<'_>) -> Vec<PixelMatch> {
         let c = classify(view, target, self.occlusion_margin);
-        let (w, off) = (c.w, view.offset);
+        let w = c.w;
         let centre = |i: usize| {
-            Point2::new(
-                (i % w) as f64 + off[0] as f64 + 0.5,
-                (i / w) as f64 + off[1] as f64 + 0.5,
-            )
+            let (gx, gy) = view.to_guidance((i % w) as u32, (i / w) as u32);
+            Point2::new(gx as f64 + 0.5, gy as f64 + 0.5)
         };
         let pixel = |i: usize| [(i % w) as u32, (i / w) as u32];
         let near_mask = nearest_set_pixel(&c.mask, c.w, c.h);
@@ -312,13 +340,29 @@ pub fn search_yaw(
     yaws: &[f64],
     matcher: &ShapeMatcher,
 ) -> Vec<YawCandidate> {
+    search_yaw_coarse(mesh, start, camera, target, window, yaws, matcher, 1)
+}
+
+/// [`search_yaw`] on views rendered at `stride` ([`rasterize_coarse`]): about `stride²` times
+/// cheaper, for a first pass over many hypotheses.
+#[allow(clippy::too_many_arguments)]
+pub fn search_yaw_coarse(
+    mesh: &Mesh,
+    start: &Pose,
+    camera: &Camera,
+    target: &TargetRegion<'_>,
+    window: Window,
+    yaws: &[f64],
+    matcher: &ShapeMatcher,
+    stride: u32,
+) -> Vec<YawCandidate> {
     let pivot = mesh
         .bounds()
         .map_or(nalgebra::Point3::origin(), |b| b.center());
     yaws.iter()
         .map(|&yaw| {
             let pose = turned(start, &pivot, yaw);
-            let view = rasterize(mesh, &pose, camera, window);
+            let view = rasterize_coarse(mesh, &pose, camera, window, stride);
             YawCandidate {
                 pose,
                 score: shape_score(&view, target, matcher),
@@ -348,4 +392,43 @@ pub fn pick_yaw(candidates: &[YawCandidate], hint: Option<f64>, tie: f64) -> Opt
         .filter(|c| c.score.score >= best.score.score * (1.0 - tie))
         .min_by(|a, b| yaw_distance(a.pose.yaw, hint).total_cmp(&yaw_distance(b.pose.yaw, hint)))
         .copied()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nearest_set_pixel_is_exact() {
+        let (w, h) = (23usize, 17usize);
+        // A few scattered seeds and a blob.
+        let mut flags = vec![false; w * h];
+        for (x, y) in [
+            (0, 0),
+            (22, 3),
+            (5, 16),
+            (11, 8),
+            (12, 8),
+            (11, 9),
+            (17, 12),
+        ] {
+            flags[y * w + x] = true;
+        }
+        let near = nearest_set_pixel(&flags, w, h);
+        for y in 0..h {
+            for x in 0..w {
+                let d2 = |s: usize| {
+                    let (sx, sy) = ((s % w) as i64, (s / w) as i64);
+                    (sx - x as i64).pow(2) + (sy - y as i64).pow(2)
+                };
+                let best = (0..w * h).filter(|&s| flags[s]).map(d2).min().unwrap();
+                let got = near[y * w + x];
+                assert!(flags[got], "({x}, {y}) points at an unset pixel");
+                assert_eq!(d2(got), best, "({x}, {y})");
+            }
+        }
+        assert!(nearest_set_pixel(&vec![false; w * h], w, h)
+            .iter()
+            .all(|&s| s == usize::MAX));
+    }
 }

@@ -53,6 +53,10 @@ pub struct StabilityReport {
     pub skipped: Vec<String>,
     /// The unstable objects, in scene order.
     pub unstable: Vec<UnstableObject>,
+    /// Simulated time (s): [`SIM_DURATION`], or less when every body fell asleep earlier
+    /// (nothing moves any more, so the rest of the run would change nothing).
+    #[serde(default)]
+    pub simulated_seconds: f64,
 }
 
 /// Convex collision pieces of one mesh part, each with its pose in the part's frame.
@@ -217,6 +221,72 @@ pub fn round_solid(part: &MeshPart) -> Option<(Pose3, SharedShape)> {
     None
 }
 
+/// Massless contact feet of a convex piece: for every face with more than four corners, the
+/// pyramid from the widest quadrilateral of its corners to the piece's centroid.
+///
+/// Contacts between convex polyhedra are generated from each one's support face, which parry
+/// cuts to the face's first four corners in contour order: on a 24-sided base that is a sliver
+/// on one side, so the piece has support on that side only and rocks (a can on a shelf never
+/// settles, and keeps its whole island awake for the full simulation). A foot lies inside the
+/// piece (all its corners are points of the piece), so the collision shape stays exactly the
+/// piece; the foot's quadrilateral face is coplanar with the wide face and spans it, so resting
+/// on that face gives contacts on every side.
+pub fn face_feet(shape: &SharedShape) -> Vec<SharedShape> {
+    let Some(hull) = shape.as_convex_polyhedron() else {
+        return Vec::new();
+    };
+    let points = hull.points();
+    if points.is_empty() {
+        return Vec::new();
+    }
+    let centroid = points.iter().copied().sum::<Vec3>() / points.len() as f32;
+    let corners = hull.vertices_adj_to_face();
+    hull.faces()
+        .iter()
+        .filter(|f| f.num_vertices_or_edges > 4)
+        .filter_map(|f| {
+            let start = f.first_vertex_or_edge as usize;
+            let ring: Vec<Vec3> = corners[start..start + f.num_vertices_or_edges as usize]
+                .iter()
+                .map(|&v| points[v as usize])
+                .collect();
+            let quad = widest_quad(&ring, f.normal)?;
+            // The apex must stand off the face, else the pyramid is flat.
+            if f.normal.dot(quad[0] - centroid) <= 1e-4 {
+                return None;
+            }
+            SharedShape::convex_hull(&[quad[0], quad[1], quad[2], quad[3], centroid])
+        })
+        .collect()
+}
+
+/// Four corners of a convex polygon spanning it widely: its two farthest corners and, on each
+/// side of the line through them, the corner farthest from it (`normal`: the polygon's).
+fn widest_quad(ring: &[Vec3], normal: Vec3) -> Option<[Vec3; 4]> {
+    let (mut a, mut c, mut far) = (0, 0, 0.0f32);
+    for i in 0..ring.len() {
+        for j in i + 1..ring.len() {
+            let d = (ring[i] - ring[j]).length_squared();
+            if d > far {
+                (a, c, far) = (i, j, d);
+            }
+        }
+    }
+    let axis = ring[c] - ring[a];
+    // Signed distance from the diagonal, in the polygon's plane.
+    let side = |p: Vec3| normal.dot(axis.cross(p - ring[a]));
+    let mut best = [(0.0f32, None), (0.0f32, None)];
+    for (k, p) in ring.iter().enumerate() {
+        let s = side(*p);
+        let (slot, mag) = if s > 0.0 { (0, s) } else { (1, -s) };
+        if mag > best[slot].0 {
+            best[slot] = (mag, Some(k));
+        }
+    }
+    let (b, d) = (best[0].1?, best[1].1?);
+    Some([ring[a], ring[b], ring[c], ring[d]])
+}
+
 fn geometry_hash(part: &MeshPart) -> u64 {
     let mut h = std::collections::hash_map::DefaultHasher::new();
     for p in &part.positions {
@@ -330,6 +400,15 @@ pub fn simulate(scene: &EvalScene, cache: &DecompositionCache) -> StabilityRepor
         };
         let handle = world.bodies.insert(builder);
         for (pose, shape) in shapes {
+            // Feet first: massless, they only add contact points where the piece's own
+            // contact generation leaves a wide face with too few.
+            for foot in face_feet(&shape) {
+                world.colliders.insert_with_parent(
+                    material(ColliderBuilder::new(foot).position(pose)).density(0.0),
+                    handle,
+                    &mut world.bodies,
+                );
+            }
             world.colliders.insert_with_parent(
                 material(ColliderBuilder::new(shape).position(pose)),
                 handle,
@@ -343,12 +422,15 @@ pub fn simulate(scene: &EvalScene, cache: &DecompositionCache) -> StabilityRepor
     report.tested = bodies.len();
 
     let steps = (SIM_DURATION / SIM_STEP).round() as usize;
-    for _ in 0..steps {
+    let mut ran = 0;
+    while ran < steps {
         world.step();
+        ran += 1;
         if world.islands.active_bodies().next().is_none() {
             break;
         }
     }
+    report.simulated_seconds = ran as f64 * SIM_STEP;
 
     for (id, handle) in bodies {
         let body = &world.bodies[handle];
@@ -379,6 +461,7 @@ fn quat_angle(q: Quat) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::EvalObject;
     use scenethesis_assets::primitives::{cuboid, cylinder, frustum};
 
     #[test]
@@ -398,6 +481,94 @@ mod tests {
         assert!(round_solid(&cylinder("c", 0, [0.0, 0.0], 0.04, 0.0, 0.1, 8)).is_none());
         assert!(round_solid(&frustum("f", 0, [0.0, 0.0], 0.2, 0.1, 0.0, 0.5, 32)).is_none());
         assert!(round_solid(&cuboid("b", 0, [0.0; 3], [1.0; 3])).is_none());
+    }
+
+    #[test]
+    fn wide_faces_get_a_spanning_foot_inside_the_piece() {
+        // A can's bottom: a 24-sided frustum, narrower at the base.
+        let part = frustum("bottom", 0, [0.0, 0.0], 0.028, 0.033, 0.0, 0.008, 24);
+        let points: Vec<Vec3> = part.positions.iter().map(|&p| Vec3::from(p)).collect();
+        let hull = SharedShape::convex_hull(&points).unwrap();
+        let feet = face_feet(&hull);
+        // One per 24-gon cap; the 24 side quads need none.
+        assert_eq!(feet.len(), 2);
+        for foot in &feet {
+            let poly = foot.as_convex_polyhedron().unwrap();
+            // Every corner is in the piece (tested a little towards its middle).
+            let middle = Vec3::new(0.0, 0.004, 0.0);
+            for p in poly.points() {
+                let q = middle + (*p - middle) * 0.95;
+                assert!(hull.contains_local_point(q), "{p:?} outside the piece");
+            }
+            // Its face on the cap is a quadrilateral spanning the cap (diagonals ≈ diameter).
+            let cap = poly
+                .faces()
+                .iter()
+                .find(|f| f.normal.y.abs() > 0.999)
+                .expect("a face on the cap");
+            assert_eq!(cap.num_vertices_or_edges, 4);
+            let start = cap.first_vertex_or_edge as usize;
+            let corners: Vec<Vec3> = poly.vertices_adj_to_face()[start..start + 4]
+                .iter()
+                .map(|&v| poly.points()[v as usize])
+                .collect();
+            let r = if cap.normal.y < 0.0 { 0.028 } else { 0.033 };
+            for k in 0..2 {
+                let diagonal = (corners[k] - corners[k + 2]).length();
+                assert!((diagonal - 2.0 * r).abs() < 0.002 * r, "{diagonal} vs {r}");
+            }
+        }
+        // Boxes have no wide faces; round primitives are not polyhedra.
+        let block = SharedShape::cuboid(0.1, 0.1, 0.1);
+        assert!(face_feet(&block).is_empty());
+        let box_hull = cuboid("b", 0, [0.0; 3], [1.0; 3]);
+        let box_points: Vec<Vec3> = box_hull.positions.iter().map(|&p| Vec3::from(p)).collect();
+        assert!(face_feet(&SharedShape::convex_hull(&box_points).unwrap()).is_empty());
+    }
+
+    #[test]
+    fn a_can_on_a_shelf_board_settles_and_the_simulation_ends_early() {
+        use scenethesis_scene_graph::{Architecture, Material, Mesh, Pose, RelationKind};
+        let mesh = |parts| Mesh {
+            parts,
+            materials: vec![Material::new("grey", [0.5, 0.5, 0.5], 0.8)],
+        };
+        // A free board on two blocks, and on it a can: 24-sided frustum base, body, neck.
+        let board = mesh(vec![
+            cuboid("block_l", 0, [-0.4, 0.0, -0.15], [-0.3, 0.3, 0.15]),
+            cuboid("block_r", 0, [0.3, 0.0, -0.15], [0.4, 0.3, 0.15]),
+            cuboid("board", 0, [-0.45, 0.3, -0.2], [0.45, 0.32, 0.2]),
+        ]);
+        let can = mesh(vec![
+            frustum("bottom", 0, [0.0, 0.0], 0.028, 0.033, 0.0, 0.008, 24),
+            cylinder("body", 0, [0.0, 0.0], 0.033, 0.008, 0.11, 24),
+            frustum("neck", 0, [0.0, 0.0], 0.033, 0.028, 0.11, 0.122, 24),
+        ]);
+        let object = |id: &str, m: &Mesh, y: f64, parent: Option<&str>| EvalObject {
+            id: id.into(),
+            category: id.into(),
+            mesh: m.transformed(&Pose::new(1.0, 0.0, ::nalgebra::Vector3::new(0.1, y, 0.05))),
+            yaw: 0.0,
+            parent: parent.map(str::to_owned),
+            support: Some(RelationKind::On),
+            relations: Vec::new(),
+        };
+        let scene = EvalScene {
+            objects: vec![
+                object("board", &board, 0.00125, None),
+                object("can", &can, 0.32 + 0.0025, Some("board")),
+            ],
+            architecture: Architecture::open_ground(10.0, 10.0),
+        };
+        let report = simulate(&scene, &DecompositionCache::new());
+        assert!(report.unstable.is_empty(), "{:?}", report.unstable);
+        // Everything sleeps after half a second at rest (rapier's default); a can without
+        // feet keeps rocking past 1 s.
+        assert!(
+            report.simulated_seconds < 0.75,
+            "still moving after {} s",
+            report.simulated_seconds
+        );
     }
 
     #[test]

@@ -46,6 +46,9 @@ pub enum FailureKind {
     /// A vision-language model scored the rendered scene below a threshold (wrong categories,
     /// orientations or spatial coherence).
     Visual,
+    /// A functional-arrangement rule (`knowledge/arrangement.toml`: seating faces what it
+    /// serves, kitchen counters form runs along walls, …) does not hold.
+    Arrangement,
 }
 
 /// One reason a scene was rejected.
@@ -72,8 +75,8 @@ pub struct Verdict {
     /// Relations of the plan that were checked.
     pub relations_checked: usize,
     /// The functional-arrangement rules (seating faces what it serves, a bed's head against a
-    /// wall, …) checked on the scene: reported, not a reason to reject. Absent when the judge
-    /// did not check them.
+    /// wall, kitchen runs, …) checked on the scene; each broken instance is also a
+    /// [`FailureKind::Arrangement`] failure. Absent when the judge did not check them.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub arrangement: Option<ArrangementCheck>,
     /// A model's review of the rendered scene (scores, per-object reasons), when a model judge
@@ -126,6 +129,7 @@ pub trait Judge: Send + Sync {
 /// The offline geometric judge. It accepts a scene only if no two objects collide and nothing
 /// penetrates the architecture (Col-O = Col-arch = 0), nothing moves in the stability simulation
 /// (Inst-S = false), every relation of the plan between objects present in the scene holds,
+/// every functional-arrangement rule holds ([`check_arrangement`]),
 /// Walk ≥ [`GeometricJudge::min_walk`], and every floor object is reachable — all measured by
 /// `scenethesis-eval` exactly as `metrics.md` defines them.
 #[derive(Debug, Clone)]
@@ -270,15 +274,31 @@ impl Judge for GeometricJudge {
                 ),
             });
         }
+        let arrangement = check_arrangement(scene);
+        failures.extend(arrangement_failures(&arrangement));
         Ok(Verdict {
             accepted: failures.is_empty(),
             failures,
             metrics,
             relations_checked,
-            arrangement: Some(check_arrangement(scene)),
+            arrangement: Some(arrangement),
             review: None,
         })
     }
+}
+
+/// One failure per broken arrangement rule instance the judge rejects for, blaming its subject and naming the rule.
+fn arrangement_failures(check: &ArrangementCheck) -> Vec<Failure> {
+    check
+        .broken
+        .iter()
+        .filter(|b| b.rejects)
+        .map(|b| Failure {
+            kind: FailureKind::Arrangement,
+            objects: vec![b.subject.clone()],
+            detail: format!("rule \"{}\": `{}` {}", b.rule, b.subject, b.reason),
+        })
+        .collect()
 }
 
 /// What the prompt asked for and the scene lacks: requested objects missing from the scene

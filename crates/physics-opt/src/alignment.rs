@@ -15,6 +15,21 @@ struct RowTag {
     pixels: bool,
 }
 
+/// The row tag of the scale prior (never robustified, never trimmed).
+const PRIOR: usize = usize::MAX;
+
+/// A Gaussian prior on an object's scale: the size it already has (from the lift or the
+/// catalogue) is known to within `sigma` (relative), so the matches move the scale only as far
+/// as they constrain it. Silhouette and depth matches constrain the scale weakly (a larger
+/// object farther away looks alike), so without a prior their noise leaks into the size.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ScalePrior {
+    /// The prior scale.
+    pub scale: f64,
+    /// Its relative uncertainty σ: the prior's residual is `ln(s / scale) / σ`.
+    pub sigma: f64,
+}
+
 /// Options of [`PoseAlignment::fit`].
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct FitOptions {
@@ -57,6 +72,10 @@ pub struct PoseAlignment {
     pub weight_3d: f64,
     /// Pairs with a lower confidence are ignored (the paper uses τ = 0.6).
     pub min_confidence: f64,
+    /// A prior on the scale, added to the loss as one squared residual `(ln(s/s₀)/σ)²` (on
+    /// the scale of one mean pair term); `None`: the matches alone set the scale.
+    #[serde(default)]
+    pub scale_prior: Option<ScalePrior>,
 }
 
 impl PoseAlignment {
@@ -70,6 +89,7 @@ impl PoseAlignment {
             weight_2d: 1.0 / (f * f),
             weight_3d: 1.0,
             min_confidence: 0.6,
+            scale_prior: None,
         }
     }
 
@@ -173,6 +193,17 @@ impl PoseAlignment {
                 }
             }
         }
+        if let Some(prior) = self.scale_prior {
+            if prior.sigma > 0.0 && pose.scale > 0.0 && prior.scale > 0.0 {
+                out.push((pose.scale / prior.scale).ln() / prior.sigma);
+                tag(PRIOR, false, 1);
+                if let Some(j) = jacobian {
+                    let mut row = PoseVector::zeros();
+                    row[SCALE] = 1.0 / (pose.scale * prior.sigma);
+                    j.push(row);
+                }
+            }
+        }
         out
     }
 
@@ -183,12 +214,15 @@ impl PoseAlignment {
         let w2 = (self.weight_2d / n).sqrt().max(1e-300);
         let w3 = (self.weight_3d / n).sqrt().max(1e-300);
         let mut norms: std::collections::HashMap<(usize, bool), f64> = Default::default();
-        for (ri, t) in r.iter().zip(tags) {
+        for (ri, t) in r.iter().zip(tags).filter(|(_, t)| t.pair != PRIOR) {
             let raw = ri / if t.pixels { w2 } else { w3 };
             *norms.entry((t.pair, t.pixels)).or_default() += raw * raw;
         }
         tags.iter()
             .map(|t| {
+                if t.pair == PRIOR {
+                    return 1.0;
+                }
                 let e = norms[&(t.pair, t.pixels)].sqrt();
                 let delta = if t.pixels {
                     options.huber_px
@@ -213,26 +247,32 @@ impl PoseAlignment {
         let w2 = (self.weight_2d / n).sqrt().max(1e-300);
         let w3 = (self.weight_3d / n).sqrt().max(1e-300);
         let mut norms: std::collections::BTreeMap<(usize, bool), f64> = Default::default();
+        let mut prior = 0.0;
         for (ri, t) in r.iter().zip(&tags) {
+            if t.pair == PRIOR {
+                prior += ri * ri;
+                continue;
+            }
             let raw = ri / if t.pixels { w2 } else { w3 };
             *norms.entry((t.pair, t.pixels)).or_default() += raw * raw;
         }
-        norms
-            .iter()
-            .map(|(&(_, pixels), &e2)| {
-                let (w, delta) = if pixels {
-                    (self.weight_2d / n, options.huber_px)
-                } else {
-                    (self.weight_3d / n, options.huber_m)
-                };
-                let e = e2.sqrt();
-                w * if e <= delta || delta <= 0.0 {
-                    e2
-                } else {
-                    2.0 * delta * e - delta * delta
-                }
-            })
-            .sum()
+        prior
+            + norms
+                .iter()
+                .map(|(&(_, pixels), &e2)| {
+                    let (w, delta) = if pixels {
+                        (self.weight_2d / n, options.huber_px)
+                    } else {
+                        (self.weight_3d / n, options.huber_m)
+                    };
+                    let e = e2.sqrt();
+                    w * if e <= delta || delta <= 0.0 {
+                        e2
+                    } else {
+                        2.0 * delta * e - delta * delta
+                    }
+                })
+                .sum::<f64>()
     }
 
     /// Sets the confidence of every pair whose pixel or metre error at `pose` exceeds `k`
@@ -245,7 +285,7 @@ impl PoseAlignment {
         let mut bad = std::collections::BTreeSet::new();
         for (t, w) in tags.iter().zip(&weights) {
             // Huber weight δ/e below 1/k means e > k·δ.
-            if *w < 1.0 / k {
+            if *w < 1.0 / k && t.pair != PRIOR {
                 bad.insert(t.pair);
             }
         }
@@ -404,6 +444,45 @@ mod tests {
                 grad[k]
             );
         }
+    }
+
+    #[test]
+    fn scale_prior_pulls_the_size_and_leaves_the_rest_to_the_matches() {
+        let (mut align, truth) = setup();
+        let start = Pose::new(1.0, 0.2, truth.translation + Vector3::new(0.1, 0.0, -0.1));
+        let options = FitOptions {
+            scale_range: [0.5, 2.0],
+            ..FitOptions::default()
+        };
+        // A loose prior at the true scale: the matches recover the pose.
+        align.scale_prior = Some(ScalePrior {
+            scale: truth.scale,
+            sigma: 0.05,
+        });
+        let fit = align.fit(&start, &options);
+        assert!((fit.scale - truth.scale).abs() < 1e-3, "{fit:?}");
+        assert!(
+            (fit.translation - truth.translation).norm() < 1e-3,
+            "{fit:?}"
+        );
+        // Its gradient is part of the loss's.
+        let (_, grad) = align.loss_and_gradient(&start);
+        let h = 1e-6;
+        let (mut a, mut b) = (to_vector(&start), to_vector(&start));
+        a[SCALE] += h;
+        b[SCALE] -= h;
+        let fd = (align.loss(&from_vector(&a)) - align.loss(&from_vector(&b))) / (2.0 * h);
+        assert!((fd - grad[SCALE]).abs() < 1e-5 * (1.0 + fd.abs()));
+        // A tight prior elsewhere holds the scale there; trimming never drops it.
+        align.scale_prior = Some(ScalePrior {
+            scale: 1.0,
+            sigma: 1e-4,
+        });
+        let held = align.fit(&start, &options);
+        assert!((held.scale - 1.0).abs() < 2e-3, "{held:?}");
+        align.trim_outliers(&held, &options, 2.0);
+        assert!(align.residuals(&held, None).len() > 1);
+        assert!(align.scale_prior.is_some());
     }
 
     #[test]

@@ -3,14 +3,14 @@
 //! pose → match → lift → robust fit of the alignment loss), keeping the best-agreeing pose.
 
 use nalgebra::Point3;
-use scenethesis_correspondence::shape::{pick_yaw, search_yaw, shape_score};
+use scenethesis_correspondence::shape::{pick_yaw, search_yaw, search_yaw_coarse, shape_score};
 use scenethesis_correspondence::{
     lift, projected_bbox, rasterize, Matcher, ShapeMatcher, ShapeScore, TargetRegion, Window,
 };
 use scenethesis_scene_graph::{Mesh, Pose};
 use serde::{Deserialize, Serialize};
 
-use crate::alignment::{FitOptions, PoseAlignment};
+use crate::alignment::{FitOptions, PoseAlignment, ScalePrior};
 
 /// Settings of [`align_to_guidance`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -21,11 +21,22 @@ pub struct GuidedSettings {
     /// Candidates within this fraction of the best score count as tied; a facing hint picks
     /// among them.
     pub hint_tie: f64,
+    /// The yaw hypotheses are first ranked on views subsampled by this stride (1: every
+    /// hypothesis at full resolution).
+    #[serde(default = "default_coarse_stride")]
+    pub coarse_stride: u32,
+    /// How many of the best coarse hypotheses are scored again at full resolution.
+    #[serde(default = "default_coarse_keep")]
+    pub coarse_keep: usize,
     /// Match refresh rounds (render, match, lift, fit) at most.
     pub refreshes: usize,
     /// Robust fit per round.
     pub fit: FitOptions,
-    /// Weight of the 2D term per squared pixel.
+    /// Weight of the 2D term per squared pixel, `1/σ²` for the pixel noise σ of mask
+    /// boundaries (default σ = 5 px: a segmenter's masks are often a couple of pixels too wide
+    /// or too narrow, and the depth pairs, not the outline, should say how far away it is;
+    /// weighted higher, that bias would pull the object toward or away from the camera, or,
+    /// without a scale prior, change its size).
     pub weight_2d: f64,
     /// Depth noise σ as a fraction of the object's depth: the 3D/depth weight is `1/σ²`.
     pub depth_noise: f64,
@@ -36,6 +47,23 @@ pub struct GuidedSettings {
     pub min_mask_pixels: usize,
     /// Rounds stop once the pose moves less than this (metres and radians).
     pub tolerance: f64,
+    /// Relative uncertainty of the starting scale (the lift's or the catalogue's size): the
+    /// fit is pulled toward the starting scale by a [`ScalePrior`] of this σ, so silhouettes
+    /// and depth change the size only as far as they constrain it (≤ 0: no prior).
+    #[serde(default = "default_scale_sigma")]
+    pub scale_sigma: f64,
+}
+
+fn default_scale_sigma() -> f64 {
+    0.03
+}
+
+fn default_coarse_stride() -> u32 {
+    2
+}
+
+fn default_coarse_keep() -> usize {
+    6
 }
 
 impl Default for GuidedSettings {
@@ -43,16 +71,19 @@ impl Default for GuidedSettings {
         Self {
             yaw_candidates: 24,
             hint_tie: 0.03,
+            coarse_stride: default_coarse_stride(),
+            coarse_keep: default_coarse_keep(),
             refreshes: 10,
             fit: FitOptions {
                 iterations: 12,
                 ..FitOptions::default()
             },
-            weight_2d: 1.0,
+            weight_2d: 0.04,
             depth_noise: 0.03,
             window_margin: 0.25,
             min_mask_pixels: 30,
             tolerance: 1e-3,
+            scale_sigma: default_scale_sigma(),
         }
     }
 }
@@ -178,7 +209,28 @@ pub fn align_to_guidance(
             Some(r) => r.union(&window_at(start)),
             None => window_at(start),
         };
-        let candidates = search_yaw(mesh, start, camera, target, window, &yaws, &scorer);
+        let candidates = if settings.coarse_stride > 1 && settings.coarse_keep < yaws.len() {
+            let mut coarse = search_yaw_coarse(
+                mesh,
+                start,
+                camera,
+                target,
+                window,
+                &yaws,
+                &scorer,
+                settings.coarse_stride,
+            );
+            // Stable: equal scores keep their order, so the shortlist is deterministic.
+            coarse.sort_by(|a, b| b.score.score.total_cmp(&a.score.score));
+            let shortlist: Vec<f64> = coarse
+                .iter()
+                .take(settings.coarse_keep.max(1))
+                .map(|c| c.pose.yaw)
+                .collect();
+            search_yaw(mesh, start, camera, target, window, &shortlist, &scorer)
+        } else {
+            search_yaw(mesh, start, camera, target, window, &yaws, &scorer)
+        };
         if let Some(pick) = pick_yaw(&candidates, hint, settings.hint_tie) {
             let score = score_at(&pick.pose);
             if score.score > best.1.score {
@@ -195,12 +247,25 @@ pub fn align_to_guidance(
             best = (moved, score);
         }
     }
+    let scale_prior = (settings.scale_sigma > 0.0).then_some(ScalePrior {
+        scale: start.scale,
+        sigma: settings.scale_sigma,
+    });
     let mut pose = best.0;
     let mut alignment = PoseAlignment::new(*camera, Vec::new());
     let mut rounds = 0;
+    // Whether `pose` has been scored (the view rendered for matching scores it too).
+    let mut scored = true;
     for _ in 0..settings.refreshes {
         rounds += 1;
         let view = rasterize(mesh, &pose, camera, window_at(&pose));
+        if !scored {
+            let score = shape_score(&view, target, &scorer);
+            if score.score > best.1.score {
+                best = (pose, score);
+            }
+            scored = true;
+        }
         let pairs = lift(&matcher.match_view(&view, target), &view, target);
         let depth = camera
             .project(&pose.transform_point(&mesh.bounds()?.center()))
@@ -209,6 +274,7 @@ pub fn align_to_guidance(
         alignment = PoseAlignment {
             weight_2d: settings.weight_2d,
             weight_3d: 1.0 / (sigma * sigma),
+            scale_prior,
             ..PoseAlignment::new(*camera, pairs)
         };
         if alignment.active().count() < 6 {
@@ -225,12 +291,15 @@ pub fn align_to_guidance(
             .max((next.yaw - pose.yaw).abs())
             .max((next.scale - pose.scale).abs());
         pose = next;
+        scored = false;
+        if moved < settings.tolerance {
+            break;
+        }
+    }
+    if !scored {
         let score = score_at(&pose);
         if score.score > best.1.score {
             best = (pose, score);
-        }
-        if moved < settings.tolerance {
-            break;
         }
     }
     if best.0 != pose {

@@ -40,7 +40,7 @@ mod report;
 pub mod support;
 mod verify;
 
-pub use alignment::{FitOptions, PoseAlignment};
+pub use alignment::{FitOptions, PoseAlignment, ScalePrior};
 pub use contact::{cluster_contacts, CollisionState, Contact};
 pub use driver::{architecture_fields, optimize_scene, OptimizeSettings, SceneProblem};
 pub use guided::{align_to_guidance, GuidedPose, GuidedSettings};

@@ -46,7 +46,8 @@ pub struct ProjectedGaussNewton {
     /// is within this of the target clearance, metres.
     pub resting_tolerance: f64,
     /// Settle objects on their support (the stability loss). Off, the physics stage only
-    /// resolves collisions: the "+collision" row of the alignment ablation.
+    /// resolves collisions, every object by its smallest move (resting objects too may move
+    /// vertically): the "+collision" row of the alignment ablation.
     #[serde(default = "yes")]
     pub stability: bool,
 }
@@ -240,7 +241,10 @@ impl ProjectedGaussNewton {
                 n = toward_centroid.normalize();
             }
             let depth = c.violation + self.overshoot;
-            if !resting {
+            // Without the stability term nothing settles a resting object vertically, so
+            // collisions are resolved by the smallest move in any direction (out of the floor
+            // or the parent's top is up, not sideways).
+            if !resting || !self.stability {
                 constraints.push(Constraint { normal: n, depth });
                 continue;
             }

@@ -119,8 +119,9 @@ pub fn surface_kinds_for(relation: RelationKind) -> &'static [SurfaceKind] {
 /// Picks the parent's support surface for a child standing at `foot` (world position of its
 /// asset origin, i.e. the centre of its footprint at its lowest point) with relation `relation`:
 /// among the surfaces of a fitting kind, the one under the foot whose height is closest to the
-/// foot's height, else the nearest by horizontal plus vertical distance. `None` when the parent
-/// has no surfaces of a fitting kind.
+/// foot's height, else the nearest by horizontal plus vertical distance. For `under`, the low
+/// shelves beneath a top ([`is_low_shelf`]) fit as well as the floor beneath it. `None` when the
+/// parent has no surfaces of a fitting kind.
 pub fn choose_surface(
     parent_id: &str,
     parent_pose: &Pose,
@@ -131,7 +132,10 @@ pub fn choose_surface(
     let kinds = surface_kinds_for(relation);
     let mut best: Option<(f64, SupportPlane)> = None;
     for kind in kinds {
-        for s in surfaces.iter().filter(|s| s.kind == *kind) {
+        let fits = |s: &&SupportSurface| {
+            s.kind == *kind || (*kind == SurfaceKind::Under && is_low_shelf(s, surfaces))
+        };
+        for s in surfaces.iter().filter(fits) {
             let plane = SupportPlane::placed(parent_id, s, parent_pose);
             let horizontal = plane.horizontal_distance(foot.x, foot.z);
             let vertical = (plane.height - foot.y).abs();
@@ -146,6 +150,21 @@ pub fn choose_surface(
         }
     }
     best.map(|(_, p)| p)
+}
+
+/// Height of a low shelf under a top, as a share of the top's height: a shelf at most this
+/// high beneath a top holds what is `under` the top (the layout puts objects there, e.g. a
+/// basket on a coffee table's lower shelf).
+pub const LOW_SHELF_SHARE: f32 = 0.35;
+
+/// Whether `shelf` is a low shelf beneath a top of the same asset (see [`LOW_SHELF_SHARE`]).
+pub fn is_low_shelf(shelf: &SupportSurface, surfaces: &[SupportSurface]) -> bool {
+    shelf.kind == SurfaceKind::Shelf
+        && surfaces.iter().any(|t| {
+            t.kind == SurfaceKind::Top
+                && t.height > shelf.height
+                && shelf.height <= LOW_SHELF_SHARE * t.height
+        })
 }
 
 /// Whether `p` is inside the convex polygon (either winding) or on its border.
@@ -233,5 +252,39 @@ mod tests {
         assert!(choose_surface("shelf", &pose, &s, RelationKind::Under, &foot).is_none());
         let c = plane.clamp(1.3, 0.0);
         assert!((c - Point2::new(1.15, 0.0)).norm() < 1e-6, "{c:?}");
+    }
+
+    #[test]
+    fn under_a_table_is_its_floor_space_or_its_low_shelf_whichever_holds_the_foot() {
+        let poly = vec![[-0.4, -0.25], [-0.4, 0.25], [0.4, 0.25], [0.4, -0.25]];
+        let surface = |name: &str, kind, height| SupportSurface {
+            name: name.into(),
+            kind,
+            polygon: poly.clone(),
+            height,
+            clearance: None,
+        };
+        let pose = Pose::new(1.0, 0.0, Vector3::zeros());
+        // A coffee table whose lower shelf leaves no room beneath it: the shelf is "under".
+        let table = vec![
+            surface("top", SurfaceKind::Top, 0.45),
+            surface("lower_shelf", SurfaceKind::Shelf, 0.12),
+        ];
+        let on_shelf = Point3::new(0.1, 0.12, 0.0);
+        let plane = choose_surface("t", &pose, &table, RelationKind::Under, &on_shelf).unwrap();
+        assert_eq!(plane.surface, "lower_shelf");
+        // With floor space under it too, the surface nearest the foot wins.
+        let mut both = table.clone();
+        both.push(surface("under", SurfaceKind::Under, 0.0));
+        let on_floor = Point3::new(0.1, 0.0, 0.0);
+        let pick = |foot| choose_surface("t", &pose, &both, RelationKind::Under, foot).unwrap();
+        assert_eq!(pick(&on_shelf).surface, "lower_shelf");
+        assert_eq!(pick(&on_floor).surface, "under");
+        // A shelf high in a bookcase is not under anything.
+        let tall = vec![
+            surface("top", SurfaceKind::Top, 1.8),
+            surface("shelf_3", SurfaceKind::Shelf, 1.2),
+        ];
+        assert!(choose_surface("b", &pose, &tall, RelationKind::Under, &on_shelf).is_none());
     }
 }

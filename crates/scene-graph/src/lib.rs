@@ -85,7 +85,7 @@ pub use io::{read_bounded, write_file_atomic, SceneIoError};
 pub use mesh::{Material, Mesh, MeshPart};
 pub use object::{AssetRef, ParentRef, Relation, RelationKind, SceneObject, GROUND_ID};
 pub use pose::Pose;
-pub use relations::relation_holds;
+pub use relations::{floor_centre, floor_gap, front_dir, relation_holds, right_dir};
 pub use scene::{Scene, FORMAT_VERSION};
 pub use validate::{is_printable_id, printable, ValidationError};
 pub use walkway::ROBOT_RADIUS;

@@ -6,28 +6,33 @@ use nalgebra::Vector2;
 /// Tolerance for resting contact, in metres.
 const CONTACT: f64 = 0.02;
 
-fn xz(o: &SceneObject) -> Vector2<f64> {
+/// The centre of `o`'s world box on the floor plane (x, z).
+pub fn floor_centre(o: &SceneObject) -> Vector2<f64> {
     let c = o.world_aabb().center();
     Vector2::new(c.x, c.z)
 }
 
-fn front(o: &SceneObject) -> Vector2<f64> {
+/// `o`'s front (its local +Z) on the floor plane (x, z), a unit vector.
+pub fn front_dir(o: &SceneObject) -> Vector2<f64> {
     Vector2::new(o.pose.yaw.sin(), o.pose.yaw.cos())
 }
 
-fn right(o: &SceneObject) -> Vector2<f64> {
+/// `o`'s right-hand side (its local +X) on the floor plane (x, z), a unit vector.
+pub fn right_dir(o: &SceneObject) -> Vector2<f64> {
     Vector2::new(o.pose.yaw.cos(), -o.pose.yaw.sin())
 }
 
 fn within_xz(o: &SceneObject, t: &SceneObject) -> bool {
-    let (c, b) = (xz(o), t.world_aabb());
+    let (c, b) = (floor_centre(o), t.world_aabb());
     b.min.x - CONTACT <= c.x
         && c.x <= b.max.x + CONTACT
         && b.min.z - CONTACT <= c.y
         && c.y <= b.max.z + CONTACT
 }
 
-fn gap_xz(a: &SceneObject, b: &SceneObject) -> f64 {
+/// The gap between the world boxes of `a` and `b` on the floor plane (x, z), in metres: 0 when
+/// their footprints touch or overlap. *Beside* and *around* are bounds on it.
+pub fn floor_gap(a: &SceneObject, b: &SceneObject) -> f64 {
     let (a, b) = (a.world_aabb(), b.world_aabb());
     let dx = (b.min.x - a.max.x).max(a.min.x - b.max.x).max(0.0);
     let dz = (b.min.z - a.max.z).max(a.min.z - b.max.z).max(0.0);
@@ -35,8 +40,8 @@ fn gap_xz(a: &SceneObject, b: &SceneObject) -> f64 {
 }
 
 fn faces(o: &SceneObject, t: &SceneObject) -> bool {
-    let d = xz(t) - xz(o);
-    d.norm() > 1e-9 && front(o).dot(&d.normalize()) >= 50f64.to_radians().cos()
+    let d = floor_centre(t) - floor_centre(o);
+    d.norm() > 1e-9 && front_dir(o).dot(&d.normalize()) >= 50f64.to_radians().cos()
 }
 
 /// Whether `relation` of object `subject` holds in `scene`'s geometry (world boxes and
@@ -80,10 +85,10 @@ pub fn relation_holds(scene: &Scene, subject: &str, relation: &Relation) -> Opti
     }
     let t = scene.object(&relation.target)?;
     let tb = t.world_aabb();
-    let d = xz(o) - xz(t);
+    let d = floor_centre(o) - floor_centre(t);
     let t_half = |dir: Vector2<f64>| {
         let s = t.local_bounds.size() * t.pose.scale / 2.0;
-        s.x * right(t).dot(&dir).abs() + s.z * front(t).dot(&dir).abs()
+        s.x * right_dir(t).dot(&dir).abs() + s.z * front_dir(t).dot(&dir).abs()
     };
     Some(match relation.kind {
         RelationKind::On => {
@@ -98,16 +103,16 @@ pub fn relation_holds(scene: &Scene, subject: &str, relation: &Relation) -> Opti
                 && ob.min.y <= tb.min.y + 0.35 * (tb.max.y - tb.min.y)
         }
         RelationKind::InFrontOf => {
-            d.dot(&front(t)) > 0.0 && d.dot(&right(t)).abs() <= t_half(right(t)) + 0.5
+            d.dot(&front_dir(t)) > 0.0 && d.dot(&right_dir(t)).abs() <= t_half(right_dir(t)) + 0.5
         }
         RelationKind::Behind => {
-            d.dot(&front(t)) < 0.0 && d.dot(&right(t)).abs() <= t_half(right(t)) + 0.5
+            d.dot(&front_dir(t)) < 0.0 && d.dot(&right_dir(t)).abs() <= t_half(right_dir(t)) + 0.5
         }
-        RelationKind::Beside => gap_xz(o, t) <= 1.0,
-        RelationKind::LeftOf => d.dot(&right(t)) < 0.0,
-        RelationKind::RightOf => d.dot(&right(t)) > 0.0,
+        RelationKind::Beside => floor_gap(o, t) <= 1.0,
+        RelationKind::LeftOf => d.dot(&right_dir(t)) < 0.0,
+        RelationKind::RightOf => d.dot(&right_dir(t)) > 0.0,
         RelationKind::Facing => faces(o, t),
-        RelationKind::Around => gap_xz(o, t) <= 0.6 && faces(o, t),
+        RelationKind::Around => floor_gap(o, t) <= 0.6 && faces(o, t),
         RelationKind::OnFloor | RelationKind::AgainstWall | RelationKind::Mounted => {
             unreachable!("handled above")
         }

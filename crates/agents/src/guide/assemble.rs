@@ -33,7 +33,8 @@ pub(super) fn ground_poses(
     let mut walls: BTreeMap<usize, WallContact> = BTreeMap::new();
     for p in &state.placed {
         let y = if p.mounted {
-            (WALL_MOUNT_HEIGHT - p.height / 2.0).max(0.5)
+            p.bottom
+                .unwrap_or((WALL_MOUNT_HEIGHT - p.height / 2.0).max(0.5))
         } else {
             0.0
         };

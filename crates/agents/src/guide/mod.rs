@@ -7,6 +7,7 @@ mod lookup;
 mod place_floor;
 mod procedural;
 mod room;
+mod runs;
 mod shared;
 mod surfaces;
 mod walkway;

@@ -10,6 +10,7 @@ use scenethesis_scene_graph::ParentRef;
 
 use super::candidates::{candidates, free_candidates, mount_ok};
 use super::room::Side;
+use super::runs::{above_run_spots, PlacedRuns, ABOVE_RUN_BOTTOM};
 use super::shared::positional_target;
 use super::shared::Placed;
 use super::walkway::FloorState;
@@ -49,6 +50,7 @@ pub(super) fn place_floor_objects(
     order: Vec<usize>,
     infos: &[AssetInfo],
     sides: &[Side],
+    runs: Option<&PlacedRuns>,
     rng: &mut ChaCha8Rng,
 ) -> Vec<DroppedObject> {
     let plan = state.plan;
@@ -60,10 +62,13 @@ pub(super) fn place_floor_objects(
         let mut progress = false;
         for &i in &pending {
             let o = &plan.objects[i];
-            // A relative object waits for its target.
+            // A relative object waits for its target (placed already when it is in a run).
             if let Some(target) = positional_target(o) {
                 if let Some(t) = state.index_of(target) {
-                    if !attempted[t] && plan.objects[t].parent == ParentRef::Ground {
+                    if !attempted[t]
+                        && state.placed_of(t).is_none()
+                        && plan.objects[t].parent == ParentRef::Ground
+                    {
                         next.push(i);
                         continue;
                     }
@@ -71,8 +76,11 @@ pub(super) fn place_floor_objects(
             }
             attempted[i] = true;
             progress = true;
-            let candidates = candidates(state, o, &infos[i], sides, infos, rng);
             let mounted = o.zone == Zone::WallMounted;
+            if mounted && hang_above_run(state, runs, i, &infos[i], sides, rng) {
+                continue;
+            }
+            let candidates = candidates(state, o, &infos[i], sides, infos, rng);
             let (hx, hz) = (infos[i].size[0] as f64 / 2.0, infos[i].size[2] as f64 / 2.0);
             let mut accepted = None;
             let mut tried = 0;
@@ -92,6 +100,7 @@ pub(super) fn place_floor_objects(
                         || matches!(o.zone, Zone::Wall { .. } | Zone::Corner | Zone::WallMounted),
                     wall: c.wall.clone(),
                     mounted,
+                    bottom: None,
                 };
                 tried += 1;
                 if tried > 160 {
@@ -135,6 +144,7 @@ pub(super) fn place_floor_objects(
                         front_access: false,
                         wall: None,
                         mounted: false,
+                        bottom: None,
                     };
                     if state.evaluate(Some(&p)).0 {
                         state.commit(p);
@@ -154,6 +164,49 @@ pub(super) fn place_floor_objects(
         pending = next;
     }
     dropped
+}
+
+/// Hangs wall-mounted object `i` above a run (a wall cabinet over the counters) at the first
+/// spot no other mounted object takes; returns whether it was hung.
+fn hang_above_run(
+    state: &mut FloorState<'_>,
+    runs: Option<&PlacedRuns>,
+    i: usize,
+    info: &AssetInfo,
+    sides: &[Side],
+    rng: &mut ChaCha8Rng,
+) -> bool {
+    let Some(runs) = runs else { return false };
+    let size = info.size.map(f64::from);
+    let spots = above_run_spots(
+        state,
+        runs,
+        &state.plan.objects[i].category,
+        size,
+        sides,
+        rng,
+    );
+    for (fp, wall) in spots {
+        if state
+            .placed
+            .iter()
+            .filter(|p| p.mounted)
+            .any(|p| p.fp.overlaps(&fp, 0.05))
+        {
+            continue;
+        }
+        state.commit(Placed {
+            plan_index: i,
+            fp,
+            height: size[1],
+            front_access: true,
+            wall: Some(wall),
+            mounted: true,
+            bottom: Some(ABOVE_RUN_BOTTOM),
+        });
+        return true;
+    }
+    false
 }
 
 /// Reorders floor objects so each object placed relative to another comes right after its

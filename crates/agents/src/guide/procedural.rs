@@ -8,6 +8,7 @@ use scenethesis_scene_graph::ParentRef;
 use super::assemble::{build_scene, ground_poses};
 use super::place_floor::{place_floor_objects, placement_order};
 use super::room::{asset_infos, Room};
+use super::runs::place_runs;
 use super::surfaces::place_children;
 use super::walkway::{drop_pocket_closers, FloorState};
 use super::{AssetLookup, Guide, GuideError, GuidedLayout, WalkwayReport};
@@ -90,8 +91,19 @@ impl ProceduralGuide {
         let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x9e37_79b9_7f4a_7c15);
         let infos = asset_infos(plan, assets)?;
         let mut state = FloorState::new(plan, &room, self.cell);
-        let order = placement_order(plan);
-        let mut dropped = place_floor_objects(&mut state, order, &infos, &room.sides, &mut rng);
+        let runs = place_runs(&mut state, &infos, &room.sides, seed);
+        let order: Vec<usize> = placement_order(plan)
+            .into_iter()
+            .filter(|&i| state.placed_of(i).is_none())
+            .collect();
+        let mut dropped = place_floor_objects(
+            &mut state,
+            order,
+            &infos,
+            &room.sides,
+            runs.as_ref(),
+            &mut rng,
+        );
         if state.placed.iter().all(|p| p.mounted) {
             let [width, depth] = plan.room_size;
             return Err(GuideError::NothingFits { width, depth });

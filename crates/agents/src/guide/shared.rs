@@ -23,6 +23,9 @@ pub(super) struct Placed {
     pub(super) front_access: bool,
     pub(super) wall: Option<String>,
     pub(super) mounted: bool,
+    /// The height of a mounted object's bottom when it hangs somewhere other than the usual
+    /// wall-mount height (above a run of counters).
+    pub(super) bottom: Option<f64>,
 }
 
 /// `yaw` wrapped into (-π, π].

@@ -6,11 +6,14 @@ use scenethesis_agents::Plan;
 use super::judge::Attempt;
 use super::layout::layout_seed;
 use super::retrieve::AssetCache;
+use crate::judge::FailureKind;
 use crate::replan::{drop_objects, replan_action};
 use crate::report::{Replan, ReplanAction};
 
 /// Changes `plan` and the asset variants after the rejected `attempt` of `round`; returns the
-/// record of what was done.
+/// record of what was done. Objects blamed only for a broken arrangement rule (a run of kitchen
+/// counters with a gap) are moved — new asset variants and a new layout seed, which draws a new
+/// layout — and never dropped: dropping them would only hide the rule.
 pub(crate) fn rework(
     plan: &mut Plan,
     cache: &mut AssetCache,
@@ -20,13 +23,24 @@ pub(crate) fn rework(
 ) -> Replan {
     let round = attempt.round;
     let offenders = attempt.verdict.offenders();
+    let droppable: Vec<String> = offenders
+        .iter()
+        .filter(|id| {
+            attempt
+                .verdict
+                .failures
+                .iter()
+                .any(|f| f.kind != FailureKind::Arrangement && f.objects.contains(id))
+        })
+        .cloned()
+        .collect();
     let reasons = attempt
         .verdict
         .failures
         .iter()
         .map(|f| f.detail.clone())
         .collect();
-    let (action, to_drop) = replan_action(plan, &offenders, round, max_replans);
+    let (action, to_drop) = replan_action(plan, &droppable, round, max_replans);
     for id in offenders.iter().filter(|id| !to_drop.contains(id)) {
         cache.next_variant(id);
     }
