@@ -140,13 +140,22 @@ fn boxes_touch(a: &Aabb, b: &Aabb) -> bool {
     (0..3).all(|i| a.min[i] <= b.max[i] && b.min[i] <= a.max[i])
 }
 
-/// The deepest penetration (m, ≥ 0) of any of `points` inside the parts of another object.
-fn penetration(points: &[Point3<f32>], fields: &[PartField]) -> f64 {
+/// The deepest penetration (m, ≥ 0) of any of `points` inside the parts of another object,
+/// whose whole box is `bounds` (a point outside it is outside every part: skipped at once).
+fn penetration(points: &[Point3<f32>], bounds: &Aabb, fields: &[PartField]) -> f64 {
+    let mut near: Vec<(Point3<f32>, Point3<f64>)> = points
+        .iter()
+        .map(|p| (*p, p.cast::<f64>()))
+        .filter(|(_, q)| bounds.contains_point(q))
+        .collect();
+    // Sorted by x, each part looks only at the points within its x range.
+    near.sort_by(|a, b| a.1.x.total_cmp(&b.1.x));
     let mut deepest = 0.0f64;
     for field in fields {
-        for p in points {
-            let q = p.cast::<f64>();
-            if !field.bounds.contains_point(&q) {
+        let from = near.partition_point(|(_, q)| q.x < field.bounds.min.x);
+        let to = near.partition_point(|(_, q)| q.x <= field.bounds.max.x);
+        for (p, q) in &near[from..to.max(from)] {
+            if !field.bounds.contains_point(q) {
                 continue;
             }
             let depth = -(field.sdf.signed_distance(p) as f64);
@@ -198,10 +207,14 @@ pub fn collisions(scene: &EvalScene) -> CollisionReport {
         .collect();
     let depths: Vec<f64> = candidates
         .par_iter()
-        .map(|&(i, j)| {
-            let ab = penetration(&prepared[i].points, &fields[j]);
-            let ba = penetration(&prepared[j].points, &fields[i]);
-            ab.max(ba)
+        .map(|&(i, j)| match (&prepared[i].bounds, &prepared[j].bounds) {
+            (Some(bi), Some(bj)) => {
+                let ab = penetration(&prepared[i].points, bj, &fields[j]);
+                let ba = penetration(&prepared[j].points, bi, &fields[i]);
+                ab.max(ba)
+            }
+            // Candidates are pairs with both boxes.
+            _ => 0.0,
         })
         .collect();
     let mut report = CollisionReport {
