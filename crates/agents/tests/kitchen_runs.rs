@@ -38,6 +38,31 @@ fn kitchen_runs_hold_vary_and_stay_walkable() {
                 )
             }));
             let shape = run_layout(scene).expect("a kitchen has runs");
+            // The run's pieces (turned by multiples of 90°) never interpenetrate, corners
+            // included: their boxes overlap by at most a millimetre.
+            let square: Vec<_> = scene
+                .objects
+                .iter()
+                .filter(|o| o.parent == scenethesis_scene_graph::ParentRef::Ground)
+                .filter(|o| {
+                    let q = o.pose.yaw / std::f64::consts::FRAC_PI_2;
+                    (q - q.round()).abs() < 1e-6
+                })
+                .collect();
+            for (k, a) in square.iter().enumerate() {
+                for b in &square[k + 1..] {
+                    let (ba, bb) = (a.world_aabb(), b.world_aabb());
+                    let ox = ba.max.x.min(bb.max.x) - ba.min.x.max(bb.min.x);
+                    let oz = ba.max.z.min(bb.max.z) - ba.min.z.max(bb.min.z);
+                    let oy = ba.max.y.min(bb.max.y) - ba.min.y.max(bb.min.y);
+                    assert!(
+                        ox <= 1e-3 || oz <= 1e-3 || oy <= 1e-3,
+                        "{prompt} #{seed}: `{}` and `{}` overlap",
+                        a.id,
+                        b.id
+                    );
+                }
+            }
             let cats: BTreeSet<&str> = scene.objects.iter().map(|o| o.category.as_str()).collect();
             for c in ["sink", "stove", "refrigerator", "kitchen_counter"] {
                 assert!(cats.contains(c), "{prompt} #{seed}: no {c}");

@@ -195,16 +195,20 @@ fn hang_above_run(
         {
             continue;
         }
-        state.commit(Placed {
+        // Reached from the free floor beside the run's end, not from its front.
+        let p = Placed {
             plan_index: i,
             fp,
             height: size[1],
-            front_access: true,
+            front_access: false,
             wall: Some(wall),
             mounted: true,
             bottom: Some(ABOVE_RUN_BOTTOM),
-        });
-        return true;
+        };
+        if state.evaluate(Some(&p)).0 {
+            state.commit(p);
+            return true;
+        }
     }
     false
 }

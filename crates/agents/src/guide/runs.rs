@@ -521,7 +521,7 @@ fn place_islands(
 }
 
 /// Spots above the run for a wall-mounted object of one of the rule's `above` categories: on
-/// the wall of a run piece, flush with the piece's outer edge at a free end of the run, hung at
+/// the wall of a run piece, 10 cm past the piece's outer edge at a free end of the run, hung at
 /// [`ABOVE_RUN_BOTTOM`]; only where every floor object beneath is a run member low enough to
 /// leave room for what stands on it, and where free floor beside the run's end lets one reach
 /// the cabinet (the Reach metric counts a hung object as reachable only from floor next to it).
@@ -555,8 +555,8 @@ pub(super) fn above_run_spots(
             continue;
         }
         for sign in [-1.0, 1.0] {
-            // The cabinet's outer edge a little past the piece's edge.
-            let outer = s + sign * (p.fp.hx + 0.02);
+            // The cabinet's outer edge 10 cm past the piece's edge, over the free floor.
+            let outer = s + sign * (p.fp.hx + 0.1);
             let centre = outer - sign * hx;
             if centre.abs() > lim {
                 continue;
@@ -572,7 +572,7 @@ pub(super) fn above_run_spots(
                     .iter()
                     .all(|q| runs.members.contains(&q.plan_index) && q.height <= limit);
             // Free floor beside the run's end, in front of the wall.
-            let probe = side.footprint_at(outer + sign * 0.2, 0.18, hz + 0.3);
+            let probe = side.footprint_at(outer + sign * 0.15, 0.25, hz + 0.3);
             let free_beside = state.inside_floor(&probe, 0.0) && !state.collides(&probe, 0.0);
             if low_run && free_beside {
                 out.push((fp, side.id.clone().expect("indoor side")));
