@@ -173,8 +173,9 @@ impl Pipeline {
     }
 
     /// Sets the matcher of the correspond stage (e.g. `scenethesis_correspondence::ShapeMatcher`) and its settings: when
-    /// the guide hands over guidance, every object is aligned to it before optimization.
-    /// Without a matcher (the default) the stage does not run.
+    /// the guide hands over guidance with metric depth, every object is aligned to it before
+    /// optimization. Without a matcher (the default), or when the guidance has no depth, the
+    /// stage does not run.
     pub fn with_matcher(
         mut self,
         matcher: impl Matcher + 'static,
@@ -332,8 +333,11 @@ impl Pipeline {
             },
         )?;
         let mut scene = layout.scene;
+        // Alignment needs metric depth: without it nothing but the outline says how far away an
+        // object is, and a box-shaped mask pulls objects toward the camera to fill it; the
+        // guide's single-view metrology (where the mask meets the floor) places them better.
         let alignments = match (&layout.guidance, &self.matcher) {
-            (Some(guidance), Some((matcher, settings))) => clock.run(
+            (Some(guidance), Some((matcher, settings))) if guidance.depth.is_some() => clock.run(
                 Stage::Correspond,
                 round,
                 || {
