@@ -140,9 +140,24 @@ pub(super) fn select(
                     group_consumed[gi] = true;
                     continue;
                 }
-                for &p in &parents {
-                    for _ in 0..count_for(rng) {
+                if group.min == 0 {
+                    // An optional extra is drawn once for the room, not once per parent: with
+                    // four shelves a per-shelf draw would put it in almost every seed.
+                    let count = count_for(rng) as usize;
+                    let first = if parents.len() > 1 {
+                        rng.random_range(0..parents.len())
+                    } else {
+                        0
+                    };
+                    for k in 0..count {
+                        let p = parents[(first + k) % parents.len()];
                         out.add(&category, DraftPlace::Support(*kind, p), false, false);
+                    }
+                } else {
+                    for &p in &parents {
+                        for _ in 0..count_for(rng) {
+                            out.add(&category, DraftPlace::Support(*kind, p), false, false);
+                        }
                     }
                 }
             }
