@@ -96,6 +96,43 @@ impl Verdict {
             .cloned()
             .collect()
     }
+
+    /// Every failure's detail on one line, separated by `"; "` (empty when accepted): the
+    /// reason a rejected scene was rejected, as the CLI prints it.
+    ///
+    /// ```
+    /// use scenethesis_eval::{evaluate, EvalScene};
+    /// use scenethesis_judge::{Failure, FailureKind, Verdict};
+    ///
+    /// let failures = vec![
+    ///     Failure {
+    ///         kind: FailureKind::Collision,
+    ///         objects: vec!["cup_0".into()],
+    ///         detail: "cup_0 is 4 mm into table_0".into(),
+    ///     },
+    ///     Failure {
+    ///         kind: FailureKind::Unstable,
+    ///         objects: vec!["vase_0".into()],
+    ///         detail: "vase_0 moved 3 cm".into(),
+    ///     },
+    /// ];
+    /// let v = Verdict {
+    ///     accepted: false,
+    ///     failures,
+    ///     metrics: evaluate(&EvalScene::default()),
+    ///     relations_checked: 0,
+    ///     arrangement: None,
+    ///     review: None,
+    /// };
+    /// assert_eq!(v.reasons(), "cup_0 is 4 mm into table_0; vase_0 moved 3 cm");
+    /// ```
+    pub fn reasons(&self) -> String {
+        self.failures
+            .iter()
+            .map(|f| f.detail.as_str())
+            .collect::<Vec<_>>()
+            .join("; ")
+    }
 }
 
 /// Why a scene could not be judged at all.
