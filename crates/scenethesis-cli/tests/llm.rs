@@ -11,6 +11,9 @@ use std::time::Duration;
 use scenethesis_openai::testing::{Reply, TestServer};
 use serde_json::{json, Value};
 
+mod common;
+use common::text;
+
 const KEY: &str = "sk-test-4f9c1e0b7d2a-never-print-me";
 
 /// What the server answers: status, content type, body, delay.
@@ -58,30 +61,8 @@ fn completion(content: &str) -> Vec<u8> {
     .into_bytes()
 }
 
-/// Runs the binary with a clean provider environment and a known API key.
 fn scenethesis(args: &[&str]) -> Output {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_scenethesis"));
-    for var in [
-        "OPENAI_BASE_URL",
-        "SCENETHESIS_LLM_MODEL",
-        "SCENETHESIS_VLM_MODEL",
-        "SCENETHESIS_IMAGE_MODEL",
-        "RUST_LOG",
-    ] {
-        cmd.env_remove(var);
-    }
-    cmd.env("OPENAI_API_KEY", KEY)
-        .args(args)
-        .output()
-        .expect("run scenethesis")
-}
-
-fn text(out: &Output) -> String {
-    format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    )
+    common::scenethesis_with_key(Some(KEY), args)
 }
 
 /// A config file making failures fast: one attempt, short timeout.

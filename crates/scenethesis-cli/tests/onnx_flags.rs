@@ -5,23 +5,14 @@
 //! ORT_DYLIB_PATH set).
 
 use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::Output;
+
+mod common;
 
 const PROMPT: &str = "a bedroom with a bed, a nightstand and a wardrobe";
 
 fn scenethesis(args: &[&str]) -> Output {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_scenethesis"));
-    for var in [
-        "OPENAI_BASE_URL",
-        "OPENAI_API_KEY",
-        "SCENETHESIS_LLM_MODEL",
-        "SCENETHESIS_VLM_MODEL",
-        "SCENETHESIS_IMAGE_MODEL",
-        "RUST_LOG",
-    ] {
-        cmd.env_remove(var);
-    }
-    cmd.args(args).output().expect("run scenethesis")
+    common::scenethesis_with_key(None, args)
 }
 
 fn failure(out: &Output) -> String {

@@ -5,39 +5,21 @@
 //! and nothing is written.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 use std::sync::OnceLock;
 
 use scenethesis_models::ImageData;
 use scenethesis_openai::testing::{openai_completion, openai_image, Reply, TestServer};
 use serde_json::{json, Value};
 
+mod common;
+use common::text;
+
 const PROMPT: &str = "a bedroom with a bed, a nightstand and a wardrobe";
 const KEY: &str = "sk-test-vision-guide-never-print-me";
 
 fn scenethesis(args: &[&str]) -> Output {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_scenethesis"));
-    for var in [
-        "OPENAI_BASE_URL",
-        "SCENETHESIS_LLM_MODEL",
-        "SCENETHESIS_VLM_MODEL",
-        "SCENETHESIS_IMAGE_MODEL",
-        "RUST_LOG",
-    ] {
-        cmd.env_remove(var);
-    }
-    cmd.env("OPENAI_API_KEY", KEY)
-        .args(args)
-        .output()
-        .expect("run scenethesis")
-}
-
-fn text(out: &Output) -> String {
-    format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    )
+    common::scenethesis_with_key(Some(KEY), args)
 }
 
 /// A scene generated offline and its guidance rendered at the vision guide's edit size
