@@ -181,11 +181,11 @@ fn furnished_render(scene_dir: &Path) -> (Vec<u8>, Value) {
     (png, json!({ "objects": out }))
 }
 
-#[test]
-fn generate_online_edits_the_empty_room_and_lifts_the_vlm_boxes() {
-    let (scene, _) = base();
-    let (render, boxes) = furnished_render(scene);
-    let edited = ImageData::from_bytes(render.clone(), "the furnished render").unwrap();
+/// The loopback image + VLM server of the online tests: `/images/edits` answers with `render`
+/// (the furnished room), a chat asking for `object_supports` gets the model's (wrong) claim that
+/// the bed stands on the wardrobe, any other chat gets `boxes`.
+fn vision_server(scene: &Path, render: Vec<u8>, boxes: &Value) -> TestServer {
+    let edited = ImageData::from_bytes(render, "the furnished render").unwrap();
     let answer = boxes.to_string();
     let supports = bed_on_wardrobe(scene);
     let server = TestServer::start(move |_, request| {
@@ -199,6 +199,14 @@ fn generate_online_edits_the_empty_room_and_lifts_the_vlm_boxes() {
             Reply::json(404, &json!({"error": {"message": "no such endpoint"}}))
         }
     });
+    server
+}
+
+#[test]
+fn generate_online_edits_the_empty_room_and_lifts_the_vlm_boxes() {
+    let (scene, _) = base();
+    let (render, boxes) = furnished_render(scene);
+    let server = vision_server(scene, render.clone(), &boxes);
     let dir = tempfile::tempdir().unwrap();
     let out_dir = dir.path().join("online");
     let out = scenethesis(&[
@@ -288,20 +296,7 @@ fn generate_online_edits_the_empty_room_and_lifts_the_vlm_boxes() {
 fn generate_online_replays_the_image_edit_from_the_cache() {
     let (scene, _) = base();
     let (render, boxes) = furnished_render(scene);
-    let edited = ImageData::from_bytes(render, "the furnished render").unwrap();
-    let answer = boxes.to_string();
-    let supports = bed_on_wardrobe(scene);
-    let server = TestServer::start(move |_, request| {
-        if request.path.ends_with("/images/edits") {
-            Reply::json(200, &openai_image(&edited))
-        } else if request.path.ends_with("/chat/completions") {
-            let asks_supports = request.body.windows(15).any(|w| w == b"object_supports");
-            let content = if asks_supports { &supports } else { &answer };
-            Reply::json(200, &openai_completion("eyes-1", content))
-        } else {
-            Reply::json(404, &json!({"error": {"message": "no such endpoint"}}))
-        }
-    });
+    let server = vision_server(scene, render, &boxes);
     let base_url = server.base_url.clone();
     let dir = tempfile::tempdir().unwrap();
     let cache = dir.path().join("cache");
