@@ -93,6 +93,10 @@ fn generate_from_given_guidance_files_recovers_the_rendered_scene() {
     assert!(out.status.success(), "{}", text(&out));
     let report = report(&out_dir);
     assert_eq!(report["guide"], "vision");
+    assert_eq!(
+        report["matcher"], "shape",
+        "the default matcher aligned the objects"
+    );
     let truth = objects(scene);
     let got = objects(&out_dir);
     assert!(got.len() >= 8, "only {} objects recovered", got.len());

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use scenethesis_openai::OpenAiClient;
-use scenethesis_pipeline::{GuidedSettings, Pipeline, ShapeMatcher};
+use scenethesis_pipeline::Pipeline;
 use scenethesis_vision_guide::{GivenGuidance, GuidanceFiles, VisionGuide};
 
 use super::providers::ProviderArgs;
@@ -93,6 +93,12 @@ impl GuideArgs {
             self.onnx.reject_unused()?;
             return Ok(pipeline);
         }
+        if let (MatcherChoice::None, Some(model)) = (self.matcher, &self.onnx.match_model) {
+            anyhow::bail!(
+                "--match-model {}: given with --matcher none, which turns the correspond stage off, so the model would not be used",
+                model.display()
+            );
+        }
         let onnx = self.onnx.load()?;
         let guide = match &self.guide_image {
             Some(image) => {
@@ -141,13 +147,7 @@ impl GuideArgs {
                 VisionGuide::edit_render(renderer, images, EDIT_SIZE).with_vlm(vlm)
             }
         };
-        let pipeline = pipeline.with_guide(onnx.install(guide));
-        Ok(match self.matcher {
-            MatcherChoice::Shape => {
-                pipeline.with_matcher(ShapeMatcher::default(), GuidedSettings::default())
-            }
-            MatcherChoice::None => pipeline,
-        })
+        Ok(onnx.install(guide, pipeline, self.matcher))
     }
 }
 
