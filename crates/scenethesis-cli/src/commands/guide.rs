@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use scenethesis_openai::OpenAiClient;
-use scenethesis_pipeline::Pipeline;
+use scenethesis_pipeline::{GuidedSettings, Pipeline, ShapeMatcher};
 use scenethesis_vision_guide::{GivenGuidance, GuidanceFiles, VisionGuide};
 
 use super::providers::ProviderArgs;
@@ -147,7 +147,14 @@ impl GuideArgs {
                 VisionGuide::edit_render(renderer, images, EDIT_SIZE).with_vlm(vlm)
             }
         };
-        Ok(onnx.install(guide, pipeline, self.matcher))
+        let (pipeline, dense) = onnx.install(guide, pipeline);
+        Ok(match self.matcher {
+            _ if dense => pipeline,
+            MatcherChoice::Shape => {
+                pipeline.with_matcher(ShapeMatcher::default(), GuidedSettings::default())
+            }
+            MatcherChoice::None => pipeline,
+        })
     }
 }
 

@@ -6,10 +6,8 @@
 use std::path::PathBuf;
 
 use anyhow::Result;
-use scenethesis_pipeline::{GuidedSettings, Pipeline, ShapeMatcher};
+use scenethesis_pipeline::Pipeline;
 use scenethesis_vision_guide::VisionGuide;
-
-use super::guide::MatcherChoice;
 
 /// What a depth model's output means.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
@@ -176,16 +174,11 @@ pub struct OnnxProviders {
 }
 
 impl OnnxProviders {
-    /// `pipeline` with `guide` using these models, and the correspond stage's matcher: the
-    /// dense model when one was loaded, else the one `choice` names.
-    pub fn install(
-        self,
-        guide: VisionGuide,
-        pipeline: Pipeline,
-        choice: MatcherChoice,
-    ) -> Pipeline {
+    /// `pipeline` with `guide` using these models and, when a dense matcher was loaded, with it
+    /// as the correspond stage's matcher; the flag says whether a matcher was installed.
+    pub fn install(self, guide: VisionGuide, pipeline: Pipeline) -> (Pipeline, bool) {
         #[cfg(feature = "onnx")]
-        let (guide, dense) = {
+        {
             let mut guide = guide;
             if let Some(depth) = self.depth {
                 guide = guide.with_depth_estimator(depth);
@@ -193,18 +186,16 @@ impl OnnxProviders {
             if let Some(segmenter) = self.segmenter {
                 guide = guide.with_segmenter(segmenter);
             }
-            (guide, self.matcher)
-        };
-        let pipeline = pipeline.with_guide(guide);
-        #[cfg(feature = "onnx")]
-        if let Some(dense) = dense {
-            return pipeline.with_matcher(dense, GuidedSettings::default());
-        }
-        match choice {
-            MatcherChoice::Shape => {
-                pipeline.with_matcher(ShapeMatcher::default(), GuidedSettings::default())
+            let pipeline = pipeline.with_guide(guide);
+            match self.matcher {
+                Some(dense) => (
+                    pipeline.with_matcher(dense, scenethesis_pipeline::GuidedSettings::default()),
+                    true,
+                ),
+                None => (pipeline, false),
             }
-            MatcherChoice::None => pipeline,
         }
+        #[cfg(not(feature = "onnx"))]
+        (pipeline.with_guide(guide), false)
     }
 }
