@@ -518,6 +518,15 @@ pub fn lift_points_with(
     let mut rect = min_area_rectangle(&floor, options.trim)?;
     if let Some(yaw) = snap_to_walls(rect.yaw, &options.wall_yaws, options.yaw_snap) {
         rect = rectangle_at(&floor, yaw, options.trim);
+    } else {
+        // How far each of the rectangle's sides is uncertain: a pixel's footprint at the
+        // object's distance and the depth noise left along the ray.
+        let resolution = (options.mask_boundary_px.max(1.0) * precision.pixel_angle
+            + precision.depth_noise)
+            * distance;
+        if let Some(walled) = unresolved_yaw(&rect, &floor, options, resolution) {
+            rect = walled;
+        }
     }
     if precision.noisy && options.footprint_deflation > 0.0 {
         deflate(
@@ -562,7 +571,9 @@ pub fn lift_points_with(
             Point2::new(eye.x, eye.z),
         );
     }
-    let half_y = ((top - bottom) / 2.0).max(0.005);
+    // A box is at least 1 cm tall unless a prior says how thin it is (a magazine, a towel).
+    let thinnest = if completed { 0.0005 } else { 0.005 };
+    let half_y = ((top - bottom) / 2.0).max(thinnest);
     Some(LiftedBox {
         id: id.to_string(),
         center: Point3::new(rect.center.x, bottom + half_y, rect.center.y),
@@ -606,6 +617,30 @@ pub fn deflate(
         let half = &mut rect.half_extents[k];
         *half = (*half - z * sigma).max(0.0);
     }
+}
+
+/// The rectangle of `points` aligned with the room's walls when the footprint cannot tell its
+/// orientation apart from theirs: `rect` is the minimum-area rectangle, and a wall-aligned one
+/// whose area is within what `resolution` (how far each side may be off, metres) allows —
+/// every side of `rect` lengthened by `2 · resolution` — fits the points as well. Round
+/// objects (every yaw fits as well) and objects a few pixels wide at a distance then take the
+/// room's axes, as furniture mostly does; the wall direction whose rectangle is smallest wins.
+/// `None` without walls or when the footprint is resolved.
+fn unresolved_yaw(
+    rect: &FloorRectangle,
+    points: &[Point2<f64>],
+    options: &LiftOptions,
+    resolution: f64,
+) -> Option<FloorRectangle> {
+    let quarter = std::f64::consts::FRAC_PI_2;
+    let size = rect.half_extents * 2.0;
+    let limit = (size.x + 2.0 * resolution) * (size.y + 2.0 * resolution);
+    options
+        .wall_yaws
+        .iter()
+        .map(|w| rectangle_at(points, w.rem_euclid(quarter), options.trim))
+        .filter(|r| r.area() <= limit)
+        .min_by(|a, b| a.area().total_cmp(&b.area()))
 }
 
 /// The yaw `yaw` snapped to the nearest of `walls` (modulo 90°) when within `tolerance`.
@@ -749,6 +784,43 @@ mod tests {
         let y = snap_to_walls(-0.95, &turned, snap).unwrap();
         let d = (y - 30f64.to_radians()).rem_euclid(std::f64::consts::FRAC_PI_2);
         assert!(d.min(std::f64::consts::FRAC_PI_2 - d) < 1e-9, "{y}");
+    }
+
+    #[test]
+    fn a_round_footprint_takes_the_walls_yaw_and_an_oblong_one_keeps_its_own() {
+        let options = LiftOptions {
+            wall_yaws: vec![0.0, std::f64::consts::FRAC_PI_2],
+            ..LiftOptions::default()
+        };
+        // A disc of radius 0.2 m sampled on a polar grid: every yaw fits it equally well.
+        let disc: Vec<Point2<f64>> = (1..=10)
+            .flat_map(|r| {
+                (0..72).map(move |k| {
+                    let (a, r) = (k as f64 * 5f64.to_radians() + 0.03, r as f64 * 0.02);
+                    Point2::new(r * a.cos(), r * a.sin())
+                })
+            })
+            .collect();
+        let rect = min_area_rectangle(&disc, 0.0).unwrap();
+        let walled = unresolved_yaw(&rect, &disc, &options, 0.005).expect("round");
+        assert!(walled.yaw.abs() < 1e-12, "{walled:?}");
+        // A 1.0 × 0.4 m rectangle turned by 30°, seen to the millimetre, keeps its yaw.
+        let yaw = 30f64.to_radians();
+        let (ax, az) = (
+            Vector2::new(yaw.cos(), -yaw.sin()),
+            Vector2::new(yaw.sin(), yaw.cos()),
+        );
+        let oblong: Vec<Point2<f64>> = (0..=50)
+            .flat_map(|i| {
+                (0..=20).map(move |j| {
+                    Point2::from(ax * (i as f64 * 0.02 - 0.5) + az * (j as f64 * 0.02 - 0.2))
+                })
+            })
+            .collect();
+        let rect = min_area_rectangle(&oblong, 0.0).unwrap();
+        assert_eq!(unresolved_yaw(&rect, &oblong, &options, 0.001), None);
+        // Seen a few pixels wide from far away, its orientation is no longer resolved.
+        assert!(unresolved_yaw(&rect, &oblong, &options, 0.3).is_some());
     }
 
     /// The visible faces (front, top) of a 1.0 × 0.8 × 0.5 m box on the floor 5 m in front of
