@@ -367,7 +367,8 @@ pub fn lift_points(
 }
 
 /// Puts every box that rests on another ([`SupportKind::On`]) onto its parent's top, parents
-/// first (a box on a box on a table follows the one below).
+/// first (a box on a box on a table follows the one below), and every box on the ground onto
+/// the floor.
 fn settle(boxes: &mut [LiftedBox], supports: &[SupportGuess]) {
     let mut order: Vec<usize> = (0..boxes.len()).collect();
     order.sort_by(|&a, &b| boxes[a].bottom().total_cmp(&boxes[b].bottom()));
@@ -375,6 +376,11 @@ fn settle(boxes: &mut [LiftedBox], supports: &[SupportGuess]) {
         let Some(s) = supports.iter().find(|s| s.id == boxes[i].id) else {
             continue;
         };
+        if s.kind == SupportKind::Ground {
+            // A low box found standing on nothing stands on the floor.
+            boxes[i].center.y = boxes[i].half_extents.y;
+            continue;
+        }
         if s.kind != SupportKind::On {
             continue;
         }
