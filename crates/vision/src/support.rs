@@ -271,21 +271,7 @@ pub fn mount_on_walls(guesses: &mut [SupportGuess], boxes: &[LiftedBox], walls: 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lifted_box::DepthSource;
-    use nalgebra::{Point3, Vector3};
     use scenethesis_scene_graph::Architecture;
-
-    fn lifted(id: &str, center: [f64; 3], half: [f64; 3]) -> LiftedBox {
-        LiftedBox {
-            id: id.into(),
-            center: Point3::from(center),
-            half_extents: Vector3::from(half),
-            yaw: 0.0,
-            points: 100,
-            depth_source: DepthSource::Measured,
-            completed: true,
-        }
-    }
 
     #[test]
     fn a_high_box_against_a_wall_hangs_on_it_and_others_do_not() {
@@ -293,13 +279,13 @@ mod tests {
         let room = Architecture::rectangular_room(6.0, 4.0, 2.8, 0.9);
         let boxes = vec![
             // A painting 1.3–1.9 m up, its back 1 cm off the back wall.
-            lifted("painting", [0.5, 1.6, -1.97], [0.4, 0.3, 0.02]),
+            LiftedBox::axis_aligned("painting", [0.5, 1.6, -1.97], [0.4, 0.3, 0.02]),
             // The same 1 m out into the room: floating, a lifting error.
-            lifted("ghost", [0.5, 1.6, -0.97], [0.4, 0.3, 0.02]),
+            LiftedBox::axis_aligned("ghost", [0.5, 1.6, -0.97], [0.4, 0.3, 0.02]),
             // Against the wall but only 10 cm up: not mounted, a floor object lifted wrongly.
-            lifted("low", [-1.5, 0.3, -1.9], [0.3, 0.2, 0.1]),
+            LiftedBox::axis_aligned("low", [-1.5, 0.3, -1.9], [0.3, 0.2, 0.1]),
             // On the floor against the wall: stands on the ground.
-            lifted("cabinet", [2.0, 0.5, -1.8], [0.4, 0.5, 0.2]),
+            LiftedBox::axis_aligned("cabinet", [2.0, 0.5, -1.8], [0.4, 0.5, 0.2]),
         ];
         let mut guesses = infer_supports(&boxes, 0.06);
         mount_on_walls(&mut guesses, &boxes, &room.walls);
@@ -320,9 +306,9 @@ mod tests {
     fn a_bottom_noise_lifted_off_its_table_still_rests_on_it() {
         // Table top at 0.75; the vase's bottom came out 0.2 m above it.
         let boxes = [
-            lifted("table", [0.0, 0.375, 0.0], [0.6, 0.375, 0.4]),
-            lifted("vase", [0.1, 1.05, 0.0], [0.08, 0.1, 0.08]),
-            lifted("painting", [0.0, 1.6, -0.38], [0.4, 0.3, 0.02]),
+            LiftedBox::axis_aligned("table", [0.0, 0.375, 0.0], [0.6, 0.375, 0.4]),
+            LiftedBox::axis_aligned("vase", [0.1, 1.05, 0.0], [0.08, 0.1, 0.08]),
+            LiftedBox::axis_aligned("painting", [0.0, 1.6, -0.38], [0.4, 0.3, 0.02]),
         ];
         let strict = infer_supports(&boxes, 0.06);
         let vase = strict.iter().find(|s| s.id == "vase").unwrap();
@@ -341,11 +327,11 @@ mod tests {
     #[test]
     fn objects_at_the_floor_over_a_towel_lie_on_it() {
         let boxes = [
-            lifted("towel", [0.0, 0.005, 0.0], [0.9, 0.005, 0.5]),
-            lifted("ball", [0.3, 0.11, 0.1], [0.1, 0.1, 0.1]),
-            lifted("keys", [-0.2, 0.015, 0.0], [0.04, 0.005, 0.03]),
+            LiftedBox::axis_aligned("towel", [0.0, 0.005, 0.0], [0.9, 0.005, 0.5]),
+            LiftedBox::axis_aligned("ball", [0.3, 0.11, 0.1], [0.1, 0.1, 0.1]),
+            LiftedBox::axis_aligned("keys", [-0.2, 0.015, 0.0], [0.04, 0.005, 0.03]),
             // Mostly off the towel: on the floor.
-            lifted("bag", [0.95, 0.2, 0.0], [0.2, 0.2, 0.15]),
+            LiftedBox::axis_aligned("bag", [0.95, 0.2, 0.0], [0.2, 0.2, 0.15]),
         ];
         let s = infer_supports(&boxes, 0.06);
         let of = |id: &str| {
@@ -361,11 +347,11 @@ mod tests {
     #[test]
     fn a_crate_found_at_the_floor_over_a_pallet_rests_on_it() {
         let boxes = [
-            lifted("pallet", [0.0, 0.07, 0.0], [0.6, 0.07, 0.5]),
+            LiftedBox::axis_aligned("pallet", [0.0, 0.07, 0.0], [0.6, 0.07, 0.5]),
             // Its bottom hidden behind the pallet, the crate came out standing on the floor.
-            lifted("crate", [0.1, 0.2, 0.0], [0.3, 0.2, 0.2]),
+            LiftedBox::axis_aligned("crate", [0.1, 0.2, 0.0], [0.3, 0.2, 0.2]),
             // A low stool beside the pallet stays on the floor.
-            lifted("stool", [1.2, 0.2, 0.0], [0.2, 0.2, 0.2]),
+            LiftedBox::axis_aligned("stool", [1.2, 0.2, 0.0], [0.2, 0.2, 0.2]),
         ];
         let s = infer_supports_within(&boxes, 0.06, 0.3);
         let of = |id: &str| {
@@ -380,9 +366,9 @@ mod tests {
     #[test]
     fn a_box_within_a_rack_a_noisy_footprint_half_out_sits_inside_it() {
         let boxes = [
-            lifted("rack", [0.0, 0.4, 0.0], [0.8, 0.4, 0.25]),
+            LiftedBox::axis_aligned("rack", [0.0, 0.4, 0.0], [0.8, 0.4, 0.25]),
             // A dumbbell on the lower tier, 15 cm up, its footprint 60 % in front of the rack.
-            lifted("dumbbell", [0.0, 0.23, 0.3], [0.15, 0.08, 0.125]),
+            LiftedBox::axis_aligned("dumbbell", [0.0, 0.23, 0.3], [0.15, 0.08, 0.125]),
         ];
         let s = infer_supports_within(&boxes, 0.06, 0.3);
         let dumbbell = s.iter().find(|g| g.id == "dumbbell").unwrap();
