@@ -4,28 +4,14 @@
 
 use std::time::Duration;
 
-use nalgebra::{Point3, Vector3};
 use scenethesis_agents::{KnowledgePlanner, Plan, PlanRequest, Planner};
 use scenethesis_models::ImageData;
 use scenethesis_openai::testing::{openai_completion, Reply, TestServer};
 use scenethesis_openai::{ClientConfig, OpenAiClient};
-use scenethesis_vision::boxes::DepthSource;
 use scenethesis_vision::{infer_supports_within, Decision, LiftOptions, LiftedBox, LiftedScene};
 use scenethesis_vision::{SupportGuess, SupportKind};
 use scenethesis_vision_guide::relations::ask_supports;
 use serde_json::json;
-
-fn lifted(id: &str, center: [f64; 3], half: [f64; 3]) -> LiftedBox {
-    LiftedBox {
-        id: id.into(),
-        center: Point3::from(center),
-        half_extents: Vector3::from(half),
-        yaw: 0.0,
-        points: 500,
-        depth_source: DepthSource::Measured,
-        completed: true,
-    }
-}
 
 fn plan() -> Plan {
     let categories: std::collections::BTreeSet<String> = scenethesis_assets::catalog::categories()
@@ -47,10 +33,10 @@ fn the_models_answer_flips_an_ambiguous_support_and_not_a_clear_one() {
     // for the table, marginally).
     let options = LiftOptions::default();
     let boxes = vec![
-        lifted("table_0", [0.0, 0.375, 0.0], [0.6, 0.375, 0.4]),
-        lifted("cabinet_0", [1.5, 0.45, 0.0], [0.3, 0.45, 0.3]),
-        lifted("lamp_0", [0.1, 0.95, 0.0], [0.1, 0.2, 0.1]),
-        lifted("frame_0", [0.65, 0.95, 0.0], [0.125, 0.1, 0.1]),
+        LiftedBox::axis_aligned("table_0", [0.0, 0.375, 0.0], [0.6, 0.375, 0.4]),
+        LiftedBox::axis_aligned("cabinet_0", [1.5, 0.45, 0.0], [0.3, 0.45, 0.3]),
+        LiftedBox::axis_aligned("lamp_0", [0.1, 0.95, 0.0], [0.1, 0.2, 0.1]),
+        LiftedBox::axis_aligned("frame_0", [0.65, 0.95, 0.0], [0.125, 0.1, 0.1]),
     ];
     let supports = infer_supports_within(&boxes, options.contact_gap, options.support_reach);
     assert_eq!(of(&supports, "frame_0").parent.as_deref(), Some("table_0"));

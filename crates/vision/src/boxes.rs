@@ -70,12 +70,17 @@ pub struct LiftOptions {
     /// Largest turn in radians that snaps a footprint to a wall direction.
     pub yaw_snap: f64,
     /// Pixels this close to a mask's boundary are not lifted when the interior keeps at least
-    /// `interior_min_points` pixels: a mask that bleeds by a pixel or two picks up the objects
+    /// `interior_min_points` pixels (`noisy_interior_min_points` on a noisy map): a mask that bleeds by a pixel or two picks up the objects
     /// standing on or behind it, at depths that join its cluster. The extents are widened by
     /// the margin's metric size instead.
     pub mask_margin_px: u32,
     /// Fewest interior pixels for the margin to apply (else the whole mask is lifted).
     pub interior_min_points: usize,
+    /// [`LiftOptions::interior_min_points`] on a noisy depth map (above `noisy_depth`): there a
+    /// bleeding boundary's pixels cannot be told from the object's by their depth (the largest
+    /// cluster keeps them), so the margin is left out of small masks too; on a clean map the
+    /// boundary of a small mask carries too much of the object to drop.
+    pub noisy_interior_min_points: usize,
     /// How far in metres a bottom may be from the top below it and still rest on it when
     /// nothing is within `contact_gap` ([`crate::support::infer_supports_within`]).
     pub support_reach: f64,
@@ -109,6 +114,7 @@ impl Default for LiftOptions {
             yaw_snap: 12f64.to_radians(),
             mask_margin_px: 2,
             interior_min_points: 200,
+            noisy_interior_min_points: 24,
             support_reach: 0.3,
             settle: true,
             footprint_deflation: 0.75,
@@ -303,6 +309,11 @@ pub fn lift_scene(guidance: &Guidance, options: &LiftOptions) -> Result<LiftedSc
         outline_heights: None,
         noisy: noise > options.noisy_depth,
     };
+    let interior_min_points = if precision.noisy {
+        options.noisy_interior_min_points
+    } else {
+        options.interior_min_points
+    };
     let mut boxes = Vec::new();
     let mut missing = Vec::new();
     for (id, mask) in &guidance.masks {
@@ -310,9 +321,7 @@ pub fn lift_scene(guidance: &Guidance, options: &LiftOptions) -> Result<LiftedSc
         let (points, source) = match depth {
             Some(depth) => {
                 let inner = interior(mask, options.mask_margin_px);
-                let points = if options.mask_margin_px > 0
-                    && inner.area() >= options.interior_min_points
-                {
+                let points = if options.mask_margin_px > 0 && inner.area() >= interior_min_points {
                     let points = mask_pixel_points(camera, depth, &inner, options.stride, radius);
                     precision.margin_px = options.mask_margin_px as f64;
                     precision.vertical_margins = vertical_margins(&points, options.mask_margin_px);
@@ -367,7 +376,8 @@ pub fn lift_points(
 }
 
 /// Puts every box that rests on another ([`SupportKind::On`]) onto its parent's top, parents
-/// first (a box on a box on a table follows the one below).
+/// first (a box on a box on a table follows the one below), and every box on the ground onto
+/// the floor.
 fn settle(boxes: &mut [LiftedBox], supports: &[SupportGuess]) {
     let mut order: Vec<usize> = (0..boxes.len()).collect();
     order.sort_by(|&a, &b| boxes[a].bottom().total_cmp(&boxes[b].bottom()));
@@ -375,6 +385,11 @@ fn settle(boxes: &mut [LiftedBox], supports: &[SupportGuess]) {
         let Some(s) = supports.iter().find(|s| s.id == boxes[i].id) else {
             continue;
         };
+        if s.kind == SupportKind::Ground {
+            // A low box found standing on nothing stands on the floor.
+            boxes[i].center.y = boxes[i].half_extents.y;
+            continue;
+        }
         if s.kind != SupportKind::On {
             continue;
         }
@@ -518,6 +533,15 @@ pub fn lift_points_with(
     let mut rect = min_area_rectangle(&floor, options.trim)?;
     if let Some(yaw) = snap_to_walls(rect.yaw, &options.wall_yaws, options.yaw_snap) {
         rect = rectangle_at(&floor, yaw, options.trim);
+    } else {
+        // How far each of the rectangle's sides is uncertain: a pixel's footprint at the
+        // object's distance and the depth noise left along the ray.
+        let resolution = (options.mask_boundary_px.max(1.0) * precision.pixel_angle
+            + precision.depth_noise)
+            * distance;
+        if let Some(walled) = unresolved_yaw(&rect, &floor, options, resolution) {
+            rect = walled;
+        }
     }
     if precision.noisy && options.footprint_deflation > 0.0 {
         deflate(
@@ -562,7 +586,9 @@ pub fn lift_points_with(
             Point2::new(eye.x, eye.z),
         );
     }
-    let half_y = ((top - bottom) / 2.0).max(0.005);
+    // A box is at least 1 cm tall unless a prior says how thin it is (a magazine, a towel).
+    let thinnest = if completed { 0.0005 } else { 0.005 };
+    let half_y = ((top - bottom) / 2.0).max(thinnest);
     Some(LiftedBox {
         id: id.to_string(),
         center: Point3::new(rect.center.x, bottom + half_y, rect.center.y),
@@ -606,6 +632,30 @@ pub fn deflate(
         let half = &mut rect.half_extents[k];
         *half = (*half - z * sigma).max(0.0);
     }
+}
+
+/// The rectangle of `points` aligned with the room's walls when the footprint cannot tell its
+/// orientation apart from theirs: `rect` is the minimum-area rectangle, and a wall-aligned one
+/// whose area is within what `resolution` (how far each side may be off, metres) allows —
+/// every side of `rect` lengthened by `2 · resolution` — fits the points as well. Round
+/// objects (every yaw fits as well) and objects a few pixels wide at a distance then take the
+/// room's axes, as furniture mostly does; the wall direction whose rectangle is smallest wins.
+/// `None` without walls or when the footprint is resolved.
+fn unresolved_yaw(
+    rect: &FloorRectangle,
+    points: &[Point2<f64>],
+    options: &LiftOptions,
+    resolution: f64,
+) -> Option<FloorRectangle> {
+    let quarter = std::f64::consts::FRAC_PI_2;
+    let size = rect.half_extents * 2.0;
+    let limit = (size.x + 2.0 * resolution) * (size.y + 2.0 * resolution);
+    options
+        .wall_yaws
+        .iter()
+        .map(|w| rectangle_at(points, w.rem_euclid(quarter), options.trim))
+        .filter(|r| r.area() <= limit)
+        .min_by(|a, b| a.area().total_cmp(&b.area()))
 }
 
 /// The yaw `yaw` snapped to the nearest of `walls` (modulo 90°) when within `tolerance`.
@@ -749,6 +799,135 @@ mod tests {
         let y = snap_to_walls(-0.95, &turned, snap).unwrap();
         let d = (y - 30f64.to_radians()).rem_euclid(std::f64::consts::FRAC_PI_2);
         assert!(d.min(std::f64::consts::FRAC_PI_2 - d) < 1e-9, "{y}");
+    }
+
+    #[test]
+    fn a_round_footprint_takes_the_walls_yaw_and_an_oblong_one_keeps_its_own() {
+        let options = LiftOptions {
+            wall_yaws: vec![0.0, std::f64::consts::FRAC_PI_2],
+            ..LiftOptions::default()
+        };
+        // A disc of radius 0.2 m sampled on a polar grid: every yaw fits it equally well.
+        let disc: Vec<Point2<f64>> = (1..=10)
+            .flat_map(|r| {
+                (0..72).map(move |k| {
+                    let (a, r) = (k as f64 * 5f64.to_radians() + 0.03, r as f64 * 0.02);
+                    Point2::new(r * a.cos(), r * a.sin())
+                })
+            })
+            .collect();
+        let rect = min_area_rectangle(&disc, 0.0).unwrap();
+        let walled = unresolved_yaw(&rect, &disc, &options, 0.005).expect("round");
+        assert!(walled.yaw.abs() < 1e-12, "{walled:?}");
+        // A 1.0 × 0.4 m rectangle turned by 30°, seen to the millimetre, keeps its yaw.
+        let yaw = 30f64.to_radians();
+        let (ax, az) = (
+            Vector2::new(yaw.cos(), -yaw.sin()),
+            Vector2::new(yaw.sin(), yaw.cos()),
+        );
+        let oblong: Vec<Point2<f64>> = (0..=50)
+            .flat_map(|i| {
+                (0..=20).map(move |j| {
+                    Point2::from(ax * (i as f64 * 0.02 - 0.5) + az * (j as f64 * 0.02 - 0.2))
+                })
+            })
+            .collect();
+        let rect = min_area_rectangle(&oblong, 0.0).unwrap();
+        assert_eq!(unresolved_yaw(&rect, &oblong, &options, 0.001), None);
+        // Seen a few pixels wide from far away, its orientation is no longer resolved.
+        assert!(unresolved_yaw(&rect, &oblong, &options, 0.3).is_some());
+    }
+
+    /// A small block (10 × 12 × 6 cm, its front at z = −3) on the floor seen from 1.6 m up, the
+    /// far wall at z = −6, every depth off by 2 % Gaussian noise (a fixed generator), and the
+    /// block's mask dilated by 2 px so it bleeds onto the floor and the wall behind.
+    fn bleeding_block() -> (Guidance, Point3<f64>) {
+        use scenethesis_correspondence::RgbImage;
+        use scenethesis_scene_graph::Intrinsics;
+        let (w, h) = (320u32, 240u32);
+        let k = Intrinsics::from_vertical_fov(w, h, 1.0);
+        let camera = Camera::look_at(
+            k,
+            Point3::new(0.0, 1.6, 0.0),
+            Point3::new(0.0, 0.0, -3.0),
+            Vector3::y(),
+        );
+        let (lo, hi) = (
+            Point3::new(-0.05, 0.0, -3.06),
+            Point3::new(0.05, 0.12, -3.0),
+        );
+        let hit = |u: u32, v: u32| -> (f64, bool) {
+            let ray = camera.unproject(&Point2::new(u as f64 + 0.5, v as f64 + 0.5), 1.0);
+            let (o, d) = (camera.position, ray - camera.position);
+            let (mut t0, mut t1) = (0.0f64, f64::INFINITY);
+            for a in 0..3 {
+                let (p, q) = ((lo[a] - o[a]) / d[a], (hi[a] - o[a]) / d[a]);
+                t0 = t0.max(p.min(q));
+                t1 = t1.min(p.max(q));
+            }
+            if t0 <= t1 {
+                return (t0, true);
+            }
+            let floor = if d.y < 0.0 { -o.y / d.y } else { f64::INFINITY };
+            let wall = (-6.0 - o.z) / d.z;
+            (floor.min(wall), false)
+        };
+        let mut state = 11u64;
+        let mut gauss = move || {
+            let mut u = || {
+                state = state
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                ((state >> 11) as f64 / (1u64 << 53) as f64).max(1e-12)
+            };
+            let (a, b) = (u(), u());
+            (-2.0 * a.ln()).sqrt() * (std::f64::consts::TAU * b).cos()
+        };
+        let depth = DepthMap::from_fn(w, h, |u, v| {
+            // Depth along the optical axis: the ray parameter for a unit-depth unprojection.
+            (hit(u, v).0 * (1.0 + 0.02 * gauss())) as f32
+        });
+        let mut mask = Mask::new(w, h);
+        for v in 0..h {
+            for u in 0..w {
+                let near = (u.saturating_sub(2)..=(u + 2).min(w - 1))
+                    .any(|x| (v.saturating_sub(2)..=(v + 2).min(h - 1)).any(|y| hit(x, y).1));
+                mask.set(u, v, near);
+            }
+        }
+        let image = RgbImage::new(w, h, vec![128; (w * h * 3) as usize]).unwrap();
+        let guidance = Guidance::new(
+            camera,
+            image,
+            Some(depth),
+            BTreeMap::from([("block".to_string(), mask)]),
+        )
+        .unwrap();
+        (guidance, Point3::new(0.0, 0.06, -3.03))
+    }
+
+    #[test]
+    fn on_a_noisy_map_a_small_bleeding_mask_is_lifted_from_its_interior() {
+        let (guidance, truth) = bleeding_block();
+        let options = LiftOptions {
+            priors: BTreeMap::from([("block".to_string(), Vector3::new(0.1, 0.12, 0.06))]),
+            ..LiftOptions::default()
+        };
+        let error = |options: &LiftOptions| {
+            let lifted = lift_scene(&guidance, options).unwrap();
+            assert!(lifted.depth_noise > options.noisy_depth);
+            let b = &lifted.boxes[0];
+            Vector2::new(b.center.x - truth.x, b.center.z - truth.z).norm()
+        };
+        let interior = error(&options);
+        let whole = error(&LiftOptions {
+            noisy_interior_min_points: usize::MAX,
+            ..options.clone()
+        });
+        assert!(
+            interior < whole,
+            "interior {interior} m, whole mask {whole} m"
+        );
     }
 
     /// The visible faces (front, top) of a 1.0 × 0.8 × 0.5 m box on the floor 5 m in front of

@@ -255,21 +255,7 @@ pub fn cross_check(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lifted_box::DepthSource;
     use crate::support::infer_supports_within;
-    use nalgebra::{Point3, Vector3};
-
-    fn lifted(id: &str, center: [f64; 3], half: [f64; 3]) -> LiftedBox {
-        LiftedBox {
-            id: id.into(),
-            center: Point3::from(center),
-            half_extents: Vector3::from(half),
-            yaw: 0.0,
-            points: 100,
-            depth_source: DepthSource::Measured,
-            completed: true,
-        }
-    }
 
     fn said(id: &str, kind: SupportKind, parent: Option<&str>) -> SupportGuess {
         SupportGuess {
@@ -284,10 +270,10 @@ mod tests {
     /// above its top: geometry reaches for the table, marginally.
     fn scene() -> (Vec<LiftedBox>, Vec<SupportGuess>) {
         let boxes = vec![
-            lifted("table", [0.0, 0.375, 0.0], [0.6, 0.375, 0.4]),
-            lifted("cabinet", [1.5, 0.45, 0.0], [0.3, 0.45, 0.3]),
-            lifted("lamp", [0.1, 0.95, 0.0], [0.1, 0.2, 0.1]),
-            lifted("box", [0.65, 0.95, 0.0], [0.125, 0.1, 0.1]),
+            LiftedBox::axis_aligned("table", [0.0, 0.375, 0.0], [0.6, 0.375, 0.4]),
+            LiftedBox::axis_aligned("cabinet", [1.5, 0.45, 0.0], [0.3, 0.45, 0.3]),
+            LiftedBox::axis_aligned("lamp", [0.1, 0.95, 0.0], [0.1, 0.2, 0.1]),
+            LiftedBox::axis_aligned("box", [0.65, 0.95, 0.0], [0.125, 0.1, 0.1]),
         ];
         let supports = infer_supports_within(&boxes, 0.06, 0.3);
         (boxes, supports)

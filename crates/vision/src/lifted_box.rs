@@ -37,6 +37,26 @@ pub struct LiftedBox {
 }
 
 impl LiftedBox {
+    /// A box known rather than lifted (from a plan, a scene or a test): unturned, complete, its
+    /// depth source [`DepthSource::Measured`] and no points behind it.
+    ///
+    /// ```
+    /// use scenethesis_vision::LiftedBox;
+    /// let table = LiftedBox::axis_aligned("table_0", [0.0, 0.375, 0.0], [0.6, 0.375, 0.4]);
+    /// assert!((table.top() - 0.75).abs() < 1e-12);
+    /// ```
+    pub fn axis_aligned(id: &str, center: [f64; 3], half_extents: [f64; 3]) -> Self {
+        Self {
+            id: id.to_string(),
+            center: Point3::from(center),
+            half_extents: Vector3::from(half_extents),
+            yaw: 0.0,
+            points: 0,
+            depth_source: DepthSource::Measured,
+            completed: true,
+        }
+    }
+
     /// Height of the bottom face above the floor.
     pub fn bottom(&self) -> f64 {
         self.center.y - self.half_extents.y

@@ -3,9 +3,11 @@
 //! Boxes are visited lowest first. A box whose bottom is at the floor stands on the ground; one
 //! whose bottom meets another box's top within a gap tolerance, with most of its footprint over
 //! that box, stands on it; one whose bottom lies between another box's bottom and top, with its
-//! footprint inside, sits inside it (a shelf, a cabinet). Anything else is reported as
-//! unsupported so the caller can decide (a wall-mounted object, or a lifting error). A box at
-//! the floor lying mostly over a larger flat one (a mat, a towel) rests on it.
+//! footprint inside, sits inside it (a shelf, a cabinet). A box held by nothing whose bottom
+//! is too low to hang on a wall stands on the ground (its bottom was lifted wrongly); anything
+//! else is reported as unsupported so the caller can decide (a wall-mounted object, or a
+//! lifting error). A box at the floor lying mostly over a larger low one (a mat, a towel, a
+//! pallet) rests on it.
 
 use serde::{Deserialize, Serialize};
 
@@ -67,17 +69,21 @@ fn under(boxes: &[LiftedBox], i: usize) -> Option<usize> {
     best
 }
 
-/// The flat box (a mat, a towel, a rug: its top within `gap` of the floor) a floor-level box
-/// `i` lies on: larger than it and under at least half of its footprint; the largest such.
-/// Both bottoms are at the floor, so the height order cannot tell which holds which.
-fn lying_on(boxes: &[LiftedBox], i: usize, gap: f64) -> Option<usize> {
+/// The low box (a mat, a towel, a rug: its top within `gap` of the floor; or a pallet: its
+/// top within `reach` of the floor and more than `gap` below box `i`'s) a floor-level box `i` lies on: larger than it and under at
+/// least half of its footprint; the largest such. Both bottoms were found at the floor (a low
+/// parent's top is within noise of it, and a box over a pallet has its bottom hidden), so the
+/// height order cannot tell which holds which; two boxes cannot both stand on the same floor.
+fn lying_on(boxes: &[LiftedBox], i: usize, gap: f64, reach: f64) -> Option<usize> {
     let foot = boxes[i].footprint();
+    let top = boxes[i].top();
     boxes
         .iter()
         .enumerate()
         .filter(|(j, a)| {
             *j != i
-                && a.top() <= gap
+                && a.top() <= reach
+                && (a.top() <= gap || a.top() < top - gap)
                 && a.footprint().area() > foot.area()
                 && foot.fraction_inside(&a.footprint(), 0.0) >= 0.5
         })
@@ -94,7 +100,10 @@ pub fn infer_supports(boxes: &[LiftedBox], gap: f64) -> Vec<SupportGuess> {
 /// [`infer_supports`] with a second chance: a box that neither stands on the floor nor meets a
 /// top within `gap` rests on the box below it whose top is nearest its bottom, within `reach`
 /// metres either way, when at least 30 % of its footprint lies over that box (noisy depth
-/// scatters bottoms and tops by more than a contact gap). Only what is left is unsupported.
+/// scatters bottoms and tops by more than a contact gap); failing that (when `reach` exceeds
+/// `gap`), inside the box its bottom lies within by the same 30 % (a lower tier of a rack).
+/// What is left is unsupported when its bottom is above [`MOUNT_MIN_BOTTOM`] and on the ground
+/// otherwise (nothing holds it and nothing hangs that low: its bottom was lifted wrongly).
 pub fn infer_supports_within(boxes: &[LiftedBox], gap: f64, reach: f64) -> Vec<SupportGuess> {
     let mut order: Vec<usize> = (0..boxes.len()).collect();
     order.sort_by(|&a, &b| {
@@ -149,10 +158,27 @@ pub fn infer_supports_within(boxes: &[LiftedBox], gap: f64, reach: f64) -> Vec<S
                 }
             }
         }
+        if best.is_none() && bottom > gap && reach > gap {
+            // Nor near any top: inside the box it sits within (a lower tier of a rack), by the
+            // same looser footprint test, nearest its inner floor.
+            for (j, a) in boxes.iter().enumerate() {
+                if j == i || a.bottom() >= bottom - 0.02 {
+                    continue;
+                }
+                let depth = bottom - a.bottom();
+                if bottom < a.top() - gap
+                    && b.top() <= a.top() + gap
+                    && foot.fraction_inside(&a.footprint(), 0.05) >= 0.3
+                    && best.is_none_or(|(s, _, _)| depth < s)
+                {
+                    best = Some((depth, j, SupportKind::Inside));
+                }
+            }
+        }
         let guess = match best {
-            _ if bottom <= gap && lying_on(boxes, i, gap).is_some() => SupportGuess {
+            _ if bottom <= gap && lying_on(boxes, i, gap, reach).is_some() => SupportGuess {
                 id: b.id.clone(),
-                parent: lying_on(boxes, i, gap).map(|j| boxes[j].id.clone()),
+                parent: lying_on(boxes, i, gap, reach).map(|j| boxes[j].id.clone()),
                 kind: SupportKind::On,
             },
             _ if bottom <= gap => match under(boxes, i) {
@@ -171,6 +197,13 @@ pub fn infer_supports_within(boxes: &[LiftedBox], gap: f64, reach: f64) -> Vec<S
                 id: b.id.clone(),
                 parent: Some(boxes[j].id.clone()),
                 kind,
+            },
+            // Nothing holds up a box this low and nothing hangs this low on a wall: a floor
+            // object whose bottom was lifted wrongly.
+            None if bottom <= MOUNT_MIN_BOTTOM => SupportGuess {
+                id: b.id.clone(),
+                parent: None,
+                kind: SupportKind::Ground,
             },
             None => SupportGuess {
                 id: b.id.clone(),
@@ -238,21 +271,7 @@ pub fn mount_on_walls(guesses: &mut [SupportGuess], boxes: &[LiftedBox], walls: 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lifted_box::DepthSource;
-    use nalgebra::{Point3, Vector3};
     use scenethesis_scene_graph::Architecture;
-
-    fn lifted(id: &str, center: [f64; 3], half: [f64; 3]) -> LiftedBox {
-        LiftedBox {
-            id: id.into(),
-            center: Point3::from(center),
-            half_extents: Vector3::from(half),
-            yaw: 0.0,
-            points: 100,
-            depth_source: DepthSource::Measured,
-            completed: true,
-        }
-    }
 
     #[test]
     fn a_high_box_against_a_wall_hangs_on_it_and_others_do_not() {
@@ -260,13 +279,13 @@ mod tests {
         let room = Architecture::rectangular_room(6.0, 4.0, 2.8, 0.9);
         let boxes = vec![
             // A painting 1.3–1.9 m up, its back 1 cm off the back wall.
-            lifted("painting", [0.5, 1.6, -1.97], [0.4, 0.3, 0.02]),
+            LiftedBox::axis_aligned("painting", [0.5, 1.6, -1.97], [0.4, 0.3, 0.02]),
             // The same 1 m out into the room: floating, a lifting error.
-            lifted("ghost", [0.5, 1.6, -0.97], [0.4, 0.3, 0.02]),
-            // Against the wall but only 10 cm up: not mounted.
-            lifted("low", [-1.5, 0.3, -1.9], [0.3, 0.2, 0.1]),
+            LiftedBox::axis_aligned("ghost", [0.5, 1.6, -0.97], [0.4, 0.3, 0.02]),
+            // Against the wall but only 10 cm up: not mounted, a floor object lifted wrongly.
+            LiftedBox::axis_aligned("low", [-1.5, 0.3, -1.9], [0.3, 0.2, 0.1]),
             // On the floor against the wall: stands on the ground.
-            lifted("cabinet", [2.0, 0.5, -1.8], [0.4, 0.5, 0.2]),
+            LiftedBox::axis_aligned("cabinet", [2.0, 0.5, -1.8], [0.4, 0.5, 0.2]),
         ];
         let mut guesses = infer_supports(&boxes, 0.06);
         mount_on_walls(&mut guesses, &boxes, &room.walls);
@@ -279,7 +298,7 @@ mod tests {
             (SupportKind::Mounted, Some("wall_0".into()))
         );
         assert_eq!(kind("ghost"), (SupportKind::Unsupported, None));
-        assert_eq!(kind("low"), (SupportKind::Unsupported, None));
+        assert_eq!(kind("low"), (SupportKind::Ground, None));
         assert_eq!(kind("cabinet"), (SupportKind::Ground, None));
     }
 
@@ -287,9 +306,9 @@ mod tests {
     fn a_bottom_noise_lifted_off_its_table_still_rests_on_it() {
         // Table top at 0.75; the vase's bottom came out 0.2 m above it.
         let boxes = [
-            lifted("table", [0.0, 0.375, 0.0], [0.6, 0.375, 0.4]),
-            lifted("vase", [0.1, 1.05, 0.0], [0.08, 0.1, 0.08]),
-            lifted("painting", [0.0, 1.6, -0.38], [0.4, 0.3, 0.02]),
+            LiftedBox::axis_aligned("table", [0.0, 0.375, 0.0], [0.6, 0.375, 0.4]),
+            LiftedBox::axis_aligned("vase", [0.1, 1.05, 0.0], [0.08, 0.1, 0.08]),
+            LiftedBox::axis_aligned("painting", [0.0, 1.6, -0.38], [0.4, 0.3, 0.02]),
         ];
         let strict = infer_supports(&boxes, 0.06);
         let vase = strict.iter().find(|s| s.id == "vase").unwrap();
@@ -308,11 +327,11 @@ mod tests {
     #[test]
     fn objects_at_the_floor_over_a_towel_lie_on_it() {
         let boxes = [
-            lifted("towel", [0.0, 0.005, 0.0], [0.9, 0.005, 0.5]),
-            lifted("ball", [0.3, 0.11, 0.1], [0.1, 0.1, 0.1]),
-            lifted("keys", [-0.2, 0.015, 0.0], [0.04, 0.005, 0.03]),
+            LiftedBox::axis_aligned("towel", [0.0, 0.005, 0.0], [0.9, 0.005, 0.5]),
+            LiftedBox::axis_aligned("ball", [0.3, 0.11, 0.1], [0.1, 0.1, 0.1]),
+            LiftedBox::axis_aligned("keys", [-0.2, 0.015, 0.0], [0.04, 0.005, 0.03]),
             // Mostly off the towel: on the floor.
-            lifted("bag", [0.95, 0.2, 0.0], [0.2, 0.2, 0.15]),
+            LiftedBox::axis_aligned("bag", [0.95, 0.2, 0.0], [0.2, 0.2, 0.15]),
         ];
         let s = infer_supports(&boxes, 0.06);
         let of = |id: &str| {
@@ -323,5 +342,43 @@ mod tests {
         assert_eq!(of("keys"), (SupportKind::On, Some("towel".into())));
         assert_eq!(of("bag"), (SupportKind::Ground, None));
         assert_eq!(of("towel"), (SupportKind::Ground, None));
+    }
+
+    #[test]
+    fn a_crate_found_at_the_floor_over_a_pallet_rests_on_it() {
+        let boxes = [
+            LiftedBox::axis_aligned("pallet", [0.0, 0.07, 0.0], [0.6, 0.07, 0.5]),
+            // Its bottom hidden behind the pallet, the crate came out standing on the floor.
+            LiftedBox::axis_aligned("crate", [0.1, 0.2, 0.0], [0.3, 0.2, 0.2]),
+            // A low stool beside the pallet stays on the floor.
+            LiftedBox::axis_aligned("stool", [1.2, 0.2, 0.0], [0.2, 0.2, 0.2]),
+        ];
+        let s = infer_supports_within(&boxes, 0.06, 0.3);
+        let of = |id: &str| {
+            let g = s.iter().find(|g| g.id == id).unwrap();
+            (g.kind, g.parent.clone())
+        };
+        assert_eq!(of("crate"), (SupportKind::On, Some("pallet".into())));
+        assert_eq!(of("stool"), (SupportKind::Ground, None));
+        assert_eq!(of("pallet"), (SupportKind::Ground, None));
+    }
+
+    #[test]
+    fn a_box_within_a_rack_a_noisy_footprint_half_out_sits_inside_it() {
+        let boxes = [
+            LiftedBox::axis_aligned("rack", [0.0, 0.4, 0.0], [0.8, 0.4, 0.25]),
+            // A dumbbell on the lower tier, 15 cm up, its footprint 60 % in front of the rack.
+            LiftedBox::axis_aligned("dumbbell", [0.0, 0.23, 0.3], [0.15, 0.08, 0.125]),
+        ];
+        let s = infer_supports_within(&boxes, 0.06, 0.3);
+        let dumbbell = s.iter().find(|g| g.id == "dumbbell").unwrap();
+        assert_eq!(
+            (dumbbell.kind, dumbbell.parent.as_deref()),
+            (SupportKind::Inside, Some("rack"))
+        );
+        // The strict rule alone (60 % inside) finds nothing holding it.
+        let strict = infer_supports(&boxes, 0.06);
+        let dumbbell = strict.iter().find(|g| g.id == "dumbbell").unwrap();
+        assert_ne!(dumbbell.kind, SupportKind::Inside);
     }
 }
