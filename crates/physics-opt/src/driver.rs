@@ -173,6 +173,7 @@ pub fn optimize_scene(
         });
         supports.push(support);
     }
+    let mut checked = None;
     if !settings.skip_finish {
         let assets: Vec<Arc<PreparedAsset>> = order
             .iter()
@@ -196,7 +197,8 @@ pub fn optimize_scene(
                 .collect();
             resolve_support(problem, order[i], pose, &finals)
         };
-        let spent = finish(&input, optimizer, &resolve, &mut poses, &mut supports);
+        let (spent, verdicts) = finish(&input, optimizer, &resolve, &mut poses, &mut supports);
+        checked = verdicts;
         if poses.iter().zip(&reports).any(|(p, r)| *p != r.pose) {
             exact = Obstacles::new(true);
             for (id, field, pose) in architecture {
@@ -230,7 +232,8 @@ pub fn optimize_scene(
             support,
         })
         .collect();
-    let verdicts = verify(&placed, &exact, Some(room), &settings.tolerances);
+    let verdicts =
+        checked.unwrap_or_else(|| verify(&placed, &exact, Some(room), &settings.tolerances));
     for (report, verdict) in reports.iter_mut().zip(verdicts) {
         report.penetration = verdict.penetration;
         report.support_gap = verdict.support_gap;

@@ -21,7 +21,7 @@ use crate::params::world_point;
 use crate::prepare::PreparedAsset;
 use crate::report::Issue;
 use crate::support::{Support, SupportPlane};
-use crate::verify::{verify, Placed, Tolerances};
+use crate::verify::{verify, Placed, Tolerances, Verdict};
 
 /// Rounds of the pass at most.
 const ROUNDS: usize = 8;
@@ -52,14 +52,15 @@ pub(crate) struct FinishInput<'a> {
 pub(crate) type ResolveSupport<'a> = dyn Fn(usize, &Pose, &[Pose]) -> Support + 'a;
 
 /// Runs the pass over `poses` and `supports` (in `input.order`); returns the physics
-/// iterations spent per object.
+/// iterations spent per object and, when the last check was made on the final poses, its
+/// verdicts (so that the driver need not check again).
 pub(crate) fn finish(
     input: &FinishInput<'_>,
     optimizer: &dyn Optimizer,
     resolve: &ResolveSupport<'_>,
     poses: &mut [Pose],
     supports: &mut [Support],
-) -> Vec<usize> {
+) -> (Vec<usize>, Option<Vec<Verdict>>) {
     let n = input.order.len();
     let mut iterations = vec![0usize; n];
     let index_of: BTreeMap<&str, usize> = input
@@ -96,8 +97,9 @@ pub(crate) fn finish(
             .collect()
     };
     let tol = input.settings.tolerances;
+    let mut last = None;
     for _ in 0..ROUNDS {
-        let todo = pending(
+        let (todo, verdicts) = pending(
             input,
             &dense,
             poses,
@@ -107,6 +109,7 @@ pub(crate) fn finish(
             &is_ancestor,
         );
         if todo.is_empty() {
+            last = Some(verdicts);
             break;
         }
         let mut moved_any = false;
@@ -237,10 +240,11 @@ pub(crate) fn finish(
             }
         }
         if !moved_any {
+            last = Some(verdicts);
             break;
         }
     }
-    iterations
+    (iterations, last)
 }
 
 /// The objects that still miss a post-condition the pass can act on, in order, each with
@@ -255,7 +259,7 @@ fn pending(
     tol: &Tolerances,
     index_of: &BTreeMap<&str, usize>,
     is_ancestor: &dyn Fn(usize, usize) -> bool,
-) -> Vec<(usize, bool)> {
+) -> (Vec<(usize, bool)>, Vec<Verdict>) {
     let all = obstacles_without(input, dense, poses, usize::MAX);
     let placed: Vec<Placed<'_>> = input
         .order
@@ -292,7 +296,7 @@ fn pending(
             out.push((i, (off || topples) && !collides));
         }
     }
-    out
+    (out, verdicts)
 }
 
 /// Whether every contact of the object at `pose` is with an obstacle `movable` accepts (by id).
