@@ -83,42 +83,30 @@ pub(crate) fn finish(
         }
         false
     };
-    let dense: Vec<Arc<PreparedAsset>> = {
-        let mut by_ptr: BTreeMap<usize, Arc<PreparedAsset>> = BTreeMap::new();
-        input
-            .assets
-            .iter()
-            .map(|a| {
-                by_ptr
-                    .entry(Arc::as_ptr(a) as usize)
-                    .or_insert_with(|| Arc::new(a.densified()))
-                    .clone()
-            })
-            .collect()
-    };
+    // The check (and the obstacles' samples) use each asset's dense check points as they
+    // are; only an object settled again needs them as its collision samples too.
+    let dense = input.assets;
+    let mut densified: BTreeMap<usize, Arc<PreparedAsset>> = BTreeMap::new();
     let tol = input.settings.tolerances;
     let mut last = None;
     for _ in 0..ROUNDS {
-        let (todo, verdicts) = pending(
-            input,
-            &dense,
-            poses,
-            supports,
-            &tol,
-            &index_of,
-            &is_ancestor,
-        );
+        let (todo, verdicts) =
+            pending(input, dense, poses, supports, &tol, &index_of, &is_ancestor);
         if todo.is_empty() {
             last = Some(verdicts);
             break;
         }
         let mut moved_any = false;
         for (i, topples) in todo {
-            let others = obstacles_without(input, &dense, poses, i);
+            let others = obstacles_without(input, dense, poses, i, true);
+            let asset = densified
+                .entry(Arc::as_ptr(&dense[i]) as usize)
+                .or_insert_with(|| Arc::new(dense[i].densified()))
+                .clone();
             let support = supports[i].clone();
             let problem = ObjectProblem {
                 id: &input.order[i].id,
-                asset: &dense[i],
+                asset: &asset,
                 obstacles: &others,
                 support: &support,
                 room: Some(input.room),
@@ -260,7 +248,8 @@ fn pending(
     index_of: &BTreeMap<&str, usize>,
     is_ancestor: &dyn Fn(usize, usize) -> bool,
 ) -> (Vec<(usize, bool)>, Vec<Verdict>) {
-    let all = obstacles_without(input, dense, poses, usize::MAX);
+    // The check reads only the fields, not the obstacles' samples.
+    let all = obstacles_without(input, dense, poses, usize::MAX, false);
     let placed: Vec<Placed<'_>> = input
         .order
         .iter()
@@ -316,12 +305,14 @@ fn only_movable_contacts(
         })
 }
 
-/// Obstacles of the architecture and every object but `skip`, exact fields with dense samples.
+/// Obstacles of the architecture and every object but `skip`, exact fields with (when
+/// `samples`) their dense samples.
 fn obstacles_without(
     input: &FinishInput<'_>,
     dense: &[Arc<PreparedAsset>],
     poses: &[Pose],
     skip: usize,
+    samples: bool,
 ) -> Obstacles {
     let mut obstacles = Obstacles::new(true);
     for (id, field, pose) in input.architecture {
@@ -335,7 +326,7 @@ fn obstacles_without(
                 asset.exact_field(),
                 poses[i],
                 false,
-                asset.check_points(),
+                if samples { asset.check_points() } else { &[] },
             );
         }
     }
