@@ -7,11 +7,14 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use nalgebra::{Point3, Vector3};
-use scenethesis_scene_graph::{Architecture, ParentRef, Pose, RelationKind, Scene, SceneObject};
+use scenethesis_scene_graph::{
+    Architecture, ParentRef, Pose, RelationKind, Scene, SceneObject, SupportSurface,
+};
 use scenethesis_sdf::{BoxSdf, SignedDistance};
 use serde::{Deserialize, Serialize};
 
 use crate::alignment::PoseAlignment;
+use crate::finish::{finish, FinishInput};
 use crate::objective::{LossSettings, ObjectProblem, RoomBounds, Stage};
 use crate::obstacles::Obstacles;
 use crate::optimizer::Optimizer;
@@ -67,12 +70,24 @@ pub struct OptimizeSettings {
     /// Do not move children along when their parent moves (by default a child keeps its pose
     /// relative to its parent's displacement before it is optimized).
     pub keep_children_in_place: bool,
+    /// Skip the final separation pass (by default objects that still miss a post-condition
+    /// after the breadth-first sweep are settled again against every other object, with the
+    /// dense samples the post-conditions use; see [`optimize_scene`]).
+    #[serde(default)]
+    pub skip_finish: bool,
 }
 
 /// Optimizes every object of `problem` with `optimizer` and reports per object whether the
 /// post-conditions hold. Objects that cannot be placed are reported with the reason (which
 /// object or surface they collide with, how far they float, how far they stick out); they are
 /// never silently left colliding.
+///
+/// After the breadth-first sweep, a final separation pass settles the objects that still miss
+/// a post-condition again, this time against every other object (siblings placed after them
+/// included) and with the dense samples of the post-condition check: siblings wedged into each
+/// other make room in turn, a child colliding with its parent moves (the parent stays), and a
+/// resting object whose centre of mass is not over the feet its support holds moves inward.
+/// Children move with a parent the pass moves.
 pub fn optimize_scene(
     problem: &SceneProblem,
     optimizer: &dyn Optimizer,
@@ -158,6 +173,54 @@ pub fn optimize_scene(
         });
         supports.push(support);
     }
+    let mut checked = None;
+    if !settings.skip_finish {
+        let assets: Vec<Arc<PreparedAsset>> = order
+            .iter()
+            .map(|o| problem.assets[&o.id].clone())
+            .collect();
+        let architecture = architecture_fields(&scene.architecture);
+        let input = FinishInput {
+            order: &order,
+            assets: &assets,
+            architecture: &architecture,
+            room,
+            settings,
+            settle: optimizer.settles(),
+        };
+        let mut poses: Vec<Pose> = reports.iter().map(|r| r.pose).collect();
+        let resolve = |i: usize, pose: &Pose, poses: &[Pose]| {
+            let finals: BTreeMap<&str, Pose> = order
+                .iter()
+                .zip(poses)
+                .map(|(o, p)| (o.id.as_str(), *p))
+                .collect();
+            resolve_support(problem, order[i], pose, &finals)
+        };
+        let (spent, verdicts) = finish(&input, optimizer, &resolve, &mut poses, &mut supports);
+        checked = verdicts;
+        if poses.iter().zip(&reports).any(|(p, r)| *p != r.pose) {
+            exact = Obstacles::new(true);
+            for (id, field, pose) in architecture {
+                exact.insert(&id, field, pose, true, &[]);
+            }
+            for ((object, report), pose) in order.iter().zip(&mut reports).zip(&poses) {
+                let asset = &problem.assets[&object.id];
+                exact.insert(
+                    &object.id,
+                    asset.exact_field(),
+                    *pose,
+                    false,
+                    asset.surface_points(),
+                );
+                report.pose = *pose;
+            }
+        }
+        for (report, (support, spent)) in reports.iter_mut().zip(supports.iter().zip(spent)) {
+            report.support = support.clone();
+            report.physics_iterations += spent;
+        }
+    }
     let placed: Vec<Placed<'_>> = order
         .iter()
         .zip(&reports)
@@ -169,7 +232,8 @@ pub fn optimize_scene(
             support,
         })
         .collect();
-    let verdicts = verify(&placed, &exact, Some(room), &settings.tolerances);
+    let verdicts =
+        checked.unwrap_or_else(|| verify(&placed, &exact, Some(room), &settings.tolerances));
     for (report, verdict) in reports.iter_mut().zip(verdicts) {
         report.penetration = verdict.penetration;
         report.support_gap = verdict.support_gap;
@@ -180,6 +244,10 @@ pub fn optimize_scene(
         objects: reports,
     })
 }
+
+/// Head room an object needs under a compartment's clearance beyond its own height, metres
+/// (the support clearance and the collision margin above and below, rounded up).
+const FIT_SPARE: f64 = 0.004;
 
 /// What `object` rests on, given the final poses of the objects placed before it: nothing for
 /// an object fixed to the world ([`SceneObject::fixed_to_world`]: mounted on a wall, so no
@@ -214,13 +282,31 @@ fn resolve_support(
                 };
             };
             let foot = Point3::from(start.translation);
-            choose_surface(
-                parent,
-                parent_pose,
-                parent_asset.support_surfaces(),
-                object.support,
-                &foot,
-            )
+            let all = parent_asset.support_surfaces();
+            // A compartment too low for the object even at its smallest scale cannot hold it:
+            // choose among the surfaces it fits under first.
+            let fitting: Vec<SupportSurface> = problem
+                .assets
+                .get(&object.id)
+                .map(|asset| {
+                    let height = asset.bounds().max.y.max(1e-6) * asset.scale_range()[0];
+                    all.iter()
+                        .filter(|s| {
+                            s.clearance
+                                .is_none_or(|c| c as f64 * parent_pose.scale >= height + FIT_SPARE)
+                        })
+                        .cloned()
+                        .collect()
+                })
+                .unwrap_or_default();
+            let fits = |surfaces: &[SupportSurface]| {
+                choose_surface(parent, parent_pose, surfaces, object.support, &foot)
+            };
+            (if fitting.len() < all.len() {
+                fits(&fitting).or_else(|| fits(all))
+            } else {
+                fits(all)
+            })
             .map_or_else(
                 || Support::ParentGeometry {
                     parent: parent.clone(),
@@ -233,7 +319,7 @@ fn resolve_support(
 
 /// A child's pose moved rigidly with its parent from `before` to `after` (position and yaw
 /// follow the parent; the child's own scale is kept).
-fn carry(before: &Pose, after: &Pose, child: &Pose) -> Pose {
+pub(crate) fn carry(before: &Pose, after: &Pose, child: &Pose) -> Pose {
     let local = unrotate_y(before.yaw, &(child.translation - before.translation)) / before.scale;
     let translation = after.translation + rotate_y(after.yaw, &(local * after.scale));
     Pose::new(

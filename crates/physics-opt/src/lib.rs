@@ -29,6 +29,7 @@
 mod alignment;
 mod contact;
 mod driver;
+mod finish;
 mod guided;
 mod objective;
 mod obstacles;

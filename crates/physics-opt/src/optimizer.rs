@@ -28,6 +28,12 @@ pub trait Optimizer: Send + Sync {
 
     /// Runs `stage` for one object from `initial`.
     fn optimize(&self, problem: &ObjectProblem<'_>, stage: Stage, initial: Pose) -> StageOutcome;
+
+    /// Whether the physics stage settles resting objects on their support (the stability
+    /// loss); when it does not, the scene driver's final pass only separates collisions.
+    fn settles(&self) -> bool {
+        true
+    }
 }
 
 /// Learning rates of the five parameters (scale, yaw, translation).

@@ -75,6 +75,10 @@ impl Optimizer for ProjectedGaussNewton {
         "projected-gauss-newton"
     }
 
+    fn settles(&self) -> bool {
+        self.stability
+    }
+
     fn optimize(&self, problem: &ObjectProblem<'_>, stage: Stage, initial: Pose) -> StageOutcome {
         let (pose, iterations) = match stage {
             Stage::Alignment => self.align(problem, initial),

@@ -419,3 +419,230 @@ fn thirty_object_room_meets_every_post_condition() {
         assert_eq!(m.inst_o, 0.0, "[{name}] {:?}", m.unstable);
     }
 }
+
+#[test]
+fn siblings_wedged_in_a_compartment_make_room_in_turn() {
+    // Two 0.3 m boxes in the 0.76 m compartment: the second starts 5 cm into the first and
+    // 2 cm into the side board. Placed after the first, it has only 0.23 m between the first
+    // and the side and cannot shrink enough; the final pass moves the first box aside.
+    let b = Arc::new(boxed([0.3, 0.2, 0.2], [0.98, 1.02]));
+    let shelf = Arc::new(shelf());
+    let y = SHELF_BOARDS[1] + 0.001;
+    let problem = problem(
+        "shelf",
+        vec![
+            (
+                object(
+                    "shelf",
+                    None,
+                    RelationKind::AgainstWall,
+                    &shelf,
+                    at(0.0, 0.0, -1.8, 0.0),
+                ),
+                shelf.clone(),
+            ),
+            (
+                object(
+                    "box_a",
+                    Some("shelf"),
+                    RelationKind::Inside,
+                    &b,
+                    at(0.0, y, -1.8, 0.0),
+                ),
+                b.clone(),
+            ),
+            (
+                object(
+                    "box_b",
+                    Some("shelf"),
+                    RelationKind::Inside,
+                    &b,
+                    at(0.25, y, -1.8, 0.0),
+                ),
+                b.clone(),
+            ),
+        ],
+    );
+    let opt = ProjectedGaussNewton::default();
+    let swept = optimize_scene(
+        &problem,
+        &opt,
+        &OptimizeSettings {
+            skip_finish: true,
+            ..OptimizeSettings::default()
+        },
+    )
+    .unwrap();
+    assert!(!swept.is_ok(), "the sweep alone should leave box_b wedged");
+    let placement = run(&problem, &opt);
+    assert_all_ok(&placement);
+    let a = placement.pose("box_a").unwrap();
+    assert!(a.translation.x < -0.05, "box_a did not make room: {a:?}");
+    assert!((placement.pose("shelf").unwrap().translation.x).abs() < 1e-9);
+}
+
+/// A 1.0 × 0.6 m coffee table, 0.45 m high, with a lower shelf board at 0.12 m; the floor
+/// beneath the shelf has 10 cm of clearance.
+fn coffee_table() -> PreparedAsset {
+    use scenethesis_assets::primitives::cuboid;
+    use scenethesis_assets::{Placement, SupportSurface, SurfaceKind};
+    let mut parts = vec![
+        cuboid("top", 0, [-0.5, 0.42, -0.3], [0.5, 0.45, 0.3]),
+        cuboid("shelf", 0, [-0.45, 0.1, -0.25], [0.45, 0.12, 0.25]),
+    ];
+    for (i, (x, z)) in [(-0.47, -0.27), (0.47, -0.27), (-0.47, 0.27), (0.47, 0.27)]
+        .into_iter()
+        .enumerate()
+    {
+        parts.push(cuboid(
+            &format!("leg_{i}"),
+            0,
+            [x - 0.02, 0.0, z - 0.02],
+            [x + 0.02, 0.42, z + 0.02],
+        ));
+    }
+    let rect = |h: f32| vec![[-h, -0.23], [-h, 0.23], [h, 0.23], [h, -0.23]];
+    let surfaces = vec![
+        SupportSurface {
+            name: "top".into(),
+            kind: SurfaceKind::Top,
+            polygon: rect(0.48),
+            height: 0.45,
+            clearance: None,
+        },
+        SupportSurface {
+            name: "lower_shelf".into(),
+            kind: SurfaceKind::Shelf,
+            polygon: rect(0.43),
+            height: 0.12,
+            clearance: Some(0.3),
+        },
+        SupportSurface {
+            name: "under".into(),
+            kind: SurfaceKind::Under,
+            polygon: rect(0.43),
+            height: 0.0,
+            clearance: Some(0.1),
+        },
+    ];
+    let mesh = scenethesis_scene_graph::Mesh {
+        parts,
+        materials: vec![scenethesis_scene_graph::Material::new(
+            "wood",
+            [0.6, 0.45, 0.3],
+            0.7,
+        )],
+    };
+    PreparedAsset::new(
+        "coffee_table",
+        &mesh,
+        surfaces,
+        [0.9, 1.1],
+        Placement::Floor,
+        &scenethesis_physics_opt::PrepareSettings::default(),
+    )
+    .unwrap()
+}
+
+#[test]
+fn basket_too_tall_for_the_floor_under_a_table_rests_on_its_low_shelf() {
+    let table = Arc::new(coffee_table());
+    let basket = Arc::new(boxed([0.22, 0.24, 0.22], [0.9, 1.1]));
+    // The lift put the basket on the floor beneath the shelf, where only 10 cm are free.
+    let problem = problem(
+        "coffee_table",
+        vec![
+            (
+                object(
+                    "coffee_table",
+                    None,
+                    RelationKind::OnFloor,
+                    &table,
+                    at(0.0, 0.0, 0.0, 0.0),
+                ),
+                table.clone(),
+            ),
+            (
+                object(
+                    "basket",
+                    Some("coffee_table"),
+                    RelationKind::Under,
+                    &basket,
+                    at(-0.2, 0.0, 0.0, 0.0),
+                ),
+                basket.clone(),
+            ),
+        ],
+    );
+    for opt in optimizers() {
+        let placement = run(&problem, opt.as_ref());
+        assert_all_ok(&placement);
+        let report = placement.object("basket").unwrap();
+        assert_eq!(
+            report.support.plane().unwrap().surface,
+            "lower_shelf",
+            "[{}]",
+            placement.optimizer
+        );
+        assert!((report.pose.translation.y - 0.12).abs() < 0.003);
+    }
+}
+
+/// A photo frame on a kickstand: the frame's bottom bar in front (−z), the kickstand's foot
+/// 10 cm behind it (+z), and the frame leaning back over the foot (its centre of mass 2 cm in
+/// front of the foot).
+fn kickstand_frame() -> PreparedAsset {
+    use scenethesis_assets::primitives::cuboid;
+    let parts = vec![
+        cuboid("bar", 0, [-0.1, 0.0, -0.05], [0.1, 0.01, -0.04]),
+        cuboid("foot", 0, [-0.02, 0.0, 0.04], [0.02, 0.01, 0.05]),
+        cuboid("frame", 0, [-0.1, 0.03, -0.01], [0.1, 0.25, 0.05]),
+    ];
+    let mesh = scenethesis_scene_graph::Mesh {
+        parts,
+        materials: vec![scenethesis_scene_graph::Material::new(
+            "wood",
+            [0.6, 0.45, 0.3],
+            0.7,
+        )],
+    };
+    PreparedAsset::new(
+        "frame",
+        &mesh,
+        Vec::new(),
+        [0.9, 1.1],
+        scenethesis_assets::Placement::Surface,
+        &scenethesis_physics_opt::PrepareSettings::default(),
+    )
+    .unwrap()
+}
+
+#[test]
+fn frame_whose_kickstand_hangs_off_the_table_moves_onto_it() {
+    let frame = Arc::new(kickstand_frame());
+    // The table's support region ends at z = 0.38; the foot stands at 0.39–0.40.
+    let problem = item_on_table(
+        at(0.0, 0.0, 0.0, 0.0),
+        "frame",
+        &frame,
+        at(0.0, TABLE_TOP, 0.35, 0.0),
+    );
+    let opt = ProjectedGaussNewton::default();
+    let swept = optimize_scene(
+        &problem,
+        &opt,
+        &OptimizeSettings {
+            skip_finish: true,
+            ..OptimizeSettings::default()
+        },
+    )
+    .unwrap();
+    assert!((swept.pose("frame").unwrap().translation.z - 0.35).abs() < 1e-6);
+    let placement = run(&problem, &opt);
+    assert_all_ok(&placement);
+    let p = placement.pose("frame").unwrap();
+    assert!(
+        p.translation.z + 0.05 * p.scale <= 0.38 && p.translation.z > 0.3,
+        "{p:?}"
+    );
+}

@@ -1,0 +1,475 @@
+//! The final separation pass: after the breadth-first sweep, objects that still miss a
+//! post-condition on the exact fields are settled again against *every* other object (not only
+//! those placed before them), with the dense check samples the post-conditions use, so that
+//! "resolved" means resolved by the same test. Siblings that the sweep wedged into each other
+//! (a book between two books, boxes along a rack level) make room in turn; a child that
+//! collides with its parent moves, not the parent. A resting object whose centre of mass is
+//! not over the part of its footprint that its support holds (a photo frame whose kickstand
+//! hangs over a shelf's back edge) is moved inward until it is.
+
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+use nalgebra::{Point2, Vector2};
+use scenethesis_scene_graph::{Pose, SceneObject};
+use scenethesis_sdf::SignedDistance;
+
+use crate::objective::{ObjectProblem, RoomBounds, Stage};
+use crate::obstacles::Obstacles;
+use crate::optimizer::Optimizer;
+use crate::params::world_point;
+use crate::prepare::PreparedAsset;
+use crate::report::Issue;
+use crate::support::{Support, SupportPlane};
+use crate::verify::{verify, Placed, Tolerances, Verdict};
+
+/// Rounds of the pass at most.
+const ROUNDS: usize = 8;
+/// Bottom samples this close to the asset's lowest point (asset frame) count as feet, metres.
+const FOOT_BAND: f64 = 0.003;
+/// The centre of mass must lie this far inside the supported feet's hull, metres.
+const REST_MARGIN: f64 = 0.004;
+/// Inward steps a toppling object takes at most.
+const REST_STEPS: usize = 6;
+
+/// Everything the pass reads besides the poses it changes.
+pub(crate) struct FinishInput<'a> {
+    /// Objects in breadth-first order.
+    pub order: &'a [&'a SceneObject],
+    /// Prepared asset per object, in `order`.
+    pub assets: &'a [Arc<PreparedAsset>],
+    /// The architecture's fields.
+    pub architecture: &'a [(String, Arc<dyn SignedDistance>, Pose)],
+    /// The floor rectangle.
+    pub room: RoomBounds,
+    /// Loss settings and tolerances.
+    pub settings: &'a crate::driver::OptimizeSettings,
+    /// Whether resting objects are settled on their support (the optimizer's stability term).
+    pub settle: bool,
+}
+
+/// What the pass needs to re-resolve an object's support after its parent moved.
+pub(crate) type ResolveSupport<'a> = dyn Fn(usize, &Pose, &[Pose]) -> Support + 'a;
+
+/// Runs the pass over `poses` and `supports` (in `input.order`); returns the physics
+/// iterations spent per object and, when the last check was made on the final poses, its
+/// verdicts (so that the driver need not check again).
+pub(crate) fn finish(
+    input: &FinishInput<'_>,
+    optimizer: &dyn Optimizer,
+    resolve: &ResolveSupport<'_>,
+    poses: &mut [Pose],
+    supports: &mut [Support],
+) -> (Vec<usize>, Option<Vec<Verdict>>) {
+    let n = input.order.len();
+    let mut iterations = vec![0usize; n];
+    let index_of: BTreeMap<&str, usize> = input
+        .order
+        .iter()
+        .enumerate()
+        .map(|(i, o)| (o.id.as_str(), i))
+        .collect();
+    let parent_of: Vec<Option<usize>> = input
+        .order
+        .iter()
+        .map(|o| o.parent.object_id().and_then(|p| index_of.get(p).copied()))
+        .collect();
+    let is_ancestor = |a: usize, mut b: usize| {
+        while let Some(p) = parent_of[b] {
+            if p == a {
+                return true;
+            }
+            b = p;
+        }
+        false
+    };
+    // The check (and the obstacles' samples) use each asset's dense check points as they
+    // are; only an object settled again needs them as its collision samples too.
+    let dense = input.assets;
+    let mut densified: BTreeMap<usize, Arc<PreparedAsset>> = BTreeMap::new();
+    let tol = input.settings.tolerances;
+    let mut last = None;
+    for _ in 0..ROUNDS {
+        let (todo, verdicts) =
+            pending(input, dense, poses, supports, &tol, &index_of, &is_ancestor);
+        if todo.is_empty() {
+            last = Some(verdicts);
+            break;
+        }
+        let mut moved_any = false;
+        for (i, topples) in todo {
+            let others = obstacles_without(input, dense, poses, i, true);
+            let asset = densified
+                .entry(Arc::as_ptr(&dense[i]) as usize)
+                .or_insert_with(|| Arc::new(dense[i].densified()))
+                .clone();
+            let support = supports[i].clone();
+            let problem = ObjectProblem {
+                id: &input.order[i].id,
+                asset: &asset,
+                obstacles: &others,
+                support: &support,
+                room: Some(input.room),
+                alignment: None,
+                settings: &input.settings.losses,
+            };
+            let before = poses[i];
+            let start = match (&support, topples && input.settle) {
+                (Support::Surface(plane), true) => rest_inward(&dense[i], plane, &before),
+                _ => before,
+            };
+            // Contacts with what cannot make room (the architecture, the object's holders) and
+            // with what can (anything else, moved in its own turn).
+            let score = |p: &Pose| {
+                let (mut fixed, mut movable) = (0.0f64, 0.0f64);
+                for c in problem
+                    .collision(p)
+                    .contacts
+                    .iter()
+                    .filter(|c| c.violation > 0.0)
+                {
+                    let id = others.id(c.obstacle);
+                    let holds = others.is_architecture(c.obstacle)
+                        || index_of.get(id).is_none_or(|&j| is_ancestor(j, i));
+                    if holds {
+                        fixed = fixed.max(c.violation);
+                    } else {
+                        movable = movable.max(c.violation);
+                    }
+                }
+                (fixed, movable)
+            };
+            let resolved = |s: (f64, f64)| s.0.max(s.1) <= tol.penetration;
+            let stable = |p: &Pose| {
+                !input.settle
+                    || support
+                        .plane()
+                        .is_none_or(|plane| rests_stably(&dense[i], plane, p))
+            };
+            let was = score(&before);
+            let was_stable = stable(&before);
+            let acceptable = |p: &Pose, s: (f64, f64)| {
+                if topples && input.settle {
+                    stable(p) && resolved(s)
+                } else {
+                    // Never trade a collision for a topple, nor press harder into a holder.
+                    (!was_stable || stable(p))
+                        && s.0 <= was.0 + 1e-6
+                        && (s.0 < was.0 - 1e-6 || s.1 < was.1 - 1e-6)
+                }
+            };
+            let mut best: Option<(Pose, (f64, f64))> = None;
+            let consider = |best: &mut Option<(Pose, (f64, f64))>, p: Pose, s: (f64, f64)| {
+                if acceptable(&p, s)
+                    && best
+                        .is_none_or(|(_, b)| (resolved(s), -s.0, -s.1) > (resolved(b), -b.0, -b.1))
+                {
+                    *best = Some((p, s));
+                }
+            };
+            let outcome = optimizer.optimize(&problem, Stage::Physics, start);
+            iterations[i] += outcome.iterations;
+            let first = score(&outcome.pose);
+            consider(&mut best, outcome.pose, first);
+            if !resolved(first) {
+                // The smallest move is blocked: try starts shifted along the object's own axes
+                // and the world's by about the penetration.
+                let step = was.0.max(was.1) + 0.005;
+                let (sin, cos) = before.yaw.sin_cos();
+                let axes = [
+                    Vector2::new(cos, -sin),
+                    Vector2::new(sin, cos),
+                    Vector2::new(1.0, 0.0),
+                    Vector2::new(0.0, 1.0),
+                ];
+                'starts: for axis in axes {
+                    for sign in [1.0, -1.0] {
+                        let mut shifted = start;
+                        shifted.translation.x += sign * step * axis.x;
+                        shifted.translation.z += sign * step * axis.y;
+                        let o = optimizer.optimize(&problem, Stage::Physics, shifted);
+                        iterations[i] += o.iterations;
+                        let s = score(&o.pose);
+                        consider(&mut best, o.pose, s);
+                        if best.is_some_and(|(_, b)| resolved(b)) {
+                            break 'starts;
+                        }
+                    }
+                }
+            }
+            let mut after = best.map_or(before, |(p, _)| p);
+            let mut better = best.is_some();
+            if !better
+                && topples
+                && input.settle
+                && stable(&start)
+                && start != before
+                && only_movable_contacts(&problem, &start, &|j| {
+                    index_of.get(j).is_some_and(|&j| !is_ancestor(j, i))
+                })
+            {
+                // Resting stably, it presses into a sibling that is free to make room: take
+                // the stable pose, and let the sibling move next round.
+                after = start;
+                better = true;
+            }
+            if !better || after == before {
+                continue;
+            }
+            moved_any = true;
+            poses[i] = after;
+            // Children move with it, and rest on its surfaces where they now are.
+            let carried: Vec<usize> = (0..n).filter(|&d| d != i && is_ancestor(i, d)).collect();
+            for &d in &carried {
+                poses[d] = crate::driver::carry(&before, &after, &poses[d]);
+            }
+            for &d in &carried {
+                supports[d] = resolve(d, &poses[d], poses);
+            }
+        }
+        if !moved_any {
+            last = Some(verdicts);
+            break;
+        }
+    }
+    (iterations, last)
+}
+
+/// The objects that still miss a post-condition the pass can act on, in order, each with
+/// whether it is a toppling (rather than colliding) case: colliding objects (of a pair where
+/// one holds the other, only the held one), objects whose centre of mass is off their support
+/// region, and objects whose centre of mass is not over their supported feet.
+fn pending(
+    input: &FinishInput<'_>,
+    dense: &[Arc<PreparedAsset>],
+    poses: &[Pose],
+    supports: &[Support],
+    tol: &Tolerances,
+    index_of: &BTreeMap<&str, usize>,
+    is_ancestor: &dyn Fn(usize, usize) -> bool,
+) -> (Vec<(usize, bool)>, Vec<Verdict>) {
+    // The check reads only the fields, not the obstacles' samples.
+    let all = obstacles_without(input, dense, poses, usize::MAX, false);
+    let placed: Vec<Placed<'_>> = input
+        .order
+        .iter()
+        .enumerate()
+        .map(|(i, o)| Placed {
+            id: &o.id,
+            asset: &dense[i],
+            pose: poses[i],
+            support: &supports[i],
+        })
+        .collect();
+    let verdicts = verify(&placed, &all, Some(input.room), tol);
+    let mut out = Vec::new();
+    for (i, v) in verdicts.iter().enumerate() {
+        let collides = v.issues.iter().any(|issue| match issue {
+            Issue::Collision { with, .. } => match index_of.get(with.as_str()) {
+                // The parent (or any holder) stays; the held object moves.
+                Some(&j) => !is_ancestor(i, j),
+                None => true,
+            },
+            _ => false,
+        });
+        let off = input.settle
+            && v.issues
+                .iter()
+                .any(|issue| matches!(issue, Issue::OffSupport { .. }));
+        let topples = input.settle
+            && !input.order[i].fixed_to_world()
+            && supports[i]
+                .plane()
+                .is_some_and(|plane| !rests_stably(&dense[i], plane, &poses[i]));
+        if collides || off || topples {
+            out.push((i, (off || topples) && !collides));
+        }
+    }
+    (out, verdicts)
+}
+
+/// Whether every contact of the object at `pose` is with an obstacle `movable` accepts (by id).
+fn only_movable_contacts(
+    problem: &ObjectProblem<'_>,
+    pose: &Pose,
+    movable: &dyn Fn(&str) -> bool,
+) -> bool {
+    problem
+        .collision(pose)
+        .contacts
+        .iter()
+        .filter(|c| c.violation > 0.0)
+        .all(|c| {
+            !problem.obstacles.is_architecture(c.obstacle)
+                && movable(problem.obstacles.id(c.obstacle))
+        })
+}
+
+/// Obstacles of the architecture and every object but `skip`, exact fields with (when
+/// `samples`) their dense samples.
+fn obstacles_without(
+    input: &FinishInput<'_>,
+    dense: &[Arc<PreparedAsset>],
+    poses: &[Pose],
+    skip: usize,
+    samples: bool,
+) -> Obstacles {
+    let mut obstacles = Obstacles::new(true);
+    for (id, field, pose) in input.architecture {
+        obstacles.insert(id, field.clone(), *pose, true, &[]);
+    }
+    for (i, object) in input.order.iter().enumerate() {
+        if i != skip {
+            let asset = &dense[i];
+            obstacles.insert(
+                &object.id,
+                asset.exact_field(),
+                poses[i],
+                false,
+                if samples { asset.check_points() } else { &[] },
+            );
+        }
+    }
+    obstacles
+}
+
+/// The feet of `asset` at `pose` (its samples within [`FOOT_BAND`] of its lowest point), world
+/// (x, z).
+fn feet(asset: &PreparedAsset, pose: &Pose) -> Vec<Point2<f64>> {
+    let low = asset.bounds().min.y + FOOT_BAND;
+    asset
+        .check_points()
+        .iter()
+        .filter(|p| p.y <= low)
+        .map(|p| {
+            let w = world_point(pose, p);
+            Point2::new(w.x, w.z)
+        })
+        .collect()
+}
+
+/// Whether the object's centre of mass is over the hull of the feet its support region holds,
+/// with [`REST_MARGIN`]. An asset whose centre of mass is not over its own feet at all is left
+/// alone (moving it cannot help).
+pub(crate) fn rests_stably(asset: &PreparedAsset, plane: &SupportPlane, pose: &Pose) -> bool {
+    let c = world_point(pose, &asset.centroid());
+    let c = Point2::new(c.x, c.z);
+    let all = feet(asset, pose);
+    if plane.region.is_none() || !inside_hull(&all, &c, REST_MARGIN) {
+        return true;
+    }
+    let held: Vec<Point2<f64>> = all
+        .into_iter()
+        .filter(|f| plane.contains(f.x, f.y))
+        .collect();
+    inside_hull(&held, &c, REST_MARGIN)
+}
+
+/// `pose` moved horizontally, in small steps, so that more of the feet stand on the region,
+/// until the object rests stably (or [`REST_STEPS`] are spent).
+fn rest_inward(asset: &PreparedAsset, plane: &SupportPlane, pose: &Pose) -> Pose {
+    let mut p = *pose;
+    for _ in 0..REST_STEPS {
+        if rests_stably(asset, plane, &p) {
+            break;
+        }
+        // The foot farthest off the region, brought back onto it (plus the margin).
+        let worst = feet(asset, &p)
+            .into_iter()
+            .map(|f| plane.clamp(f.x, f.y) - f)
+            .max_by(|a, b| a.norm().total_cmp(&b.norm()));
+        let Some(shift) = worst.filter(|s| s.norm() > 1e-9) else {
+            // Every foot is on the region: move the centre of mass inward instead.
+            let c = world_point(&p, &asset.centroid());
+            let toward = region_centre(plane).map(|m| m - Vector2::new(c.x, c.z));
+            let Some(t) = toward.filter(|t| t.norm() > 1e-9) else {
+                break;
+            };
+            p.translation.x += t.x / t.norm() * REST_MARGIN;
+            p.translation.z += t.y / t.norm() * REST_MARGIN;
+            continue;
+        };
+        let shift = shift * (1.0 + REST_MARGIN / shift.norm());
+        p.translation.x += shift.x;
+        p.translation.z += shift.y;
+    }
+    p
+}
+
+/// The mean of the region's corners.
+fn region_centre(plane: &SupportPlane) -> Option<Vector2<f64>> {
+    let poly = plane.region.as_ref()?;
+    if poly.is_empty() {
+        return None;
+    }
+    Some(poly.iter().fold(Vector2::zeros(), |a, p| a + p.coords) / poly.len() as f64)
+}
+
+/// Whether `c` lies inside the convex hull of `points` at least `margin` from its border.
+fn inside_hull(points: &[Point2<f64>], c: &Point2<f64>, margin: f64) -> bool {
+    let hull = convex_hull(points);
+    if hull.len() < 3 {
+        return false;
+    }
+    (0..hull.len()).all(|k| {
+        let (a, b) = (hull[k], hull[(k + 1) % hull.len()]);
+        let e = b - a;
+        let len = e.norm();
+        len < 1e-12 || (e.x * (c.y - a.y) - e.y * (c.x - a.x)) / len >= margin
+    })
+}
+
+/// The convex hull, counter-clockwise (Andrew's monotone chain).
+fn convex_hull(points: &[Point2<f64>]) -> Vec<Point2<f64>> {
+    let mut p: Vec<Point2<f64>> = points.to_vec();
+    p.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    p.dedup();
+    if p.len() < 3 {
+        return p;
+    }
+    let cross = |o: &Point2<f64>, a: &Point2<f64>, b: &Point2<f64>| {
+        (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x)
+    };
+    let mut hull: Vec<Point2<f64>> = Vec::with_capacity(2 * p.len());
+    for pass in 0..2 {
+        let start = hull.len();
+        let iter: Box<dyn Iterator<Item = &Point2<f64>>> = if pass == 0 {
+            Box::new(p.iter())
+        } else {
+            Box::new(p.iter().rev())
+        };
+        for q in iter {
+            while hull.len() >= start + 2
+                && cross(&hull[hull.len() - 2], &hull[hull.len() - 1], q) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(*q);
+        }
+        hull.pop();
+    }
+    hull
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hull_contains_with_margin() {
+        let sq = [
+            Point2::new(0.0, 0.0),
+            Point2::new(1.0, 0.0),
+            Point2::new(1.0, 1.0),
+            Point2::new(0.0, 1.0),
+            Point2::new(0.5, 0.5),
+        ];
+        assert_eq!(convex_hull(&sq).len(), 4);
+        assert!(inside_hull(&sq, &Point2::new(0.5, 0.5), 0.1));
+        assert!(!inside_hull(&sq, &Point2::new(0.95, 0.5), 0.1));
+        assert!(!inside_hull(&sq, &Point2::new(1.5, 0.5), 0.0));
+        // A line of feet holds nothing.
+        let line = [Point2::new(0.0, 0.0), Point2::new(1.0, 0.0)];
+        assert!(!inside_hull(&line, &Point2::new(0.5, 0.0), 0.0));
+    }
+}
