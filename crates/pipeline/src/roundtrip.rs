@@ -396,6 +396,7 @@ pub fn compare(
     let options = LiftOptions {
         priors: truth.iter().map(|(id, b)| (id.clone(), b.size())).collect(),
         wall_yaws: wall_yaws(&scene.architecture),
+        walls: scene.architecture.walls.clone(),
         ..LiftOptions::default()
     };
     let lifted = lift_scene(guidance, &options).map_err(RoundtripError::Lift)?;

@@ -436,6 +436,8 @@ impl Guide for VisionGuide {
                 (id.clone(), nalgebra::Vector3::new(x, y, z))
             })
             .collect();
+        // The room is known: a box hanging on a wall is put against it.
+        options.walls = architecture.walls.clone();
         let mut lifted =
             lift_scene(&guidance, &options).map_err(|e| provider("lift", e.to_string()))?;
         // The model's support relations, cross-checked with the lift's: where the geometry is

@@ -20,10 +20,12 @@ use crate::points::{
     depth_noise, interior, largest_cluster, mask_pixel_points, mask_points, median, quantile,
     vertical_margins,
 };
-use crate::support::{infer_supports_within, SupportGuess, SupportKind};
+use crate::support::{
+    infer_supports_within, mount_on_walls, wall_offset, SupportGuess, SupportKind, MOUNT_WALL_REACH,
+};
 use crate::{Guidance, LiftError};
 use scenethesis_correspondence::{DepthMap, Mask};
-use scenethesis_scene_graph::Camera;
+use scenethesis_scene_graph::{Camera, Wall};
 
 /// Tuning of the lift. The defaults suit indoor scenes seen from a person's height.
 #[derive(Debug, Clone, PartialEq)]
@@ -93,6 +95,16 @@ pub struct LiftOptions {
     /// default 0.75 did best on the round trip's perturbed renders (a full correction
     /// over-shrinks small objects whose top is seen as well as their front).
     pub footprint_deflation: f64,
+    /// The room's walls; empty when the room is unknown. A box held by nothing whose back is
+    /// near one of them, high up ([`crate::support::mount_on_walls`]), is moved along
+    /// the wall's normal until its back touches the wall's inner face: where a mounted object
+    /// is, is known better from the wall than from its noisy depth (a painting a few
+    /// centimetres thick loses half its overlap to a 1 cm offset).
+    pub walls: Vec<Wall>,
+    /// How far in metres the back of a box hung on a wall stands off the wall's inner face
+    /// (a frame's hook holds it about a centimetre proud; the layout keeps the same clearance
+    /// so that nothing touches a wall).
+    pub wall_standoff: f64,
 }
 
 impl Default for LiftOptions {
@@ -118,6 +130,8 @@ impl Default for LiftOptions {
             support_reach: 0.3,
             settle: true,
             footprint_deflation: 0.75,
+            walls: Vec::new(),
+            wall_standoff: 0.01,
         }
     }
 }
@@ -133,6 +147,13 @@ impl LiftOptions {
         };
         if !self.voxel.is_finite() || self.voxel <= 0.0 {
             return bad("voxel", self.voxel, "a positive number of metres");
+        }
+        if !(0.0..MOUNT_WALL_REACH).contains(&self.wall_standoff) {
+            return bad(
+                "wall_standoff",
+                self.wall_standoff,
+                "metres in [0, MOUNT_WALL_REACH)",
+            );
         }
         if !(0.0..0.5).contains(&self.trim) {
             return bad("trim", self.trim, "a fraction in [0, 0.5)");
@@ -353,6 +374,13 @@ pub fn lift_scene(guidance: &Guidance, options: &LiftOptions) -> Result<LiftedSc
     if options.settle {
         settle(&mut boxes, &supports);
     }
+    if !options.walls.is_empty() {
+        // The guesses stay unsupported: whether such a box really hangs on the wall (or was
+        // lifted off its shelf) is the caller's to decide with what it knows of the asset.
+        let mut mounted = supports.clone();
+        mount_on_walls(&mut mounted, &boxes, &options.walls);
+        hang(&mut boxes, &mounted, &options.walls, options.wall_standoff);
+    }
     Ok(LiftedScene {
         boxes,
         missing,
@@ -402,6 +430,26 @@ fn settle(boxes: &mut [LiftedBox], supports: &[SupportGuess]) {
             continue;
         };
         boxes[i].center.y = top + boxes[i].half_extents.y;
+    }
+}
+
+/// Moves every box mounted on a wall ([`SupportKind::Mounted`], its parent one of `walls`)
+/// along the wall's inward normal until the footprint corner nearest the wall lies `standoff`
+/// in front of its inner face.
+fn hang(boxes: &mut [LiftedBox], supports: &[SupportGuess], walls: &[Wall], standoff: f64) {
+    for s in supports.iter().filter(|s| s.kind == SupportKind::Mounted) {
+        let (Some(wall), Some(b)) = (
+            s.parent
+                .as_ref()
+                .and_then(|p| walls.iter().find(|w| &w.id == p)),
+            boxes.iter_mut().find(|b| b.id == s.id),
+        ) else {
+            continue;
+        };
+        let off = wall_offset(wall, &b.footprint()) - standoff;
+        let n = wall.inward_normal();
+        b.center.x -= n.x * off;
+        b.center.z -= n.y * off;
     }
 }
 
@@ -786,6 +834,37 @@ pub fn floor_depth_scale<'a>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_mounted_box_is_put_against_its_wall_and_others_stay() {
+        // 6 × 4 m room: the back wall `wall_0` has its inner face at z = −2.
+        let room = scenethesis_scene_graph::Architecture::rectangular_room(6.0, 4.0, 2.8, 0.9);
+        let mut boxes = vec![
+            // A painting lifted 4 cm out from the wall (its back at z = −1.96).
+            LiftedBox::axis_aligned("painting", [0.5, 1.6, -1.94], [0.4, 0.3, 0.02]),
+            // One lifted 1 cm into the wall.
+            LiftedBox::axis_aligned("mirror", [-1.0, 1.5, -1.99], [0.3, 0.4, 0.02]),
+            // A cabinet standing 5 cm off the wall: not mounted, not moved.
+            LiftedBox::axis_aligned("cabinet", [2.0, 0.5, -1.75], [0.4, 0.5, 0.2]),
+        ];
+        let mut supports = infer_supports_within(&boxes, 0.06, 0.3);
+        mount_on_walls(&mut supports, &boxes, &room.walls);
+        hang(&mut boxes, &supports, &room.walls, 0.01);
+        // Backs 1 cm in front of the wall.
+        assert!(
+            (boxes[0].center.z - -1.97).abs() < 1e-9,
+            "{}",
+            boxes[0].center.z
+        );
+        assert!(
+            (boxes[1].center.z - -1.97).abs() < 1e-9,
+            "{}",
+            boxes[1].center.z
+        );
+        assert_eq!(boxes[0].center.x, 0.5);
+        assert_eq!(boxes[0].center.y, 1.6);
+        assert_eq!(boxes[2].center.z, -1.75);
+    }
 
     #[test]
     fn yaws_near_a_wall_snap_to_it() {

@@ -11,6 +11,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::footprint::FloorRectangle;
 use crate::lifted_box::LiftedBox;
 use scenethesis_scene_graph::Wall;
 
@@ -225,6 +226,18 @@ pub const MOUNT_WALL_REACH: f64 = 0.12;
 /// than be a floor object lifted wrongly.
 pub const MOUNT_MIN_BOTTOM: f64 = 0.3;
 
+/// How far (metres) the corner of `footprint` nearest `wall`'s inner face lies in front of it
+/// (negative: behind it, inside the wall).
+pub fn wall_offset(wall: &Wall, footprint: &FloorRectangle) -> f64 {
+    let n = wall.inward_normal();
+    let face = wall.start + n * (wall.thickness / 2.0);
+    footprint
+        .corners()
+        .iter()
+        .map(|p| (p - face).dot(&n))
+        .fold(f64::MAX, f64::min)
+}
+
 /// Turns every [`SupportKind::Unsupported`] guess whose box backs onto one of `walls` (the
 /// footprint corner nearest the wall within [`MOUNT_WALL_REACH`] of its inner face, the box
 /// overlapping the wall along its length) and whose bottom is above [`MOUNT_MIN_BOTTOM`] into
@@ -244,11 +257,9 @@ pub fn mount_on_walls(guesses: &mut [SupportGuess], boxes: &[LiftedBox], walls: 
         let corners = b.footprint().corners();
         let mut best: Option<(f64, &Wall)> = None;
         for wall in walls.iter().filter(|w| w.length() > 0.0) {
-            let (n, d) = (wall.inward_normal(), wall.direction());
-            let face = wall.start + n * (wall.thickness / 2.0);
-            let off = |p: &nalgebra::Point2<f64>| (p - face).dot(&n);
+            let d = wall.direction();
             let along = |p: &nalgebra::Point2<f64>| (p - wall.start).dot(&d);
-            let nearest = corners.iter().map(off).fold(f64::MAX, f64::min);
+            let nearest = wall_offset(wall, &b.footprint());
             let (lo, hi) = corners
                 .iter()
                 .map(along)
