@@ -4,7 +4,7 @@
 use nalgebra::Point2;
 use scenethesis_scene_graph::Camera;
 
-use crate::guidance::{DepthMap, Mask};
+use crate::guidance::{DepthMap, Mask, RgbImage};
 use crate::pair::{Correspondence, PairKind};
 use crate::raster::RenderedView;
 
@@ -20,6 +20,9 @@ pub struct TargetRegion<'a> {
     /// Metric depth of the guidance image, when known (already corrected for any global
     /// scale the guide calibrated).
     pub depth: Option<&'a DepthMap>,
+    /// The guidance colour image, for matchers that compare appearance (a dense learned
+    /// matcher); shape matchers ignore it.
+    pub image: Option<&'a RgbImage>,
 }
 
 impl TargetRegion<'_> {

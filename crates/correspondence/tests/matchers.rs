@@ -145,6 +145,7 @@ fn lift_turns_oracle_pairs_into_true_correspondences() {
         camera: &cam,
         mask: &mask,
         depth: Some(&depth),
+        image: None,
     };
     let view = rasterize(&mesh, &start, &cam, Window::full(&cam));
     let oracle: &dyn Matcher = &Oracle { truth };
@@ -179,6 +180,7 @@ fn shape_matcher_pairs_silhouettes_and_depths_and_ignores_occluded_pixels() {
         camera: &cam,
         mask: &mask,
         depth: Some(&depth),
+        image: None,
     };
     let matcher = ShapeMatcher::default();
     // At the true pose, the only silhouette disagreement would be the hidden part, which is
@@ -226,6 +228,7 @@ fn yaw_search_finds_the_yaw_and_a_hint_settles_front_and_back() {
         camera: &cam,
         mask: &mask,
         depth: Some(&depth),
+        image: None,
     };
     let window = Window::full(&cam);
     let yaws: Vec<f64> = (0..24).map(|k| k as f64 * 15f64.to_radians()).collect();
@@ -244,6 +247,7 @@ fn yaw_search_finds_the_yaw_and_a_hint_settles_front_and_back() {
         camera: &cam,
         mask: &mask,
         depth: None,
+        image: None,
     };
     let cands = search_yaw(&plain, &truth, &cam, &target, window, &yaws, &matcher);
     let flipped = 0.6 + std::f64::consts::PI;

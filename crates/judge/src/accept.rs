@@ -1,6 +1,6 @@
 //! A judge that accepts every scene it can measure.
 
-use scenethesis_eval::{evaluate_with_cache, DecompositionCache, EvalError, EvalScene};
+use scenethesis_eval::{evaluate_with_cache, DecompositionCache};
 
 use crate::judge::{Judge, JudgeError, JudgeInput, Verdict};
 
@@ -25,16 +25,7 @@ impl Judge for AcceptAll {
     }
 
     fn judge(&self, input: &JudgeInput<'_>) -> Result<Verdict, JudgeError> {
-        let scene = EvalScene::from_scene(input.scene, |o| {
-            input
-                .meshes
-                .get(&o.id)
-                .cloned()
-                .ok_or_else(|| EvalError::MissingMesh {
-                    object: o.id.clone(),
-                    reason: "the judge was given no mesh for it".into(),
-                })
-        })?;
+        let scene = input.eval_scene()?;
         Ok(Verdict {
             accepted: true,
             failures: Vec::new(),

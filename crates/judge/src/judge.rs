@@ -25,6 +25,22 @@ pub struct JudgeInput<'a> {
     pub guidance: Option<&'a Guidance>,
 }
 
+impl JudgeInput<'_> {
+    /// The scene as `scenethesis-eval` measures it: every object with its mesh placed in the
+    /// world. Fails naming the first object the judge was given no mesh for.
+    pub fn eval_scene(&self) -> Result<EvalScene, EvalError> {
+        EvalScene::from_scene(self.scene, |o| {
+            self.meshes
+                .get(&o.id)
+                .cloned()
+                .ok_or_else(|| EvalError::MissingMesh {
+                    object: o.id.clone(),
+                    reason: "the judge was given no mesh for it".into(),
+                })
+        })
+    }
+}
+
 /// The kind of a judged failure.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -96,6 +112,43 @@ impl Verdict {
             .cloned()
             .collect()
     }
+
+    /// Every failure's detail on one line, separated by `"; "` (empty when accepted): the
+    /// reason a rejected scene was rejected, as the CLI prints it.
+    ///
+    /// ```
+    /// use scenethesis_eval::{evaluate, EvalScene};
+    /// use scenethesis_judge::{Failure, FailureKind, Verdict};
+    ///
+    /// let failures = vec![
+    ///     Failure {
+    ///         kind: FailureKind::Collision,
+    ///         objects: vec!["cup_0".into()],
+    ///         detail: "cup_0 is 4 mm into table_0".into(),
+    ///     },
+    ///     Failure {
+    ///         kind: FailureKind::Unstable,
+    ///         objects: vec!["vase_0".into()],
+    ///         detail: "vase_0 moved 3 cm".into(),
+    ///     },
+    /// ];
+    /// let v = Verdict {
+    ///     accepted: false,
+    ///     failures,
+    ///     metrics: evaluate(&EvalScene::default()),
+    ///     relations_checked: 0,
+    ///     arrangement: None,
+    ///     review: None,
+    /// };
+    /// assert_eq!(v.reasons(), "cup_0 is 4 mm into table_0; vase_0 moved 3 cm");
+    /// ```
+    pub fn reasons(&self) -> String {
+        self.failures
+            .iter()
+            .map(|f| f.detail.as_str())
+            .collect::<Vec<_>>()
+            .join("; ")
+    }
 }
 
 /// Why a scene could not be judged at all.
@@ -155,16 +208,7 @@ impl Judge for GeometricJudge {
 
     fn judge(&self, input: &JudgeInput<'_>) -> Result<Verdict, JudgeError> {
         let scene = input.scene;
-        let eval_scene = EvalScene::from_scene(scene, |o| {
-            input
-                .meshes
-                .get(&o.id)
-                .cloned()
-                .ok_or_else(|| EvalError::MissingMesh {
-                    object: o.id.clone(),
-                    reason: "the pipeline produced no mesh for it".into(),
-                })
-        })?;
+        let eval_scene = input.eval_scene()?;
         let metrics = evaluate_with_cache(&eval_scene, &self.cache);
         let order = placement_rank(scene);
         let anchor = scene.anchor.as_deref();

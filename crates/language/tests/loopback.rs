@@ -34,108 +34,11 @@ fn obj(id: &str, category: &str, layer: &str, place: [&str; 4], relations: Value
            "zone": place[2], "wall": place[3], "relations": relations, "stated": false})
 }
 
+/// A model's plan for "a pharmacy" (`fixtures/llm/pharmacy_plan.json`): chairs, bottles whose
+/// parent is a shelf, and an x-ray machine the library does not have.
 fn pharmacy() -> Value {
-    let mut objects = vec![
-        obj(
-            "checkout_counter_0",
-            "checkout_counter",
-            "middle",
-            ["on-floor", "ground", "center", "any"],
-            json!([]),
-        ),
-        obj(
-            "cash_register_0",
-            "cash register",
-            "middle",
-            ["on", "checkout_counter_0", "supported", "any"],
-            json!([]),
-        ),
-        obj(
-            "drinks_fridge_0",
-            "drinks_fridge",
-            "background",
-            ["against-wall", "ground", "wall", "wall_0"],
-            json!([]),
-        ),
-        obj(
-            "plant_0",
-            "potted plants",
-            "background",
-            ["on-floor", "ground", "corner", "any"],
-            json!([]),
-        ),
-        obj(
-            "shopping_basket_0",
-            "shopping_basket",
-            "foreground",
-            ["on-floor", "ground", "relative", "any"],
-            json!([{"kind": "beside", "target": "checkout_counter_0"}]),
-        ),
-        obj(
-            "chair_0",
-            "waiting chair",
-            "foreground",
-            ["on-floor", "ground", "relative", "any"],
-            json!([{"kind": "facing", "target": "checkout_counter_0"}]),
-        ),
-    ];
-    for (i, wall) in ["wall_1", "wall_3", "wall_0", "wall_1"].iter().enumerate() {
-        objects.push(obj(
-            &format!("store_shelf_{i}"),
-            "store_shelf",
-            "background",
-            ["against-wall", "ground", "wall", wall],
-            json!([]),
-        ));
-    }
-    for i in 0..2 {
-        objects.push(obj(
-            &format!("display_shelf_{i}"),
-            "display_shelf",
-            "middle",
-            ["on-floor", "ground", "rows", "any"],
-            json!([]),
-        ));
-    }
-    for i in 0..4 {
-        objects.push(obj(
-            &format!("bottle_{i}"),
-            "bottles",
-            "background",
-            ["on", "ground", "supported", "any"],
-            json!([]),
-        ));
-        let last = objects.len() - 1;
-        objects[last]["parent"] = json!(format!("store_shelf_{}", i % 2));
-    }
-    for i in 0..2 {
-        objects.push(obj(
-            &format!("box_{i}"),
-            "medicine boxes",
-            "middle",
-            ["on", "display_shelf_0", "supported", "any"],
-            json!([]),
-        ));
-    }
-    objects.push(obj(
-        "xray_0",
-        "x-ray machine",
-        "background",
-        ["on-floor", "ground", "free", "any"],
-        json!([]),
-    ));
-    json!({
-        "interpretation": "a small retail pharmacy with a dispensing counter",
-        "detailed": false,
-        "scene_type": "Pharmacy",
-        "environment": "indoor",
-        "room_width": 8.5,
-        "room_depth": 6.0,
-        "anchor": "checkout_counter_0",
-        "objects": objects,
-        "unavailable": [{"name": "prescription scanner", "reason": "no such category"}],
-        "description": "Background: store shelves of medicine along the side walls and a drinks fridge at the back. Middle ground: the checkout counter with a cash register, display shelves in rows. Foreground: a shopping basket and a waiting chair."
-    })
+    serde_json::from_str(include_str!("../../../fixtures/llm/pharmacy_plan.json"))
+        .expect("the pharmacy fixture is JSON")
 }
 
 #[test]

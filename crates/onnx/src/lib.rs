@@ -5,6 +5,9 @@
 //!   Depth-Anything-V2-style model; the expected signature and processing are in [`depth`].
 //! - `OnnxSegmenter` (a [`Segmenter`](scenethesis_models::Segmenter)) runs a SAM / MobileSAM
 //!   encoder + prompt decoder pair; see [`segment`].
+//! - `OnnxMatcher` (a [`Matcher`](scenethesis_correspondence::Matcher) of the correspond
+//!   stage) runs a LoFTR-style dense matcher between an asset rendered at its current pose and
+//!   its object in the guidance image; see [`matcher`].
 //! - `Runtime` loads the ONNX Runtime shared library at run time from `ORT_DYLIB_PATH` or an
 //!   explicit path. Nothing is downloaded at build or run time: the library and the model files
 //!   are the user's (`pip install onnxruntime` ships the library in
@@ -36,6 +39,7 @@
 
 pub mod depth;
 mod error;
+pub mod matcher;
 mod raster;
 #[cfg(feature = "runtime")]
 mod runtime;
@@ -45,6 +49,9 @@ pub mod segment;
 pub use depth::OnnxDepth;
 pub use depth::{DepthConfig, DepthOutput};
 pub use error::{OnnxError, DYLIB_ENV, DYLIB_HINT};
+#[cfg(feature = "runtime")]
+pub use matcher::OnnxMatcher;
+pub use matcher::{Crop, MatcherConfig, RawMatches};
 pub use raster::Normalisation;
 #[cfg(feature = "runtime")]
 pub use runtime::Runtime;

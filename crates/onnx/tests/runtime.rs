@@ -323,3 +323,173 @@ fn library_errors_name_the_path_and_how_to_get_the_library() {
     let again = Runtime::load(loaded.library()).unwrap();
     assert_eq!(again.library(), loaded.library());
 }
+
+mod dense_matcher {
+    use nalgebra::{Point3, Vector3};
+    use scenethesis_correspondence::{
+        lift, rasterize, DepthMap, Mask, Matcher, RgbImage, TargetRegion, Window,
+    };
+    use scenethesis_onnx::matcher::{crop_for, matcher_inputs};
+    use scenethesis_onnx::{MatcherConfig, OnnxError, OnnxMatcher};
+    use scenethesis_scene_graph::{Camera, Intrinsics, Mesh, MeshPart, Pose};
+
+    use super::{fixture, runtime};
+
+    fn box_mesh(min: [f32; 3], max: [f32; 3]) -> Mesh {
+        let positions = (0..8)
+            .map(|i| {
+                [
+                    if i & 1 == 0 { min[0] } else { max[0] },
+                    if i & 2 == 0 { min[1] } else { max[1] },
+                    if i & 4 == 0 { min[2] } else { max[2] },
+                ]
+            })
+            .collect();
+        let quads = [
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+        ];
+        Mesh {
+            parts: vec![MeshPart {
+                name: "box".into(),
+                material: 0,
+                positions,
+                triangles: quads
+                    .iter()
+                    .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+                    .collect(),
+            }],
+            materials: Vec::new(),
+        }
+    }
+
+    fn camera() -> Camera {
+        Camera::look_at(
+            Intrinsics::from_vertical_fov(160, 120, 1.0),
+            Point3::new(1.5, 2.0, 4.5),
+            Point3::new(0.0, 0.4, 0.0),
+            Vector3::y(),
+        )
+    }
+
+    /// Intensity-weighted centroid of a row-major plane (pixel k's centre at k + 0.5).
+    fn centroid(plane: &[f32], width: u32) -> [f64; 2] {
+        let (mut m, mut sx, mut sy) = (0.0, 0.0, 0.0);
+        for (i, v) in plane.iter().enumerate() {
+            let (x, y) = (
+                (i as u32 % width) as f64 + 0.5,
+                (i as u32 / width) as f64 + 0.5,
+            );
+            m += *v as f64;
+            sx += *v as f64 * x;
+            sy += *v as f64 * y;
+        }
+        [sx / m, sy / m]
+    }
+
+    /// The tiny matcher (fixtures/onnx/matcher_centroid.onnx) pairs points around the two
+    /// inputs' intensity centroids, so through the real runtime every kept pair must carry the
+    /// shift between the rendered asset and its object as the Rust pre-processing drew them,
+    /// land on the asset and on the mask, and lift to correspondences with target points.
+    #[test]
+    fn dense_matcher_pairs_carry_the_shift_between_render_and_guidance() {
+        let rt = runtime();
+        let config = MatcherConfig {
+            input_size: 96,
+            ..MatcherConfig::default()
+        };
+        let matcher = OnnxMatcher::new(&rt, fixture("matcher_centroid.onnx"), config).unwrap();
+        assert_eq!(matcher.name(), "onnx/matcher_centroid");
+        let cam = camera();
+        let mesh = box_mesh([-0.4, 0.0, -0.3], [0.4, 0.8, 0.3]);
+        let truth = Pose::new(1.0, 0.3, Vector3::new(0.1, 0.0, -0.2));
+        let start = Pose::new(1.0, 0.3, Vector3::new(0.5, 0.0, -0.2));
+        let seen = rasterize(&mesh, &truth, &cam, Window::full(&cam));
+        let (w, h) = (160, 120);
+        let mut mask = Mask::new(w, h);
+        let mut pixels = vec![40u8; (w * h * 3) as usize];
+        for y in 0..h {
+            for x in 0..w {
+                if seen.depth.get(x, y).is_some() {
+                    mask.set(x, y, true);
+                    let i = ((y * w + x) * 3) as usize;
+                    pixels[i..i + 3].copy_from_slice(&[180, 170, 160]);
+                }
+            }
+        }
+        let image = RgbImage::new(w, h, pixels).unwrap();
+        let depth = DepthMap::from_fn(w, h, |x, y| seen.depth.get(x, y).unwrap_or(6.0));
+        let target = TargetRegion {
+            camera: &cam,
+            mask: &mask,
+            depth: Some(&depth),
+            image: Some(&image),
+        };
+        let window = rasterize(&mesh, &start, &cam, Window::full(&cam));
+        let bbox = scenethesis_correspondence::projected_bbox(&mesh, &start, &cam).unwrap();
+        let view = rasterize(&mesh, &start, &cam, Window::around(bbox, 2, w, h).unwrap());
+        assert!(window.coverage() == view.coverage() && view.coverage() > 300);
+
+        let matches = matcher.match_view(&view, &target);
+        // Of the model's 25 pairs, the 16 of the outer ring are below the confidence floor.
+        assert!(
+            (5..=9).contains(&matches.len()),
+            "{} matches: {matches:?}",
+            matches.len()
+        );
+        assert!(matches
+            .windows(2)
+            .all(|p| p[0].confidence >= p[1].confidence));
+        assert_eq!(matches[0].confidence, 1.0);
+
+        let crop = crop_for(&view, &target, MatcherConfig::default().margin).unwrap();
+        let (rendered, guidance) = matcher_inputs(&view, &target, crop).unwrap();
+        let (c0, c1) = (
+            centroid(&rendered, crop.width),
+            centroid(&guidance, crop.width),
+        );
+        let shift = [c1[0] - c0[0], c1[1] - c0[1]];
+        assert!(shift[0].abs() > 5.0, "the start is off by {shift:?} px");
+        for m in &matches {
+            let (gx, gy) = view.to_guidance(m.rendered[0], m.rendered[1]);
+            let got = [
+                m.target.x - (gx as f64 + 0.5),
+                m.target.y - (gy as f64 + 0.5),
+            ];
+            // Half a pixel from flooring the rendered point, a little from resizing.
+            assert!(
+                (got[0] - shift[0]).abs() < 1.2 && (got[1] - shift[1]).abs() < 1.2,
+                "pair {m:?} moves {got:?}, the inputs' centroids {shift:?}"
+            );
+            assert!(view.depth.get(m.rendered[0], m.rendered[1]).is_some());
+            assert!(mask.contains(m.target.x as u32, m.target.y as u32));
+        }
+        let pairs = lift(&matches, &view, &target);
+        assert_eq!(pairs.len(), matches.len());
+        assert!(pairs.iter().all(|p| p.target_point.is_some()));
+
+        // Without the guidance image there is nothing to compare: no matches.
+        let blind = TargetRegion {
+            image: None,
+            ..target
+        };
+        assert!(matcher.match_view(&view, &blind).is_empty());
+    }
+
+    #[test]
+    fn a_model_without_the_matcher_signature_is_refused_by_name() {
+        let rt = runtime();
+        let err = OnnxMatcher::new(&rt, fixture("depth_dynamic.onnx"), MatcherConfig::default())
+            .unwrap_err();
+        assert!(matches!(err, OnnxError::Signature { .. }), "{err}");
+        let text = err.to_string();
+        assert!(
+            text.contains("depth_dynamic.onnx") && text.contains("no input `image0`"),
+            "{text}"
+        );
+    }
+}

@@ -210,7 +210,7 @@ proptest! {
         let mesh = sofa();
         let truth = Pose::new(1.0, yaw, Vector3::new(0.1, 0.0, -0.1));
         let (mask, depth) = guidance(&cam, &mesh, &truth);
-        let target = TargetRegion { camera: &cam, mask: &mask, depth: Some(&depth) };
+        let target = TargetRegion { camera: &cam, mask: &mask, depth: Some(&depth), image: None };
         let start = Pose::new(1.0, yaw + dyaw, truth.translation + Vector3::new(dx, 0.0, dz));
         let found = align_to_guidance(
             &mesh, &start, [0.8, 1.25], &target, &ShapeMatcher::default(), None,

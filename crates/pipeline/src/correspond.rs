@@ -74,6 +74,7 @@ pub fn correspond(
                 camera: &guidance.camera,
                 mask,
                 depth,
+                image: Some(&guidance.image),
             };
             let s = object.pose.scale;
             let range = scale_ranges

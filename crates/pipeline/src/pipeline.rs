@@ -284,6 +284,7 @@ impl Pipeline {
                 planner: self.planner.name(),
                 guide: self.guide.name(),
                 judge: self.judge.name(),
+                matcher: self.matcher.as_ref().map(|(m, _)| m.name()),
                 asset_source: self.assets.name(),
                 original_plan: &original_plan,
                 replans,

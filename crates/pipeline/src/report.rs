@@ -78,6 +78,10 @@ pub struct Report {
     pub judge: String,
     /// The optimizer's name.
     pub optimizer: String,
+    /// The correspond stage's matcher (`shape`, or a dense model such as `onnx/loftr`), when
+    /// one is configured; absent for the offline procedural path.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub matcher: Option<String>,
     /// The asset source's name.
     pub asset_source: String,
     /// Attempts made (1 + re-plans).

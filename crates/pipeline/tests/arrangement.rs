@@ -68,13 +68,7 @@ fn run(pipeline: &Pipeline, prompt: &str, seed: u64) -> Outcome {
                 m.col_o,
                 m.inst_o,
                 m.walk,
-                g.report
-                    .verdict
-                    .failures
-                    .iter()
-                    .map(|f| f.detail.as_str())
-                    .collect::<Vec<_>>()
-                    .join("; ")
+                g.report.verdict.reasons()
             ));
         }
         for c in ["kitchen_counter", "sink", "stove", "refrigerator"] {

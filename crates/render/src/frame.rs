@@ -106,11 +106,6 @@ impl Frame {
         encode_png(&self.depth_u16_mm())
     }
 
-    /// Depth as a NumPy `.npy` file: little-endian `float32`, shape `(height, width)`, metres.
-    pub fn depth_npy(&self) -> Vec<u8> {
-        npy_f32(&self.depth, self.height(), self.width())
-    }
-
     /// The instance image encoded as a 16-bit greyscale PNG of instance indices (ids beyond
     /// 65535 saturate).
     pub fn instance_png16(&self) -> Result<Vec<u8>, RenderError> {
@@ -133,24 +128,6 @@ where
         image::ImageFormat::Png,
     )?;
     Ok(bytes)
-}
-
-/// A version-1.0 `.npy` file holding `values` as little-endian f32 of shape (rows, cols).
-fn npy_f32(values: &[f32], rows: u32, cols: u32) -> Vec<u8> {
-    let mut header =
-        format!("{{'descr': '<f4', 'fortran_order': False, 'shape': ({rows}, {cols}), }}");
-    // Magic (6) + version (2) + header length (2) + header + '\n' is a multiple of 64.
-    let unpadded = 10 + header.len() + 1;
-    header.push_str(&" ".repeat((64 - unpadded % 64) % 64));
-    header.push('\n');
-    let mut out = Vec::with_capacity(10 + header.len() + values.len() * 4);
-    out.extend_from_slice(b"\x93NUMPY\x01\x00");
-    out.extend_from_slice(&(header.len() as u16).to_le_bytes());
-    out.extend_from_slice(header.as_bytes());
-    for v in values {
-        out.extend_from_slice(&v.to_le_bytes());
-    }
-    out
 }
 
 #[cfg(test)]
@@ -180,17 +157,5 @@ mod tests {
             f.depth_u16_mm().into_raw(),
             vec![0, 1500, 2000, 0, 250, 65535]
         );
-    }
-
-    #[test]
-    fn npy_header_is_aligned_and_data_follows() {
-        let bytes = frame().depth_npy();
-        let header_len = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
-        assert_eq!((10 + header_len) % 64, 0);
-        let header = std::str::from_utf8(&bytes[10..10 + header_len]).unwrap();
-        assert!(header.contains("'shape': (2, 3)") && header.ends_with('\n'));
-        let first = f32::from_le_bytes(bytes[10 + header_len + 4..][..4].try_into().unwrap());
-        assert_eq!(first, 1.5);
-        assert_eq!(bytes.len(), 10 + header_len + 24);
     }
 }

@@ -11,6 +11,9 @@ use std::time::Duration;
 use scenethesis_openai::testing::{Reply, TestServer};
 use serde_json::{json, Value};
 
+mod common;
+use common::text;
+
 const KEY: &str = "sk-test-4f9c1e0b7d2a-never-print-me";
 
 /// What the server answers: status, content type, body, delay.
@@ -38,101 +41,11 @@ impl std::ops::Deref for Server {
     }
 }
 
-/// An object of the plan answer; `place` is [support, parent, zone, wall].
-fn obj(id: &str, category: &str, layer: &str, place: [&str; 4], relations: Value) -> Value {
-    json!({"id": id, "category": category, "layer": layer, "support": place[0],
-           "parent": place[1], "zone": place[2], "wall": place[3], "relations": relations,
-           "stated": false})
-}
-
-/// A model's plan for "a pharmacy" (its own, not the offline thesaurus reading).
+/// A model's plan for "a pharmacy" (its own, not the offline thesaurus reading), shared with the
+/// language crate's tests: `fixtures/llm/pharmacy_plan.json`.
 fn pharmacy_plan() -> Value {
-    let mut objects = vec![
-        obj(
-            "checkout_counter_0",
-            "checkout_counter",
-            "middle",
-            ["on-floor", "ground", "center", "any"],
-            json!([]),
-        ),
-        obj(
-            "cash_register_0",
-            "cash register",
-            "middle",
-            ["on", "checkout_counter_0", "supported", "any"],
-            json!([]),
-        ),
-        obj(
-            "drinks_fridge_0",
-            "drinks_fridge",
-            "background",
-            ["against-wall", "ground", "wall", "wall_0"],
-            json!([]),
-        ),
-        obj(
-            "plant_0",
-            "potted plants",
-            "background",
-            ["on-floor", "ground", "corner", "any"],
-            json!([]),
-        ),
-        obj(
-            "shopping_basket_0",
-            "shopping_basket",
-            "foreground",
-            ["on-floor", "ground", "relative", "any"],
-            json!([{"kind": "beside", "target": "checkout_counter_0"}]),
-        ),
-    ];
-    for (i, wall) in ["wall_1", "wall_3", "wall_0", "wall_1"].iter().enumerate() {
-        objects.push(obj(
-            &format!("store_shelf_{i}"),
-            "store_shelf",
-            "background",
-            ["against-wall", "ground", "wall", wall],
-            json!([]),
-        ));
-    }
-    for i in 0..2 {
-        objects.push(obj(
-            &format!("display_shelf_{i}"),
-            "display_shelf",
-            "middle",
-            ["on-floor", "ground", "rows", "any"],
-            json!([]),
-        ));
-    }
-    for i in 0..4 {
-        let parent = format!("store_shelf_{}", i % 2);
-        objects.push(obj(
-            &format!("bottle_{i}"),
-            "bottles",
-            "background",
-            ["on", &parent, "supported", "any"],
-            json!([]),
-        ));
-    }
-    for i in 0..2 {
-        objects.push(obj(
-            &format!("box_{i}"),
-            "medicine boxes",
-            "middle",
-            ["on", "display_shelf_0", "supported", "any"],
-            json!([]),
-        ));
-    }
-    json!({
-        "interpretation": "a small retail pharmacy with a checkout counter",
-        "detailed": false,
-        "scene_type": "Pharmacy",
-        "environment": "indoor",
-        "room_width": 8.5,
-        "room_depth": 6.0,
-        "anchor": "checkout_counter_0",
-        "objects": objects,
-        "unavailable": [],
-        "description": "Background: shelves of medicine along the side walls and a drinks fridge at the back. Middle ground: the checkout counter with a cash register, display shelves in rows. Foreground: a shopping basket."
-    })
+    serde_json::from_str(include_str!("../../../fixtures/llm/pharmacy_plan.json"))
+        .expect("the pharmacy fixture is JSON")
 }
 
 /// A chat completion in OpenAI's shape holding `content`.
@@ -148,30 +61,8 @@ fn completion(content: &str) -> Vec<u8> {
     .into_bytes()
 }
 
-/// Runs the binary with a clean provider environment and a known API key.
 fn scenethesis(args: &[&str]) -> Output {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_scenethesis"));
-    for var in [
-        "OPENAI_BASE_URL",
-        "SCENETHESIS_LLM_MODEL",
-        "SCENETHESIS_VLM_MODEL",
-        "SCENETHESIS_IMAGE_MODEL",
-        "RUST_LOG",
-    ] {
-        cmd.env_remove(var);
-    }
-    cmd.env("OPENAI_API_KEY", KEY)
-        .args(args)
-        .output()
-        .expect("run scenethesis")
-}
-
-fn text(out: &Output) -> String {
-    format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    )
+    common::scenethesis_with_key(Some(KEY), args)
 }
 
 /// A config file making failures fast: one attempt, short timeout.

@@ -5,23 +5,14 @@
 //! ORT_DYLIB_PATH set).
 
 use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::Output;
+
+mod common;
 
 const PROMPT: &str = "a bedroom with a bed, a nightstand and a wardrobe";
 
 fn scenethesis(args: &[&str]) -> Output {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_scenethesis"));
-    for var in [
-        "OPENAI_BASE_URL",
-        "OPENAI_API_KEY",
-        "SCENETHESIS_LLM_MODEL",
-        "SCENETHESIS_VLM_MODEL",
-        "SCENETHESIS_IMAGE_MODEL",
-        "RUST_LOG",
-    ] {
-        cmd.env_remove(var);
-    }
-    cmd.args(args).output().expect("run scenethesis")
+    common::scenethesis_with_key(None, args)
 }
 
 fn failure(out: &Output) -> String {
@@ -52,10 +43,7 @@ fn model_flags_without_the_vision_guide_are_rejected() {
         "--depth-model",
         &model,
     ]));
-    assert!(
-        err.contains("--depth-model feeds the vision guide"),
-        "{err}"
-    );
+    assert!(err.contains("--depth-model feeds the vision path"), "{err}");
     assert!(!out_dir.exists(), "nothing is written");
 }
 
@@ -81,6 +69,123 @@ fn a_build_without_the_feature_says_how_to_get_it() {
             && err.contains("--features onnx"),
         "{err}"
     );
+    let err = failure(&scenethesis(&[
+        "generate",
+        PROMPT,
+        "--out",
+        &out,
+        "--guide-image",
+        "room.png",
+        "--match-model",
+        "loftr.onnx",
+    ]));
+    assert!(
+        err.contains("--match-model: this scenethesis was built without the `onnx` feature"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_match_model_with_the_correspond_stage_off_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_dir = dir.path().join("out");
+    let out = out_dir.display().to_string();
+    let model = fixture("matcher_centroid.onnx");
+    let err = failure(&scenethesis(&[
+        "generate",
+        PROMPT,
+        "--out",
+        &out,
+        "--guide-image",
+        "room.png",
+        "--matcher",
+        "none",
+        "--match-model",
+        &model,
+    ]));
+    assert!(
+        err.contains("--match-model") && err.contains("--matcher none"),
+        "{err}"
+    );
+    assert!(!out_dir.exists(), "nothing is written");
+}
+
+/// The dense matcher runs in the correspond stage of a whole `generate` from guidance files
+/// (rendered from an offline scene), through ONNX Runtime, and the report names it.
+#[cfg(feature = "onnx")]
+#[test]
+fn a_dense_match_model_aligns_the_objects_of_a_guided_run() {
+    assert!(
+        std::env::var_os("ORT_DYLIB_PATH").is_some(),
+        "set ORT_DYLIB_PATH to an ONNX Runtime library (pip install onnxruntime)"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("scene");
+    let s = scene.display().to_string();
+    let run = |args: &[&str]| {
+        let out = scenethesis(args);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    };
+    run(&[
+        "generate",
+        PROMPT,
+        "--out",
+        &s,
+        "--no-preview",
+        "--max-replans",
+        "0",
+    ]);
+    run(&["render", &s, "--guidance", "--size", "384x256"]);
+    let g = |name: &str| scene.join("guidance").join(name).display().to_string();
+    let model = fixture("matcher_centroid.onnx");
+    let guided = |name: &str, extra: &[&str]| {
+        let out_dir = dir.path().join(name);
+        let out = out_dir.display().to_string();
+        let mut args = vec![
+            "generate",
+            PROMPT,
+            "--out",
+            &out,
+            "--no-preview",
+            "--max-replans",
+            "0",
+        ];
+        let files = [
+            ("--guide-image", g("rgb.png")),
+            ("--guide-masks", g("ids.png")),
+            ("--guide-labels", g("labels.json")),
+            ("--guide-depth", g("depth.npy")),
+            ("--camera", g("camera.json")),
+        ];
+        for (flag, file) in &files {
+            args.extend([*flag, file.as_str()]);
+        }
+        args.extend(extra);
+        run(&args);
+        let report: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out_dir.join("report.json")).unwrap()).unwrap();
+        (std::fs::read(out_dir.join("scene.json")).unwrap(), report)
+    };
+    let (dense_scene, report) = guided("dense", &["--match-model", &model]);
+    assert_eq!(report["guide"], "vision");
+    assert_eq!(report["matcher"], "onnx/matcher_centroid", "{report}");
+    assert!(
+        report["timings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|t| t["stage"] == "correspond"),
+        "no correspond stage ran: {}",
+        report["timings"]
+    );
+    // The alignment followed the model's matches, not the shape matcher's.
+    let (shape_scene, report) = guided("shape", &[]);
+    assert_eq!(report["matcher"], "shape");
+    assert_ne!(dense_scene, shape_scene);
 }
 
 #[cfg(feature = "onnx")]

@@ -29,7 +29,13 @@ fn render_writes_photo_top_and_orbit_views_of_the_living_room() {
         assert_eq!(img.dimensions(), (160, 120), "{name}");
         let distinct: std::collections::BTreeSet<[u8; 3]> = img.pixels().map(|p| p.0).collect();
         assert!(distinct.len() > 50, "{name} looks blank");
-        assert!(dir.path().join(format!("{name}_depth.npy")).is_file());
+        let npy = std::fs::read(dir.path().join(format!("{name}_depth.npy"))).unwrap();
+        let (w, h, depth) = scenethesis_vision::files::parse_npy(&npy).unwrap();
+        assert_eq!((w, h), (160, 120), "{name}_depth.npy");
+        assert!(
+            depth.iter().all(|d| d.is_finite() && *d >= 0.0) && depth.iter().any(|d| *d > 0.5),
+            "{name}_depth.npy holds metres"
+        );
     }
     assert!(!dir.path().join("view_2.png").exists());
 }

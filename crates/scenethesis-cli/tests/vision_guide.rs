@@ -5,39 +5,21 @@
 //! and nothing is written.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 use std::sync::OnceLock;
 
 use scenethesis_models::ImageData;
 use scenethesis_openai::testing::{openai_completion, openai_image, Reply, TestServer};
 use serde_json::{json, Value};
 
+mod common;
+use common::text;
+
 const PROMPT: &str = "a bedroom with a bed, a nightstand and a wardrobe";
 const KEY: &str = "sk-test-vision-guide-never-print-me";
 
 fn scenethesis(args: &[&str]) -> Output {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_scenethesis"));
-    for var in [
-        "OPENAI_BASE_URL",
-        "SCENETHESIS_LLM_MODEL",
-        "SCENETHESIS_VLM_MODEL",
-        "SCENETHESIS_IMAGE_MODEL",
-        "RUST_LOG",
-    ] {
-        cmd.env_remove(var);
-    }
-    cmd.env("OPENAI_API_KEY", KEY)
-        .args(args)
-        .output()
-        .expect("run scenethesis")
-}
-
-fn text(out: &Output) -> String {
-    format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    )
+    common::scenethesis_with_key(Some(KEY), args)
 }
 
 /// A scene generated offline and its guidance rendered at the vision guide's edit size
@@ -111,6 +93,10 @@ fn generate_from_given_guidance_files_recovers_the_rendered_scene() {
     assert!(out.status.success(), "{}", text(&out));
     let report = report(&out_dir);
     assert_eq!(report["guide"], "vision");
+    assert_eq!(
+        report["matcher"], "shape",
+        "the default matcher aligned the objects"
+    );
     let truth = objects(scene);
     let got = objects(&out_dir);
     assert!(got.len() >= 8, "only {} objects recovered", got.len());
@@ -199,11 +185,11 @@ fn furnished_render(scene_dir: &Path) -> (Vec<u8>, Value) {
     (png, json!({ "objects": out }))
 }
 
-#[test]
-fn generate_online_edits_the_empty_room_and_lifts_the_vlm_boxes() {
-    let (scene, _) = base();
-    let (render, boxes) = furnished_render(scene);
-    let edited = ImageData::from_bytes(render.clone(), "the furnished render").unwrap();
+/// The loopback image + VLM server of the online tests: `/images/edits` answers with `render`
+/// (the furnished room), a chat asking for `object_supports` gets the model's (wrong) claim that
+/// the bed stands on the wardrobe, any other chat gets `boxes`.
+fn vision_server(scene: &Path, render: Vec<u8>, boxes: &Value) -> TestServer {
+    let edited = ImageData::from_bytes(render, "the furnished render").unwrap();
     let answer = boxes.to_string();
     let supports = bed_on_wardrobe(scene);
     let server = TestServer::start(move |_, request| {
@@ -217,6 +203,14 @@ fn generate_online_edits_the_empty_room_and_lifts_the_vlm_boxes() {
             Reply::json(404, &json!({"error": {"message": "no such endpoint"}}))
         }
     });
+    server
+}
+
+#[test]
+fn generate_online_edits_the_empty_room_and_lifts_the_vlm_boxes() {
+    let (scene, _) = base();
+    let (render, boxes) = furnished_render(scene);
+    let server = vision_server(scene, render.clone(), &boxes);
     let dir = tempfile::tempdir().unwrap();
     let out_dir = dir.path().join("online");
     let out = scenethesis(&[
@@ -306,20 +300,7 @@ fn generate_online_edits_the_empty_room_and_lifts_the_vlm_boxes() {
 fn generate_online_replays_the_image_edit_from_the_cache() {
     let (scene, _) = base();
     let (render, boxes) = furnished_render(scene);
-    let edited = ImageData::from_bytes(render, "the furnished render").unwrap();
-    let answer = boxes.to_string();
-    let supports = bed_on_wardrobe(scene);
-    let server = TestServer::start(move |_, request| {
-        if request.path.ends_with("/images/edits") {
-            Reply::json(200, &openai_image(&edited))
-        } else if request.path.ends_with("/chat/completions") {
-            let asks_supports = request.body.windows(15).any(|w| w == b"object_supports");
-            let content = if asks_supports { &supports } else { &answer };
-            Reply::json(200, &openai_completion("eyes-1", content))
-        } else {
-            Reply::json(404, &json!({"error": {"message": "no such endpoint"}}))
-        }
-    });
+    let server = vision_server(scene, render, &boxes);
     let base_url = server.base_url.clone();
     let dir = tempfile::tempdir().unwrap();
     let cache = dir.path().join("cache");

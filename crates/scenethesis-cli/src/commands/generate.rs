@@ -199,14 +199,14 @@ pub fn run(args: GenerateArgs) -> Result<()> {
         // Said clearly even without --strict (which turns it into an error below).
         eprintln!(
             "warning: the judge did not accept the scene: {}",
-            rejection(&generated.report)
+            generated.report.verdict.reasons()
         );
     }
     if args.strict && rejected && out.holds_accepted_scene() {
         anyhow::bail!(
             "the judge did not accept the scene ({}); the accepted scene already in {} was kept \
              and nothing was written",
-            rejection(&generated.report),
+            generated.report.verdict.reasons(),
             args.out.display()
         );
     }
@@ -227,19 +227,8 @@ pub fn run(args: GenerateArgs) -> Result<()> {
     if args.strict && rejected {
         anyhow::bail!(
             "the judge did not accept the scene: {}",
-            rejection(&generated.report)
+            generated.report.verdict.reasons()
         );
     }
     Ok(())
-}
-
-/// The judge's reasons for rejecting a scene, on one line.
-fn rejection(report: &scenethesis_pipeline::Report) -> String {
-    report
-        .verdict
-        .failures
-        .iter()
-        .map(|f| f.detail.as_str())
-        .collect::<Vec<_>>()
-        .join("; ")
 }

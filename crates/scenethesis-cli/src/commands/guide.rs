@@ -93,6 +93,12 @@ impl GuideArgs {
             self.onnx.reject_unused()?;
             return Ok(pipeline);
         }
+        if let (MatcherChoice::None, Some(model)) = (self.matcher, &self.onnx.match_model) {
+            anyhow::bail!(
+                "--match-model {}: given with --matcher none, which turns the correspond stage off, so the model would not be used",
+                model.display()
+            );
+        }
         let onnx = self.onnx.load()?;
         let guide = match &self.guide_image {
             Some(image) => {
@@ -141,8 +147,9 @@ impl GuideArgs {
                 VisionGuide::edit_render(renderer, images, EDIT_SIZE).with_vlm(vlm)
             }
         };
-        let pipeline = pipeline.with_guide(onnx.install(guide));
+        let (pipeline, dense) = onnx.install(guide, pipeline);
         Ok(match self.matcher {
+            _ if dense => pipeline,
             MatcherChoice::Shape => {
                 pipeline.with_matcher(ShapeMatcher::default(), GuidedSettings::default())
             }

@@ -1,10 +1,12 @@
-//! Optional model providers of the vision guide run through ONNX Runtime (feature `onnx`): a
-//! depth model and a box-prompted segmenter (encoder + decoder) from model files the user
-//! supplies, with the ONNX Runtime library from `--onnx-runtime` or `ORT_DYLIB_PATH`.
+//! Optional model providers of the vision path run through ONNX Runtime (feature `onnx`): a
+//! depth model and a box-prompted segmenter (encoder + decoder) for the vision guide, and a
+//! dense matcher for the correspond stage, from model files the user supplies, with the ONNX
+//! Runtime library from `--onnx-runtime` or `ORT_DYLIB_PATH`.
 
 use std::path::PathBuf;
 
 use anyhow::Result;
+use scenethesis_pipeline::Pipeline;
 use scenethesis_vision_guide::VisionGuide;
 
 /// What a depth model's output means.
@@ -41,6 +43,12 @@ pub struct OnnxArgs {
     /// iou_predictions).
     #[arg(long, value_name = "ONNX", requires = "segment_encoder")]
     pub segment_decoder: Option<PathBuf>,
+    /// Dense matcher (ONNX, LoFTR-style: image0, image1 [1, 1, H, W] grey → keypoints0,
+    /// keypoints1 [N, 2], confidence [N]) pairing each asset rendered at its pose with its
+    /// object in the guidance image; the correspond stage aligns to its matches instead of the
+    /// shape matcher's (the yaw search still ranks poses by shape).
+    #[arg(long, value_name = "ONNX")]
+    pub match_model: Option<PathBuf>,
     /// The ONNX Runtime shared library (default: ORT_DYLIB_PATH; `pip install onnxruntime`
     /// ships it as onnxruntime/capi/libonnxruntime.so.<version>).
     #[arg(long, value_name = "LIBRARY")]
@@ -50,7 +58,7 @@ pub struct OnnxArgs {
 impl OnnxArgs {
     /// Whether any ONNX model is asked for.
     pub fn any(&self) -> bool {
-        self.depth_model.is_some() || self.segment_encoder.is_some()
+        self.depth_model.is_some() || self.segment_encoder.is_some() || self.match_model.is_some()
     }
 
     /// The first flag given, for messages.
@@ -59,6 +67,8 @@ impl OnnxArgs {
             "--depth-model"
         } else if self.segment_encoder.is_some() {
             "--segment-encoder"
+        } else if self.match_model.is_some() {
+            "--match-model"
         } else {
             "--onnx-runtime"
         }
@@ -68,7 +78,7 @@ impl OnnxArgs {
     pub fn reject_unused(&self) -> Result<()> {
         if self.any() || self.onnx_runtime.is_some() {
             anyhow::bail!(
-                "{} feeds the vision guide, which this run does not use; add --guide vision or --guide-image FILE",
+                "{} feeds the vision path, which this run does not use; add --guide vision or --guide-image FILE",
                 self.first_flag()
             );
         }
@@ -81,14 +91,15 @@ impl OnnxArgs {
     pub fn load(&self) -> Result<OnnxProviders> {
         use anyhow::Context;
         use scenethesis_onnx::{
-            DepthConfig, DepthOutput, OnnxDepth, OnnxSegmenter, Runtime, SegmenterConfig,
+            DepthConfig, DepthOutput, MatcherConfig, OnnxDepth, OnnxMatcher, OnnxSegmenter,
+            Runtime, SegmenterConfig,
         };
 
         let mut providers = OnnxProviders::default();
         if !self.any() {
             if let Some(library) = &self.onnx_runtime {
                 anyhow::bail!(
-                    "--onnx-runtime {}: given without --depth-model or --segment-encoder, so no model would use it",
+                    "--onnx-runtime {}: given without --depth-model, --segment-encoder or --match-model, so no model would use it",
                     library.display()
                 );
             }
@@ -126,6 +137,12 @@ impl OnnxArgs {
                     })?,
             );
         }
+        if let Some(model) = &self.match_model {
+            providers.matcher = Some(
+                OnnxMatcher::new(&runtime, model, MatcherConfig::default())
+                    .with_context(|| format!("--match-model {}", model.display()))?,
+            );
+        }
         Ok(providers)
     }
 
@@ -152,11 +169,14 @@ pub struct OnnxProviders {
     depth: Option<scenethesis_onnx::OnnxDepth>,
     #[cfg(feature = "onnx")]
     segmenter: Option<scenethesis_onnx::OnnxSegmenter>,
+    #[cfg(feature = "onnx")]
+    matcher: Option<scenethesis_onnx::OnnxMatcher>,
 }
 
 impl OnnxProviders {
-    /// `guide` using these models.
-    pub fn install(self, guide: VisionGuide) -> VisionGuide {
+    /// `pipeline` with `guide` using these models and, when a dense matcher was loaded, with it
+    /// as the correspond stage's matcher; the flag says whether a matcher was installed.
+    pub fn install(self, guide: VisionGuide, pipeline: Pipeline) -> (Pipeline, bool) {
         #[cfg(feature = "onnx")]
         {
             let mut guide = guide;
@@ -166,9 +186,16 @@ impl OnnxProviders {
             if let Some(segmenter) = self.segmenter {
                 guide = guide.with_segmenter(segmenter);
             }
-            guide
+            let pipeline = pipeline.with_guide(guide);
+            match self.matcher {
+                Some(dense) => (
+                    pipeline.with_matcher(dense, scenethesis_pipeline::GuidedSettings::default()),
+                    true,
+                ),
+                None => (pipeline, false),
+            }
         }
         #[cfg(not(feature = "onnx"))]
-        guide
+        (pipeline.with_guide(guide), false)
     }
 }

@@ -140,8 +140,11 @@ fn write_view(
             .render_prepared(prepared, camera)
             .with_context(|| format!("rendering depth of {name} failed"))?;
         let path = dir.join(format!("{name}_depth.npy"));
-        write_file_atomic(&path, &frame.depth_npy())
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        write_file_atomic(
+            &path,
+            &scenethesis_vision::files::write_npy(frame.width(), frame.height(), &frame.depth),
+        )
+        .with_context(|| format!("cannot write {}", path.display()))?;
         println!("wrote {}", path.display());
     }
     Ok(())
