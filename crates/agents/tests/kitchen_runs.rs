@@ -141,3 +141,52 @@ fn kitchen_layouts_vary_over_many_seeds() {
     assert!(counts.len() >= 3, "{counts:?}");
     assert!(holding >= 18, "{holding}/20: {counts:?}");
 }
+
+/// A kitchen that asks for a dishwasher gets one (the `dishwasher` category, not a cabinet),
+/// standing in the run against a wall and touching the sink, in every seed; a bare kitchen
+/// has one in some of seeds 0–15 and not in others.
+#[test]
+fn a_dishwasher_stands_in_the_run_beside_the_sink() {
+    use scenethesis_scene_graph::{floor_gap, ParentRef};
+    let on_floor = |scene: &scenethesis_scene_graph::Scene, c: &str| -> Vec<usize> {
+        (0..scene.objects.len())
+            .filter(|&i| {
+                scene.objects[i].category == c && scene.objects[i].parent == ParentRef::Ground
+            })
+            .collect()
+    };
+    for seed in 0..4 {
+        let (_, laid) = layout("a kitchen with a dishwasher", seed);
+        let scene = &laid.scene;
+        let dw = on_floor(scene, "dishwasher");
+        assert_eq!(dw.len(), 1, "#{seed}: dishwashers {dw:?}");
+        let sinks = on_floor(scene, "sink");
+        let d = &scene.objects[dw[0]];
+        assert!(
+            sinks
+                .iter()
+                .any(|&s| floor_gap(d, &scene.objects[s]) <= 0.05),
+            "#{seed}: the dishwasher does not touch the sink"
+        );
+        let check = check_arrangement(scene);
+        assert!(
+            !check.broken.iter().any(|b| b.subject == d.id),
+            "#{seed}: {:?}",
+            check.broken
+        );
+    }
+    let with: BTreeSet<bool> = (0..16)
+        .map(|seed| {
+            let (_, laid) = layout("a kitchen", seed);
+            laid.scene
+                .objects
+                .iter()
+                .any(|o| o.category == "dishwasher")
+        })
+        .collect();
+    assert_eq!(
+        with.len(),
+        2,
+        "a bare kitchen's dishwasher does not vary: {with:?}"
+    );
+}
