@@ -156,6 +156,16 @@ impl ArrangementRules {
         })
     }
 
+    /// The judged `faces` rules `category` is a subject of, as (targets, within metres): the
+    /// procedural guide puts such an object where it faces a target near it.
+    pub(crate) fn faces_of(&self, category: &str) -> Vec<(&[String], f64)> {
+        self.faces
+            .iter()
+            .filter(|r| r.judge == Severity::Reject && r.subject.iter().any(|c| c == category))
+            .map(|r| (r.target.as_slice(), r.within))
+            .collect()
+    }
+
     /// Every category the rules name (for checking them against the library).
     pub fn categories(&self) -> Vec<&str> {
         let mut names: Vec<&str> = Vec::new();
@@ -378,11 +388,18 @@ pub fn check_arrangement_with(rules: &ArrangementRules, scene: &Scene) -> Arrang
     }
     for r in &rules.oriented {
         let centre = room_centre(scene);
+        let front = room_front(scene);
         for s in of(&r.subject) {
             let to_centre = centre - floor_centre(s);
             let faces_room = to_centre.norm() < 1e-6 || front_dir(s).dot(&to_centre) > 0.0;
-            let failure = (!faces_room && !holds(s, RelationKind::AgainstWall, GROUND_ID))
-                .then(|| "turned away from the room and not against a wall".to_owned());
+            let failure = (!faces_room
+                && !holds(s, RelationKind::AgainstWall, GROUND_ID)
+                && !front.as_ref().is_some_and(|f| f.rows_toward(s)))
+            .then(|| {
+                "turned away from the room, not against a wall and not in a row facing the \
+                 room's front"
+                    .to_owned()
+            });
             check.record(&r.rule, r.judge, &s.id, failure);
         }
     }
@@ -407,6 +424,36 @@ fn flanks(scene: &Scene, s: &SceneObject, t: &SceneObject) -> bool {
     let size = t.local_bounds.size() * t.pose.scale;
     let (half_w, half_l) = (size.x / 2.0, size.z / 2.0);
     d.dot(&right_dir(t)).abs() >= half_w && d.dot(&front_dir(t)).abs() <= half_l
+}
+
+/// The front of a room whose anchor stands with its back against a wall (a teacher's desk, a
+/// judge's bench): the anchor's floor centre and the direction it faces, into the room.
+struct RoomFront {
+    at: Vector2<f64>,
+    into_room: Vector2<f64>,
+}
+
+impl RoomFront {
+    /// `s` stands in the room before the front and is turned like the anchor (within 50°):
+    /// whoever sits at it, on its front side, looks toward the front of the room (a desk in
+    /// a classroom's rows).
+    fn rows_toward(&self, s: &SceneObject) -> bool {
+        (floor_centre(s) - self.at).dot(&self.into_room) > 0.0
+            && front_dir(s).dot(&self.into_room) >= 50f64.to_radians().cos()
+    }
+}
+
+/// The room's front, when its anchor is a floor object with its back against a wall.
+fn room_front(scene: &Scene) -> Option<RoomFront> {
+    let id = scene.anchor.as_deref()?;
+    let a = scene.objects.iter().find(|o| o.id == id)?;
+    let against = Relation::new(RelationKind::AgainstWall, GROUND_ID.to_owned());
+    (a.parent == ParentRef::Ground && relation_holds(scene, &a.id, &against) == Some(true)).then(
+        || RoomFront {
+            at: floor_centre(a),
+            into_room: front_dir(a),
+        },
+    )
 }
 
 /// The centre of the floor rectangle (the origin when there is no floor).

@@ -325,6 +325,13 @@ impl Thesaurus {
                 .iter()
                 .position(|x| x.category == g.category && x.place != Place::Anchor)
             {
+                // A group placed relative to a category moves to the end, after every group
+                // it may be relative to: the open office's chairs are drawn up to the rows of
+                // desks its own `add` brings, not all to the office's one desk.
+                Some(i) if g.place.target().is_some() => {
+                    a.objects.remove(i);
+                    a.objects.push(g.clone());
+                }
                 Some(i) => a.objects[i] = g.clone(),
                 None => a.objects.push(g.clone()),
             }

@@ -141,3 +141,32 @@ fn kitchen_layouts_vary_over_many_seeds() {
     assert!(counts.len() >= 3, "{counts:?}");
     assert!(holding >= 18, "{holding}/20: {counts:?}");
 }
+
+/// A kitchen that asks for a dishwasher gets one: the `dishwasher` category, not a cabinet.
+#[test]
+fn a_dishwasher_is_a_dishwasher() {
+    for seed in 0..2 {
+        let (plan, laid) = layout("a kitchen with a dishwasher", seed);
+        assert!(
+            plan.objects.iter().any(|o| o.category == "dishwasher"),
+            "#{seed}: no dishwasher planned"
+        );
+        assert!(
+            laid.scene.objects.iter().all(|o| o.category != "cabinet"
+                || plan
+                    .objects
+                    .iter()
+                    .filter(|p| p.category == "cabinet")
+                    .count()
+                    == 1),
+            "#{seed}: the dishwasher became a cabinet"
+        );
+        assert!(
+            laid.scene
+                .objects
+                .iter()
+                .any(|o| o.category == "dishwasher"),
+            "#{seed}: no dishwasher placed"
+        );
+    }
+}

@@ -17,6 +17,7 @@ const EVERYDAY: &[&str] = &[
     "standing_mirror",
     "laundry_hamper",
     "washing_machine",
+    "dishwasher",
     "kitchen_island",
     "wall_cabinet",
     "range_hood",
@@ -110,6 +111,36 @@ fn hollow_things_have_real_cavities() {
             );
         }
     }
+    // A dishwasher's tub behind its closed door is hollow: between the racks, from the back
+    // wall to the door, no part fills it.
+    for seed in 0..6 {
+        let dw = catalog::generate(category("dishwasher"), seed);
+        let part = |name: &str| {
+            let p = dw
+                .mesh
+                .parts
+                .iter()
+                .find(|p| p.name == name)
+                .unwrap_or_else(|| panic!("dishwasher #{seed}: no `{name}`"));
+            let ys = p.positions.iter().map(|v| v[1]);
+            (
+                ys.clone().fold(f32::MAX, f32::min),
+                ys.fold(f32::MIN, f32::max),
+            )
+        };
+        let (_, lower) = part("rack_lower");
+        let (upper, _) = part("rack_upper");
+        let y = 0.5 * (lower + upper);
+        let b = dw.mesh.bounds().unwrap();
+        let depth = (b.max.z - b.min.z) as f32;
+        for f in [0.2f32, 0.5, 0.75] {
+            let z = b.min.z as f32 + f * depth;
+            if let Some(part) = inside_some_part(&dw, Point3::new(0.0, y, z)) {
+                panic!("dishwasher #{seed}: part `{part}` fills the tub at z = {z:.3}");
+            }
+        }
+        assert!(upper - lower > 0.2, "dishwasher #{seed}: racks too close");
+    }
     // A toaster's slots and a toilet roll's core are open from top to bottom of the body.
     for seed in 0..6 {
         let roll = catalog::generate(category("toilet_paper"), seed);
@@ -144,6 +175,7 @@ fn things_people_put_things_on_have_the_surfaces_for_it() {
     let expect = [
         ("toilet", SurfaceKind::Top),
         ("washing_machine", SurfaceKind::Top),
+        ("dishwasher", SurfaceKind::Top),
         ("kitchen_island", SurfaceKind::Top),
         ("kitchen_island", SurfaceKind::Shelf),
         ("kitchen_island", SurfaceKind::Under),

@@ -14,6 +14,7 @@ use super::geometry::Footprint;
 use super::room::Side;
 use super::shared::positional_target;
 use super::walkway::FloorState;
+use crate::arrangement::ArrangementRules;
 use crate::knowledge::{Knowledge, NominalShape};
 use crate::plan::{PlannedObject, Zone};
 
@@ -143,7 +144,7 @@ pub(super) fn candidates(
         }
         Zone::Corner => out.extend(corner_candidates(sides, hx, hz, rng)),
         Zone::Center => out.extend(center_candidates(state, hx, hz, rng, is_anchor)),
-        Zone::Rows => out.extend(row_candidates(state, hx, hz)),
+        Zone::Rows => out.extend(row_candidates(state, hx, hz, seat_like(&o.category))),
         Zone::Free => {}
         Zone::WallMounted => {
             let mut order: Vec<usize> = (0..sides.len()).collect();
@@ -169,10 +170,52 @@ pub(super) fn candidates(
             .index_of(&plan.anchor)
             .and_then(|a| state.placed_of(a))
             .map(|p| [p.fp.cx, p.fp.cz]);
-        let facing = seat_like(&o.category).then_some(anchor_toward).flatten();
+        let seat = seat_like(&o.category);
+        let facing = seat.then_some(anchor_toward).flatten();
+        let from = out.len();
         out.extend(free_candidates(state, info, rng, facing));
+        if o.zone == Zone::Rows && !seat {
+            // A desk of the rows that finds no row spot still turns like the rows.
+            for c in &mut out[from..] {
+                c.fp.yaw = 0.0;
+            }
+        }
+    }
+    let serves = ArrangementRules::builtin().faces_of(&o.category);
+    if !serves.is_empty() {
+        // Spots from which the object would stand by a table (screen, …) of its `faces` rule
+        // without facing any such table come last: a chair of the rows beside a desk it does
+        // not serve.
+        out.sort_by_key(|c| breaks_faces(state, &c.fp, &serves));
     }
     out
+}
+
+/// Whether an object at `fp` would have one of `serves`' targets within reach and face none of
+/// them (the judge's `faces` rule, on footprints: front within 50° of the target's centre, or
+/// squarely before its front).
+fn breaks_faces(state: &FloorState<'_>, fp: &Footprint, serves: &[(&[String], f64)]) -> bool {
+    let cos50 = 50f64.to_radians().cos();
+    let (_, f) = fp.axes();
+    serves.iter().any(|(targets, within)| {
+        let mut near = state
+            .placed
+            .iter()
+            .filter(|p| !p.mounted)
+            .filter(|p| targets.contains(&state.plan.objects[p.plan_index].category))
+            .filter(|p| p.fp.overlaps(fp, 2.0 * within))
+            .peekable();
+        near.peek().is_some()
+            && !near.any(|t| {
+                let d = [t.fp.cx - fp.cx, t.fp.cz - fp.cz];
+                let len = (d[0] * d[0] + d[1] * d[1]).sqrt();
+                let (_, tf) = t.fp.axes();
+                let toward = len > 1e-9 && (f[0] * d[0] + f[1] * d[1]) / len >= cos50;
+                let square =
+                    -(f[0] * tf[0] + f[1] * tf[1]) >= cos50 && -(d[0] * tf[0] + d[1] * tf[1]) > 0.0;
+                toward || square
+            })
+    })
 }
 
 fn anchor_wall_candidates(
@@ -315,7 +358,10 @@ fn center_candidates(
     out
 }
 
-fn row_candidates(state: &FloorState<'_>, hx: f64, hz: f64) -> Vec<Candidate> {
+/// Spots on a grid of rows before the room's front (the wall at minimum z, where the anchor
+/// stands). A desk of the rows is turned like the anchor, so whoever sits at its front looks to
+/// the room's front; a seat of the rows faces the front.
+fn row_candidates(state: &FloorState<'_>, hx: f64, hz: f64, seat: bool) -> Vec<Candidate> {
     let [x0, z0, x1, z1] = state.floor;
     let (sx, sz) = (2.0 * hx + 1.0, 2.0 * hz + 1.5);
     let (ax0, ax1) = (x0 + 0.9 + hx, x1 - 0.9 - hx);
@@ -332,7 +378,7 @@ fn row_candidates(state: &FloorState<'_>, hx: f64, hz: f64) -> Vec<Candidate> {
             let fp = Footprint {
                 cx: ax0 + off_x + c as f64 * sx,
                 cz: az0 + r as f64 * sz,
-                yaw: 0.0,
+                yaw: if seat { PI } else { 0.0 },
                 hx,
                 hz,
             };

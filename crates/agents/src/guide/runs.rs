@@ -114,7 +114,8 @@ fn members(state: &FloorState<'_>, rule: &RunsRule) -> Option<Vec<usize>> {
 }
 
 /// The order of the pieces along a run: the `ends` first (one end), then cabinets, the sink,
-/// counters and the stove, each member that is beside another member moved next to it.
+/// the dishwasher (next to the sink, as it is plumbed), counters and the stove, each member
+/// that is beside another member moved next to it.
 fn sequence(state: &FloorState<'_>, rule: &RunsRule, members: &[usize]) -> Vec<usize> {
     let plan = state.plan;
     let role = |i: usize| -> u8 {
@@ -125,9 +126,10 @@ fn sequence(state: &FloorState<'_>, rule: &RunsRule, members: &[usize]) -> Vec<u
             match c {
                 "cabinet" => 1,
                 "sink" => 2,
-                "kitchen_counter" => 3,
-                "stove" => 4,
-                _ => 5,
+                "dishwasher" => 3,
+                "kitchen_counter" => 4,
+                "stove" => 5,
+                _ => 6,
             }
         }
     };

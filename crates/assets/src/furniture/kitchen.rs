@@ -1,11 +1,12 @@
-//! Kitchen furniture: kitchen island, wall cabinet and range hood. Fronts face +Z; wall-mounted
-//! pieces have their wall side at −Z.
+//! Kitchen furniture: kitchen island, wall cabinet, range hood and dishwasher. Fronts face +Z;
+//! wall-mounted pieces have their wall side at −Z.
 
 use rand_chacha::ChaCha8Rng;
 
 use super::carcass::{self, Carcass, CarcassMaterials, Feet, Front};
 use super::{mat, mat_either, SCALE};
-use crate::primitives::{prism_x, rect_surface, rod, AssetBuilder, Palette};
+use crate::items::builder::Builder;
+use crate::primitives::{prism_x, rect, rect_surface, rod, AssetBuilder, Palette};
 use crate::random::{coin, int, uniform};
 use crate::{Asset, Placement, SurfaceKind};
 
@@ -158,4 +159,80 @@ pub(super) fn range_hood(rng: &mut ChaCha8Rng) -> Asset {
         ));
     }
     b.finish(Placement::Wall, [0.95, 1.05])
+}
+
+/// Dishwasher: width 0.445–0.45 (slimline) or 0.595–0.6, height 0.82–0.87 (under a worktop),
+/// depth 0.55–0.6; a closed front door with a handle and a control strip over a recessed
+/// plinth, and behind it a real hollow tub (floor, back, sides and top as separate slabs) with
+/// two thin wire racks; usable top.
+pub(super) fn dishwasher(rng: &mut ChaCha8Rng) -> Asset {
+    let mut b = Builder::new();
+    let body = match int(rng, 0, 3) {
+        0 | 1 => b.fixed("appliance_white", [0xF2, 0xF2, 0xF0], 0.3, 0.0),
+        2 => b.fixed("appliance_steel", [0xB8, 0xBA, 0xBC], 0.3, 0.6),
+        _ => b.fixed("appliance_black", [0x2A, 0x2C, 0x30], 0.35, 0.2),
+    };
+    let tub = b.fixed("tub_steel", [0xC8, 0xCA, 0xCC], 0.25, 0.8);
+    let dark = b.fixed("control_strip", [0x18, 0x1A, 0x1E], 0.2, 0.0);
+    let trim = b.palette(Palette::Metal, rng);
+    let w = if coin(rng, 0.25) {
+        uniform(rng, 0.445, 0.45)
+    } else {
+        uniform(rng, 0.595, 0.6)
+    };
+    let (h, d) = (uniform(rng, 0.82, 0.87), uniform(rng, 0.55, 0.6));
+    let (hw, hd) = (0.5 * w, 0.5 * d);
+    let (plinth, wall, door) = (uniform(rng, 0.08, 0.11), 0.02, 0.045);
+    let back = hd - door;
+    // The plinth, set back from the door.
+    b.cuboid(
+        "plinth",
+        body,
+        [-hw + 0.01, 0.0, -hd],
+        [hw - 0.01, plinth, back - 0.04],
+    );
+    // The tub: open toward the door, closed on every other side.
+    b.cuboid(
+        "tub_floor",
+        tub,
+        [-hw, plinth, -hd],
+        [hw, plinth + wall, back],
+    );
+    b.cuboid("tub_top", tub, [-hw, h - wall, -hd], [hw, h, back]);
+    b.cuboid(
+        "tub_back",
+        tub,
+        [-hw, plinth + wall - 0.001, -hd],
+        [hw, h - wall + 0.001, -hd + wall],
+    );
+    for (name, x0, x1) in [("tub_left", -hw, -hw + wall), ("tub_right", hw - wall, hw)] {
+        b.cuboid(
+            name,
+            body,
+            [x0, plinth + wall - 0.001, -hd + wall - 0.001],
+            [x1, h - wall + 0.001, back],
+        );
+    }
+    // Two wire racks as thin slabs, free of the walls.
+    let inner = h - wall - (plinth + wall);
+    for (name, at) in [("rack_lower", 0.12), ("rack_upper", 0.55)] {
+        let y = plinth + wall + at * inner;
+        b.cuboid(
+            name,
+            trim,
+            [-hw + wall + 0.015, y, -hd + wall + 0.02],
+            [hw - wall - 0.015, y + 0.008, back - 0.02],
+        );
+    }
+    // The door, its control strip along the top and a bar handle.
+    b.cuboid("door", body, [-hw, plinth, back], [hw, h - 0.07, hd]);
+    b.cuboid("control_strip", dark, [-hw, h - 0.07, back], [hw, h, hd]);
+    b.cuboid(
+        "handle",
+        trim,
+        [-0.3 * w, h - 0.12, hd - 0.001],
+        [0.3 * w, h - 0.1, hd + 0.025],
+    );
+    b.top("top", rect(-hw + 0.02, -hd + 0.02, hw - 0.02, hd - 0.02), h);
+    b.finish(Placement::Floor, [0.98, 1.02])
 }

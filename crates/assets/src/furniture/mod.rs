@@ -149,6 +149,7 @@ pub(crate) const GENERATORS: &[(&str, Generator)] = &[
     ("kitchen_island", kitchen::kitchen_island),
     ("wall_cabinet", kitchen::wall_cabinet),
     ("range_hood", kitchen::range_hood),
+    ("dishwasher", kitchen::dishwasher),
     // Living, hall and study.
     ("fireplace", living::fireplace),
     ("curtain", living::curtain),
