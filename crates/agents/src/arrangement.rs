@@ -166,6 +166,15 @@ impl ArrangementRules {
             .collect()
     }
 
+    /// The judged `faces` rules `category` is a target of: each rule's subjects and reach.
+    pub(crate) fn served_by(&self, category: &str) -> Vec<(&[String], f64)> {
+        self.faces
+            .iter()
+            .filter(|r| r.judge == Severity::Reject && r.target.iter().any(|c| c == category))
+            .map(|r| (r.subject.as_slice(), r.within))
+            .collect()
+    }
+
     /// Every category the rules name (for checking them against the library).
     pub fn categories(&self) -> Vec<&str> {
         let mut names: Vec<&str> = Vec::new();

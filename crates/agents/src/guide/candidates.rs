@@ -188,15 +188,45 @@ pub(super) fn candidates(
         // not serve.
         out.sort_by_key(|c| breaks_faces(state, &c.fp, &serves));
     }
+    let served = ArrangementRules::builtin().served_by(&o.category);
+    if !served.is_empty() {
+        // A table (desk, …) placed after its seats: spots that would stand it within reach of
+        // a placed seat that does not face it come last.
+        out.sort_by_key(|c| strands_a_seat(state, &c.fp, &served));
+    }
     out
+}
+
+/// Whether a subject at `subject` faces a target at `target`: its front within 50° of the
+/// target's centre, or squarely before the target's front.
+fn faces_footprint(subject: &Footprint, target: &Footprint) -> bool {
+    let cos50 = 50f64.to_radians().cos();
+    let (_, f) = subject.axes();
+    let d = [target.cx - subject.cx, target.cz - subject.cz];
+    let len = (d[0] * d[0] + d[1] * d[1]).sqrt();
+    let (_, tf) = target.axes();
+    let toward = len > 1e-9 && (f[0] * d[0] + f[1] * d[1]) / len >= cos50;
+    let square = -(f[0] * tf[0] + f[1] * tf[1]) >= cos50 && -(d[0] * tf[0] + d[1] * tf[1]) > 0.0;
+    toward || square
+}
+
+/// Whether a target of `served`'s rules at `fp` would have a placed subject within reach that
+/// does not face it.
+fn strands_a_seat(state: &FloorState<'_>, fp: &Footprint, served: &[(&[String], f64)]) -> bool {
+    served.iter().any(|(subjects, within)| {
+        state
+            .placed
+            .iter()
+            .filter(|p| !p.mounted)
+            .filter(|p| subjects.contains(&state.plan.objects[p.plan_index].category))
+            .any(|p| p.fp.overlaps(fp, 2.0 * within) && !faces_footprint(&p.fp, fp))
+    })
 }
 
 /// Whether an object at `fp` would have one of `serves`' targets within reach and face none of
 /// them (the judge's `faces` rule, on footprints: front within 50° of the target's centre, or
 /// squarely before its front).
 fn breaks_faces(state: &FloorState<'_>, fp: &Footprint, serves: &[(&[String], f64)]) -> bool {
-    let cos50 = 50f64.to_radians().cos();
-    let (_, f) = fp.axes();
     serves.iter().any(|(targets, within)| {
         let mut near = state
             .placed
@@ -205,16 +235,7 @@ fn breaks_faces(state: &FloorState<'_>, fp: &Footprint, serves: &[(&[String], f6
             .filter(|p| targets.contains(&state.plan.objects[p.plan_index].category))
             .filter(|p| p.fp.overlaps(fp, 2.0 * within))
             .peekable();
-        near.peek().is_some()
-            && !near.any(|t| {
-                let d = [t.fp.cx - fp.cx, t.fp.cz - fp.cz];
-                let len = (d[0] * d[0] + d[1] * d[1]).sqrt();
-                let (_, tf) = t.fp.axes();
-                let toward = len > 1e-9 && (f[0] * d[0] + f[1] * d[1]) / len >= cos50;
-                let square =
-                    -(f[0] * tf[0] + f[1] * tf[1]) >= cos50 && -(d[0] * tf[0] + d[1] * tf[1]) > 0.0;
-                toward || square
-            })
+        near.peek().is_some() && !near.any(|t| faces_footprint(fp, &t.fp))
     })
 }
 
