@@ -189,9 +189,10 @@ pub(super) fn candidates(
         out.sort_by_key(|c| breaks_faces(state, &c.fp, &serves));
     }
     let served = ArrangementRules::builtin().served_by(&o.category);
-    if !served.is_empty() {
+    if !served.is_empty() && o.zone != Zone::Rows {
         // A table (desk, …) placed after its seats: spots that would stand it within reach of
-        // a placed seat that does not face it come last.
+        // a placed seat that does not face it come last. Desks of the rows keep the rows'
+        // order: their seats are drawn up to them afterwards.
         out.sort_by_key(|c| strands_a_seat(state, &c.fp, &served));
     }
     out
