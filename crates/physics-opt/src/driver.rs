@@ -18,7 +18,7 @@ use crate::finish::{finish, FinishInput};
 use crate::objective::{LossSettings, ObjectProblem, RoomBounds, Stage};
 use crate::obstacles::Obstacles;
 use crate::optimizer::Optimizer;
-use crate::params::{rotate_y, unrotate_y};
+use crate::params::carry;
 use crate::prepare::PreparedAsset;
 use crate::report::{ObjectReport, Placement};
 use crate::support::{choose_surface, Support, SupportPlane};
@@ -185,7 +185,8 @@ pub fn optimize_scene(
             assets: &assets,
             architecture: &architecture,
             room,
-            settings,
+            losses: &settings.losses,
+            tolerances: settings.tolerances,
             settle: optimizer.settles(),
         };
         let mut poses: Vec<Pose> = reports.iter().map(|r| r.pose).collect();
@@ -315,18 +316,6 @@ fn resolve_support(
             )
         }
     }
-}
-
-/// A child's pose moved rigidly with its parent from `before` to `after` (position and yaw
-/// follow the parent; the child's own scale is kept).
-pub(crate) fn carry(before: &Pose, after: &Pose, child: &Pose) -> Pose {
-    let local = unrotate_y(before.yaw, &(child.translation - before.translation)) / before.scale;
-    let translation = after.translation + rotate_y(after.yaw, &(local * after.scale));
-    Pose::new(
-        child.scale,
-        child.yaw + (after.yaw - before.yaw),
-        translation,
-    )
 }
 
 /// The architecture as posed box fields: a floor slab under the floor rectangle (reaching a

@@ -14,7 +14,7 @@ use nalgebra::{Point2, Vector2};
 use scenethesis_scene_graph::{Pose, SceneObject};
 use scenethesis_sdf::SignedDistance;
 
-use crate::objective::{ObjectProblem, RoomBounds, Stage};
+use crate::objective::{LossSettings, ObjectProblem, RoomBounds, Stage};
 use crate::obstacles::Obstacles;
 use crate::optimizer::Optimizer;
 use crate::params::world_point;
@@ -42,8 +42,10 @@ pub(crate) struct FinishInput<'a> {
     pub architecture: &'a [(String, Arc<dyn SignedDistance>, Pose)],
     /// The floor rectangle.
     pub room: RoomBounds,
-    /// Loss settings and tolerances.
-    pub settings: &'a crate::driver::OptimizeSettings,
+    /// Loss settings.
+    pub losses: &'a LossSettings,
+    /// Post-condition tolerances.
+    pub tolerances: Tolerances,
     /// Whether resting objects are settled on their support (the optimizer's stability term).
     pub settle: bool,
 }
@@ -87,7 +89,7 @@ pub(crate) fn finish(
     // are; only an object settled again needs them as its collision samples too.
     let dense = input.assets;
     let mut densified: BTreeMap<usize, Arc<PreparedAsset>> = BTreeMap::new();
-    let tol = input.settings.tolerances;
+    let tol = input.tolerances;
     let mut last = None;
     for _ in 0..ROUNDS {
         let (todo, verdicts) =
@@ -111,7 +113,7 @@ pub(crate) fn finish(
                 support: &support,
                 room: Some(input.room),
                 alignment: None,
-                settings: &input.settings.losses,
+                settings: input.losses,
             };
             let before = poses[i];
             let start = match (&support, topples && input.settle) {
@@ -221,7 +223,7 @@ pub(crate) fn finish(
             // Children move with it, and rest on its surfaces where they now are.
             let carried: Vec<usize> = (0..n).filter(|&d| d != i && is_ancestor(i, d)).collect();
             for &d in &carried {
-                poses[d] = crate::driver::carry(&before, &after, &poses[d]);
+                poses[d] = crate::params::carry(&before, &after, &poses[d]);
             }
             for &d in &carried {
                 supports[d] = resolve(d, &poses[d], poses);

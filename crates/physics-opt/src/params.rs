@@ -61,6 +61,18 @@ pub fn world_point_jacobian(pose: &Pose, local: &Point3<f64>) -> [Vector3<f64>; 
     [d_scale, d_yaw, Vector3::x(), Vector3::y(), Vector3::z()]
 }
 
+/// A child's pose moved rigidly with its parent from `before` to `after` (position and yaw
+/// follow the parent; the child's own scale is kept).
+pub(crate) fn carry(before: &Pose, after: &Pose, child: &Pose) -> Pose {
+    let local = unrotate_y(before.yaw, &(child.translation - before.translation)) / before.scale;
+    let translation = after.translation + rotate_y(after.yaw, &(local * after.scale));
+    Pose::new(
+        child.scale,
+        child.yaw + (after.yaw - before.yaw),
+        translation,
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
