@@ -155,13 +155,19 @@ pub fn crop_for(view: &RenderedView, target: &TargetRegion<'_>, margin: u32) -> 
 /// estimated from the rendered depth and the viewing ray `r`; 0 where the asset is not seen.
 pub fn rendered_grey(view: &RenderedView) -> Vec<f32> {
     let (w, h) = (view.depth.width(), view.depth.height());
-    let point = |x: u32, y: u32| {
-        view.depth.get(x, y).map(|d| {
-            view.camera
-                .unproject(&Point2::new(x as f64 + 0.5, y as f64 + 0.5), d as f64)
-                .coords
+    // Every covered pixel's surface point, unprojected once (each is also its neighbours'
+    // neighbour).
+    let points: Vec<Option<Vector3<f64>>> = (0..w * h)
+        .map(|i| {
+            let (x, y) = (i % w, i / w);
+            view.depth.get(x, y).map(|d| {
+                view.camera
+                    .unproject(&Point2::new(x as f64 + 0.5, y as f64 + 0.5), d as f64)
+                    .coords
+            })
         })
-    };
+        .collect();
+    let point = |x: u32, y: u32| points[(y * w + x) as usize];
     let mut out = vec![0.0f32; (w * h) as usize];
     for y in 0..h {
         for x in 0..w {
