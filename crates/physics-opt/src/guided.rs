@@ -52,6 +52,18 @@ pub struct GuidedSettings {
     /// and depth change the size only as far as they constrain it (≤ 0: no prior).
     #[serde(default = "default_scale_sigma")]
     pub scale_sigma: f64,
+    /// The pose the match rounds end at is kept unless its shape score is more than this
+    /// fraction below the best score seen (then the best-scoring pose is kept). The score
+    /// ranks yaw hypotheses well but hardly moves with a shift of a few centimetres and not at
+    /// all with a shift along the line of sight (its depth term ignores a common offset), so
+    /// among poses that fit the mask about as well the fitted one, which the depth pairs place,
+    /// is the better; the tolerance only guards against a fit that went astray.
+    #[serde(default = "default_refine_tolerance")]
+    pub refine_tolerance: f64,
+}
+
+fn default_refine_tolerance() -> f64 {
+    0.1
 }
 
 fn default_scale_sigma() -> f64 {
@@ -84,6 +96,7 @@ impl Default for GuidedSettings {
             min_mask_pixels: 30,
             tolerance: 1e-3,
             scale_sigma: default_scale_sigma(),
+            refine_tolerance: default_refine_tolerance(),
         }
     }
 }
@@ -156,8 +169,9 @@ fn recentred(mesh: &Mesh, pose: &Pose, target: &TargetRegion<'_>, window: Window
 /// Aligns `mesh`, starting at `start`, to its object's guidance `target`: yaw hypotheses ranked
 /// by [`ShapeMatcher`] scores (a facing `hint` settles ties such as front/back), then rounds of
 /// matching with `matcher` and robust fitting of the pose-alignment loss. The scale stays in
-/// `scale_range`. Returns the best-scoring pose seen (never worse than the start), or `None`
-/// when the mask is too small or the asset is not in view.
+/// `scale_range`. Returns the fitted pose, or the best-scoring pose seen when the fitted one
+/// scores more than [`GuidedSettings::refine_tolerance`] below it, or `None` when the mask is
+/// too small or the asset is not in view.
 pub fn align_to_guidance(
     mesh: &Mesh,
     start: &Pose,
@@ -254,17 +268,14 @@ pub fn align_to_guidance(
     let mut pose = best.0;
     let mut alignment = PoseAlignment::new(*camera, Vec::new());
     let mut rounds = 0;
-    // Whether `pose` has been scored (the view rendered for matching scores it too).
-    let mut scored = true;
+    // The shape score of `pose` once known (the view rendered for matching scores it too).
+    let mut pose_score = Some(best.1);
     for _ in 0..settings.refreshes {
         rounds += 1;
         let view = rasterize(mesh, &pose, camera, window_at(&pose));
-        if !scored {
-            let score = shape_score(&view, target, &scorer);
-            if score.score > best.1.score {
-                best = (pose, score);
-            }
-            scored = true;
+        let score = *pose_score.get_or_insert_with(|| shape_score(&view, target, &scorer));
+        if score.score > best.1.score {
+            best = (pose, score);
         }
         let pairs = lift(&matcher.match_view(&view, target), &view, target);
         let depth = camera
@@ -291,14 +302,15 @@ pub fn align_to_guidance(
             .max((next.yaw - pose.yaw).abs())
             .max((next.scale - pose.scale).abs());
         pose = next;
-        scored = false;
+        pose_score = None;
         if moved < settings.tolerance {
             break;
         }
     }
-    if !scored {
-        let score = score_at(&pose);
-        if score.score > best.1.score {
+    // The fitted pose, unless it scores clearly worse than the best seen.
+    if best.0 != pose {
+        let score = pose_score.unwrap_or_else(|| score_at(&pose));
+        if score.score >= best.1.score * (1.0 - settings.refine_tolerance.clamp(0.0, 1.0)) {
             best = (pose, score);
         }
     }
