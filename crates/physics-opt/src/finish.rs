@@ -5,12 +5,14 @@
 //! (a book between two books, boxes along a rack level) make room in turn; a child that
 //! collides with its parent moves, not the parent. A resting object whose centre of mass is
 //! not over the part of its footprint that its support holds (a photo frame whose kickstand
-//! hangs over a shelf's back edge) is moved inward until it is.
+//! hangs over a shelf's back edge) is moved inward until it is. A held object that no small
+//! move frees from its holder (turned across a shelf's front lip, wedged between the lip and
+//! a crate) tries its holder's square turns, in place and a few centimetres inward.
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
-use nalgebra::{Point2, Vector2};
+use nalgebra::{Point2, Vector2, Vector3};
 use scenethesis_scene_graph::{Pose, SceneObject};
 use scenethesis_sdf::SignedDistance;
 
@@ -29,6 +31,9 @@ const ROUNDS: usize = 8;
 const FOOT_BAND: f64 = 0.003;
 /// The centre of mass must lie this far inside the supported feet's hull, metres.
 const REST_MARGIN: f64 = 0.004;
+/// How far (metres) a held object still pressed into something is moved toward the middle of
+/// its support surface for another try.
+const HELD_STEPS: [f64; 3] = [0.0, 0.03, 0.08];
 /// Inward steps a toppling object takes at most.
 const REST_STEPS: usize = 6;
 
@@ -199,6 +204,62 @@ pub(crate) fn finish(
                     }
                 }
             }
+            // Clear of its holder and pressing only into siblings, it waits for them to make
+            // room (next round); still pressed into its holder, it turns.
+            if !best.is_some_and(|(_, b)| b.0 <= tol.penetration) {
+                if let Some(j) = parent_of[i] {
+                    // Still pressed into its holder (or a wall): held things line up with their holder (a
+                    // magazine in its pocket, a toy car along a shelf level) and sit inside its
+                    // surface, not on its rim. Try the holder's four square turns (the nearest
+                    // first) about the object's centre, there and moved a few centimetres
+                    // toward the middle of the surface.
+                    let pivot = dense[i].bounds().center();
+                    let centre = start.transform_point(&pivot);
+                    let mut yaws: Vec<f64> = (0..4)
+                        .map(|k| poses[j].yaw + k as f64 * std::f64::consts::FRAC_PI_2)
+                        .collect();
+                    yaws.sort_by(|a, b| {
+                        angle_between(*a, start.yaw).total_cmp(&angle_between(*b, start.yaw))
+                    });
+                    yaws.insert(0, start.yaw);
+                    let inward = support
+                        .plane()
+                        .and_then(region_centre)
+                        .map(|m| m - Vector2::new(centre.x, centre.z))
+                        .filter(|t| t.norm() > 1e-9)
+                        .map(|t| t / t.norm());
+                    let steps: &[f64] = if inward.is_some() {
+                        &HELD_STEPS
+                    } else {
+                        &HELD_STEPS[..1]
+                    };
+                    'held: for &step in steps {
+                        for (k, &yaw) in yaws.iter().enumerate() {
+                            if step == 0.0 && k == 0 {
+                                continue; // the start itself, tried above
+                            }
+                            let toward = inward.unwrap_or_else(Vector2::zeros) * step;
+                            let mut turned = Pose::new(start.scale, yaw, Vector3::zeros());
+                            turned.translation = centre.coords
+                                - turned.transform_point(&pivot).coords
+                                + Vector3::new(toward.x, 0.0, toward.y);
+                            // Clear of the holder but pressing into a sibling, the start itself
+                            // will do: the sibling makes room in its turn.
+                            let here = score(&turned);
+                            if here.0 <= tol.penetration {
+                                consider(&mut best, turned, here);
+                            }
+                            let o = optimizer.optimize(&problem, Stage::Physics, turned);
+                            iterations[i] += o.iterations;
+                            let s = score(&o.pose);
+                            consider(&mut best, o.pose, s);
+                            if best.is_some_and(|(_, b)| resolved(b)) {
+                                break 'held;
+                            }
+                        }
+                    }
+                }
+            }
             let mut after = best.map_or(before, |(p, _)| p);
             let mut better = best.is_some();
             if !better
@@ -288,6 +349,12 @@ fn pending(
         }
     }
     (out, verdicts)
+}
+
+/// The unsigned angle between two yaws, radians in [0, π].
+fn angle_between(a: f64, b: f64) -> f64 {
+    let d = (a - b).rem_euclid(std::f64::consts::TAU);
+    d.min(std::f64::consts::TAU - d)
 }
 
 /// Whether every contact of the object at `pose` is with an obstacle `movable` accepts (by id).

@@ -372,3 +372,44 @@ pub fn thirty_object_room(seed: u64) -> SceneProblem {
     }
     problem
 }
+
+/// Top of the board of [`lipped_shelf`].
+pub const LIPPED_BOARD: f64 = 0.42;
+
+/// A low 0.8 × 0.3 m shelf with one level at [`LIPPED_BOARD`], a top board at 0.8 m and a
+/// 3 cm lip along the level's front edge (as store shelves have for price labels).
+pub fn lipped_shelf() -> PreparedAsset {
+    let parts = vec![
+        cuboid("side_l", 0, [-0.4, 0.0, -0.15], [-0.38, 0.82, 0.15]),
+        cuboid("side_r", 0, [0.38, 0.0, -0.15], [0.4, 0.82, 0.15]),
+        cuboid("back", 0, [-0.4, 0.0, -0.15], [0.4, 0.82, -0.14]),
+        cuboid("board", 0, [-0.4, 0.4, -0.15], [0.4, 0.42, 0.15]),
+        cuboid("lip", 0, [-0.38, 0.42, 0.13], [0.38, 0.45, 0.15]),
+        cuboid("top", 0, [-0.4, 0.8, -0.15], [0.4, 0.82, 0.15]),
+    ];
+    let surfaces = vec![SupportSurface {
+        name: "level".into(),
+        kind: SurfaceKind::Shelf,
+        polygon: square(-0.38, -0.14, 0.38, 0.13),
+        height: LIPPED_BOARD as f32,
+        clearance: Some(0.38),
+    }];
+    prepare(
+        "lipped_shelf",
+        &mesh(parts),
+        surfaces,
+        [0.95, 1.05],
+        Placement::Floor,
+    )
+}
+
+/// A box of the given size standing on its bottom face, resting on surfaces.
+pub fn surface_box(size: [f32; 3], scale_range: [f64; 2]) -> PreparedAsset {
+    prepare(
+        "box",
+        &box_mesh(size),
+        Vec::new(),
+        scale_range,
+        Placement::Surface,
+    )
+}
