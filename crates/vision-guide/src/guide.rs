@@ -12,7 +12,7 @@ use scenethesis_correspondence::{DepthMap, Guidance, Mask, RgbImage};
 use scenethesis_models::{
     ChatModel, DepthEstimator, ImageData, ImageEditRequest, ImageGenerator, Segmenter,
 };
-use scenethesis_scene_graph::{Architecture, Camera, Intrinsics, Mesh, MeshPart, Scene};
+use scenethesis_scene_graph::{Architecture, Camera, Intrinsics, Material, Mesh, Scene};
 use scenethesis_vision::{lift_scene, LiftOptions};
 
 use crate::assemble::build_scene;
@@ -515,19 +515,12 @@ fn walkway(scene: &Scene, infos: &BTreeMap<String, AssetInfo>) -> WalkwayReport 
         .iter()
         .map(|o| {
             let [sx, sy, sz] = infos[&o.id].size;
-            let mesh = Mesh {
-                parts: vec![MeshPart::cuboid(
-                    o.id.clone(),
-                    0,
-                    [-sx / 2.0, 0.0, -sz / 2.0],
-                    [sx / 2.0, sy, sz / 2.0],
-                )],
-                materials: vec![scenethesis_scene_graph::Material::new(
-                    "box",
-                    [0.5, 0.5, 0.5],
-                    0.5,
-                )],
-            };
+            let mesh = Mesh::cuboid(
+                o.id.clone(),
+                Material::new("box", [0.5, 0.5, 0.5], 0.5),
+                [-sx / 2.0, 0.0, -sz / 2.0],
+                [sx / 2.0, sy, sz / 2.0],
+            );
             EvalObject::from_scene_object(o, &mesh)
         })
         .collect();
