@@ -19,7 +19,7 @@ use crate::assemble::build_scene;
 use crate::camera::{estimate_from_floor, DEFAULT_VERTICAL_FOV};
 use crate::detect::{ask_boxes, masks_from_boxes, match_labels};
 use crate::relations::ask_supports;
-use crate::source::{decode_to_size, png_bytes, GivenGuidance, RoomRenderer};
+use crate::source::{decode_to_size, GivenGuidance, RoomRenderer};
 
 /// Where the guidance image comes from.
 enum ImageSource {
@@ -213,7 +213,7 @@ impl VisionGuide {
                 let view = renderer
                     .render_room(architecture, *size)
                     .map_err(|e| provider(renderer.name(), e))?;
-                let png = png_bytes(&view.image);
+                let png = view.image.to_png();
                 let request = ImageEditRequest {
                     prompt: edit_prompt(plan),
                     image: ImageData::from_bytes(png, "the empty room's render")
@@ -235,7 +235,7 @@ impl VisionGuide {
                 {
                     edited.image.bytes.clone()
                 } else {
-                    png_bytes(&image)
+                    image.to_png()
                 };
                 *last = Some(Edited {
                     room: architecture.clone(),
