@@ -288,40 +288,7 @@ fn fill_triangle(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use scenethesis_scene_graph::MeshPart;
-
-    /// An axis-aligned box mesh from `min` to `max`.
-    fn box_mesh(min: [f32; 3], max: [f32; 3]) -> Mesh {
-        let mut positions = Vec::new();
-        for i in 0..8 {
-            positions.push([
-                if i & 1 == 0 { min[0] } else { max[0] },
-                if i & 2 == 0 { min[1] } else { max[1] },
-                if i & 4 == 0 { min[2] } else { max[2] },
-            ]);
-        }
-        let quads = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
-        let triangles = quads
-            .iter()
-            .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-            .collect();
-        Mesh {
-            parts: vec![MeshPart {
-                name: "box".into(),
-                material: 0,
-                positions,
-                triangles,
-            }],
-            materials: Vec::new(),
-        }
-    }
+    use scenethesis_scene_graph::Material;
 
     #[test]
     fn a_box_seen_head_on_fills_its_projection_at_its_front_depth() {
@@ -332,7 +299,8 @@ mod tests {
             Point3::new(0.0, 0.5, 0.0),
             Vector3::y(),
         );
-        let mesh = box_mesh([-0.5, 0.0, -0.5], [0.5, 1.0, 0.5]);
+        let grey = Material::new("grey", [0.5; 3], 0.8);
+        let mesh = Mesh::cuboid("box", grey, [-0.5, 0.0, -0.5], [0.5, 1.0, 0.5]);
         let pose = Pose::new(1.0, 0.0, Vector3::zeros());
         let view = rasterize(&mesh, &pose, &camera, Window::full(&camera));
         // The centre pixel sees the front face at 3.5 m.

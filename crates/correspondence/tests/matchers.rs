@@ -8,38 +8,11 @@ use scenethesis_correspondence::{
     lift, rasterize, DepthMap, Mask, MatchKind, Matcher, PairKind, PixelMatch, RenderedView,
     ShapeMatcher, TargetRegion, Window,
 };
-use scenethesis_scene_graph::{Camera, Intrinsics, Mesh, MeshPart, Pose};
+use scenethesis_scene_graph::{Camera, Intrinsics, Material, Mesh, Pose};
 
+/// A grey axis-aligned box from `min` to `max`.
 fn box_mesh(min: [f32; 3], max: [f32; 3]) -> Mesh {
-    let positions = (0..8)
-        .map(|i| {
-            [
-                if i & 1 == 0 { min[0] } else { max[0] },
-                if i & 2 == 0 { min[1] } else { max[1] },
-                if i & 4 == 0 { min[2] } else { max[2] },
-            ]
-        })
-        .collect();
-    let quads = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
-    Mesh {
-        parts: vec![MeshPart {
-            name: "box".into(),
-            material: 0,
-            positions,
-            triangles: quads
-                .iter()
-                .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-                .collect(),
-        }],
-        materials: Vec::new(),
-    }
+    Mesh::cuboid("box", Material::new("grey", [0.5; 3], 0.8), min, max)
 }
 
 /// An L-shaped asset (a sofa-like seat with a back), whose silhouette tells front from back.

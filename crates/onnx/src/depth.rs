@@ -200,6 +200,7 @@ mod provider {
     use super::{depth_map, output_plane, DepthConfig};
     use crate::raster::{decode_rgb, resize_rgb, to_nchw};
     use crate::runtime::{Model, Runtime, TensorF32};
+    use crate::signature::Signature;
     use crate::{OnnxError, ENDPOINT};
 
     /// A [`DepthEstimator`] running a Depth-Anything-style ONNX model (see the
@@ -234,62 +235,14 @@ mod provider {
             config.validate()?;
             let path = path.as_ref();
             let model = Model::open(runtime, path)?;
-            let signature = |message: String| OnnxError::Signature {
-                path: path.to_path_buf(),
-                message,
-            };
-            let listed = |ports: &[crate::runtime::Port]| {
-                ports
-                    .iter()
-                    .map(|p| p.describe())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            };
-            let input = match &config.input {
-                Some(name) => model.input(name).ok_or_else(|| {
-                    signature(format!(
-                        "no input `{name}`; the model's inputs are {}",
-                        listed(&model.inputs)
-                    ))
-                })?,
-                None if model.inputs.len() == 1 => &model.inputs[0],
-                None => {
-                    return Err(signature(format!(
-                        "expected one input (an image [1, 3, H, W]), found {}; name the image \
-                         input in the configuration",
-                        listed(&model.inputs)
-                    )))
-                }
-            };
-            let fixed_size = match input.shape.as_deref() {
-                Some([n, c, h, w])
-                    if input.float32 && (*n == 1 || *n < 0) && (*c == 3 || *c < 0) =>
-                {
-                    (*h > 0 && *w > 0).then_some((*w as u32, *h as u32))
-                }
-                _ => {
-                    return Err(signature(format!(
-                        "input {} should be float32 [1, 3, H, W]",
-                        input.describe()
-                    )))
-                }
-            };
-            let output = match &config.output {
-                Some(name) => model.output(name).ok_or_else(|| {
-                    signature(format!(
-                        "no output `{name}`; the model's outputs are {}",
-                        listed(&model.outputs)
-                    ))
-                })?,
-                None => model
-                    .outputs
-                    .first()
-                    .ok_or_else(|| signature("no outputs".into()))?,
-            };
+            let signature = Signature::new(&model, "model");
+            let (input, h, w) = signature.rgb_input(config.input.as_deref(), "[1, 3, H, W]")?;
+            let fixed_size = (h > 0 && w > 0).then_some((w as u32, h as u32));
+            let output = signature.output_or_first(config.output.as_deref())?;
             let output_ok = output.float32
                 && matches!(output.shape.as_deref(), Some(s) if (2..=4).contains(&s.len()));
             if !output_ok {
-                return Err(signature(format!(
+                return Err(signature.error(format!(
                     "output {} should be float32 [1, H, W], [1, 1, H, W] or [H, W]",
                     output.describe()
                 )));

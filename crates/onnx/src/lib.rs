@@ -44,6 +44,8 @@ mod raster;
 #[cfg(feature = "runtime")]
 mod runtime;
 pub mod segment;
+#[cfg(feature = "runtime")]
+mod signature;
 
 #[cfg(feature = "runtime")]
 pub use depth::OnnxDepth;

@@ -360,6 +360,7 @@ mod with_runtime {
         crop_for, matcher_inputs, pixel_matches, points_of, resize_plane, MatcherConfig, RawMatches,
     };
     use crate::runtime::{Model, Runtime, TensorF32};
+    use crate::signature::Signature;
     use crate::OnnxError;
 
     /// A LoFTR-style dense matcher run through ONNX Runtime (the module docs give the
@@ -394,33 +395,14 @@ mod with_runtime {
             config.validate()?;
             let path = path.as_ref();
             let model = Model::open(runtime, path)?;
-            let signature = |message: String| OnnxError::Signature {
-                path: path.to_path_buf(),
-                message,
-            };
-            let listed = |ports: &[crate::runtime::Port]| {
-                ports
-                    .iter()
-                    .map(|p| p.describe())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            };
+            let signature = Signature::new(&model, "model");
             let mut shapes = Vec::new();
             for name in [&config.image0, &config.image1] {
-                let port = model.input(name).ok_or_else(|| {
-                    signature(format!(
-                        "no input `{name}` (a grey image [1, 1, H, W]); the model's inputs are {}",
-                        listed(&model.inputs)
-                    ))
-                })?;
-                match port.shape.as_deref() {
-                    Some([n, c, h, w])
-                        if port.float32 && (*n == 1 || *n < 0) && matches!(*c, 1 | 3 | -1) =>
-                    {
-                        shapes.push((*c, *h, *w))
-                    }
-                    _ => {
-                        return Err(signature(format!(
+                let port = signature.input(name, " (a grey image [1, 1, H, W])")?;
+                match port.image_dims(|c| matches!(c, 1 | 3 | -1)) {
+                    Some(dims) => shapes.push(dims),
+                    None => {
+                        return Err(signature.error(format!(
                             "input {} should be float32 [1, 1, H, W] (or [1, 3, H, W])",
                             port.describe()
                         )))
@@ -428,7 +410,7 @@ mod with_runtime {
                 }
             }
             if shapes[0] != shapes[1] {
-                return Err(signature(format!(
+                return Err(signature.error(format!(
                     "inputs `{}` and `{}` should have the same shape",
                     config.image0, config.image1
                 )));
@@ -440,18 +422,13 @@ mod with_runtime {
                 (&config.keypoints1, [2, 3]),
                 (&config.confidence, [1, 2]),
             ] {
-                let port = model.output(name).ok_or_else(|| {
-                    signature(format!(
-                        "no output `{name}`; the model's outputs are {}",
-                        listed(&model.outputs)
-                    ))
-                })?;
+                let port = signature.output(name)?;
                 let rank_ok = port
                     .shape
                     .as_ref()
                     .is_some_and(|s| ranks.contains(&s.len()));
                 if !port.float32 || !rank_ok {
-                    return Err(signature(format!(
+                    return Err(signature.error(format!(
                         "output {} should be float32 {}",
                         port.describe(),
                         if ranks[0] == 2 {

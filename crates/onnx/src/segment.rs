@@ -254,7 +254,8 @@ mod provider {
 
     use super::{best_mask, check_box, mask_grid, mask_pixels, LongestSide, SegmenterConfig};
     use crate::raster::{decode_rgb, resize_rgb, to_nchw};
-    use crate::runtime::{Model, Port, Runtime, TensorF32};
+    use crate::runtime::{Model, Runtime, TensorF32};
+    use crate::signature::Signature;
     use crate::{OnnxError, ENDPOINT};
 
     /// A [`Segmenter`] running a SAM-style encoder/decoder pair (see the
@@ -284,14 +285,6 @@ mod provider {
         }
     }
 
-    fn listed(ports: &[Port]) -> String {
-        ports
-            .iter()
-            .map(Port::describe)
-            .collect::<Vec<_>>()
-            .join(", ")
-    }
-
     impl OnnxSegmenter {
         /// Opens the encoder and decoder models and checks their signatures against `config`.
         pub fn new(
@@ -311,80 +304,32 @@ mod provider {
             }
             let encoder = Model::open(runtime, encoder.as_ref())?;
             let decoder = Model::open(runtime, decoder.as_ref())?;
-            let enc_sig = |message: String| OnnxError::Signature {
-                path: encoder.path.clone(),
-                message,
-            };
-            let input = match &config.encoder_input {
-                Some(name) => encoder.input(name).ok_or_else(|| {
-                    enc_sig(format!(
-                        "no input `{name}`; the encoder's inputs are {}",
-                        listed(&encoder.inputs)
-                    ))
-                })?,
-                None if encoder.inputs.len() == 1 => &encoder.inputs[0],
-                None => {
-                    return Err(enc_sig(format!(
-                        "expected one input (an image [1, 3, S, S]), found {}; name the image \
-                         input in the configuration",
-                        listed(&encoder.inputs)
-                    )))
-                }
-            };
-            let frame = match input.shape.as_deref() {
-                Some([n, c, h, w])
-                    if input.float32 && (*n == 1 || *n < 0) && (*c == 3 || *c < 0) =>
-                {
-                    match (*h, *w) {
-                        (h, w) if h > 0 && h == w => h as u32,
-                        (h, w) if h <= 0 && w <= 0 => config.input_size,
-                        _ => {
-                            return Err(enc_sig(format!(
-                                "input {} should be a square frame [1, 3, S, S]",
-                                input.describe()
-                            )))
-                        }
-                    }
-                }
+            let enc = Signature::new(&encoder, "encoder");
+            let (input, h, w) = enc.rgb_input(config.encoder_input.as_deref(), "[1, 3, S, S]")?;
+            let frame = match (h, w) {
+                (h, w) if h > 0 && h == w => h as u32,
+                (h, w) if h <= 0 && w <= 0 => config.input_size,
                 _ => {
-                    return Err(enc_sig(format!(
-                        "input {} should be float32 [1, 3, S, S]",
+                    return Err(enc.error(format!(
+                        "input {} should be a square frame [1, 3, S, S]",
                         input.describe()
                     )))
                 }
             };
             let encoder_input = input.name.clone();
-            let encoder_output = match &config.encoder_output {
-                Some(name) => encoder.output(name).ok_or_else(|| {
-                    enc_sig(format!(
-                        "no output `{name}`; the encoder's outputs are {}",
-                        listed(&encoder.outputs)
-                    ))
-                })?,
-                None => encoder
-                    .outputs
-                    .first()
-                    .ok_or_else(|| enc_sig("no outputs".into()))?,
-            }
-            .name
-            .clone();
+            let encoder_output = enc
+                .output_or_first(config.encoder_output.as_deref())?
+                .name
+                .clone();
 
             let names = &config.decoder;
-            let dec_sig = |message: String| OnnxError::Signature {
-                path: decoder.path.clone(),
-                message,
-            };
+            let dec = Signature::new(&decoder, "decoder");
             for required in [
                 &names.image_embeddings,
                 &names.point_coords,
                 &names.point_labels,
             ] {
-                if decoder.input(required).is_none() {
-                    return Err(dec_sig(format!(
-                        "no input `{required}`; the decoder's inputs are {}",
-                        listed(&decoder.inputs)
-                    )));
-                }
+                dec.input(required, "")?;
             }
             let known = [
                 &names.image_embeddings,
@@ -395,7 +340,7 @@ mod provider {
                 &names.orig_im_size,
             ];
             if let Some(other) = decoder.inputs.iter().find(|p| !known.contains(&&p.name)) {
-                return Err(dec_sig(format!(
+                return Err(dec.error(format!(
                     "input {} is not one the segmenter feeds (it feeds {})",
                     other.describe(),
                     known
@@ -405,13 +350,7 @@ mod provider {
                         .join(", ")
                 )));
             }
-            if decoder.output(&names.masks).is_none() {
-                return Err(dec_sig(format!(
-                    "no output `{}`; the decoder's outputs are {}",
-                    names.masks,
-                    listed(&decoder.outputs)
-                )));
-            }
+            dec.output(&names.masks)?;
             let low_res = i64::from(frame / 4);
             let mask_input =
                 decoder

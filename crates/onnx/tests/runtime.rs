@@ -331,41 +331,9 @@ mod dense_matcher {
     };
     use scenethesis_onnx::matcher::{crop_for, matcher_inputs};
     use scenethesis_onnx::{MatcherConfig, OnnxError, OnnxMatcher};
-    use scenethesis_scene_graph::{Camera, Intrinsics, Mesh, MeshPart, Pose};
+    use scenethesis_scene_graph::{Camera, Intrinsics, Material, Mesh, Pose};
 
     use super::{fixture, runtime};
-
-    fn box_mesh(min: [f32; 3], max: [f32; 3]) -> Mesh {
-        let positions = (0..8)
-            .map(|i| {
-                [
-                    if i & 1 == 0 { min[0] } else { max[0] },
-                    if i & 2 == 0 { min[1] } else { max[1] },
-                    if i & 4 == 0 { min[2] } else { max[2] },
-                ]
-            })
-            .collect();
-        let quads = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
-        Mesh {
-            parts: vec![MeshPart {
-                name: "box".into(),
-                material: 0,
-                positions,
-                triangles: quads
-                    .iter()
-                    .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-                    .collect(),
-            }],
-            materials: Vec::new(),
-        }
-    }
 
     fn camera() -> Camera {
         Camera::look_at(
@@ -405,7 +373,8 @@ mod dense_matcher {
         let matcher = OnnxMatcher::new(&rt, fixture("matcher_centroid.onnx"), config).unwrap();
         assert_eq!(matcher.name(), "onnx/matcher_centroid");
         let cam = camera();
-        let mesh = box_mesh([-0.4, 0.0, -0.3], [0.4, 0.8, 0.3]);
+        let grey = Material::new("grey", [0.5; 3], 0.8);
+        let mesh = Mesh::cuboid("box", grey, [-0.4, 0.0, -0.3], [0.4, 0.8, 0.3]);
         let truth = Pose::new(1.0, 0.3, Vector3::new(0.1, 0.0, -0.2));
         let start = Pose::new(1.0, 0.3, Vector3::new(0.5, 0.0, -0.2));
         let seen = rasterize(&mesh, &truth, &cam, Window::full(&cam));

@@ -454,7 +454,6 @@ impl ObjectProblem<'_> {
 mod tests {
     use std::sync::Arc;
 
-    use scenethesis_assets::primitives::cuboid;
     use scenethesis_scene_graph::Placement;
     use scenethesis_scene_graph::{Material, Mesh};
     use scenethesis_sdf::BoxSdf;
@@ -464,15 +463,8 @@ mod tests {
     use crate::support::SupportPlane;
 
     fn cube(half: f32) -> PreparedAsset {
-        let mesh = Mesh {
-            parts: vec![cuboid(
-                "c",
-                0,
-                [-half, 0.0, -half],
-                [half, 2.0 * half, half],
-            )],
-            materials: vec![Material::new("m", [0.5; 3], 0.5)],
-        };
+        let m = Material::new("m", [0.5; 3], 0.5);
+        let mesh = Mesh::cuboid("c", m, [-half, 0.0, -half], [half, 2.0 * half, half]);
         PreparedAsset::new(
             "cube",
             &mesh,

@@ -4,7 +4,7 @@
 
 use nalgebra::{Point2, Point3, Vector3};
 use scenethesis_scene_graph::{Architecture, Pose, RelationKind};
-use scenethesis_scene_graph::{SupportSurface, SurfaceKind};
+use scenethesis_scene_graph::{SupportSurface, SurfaceKind, LOW_SHELF_SHARE};
 use serde::{Deserialize, Serialize};
 
 use crate::params::world_point;
@@ -152,18 +152,14 @@ pub fn choose_surface(
     best.map(|(_, p)| p)
 }
 
-/// Height of a low shelf under a top, as a share of the top's height: a shelf at most this
-/// high beneath a top holds what is `under` the top (the layout puts objects there, e.g. a
-/// basket on a coffee table's lower shelf).
-pub const LOW_SHELF_SHARE: f32 = 0.35;
-
-/// Whether `shelf` is a low shelf beneath a top of the same asset (see [`LOW_SHELF_SHARE`]).
+/// Whether `shelf` is a low shelf beneath a top of the same asset: at most
+/// [`LOW_SHELF_SHARE`] of the top's height.
 pub fn is_low_shelf(shelf: &SupportSurface, surfaces: &[SupportSurface]) -> bool {
     shelf.kind == SurfaceKind::Shelf
         && surfaces.iter().any(|t| {
             t.kind == SurfaceKind::Top
                 && t.height > shelf.height
-                && shelf.height <= LOW_SHELF_SHARE * t.height
+                && shelf.height <= LOW_SHELF_SHARE as f32 * t.height
         })
 }
 

@@ -12,46 +12,20 @@ use scenethesis_correspondence::{
 use scenethesis_physics_opt::{align_to_guidance, FitOptions, GuidedSettings, PoseAlignment};
 use scenethesis_scene_graph::{Camera, Intrinsics, Mesh, MeshPart, Pose};
 
-fn box_part(min: [f32; 3], max: [f32; 3], base: u32) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
-    let positions = (0..8)
-        .map(|i| {
-            [
-                if i & 1 == 0 { min[0] } else { max[0] },
-                if i & 2 == 0 { min[1] } else { max[1] },
-                if i & 4 == 0 { min[2] } else { max[2] },
-            ]
-        })
-        .collect();
-    let quads = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
-    let triangles = quads
-        .iter()
-        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-        .map(|t: [u32; 3]| [t[0] + base, t[1] + base, t[2] + base])
-        .collect();
-    (positions, triangles)
-}
-
 /// A sofa-like asset: a seat with a back and one arm, so no turn but the identity maps its
-/// shape onto itself.
+/// shape onto itself. One part holding the three boxes.
 fn sofa() -> Mesh {
-    let mut positions = Vec::new();
-    let mut triangles = Vec::new();
-    for (min, max) in [
-        ([-1.0, 0.0, -0.45], [1.0, 0.45, 0.45]),
-        ([-1.0, 0.45, -0.45], [1.0, 0.9, -0.2]),
-        ([-1.0, 0.45, -0.2], [-0.8, 0.65, 0.45]),
-    ] {
-        let (p, t) = box_part(min, max, positions.len() as u32);
-        positions.extend(p);
-        triangles.extend(t);
-    }
+    let boxes = Mesh {
+        parts: [
+            ([-1.0, 0.0, -0.45], [1.0, 0.45, 0.45]),
+            ([-1.0, 0.45, -0.45], [1.0, 0.9, -0.2]),
+            ([-1.0, 0.45, -0.2], [-0.8, 0.65, 0.45]),
+        ]
+        .map(|(min, max)| MeshPart::cuboid("sofa", 0, min, max))
+        .to_vec(),
+        materials: Vec::new(),
+    };
+    let (positions, triangles) = boxes.merged();
     Mesh {
         parts: vec![MeshPart {
             name: "sofa".into(),

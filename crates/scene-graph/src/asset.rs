@@ -29,6 +29,13 @@ pub enum SurfaceKind {
     Under,
 }
 
+/// How low is low, as a share of a height: a shelf at most this share of a top's height
+/// beneath that top (of the same asset) is a *low shelf*, which holds what is *under* the top
+/// (a basket on a coffee table's lower shelf); and an object *under* a target starts within
+/// this share of the target's height from its bottom ([`relation_holds`](crate::relation_holds)).
+/// The layout, the optimizer's surface choice and the relation check all read it from here.
+pub const LOW_SHELF_SHARE: f64 = 0.35;
+
 /// A place where something can rest, in the asset's own frame.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SupportSurface {

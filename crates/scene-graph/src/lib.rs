@@ -77,7 +77,7 @@ mod walkway;
 
 pub use aabb::Aabb;
 pub use architecture::{Architecture, DoorOpening, Environment, Floor, Wall};
-pub use asset::{Asset, AssetInfo, Placement, SupportSurface, SurfaceKind};
+pub use asset::{Asset, AssetInfo, Placement, SupportSurface, SurfaceKind, LOW_SHELF_SHARE};
 pub use camera::{Camera, Intrinsics, Projection};
 pub use floor_raster::{Components, FloorRaster, BLOCKED_CELL};
 pub use hash::{fnv1a64, fnv1a64_from, mix64, FNV_OFFSET_BASIS, GOLDEN_GAMMA};

@@ -144,6 +144,31 @@ pub struct Mesh {
 }
 
 impl Mesh {
+    /// A one-part mesh: the closed, outward-oriented axis-aligned box from `min` to `max`
+    /// ([`MeshPart::cuboid`], part `name`) in `material`, the mesh's only material.
+    ///
+    /// ```
+    /// use scenethesis_scene_graph::{Material, Mesh};
+    ///
+    /// let grey = Material::new("grey", [0.5, 0.5, 0.5], 0.8);
+    /// let crate_box = Mesh::cuboid("body", grey, [-0.2, 0.0, -0.3], [0.2, 0.4, 0.3]);
+    /// assert_eq!((crate_box.vertex_count(), crate_box.triangle_count()), (8, 12));
+    /// assert!(crate_box.parts[0].is_closed_and_oriented());
+    /// let b = crate_box.bounds().unwrap();
+    /// assert_eq!((b.min.y, b.max.y), (0.0, 0.4_f32 as f64));
+    /// ```
+    pub fn cuboid(
+        name: impl Into<String>,
+        material: Material,
+        min: [f32; 3],
+        max: [f32; 3],
+    ) -> Self {
+        Self {
+            parts: vec![MeshPart::cuboid(name, 0, min, max)],
+            materials: vec![material],
+        }
+    }
+
     /// Total number of triangles over all parts.
     pub fn triangle_count(&self) -> usize {
         self.parts.iter().map(|p| p.triangles.len()).sum()

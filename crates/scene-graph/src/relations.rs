@@ -1,6 +1,6 @@
 //! Geometric checks of scene relations, for tests, the judge and reports.
 
-use crate::{Relation, RelationKind, Scene, SceneObject, GROUND_ID};
+use crate::{Relation, RelationKind, Scene, SceneObject, GROUND_ID, LOW_SHELF_SHARE};
 use nalgebra::Vector2;
 
 /// Tolerance for resting contact, in metres.
@@ -49,7 +49,7 @@ fn faces(o: &SceneObject, t: &SceneObject) -> bool {
 ///
 /// Conventions: *on* rests above the target's bottom and at most at its top; *inside* starts
 /// below the target's top; *under* stays below the top and starts in the lowest 35 % of the
-/// target's height (the floor beneath a table or its low shelf); all three need the subject's
+/// target's height ([`LOW_SHELF_SHARE`]) (the floor beneath a table or its low shelf); all three need the subject's
 /// centre over the target's box. *Left of* / *right of* are seen facing the target's front
 /// (left = the target's local −X); *facing* allows 50° of yaw error; *beside* and *around*
 /// need the boxes within 1 m and 0.6 m; *against-wall* needs the back within 0.1 m of the
@@ -100,7 +100,7 @@ pub fn relation_holds(scene: &Scene, subject: &str, relation: &Relation) -> Opti
         RelationKind::Under => {
             within_xz(o, t)
                 && ob.max.y <= tb.max.y + CONTACT
-                && ob.min.y <= tb.min.y + 0.35 * (tb.max.y - tb.min.y)
+                && ob.min.y <= tb.min.y + LOW_SHELF_SHARE * (tb.max.y - tb.min.y)
         }
         RelationKind::InFrontOf => {
             d.dot(&front_dir(t)) > 0.0 && d.dot(&right_dir(t)).abs() <= t_half(right_dir(t)) + 0.5

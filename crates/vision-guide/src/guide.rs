@@ -12,14 +12,14 @@ use scenethesis_correspondence::{DepthMap, Guidance, Mask, RgbImage};
 use scenethesis_models::{
     ChatModel, DepthEstimator, ImageData, ImageEditRequest, ImageGenerator, Segmenter,
 };
-use scenethesis_scene_graph::{Architecture, Camera, Intrinsics, Mesh, MeshPart, Scene};
+use scenethesis_scene_graph::{Architecture, Camera, Intrinsics, Material, Mesh, Scene};
 use scenethesis_vision::{lift_scene, LiftOptions};
 
 use crate::assemble::build_scene;
 use crate::camera::{estimate_from_floor, DEFAULT_VERTICAL_FOV};
 use crate::detect::{ask_boxes, masks_from_boxes, match_labels};
 use crate::relations::ask_supports;
-use crate::source::{decode_to_size, png_bytes, GivenGuidance, RoomRenderer};
+use crate::source::{decode_to_size, GivenGuidance, RoomRenderer};
 
 /// Where the guidance image comes from.
 enum ImageSource {
@@ -213,7 +213,7 @@ impl VisionGuide {
                 let view = renderer
                     .render_room(architecture, *size)
                     .map_err(|e| provider(renderer.name(), e))?;
-                let png = png_bytes(&view.image);
+                let png = view.image.to_png();
                 let request = ImageEditRequest {
                     prompt: edit_prompt(plan),
                     image: ImageData::from_bytes(png, "the empty room's render")
@@ -235,7 +235,7 @@ impl VisionGuide {
                 {
                     edited.image.bytes.clone()
                 } else {
-                    png_bytes(&image)
+                    image.to_png()
                 };
                 *last = Some(Edited {
                     room: architecture.clone(),
@@ -515,19 +515,12 @@ fn walkway(scene: &Scene, infos: &BTreeMap<String, AssetInfo>) -> WalkwayReport 
         .iter()
         .map(|o| {
             let [sx, sy, sz] = infos[&o.id].size;
-            let mesh = Mesh {
-                parts: vec![MeshPart::cuboid(
-                    o.id.clone(),
-                    0,
-                    [-sx / 2.0, 0.0, -sz / 2.0],
-                    [sx / 2.0, sy, sz / 2.0],
-                )],
-                materials: vec![scenethesis_scene_graph::Material::new(
-                    "box",
-                    [0.5, 0.5, 0.5],
-                    0.5,
-                )],
-            };
+            let mesh = Mesh::cuboid(
+                o.id.clone(),
+                Material::new("box", [0.5, 0.5, 0.5], 0.5),
+                [-sx / 2.0, 0.0, -sz / 2.0],
+                [sx / 2.0, sy, sz / 2.0],
+            );
             EvalObject::from_scene_object(o, &mesh)
         })
         .collect();

@@ -213,21 +213,6 @@ pub trait RoomRenderer: Send + Sync {
     fn render_room(&self, architecture: &Architecture, size: [u32; 2]) -> Result<RoomView, String>;
 }
 
-/// Encodes an image as PNG bytes.
-pub fn png_bytes(image: &RgbImage) -> Vec<u8> {
-    let buffer =
-        image::RgbImage::from_raw(image.width(), image.height(), image.as_bytes().to_vec())
-            .expect("an RgbImage holds width × height × 3 bytes");
-    let mut bytes = Vec::new();
-    buffer
-        .write_to(
-            &mut std::io::Cursor::new(&mut bytes),
-            image::ImageFormat::Png,
-        )
-        .expect("PNG encoding into memory cannot fail");
-    bytes
-}
-
 /// Decodes a provider's PNG or JPEG answer to the camera's size `[w, h]`: an image of another
 /// size with the same aspect ratio (within 1 %) is resampled, any other is refused.
 pub fn decode_to_size(bytes: &[u8], size: [u32; 2], what: &str) -> Result<RgbImage, String> {

@@ -13,7 +13,6 @@ use scenethesis_correspondence::{DepthMap, Mask, RgbImage};
 use scenethesis_models::{ChatModel, ChatRequest, ChatResponse, ProviderError, TokenUsage};
 use scenethesis_scene_graph::{Camera, Intrinsics, ParentRef, Scene};
 use scenethesis_vision::files::{Label, Labels};
-use scenethesis_vision_guide::source::png_bytes;
 use scenethesis_vision_guide::{GivenGuidance, GuidanceFiles, VisionGuide};
 
 const W: u32 = 320;
@@ -128,7 +127,7 @@ fn given(
         .collect();
     let g = GivenGuidance {
         files: GuidanceFiles::default(),
-        image_png: png_bytes(&image),
+        image_png: image.to_png(),
         image,
         depth: with_depth.then_some(depth),
         camera: Some(cam),
@@ -463,7 +462,7 @@ impl scenethesis_models::ImageGenerator for Painter {
         )
         .unwrap();
         Ok(scenethesis_models::GeneratedImage {
-            image: scenethesis_models::ImageData::from_bytes(png_bytes(&img), "painted").unwrap(),
+            image: scenethesis_models::ImageData::from_bytes(img.to_png(), "painted").unwrap(),
             revised_prompt: None,
         })
     }

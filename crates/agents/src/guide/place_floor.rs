@@ -93,14 +93,11 @@ pub(super) fn place_floor_objects(
                     continue;
                 }
                 let p = Placed {
-                    plan_index: i,
-                    fp: c.fp,
-                    height: infos[i].size[1] as f64,
                     front_access: c.wall.is_some()
                         || matches!(o.zone, Zone::Wall { .. } | Zone::Corner | Zone::WallMounted),
                     wall: c.wall.clone(),
                     mounted,
-                    bottom: None,
+                    ..Placed::standing(i, c.fp, infos[i].size[1] as f64)
                 };
                 tried += 1;
                 if tried > 160 {
@@ -137,15 +134,7 @@ pub(super) fn place_floor_objects(
                     if !state.inside_floor(&c.fp, 0.0) || state.collides(&c.fp, 0.02) {
                         continue;
                     }
-                    let p = Placed {
-                        plan_index: i,
-                        fp: c.fp,
-                        height: infos[i].size[1] as f64,
-                        front_access: false,
-                        wall: None,
-                        mounted: false,
-                        bottom: None,
-                    };
+                    let p = Placed::standing(i, c.fp, infos[i].size[1] as f64);
                     if state.evaluate(Some(&p)).0 {
                         state.commit(p);
                         ok = true;
@@ -197,13 +186,10 @@ fn hang_above_run(
         }
         // Reached from the free floor beside the run's end, not from its front.
         let p = Placed {
-            plan_index: i,
-            fp,
-            height: size[1],
-            front_access: false,
             wall: Some(wall),
             mounted: true,
             bottom: Some(ABOVE_RUN_BOTTOM),
+            ..Placed::standing(i, fp, size[1])
         };
         if state.evaluate(Some(&p)).0 {
             state.commit(p);

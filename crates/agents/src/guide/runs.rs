@@ -240,15 +240,8 @@ fn commit_all(
 ) -> bool {
     let before = state.placed.len();
     for (i, fp, side) in spots {
-        let p = Placed {
-            plan_index: *i,
-            fp: *fp,
-            height: infos[*i].size[1] as f64,
-            front_access: true,
-            wall: Some(format!("wall_{side}")),
-            mounted: false,
-            bottom: None,
-        };
+        let p = Placed::standing(*i, *fp, infos[*i].size[1] as f64)
+            .against_wall(format!("wall_{side}"));
         if !state.inside_floor(fp, 0.0)
             || state.collides(fp, RUN_GAP * 0.5)
             || !state.evaluate(Some(&p)).0
@@ -502,15 +495,7 @@ fn place_islands(
                 if !state.inside_floor(&fp, 0.0) || state.collides(&fp, 0.02) {
                     continue;
                 }
-                let p = Placed {
-                    plan_index: i,
-                    fp,
-                    height: infos[i].size[1] as f64,
-                    front_access: false,
-                    wall: None,
-                    mounted: false,
-                    bottom: None,
-                };
+                let p = Placed::standing(i, fp, infos[i].size[1] as f64);
                 if state.evaluate(Some(&p)).0 {
                     state.commit(p);
                     placed = true;

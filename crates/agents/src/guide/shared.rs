@@ -28,6 +28,30 @@ pub(super) struct Placed {
     pub(super) bottom: Option<f64>,
 }
 
+impl Placed {
+    /// A free-standing floor object: reached from any side, backed onto no wall, not mounted.
+    pub(super) fn standing(plan_index: usize, fp: Footprint, height: f64) -> Self {
+        Self {
+            plan_index,
+            fp,
+            height,
+            front_access: false,
+            wall: None,
+            mounted: false,
+            bottom: None,
+        }
+    }
+
+    /// The same object backed onto `wall`, so reached from its front.
+    pub(super) fn against_wall(self, wall: String) -> Self {
+        Self {
+            front_access: true,
+            wall: Some(wall),
+            ..self
+        }
+    }
+}
+
 /// `yaw` wrapped into (-π, π].
 pub(super) fn wrap(yaw: f64) -> f64 {
     let mut y = yaw % (2.0 * PI);

@@ -8,7 +8,7 @@ use rand::seq::SliceRandom;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use scenethesis_assets::{AssetInfo, SupportSurface, SurfaceKind};
-use scenethesis_scene_graph::{ParentRef, Pose, RelationKind};
+use scenethesis_scene_graph::{ParentRef, Pose, RelationKind, LOW_SHELF_SHARE};
 
 use super::DroppedObject;
 use crate::plan::Plan;
@@ -130,8 +130,9 @@ pub(crate) fn place_children(
                     .map(|(k, _)| k)
                     .collect();
                 if o.support == RelationKind::Under && *kind == SurfaceKind::Under {
-                    // A low shelf beneath a table top is "under" it too.
-                    let low = parent.size[1] * 0.35;
+                    // A low shelf beneath a table top is "under" it too (measured against the
+                    // asset's height).
+                    let low = parent.size[1] * LOW_SHELF_SHARE as f32;
                     of_kind.extend(
                         parent
                             .support_surfaces
