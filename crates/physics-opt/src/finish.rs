@@ -178,6 +178,15 @@ pub(crate) fn finish(
             iterations[i] += outcome.iterations;
             let first = score(&outcome.pose);
             consider(&mut best, outcome.pose, first);
+            // Another start: settled from it, kept if better; whether the best so far resolves.
+            let mut spent = 0;
+            let mut settle_from = |best: &mut Option<(Pose, (f64, f64))>, from: Pose| {
+                let o = optimizer.optimize(&problem, Stage::Physics, from);
+                spent += o.iterations;
+                let s = score(&o.pose);
+                consider(best, o.pose, s);
+                best.is_some_and(|(_, b)| resolved(b))
+            };
             if !resolved(first) {
                 // The smallest move is blocked: try starts shifted along the object's own axes
                 // and the world's by about the penetration.
@@ -194,11 +203,7 @@ pub(crate) fn finish(
                         let mut shifted = start;
                         shifted.translation.x += sign * step * axis.x;
                         shifted.translation.z += sign * step * axis.y;
-                        let o = optimizer.optimize(&problem, Stage::Physics, shifted);
-                        iterations[i] += o.iterations;
-                        let s = score(&o.pose);
-                        consider(&mut best, o.pose, s);
-                        if best.is_some_and(|(_, b)| resolved(b)) {
+                        if settle_from(&mut best, shifted) {
                             break 'starts;
                         }
                     }
@@ -208,11 +213,11 @@ pub(crate) fn finish(
             // room (next round); still pressed into its holder, it turns.
             if !best.is_some_and(|(_, b)| b.0 <= tol.penetration) {
                 if let Some(j) = parent_of[i] {
-                    // Still pressed into its holder (or a wall): held things line up with their holder (a
-                    // magazine in its pocket, a toy car along a shelf level) and sit inside its
-                    // surface, not on its rim. Try the holder's four square turns (the nearest
-                    // first) about the object's centre, there and moved a few centimetres
-                    // toward the middle of the surface.
+                    // Still pressed into its holder (or a wall): held things line up with their
+                    // holder (a magazine in its pocket, a toy car along a shelf level) and sit
+                    // inside its surface, not on its rim. Try the holder's four square turns (the
+                    // nearest first) about the object's centre, there and moved a few
+                    // centimetres toward the middle of the surface.
                     let pivot = dense[i].bounds().center();
                     let centre = start.transform_point(&pivot);
                     let mut yaws: Vec<f64> = (0..4)
@@ -249,17 +254,14 @@ pub(crate) fn finish(
                             if here.0 <= tol.penetration {
                                 consider(&mut best, turned, here);
                             }
-                            let o = optimizer.optimize(&problem, Stage::Physics, turned);
-                            iterations[i] += o.iterations;
-                            let s = score(&o.pose);
-                            consider(&mut best, o.pose, s);
-                            if best.is_some_and(|(_, b)| resolved(b)) {
+                            if settle_from(&mut best, turned) {
                                 break 'held;
                             }
                         }
                     }
                 }
             }
+            iterations[i] += spent;
             let mut after = best.map_or(before, |(p, _)| p);
             let mut better = best.is_some();
             if !better

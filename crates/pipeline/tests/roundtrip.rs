@@ -4,25 +4,26 @@
 #![cfg(feature = "render")]
 
 use scenethesis_pipeline::roundtrip::{roundtrip, Perturbation, RoundtripOptions};
-use scenethesis_pipeline::{GenerateOptions, NoProgress, Pipeline};
+use scenethesis_pipeline::{GenerateOptions, GeneratedScene, NoProgress, Pipeline};
 use scenethesis_render::Renderer;
 
-#[test]
-fn unperturbed_round_trip_recovers_the_scene() {
+/// The offline scene of `prompt` (seed 0) and a renderer.
+fn generated(prompt: &str) -> (GeneratedScene, Renderer) {
     let options = GenerateOptions {
         max_replans: 1,
         previews: false,
         ..GenerateOptions::default()
     };
     let generated = Pipeline::offline()
-        .generate(
-            "a bedroom with a bed, two nightstands and a wardrobe",
-            0,
-            &options,
-            &mut NoProgress,
-        )
+        .generate(prompt, 0, &options, &mut NoProgress)
         .expect("offline generation works");
     let renderer = Renderer::from_env().expect("a graphics adapter (Mesa llvmpipe in CI)");
+    (generated, renderer)
+}
+
+#[test]
+fn unperturbed_round_trip_recovers_the_scene() {
+    let (generated, renderer) = generated("a bedroom with a bed, two nightstands and a wardrobe");
     let opts = RoundtripOptions {
         size: [320, 240],
         ..RoundtripOptions::default()
@@ -57,20 +58,8 @@ fn unperturbed_round_trip_recovers_the_scene() {
 fn ablation_alignment_beats_the_raw_lift_and_the_full_optimizer_is_clean() {
     use scenethesis_pipeline::ablation::{ablation, AblationStage};
 
-    let options = GenerateOptions {
-        max_replans: 1,
-        previews: false,
-        ..GenerateOptions::default()
-    };
-    let generated = Pipeline::offline()
-        .generate(
-            "a living room with a sofa, a coffee table, a tv stand and a bookshelf",
-            0,
-            &options,
-            &mut NoProgress,
-        )
-        .expect("offline generation works");
-    let renderer = Renderer::from_env().expect("a graphics adapter (Mesa llvmpipe in CI)");
+    let (generated, renderer) =
+        generated("a living room with a sofa, a coffee table, a tv stand and a bookshelf");
     let opts = RoundtripOptions {
         size: [480, 360],
         perturb: Perturbation::Default,
