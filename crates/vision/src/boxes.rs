@@ -835,6 +835,22 @@ pub fn floor_depth_scale<'a>(
 mod tests {
     use super::*;
 
+    /// Standard normal deviates from a fixed linear congruential generator seeded by `seed`
+    /// (Box–Muller), so the tests' noise is the same on every run.
+    fn gaussian(seed: u64) -> impl FnMut() -> f64 {
+        let mut state = seed;
+        move || {
+            let mut u = || {
+                state = state
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                ((state >> 11) as f64 / (1u64 << 53) as f64).max(1e-12)
+            };
+            let (a, b) = (u(), u());
+            (-2.0 * a.ln()).sqrt() * (std::f64::consts::TAU * b).cos()
+        }
+    }
+
     #[test]
     fn a_mounted_box_is_put_against_its_wall_and_others_stay() {
         // 6 × 4 m room: the back wall `wall_0` has its inner face at z = −2.
@@ -951,17 +967,7 @@ mod tests {
             let wall = (-6.0 - o.z) / d.z;
             (floor.min(wall), false)
         };
-        let mut state = 11u64;
-        let mut gauss = move || {
-            let mut u = || {
-                state = state
-                    .wrapping_mul(6364136223846793005)
-                    .wrapping_add(1442695040888963407);
-                ((state >> 11) as f64 / (1u64 << 53) as f64).max(1e-12)
-            };
-            let (a, b) = (u(), u());
-            (-2.0 * a.ln()).sqrt() * (std::f64::consts::TAU * b).cos()
-        };
+        let mut gauss = gaussian(11);
         let depth = DepthMap::from_fn(w, h, |u, v| {
             // Depth along the optical axis: the ray parameter for a unit-depth unprojection.
             (hit(u, v).0 * (1.0 + 0.02 * gauss())) as f32
@@ -1015,17 +1021,7 @@ mod tests {
     fn noisy_box(noise: f64) -> (Vec<Point3<f64>>, Point3<f64>) {
         let eye = Point3::new(0.0, 1.6, 0.0);
         let (cz, hz) = (-5.0, 0.25);
-        let mut state = 7u64;
-        let mut gauss = move || {
-            let mut u = || {
-                state = state
-                    .wrapping_mul(6364136223846793005)
-                    .wrapping_add(1442695040888963407);
-                ((state >> 11) as f64 / (1u64 << 53) as f64).max(1e-12)
-            };
-            let (a, b) = (u(), u());
-            (-2.0 * a.ln()).sqrt() * (std::f64::consts::TAU * b).cos()
-        };
+        let mut gauss = gaussian(7);
         let mut out = Vec::new();
         for i in 0..=50 {
             let x = -0.5 + i as f64 * 0.02;

@@ -284,6 +284,12 @@ mod tests {
     use super::*;
     use scenethesis_scene_graph::Architecture;
 
+    /// The support kind and parent inferred for `id`.
+    fn of(supports: &[SupportGuess], id: &str) -> (SupportKind, Option<String>) {
+        let g = supports.iter().find(|g| g.id == id).unwrap();
+        (g.kind, g.parent.clone())
+    }
+
     #[test]
     fn a_high_box_against_a_wall_hangs_on_it_and_others_do_not() {
         // 6 × 4 m room: the back wall `wall_0` has its inner face at z = −2.
@@ -345,14 +351,10 @@ mod tests {
             LiftedBox::axis_aligned("bag", [0.95, 0.2, 0.0], [0.2, 0.2, 0.15]),
         ];
         let s = infer_supports(&boxes, 0.06);
-        let of = |id: &str| {
-            let g = s.iter().find(|g| g.id == id).unwrap();
-            (g.kind, g.parent.clone())
-        };
-        assert_eq!(of("ball"), (SupportKind::On, Some("towel".into())));
-        assert_eq!(of("keys"), (SupportKind::On, Some("towel".into())));
-        assert_eq!(of("bag"), (SupportKind::Ground, None));
-        assert_eq!(of("towel"), (SupportKind::Ground, None));
+        assert_eq!(of(&s, "ball"), (SupportKind::On, Some("towel".into())));
+        assert_eq!(of(&s, "keys"), (SupportKind::On, Some("towel".into())));
+        assert_eq!(of(&s, "bag"), (SupportKind::Ground, None));
+        assert_eq!(of(&s, "towel"), (SupportKind::Ground, None));
     }
 
     #[test]
@@ -365,13 +367,9 @@ mod tests {
             LiftedBox::axis_aligned("stool", [1.2, 0.2, 0.0], [0.2, 0.2, 0.2]),
         ];
         let s = infer_supports_within(&boxes, 0.06, 0.3);
-        let of = |id: &str| {
-            let g = s.iter().find(|g| g.id == id).unwrap();
-            (g.kind, g.parent.clone())
-        };
-        assert_eq!(of("crate"), (SupportKind::On, Some("pallet".into())));
-        assert_eq!(of("stool"), (SupportKind::Ground, None));
-        assert_eq!(of("pallet"), (SupportKind::Ground, None));
+        assert_eq!(of(&s, "crate"), (SupportKind::On, Some("pallet".into())));
+        assert_eq!(of(&s, "stool"), (SupportKind::Ground, None));
+        assert_eq!(of(&s, "pallet"), (SupportKind::Ground, None));
     }
 
     #[test]
