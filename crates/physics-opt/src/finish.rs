@@ -12,7 +12,8 @@
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
-use nalgebra::{Point2, Vector2, Vector3};
+use nalgebra::{Point2, Vector2};
+use scenethesis_correspondence::shape::{turned, yaw_distance};
 use scenethesis_scene_graph::{Pose, SceneObject};
 use scenethesis_sdf::SignedDistance;
 
@@ -224,7 +225,7 @@ pub(crate) fn finish(
                         .map(|k| poses[j].yaw + k as f64 * std::f64::consts::FRAC_PI_2)
                         .collect();
                     yaws.sort_by(|a, b| {
-                        angle_between(*a, start.yaw).total_cmp(&angle_between(*b, start.yaw))
+                        yaw_distance(*a, start.yaw).total_cmp(&yaw_distance(*b, start.yaw))
                     });
                     yaws.insert(0, start.yaw);
                     let inward = support
@@ -244,10 +245,9 @@ pub(crate) fn finish(
                                 continue; // the start itself, tried above
                             }
                             let toward = inward.unwrap_or_else(Vector2::zeros) * step;
-                            let mut turned = Pose::new(start.scale, yaw, Vector3::zeros());
-                            turned.translation = centre.coords
-                                - turned.transform_point(&pivot).coords
-                                + Vector3::new(toward.x, 0.0, toward.y);
+                            let mut turned = turned(&start, &pivot, yaw);
+                            turned.translation.x += toward.x;
+                            turned.translation.z += toward.y;
                             // Clear of the holder but pressing into a sibling, the start itself
                             // will do: the sibling makes room in its turn.
                             let here = score(&turned);
@@ -351,12 +351,6 @@ fn pending(
         }
     }
     (out, verdicts)
-}
-
-/// The unsigned angle between two yaws, radians in [0, π].
-fn angle_between(a: f64, b: f64) -> f64 {
-    let d = (a - b).rem_euclid(std::f64::consts::TAU);
-    d.min(std::f64::consts::TAU - d)
 }
 
 /// Whether every contact of the object at `pose` is with an obstacle `movable` accepts (by id).

@@ -72,9 +72,9 @@ pub struct LiftOptions {
     /// Largest turn in radians that snaps a footprint to a wall direction.
     pub yaw_snap: f64,
     /// Pixels this close to a mask's boundary are not lifted when the interior keeps at least
-    /// `interior_min_points` pixels (`noisy_interior_min_points` on a noisy map): a mask that bleeds by a pixel or two picks up the objects
-    /// standing on or behind it, at depths that join its cluster. The extents are widened by
-    /// the margin's metric size instead.
+    /// `interior_min_points` pixels (`noisy_interior_min_points` on a noisy map): a mask that
+    /// bleeds by a pixel or two picks up the objects standing on or behind it, at depths that
+    /// join its cluster. The extents are widened by the margin's metric size instead.
     pub mask_margin_px: u32,
     /// Fewest interior pixels for the margin to apply (else the whole mask is lifted).
     pub interior_min_points: usize,
