@@ -40,6 +40,16 @@ impl ApiKey {
     pub fn expose(&self) -> &str {
         &self.0
     }
+
+    /// `text` with every occurrence of the key replaced by `***`: for anything a server sends
+    /// back (error bodies may echo the key), before it is shortened or shown.
+    pub fn mask<'a>(&self, text: &'a str) -> std::borrow::Cow<'a, str> {
+        if self.0.is_empty() || !text.contains(self.0.as_str()) {
+            std::borrow::Cow::Borrowed(text)
+        } else {
+            std::borrow::Cow::Owned(text.replace(self.0.as_str(), "***"))
+        }
+    }
 }
 
 impl fmt::Debug for ApiKey {

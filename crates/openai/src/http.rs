@@ -185,7 +185,7 @@ impl Transport {
                     return Ok(Answer { body });
                 }
                 Ok((status, retry_after, body)) => {
-                    let message = server_message(&body);
+                    let message = server_message(self.masked(&body).as_bytes());
                     let transient = status == 429
                         || (status >= 500 && (on_5xx == On5xx::Retry || !about_format(&message)));
                     let kind = ProviderErrorKind::Status { status, message };
@@ -219,6 +219,17 @@ impl Transport {
             meter.record_retry();
             std::thread::sleep(wait);
             backoff = backoff.saturating_mul(2);
+        }
+    }
+}
+
+impl Transport {
+    /// A server's answer as text with the API key masked (servers may echo it).
+    fn masked(&self, body: &[u8]) -> String {
+        let text = String::from_utf8_lossy(body);
+        match &self.config.api_key {
+            Some(key) => key.mask(&text).into_owned(),
+            None => text.into_owned(),
         }
     }
 }

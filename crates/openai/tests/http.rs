@@ -443,6 +443,18 @@ fn unauthorised_is_not_retried_and_does_not_echo_the_key() {
 }
 
 #[test]
+fn a_server_echoing_the_key_has_it_masked_before_the_message_is_shortened() {
+    let echo = format!("Incorrect API key provided: {KEY}. {}", "x".repeat(400));
+    let server = TestServer::scripted(vec![Reply::json(401, &json!({"error": {"message": echo}}))]);
+    let err = client(&server).chat("m").chat(&request()).unwrap_err();
+    let text = err.to_string();
+    assert!(text.contains("Incorrect API key provided: ***"), "{text}");
+    assert_no_key(&format!("{err} {err:?}"));
+    // No prefix of the key survives either (a shortened message could cut it).
+    assert!(!text.contains(&KEY[..8]), "{text}");
+}
+
+#[test]
 fn a_reply_slower_than_the_timeout_is_a_timeout() {
     let server = TestServer::scripted(vec![
         Reply::json(200, &openai_completion("m", GOOD)).delayed(Duration::from_millis(1500))
