@@ -1,15 +1,15 @@
 //! `scenethesis generate`: a prompt in, a simulation-ready scene folder out.
 
 use std::io::IsTerminal;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Duration;
 
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use scenethesis_pipeline::{
-    export_folder, FixedPlanner, Format, GenerateOptions, OutputDir, Pipeline, Progress,
-    RetrievalSource, Stage,
+    export_folder, FixedPlanner, Format, GenerateOptions, OutputDir, Pipeline, Progress, Stage,
 };
+use scenethesis_setup::PipelineSettings;
 
 /// Arguments of `scenethesis generate`.
 #[derive(Debug, clap::Args)]
@@ -75,11 +75,27 @@ impl PipelineArgs {
         }
     }
 
+    /// The library's settings these flags ask for.
+    pub fn settings(&self) -> PipelineSettings {
+        PipelineSettings {
+            previews: !self.no_preview,
+            assets: self.assets.clone(),
+            providers: self.providers.settings(),
+        }
+    }
+
     /// The pipeline over the built-in library plus the `--assets` folder, with previews unless
     /// `--no-preview`, and the planner and judge the provider flags select (offline by default).
+    /// Import warnings and a missing renderer are printed as warnings.
     pub fn pipeline(&self) -> Result<Pipeline> {
-        self.providers
-            .apply(pipeline(!self.no_preview, self.assets.as_deref())?)
+        let built = self.settings().build()?;
+        for warning in &built.warnings {
+            eprintln!("warning: {}", scenethesis_scene_graph::printable(warning));
+        }
+        for note in &built.notes {
+            eprintln!("{note}");
+        }
+        Ok(built.pipeline)
     }
 }
 
@@ -134,38 +150,6 @@ impl Progress for StageProgress {
                 bar.finish_with_message(line);
             }
             None => eprintln!("{line}"),
-        }
-    }
-}
-
-/// Builds the offline pipeline, over the built-in library plus the assets of `assets_dir`, with
-/// previews when a renderer can be opened.
-fn pipeline(previews: bool, assets_dir: Option<&Path>) -> Result<Pipeline> {
-    let mut pipeline = Pipeline::offline();
-    if let Some(dir) = assets_dir {
-        let (source, warnings) = RetrievalSource::from_directory(dir)
-            .with_context(|| format!("importing assets from {}", dir.display()))?;
-        for w in &warnings {
-            eprintln!(
-                "warning: {}",
-                scenethesis_scene_graph::printable(&w.to_string())
-            );
-        }
-        eprintln!(
-            "imported {} assets from {}",
-            source.imported_count(),
-            dir.display()
-        );
-        pipeline = pipeline.with_assets(source);
-    }
-    if !previews {
-        return Ok(pipeline);
-    }
-    match scenethesis_pipeline::WgpuPreviews::from_env() {
-        Ok(renderer) => Ok(pipeline.with_renderer(renderer)),
-        Err(e) => {
-            eprintln!("warning: no previews: cannot open a renderer ({e})");
-            Ok(pipeline)
         }
     }
 }

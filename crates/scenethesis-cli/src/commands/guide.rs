@@ -159,5 +159,5 @@ impl GuideArgs {
 }
 
 fn client(models: &ProviderArgs) -> Result<OpenAiClient> {
-    OpenAiClient::new(models.config()?).context("building the model client")
+    models.client()
 }

@@ -1,18 +1,17 @@
-//! Provider selection shared by `generate` and `batch`: which planner and judge a run uses, and
-//! how the OpenAI-compatible models behind them are reached, recorded and replayed.
+//! Provider flags shared by `generate`, `plan` and `batch`: which planner and judge a run uses,
+//! and how the OpenAI-compatible models behind them are reached, recorded and replayed. The
+//! flags fill the library's [`ProviderSettings`] (`scenethesis-setup`), which builds them.
 //!
 //! The offline default (knowledge planner, geometric judge) reads no configuration and needs
 //! no key; only `--planner llm`, `--judge vlm` or `--online` resolve a client configuration
 //! (flags over environment over `--llm-config`).
 
 use std::path::PathBuf;
-use std::time::Duration;
 
-use anyhow::{Context, Result};
-use scenethesis_language::{LlmPlanner, VlmJudge};
-use scenethesis_models::{CacheMode, Cached, ChatModel, ImageGenerator, ResponseCache};
-use scenethesis_openai::{ApiKey, ClientConfig, OpenAiChat, OpenAiClient, OpenAiImages, Overrides};
-use scenethesis_pipeline::Pipeline;
+use anyhow::Result;
+use scenethesis_models::{ChatModel, ImageGenerator};
+use scenethesis_openai::{OpenAiChat, OpenAiClient, OpenAiImages};
+use scenethesis_setup::{self as setup, ProviderSettings};
 
 /// Which planner turns the prompt into a plan.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -98,93 +97,41 @@ impl ProviderArgs {
         }
     }
 
-    /// The client configuration: flags over environment over --llm-config.
-    pub(crate) fn config(&self) -> Result<ClientConfig> {
-        let api_key = match &self.api_key_env {
-            Some(var) => {
-                let key = std::env::var(var).ok().filter(|k| !k.trim().is_empty());
-                Some(ApiKey::new(key.with_context(|| {
-                    format!("--api-key-env {var}: the environment variable {var} is not set")
-                })?))
-            }
-            None => None,
-        };
-        let timeout = match self.llm_timeout {
-            Some(s) if s.is_finite() && s > 0.0 && s < 86_400.0 => Some(Duration::from_secs_f64(s)),
-            Some(s) => anyhow::bail!("--llm-timeout: expected seconds in (0, 86400), found {s}"),
-            None => None,
-        };
-        let overrides = Overrides {
-            base_url: self.base_url.clone(),
-            api_key,
+    /// The library's provider settings these flags ask for.
+    pub fn settings(&self) -> ProviderSettings {
+        ProviderSettings {
+            planner: match self.planner_choice() {
+                PlannerChoice::Knowledge => setup::PlannerChoice::Knowledge,
+                PlannerChoice::Llm => setup::PlannerChoice::Llm,
+            },
+            judge: match self.judge_choice() {
+                JudgeChoice::Geometric => setup::JudgeChoice::Geometric,
+                JudgeChoice::Vlm => setup::JudgeChoice::Vlm,
+            },
             llm_model: self.llm_model.clone(),
             vlm_model: self.vlm_model.clone(),
             image_model: self.image_model.clone(),
-            embedding_model: None,
-            timeout,
-        };
-        ClientConfig::resolve(&overrides, self.llm_config.as_deref())
-            .context("configuring the model provider")
+            base_url: self.base_url.clone(),
+            api_key_env: self.api_key_env.clone(),
+            llm_config: self.llm_config.clone(),
+            llm_timeout: self.llm_timeout,
+            llm_cache: self.llm_cache.clone(),
+            llm_replay: self.llm_replay,
+        }
     }
 
-    /// Wraps `chat` in the response cache when --llm-cache is given; its meter counts requests,
-    /// tokens and cache hits (each run's share goes into its `report.json`).
+    /// The model client (flags over environment over --llm-config).
+    pub(crate) fn client(&self) -> Result<OpenAiClient> {
+        Ok(self.settings().client()?)
+    }
+
+    /// Wraps `chat` in the response cache when --llm-cache is given.
     pub(crate) fn wrap(&self, chat: OpenAiChat) -> Result<Box<dyn ChatModel>> {
-        let meter = chat.meter().clone();
-        Ok(match self.cache()? {
-            Some(cache) => Box::new(Cached::new(chat, cache).with_meter(meter)),
-            None => Box::new(chat),
-        })
+        Ok(self.settings().wrap(chat)?)
     }
 
-    /// The response cache of --llm-cache (read-write, or replay-only with --llm-replay).
-    fn cache(&self) -> Result<Option<ResponseCache>> {
-        let Some(dir) = &self.llm_cache else {
-            return Ok(None);
-        };
-        let mode = if self.llm_replay {
-            CacheMode::ReplayOnly
-        } else {
-            CacheMode::ReadWrite
-        };
-        ResponseCache::open(dir, mode)
-            .with_context(|| format!("opening the response cache {}", dir.display()))
-            .map(Some)
-    }
-
-    /// Wraps the image model in the response cache when --llm-cache is given, like
-    /// [`Self::wrap`]: an edit is recorded under its model, prompt, size, seed and the digest
-    /// of the image it edits.
+    /// Wraps the image model in the response cache when --llm-cache is given.
     pub(crate) fn wrap_images(&self, images: OpenAiImages) -> Result<Box<dyn ImageGenerator>> {
-        let meter = images.meter().clone();
-        Ok(match self.cache()? {
-            Some(cache) => Box::new(Cached::new(images, cache).with_meter(meter)),
-            None => Box::new(images),
-        })
-    }
-
-    /// Installs the selected planner and judge into `pipeline`. The offline choices leave it
-    /// as it is and read no configuration.
-    pub fn apply(&self, mut pipeline: Pipeline) -> Result<Pipeline> {
-        let planner = self.planner_choice();
-        let judge = self.judge_choice();
-        if planner == PlannerChoice::Knowledge && judge == JudgeChoice::Geometric {
-            return Ok(pipeline);
-        }
-        let config = self.config()?;
-        let client = OpenAiClient::new(config).context("building the model client")?;
-        if planner == PlannerChoice::Llm {
-            let chat = client.llm().context("choosing the planner's model")?;
-            let model = self.wrap(chat)?;
-            pipeline = pipeline.with_planner(LlmPlanner::new(model));
-        }
-        if judge == JudgeChoice::Vlm {
-            let chat = client.vlm().context("choosing the judge's model")?;
-            let model = self.wrap(chat)?;
-            let renderer = scenethesis_pipeline::WgpuPreviews::from_env()
-                .context("--judge vlm needs a renderer for the previews it shows the model")?;
-            pipeline = pipeline.with_judge(VlmJudge::new(model, renderer));
-        }
-        Ok(pipeline)
+        Ok(self.settings().wrap_images(images)?)
     }
 }
