@@ -59,6 +59,7 @@
 #![warn(missing_docs)]
 
 pub mod architecture;
+mod file;
 mod geometry;
 pub mod glb;
 pub mod mjcf;

@@ -44,11 +44,12 @@ mod report;
 mod room_view;
 #[cfg(feature = "render")]
 pub mod roundtrip;
+mod saved;
 mod stage;
 
 pub use error::PipelineError;
 pub use out_dir::{Existing, OutputDir, REPORT_JSON, SCENE_JSON};
-pub use output::{export_folder, resolve_meshes};
+pub use output::{export_file, export_folder, resolve_meshes};
 pub use pipeline::{GenerateOptions, GeneratedScene, Pipeline, PreviewRenderer};
 pub use plan_file::{plan_json, write_plan, PLAN_JSON};
 #[cfg(feature = "render")]
@@ -57,6 +58,7 @@ pub use replan::replan_action;
 pub use report::{ObjectIssue, Replan, ReplanAction, Report, StageTiming};
 #[cfg(feature = "render")]
 pub use room_view::WgpuRoomRenderer;
+pub use saved::{SavedScene, PREVIEW_FILES};
 /// The judge stage (its own crate, `scenethesis-judge`), re-exported for compatibility.
 pub use scenethesis_judge as judge;
 pub use scenethesis_judge::{

@@ -10,7 +10,7 @@ use scenethesis_scene_graph::{Mesh, Scene, SceneIoError};
 use crate::error::PipelineError;
 use crate::out_dir::{OutputDir, REPORT_JSON, SCENE_JSON};
 use crate::pipeline::GeneratedScene;
-use crate::report::StageTiming;
+use crate::report::{Report, StageTiming};
 use crate::stage::Stage;
 use scenethesis_retrieval::AssetSource;
 
@@ -30,29 +30,53 @@ impl GeneratedScene {
     /// is complete. Returns the absolute path written.
     pub fn write_to(&mut self, out: &OutputDir) -> Result<PathBuf, PipelineError> {
         let started = Instant::now();
-        let staging = out.stage()?;
-        self.write_files(staging.path(), started)
-            .map_err(|e| unstage(e, staging.path(), out.path()))?;
-        out.commit(staging)?;
-        Ok(out.path().to_owned())
+        write_staged(out, |dir| self.write_files(dir, started))
     }
 
     fn write_files(&mut self, tmp: &Path, started: Instant) -> Result<(), PipelineError> {
-        let export = ExportScene::new(&self.scene, &self.meshes)?;
-        Format::Glb.write(&export, tmp)?;
-        self.scene.write_json_atomic(&tmp.join(SCENE_JSON))?;
-        for (file, png) in &self.previews {
-            let path = tmp.join(file);
-            std::fs::write(&path, png).map_err(|source| PipelineError::Write { path, source })?;
-        }
+        write_scene_files(tmp, &self.scene, &self.meshes, &self.previews)?;
         self.report.timings.push(StageTiming {
             stage: Stage::Export,
             seconds: started.elapsed().as_secs_f64(),
         });
-        let path = tmp.join(REPORT_JSON);
-        let text = serde_json::to_string_pretty(&self.report).expect("report serializes") + "\n";
-        std::fs::write(&path, text).map_err(|source| PipelineError::Write { path, source })
+        write_report(tmp, &self.report)
     }
+}
+
+/// Writes `scene.glb`, `scene.json` and the previews into the folder `dir`.
+pub(crate) fn write_scene_files(
+    dir: &Path,
+    scene: &Scene,
+    meshes: &BTreeMap<String, Mesh>,
+    previews: &[(String, Vec<u8>)],
+) -> Result<(), PipelineError> {
+    let export = ExportScene::new(scene, meshes)?;
+    Format::Glb.write(&export, dir)?;
+    scene.write_json_atomic(&dir.join(SCENE_JSON))?;
+    for (file, png) in previews {
+        let path = dir.join(file);
+        std::fs::write(&path, png).map_err(|source| PipelineError::Write { path, source })?;
+    }
+    Ok(())
+}
+
+/// Writes `report.json` into the folder `dir`.
+pub(crate) fn write_report(dir: &Path, report: &Report) -> Result<(), PipelineError> {
+    let path = dir.join(REPORT_JSON);
+    let text = serde_json::to_string_pretty(report).expect("report serializes") + "\n";
+    std::fs::write(&path, text).map_err(|source| PipelineError::Write { path, source })
+}
+
+/// Writes a staged output folder's files with `write`, then swaps it into place; an error
+/// names the final path, not the private staging folder.
+pub(crate) fn write_staged(
+    out: &OutputDir,
+    write: impl FnOnce(&Path) -> Result<(), PipelineError>,
+) -> Result<PathBuf, PipelineError> {
+    let staging = out.stage()?;
+    write(staging.path()).map_err(|e| unstage(e, staging.path(), out.path()))?;
+    out.commit(staging)?;
+    Ok(out.path().to_owned())
 }
 
 /// Names the final output path instead of the private staging folder in a write error.
@@ -116,4 +140,38 @@ pub fn resolve_meshes(
         meshes.insert(object.id.clone(), by_asset[&key].clone());
     }
     Ok(meshes)
+}
+
+/// Writes `scene` in the format its file name's suffix asks for (`.glb`, `.usda`, `.xml` for
+/// MJCF, `.urdf`) to `path`, regenerating nothing: `meshes` holds every object's asset-frame
+/// mesh. Returns the files written (a URDF's mesh folder too); all or nothing.
+pub fn export_file(
+    scene: &Scene,
+    meshes: &BTreeMap<String, Mesh>,
+    path: &Path,
+) -> Result<Vec<PathBuf>, PipelineError> {
+    let format = Format::from_path(path).ok_or_else(|| PipelineError::BadOutput {
+        path: path.to_owned(),
+        reason: "unknown export format: expected a file name ending in .glb, .usda, .xml \
+                 (MJCF) or .urdf"
+            .into(),
+    })?;
+    let parent = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    if !parent.is_dir() {
+        return Err(PipelineError::BadOutput {
+            path: path.to_owned(),
+            reason: format!("the folder {} does not exist", parent.display()),
+        });
+    }
+    if path.is_dir() {
+        return Err(PipelineError::BadOutput {
+            path: path.to_owned(),
+            reason: "is a folder; give the file to write".into(),
+        });
+    }
+    let export = ExportScene::new(scene, meshes)?;
+    Ok(format.write_file(&export, path)?)
 }
