@@ -7,7 +7,11 @@
 //!   vision round trip over the benchmark prompts (`roundtrip/none`, `roundtrip/default`), the
 //!   optimizer ablation against ground truth (`roundtrip/ablation`) and the content of the
 //!   benchmark and kitchen scenes over seeds 0–3 (`rooms/…`: acceptance, stated relations held,
-//!   functional-arrangement rules held, run layouts, category-set diversity).
+//!   functional-arrangement rules held, run layouts, category-set diversity) and batch
+//!   throughput (`throughput/…`: scenes per hour per core through the CLI batch and Ray).
+//!   Naming only those sections (`roundtrip`, `rooms`, `throughput`) skips the criterion runs.
+
+mod throughput;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -79,19 +83,9 @@ fn bench(args: &[String]) -> Result<()> {
         std::fs::remove_dir_all(&criterion_dir)
             .with_context(|| format!("cannot clear {}", criterion_dir.display()))?;
     }
-    let mut cmd = Command::new(env!("CARGO"));
-    cmd.current_dir(&root)
-        // Bench targets only: library test harnesses would reject criterion's flags.
-        .args(["bench", "--workspace", "--bench", "*", "--quiet", "--"]);
-    cmd.args(&filter);
-    cmd.arg("--noplot");
-    if json_out {
-        // Keep stdout for the JSON object alone.
-        cmd.stdout(std::process::Stdio::null());
-    }
-    let status = cmd.status().context("cannot run cargo bench")?;
-    if !status.success() {
-        bail!("cargo bench failed with {status}");
+    let sections_only = !filter.is_empty() && filter.iter().all(|f| SECTIONS.contains(f));
+    if !sections_only {
+        run_criterion(&root, &filter, json_out)?;
     }
     let mut figures = collect_figures(&criterion_dir)?;
     add_end_to_end_median(&mut figures);
@@ -100,6 +94,10 @@ fn bench(args: &[String]) -> Result<()> {
     }
     if filter.is_empty() || filter.iter().any(|f| "rooms".contains(f)) {
         add_rooms(&root, &target, json_out, &mut figures)?;
+    }
+    if filter.is_empty() || filter.contains(&"throughput") {
+        let exe = release_cli(&root, &target, json_out)?;
+        throughput::add_throughput(&root, &target, &exe, &mut figures)?;
     }
     if json_out {
         println!(
@@ -110,6 +108,28 @@ fn bench(args: &[String]) -> Result<()> {
         for (name, value) in &figures {
             println!("{name:<60} {value}");
         }
+    }
+    Ok(())
+}
+
+/// The sections `bench` runs itself (not through criterion).
+const SECTIONS: [&str; 3] = ["roundtrip", "rooms", "throughput"];
+
+/// Runs every crate's criterion benchmarks in release mode (bench targets only), filtered.
+fn run_criterion(root: &Path, filter: &[&str], json_out: bool) -> Result<()> {
+    let mut cmd = Command::new(env!("CARGO"));
+    cmd.current_dir(root)
+        // Bench targets only: library test harnesses would reject criterion's flags.
+        .args(["bench", "--workspace", "--bench", "*", "--quiet", "--"]);
+    cmd.args(filter);
+    cmd.arg("--noplot");
+    if json_out {
+        // Keep stdout for the JSON object alone.
+        cmd.stdout(std::process::Stdio::null());
+    }
+    let status = cmd.status().context("cannot run cargo bench")?;
+    if !status.success() {
+        bail!("cargo bench failed with {status}");
     }
     Ok(())
 }
