@@ -103,8 +103,36 @@ fn bad(path: &Path, e: GltfError) -> EvalError {
     }
 }
 
+/// A primitive's vertices with exact duplicates merged (and its triangles re-indexed).
+///
+/// Exporters split a vertex wherever its normal changes (a box's 8 corners become 24
+/// vertices), but the stability model reads a part's shape from its positions: split, a box
+/// counts 12 points per level and its equidistant corners passed for a 12-sided cylinder
+/// around it, which pushed its neighbours away (`eval` of an output folder reported nearly
+/// every object unstable). Merging restores the solid's own vertex set.
+pub fn welded(positions: &[[f32; 3]], triangles: &[[u32; 3]]) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
+    let mut index_of: std::collections::HashMap<[u32; 3], u32> = std::collections::HashMap::new();
+    let mut merged: Vec<[f32; 3]> = Vec::with_capacity(positions.len());
+    let remap: Vec<u32> = positions
+        .iter()
+        .map(|p| {
+            // -0.0 and 0.0 are one position.
+            let key = p.map(|c| if c == 0.0 { 0 } else { c.to_bits() });
+            *index_of.entry(key).or_insert_with(|| {
+                merged.push(*p);
+                merged.len() as u32 - 1
+            })
+        })
+        .collect();
+    let triangles = triangles
+        .iter()
+        .map(|t| t.map(|i| remap.get(i as usize).copied().unwrap_or(0)))
+        .collect();
+    (merged, triangles)
+}
+
 /// A node instance of the shared reader as a [`GlbNode`]: one part per triangle primitive
-/// (named `<node>/<primitive index>`) with its own material.
+/// (named `<node>/<primitive index>`, its split vertices [`welded`]) with its own material.
 fn convert(file: &GltfFile, node: &GltfNode) -> GlbNode {
     // Node names become object ids that `eval` prints: never let one drive the terminal.
     let name = node.name.as_deref().map_or_else(
@@ -116,11 +144,12 @@ fn convert(file: &GltfFile, node: &GltfNode) -> GlbNode {
         let m = file.material(p.material);
         let material_name = m.name.clone().unwrap_or_else(|| "default".into());
         mesh.materials.push(m.to_material(material_name));
+        let (positions, triangles) = welded(&p.positions, &p.triangles);
         mesh.parts.push(MeshPart {
             name: format!("{name}/{}", p.index),
             material: mesh.materials.len() - 1,
-            positions: p.positions.clone(),
-            triangles: p.triangles.clone(),
+            positions,
+            triangles,
         });
     }
     GlbNode {
@@ -128,5 +157,65 @@ fn convert(file: &GltfFile, node: &GltfNode) -> GlbNode {
         world: node.world,
         mesh,
         children: node.children.iter().map(|c| convert(file, c)).collect(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A unit box as exporters write it: 4 vertices per face, 24 in all.
+    fn split_box() -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
+        let corner = |i: usize| {
+            [
+                (i & 1) as f32 - 0.5,
+                ((i >> 1) & 1) as f32,
+                ((i >> 2) & 1) as f32 - 0.5,
+            ]
+        };
+        let faces = [
+            [0, 1, 3, 2],
+            [4, 6, 7, 5],
+            [0, 4, 5, 1],
+            [2, 3, 7, 6],
+            [0, 2, 6, 4],
+            [1, 5, 7, 3],
+        ];
+        let mut positions = Vec::new();
+        let mut triangles = Vec::new();
+        for face in faces {
+            let base = positions.len() as u32;
+            positions.extend(face.iter().map(|&i| corner(i)));
+            // Wound counter-clockwise seen from outside.
+            triangles.push([base, base + 2, base + 1]);
+            triangles.push([base, base + 3, base + 2]);
+        }
+        (positions, triangles)
+    }
+
+    #[test]
+    fn a_split_box_welds_back_to_a_box_not_a_cylinder() {
+        let (positions, triangles) = split_box();
+        let split = MeshPart {
+            name: "box".into(),
+            material: 0,
+            positions: positions.clone(),
+            triangles: triangles.clone(),
+        };
+        assert!(
+            crate::stability::round_solid(&split).is_some(),
+            "the bug this guards: split corners read as a 12-sided cylinder"
+        );
+        let (positions, triangles) = welded(&positions, &triangles);
+        assert_eq!(positions.len(), 8);
+        assert_eq!(triangles.len(), 12);
+        let part = MeshPart {
+            name: "box".into(),
+            material: 0,
+            positions,
+            triangles,
+        };
+        assert!(crate::stability::round_solid(&part).is_none());
+        assert!(crate::stability::is_convex(&part));
     }
 }

@@ -60,6 +60,9 @@ def test_evaluate_matches_the_cli_and_the_judge(office: scenethesis.Scene, offic
         ).stdout
     )
     assert from_folder == cli
+    # The saved folder (meshes read back from scene.glb) measures as the judge measured it.
+    for key in ("col_o", "inst_o", "walk"):
+        assert from_folder[key] == pytest.approx(office.report["verdict"]["metrics"][key], abs=1e-9), key
     # A scene in memory is measured on its own meshes, as the judge measured it.
     in_memory = office.evaluate()
     judged = office.report["verdict"]["metrics"]
