@@ -12,8 +12,9 @@
 //! `report.json` (metrics, verdict, every re-plan, per-stage timings).
 //!
 //! [`Pipeline::offline`] needs no network, API key or GPU. [`export_folder`] writes USD, MJCF,
-//! URDF or GLB from a saved folder; [`batch::run_batch`] runs prompts × seeds, resumable and
-//! sharded.
+//! URDF or GLB from a saved folder, [`export_file`] one format to a file of the user's naming;
+//! [`SavedScene`] reads an output folder back; [`batch::run_batch`] runs prompts × seeds,
+//! resumable and sharded (`--shard auto` from the scheduler's environment).
 //!
 //! ```no_run
 //! use scenethesis_pipeline::{GenerateOptions, NoProgress, Pipeline};
