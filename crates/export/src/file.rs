@@ -28,50 +28,171 @@ impl Format {
         format!("{stem}_meshes")
     }
 
+    /// Writes the scene in this format into `dir` (which must exist) under its
+    /// [`Format::file_name`] (a URDF's meshes in `meshes/`), all or nothing as
+    /// [`write_formats`], and returns the path of the main file.
+    pub fn write(&self, export: &ExportScene<'_>, dir: &Path) -> Result<PathBuf, ExportError> {
+        let path = dir.join(self.file_name());
+        write_formats(&[*self], export, dir)?;
+        Ok(path)
+    }
+
     /// Writes the scene in this format to `path` (whose folder must exist) and returns the
-    /// files written. All or nothing: the main file is written atomically, and a URDF's meshes
-    /// are written into a staging folder that replaces `<stem>_meshes/` only once complete,
-    /// before the URDF that names them.
+    /// files written: the main file and, for a URDF, its mesh folder `<stem>_meshes/`. All or
+    /// nothing, as [`write_formats`].
     pub fn write_file(
         &self,
         export: &ExportScene<'_>,
         path: &Path,
     ) -> Result<Vec<PathBuf>, ExportError> {
+        let parent = match path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => Path::new("."),
+        };
+        let name = path
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| self.file_name().to_owned());
+        let output = Encoded::new(*self, export, name, &Format::urdf_mesh_dir(path));
+        let mesh_dir = output.meshes.as_ref().map(|(dir, _)| parent.join(dir));
+        stage_and_move(parent, vec![output])?;
+        Ok(std::iter::once(path.to_owned()).chain(mesh_dir).collect())
+    }
+
+    /// The scene in this format, in memory, as [`Encoded`].
+    fn encode(&self, export: &ExportScene<'_>, mesh_dir: &str) -> (Vec<u8>, Option<MeshFiles>) {
         match self {
-            Format::Glb => write(path, &glb::to_glb(export))?,
-            Format::Usd => write(path, usd::to_usda(export).as_bytes())?,
-            Format::Mjcf => write(path, mjcf::to_mjcf(export).as_bytes())?,
-            Format::Urdf => return write_urdf(export, path),
+            Format::Glb => (glb::to_glb(export), None),
+            Format::Usd => (usd::to_usda(export).into_bytes(), None),
+            Format::Mjcf => (mjcf::to_mjcf(export).into_bytes(), None),
+            Format::Urdf => {
+                let package = urdf::to_urdf(export, mesh_dir);
+                (package.urdf.into_bytes(), Some(package.meshes))
+            }
         }
-        Ok(vec![path.to_owned()])
     }
 }
 
-/// A URDF and its mesh folder, the folder staged and swapped in before the URDF is written.
-fn write_urdf(export: &ExportScene<'_>, path: &Path) -> Result<Vec<PathBuf>, ExportError> {
-    let name = Format::urdf_mesh_dir(path);
-    let package = urdf::to_urdf(export, &name);
-    let parent = path.parent().unwrap_or(Path::new("."));
-    let mesh_dir = parent.join(&name);
-    let staging = parent.join(format!(".{name}.staging-{}", std::process::id()));
-    let failed = |path: &Path, source| ExportError::Write {
+/// OBJ files by file name: a URDF's meshes.
+type MeshFiles = std::collections::BTreeMap<String, String>;
+
+/// One format's output, built in memory before anything is written.
+struct Encoded {
+    /// The main file's name in the target folder.
+    name: String,
+    /// The main file's bytes.
+    bytes: Vec<u8>,
+    /// A URDF's mesh folder name and its files.
+    meshes: Option<(String, MeshFiles)>,
+}
+
+impl Encoded {
+    fn new(format: Format, export: &ExportScene<'_>, name: String, mesh_dir: &str) -> Self {
+        let (bytes, meshes) = format.encode(export, mesh_dir);
+        Self {
+            name,
+            bytes,
+            meshes: meshes.map(|files| (mesh_dir.to_owned(), files)),
+        }
+    }
+}
+
+/// Writes `formats` into `dir` (which must exist), each under its [`Format::file_name`] (a
+/// URDF's meshes in `meshes/`), and returns the paths of the main files. All or nothing: every
+/// format is encoded in memory first, then every file is written into a staging folder inside
+/// `dir`, and only when all are written are they moved into place. A failure leaves `dir` as
+/// it was.
+pub fn write_formats(
+    formats: &[Format],
+    export: &ExportScene<'_>,
+    dir: &Path,
+) -> Result<Vec<PathBuf>, ExportError> {
+    let outputs: Vec<Encoded> = formats
+        .iter()
+        .map(|f| Encoded::new(*f, export, f.file_name().to_owned(), urdf::MESH_DIR))
+        .collect();
+    let paths = outputs.iter().map(|o| dir.join(&o.name)).collect();
+    stage_and_move(dir, outputs)?;
+    Ok(paths)
+}
+
+/// Writes `outputs` into a staging folder inside `dir`, then moves each into `dir` (a mesh
+/// folder first replaces the old one, then the main file naming it). The staging folder is
+/// removed whatever happens.
+fn stage_and_move(dir: &Path, outputs: Vec<Encoded>) -> Result<(), ExportError> {
+    let staging = dir.join(format!(".export-staging-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&staging);
+    let result = outputs
+        .iter()
+        .try_for_each(|o| check_targets(dir, o))
+        .and_then(|()| create_dir(&staging))
+        .and_then(|()| outputs.iter().try_for_each(|o| stage(&staging, o)))
+        .and_then(|()| outputs.iter().try_for_each(|o| move_in(&staging, dir, o)));
+    let _ = std::fs::remove_dir_all(&staging);
+    result
+}
+
+/// Refuses, before anything is written, a target the move could not replace: a folder where
+/// a main file goes, or a file where a mesh folder goes.
+fn check_targets(dir: &Path, output: &Encoded) -> Result<(), ExportError> {
+    let occupied = |path: &Path, expected: &str| {
+        failed(
+            path,
+            std::io::Error::new(
+                std::io::ErrorKind::AlreadyExists,
+                format!("something other than {expected} is in the way; nothing was written"),
+            ),
+        )
+    };
+    let main = dir.join(&output.name);
+    if main.is_dir() {
+        return Err(occupied(&main, "a file"));
+    }
+    if let Some((name, _)) = &output.meshes {
+        let folder = dir.join(name);
+        if folder.exists() && !folder.is_dir() {
+            return Err(occupied(&folder, "a folder"));
+        }
+    }
+    Ok(())
+}
+
+/// Writes one output's files into `staging`.
+fn stage(staging: &Path, output: &Encoded) -> Result<(), ExportError> {
+    if let Some((name, files)) = &output.meshes {
+        let folder = staging.join(name);
+        create_dir(&folder)?;
+        for (file, text) in files {
+            write(&folder.join(file), text.as_bytes())?;
+        }
+    }
+    write(&staging.join(&output.name), &output.bytes)
+}
+
+/// Moves one staged output into `dir`: its mesh folder (replacing the old one), then its main
+/// file.
+fn move_in(staging: &Path, dir: &Path, output: &Encoded) -> Result<(), ExportError> {
+    if let Some((name, _)) = &output.meshes {
+        let target = dir.join(name);
+        if target.is_dir() {
+            std::fs::remove_dir_all(&target).map_err(|e| failed(&target, e))?;
+        }
+        rename(&staging.join(name), &target)?;
+    }
+    rename(&staging.join(&output.name), &dir.join(&output.name))
+}
+
+fn create_dir(path: &Path) -> Result<(), ExportError> {
+    std::fs::create_dir(path).map_err(|e| failed(path, e))
+}
+
+fn rename(from: &Path, to: &Path) -> Result<(), ExportError> {
+    std::fs::rename(from, to).map_err(|e| failed(to, e))
+}
+
+fn failed(path: &Path, source: std::io::Error) -> ExportError {
+    ExportError::Write {
         path: path.to_owned(),
         source,
-    };
-    let _ = std::fs::remove_dir_all(&staging);
-    std::fs::create_dir(&staging).map_err(|e| failed(&staging, e))?;
-    let staged = package
-        .meshes
-        .iter()
-        .try_for_each(|(file, text)| write(&staging.join(file), text.as_bytes()));
-    if let Err(e) = staged {
-        let _ = std::fs::remove_dir_all(&staging);
-        return Err(e);
     }
-    if mesh_dir.is_dir() {
-        std::fs::remove_dir_all(&mesh_dir).map_err(|e| failed(&mesh_dir, e))?;
-    }
-    std::fs::rename(&staging, &mesh_dir).map_err(|e| failed(&mesh_dir, e))?;
-    write(path, package.urdf.as_bytes())?;
-    Ok(vec![path.to_owned(), mesh_dir])
 }

@@ -148,13 +148,28 @@ pub(crate) fn to_z_up(v: &Vector3<f64>) -> Vector3<f64> {
 pub(crate) struct Identifiers {
     used: BTreeSet<String>,
     allow_dash: bool,
+    /// The longest name made, in bytes (names are ASCII), suffix included.
+    max_len: usize,
 }
+
+/// The longest file name [`Identifiers::file_names`] makes, before an extension: far under the
+/// 255-byte limit of common file systems, whatever the length of the id it comes from.
+pub(crate) const MAX_FILE_STEM: usize = 120;
 
 impl Identifiers {
     pub fn new(allow_dash: bool) -> Self {
         Self {
             used: BTreeSet::new(),
             allow_dash,
+            max_len: usize::MAX,
+        }
+    }
+
+    /// Names for files: letters, digits, `_` and `-`, at most [`MAX_FILE_STEM`] bytes, unique.
+    pub fn file_names() -> Self {
+        Self {
+            max_len: MAX_FILE_STEM,
+            ..Self::new(true)
         }
     }
 
@@ -178,6 +193,8 @@ impl Identifiers {
         if base.is_empty() || base.starts_with(|c: char| c.is_ascii_digit()) {
             base.insert(0, '_');
         }
+        // Room for a `_k` suffix; every character is ASCII, so any byte is a boundary.
+        base.truncate(self.max_len.saturating_sub(12).max(1));
         let mut name = base.clone();
         let mut k = 1;
         while self.used.contains(&name) {
@@ -266,6 +283,17 @@ mod tests {
         assert_eq!(ids.make(""), "_");
         let mut dashed = Identifiers::new(true);
         assert_eq!(dashed.make("a-b"), "a-b");
+    }
+
+    #[test]
+    fn file_names_are_bounded_and_unique_for_long_ids() {
+        let long = "x".repeat(256);
+        let mut files = Identifiers::file_names();
+        let names: Vec<String> = (0..12).map(|_| files.make(&long)).collect();
+        assert!(names.iter().all(|n| n.len() <= MAX_FILE_STEM), "{names:?}");
+        let unique: BTreeSet<&String> = names.iter().collect();
+        assert_eq!(unique.len(), names.len());
+        assert_eq!(files.make("short"), "short");
     }
 
     #[test]

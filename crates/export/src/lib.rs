@@ -73,6 +73,7 @@ use std::str::FromStr;
 
 use scenethesis_scene_graph::{limits, printable, write_file_atomic, Mesh, Scene, SceneObject};
 
+pub use file::write_formats;
 pub use geometry::MassProperties;
 
 /// Density given to every object in the physics formats, kg/m³ (water; solid wood is 500–900).
@@ -307,30 +308,6 @@ impl Format {
             Format::Mjcf => "scene.mjcf.xml",
             Format::Urdf => "scene.urdf",
         }
-    }
-
-    /// Writes the scene in this format into `dir` (which must exist), each file atomically, and
-    /// returns the path of the main file.
-    pub fn write(&self, export: &ExportScene<'_>, dir: &Path) -> Result<PathBuf, ExportError> {
-        let path = dir.join(self.file_name());
-        match self {
-            Format::Glb => write(&path, &glb::to_glb(export))?,
-            Format::Usd => write(&path, usd::to_usda(export).as_bytes())?,
-            Format::Mjcf => write(&path, mjcf::to_mjcf(export).as_bytes())?,
-            Format::Urdf => {
-                let package = urdf::to_urdf(export, urdf::MESH_DIR);
-                let mesh_dir = dir.join(urdf::MESH_DIR);
-                std::fs::create_dir_all(&mesh_dir).map_err(|source| ExportError::Write {
-                    path: mesh_dir.clone(),
-                    source,
-                })?;
-                for (name, text) in &package.meshes {
-                    write(&mesh_dir.join(name), text.as_bytes())?;
-                }
-                write(&path, package.urdf.as_bytes())?;
-            }
-        }
-        Ok(path)
     }
 }
 

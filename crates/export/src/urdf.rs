@@ -37,7 +37,7 @@ pub fn to_urdf(export: &ExportScene<'_>, mesh_dir: &str) -> UrdfPackage {
     let scene = export.scene();
     let mut links = Identifiers::new(true);
     links.reserve("world");
-    let mut files = Identifiers::new(true);
+    let mut files = Identifiers::file_names();
     let mut meshes = BTreeMap::new();
     let mut materials: Vec<(String, Material)> = Vec::new();
     let mut material_names = Identifiers::new(true);

@@ -496,6 +496,72 @@ fn formats_write_their_files() {
     scene.write_json_atomic(&dir.join("scene.json")).unwrap();
 }
 
+/// A scene whose table has the longest id the validator allows (256 bytes).
+fn scene_with_long_id() -> (Scene, BTreeMap<String, Mesh>) {
+    let (mut scene, mut meshes) = scene();
+    let long = "t".repeat(scenethesis_scene_graph::limits::MAX_ID_BYTES);
+    let table = meshes.remove("table").unwrap();
+    meshes.insert(long.clone(), table);
+    for object in &mut scene.objects {
+        if object.id == "table" {
+            object.id = long.clone();
+        }
+        if object.parent == ParentRef::Object("table".into()) {
+            object.parent = ParentRef::Object(long.clone());
+        }
+        for relation in &mut object.relations {
+            if relation.target == "table" {
+                relation.target = long.clone();
+            }
+        }
+    }
+    if scene.anchor.as_deref() == Some("table") {
+        scene.anchor = Some(long);
+    }
+    scene.validate().unwrap();
+    (scene, meshes)
+}
+
+#[test]
+fn every_format_writes_a_scene_whose_ids_are_as_long_as_allowed() {
+    let (scene, meshes) = scene_with_long_id();
+    let export = ExportScene::new(&scene, &meshes).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let written = scenethesis_export::write_formats(&Format::ALL, &export, dir.path()).unwrap();
+    assert_eq!(written.len(), 4);
+    for entry in std::fs::read_dir(dir.path().join("meshes")).unwrap() {
+        let name = entry.unwrap().file_name();
+        assert!(name.len() <= 130, "{name:?}");
+    }
+}
+
+#[test]
+fn a_failed_export_leaves_the_folder_as_it_was() {
+    let (scene, meshes) = scene();
+    let export = ExportScene::new(&scene, &meshes).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("scene.usda"), "old").unwrap();
+    // A folder where the URDF file goes blocks the last format.
+    std::fs::create_dir(dir.path().join("scene.urdf")).unwrap();
+    std::fs::write(dir.path().join("scene.urdf").join("keep"), "x").unwrap();
+    let err = scenethesis_export::write_formats(&Format::ALL, &export, dir.path()).unwrap_err();
+    assert!(matches!(err, ExportError::Write { .. }), "{err}");
+    let left: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(
+        !left.iter().any(|n| n.starts_with(".export-staging")),
+        "{left:?}"
+    );
+    assert!(
+        !left.iter().any(|n| n == "scene.glb" || n == "meshes"),
+        "{left:?}"
+    );
+    let usd = std::fs::read_to_string(dir.path().join("scene.usda")).unwrap();
+    assert_eq!(usd, "old");
+}
+
 #[test]
 fn values_no_format_can_hold_are_refused_before_writing() {
     let (mut scene, meshes) = scene();

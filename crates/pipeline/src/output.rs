@@ -107,7 +107,8 @@ fn unstage(e: PipelineError, staging: &Path, out: &Path) -> PipelineError {
 }
 
 /// Exports a saved output folder (`dir/scene.json`) in the given formats, regenerating each
-/// object's mesh with `assets`; returns the written files.
+/// object's mesh with `assets`; returns the written files. All or nothing: every format is
+/// built in memory and staged before any file in `dir` is replaced.
 pub fn export_folder(
     dir: &Path,
     formats: &[Format],
@@ -116,11 +117,7 @@ pub fn export_folder(
     let scene = Scene::read_json(&dir.join(SCENE_JSON))?;
     let meshes = resolve_meshes(&scene, assets)?;
     let export = ExportScene::new(&scene, &meshes)?;
-    let mut written = Vec::new();
-    for format in formats {
-        written.push(format.write(&export, dir)?);
-    }
-    Ok(written)
+    Ok(scenethesis_export::write_formats(formats, &export, dir)?)
 }
 
 /// Every object's asset-frame mesh, regenerated from its asset reference (shared assets are
