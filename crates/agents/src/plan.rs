@@ -17,6 +17,37 @@ pub const RIGHT_WALL: &str = "wall_3";
 /// The longest prompt the offline planner reads, in characters; a longer prompt is cut at a
 /// word boundary before this limit and the plan's `limits` say so.
 pub const MAX_PROMPT_CHARS: usize = 2000;
+
+/// `prompt` cut to at most [`MAX_PROMPT_CHARS`] characters at the last word boundary within the
+/// limit, with a note saying so when it was cut (the note `report.json` lists under `limits`).
+///
+/// ```
+/// use scenethesis_agents::{cut_prompt, MAX_PROMPT_CHARS};
+/// assert_eq!(cut_prompt("a kitchen"), ("a kitchen", None));
+/// let long = "a kitchen ".repeat(300);
+/// let (cut, note) = cut_prompt(&long);
+/// assert!(cut.chars().count() <= MAX_PROMPT_CHARS && note.is_some());
+/// ```
+pub fn cut_prompt(prompt: &str) -> (&str, Option<String>) {
+    let length = prompt.chars().count();
+    if length <= MAX_PROMPT_CHARS {
+        return (prompt, None);
+    }
+    let end = prompt
+        .char_indices()
+        .nth(MAX_PROMPT_CHARS)
+        .map_or(prompt.len(), |(i, _)| i);
+    let cut = prompt[..end]
+        .rfind(|c: char| !c.is_alphanumeric())
+        .filter(|&i| i > 0)
+        .unwrap_or(end);
+    let kept = prompt[..cut].trim_end();
+    let note = format!(
+        "the prompt is {length} characters long; only its first {} were read (the limit is {MAX_PROMPT_CHARS})",
+        kept.chars().count()
+    );
+    (kept, Some(note))
+}
 /// The most instances of one requested object ("500 chairs" plans this many, and the plan's
 /// `limits` say so).
 pub const MAX_COUNT_PER_OBJECT: u32 = 50;

@@ -297,6 +297,18 @@ pub struct PromptsFile {
     pub prompts: Vec<Prompt>,
     /// Lines skipped (e.g. not valid UTF-8), each with its line number.
     pub skipped: Vec<SkippedLine>,
+    /// Prompts cut to the prompt length limit, each with its line number.
+    pub cut: Vec<CutLine>,
+}
+
+/// A line of a prompts file whose prompt was cut to
+/// [`MAX_PROMPT_CHARS`](scenethesis_agents::MAX_PROMPT_CHARS) characters.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct CutLine {
+    /// 1-based line number.
+    pub line: usize,
+    /// How long the prompt was and how much of it was kept.
+    pub note: String,
 }
 
 /// Reads a prompts file: one prompt per line; blank lines and lines starting with `#` are
@@ -325,6 +337,10 @@ pub fn read_prompts(path: &Path) -> Result<PromptsFile, PipelineError> {
         if text.is_empty() || text.starts_with('#') {
             continue;
         }
+        let (text, cut) = scenethesis_agents::cut_prompt(text);
+        if let Some(note) = cut {
+            file.cut.push(CutLine { line, note });
+        }
         file.prompts.push(Prompt {
             line,
             text: text.to_owned(),
@@ -339,11 +355,32 @@ pub fn read_prompts(path: &Path) -> Result<PromptsFile, PipelineError> {
     Ok(file)
 }
 
-/// Every job of a batch, in order: for each prompt, each seed (`seeds` ≥ 1).
-pub fn jobs(prompts: &[Prompt], seeds: u64, base_seed: u64) -> Vec<BatchJob> {
-    let mut out = Vec::new();
+/// The most jobs (prompts × seeds) one batch may hold: the job list and the summaries hold a
+/// line per job, so this bounds a batch's memory before any job runs (about 1 KB per job with
+/// the longest prompts). Larger datasets are several batches (other prompts files, or other
+/// `--seed` bases), each of which can be sharded.
+pub const MAX_BATCH_JOBS: u64 = 100_000;
+
+/// Every job of a batch, in order: for each prompt, each seed (`seeds` ≥ 1). Refuses a batch of
+/// more than [`MAX_BATCH_JOBS`] jobs before making any.
+pub fn jobs(
+    prompts: &[Prompt],
+    seeds: u64,
+    base_seed: u64,
+) -> Result<Vec<BatchJob>, PipelineError> {
+    let seeds = seeds.max(1);
+    let total = (prompts.len() as u64).saturating_mul(seeds);
+    if total > MAX_BATCH_JOBS {
+        return Err(PipelineError::Batch(format!(
+            "{} prompts × {seeds} seeds make {total} jobs, over the limit of {MAX_BATCH_JOBS} \
+             jobs per batch (docs/limits.md); split the prompts file or run several batches \
+             with other --seed bases",
+            prompts.len()
+        )));
+    }
+    let mut out = Vec::with_capacity(total as usize);
     for (i, prompt) in prompts.iter().enumerate() {
-        for k in 0..seeds.max(1) {
+        for k in 0..seeds {
             let seed = base_seed.wrapping_add(k);
             out.push(BatchJob {
                 position: out.len(),
@@ -355,7 +392,7 @@ pub fn jobs(prompts: &[Prompt], seeds: u64, base_seed: u64) -> Vec<BatchJob> {
             });
         }
     }
-    out
+    Ok(out)
 }
 
 /// A file-name-safe short form of a prompt: lower-case words joined by `_`, at most 40
@@ -488,7 +525,7 @@ pub fn run_batch(
         path: out.to_owned(),
         source,
     })?;
-    let all = jobs(prompts, options.seeds, options.base_seed);
+    let all = jobs(prompts, options.seeds, options.base_seed)?;
     let digest = options.generate.digest(pipeline.assets().name());
     let mine: Vec<&BatchJob> = all
         .iter()
@@ -606,7 +643,7 @@ pub fn summarize_folder(
             out.display()
         )));
     }
-    let all = jobs(prompts, options.seeds, options.base_seed);
+    let all = jobs(prompts, options.seeds, options.base_seed)?;
     let digest = options.generate.digest(pipeline.assets().name());
     let _lock = summary_lock(out)?;
     let summary = summarize(&all, out, &[], &digest);
@@ -766,5 +803,42 @@ mod error_chain_tests {
             source: std::io::Error::other("disk full"),
         };
         assert_eq!(error_chain(&io), "cannot write /x/scene.json: disk full");
+    }
+}
+
+#[cfg(test)]
+mod limit_tests {
+    use super::*;
+
+    #[test]
+    fn a_batch_over_the_job_limit_is_refused_before_any_job_is_made() {
+        let prompts = vec![Prompt::from("a kitchen"), Prompt::from("an office")];
+        assert_eq!(
+            jobs(&prompts, MAX_BATCH_JOBS / 2, 0).unwrap().len(),
+            100_000
+        );
+        let err = jobs(&prompts, MAX_BATCH_JOBS / 2 + 1, 0).unwrap_err();
+        assert!(err.to_string().contains("100002 jobs"), "{err}");
+        assert!(jobs(&prompts, u64::MAX, 0).is_err(), "no overflow");
+    }
+
+    #[test]
+    fn a_prompt_longer_than_the_limit_is_cut_when_read() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("prompts.txt");
+        let long = "a kitchen with a table ".repeat(10_000);
+        std::fs::write(&path, format!("a bedroom\n{long}\n")).unwrap();
+        let file = read_prompts(&path).unwrap();
+        assert_eq!(file.prompts.len(), 2);
+        let cut = &file.prompts[1];
+        assert!(cut.text.chars().count() <= scenethesis_agents::MAX_PROMPT_CHARS);
+        assert!(file.skipped.is_empty());
+        assert_eq!(file.cut.len(), 1);
+        assert_eq!(file.cut[0].line, 2);
+        assert!(
+            file.cut[0].note.contains("the limit is 2000"),
+            "{:?}",
+            file.cut
+        );
     }
 }

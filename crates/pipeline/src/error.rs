@@ -69,4 +69,19 @@ pub enum PipelineError {
     /// A batch argument or prompts file is malformed.
     #[error("batch: {0}")]
     Batch(String),
+    /// The run's time limit ([`GenerateOptions::time_limit`](crate::GenerateOptions)) was
+    /// reached before any attempt had made a scene.
+    #[error(
+        "the time limit of {limit_seconds} s was reached before the {stage} stage{}, and no \
+         scene was finished in time; give the run more time (--time-limit)",
+        if *.round > 0 { format!(" of re-plan round {}", .round) } else { String::new() }
+    )]
+    OutOfTime {
+        /// The stage that was about to start.
+        stage: crate::Stage,
+        /// The attempt (0 = first) it belonged to.
+        round: usize,
+        /// The limit, in seconds.
+        limit_seconds: f64,
+    },
 }

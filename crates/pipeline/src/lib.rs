@@ -51,7 +51,9 @@ mod stage;
 pub use error::PipelineError;
 pub use out_dir::{Existing, OutputDir, REPORT_JSON, SCENE_JSON};
 pub use output::{export_file, export_folder, resolve_meshes};
-pub use pipeline::{GenerateOptions, GeneratedScene, Pipeline, PreviewRenderer};
+pub use pipeline::{
+    GenerateOptions, GeneratedScene, Pipeline, PreviewRenderer, DEFAULT_TIME_LIMIT,
+};
 pub use plan_file::{plan_json, write_plan, PLAN_JSON};
 #[cfg(feature = "render")]
 pub use render::WgpuPreviews;
@@ -70,7 +72,9 @@ pub use scenethesis_retrieval::{
 };
 pub use stage::{NoProgress, Progress, Stage};
 
-pub use scenethesis_agents::{check_plan, FixedPlanner, Plan, PlanFileError, PlanIssue};
+pub use scenethesis_agents::{
+    check_plan, cut_prompt, FixedPlanner, Plan, PlanFileError, PlanIssue,
+};
 /// The correspond stage's default matcher and its settings ([`Pipeline::with_matcher`]).
 pub use scenethesis_correspondence::ShapeMatcher;
 pub use scenethesis_export::Format;

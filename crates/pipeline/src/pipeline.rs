@@ -1,7 +1,7 @@
 //! The pipeline: plan → retrieve → guide → optimize → judge (→ re-plan) → render.
 
 use std::collections::BTreeMap;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use scenethesis_agents::{Guide, KnowledgePlanner, Plan, PlanRequest, Planner, ProceduralGuide};
 use scenethesis_correspondence::Matcher;
@@ -39,7 +39,19 @@ pub struct GenerateOptions {
     pub optimize: OptimizeSettings,
     /// Asset preparation (sampling) settings.
     pub prepare: PrepareSettings,
+    /// Wall-clock budget of the whole run ([`DEFAULT_TIME_LIMIT`] by default; `None` for
+    /// none). It is checked before every stage: once it is spent, a run that already has a
+    /// scene stops re-planning and keeps its best attempt (without previews if their turn had
+    /// not come), saying so in the report's notes; a run without one fails with
+    /// [`PipelineError::OutOfTime`]. Not part of [`GenerateOptions::digest`]: a limit that is
+    /// not reached changes nothing.
+    #[serde(skip)]
+    pub time_limit: Option<Duration>,
 }
+
+/// The default [`GenerateOptions::time_limit`]: ten minutes, several hundred times what an
+/// offline run takes and twice the LLM client's own budget per request.
+pub const DEFAULT_TIME_LIMIT: Duration = Duration::from_secs(600);
 
 impl GenerateOptions {
     /// A stable hex digest of these options and the asset source's name: two runs with the
@@ -58,6 +70,7 @@ impl Default for GenerateOptions {
             preview_size: [960, 640],
             optimize: OptimizeSettings::default(),
             prepare: PrepareSettings::default(),
+            time_limit: Some(DEFAULT_TIME_LIMIT),
         }
     }
 }
@@ -240,7 +253,8 @@ impl Pipeline {
         progress: &mut dyn Progress,
     ) -> Result<GeneratedScene, PipelineError> {
         let started = Instant::now();
-        let mut clock = StageClock::new(progress);
+        let mut clock = StageClock::new(progress, options.time_limit);
+        clock.check(Stage::Plan, 0)?;
         let original_plan = clock.run(
             Stage::Plan,
             0,
@@ -252,9 +266,24 @@ impl Pipeline {
         let mut cache = AssetCache::default();
         let mut replans: Vec<Replan> = Vec::new();
         let mut best: Option<Attempt> = None;
+        let mut stopped: Option<String> = None;
         for round in 0..=options.max_replans {
             let attempt =
-                self.attempt(&plan, &mut cache, &mut clock, prompt, seed, round, options)?;
+                match self.attempt(&plan, &mut cache, &mut clock, prompt, seed, round, options) {
+                    Ok(attempt) => attempt,
+                    Err(PipelineError::OutOfTime {
+                        stage,
+                        limit_seconds,
+                        ..
+                    }) if best.is_some() => {
+                        stopped = Some(format!(
+                            "the time limit of {limit_seconds} s was reached before the {stage} \
+                             stage of re-plan round {round}"
+                        ));
+                        break;
+                    }
+                    Err(e) => return Err(e),
+                };
             let accepted = attempt.verdict.accepted;
             if !accepted && round < options.max_replans {
                 replans.push(rework(
@@ -274,7 +303,18 @@ impl Pipeline {
         }
 
         let best = best.expect("at least one attempt ran");
-        let (previews, notes) = previews(self.renderer.as_deref(), &best, options, &mut clock);
+        let mut notes = Vec::new();
+        if let Some(why) = stopped {
+            notes.push(time_limit_note(&why, best.round));
+        }
+        let (previews, preview_notes) = match clock.check(Stage::Render, best.round) {
+            Ok(()) => previews(self.renderer.as_deref(), &best, options, &mut clock),
+            Err(e) if options.previews && self.renderer.is_some() => {
+                (Vec::new(), vec![format!("no previews: {e}")])
+            }
+            Err(_) => (Vec::new(), Vec::new()),
+        };
+        notes.extend(preview_notes);
         let report = report(
             &best,
             RunRecord {
@@ -315,12 +355,14 @@ impl Pipeline {
         round: usize,
         options: &GenerateOptions,
     ) -> Result<Attempt, PipelineError> {
+        clock.check(Stage::Retrieve, round)?;
         let retrieved = clock.run(
             Stage::Retrieve,
             round,
             || cache.retrieve(self.assets.as_ref(), plan, seed),
             |r| format!("{} assets", r.infos.len()),
         )?;
+        clock.check(Stage::Guide, round)?;
         let layout = clock.run(
             Stage::Guide,
             round,
@@ -338,24 +380,28 @@ impl Pipeline {
         // object is, and a box-shaped mask pulls objects toward the camera to fill it; the
         // guide's single-view metrology (where the mask meets the floor) places them better.
         let alignments = match (&layout.guidance, &self.matcher) {
-            (Some(guidance), Some((matcher, settings))) if guidance.depth.is_some() => clock.run(
-                Stage::Correspond,
-                round,
-                || {
-                    correspond(
-                        &mut scene,
-                        guidance,
-                        &retrieved,
-                        cache,
-                        matcher.as_ref(),
-                        settings,
-                        options,
-                    )
-                },
-                |a| format!("{} objects aligned", a.len()),
-            )?,
+            (Some(guidance), Some((matcher, settings))) if guidance.depth.is_some() => {
+                clock.check(Stage::Correspond, round)?;
+                clock.run(
+                    Stage::Correspond,
+                    round,
+                    || {
+                        correspond(
+                            &mut scene,
+                            guidance,
+                            &retrieved,
+                            cache,
+                            matcher.as_ref(),
+                            settings,
+                            options,
+                        )
+                    },
+                    |a| format!("{} objects aligned", a.len()),
+                )?
+            }
             _ => BTreeMap::new(),
         };
+        clock.check(Stage::Optimize, round)?;
         let (placement, meshes) = clock.run(
             Stage::Optimize,
             round,
@@ -377,6 +423,7 @@ impl Pipeline {
                 )
             },
         )?;
+        clock.check(Stage::Judge, round)?;
         let verdict = clock.run(
             Stage::Judge,
             round,
@@ -403,4 +450,9 @@ impl Pipeline {
             round,
         })
     }
+}
+
+/// The report note of a run that stopped re-planning at its time limit.
+fn time_limit_note(why: &str, kept_round: usize) -> String {
+    format!("{why}: re-planning stopped and the best scene so far (round {kept_round}) is kept")
 }

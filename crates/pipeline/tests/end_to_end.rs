@@ -267,7 +267,7 @@ fn batch_locks_jobs_and_writes_its_summary_when_interrupted() {
     let out = tmp.path().join("batch");
     std::fs::create_dir_all(&out).unwrap();
     let pipeline = Pipeline::offline();
-    let jobs = batch::jobs(&prompts, 1, 0);
+    let jobs = batch::jobs(&prompts, 1, 0).unwrap();
     // A live batch (this very process) holds the first job's lock.
     std::fs::write(
         out.join(format!(".{}.lock", jobs[0].folder)),
@@ -345,7 +345,7 @@ fn shard_and_prompt_parsing() {
     assert_eq!(read.prompts[1].line, 5);
     assert_eq!(read.skipped.len(), 1);
     assert_eq!(read.skipped[0].line, 4);
-    let jobs = batch::jobs(&read.prompts, 2, 10);
+    let jobs = batch::jobs(&read.prompts, 2, 10).unwrap();
     assert_eq!(jobs.len(), 4);
     assert_eq!(jobs[3].folder, "002_a_beach_s11");
     assert_eq!(jobs[3].line, 5);

@@ -168,3 +168,84 @@ fn write_plan_is_atomic_and_never_replaces_without_force() {
     let err = write_plan(tmp.path(), &plan, true).unwrap_err();
     assert!(err.to_string().contains("is a directory"), "{err}");
 }
+
+/// A judge that looks as long as the run's whole time limit and then rejects: the limit is
+/// spent during the first attempt, whatever the machine's speed before it.
+struct SlowRejecting {
+    inner: AcceptAll,
+    pause: std::time::Duration,
+    calls: AtomicUsize,
+}
+
+impl Judge for SlowRejecting {
+    fn name(&self) -> &str {
+        "slow-rejecting"
+    }
+
+    fn judge(
+        &self,
+        input: &JudgeInput<'_>,
+    ) -> Result<scenethesis_pipeline::Verdict, scenethesis_pipeline::JudgeError> {
+        self.calls.fetch_add(1, Ordering::SeqCst);
+        let mut verdict = self.inner.judge(input)?;
+        std::thread::sleep(self.pause);
+        verdict.accepted = false;
+        Ok(verdict)
+    }
+}
+
+#[test]
+fn a_spent_time_limit_keeps_the_best_scene_so_far() {
+    // The limit must outlast the first attempt's stages before the judge, whose time depends
+    // on the machine and its load: a limit they overrun is doubled and the run repeated.
+    let mut seconds = 3;
+    let scene = loop {
+        let limit = std::time::Duration::from_secs(seconds);
+        let judge = SlowRejecting {
+            inner: AcceptAll::new(),
+            pause: limit,
+            calls: AtomicUsize::new(0),
+        };
+        let options = GenerateOptions {
+            time_limit: Some(limit),
+            ..options()
+        };
+        match Pipeline::offline()
+            .with_judge(judge)
+            .generate(PROMPT, 0, &options, &mut ())
+        {
+            Ok(scene) => break scene,
+            Err(PipelineError::OutOfTime { round: 0, .. }) if seconds < 48 => seconds *= 2,
+            Err(e) => panic!("the first attempt's scene is kept: {e}"),
+        }
+    };
+    assert!(!scene.report.accepted);
+    let notes = scene.report.notes.join("\n");
+    let expected = format!(
+        "time limit of {seconds} s was reached before the retrieve stage of re-plan round 1"
+    );
+    assert!(notes.contains(&expected), "{notes}");
+    assert!(!scene.scene.objects.is_empty());
+}
+
+#[test]
+fn a_run_out_of_time_before_any_scene_fails_naming_the_stage() {
+    let options = GenerateOptions {
+        time_limit: Some(std::time::Duration::ZERO),
+        ..options()
+    };
+    let err = Pipeline::offline()
+        .generate(PROMPT, 0, &options, &mut ())
+        .unwrap_err();
+    assert!(
+        matches!(
+            err,
+            PipelineError::OutOfTime {
+                stage: scenethesis_pipeline::Stage::Plan,
+                ..
+            }
+        ),
+        "{err}"
+    );
+    assert!(err.to_string().contains("--time-limit"), "{err}");
+}

@@ -87,20 +87,20 @@ fn load(
     assets: Option<std::path::PathBuf>,
 ) -> PyResult<NativeScene> {
     let outcome = py.detach(|| -> Result<_, Failure> {
-        let source = match &assets {
-            Some(dir) => {
-                RetrievalSource::from_directory(dir)
-                    .map_err(|e| {
-                        Failure::input(&e, format!("importing assets from {}", dir.display()))
-                    })?
-                    .0
-            }
-            None => RetrievalSource::default(),
+        let (source, warnings) = match &assets {
+            Some(dir) => RetrievalSource::from_directory(dir).map_err(|e| {
+                Failure::input(&e, format!("importing assets from {}", dir.display()))
+            })?,
+            None => (RetrievalSource::default(), Vec::new()),
         };
-        SavedScene::read(&folder, &source)
-            .map_err(|e| Failure::pipeline(&e, format!("loading {}", folder.display())))
+        let saved = SavedScene::read(&folder, &source)
+            .map_err(|e| Failure::pipeline(&e, format!("loading {}", folder.display())))?;
+        Ok((saved, warnings))
     });
-    Ok(NativeScene::saved(outcome.map_err(|f| f.into_py())?))
+    let (saved, warnings) = outcome.map_err(|f| f.into_py())?;
+    let warnings: Vec<String> = warnings.iter().map(|w| w.to_string()).collect();
+    errors::warn_all(py, &warnings)?;
+    Ok(NativeScene::saved(saved))
 }
 
 /// The metrics of `scenethesis eval PATH --json` for an output folder, a scene.json or a .glb.
@@ -124,12 +124,17 @@ fn batch_jobs(
     prompts: Vec<String>,
     seeds: u64,
     base_seed: u64,
-) -> Vec<(usize, String, u64, String)> {
-    let prompts: Vec<Prompt> = prompts.iter().map(|p| Prompt::from(p.trim())).collect();
-    batch::jobs(&prompts, seeds, base_seed)
+) -> PyResult<Vec<(usize, String, u64, String)>> {
+    let prompts: Vec<Prompt> = prompts
+        .iter()
+        .map(|p| Prompt::from(scenethesis_pipeline::cut_prompt(p.trim()).0))
+        .collect();
+    let jobs = batch::jobs(&prompts, seeds, base_seed)
+        .map_err(|e| Failure::pipeline(&e, "listing batch jobs".into()).into_py())?;
+    Ok(jobs
         .into_iter()
         .map(|j| (j.position, j.prompt, j.seed, j.folder))
-        .collect()
+        .collect())
 }
 
 /// The native module.

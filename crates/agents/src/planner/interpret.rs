@@ -11,7 +11,7 @@ use std::collections::BTreeSet;
 
 use crate::knowledge::Archetype;
 use crate::places::Family;
-use crate::plan::{PlanError, PlanRequest, MAX_PROMPT_CHARS};
+use crate::plan::{cut_prompt, PlanError, PlanRequest};
 use crate::prompt::{analyze, Analysis};
 use crate::text::tokenize;
 
@@ -20,7 +20,7 @@ use super::KnowledgePlanner;
 /// What the planner made of a prompt before drafting any object.
 #[derive(Debug, Clone)]
 pub(super) struct Reading {
-    /// The prompt, trimmed (and cut to [`MAX_PROMPT_CHARS`]).
+    /// The prompt, trimmed (and cut to [`crate::MAX_PROMPT_CHARS`]).
     pub prompt: String,
     /// Mentions, stated relations and archetype matches.
     pub analysis: Analysis,
@@ -39,29 +39,13 @@ pub(super) fn interpret(
     planner: &KnowledgePlanner,
     request: &PlanRequest,
 ) -> Result<Reading, PlanError> {
-    let mut prompt = request.prompt.trim();
+    let prompt = request.prompt.trim();
     let knowledge = &planner.knowledge;
     if !prompt.chars().any(char::is_alphanumeric) {
         return Err(PlanError::EmptyPrompt);
     }
-    let mut limits = Vec::new();
-    let length = prompt.chars().count();
-    if length > MAX_PROMPT_CHARS {
-        // Cut at the last word boundary within the limit.
-        let end = prompt
-            .char_indices()
-            .nth(MAX_PROMPT_CHARS)
-            .map_or(prompt.len(), |(i, _)| i);
-        let cut = prompt[..end]
-            .rfind(|c: char| !c.is_alphanumeric())
-            .filter(|&i| i > 0)
-            .unwrap_or(end);
-        prompt = prompt[..cut].trim_end();
-        limits.push(format!(
-            "the prompt is {length} characters long; only its first {} were read (the limit is {MAX_PROMPT_CHARS})",
-            prompt.chars().count()
-        ));
-    }
+    let (prompt, cut) = cut_prompt(prompt);
+    let limits: Vec<String> = cut.into_iter().collect();
     let analysis = analyze(
         prompt,
         knowledge,

@@ -2,22 +2,40 @@
 //! times it and adds the time to the run's per-stage totals.
 
 use std::collections::BTreeMap;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use crate::report::StageTiming;
 use crate::stage::{Progress, Stage};
+use crate::PipelineError;
 
 /// Announces stages to a [`Progress`] and sums their wall-clock time.
 pub(crate) struct StageClock<'p> {
     progress: &'p mut dyn Progress,
     totals: BTreeMap<Stage, f64>,
+    started: Instant,
+    limit: Option<Duration>,
 }
 
 impl<'p> StageClock<'p> {
-    pub(crate) fn new(progress: &'p mut dyn Progress) -> Self {
+    /// A clock started now, for a run of at most `limit`.
+    pub(crate) fn new(progress: &'p mut dyn Progress, limit: Option<Duration>) -> Self {
         Self {
             progress,
             totals: BTreeMap::new(),
+            started: Instant::now(),
+            limit,
+        }
+    }
+
+    /// `Ok` while the run's time limit is not spent; checked before `stage` of `round` starts.
+    pub(crate) fn check(&self, stage: Stage, round: usize) -> Result<(), PipelineError> {
+        match self.limit {
+            Some(limit) if self.started.elapsed() >= limit => Err(PipelineError::OutOfTime {
+                stage,
+                round,
+                limit_seconds: limit.as_secs_f64(),
+            }),
+            _ => Ok(()),
         }
     }
 

@@ -59,6 +59,14 @@ pub fn run(args: BatchArgs) -> Result<()> {
             skipped.reason
         );
     }
+    for cut in &file.cut {
+        eprintln!(
+            "warning: {} line {}: {}",
+            args.prompts.display(),
+            cut.line,
+            cut.note
+        );
+    }
     let shard = if args.summarize {
         Shard::ALL
     } else {
@@ -77,7 +85,7 @@ pub fn run(args: BatchArgs) -> Result<()> {
         return summarize(&args, &file.prompts, &options);
     }
     crate::interrupt::on_interrupt(cancel.clone());
-    let all = batch::jobs(&file.prompts, options.seeds, options.base_seed);
+    let all = batch::jobs(&file.prompts, options.seeds, options.base_seed)?;
     let mine = all
         .iter()
         .filter(|j| options.shard.contains(j.position))

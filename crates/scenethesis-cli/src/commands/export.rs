@@ -23,9 +23,12 @@ pub struct ExportArgs {
 pub fn run(args: ExportArgs) -> Result<()> {
     let source = match &args.assets {
         Some(dir) => {
-            RetrievalSource::from_directory(dir)
-                .with_context(|| format!("importing assets from {}", dir.display()))?
-                .0
+            let (source, warnings) = RetrievalSource::from_directory(dir)
+                .with_context(|| format!("importing assets from {}", dir.display()))?;
+            for warning in &warnings {
+                eprintln!("warning: {warning}");
+            }
+            source
         }
         None => RetrievalSource::default(),
     };

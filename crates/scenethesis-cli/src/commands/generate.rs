@@ -8,6 +8,7 @@ use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use scenethesis_pipeline::{
     export_folder, FixedPlanner, Format, GenerateOptions, OutputDir, Pipeline, Progress, Stage,
+    DEFAULT_TIME_LIMIT,
 };
 use scenethesis_setup::PipelineSettings;
 
@@ -53,6 +54,12 @@ pub struct PipelineArgs {
     /// How many times the judge may re-plan a rejected scene.
     #[arg(long, default_value_t = 3)]
     pub max_replans: usize,
+    /// Wall-clock budget of one scene, in seconds (0: none). Checked before every stage: when
+    /// it is spent the best scene so far is kept (re-planning stops), or the run fails if it
+    /// has none yet; `generate` also ends a stage that overruns it by a minute.
+    #[arg(long, value_name = "SECONDS", default_value_t = DEFAULT_TIME_LIMIT.as_secs_f64(),
+          value_parser = parse_time_limit)]
+    pub time_limit: f64,
     /// Do not render preview images.
     #[arg(long)]
     pub no_preview: bool,
@@ -71,6 +78,7 @@ impl PipelineArgs {
         GenerateOptions {
             max_replans: self.max_replans,
             previews: !self.no_preview,
+            time_limit: (self.time_limit > 0.0).then(|| Duration::from_secs_f64(self.time_limit)),
             ..GenerateOptions::default()
         }
     }
@@ -96,6 +104,52 @@ impl PipelineArgs {
             eprintln!("{note}");
         }
         Ok(built.pipeline)
+    }
+}
+
+/// `--time-limit`: seconds, finite, from 0 (none) to a week.
+fn parse_time_limit(text: &str) -> Result<f64, String> {
+    const WEEK: f64 = 7.0 * 24.0 * 3600.0;
+    match text.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && (0.0..=WEEK).contains(&v) => Ok(v),
+        _ => Err(format!(
+            "expected seconds from 0 (no limit) to {WEEK} (a week), found `{text}`"
+        )),
+    }
+}
+
+/// How long past its time limit a stage of `generate` may run before the process ends it: the
+/// limit is checked between stages, and this bounds a stage that does not return.
+const OVERRUN_GRACE: Duration = Duration::from_secs(60);
+
+/// Ends the process with an error when the run is still generating `OVERRUN_GRACE` after
+/// `limit`; nothing has been written by then (the output folder is swapped in only after).
+/// Dropping the returned guard disarms it.
+fn watchdog(limit: Option<Duration>) -> Option<WatchdogGuard> {
+    let limit = limit?;
+    let armed = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(true));
+    let flag = armed.clone();
+    std::thread::spawn(move || {
+        std::thread::sleep(limit + OVERRUN_GRACE);
+        if flag.load(std::sync::atomic::Ordering::SeqCst) {
+            eprintln!(
+                "error: the run overran its time limit of {} s by {} s inside one stage and was \
+                 stopped; nothing was written (raise --time-limit)",
+                limit.as_secs_f64(),
+                OVERRUN_GRACE.as_secs()
+            );
+            std::process::exit(1);
+        }
+    });
+    Some(WatchdogGuard(armed))
+}
+
+/// Disarms the [`watchdog`] when dropped.
+struct WatchdogGuard(std::sync::Arc<std::sync::atomic::AtomicBool>);
+
+impl Drop for WatchdogGuard {
+    fn drop(&mut self) {
+        self.0.store(false, std::sync::atomic::Ordering::SeqCst);
     }
 }
 
@@ -171,12 +225,14 @@ pub fn run(args: GenerateArgs) -> Result<()> {
     };
     let options = args.pipeline.options();
     let mut progress = StageProgress::on_stderr();
+    let guard = watchdog(options.time_limit);
     let mut generated = pipeline
         .generate(&prompt, args.seed, &options, &mut progress)
         .with_context(|| match &args.plan {
             Some(path) => format!("generating from the plan {}", path.display()),
             None => format!("generating \"{prompt}\""),
         })?;
+    drop(guard);
     println!("{}", generated.report.summary_line());
     let rejected = !generated.report.accepted;
     if rejected && !args.strict {

@@ -36,6 +36,7 @@ pub fn run(args: PlanArgs) -> Result<()> {
     let pipeline = PipelineArgs {
         max_replans: 0,
         no_preview: true,
+        time_limit: 0.0,
         assets: args.assets.clone(),
         providers: args.providers.clone(),
     }
