@@ -52,7 +52,8 @@ pub use error::PipelineError;
 pub use out_dir::{Existing, OutputDir, REPORT_JSON, SCENE_JSON};
 pub use output::{export_file, export_folder, resolve_meshes};
 pub use pipeline::{
-    GenerateOptions, GeneratedScene, Pipeline, PreviewRenderer, DEFAULT_TIME_LIMIT,
+    time_limit_from_secs, GenerateOptions, GeneratedScene, Pipeline, PreviewRenderer,
+    DEFAULT_TIME_LIMIT, MAX_TIME_LIMIT,
 };
 pub use plan_file::{plan_json, write_plan, PLAN_JSON};
 #[cfg(feature = "render")]

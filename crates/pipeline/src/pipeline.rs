@@ -53,6 +53,28 @@ pub struct GenerateOptions {
 /// offline run takes and twice the LLM client's own budget per request.
 pub const DEFAULT_TIME_LIMIT: Duration = Duration::from_secs(600);
 
+/// The longest [`GenerateOptions::time_limit`] accepted from a user: a week.
+pub const MAX_TIME_LIMIT: Duration = Duration::from_secs(7 * 24 * 3600);
+
+/// A time limit given in seconds, as the CLI's `--time-limit` and Python's `time_limit=` take
+/// it: `0` for none, else finite and at most [`MAX_TIME_LIMIT`].
+///
+/// ```
+/// use scenethesis_pipeline::time_limit_from_secs;
+/// assert_eq!(time_limit_from_secs(0.0), Ok(None));
+/// assert_eq!(time_limit_from_secs(1.5), Ok(Some(std::time::Duration::from_millis(1500))));
+/// assert!(time_limit_from_secs(f64::NAN).is_err());
+/// ```
+pub fn time_limit_from_secs(seconds: f64) -> Result<Option<Duration>, String> {
+    let max = MAX_TIME_LIMIT.as_secs_f64();
+    if !(seconds.is_finite() && (0.0..=max).contains(&seconds)) {
+        return Err(format!(
+            "expected seconds from 0 (no limit) to {max} (a week), found {seconds}"
+        ));
+    }
+    Ok((seconds > 0.0).then(|| Duration::from_secs_f64(seconds)))
+}
+
 impl GenerateOptions {
     /// A stable hex digest of these options and the asset source's name: two runs with the
     /// same prompt, seed and digest produce the same scene (batch resume compares it).

@@ -28,6 +28,9 @@ import scenethesis
         (dict(prompt="a kitchen", max_replans=-2), ValueError, "max_replans must be in"),
         (dict(prompt="a kitchen", llm_timeout=0), ValueError, "llm_timeout must be in"),
         (dict(prompt="a kitchen", llm_replay=True), ValueError, "needs llm_cache"),
+        (dict(prompt="a kitchen", time_limit="1"), TypeError, "time_limit must be a number"),
+        (dict(prompt="a kitchen", time_limit=-1.0), ValueError, "time_limit: expected seconds"),
+        (dict(prompt="a kitchen", time_limit=float("nan")), ValueError, "time_limit: expected"),
         (dict(prompt="a kitchen", assets=42), TypeError, "assets must be a str or path"),
         (dict(prompt="a kitchen", progress=5), TypeError, "progress must be callable"),
         (dict(), TypeError, "needs a prompt"),
@@ -48,6 +51,11 @@ def test_bad_input_raises_invalid_input(tmp_path: pathlib.Path) -> None:
     with pytest.raises(scenethesis.InvalidInputError, match="importing assets"):
         scenethesis.generate("a kitchen", preview=False, assets=tmp_path / "no_assets_here")
     assert issubclass(scenethesis.InvalidInputError, scenethesis.ScenethesisError)
+
+
+def test_a_run_out_of_time_raises_naming_the_limit() -> None:
+    with pytest.raises(scenethesis.ScenethesisError, match="time limit of 0.000001 s"):
+        scenethesis.generate("a kitchen", preview=False, time_limit=1e-6)
 
 
 def test_save_never_replaces_a_foreign_folder(office: scenethesis.Scene, tmp_path: pathlib.Path) -> None:

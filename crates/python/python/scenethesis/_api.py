@@ -106,6 +106,7 @@ def _settings(
     llm_timeout: Optional[float],
     llm_cache: Optional[PathLike],
     llm_replay: bool,
+    time_limit: Optional[float] = None,
 ) -> "_native.Settings":
     _check_type("planner", planner, str, "a str")
     if planner not in _PLANNERS:
@@ -124,6 +125,8 @@ def _settings(
     _check_type("llm_replay", llm_replay, bool, "a bool")
     if llm_replay and llm_cache is None:
         raise ValueError("llm_replay=True needs llm_cache, the folder to replay from")
+    if time_limit is not None:
+        _check_type("time_limit", time_limit, (int, float), "a number of seconds")
     return _native.Settings(
         planner=planner,
         judge=judge,
@@ -139,6 +142,7 @@ def _settings(
         llm_timeout=None if llm_timeout is None else float(llm_timeout),
         llm_cache=_optional_path("llm_cache", llm_cache),
         llm_replay=llm_replay,
+        time_limit=None if time_limit is None else float(time_limit),
     )
 
 
@@ -297,6 +301,7 @@ def generate(
     llm_timeout: Optional[float] = None,
     llm_cache: Optional[PathLike] = None,
     llm_replay: bool = False,
+    time_limit: Optional[float] = 600.0,
     progress: Optional[Callable[[ProgressEvent], None]] = None,
 ) -> Scene:
     """Generates a simulation-ready scene: plan → retrieve → guide → optimize → judge, re-planning
@@ -307,7 +312,9 @@ def generate(
     ``llm_model``, ``vlm_model``, the key from ``$OPENAI_API_KEY`` or ``api_key_env``;
     ``llm_cache`` records answers and ``llm_replay=True`` replays them offline). ``assets``
     is a folder of your own GLB/glTF/OBJ files. ``progress`` is called with a
-    :class:`ProgressEvent` as each stage starts and finishes.
+    :class:`ProgressEvent` as each stage starts and finishes. ``time_limit`` is the run's
+    budget in seconds (``None`` or 0 for none), checked before every stage: once spent, the best
+    scene so far is returned (its report's notes say so), or the run raises if it has none.
 
     A scene the judge rejects is returned (``scene.accepted`` is False, with a warning)
     unless ``strict=True``, which raises :class:`SceneRejectedError` carrying it as ``.scene``.
@@ -328,7 +335,7 @@ def generate(
         raise TypeError(f"progress must be callable, not {type(progress).__name__}")
     settings = _settings(
         planner, judge, assets, preview, max_replans, llm_model, vlm_model, image_model,
-        base_url, api_key_env, llm_config, llm_timeout, llm_cache, llm_replay,
+        base_url, api_key_env, llm_config, llm_timeout, llm_cache, llm_replay, time_limit,
     )
     callback = None
     if progress is not None:

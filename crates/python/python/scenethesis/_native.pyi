@@ -34,6 +34,7 @@ class Settings:
         llm_timeout: Optional[float] = ...,
         llm_cache: Optional[str] = ...,
         llm_replay: bool = ...,
+        time_limit: Optional[float] = ...,
     ) -> None: ...
 
 class NativeScene:

@@ -7,8 +7,8 @@ use std::time::Duration;
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use scenethesis_pipeline::{
-    export_folder, FixedPlanner, Format, GenerateOptions, OutputDir, Pipeline, Progress, Stage,
-    DEFAULT_TIME_LIMIT,
+    export_folder, time_limit_from_secs, FixedPlanner, Format, GenerateOptions, OutputDir,
+    Pipeline, Progress, Stage, DEFAULT_TIME_LIMIT,
 };
 use scenethesis_setup::PipelineSettings;
 
@@ -78,7 +78,7 @@ impl PipelineArgs {
         GenerateOptions {
             max_replans: self.max_replans,
             previews: !self.no_preview,
-            time_limit: (self.time_limit > 0.0).then(|| Duration::from_secs_f64(self.time_limit)),
+            time_limit: time_limit_from_secs(self.time_limit).expect("checked by clap"),
             ..GenerateOptions::default()
         }
     }
@@ -107,15 +107,13 @@ impl PipelineArgs {
     }
 }
 
-/// `--time-limit`: seconds, finite, from 0 (none) to a week.
+/// `--time-limit`: seconds, from 0 (none) to a week.
 fn parse_time_limit(text: &str) -> Result<f64, String> {
-    const WEEK: f64 = 7.0 * 24.0 * 3600.0;
-    match text.trim().parse::<f64>() {
-        Ok(v) if v.is_finite() && (0.0..=WEEK).contains(&v) => Ok(v),
-        _ => Err(format!(
-            "expected seconds from 0 (no limit) to {WEEK} (a week), found `{text}`"
-        )),
-    }
+    let seconds: f64 = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("expected a number of seconds, found `{text}`"))?;
+    time_limit_from_secs(seconds).map(|_| seconds)
 }
 
 /// How long past its time limit a stage of `generate` may run before the process ends it: the
