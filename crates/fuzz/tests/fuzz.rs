@@ -1,5 +1,6 @@
 //! One byte-mutation fuzz target per parser: GLB, glTF (JSON with a data URI), OBJ,
-//! `scene.json`, `assets.json` and plan files. Each must return (an error is fine) without
+//! `scene.json`, `assets.json`, plan files (parsed and checked) and guidance folders
+//! (`camera.json`, `labels.json`, `ids.png`). Each must return (an error is fine) without
 //! panicking on every mutated input; each target stops after its time budget.
 
 use std::collections::BTreeMap;
@@ -11,6 +12,7 @@ use scenethesis_assets::catalog;
 use scenethesis_assets::import::{import_directory, parse_obj, GltfFile, MANIFEST_FILE};
 use scenethesis_fuzz::{config, mutate, mutations, Budget};
 use scenethesis_scene_graph::{AssetRef, Mesh, Scene};
+use scenethesis_vision::files::{read_guidance, GuidancePaths};
 
 /// Seconds per target in CI.
 const SECONDS: f64 = 3.0;
@@ -83,6 +85,15 @@ fn plan_seed() -> &'static [u8] {
 
 #[test]
 fn every_seed_is_a_valid_input() {
+    let tmp = tempfile::tempdir().unwrap();
+    for (name, bytes) in guidance_seed() {
+        std::fs::write(tmp.path().join(name), bytes).unwrap();
+    }
+    let (guidance, labels) = read_guidance(&GuidancePaths::in_dir(tmp.path())).unwrap();
+    assert_eq!(labels.len(), 2);
+    assert!(guidance.depth.is_some());
+    let text = String::from_utf8_lossy(plan_seed()).into_owned();
+    scenethesis_agents::FixedPlanner::from_json(&text, Path::new("plan.json")).unwrap();
     // The targets below would prove little if their seeds were already rejected.
     let dir = Path::new(".");
     let file = GltfFile::from_slice(glb_seed(), dir, dir).unwrap();
@@ -207,6 +218,51 @@ proptest! {
             return Ok(());
         }
         let bytes = mutate(plan_seed(), &edits);
-        let _ = serde_json::from_slice::<scenethesis_agents::Plan>(&bytes);
+        let text = String::from_utf8_lossy(&bytes);
+        let _ = scenethesis_agents::FixedPlanner::from_json(&text, Path::new("plan.json"));
     }
+
+    #[test]
+    fn guidance_readers_survive_mutations(edits in mutations(), file in 0..3usize) {
+        static BUDGET: OnceLock<Budget> = OnceLock::new();
+        if BUDGET.get_or_init(|| Budget::new(SECONDS)).spent() {
+            return Ok(());
+        }
+        let name = ["camera.json", "labels.json", "ids.png"][file];
+        let tmp = tempfile::tempdir().unwrap();
+        for (file_name, bytes) in guidance_seed() {
+            let bytes = if *file_name == name { mutate(bytes, &edits) } else { bytes.clone() };
+            std::fs::write(tmp.path().join(file_name), bytes).unwrap();
+        }
+        let paths = GuidancePaths::in_dir(tmp.path());
+        let _ = read_guidance(&paths);
+    }
+}
+
+/// A 16 × 12 guidance folder's files: colour, depth, two labelled instances and the camera.
+fn guidance_seed() -> &'static [(&'static str, Vec<u8>)] {
+    static SEED: OnceLock<Vec<(&'static str, Vec<u8>)>> = OnceLock::new();
+    SEED.get_or_init(|| {
+        let (w, h) = (16u32, 12u32);
+        let png = |img: image::DynamicImage| {
+            let mut out = std::io::Cursor::new(Vec::new());
+            img.write_to(&mut out, image::ImageFormat::Png).unwrap();
+            out.into_inner()
+        };
+        let rgb = image::RgbImage::from_fn(w, h, |x, y| image::Rgb([x as u8 * 16, y as u8 * 20, 90]));
+        let ids = image::ImageBuffer::<image::Luma<u16>, Vec<u16>>::from_fn(w, h, |x, y| {
+            image::Luma([if y > 6 { 1 } else if x > 10 { 2 } else { 0 }])
+        });
+        let depth: Vec<f32> = (0..w * h).map(|i| 2.0 + (i / w) as f32 * 0.1).collect();
+        let labels = r#"{"1": {"id": "sofa_0", "category": "sofa"}, "2": {"id": "lamp_0", "category": "floor_lamp"}}"#;
+        let camera = r#"{"intrinsics": {"width": 16, "height": 12, "fx": 12.0, "fy": 12.0, "cx": 8.0, "cy": 6.0},
+"position": [0.0, 1.5, 3.0], "rotation": [-0.13, 0.0, 0.0, 0.99]}"#;
+        vec![
+            ("rgb.png", png(image::DynamicImage::ImageRgb8(rgb))),
+            ("depth.npy", scenethesis_vision::files::write_npy(w, h, &depth)),
+            ("ids.png", png(image::DynamicImage::ImageLuma16(ids))),
+            ("labels.json", labels.as_bytes().to_vec()),
+            ("camera.json", camera.as_bytes().to_vec()),
+        ]
+    })
 }
