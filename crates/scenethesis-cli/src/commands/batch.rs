@@ -51,21 +51,13 @@ pub struct BatchArgs {
 /// Runs `scenethesis batch`.
 pub fn run(args: BatchArgs) -> Result<()> {
     let file = batch::read_prompts(&args.prompts)?;
-    for skipped in &file.skipped {
-        eprintln!(
-            "warning: {} line {}: {}; skipped",
-            args.prompts.display(),
-            skipped.line,
-            skipped.reason
-        );
-    }
-    for cut in &file.cut {
-        eprintln!(
-            "warning: {} line {}: {}",
-            args.prompts.display(),
-            cut.line,
-            cut.note
-        );
+    let skipped = file
+        .skipped
+        .iter()
+        .map(|s| (s.line, format!("{}; skipped", s.reason)));
+    let cut = file.cut.iter().map(|c| (c.line, c.note.clone()));
+    for (line, message) in skipped.chain(cut) {
+        eprintln!("warning: {} line {line}: {message}", args.prompts.display());
     }
     let shard = if args.summarize {
         Shard::ALL
