@@ -114,7 +114,7 @@ def cases(work: Path, binary: str) -> list[Case]:
     many = plan(base)
     template = next(o for o in objects if o["id"] != anchor and o.get("parent") == "ground")
     many["objects"] = [objects[0]] + [dict(template, id=f"extra_{i}", relations=[]) for i in range(60_000)]
-    self_constraint = plan(base, constraints=[{"subject": anchor, "kind": "near", "target": anchor}])
+    self_constraint = plan(base, constraints=[{"subject": anchor, "kind": "beside", "target": anchor}])
     long_id = renamed(base, anchor, "a" * 256)
 
     # Guidance: 640 x 480 images of a known camera, the lower half one desk.
@@ -200,6 +200,9 @@ def limit() -> None:
 def run(case: Case, binary: str) -> dict:
     if case.setup:
         case.setup()
+    out = Path(case.args[case.args.index("--out") + 1]) if "--out" in case.args else None
+    if out is not None:
+        shutil.rmtree(out, ignore_errors=True)
     started = time.monotonic()
     try:
         proc = subprocess.run([binary, *case.args], capture_output=True, timeout=LIMIT_SECONDS, preexec_fn=limit)
@@ -209,6 +212,11 @@ def run(case: Case, binary: str) -> dict:
     seconds = time.monotonic() - started
     errors = [line for line in stderr.splitlines() if line.startswith("error")]
     ok = code in (0, 1) and "panicked" not in stderr and (code == 0 or len(errors) >= 1)
+    if ok and code == 0 and out is not None and (out / "scene.json").is_file():
+        # A scene reported written must be one the tool's own validator accepts.
+        check = subprocess.run([binary, "validate", str(out)], capture_output=True, timeout=LIMIT_SECONDS)
+        if check.returncode != 0:
+            ok, errors = False, ["validate refused the scene: " + check.stderr.decode(errors="replace").strip()]
     return {"case": case.name, "exit": code, "seconds": round(seconds, 1), "ok": ok,
             "error": errors[0][:300] if errors else "", "warnings": sum(1 for l in stderr.splitlines() if l.startswith("warning"))}
 
