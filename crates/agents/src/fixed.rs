@@ -4,11 +4,15 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
-use scenethesis_scene_graph::{Environment, ParentRef, RelationKind, GROUND_ID};
+use scenethesis_scene_graph::limits::{MAX_ID_BYTES, MAX_RELATIONS, MAX_WALL_HEIGHT};
+use scenethesis_scene_graph::{
+    is_printable_id, printable, Environment, ParentRef, RelationKind, GROUND_ID,
+};
 
 use crate::plan::{
-    ConstraintTarget, Plan, PlanError, PlanRequest, Planner, Zone, BACK_WALL, FRONT_WALL,
-    LEFT_WALL, RIGHT_WALL,
+    ConstraintTarget, Plan, PlanError, PlanRequest, PlannedObject, Planner, Zone, BACK_WALL,
+    FRONT_WALL, LEFT_WALL, MAX_AISLE, MAX_DOOR_CLEARANCE, MAX_PLANNED_OBJECTS,
+    MAX_PLAN_CONSTRAINTS, MAX_ROOM_SIDE, RIGHT_WALL,
 };
 
 /// The wall ids of a planned room.
@@ -65,238 +69,402 @@ pub enum PlanFileError {
     },
 }
 
-/// Checks that a plan holds together: a non-empty, unique id per object that does not name the
-/// ground or a wall; parents that are objects listed earlier (and a support kind that fits the
-/// parent); an anchor that is a ground object; relation and constraint targets that are
-/// planned objects or walls of the room; a positive room size and wall height and an aisle of
-/// at least 0.6 m. With `categories`, every object's category must be one of them. The first
-/// issue found is returned.
+/// Checks that a plan holds together and stays within the plan limits (`docs/limits.md`): a
+/// room of positive sides up to [`MAX_ROOM_SIDE`], a positive wall height up to
+/// [`MAX_WALL_HEIGHT`], an aisle from 0.6 m to [`MAX_AISLE`] and a door clearance up to
+/// [`MAX_DOOR_CLEARANCE`]; at most [`MAX_PLANNED_OBJECTS`] objects, [`MAX_RELATIONS`] relations
+/// per object and [`MAX_PLAN_CONSTRAINTS`] constraints; a unique id per object that the scene
+/// validator accepts ([`is_printable_id`]) and does not name the ground or a wall, and a
+/// category it accepts too; parents that are other objects listed earlier (and a support kind
+/// that fits the parent); an anchor that is a ground object; relation and constraint targets
+/// that are other planned objects or walls of the room. With `categories`, every object's
+/// category must be one of them. The first issue found is returned.
 pub fn check_plan(plan: &Plan, categories: Option<&BTreeSet<String>>) -> Result<(), PlanIssue> {
-    let positive = |v: f64| v.is_finite() && v > 0.0;
-    for (axis, v) in ["x", "z"].iter().zip(plan.room_size) {
-        if !positive(v) {
-            return Err(PlanIssue::new(
-                format!("room_size ({axis})"),
-                format!("expected a positive size in metres, found {v}"),
-            ));
-        }
-    }
-    if !positive(plan.wall_height) {
-        return Err(PlanIssue::new(
-            "wall_height",
-            format!(
-                "expected a positive height in metres, found {}",
-                plan.wall_height
-            ),
-        ));
-    }
-    if !(plan.aisle.is_finite() && plan.aisle >= 0.6) {
-        return Err(PlanIssue::new(
-            "aisle",
-            format!(
-                "expected a walkway width of at least 0.6 m, found {}",
-                plan.aisle
-            ),
-        ));
-    }
-    if !(plan.door_clearance.is_finite() && plan.door_clearance >= 0.0) {
-        return Err(PlanIssue::new(
-            "door_clearance",
-            format!(
-                "expected a non-negative depth in metres, found {}",
-                plan.door_clearance
-            ),
-        ));
-    }
+    check_room(plan)?;
+    check_counts(plan)?;
     let indoor = plan.environment == Environment::Indoor;
-    let is_wall = |id: &str| indoor && WALLS.contains(&id);
-
     let mut index: BTreeMap<&str, usize> = BTreeMap::new();
     for (i, object) in plan.objects.iter().enumerate() {
-        let field = |name: &str| format!("objects[{i}].{name}");
-        let id = object.id.as_str();
-        if id.trim().is_empty() {
+        check_object(plan, i, &mut index, categories)?;
+        check_zone(i, object, indoor)?;
+    }
+    check_relations(plan, &index, indoor)?;
+    check_anchor(plan)?;
+    check_constraints(plan, &index, indoor)
+}
+
+/// `text` escaped for a message and cut to 80 characters.
+fn shown(text: &str) -> String {
+    let text = printable(text);
+    if text.chars().count() > 80 {
+        format!("{}…", text.chars().take(79).collect::<String>())
+    } else {
+        text.into_owned()
+    }
+}
+
+/// Checks `value` of `field` is finite and within `min..=max` metres (`min` exclusive when
+/// `open_min`).
+fn check_range(
+    field: String,
+    value: f64,
+    (min, open_min): (f64, bool),
+    max: (f64, &str),
+    what: &str,
+) -> Result<(), PlanIssue> {
+    let low_ok = if open_min { value > min } else { value >= min };
+    if value.is_finite() && low_ok && value <= max.0 {
+        return Ok(());
+    }
+    let low = if open_min {
+        format!("more than {min}")
+    } else {
+        format!("at least {min}")
+    };
+    Err(PlanIssue::new(
+        field,
+        format!(
+            "expected {what} of {low} and at most {} m (the limit {}, see docs/limits.md), \
+             found {value}",
+            max.0, max.1
+        ),
+    ))
+}
+
+/// The room's size, wall height, aisle and door clearance.
+fn check_room(plan: &Plan) -> Result<(), PlanIssue> {
+    for (axis, v) in ["x", "z"].iter().zip(plan.room_size) {
+        check_range(
+            format!("room_size ({axis})"),
+            v,
+            (0.0, true),
+            (MAX_ROOM_SIDE, "MAX_ROOM_SIDE"),
+            "a size in metres",
+        )?;
+    }
+    check_range(
+        "wall_height".into(),
+        plan.wall_height,
+        (0.0, true),
+        (MAX_WALL_HEIGHT, "MAX_WALL_HEIGHT"),
+        "a height in metres",
+    )?;
+    check_range(
+        "aisle".into(),
+        plan.aisle,
+        (0.6, false),
+        (MAX_AISLE, "MAX_AISLE"),
+        "a walkway width in metres",
+    )?;
+    check_range(
+        "door_clearance".into(),
+        plan.door_clearance,
+        (0.0, false),
+        (MAX_DOOR_CLEARANCE, "MAX_DOOR_CLEARANCE"),
+        "a depth in metres",
+    )
+}
+
+/// The number of objects, relations per object and constraints.
+fn check_counts(plan: &Plan) -> Result<(), PlanIssue> {
+    let too_many = |field: String, what: &str, found: usize, limit: usize, name: &str| {
+        PlanIssue::new(
+            field,
+            format!("{found} {what}, more than the limit of {limit} ({name}, see docs/limits.md)"),
+        )
+    };
+    if plan.objects.len() > MAX_PLANNED_OBJECTS {
+        return Err(too_many(
+            "objects".into(),
+            "objects",
+            plan.objects.len(),
+            MAX_PLANNED_OBJECTS,
+            "MAX_PLANNED_OBJECTS",
+        ));
+    }
+    if let Some((i, o)) =
+        (plan.objects.iter().enumerate()).find(|(_, o)| o.relations.len() > MAX_RELATIONS)
+    {
+        return Err(too_many(
+            format!("objects[{i}].relations"),
+            "relations",
+            o.relations.len(),
+            MAX_RELATIONS,
+            "MAX_RELATIONS",
+        ));
+    }
+    if plan.constraints.len() > MAX_PLAN_CONSTRAINTS {
+        return Err(too_many(
+            "constraints".into(),
+            "constraints",
+            plan.constraints.len(),
+            MAX_PLAN_CONSTRAINTS,
+            "MAX_PLAN_CONSTRAINTS",
+        ));
+    }
+    Ok(())
+}
+
+/// Checks that `value` of `field` is an id the scene validator accepts.
+fn check_printable(field: String, value: &str) -> Result<(), PlanIssue> {
+    if is_printable_id(value) {
+        return Ok(());
+    }
+    Err(PlanIssue::new(
+        field,
+        format!(
+            "`{}` ({} bytes) cannot be used: expected 1 to {MAX_ID_BYTES} bytes of printable \
+             characters (no control or bidirectional formatting characters) without leading or \
+             trailing spaces, as scene.json requires",
+            shown(value),
+            value.len()
+        ),
+    ))
+}
+
+/// Object `i`: its id (entered in `index`), category, parent and support.
+fn check_object<'p>(
+    plan: &'p Plan,
+    i: usize,
+    index: &mut BTreeMap<&'p str, usize>,
+    categories: Option<&BTreeSet<String>>,
+) -> Result<(), PlanIssue> {
+    let object = &plan.objects[i];
+    let field = |name: &str| format!("objects[{i}].{name}");
+    let id = object.id.as_str();
+    if id.trim().is_empty() {
+        return Err(PlanIssue::new(
+            field("id"),
+            "expected a non-empty object id",
+        ));
+    }
+    check_printable(field("id"), id)?;
+    if id == GROUND_ID || WALLS.contains(&id) {
+        return Err(PlanIssue::new(
+            field("id"),
+            format!("`{id}` is reserved for the ground or a wall; pick another id"),
+        ));
+    }
+    if let Some(first) = index.insert(id, i) {
+        return Err(PlanIssue::new(
+            field("id"),
+            format!("duplicate id `{id}` (already used by objects[{first}])"),
+        ));
+    }
+    check_printable(field("category"), &object.category)?;
+    if let Some(categories) = categories {
+        if !categories.contains(&object.category) {
             return Err(PlanIssue::new(
-                field("id"),
-                "expected a non-empty object id",
-            ));
-        }
-        if id == GROUND_ID || WALLS.contains(&id) {
-            return Err(PlanIssue::new(
-                field("id"),
-                format!("`{id}` is reserved for the ground or a wall; pick another id"),
-            ));
-        }
-        if let Some(first) = index.insert(id, i) {
-            return Err(PlanIssue::new(
-                field("id"),
-                format!("duplicate id `{id}` (already used by objects[{first}])"),
-            ));
-        }
-        if let Some(categories) = categories {
-            if !categories.contains(&object.category) {
-                return Err(PlanIssue::new(
-                    field("category"),
-                    format!(
-                        "unknown category `{}`; expected one of the {} categories of the asset \
-                         source (see `scenethesis assets`)",
-                        object.category,
-                        categories.len()
-                    ),
-                ));
-            }
-        }
-        let wall_parent = |wall: &str| {
-            PlanIssue::new(
-                field("parent"),
+                field("category"),
                 format!(
-                    "`{wall}` is a wall; a plan hangs an object on a wall with parent `ground` and \
-                     zone `wall-mounted` (the layout picks the wall, and scene.json then names it \
-                     as the parent with support `mounted`)"
+                    "unknown category `{}`; expected one of the {} categories of the asset \
+                     source (see `scenethesis assets`)",
+                    object.category,
+                    categories.len()
                 ),
-            )
-        };
-        match &object.parent {
-            ParentRef::Wall(wall) => return Err(wall_parent(wall)),
-            ParentRef::Ground if object.support == RelationKind::Mounted => {
-                return Err(PlanIssue::new(
-                    field("support"),
-                    "`mounted` is what scene.json says of an object hanging on a wall; in a plan \
-                     give it support `against-wall` and zone `wall-mounted`",
-                ));
-            }
-            ParentRef::Ground => {
-                if !matches!(
-                    object.support,
-                    RelationKind::OnFloor | RelationKind::AgainstWall
-                ) {
-                    return Err(PlanIssue::new(
-                        field("support"),
-                        format!(
-                            "`{}` cannot rest on the ground; expected `on-floor` or \
-                             `against-wall` for an object whose parent is `ground`",
-                            object.support
-                        ),
-                    ));
-                }
-                if object.support == RelationKind::AgainstWall && !indoor {
-                    return Err(PlanIssue::new(
-                        field("support"),
-                        "`against-wall` needs walls, but the plan is outdoor",
-                    ));
-                }
-            }
-            ParentRef::Object(parent) => {
-                match index.get(parent.as_str()) {
-                    Some(&p) if p < i => {}
-                    Some(_) => unreachable!("ids are unique and this one was just inserted"),
-                    None if WALLS.contains(&parent.as_str()) => return Err(wall_parent(parent)),
-                    None => {
-                        let known = plan.objects.iter().any(|o| &o.id == parent);
-                        return Err(PlanIssue::new(
-                            field("parent"),
-                            if known {
-                                format!(
-                                    "`{parent}` is listed after `{id}`; list parents before \
-                                     the objects resting on them"
-                                )
-                            } else {
-                                format!("unknown object `{parent}`; expected `ground` or the id of a planned object")
-                            },
-                        ));
-                    }
-                }
-                if !matches!(
-                    object.support,
-                    RelationKind::On | RelationKind::Inside | RelationKind::Under
-                ) {
-                    return Err(PlanIssue::new(
-                        field("support"),
-                        format!(
-                            "`{}` cannot hold `{id}` on `{parent}`; expected `on`, `inside` or \
-                             `under` for an object whose parent is another object",
-                            object.support
-                        ),
-                    ));
-                }
-            }
-        }
-        if let Zone::Wall { wall: Some(wall) } = &object.zone {
-            if !is_wall(wall) {
-                return Err(PlanIssue::new(
-                    field("zone.wall"),
-                    format!(
-                        "unknown wall `{wall}`; expected one of {}",
-                        WALLS.join(", ")
-                    ),
-                ));
-            }
+            ));
         }
     }
-    let known = |target: &str| index.contains_key(target) || is_wall(target);
+    check_parent(plan, i, index)
+}
+
+/// The issue of an object whose parent is a wall.
+fn wall_parent(field: String, wall: &str) -> PlanIssue {
+    PlanIssue::new(
+        field,
+        format!(
+            "`{}` is a wall; a plan hangs an object on a wall with parent `ground` and \
+             zone `wall-mounted` (the layout picks the wall, and scene.json then names it \
+             as the parent with support `mounted`)",
+            shown(wall)
+        ),
+    )
+}
+
+/// Object `i`'s parent and the support kind it rests on it with.
+fn check_parent(plan: &Plan, i: usize, index: &BTreeMap<&str, usize>) -> Result<(), PlanIssue> {
+    let object = &plan.objects[i];
+    let field = |name: &str| format!("objects[{i}].{name}");
+    match &object.parent {
+        ParentRef::Wall(wall) => Err(wall_parent(field("parent"), wall)),
+        ParentRef::Ground => check_ground_support(object, field("support"), plan.environment),
+        ParentRef::Object(parent) => {
+            check_object_parent(plan, i, parent, index)?;
+            if !matches!(
+                object.support,
+                RelationKind::On | RelationKind::Inside | RelationKind::Under
+            ) {
+                return Err(PlanIssue::new(
+                    field("support"),
+                    format!(
+                        "`{}` cannot hold `{}` on `{parent}`; expected `on`, `inside` or \
+                         `under` for an object whose parent is another object",
+                        object.support, object.id
+                    ),
+                ));
+            }
+            Ok(())
+        }
+    }
+}
+
+/// The support of an object standing on the ground.
+fn check_ground_support(
+    object: &PlannedObject,
+    field: String,
+    environment: Environment,
+) -> Result<(), PlanIssue> {
+    match object.support {
+        RelationKind::Mounted => Err(PlanIssue::new(
+            field,
+            "`mounted` is what scene.json says of an object hanging on a wall; in a plan \
+             give it support `against-wall` and zone `wall-mounted`",
+        )),
+        RelationKind::AgainstWall if environment != Environment::Indoor => Err(PlanIssue::new(
+            field,
+            "`against-wall` needs walls, but the plan is outdoor",
+        )),
+        RelationKind::OnFloor | RelationKind::AgainstWall => Ok(()),
+        other => Err(PlanIssue::new(
+            field,
+            format!(
+                "`{other}` cannot rest on the ground; expected `on-floor` or \
+                 `against-wall` for an object whose parent is `ground`"
+            ),
+        )),
+    }
+}
+
+/// Object `i`'s parent `parent` is another object listed before it.
+fn check_object_parent(
+    plan: &Plan,
+    i: usize,
+    parent: &str,
+    index: &BTreeMap<&str, usize>,
+) -> Result<(), PlanIssue> {
+    let field = format!("objects[{i}].parent");
+    let id = plan.objects[i].id.as_str();
+    let message = match index.get(parent) {
+        Some(&p) if p < i => return Ok(()),
+        Some(_) => format!("`{id}` cannot rest on itself; expected `ground` or the id of another planned object listed before it"),
+        None if WALLS.contains(&parent) => return Err(wall_parent(field, parent)),
+        None if plan.objects.iter().any(|o| o.id == parent) => format!(
+            "`{parent}` is listed after `{id}`; list parents before the objects resting on them"
+        ),
+        None => format!(
+            "unknown object `{}`; expected `ground` or the id of a planned object",
+            shown(parent)
+        ),
+    };
+    Err(PlanIssue::new(field, message))
+}
+
+/// A wall zone names a wall of an indoor room.
+fn check_zone(i: usize, object: &PlannedObject, indoor: bool) -> Result<(), PlanIssue> {
+    match &object.zone {
+        Zone::Wall { wall: Some(wall) } if !(indoor && WALLS.contains(&wall.as_str())) => {
+            Err(PlanIssue::new(
+                format!("objects[{i}].zone.wall"),
+                format!(
+                    "unknown wall `{}`; expected one of {}",
+                    shown(wall),
+                    WALLS.join(", ")
+                ),
+            ))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// Relation targets are other planned objects or walls of the room.
+fn check_relations(
+    plan: &Plan,
+    index: &BTreeMap<&str, usize>,
+    indoor: bool,
+) -> Result<(), PlanIssue> {
+    let known = |target: &str| index.contains_key(target) || (indoor && WALLS.contains(&target));
     for (i, object) in plan.objects.iter().enumerate() {
         for (j, relation) in object.relations.iter().enumerate() {
+            let field = format!("objects[{i}].relations[{j}].target");
             let target = relation.target.as_str();
             if target == object.id {
                 return Err(PlanIssue::new(
-                    format!("objects[{i}].relations[{j}].target"),
+                    field,
                     format!("`{}` cannot relate to itself", object.id),
                 ));
             }
             if !known(target) {
+                let walls = if indoor {
+                    " or a wall (wall_0 … wall_3)"
+                } else {
+                    ""
+                };
                 return Err(PlanIssue::new(
-                    format!("objects[{i}].relations[{j}].target"),
+                    field,
                     format!(
-                        "unknown object `{target}`; expected the id of a planned object{}",
-                        if indoor {
-                            " or a wall (wall_0 … wall_3)"
-                        } else {
-                            ""
-                        }
+                        "unknown object `{}`; expected the id of a planned object{walls}",
+                        shown(target)
                     ),
                 ));
             }
         }
     }
+    Ok(())
+}
+
+/// The anchor is a planned object standing on the ground.
+fn check_anchor(plan: &Plan) -> Result<(), PlanIssue> {
     match plan.object(&plan.anchor) {
-        None => {
-            return Err(PlanIssue::new(
-                "anchor",
-                format!(
-                    "unknown object `{}`; expected the id of a planned object",
-                    plan.anchor
-                ),
-            ))
-        }
-        Some(anchor) if anchor.parent != ParentRef::Ground => {
-            return Err(PlanIssue::new(
-                "anchor",
-                format!(
-                    "`{}` rests on `{}`; the anchor must stand on the ground",
-                    plan.anchor, anchor.parent
-                ),
-            ))
-        }
-        Some(_) => {}
+        None => Err(PlanIssue::new(
+            "anchor",
+            format!(
+                "unknown object `{}`; expected the id of a planned object",
+                shown(&plan.anchor)
+            ),
+        )),
+        Some(anchor) if anchor.parent != ParentRef::Ground => Err(PlanIssue::new(
+            "anchor",
+            format!(
+                "`{}` rests on `{}`; the anchor must stand on the ground",
+                plan.anchor, anchor.parent
+            ),
+        )),
+        Some(_) => Ok(()),
     }
+}
+
+/// Constraint subjects are planned objects; targets are other planned objects or walls.
+fn check_constraints(
+    plan: &Plan,
+    index: &BTreeMap<&str, usize>,
+    indoor: bool,
+) -> Result<(), PlanIssue> {
+    let unknown = |id: &str| {
+        format!(
+            "unknown object `{}`; expected the id of a planned object",
+            shown(id)
+        )
+    };
     for (k, constraint) in plan.constraints.iter().enumerate() {
-        if !index.contains_key(constraint.subject.as_str()) {
+        let subject = constraint.subject.as_str();
+        if !index.contains_key(subject) {
             return Err(PlanIssue::new(
                 format!("constraints[{k}].subject"),
-                format!(
-                    "unknown object `{}`; expected the id of a planned object",
-                    constraint.subject
-                ),
+                unknown(subject),
             ));
         }
         let bad = match &constraint.target {
-            ConstraintTarget::Object(id) if !index.contains_key(id.as_str()) => Some(format!(
-                "unknown object `{id}`; expected the id of a planned object"
+            ConstraintTarget::Object(id) if id == subject => Some(format!(
+                "`{subject}` cannot be constrained to itself; expected another planned object"
             )),
-            ConstraintTarget::Wall(wall) if !is_wall(wall) => Some(format!(
-                "unknown wall `{wall}`; expected one of {}",
-                WALLS.join(", ")
-            )),
+            ConstraintTarget::Object(id) if !index.contains_key(id.as_str()) => Some(unknown(id)),
+            ConstraintTarget::Wall(wall) if !(indoor && WALLS.contains(&wall.as_str())) => {
+                Some(format!(
+                    "unknown wall `{}`; expected one of {}",
+                    shown(wall),
+                    WALLS.join(", ")
+                ))
+            }
             _ => None,
         };
         if let Some(message) = bad {

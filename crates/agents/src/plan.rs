@@ -54,6 +54,17 @@ pub const MAX_COUNT_PER_OBJECT: u32 = 50;
 /// The most objects one plan holds; objects the prompt names come first, and the plan's
 /// `limits` say what was left out.
 pub const MAX_PLANNED_OBJECTS: usize = 250;
+/// The longest side of a planned room in metres, however the plan arrives (the offline planner
+/// stays well below it; a model's answer is clamped to it; a plan file beyond it is refused).
+pub const MAX_ROOM_SIDE: f64 = 40.0;
+/// The shortest side a model's answer may give a room, in metres (shorter answers are raised).
+pub const MIN_ROOM_SIDE: f64 = 2.0;
+/// The widest walkway (`aisle`) a plan may ask for, in metres.
+pub const MAX_AISLE: f64 = 5.0;
+/// The deepest free space in front of the door (`door_clearance`) a plan may ask for, in metres.
+pub const MAX_DOOR_CLEARANCE: f64 = 5.0;
+/// The most hard constraints one plan holds.
+pub const MAX_PLAN_CONSTRAINTS: usize = 1000;
 
 /// What a planner is asked for.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]

@@ -202,3 +202,182 @@ fn a_missing_file_is_a_read_error_naming_it() {
     assert!(matches!(err, PlanFileError::Read { .. }));
     assert!(err.to_string().contains("/nonexistent/plan.json"), "{err}");
 }
+
+#[test]
+fn an_object_resting_on_itself_is_refused_not_a_panic() {
+    let mut p = knowledge_plan();
+    let i = p
+        .objects
+        .iter()
+        .position(|o| o.parent != ParentRef::Ground)
+        .expect("the plan has a supported object");
+    p.objects[i].parent = ParentRef::Object(p.objects[i].id.clone());
+    let (field, message) = invalid(&p);
+    assert_eq!(field, format!("objects[{i}].parent"));
+    assert!(
+        message.contains(&format!("`{}` cannot rest on itself", p.objects[i].id)),
+        "{message}"
+    );
+}
+
+#[test]
+fn room_size_wall_height_aisle_and_door_clearance_are_bounded() {
+    use scenethesis_agents::{MAX_AISLE, MAX_DOOR_CLEARANCE, MAX_ROOM_SIDE};
+    use scenethesis_scene_graph::limits::MAX_WALL_HEIGHT;
+    let at = |edit: &dyn Fn(&mut Plan)| {
+        let mut p = knowledge_plan();
+        edit(&mut p);
+        p
+    };
+    // At each limit: accepted.
+    for p in [
+        at(&|p| p.room_size = [MAX_ROOM_SIDE, MAX_ROOM_SIDE]),
+        at(&|p| p.wall_height = MAX_WALL_HEIGHT),
+        at(&|p| p.aisle = MAX_AISLE),
+        at(&|p| p.door_clearance = MAX_DOOR_CLEARANCE),
+    ] {
+        check_plan(&p, None).unwrap();
+    }
+    // Just past it, or the issue's sizes: refused naming the field and the limit.
+    for (p, want_field, limit) in [
+        (
+            at(&|p| p.room_size[0] = 1e6),
+            "room_size (x)",
+            "MAX_ROOM_SIDE",
+        ),
+        (
+            at(&|p| p.room_size[1] = MAX_ROOM_SIDE + 0.01),
+            "room_size (z)",
+            "MAX_ROOM_SIDE",
+        ),
+        (
+            at(&|p| p.wall_height = 1e6),
+            "wall_height",
+            "MAX_WALL_HEIGHT",
+        ),
+        (at(&|p| p.aisle = MAX_AISLE + 0.01), "aisle", "MAX_AISLE"),
+        (at(&|p| p.aisle = 0.59), "aisle", "MAX_AISLE"),
+        (
+            at(&|p| p.door_clearance = 1e9),
+            "door_clearance",
+            "MAX_DOOR_CLEARANCE",
+        ),
+        (
+            at(&|p| p.door_clearance = -0.1),
+            "door_clearance",
+            "MAX_DOOR_CLEARANCE",
+        ),
+    ] {
+        let (field, message) = invalid(&p);
+        assert_eq!(field, want_field);
+        assert!(message.contains(limit), "{message}");
+    }
+    // JSON cannot hold a NaN; a plan built in code can.
+    let issue = check_plan(&at(&|p| p.wall_height = f64::NAN), None).unwrap_err();
+    assert_eq!(issue.field, "wall_height");
+}
+
+#[test]
+fn a_constraint_on_itself_is_refused() {
+    use scenethesis_agents::{ConstraintTarget, PlanConstraint};
+    let mut p = knowledge_plan();
+    let id = p.objects[0].id.clone();
+    p.constraints.push(PlanConstraint {
+        subject: id.clone(),
+        kind: RelationKind::Beside,
+        target: ConstraintTarget::Object(id.clone()),
+        phrase: "beside itself".into(),
+    });
+    let k = p.constraints.len() - 1;
+    let (field, message) = invalid(&p);
+    assert_eq!(field, format!("constraints[{k}].target"));
+    assert!(
+        message.contains("cannot be constrained to itself"),
+        "{message}"
+    );
+}
+
+#[test]
+fn ids_and_categories_the_scene_validator_refuses_are_refused() {
+    for bad in [
+        "lamp\u{1b}[31m".to_string(),
+        "lamp\n0".to_string(),
+        "lamp\u{202e}0".to_string(),
+        " lamp".to_string(),
+        "x".repeat(10_000),
+    ] {
+        let mut p = knowledge_plan();
+        let i = p.objects.len() - 1;
+        p.objects[i].id = bad.clone();
+        let (field, message) = invalid(&p);
+        assert_eq!(field, format!("objects[{i}].id"), "{bad:?}");
+        assert!(message.contains("printable"), "{message}");
+        assert!(
+            !message.contains('\u{1b}') && !message.contains('\n'),
+            "{message}"
+        );
+        assert!(message.len() < 600, "the id is shortened: {message}");
+
+        let mut p = knowledge_plan();
+        p.objects[i].category = bad.clone();
+        let (field, _) = invalid(&p);
+        assert_eq!(field, format!("objects[{i}].category"), "{bad:?}");
+    }
+    // The longest id scene.json accepts is accepted.
+    let mut p = knowledge_plan();
+    let mut o = p.objects[0].clone();
+    o.id = "y".repeat(scenethesis_scene_graph::limits::MAX_ID_BYTES);
+    o.relations.clear();
+    p.objects.push(o);
+    check_plan(&p, None).unwrap();
+}
+
+#[test]
+fn object_relation_and_constraint_counts_are_capped() {
+    use scenethesis_agents::{MAX_PLANNED_OBJECTS, MAX_PLAN_CONSTRAINTS};
+    let base = knowledge_plan();
+    let extra = |n: usize| {
+        let mut p = base.clone();
+        let template = p
+            .objects
+            .iter()
+            .find(|o| o.parent == ParentRef::Ground && o.id != p.anchor)
+            .unwrap()
+            .clone();
+        for k in 0..n {
+            let mut o = template.clone();
+            o.id = format!("extra_{k}");
+            o.relations.clear();
+            p.objects.push(o);
+        }
+        p
+    };
+    let at_limit = extra(MAX_PLANNED_OBJECTS - base.objects.len());
+    assert!(check_plan(&at_limit, None).is_ok());
+    let (field, message) = invalid(&extra(MAX_PLANNED_OBJECTS + 1 - base.objects.len()));
+    assert_eq!(field, "objects");
+    assert!(
+        message.contains(&format!("{} objects", MAX_PLANNED_OBJECTS + 1))
+            && message.contains("MAX_PLANNED_OBJECTS"),
+        "{message}"
+    );
+
+    let mut p = base.clone();
+    let id = p.objects[1].id.clone();
+    p.objects[0].relations = vec![Relation::new(RelationKind::Beside, id); 257];
+    let (field, message) = invalid(&p);
+    assert_eq!(field, "objects[0].relations");
+    assert!(message.contains("MAX_RELATIONS"), "{message}");
+
+    let mut p = base;
+    let constraint = scenethesis_agents::PlanConstraint {
+        subject: p.objects[0].id.clone(),
+        kind: RelationKind::Beside,
+        target: scenethesis_agents::ConstraintTarget::Object(p.objects[1].id.clone()),
+        phrase: String::new(),
+    };
+    p.constraints = vec![constraint; MAX_PLAN_CONSTRAINTS + 1];
+    let (field, message) = invalid(&p);
+    assert_eq!(field, "constraints");
+    assert!(message.contains("MAX_PLAN_CONSTRAINTS"), "{message}");
+}

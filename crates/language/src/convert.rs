@@ -6,15 +6,21 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use scenethesis_agents::{
     ConstraintTarget, Layer, Plan, PlanConstraint, PlannedObject, Zone, BACK_WALL, FRONT_WALL,
-    LEFT_WALL, RIGHT_WALL,
+    LEFT_WALL, MAX_ROOM_SIDE, MIN_ROOM_SIDE, RIGHT_WALL,
 };
-use scenethesis_scene_graph::{Environment, ParentRef, Relation, RelationKind};
+use scenethesis_scene_graph::limits::{MAX_ID_BYTES, MAX_RELATIONS};
+use scenethesis_scene_graph::{
+    is_printable_id, printable, Environment, ParentRef, Relation, RelationKind,
+};
 use serde::Deserialize;
+use serde_json::Value;
+
+use crate::schema::MAX_ANSWER_OBJECTS;
 
 const WALLS: [&str; 4] = [BACK_WALL, LEFT_WALL, FRONT_WALL, RIGHT_WALL];
 
-/// The model's answer, as the schema shapes it.
-#[derive(Debug, Clone, Deserialize)]
+/// The model's answer, as the schema shapes it; read leniently by [`Answer::read`].
+#[derive(Debug, Clone, Default)]
 pub(crate) struct Answer {
     pub(crate) interpretation: String,
     pub(crate) detailed: bool,
@@ -32,13 +38,34 @@ pub(crate) struct Answer {
 pub(crate) struct AnswerObject {
     id: String,
     category: String,
+    #[serde(default = "middle")]
     layer: Layer,
     support: RelationKind,
     parent: String,
+    #[serde(default)]
     zone: String,
+    #[serde(default)]
     wall: String,
+    #[serde(default, deserialize_with = "lenient_relations")]
     relations: Vec<AnswerRelation>,
+    #[serde(default)]
     stated: bool,
+}
+
+fn middle() -> Layer {
+    Layer::Middle
+}
+
+/// The relations that parse; a malformed one is left out rather than the whole object.
+fn lenient_relations<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> Result<Vec<AnswerRelation>, D::Error> {
+    let values = Vec::<Value>::deserialize(d)?;
+    Ok(values
+        .into_iter()
+        .take(MAX_RELATIONS)
+        .filter_map(|v| serde_json::from_value(v).ok())
+        .collect())
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -51,6 +78,107 @@ pub(crate) struct AnswerRelation {
 pub(crate) struct Unavailable {
     name: String,
     reason: String,
+}
+
+/// The room side assumed when an answer gives none, in metres.
+const DEFAULT_ROOM_SIDE: f64 = 6.0;
+
+/// `text` escaped for a note or message and cut to 80 characters.
+pub(crate) fn shown(text: &str) -> String {
+    let text = printable(text);
+    if text.chars().count() > 80 {
+        format!("{}…", text.chars().take(79).collect::<String>())
+    } else {
+        text.into_owned()
+    }
+}
+
+impl Answer {
+    /// Reads an answer field by field: a missing or mistyped field takes its default, an object
+    /// that does not fit the schema is left out, and objects past [`MAX_ANSWER_OBJECTS`] are
+    /// dropped; each of these is said in the returned notes.
+    pub(crate) fn read(value: &Value) -> (Self, Vec<String>) {
+        let mut notes = Vec::new();
+        let text = |key: &str| {
+            value
+                .get(key)
+                .and_then(Value::as_str)
+                .unwrap_or("")
+                .to_string()
+        };
+        let mut side = |key: &str| match value.get(key).and_then(Value::as_f64) {
+            Some(v) => v,
+            None => {
+                notes.push(format!(
+                    "`{key}` missing from the answer; {DEFAULT_ROOM_SIDE} m assumed"
+                ));
+                DEFAULT_ROOM_SIDE
+            }
+        };
+        let (room_width, room_depth) = (side("room_width"), side("room_depth"));
+        let objects = read_objects(value.get("objects"), &mut notes);
+        let unavailable = value
+            .get("unavailable")
+            .and_then(Value::as_array)
+            .map(|a| {
+                a.iter()
+                    .take(MAX_ANSWER_OBJECTS)
+                    .filter_map(|u| serde_json::from_value(u.clone()).ok())
+                    .collect()
+            })
+            .unwrap_or_default();
+        let answer = Self {
+            interpretation: text("interpretation"),
+            detailed: value
+                .get("detailed")
+                .and_then(Value::as_bool)
+                .unwrap_or(false),
+            scene_type: text("scene_type"),
+            environment: text("environment"),
+            room_width,
+            room_depth,
+            anchor: text("anchor"),
+            objects,
+            unavailable,
+            description: text("description"),
+        };
+        (answer, notes)
+    }
+}
+
+/// The objects of an answer that fit the schema, at most [`MAX_ANSWER_OBJECTS`].
+fn read_objects(objects: Option<&Value>, notes: &mut Vec<String>) -> Vec<AnswerObject> {
+    let Some(items) = objects.and_then(Value::as_array) else {
+        notes.push("the answer has no `objects` list".to_string());
+        return Vec::new();
+    };
+    if items.len() > MAX_ANSWER_OBJECTS {
+        notes.push(format!(
+            "the answer lists {} objects; the first {MAX_ANSWER_OBJECTS} kept (the most the plan \
+             schema allows, MAX_ANSWER_OBJECTS)",
+            items.len()
+        ));
+    }
+    let mut dropped = Vec::new();
+    let kept = items
+        .iter()
+        .take(MAX_ANSWER_OBJECTS)
+        .enumerate()
+        .filter_map(|(i, item)| match serde_json::from_value(item.clone()) {
+            Ok(o) => Some(o),
+            Err(e) => {
+                dropped.push(format!("objects[{i}] ({})", shown(&e.to_string())));
+                None
+            }
+        })
+        .collect();
+    if !dropped.is_empty() {
+        notes.push(format!(
+            "left out what does not fit the plan schema: {}",
+            dropped.join(", ")
+        ));
+    }
+    kept
 }
 
 /// A converted plan and what is weak about it.
@@ -134,6 +262,13 @@ fn round_cm(x: f64) -> f64 {
     (x * 100.0).round() / 100.0
 }
 
+/// A room side from the answer, within [`MIN_ROOM_SIDE`]..=[`MAX_ROOM_SIDE`] (a non-finite one
+/// becomes the default).
+fn room_side(v: f64) -> f64 {
+    let v = if v.is_finite() { v } else { DEFAULT_ROOM_SIDE };
+    round_cm(v.clamp(MIN_ROOM_SIDE, MAX_ROOM_SIDE))
+}
+
 /// Converts a schema-valid answer for `prompt` over the `available` categories.
 pub(crate) fn convert(
     answer: &Answer,
@@ -152,20 +287,29 @@ pub(crate) fn convert(
     let mut kept: Vec<(&AnswerObject, String, String)> = Vec::new(); // (object, id, category)
     for o in &answer.objects {
         let Some(category) = nearest_category(&o.category, available) else {
-            unknown.push(format!("`{}` ({})", o.category, o.id));
+            unknown.push(format!("`{}` ({})", shown(&o.category), shown(&o.id)));
             continue;
         };
         if normalise(&category) != normalise(&o.category) {
             notes.push(format!(
                 "`{}` ({}) mapped to the nearest library category `{category}`",
-                o.category, o.id
+                shown(&o.category),
+                shown(&o.id)
             ));
         }
         let mut id = o.id.trim().to_string();
-        if id.is_empty() || taken.contains(&id) || WALLS.contains(&id.as_str()) || id == "ground" {
+        let usable = is_printable_id(&id);
+        if !usable || taken.contains(&id) || WALLS.contains(&id.as_str()) || id == "ground" {
             let mut n = 0;
             while taken.contains(&format!("{category}_{n}")) {
                 n += 1;
+            }
+            if !usable && !id.is_empty() {
+                notes.push(format!(
+                    "id `{}` cannot be written to scene.json (control or bidirectional \
+                     characters, or longer than {MAX_ID_BYTES} bytes); renamed {category}_{n}",
+                    shown(&id)
+                ));
             }
             id = format!("{category}_{n}");
         }
@@ -184,7 +328,11 @@ pub(crate) fn convert(
         ));
     }
     for u in &answer.unavailable {
-        notes.push(format!("unavailable `{}`: {}", u.name, u.reason));
+        notes.push(format!(
+            "unavailable `{}`: {}",
+            shown(&u.name),
+            printable(&u.reason)
+        ));
     }
 
     // 2. Objects with consistent support, parent, zone and relations.
@@ -198,10 +346,14 @@ pub(crate) fn convert(
         let (support, parent, mut zone) = match (supported, parent_id) {
             (true, Some(p)) => (o.support, ParentRef::Object(p), Zone::Supported),
             (true, None) => {
-                notes.push(format!(
-                    "{id}: parent `{}` is not in the plan; placed on the floor instead",
-                    o.parent
-                ));
+                notes.push(if id_map.get(&o.parent) == Some(id) {
+                    format!("{id}: rests on itself; placed on the floor instead")
+                } else {
+                    format!(
+                        "{id}: parent `{}` is not in the plan; placed on the floor instead",
+                        shown(&o.parent)
+                    )
+                });
                 (RelationKind::OnFloor, ParentRef::Ground, Zone::Free)
             }
             (false, _) => {
@@ -242,7 +394,8 @@ pub(crate) fn convert(
                 Some(t) if !r.kind.is_support() => relations.push(Relation::new(r.kind, t)),
                 _ => notes.push(format!(
                     "{id}: relation {} `{}` dropped (no such object)",
-                    r.kind, r.target
+                    r.kind,
+                    shown(&r.target)
                 )),
             }
         }
@@ -274,7 +427,7 @@ pub(crate) fn convert(
     if anchor.is_none() {
         issues.push(format!(
             "the anchor `{}` is not a floor-standing object of the plan",
-            answer.anchor
+            shown(&answer.anchor)
         ));
     }
     if !answer.detailed && objects.len() < min_objects {
@@ -303,10 +456,7 @@ pub(crate) fn convert(
         } else {
             Environment::Outdoor
         },
-        room_size: [
-            round_cm(answer.room_width.clamp(2.0, 40.0)),
-            round_cm(answer.room_depth.clamp(2.0, 40.0)),
-        ],
+        room_size: [room_side(answer.room_width), room_side(answer.room_depth)],
         wall_height: 2.8,
         aisle: 0.9,
         door_clearance: 1.0,
@@ -320,7 +470,7 @@ pub(crate) fn convert(
         notes: {
             let mut n = vec![format!(
                 "model interpretation: {}",
-                answer.interpretation.trim()
+                printable(answer.interpretation.trim())
             )];
             n.extend(notes);
             n

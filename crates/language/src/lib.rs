@@ -61,9 +61,15 @@
 
 mod convert;
 mod planner;
+mod salvage;
 mod schema;
 mod vlm_judge;
 
 pub use planner::{LlmPlanner, MIN_OBJECTS};
-pub use schema::plan_schema;
-pub use vlm_judge::{review_schema, ObjectReason, VlmJudge, VlmReview, VlmThresholds};
+pub use schema::{
+    plan_max_tokens, plan_schema, MAX_ANSWER_OBJECTS, PLAN_OVERHEAD_TOKENS, TOKENS_PER_OBJECT,
+};
+pub use vlm_judge::{
+    review_max_tokens, review_schema, ObjectReason, VlmJudge, VlmReview, VlmThresholds,
+    MAX_REVIEW_OBJECTS, MAX_REVIEW_TEXT_CHARS,
+};

@@ -5,12 +5,14 @@ use std::collections::BTreeSet;
 
 use scenethesis_agents::{
     KnowledgePlanner, Plan, PlanError, PlanRequest, PlannedObject, Planner, Zone,
+    MAX_PLANNED_OBJECTS,
 };
 use scenethesis_models::{ChatModel, ChatRequest, Message};
 use scenethesis_scene_graph::ParentRef;
 
 use crate::convert::{convert, order, Answer, Converted};
-use crate::schema::plan_schema;
+use crate::salvage::close_truncated;
+use crate::schema::{plan_max_tokens, plan_schema};
 
 /// Objects a plan for a simple prompt must have.
 pub const MIN_OBJECTS: usize = 15;
@@ -43,10 +45,16 @@ Ids are the category with a number: shelf_0, shelf_1, ...";
 /// [`Plan`] type. A weak answer (too few objects for a simple prompt, categories the library
 /// lacks, no usable anchor) is re-asked once with the problems listed; if it is still weak,
 /// the plan is completed from the offline [`KnowledgePlanner`] (missing anchor, objects up to
-/// [`MIN_OBJECTS`]) with a note, so a run does not fail because the model is small. Provider
-/// failures (unreachable, timeouts, HTTP errors, an answer that is not JSON or violates the
-/// plan schema after the client's repair round) are errors naming the endpoint and model: no
-/// plan is invented from an answer that cannot be read.
+/// [`MIN_OBJECTS`]) with a note, so a run does not fail because the model is small.
+///
+/// Every request states `max_tokens` ([`crate::plan_max_tokens`]: what the schema's largest
+/// answer needs). An answer that still breaks the schema after the client's repair round, or
+/// is cut off mid-object, is salvaged rather than refused: the complete objects are kept (at
+/// most [`crate::MAX_ANSWER_OBJECTS`]), the open brackets closed, unknown categories and
+/// unusable ids dropped or renamed with a note, self-parents and support loops put on the
+/// floor; the plan is then completed from offline knowledge without re-asking. Only transport
+/// failures (unreachable, timeouts, HTTP errors) are errors naming the endpoint and model; an
+/// answer with no JSON object at all is re-asked once, then planned offline with a note.
 #[derive(Debug)]
 pub struct LlmPlanner<M> {
     model: M,
@@ -57,8 +65,10 @@ pub struct LlmPlanner<M> {
 
 /// What one model round gave.
 enum Round {
-    /// A plan, maybe with issues, and the answer text.
-    Plan(Box<Converted>, String),
+    /// A plan, maybe with issues, the answer text, and whether the plan was salvaged from an
+    /// answer that breaks the schema (cut off, not JSON, too many objects) after the client's
+    /// repair round.
+    Plan(Box<Converted>, String, bool),
     /// No usable plan (not JSON, schema violated after repair); why.
     Unusable(String),
 }
@@ -94,24 +104,28 @@ impl<M: ChatModel> LlmPlanner<M> {
     fn round(&self, messages: Vec<Message>, request: &PlanRequest) -> Result<Round, PlanError> {
         let mut chat = ChatRequest::structured(messages, plan_schema());
         chat.seed = Some(request.seed);
-        let response = match self.model.chat(&chat) {
-            Ok(r) => r,
-            Err(e) => {
-                return Err(PlanError::Provider {
-                    provider: self.label.clone(),
-                    message: e.to_string(),
-                })
+        chat.max_tokens = Some(plan_max_tokens());
+        chat.lenient = true;
+        let response = self.model.chat(&chat).map_err(|e| PlanError::Provider {
+            provider: self.label.clone(),
+            message: e.to_string(),
+        })?;
+        let (value, salvaged) = match response.json {
+            Some(v) => {
+                let invalid = !plan_schema().violations(&v).is_empty();
+                (v, invalid)
             }
+            None => match close_truncated(&response.text) {
+                Some(v) => (v, true),
+                None => {
+                    return Ok(Round::Unusable(format!(
+                        "the answer holds no JSON object ({})",
+                        response.notes.join("; ")
+                    )))
+                }
+            },
         };
-        let value = response.json.unwrap_or(serde_json::Value::Null);
-        let answer: Answer = match serde_json::from_value(value) {
-            Ok(a) => a,
-            Err(e) => {
-                return Ok(Round::Unusable(format!(
-                    "the answer does not fit the plan schema: {e}"
-                )))
-            }
-        };
+        let (answer, read_notes) = Answer::read(&value);
         let mut converted = convert(
             &answer,
             &request.prompt,
@@ -119,7 +133,14 @@ impl<M: ChatModel> LlmPlanner<M> {
             self.min_objects,
         );
         converted.plan.notes.extend(response.notes);
-        Ok(Round::Plan(Box::new(converted), response.text))
+        converted.plan.notes.extend(read_notes);
+        if salvaged {
+            converted.plan.notes.push(format!(
+                "salvaged from an answer that does not fit the plan schema: {} usable objects kept",
+                converted.plan.objects.len()
+            ));
+        }
+        Ok(Round::Plan(Box::new(converted), response.text, salvaged))
     }
 
     /// Fills a weak plan from the offline planner: the anchor when missing, then objects up
@@ -311,6 +332,9 @@ impl<M: ChatModel> LlmPlanner<M> {
                     }),
                 };
                 let Some(parent) = parent else { continue };
+                if plan.objects.len() >= MAX_PLANNED_OBJECTS {
+                    break;
+                }
                 let id = fresh_id(&source.category, &mut taken);
                 let mut copy = source.clone();
                 copy.id = id.clone();
@@ -361,19 +385,16 @@ impl<M: ChatModel> LlmPlanner<M> {
             Message::user(user_message(request)),
         ];
         let first = self.round(messages.clone(), request)?;
-        let critique = match &first {
-            Round::Plan(c, _) if c.issues.is_empty() => {
-                let Round::Plan(c, _) = first else {
-                    unreachable!()
-                };
-                return Ok(c.plan);
-            }
-            Round::Plan(c, _) => c.issues.join("; "),
-            Round::Unusable(why) => why.clone(),
+        let critique = match first {
+            Round::Plan(c, _, _) if c.issues.is_empty() => return Ok(c.plan),
+            // The client has re-asked once already; another round would end the same way.
+            Round::Plan(c, _, true) => return self.complete(*c, request),
+            Round::Plan(ref c, _, false) => c.issues.join("; "),
+            Round::Unusable(ref why) => why.clone(),
         };
         tracing::info!(planner = %self.name(), "re-asking once: {critique}");
         let mut again = messages;
-        if let Round::Plan(_, text) = &first {
+        if let Round::Plan(_, text, _) = &first {
             again.push(Message::assistant(text.clone()));
         }
         again.push(Message::user(format!(
@@ -382,12 +403,12 @@ impl<M: ChatModel> LlmPlanner<M> {
         )));
         let second = self.round(again, request)?;
         let best = match (second, first) {
-            (Round::Plan(c, _), _) if c.issues.is_empty() => {
+            (Round::Plan(c, _, _), _) if c.issues.is_empty() => {
                 let mut plan = c.plan;
                 plan.notes.push(format!("re-asked once: {critique}"));
                 return Ok(plan);
             }
-            (Round::Plan(c, _), _) | (Round::Unusable(_), Round::Plan(c, _)) => Some(c),
+            (Round::Plan(c, _, _), _) | (Round::Unusable(_), Round::Plan(c, _, _)) => Some(c),
             (Round::Unusable(_), Round::Unusable(_)) => None,
         };
         match best {

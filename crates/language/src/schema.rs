@@ -1,8 +1,22 @@
 //! The JSON schema of the model's plan answer (strict-mode ready: closed objects, every
 //! property required).
 
+use scenethesis_agents::{MAX_ROOM_SIDE, MIN_ROOM_SIDE};
 use scenethesis_models::JsonSchema;
 use serde_json::json;
+
+/// The most objects the plan schema lets a model list (`objects.maxItems`); answers with more
+/// are cut to this many.
+pub const MAX_ANSWER_OBJECTS: usize = 120;
+/// Answer tokens allowed per listed object (an object of the schema is about 60 tokens).
+pub const TOKENS_PER_OBJECT: u32 = 80;
+/// Answer tokens allowed for everything but the objects (interpretation, description, ...).
+pub const PLAN_OVERHEAD_TOKENS: u32 = 1500;
+
+/// The `max_tokens` of a plan request: what the schema's largest answer needs.
+pub const fn plan_max_tokens() -> u32 {
+    PLAN_OVERHEAD_TOKENS + TOKENS_PER_OBJECT * MAX_ANSWER_OBJECTS as u32
+}
 
 /// Relation kinds the model may state between objects (supports are separate).
 pub(crate) const RELATIONS: &[&str] = &[
@@ -57,10 +71,10 @@ pub fn plan_schema() -> JsonSchema {
                 "detailed": {"type": "boolean"},
                 "scene_type": {"type": "string", "minLength": 1},
                 "environment": {"enum": ["indoor", "outdoor"]},
-                "room_width": {"type": "number", "minimum": 2, "maximum": 40},
-                "room_depth": {"type": "number", "minimum": 2, "maximum": 40},
+                "room_width": {"type": "number", "minimum": MIN_ROOM_SIDE, "maximum": MAX_ROOM_SIDE},
+                "room_depth": {"type": "number", "minimum": MIN_ROOM_SIDE, "maximum": MAX_ROOM_SIDE},
                 "anchor": {"type": "string", "minLength": 1},
-                "objects": {"type": "array", "minItems": 1, "maxItems": 120, "items": object},
+                "objects": {"type": "array", "minItems": 1, "maxItems": MAX_ANSWER_OBJECTS, "items": object},
                 "unavailable": {
                     "type": "array",
                     "items": {

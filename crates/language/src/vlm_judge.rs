@@ -8,6 +8,7 @@ use scenethesis_models::{ChatModel, ChatRequest, ImageData, JsonSchema, Message}
 use scenethesis_pipeline::{
     Failure, FailureKind, GeometricJudge, Judge, JudgeError, JudgeInput, PreviewRenderer, Verdict,
 };
+use scenethesis_scene_graph::limits::MAX_ID_BYTES;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
 
@@ -81,6 +82,19 @@ pub struct VlmReview {
     pub views: Vec<String>,
 }
 
+/// The most objects a review may blame (`objects.maxItems` of [`review_schema`]).
+pub const MAX_REVIEW_OBJECTS: usize = 50;
+/// Longest reason or summary of a review, in characters (`maxLength`).
+pub const MAX_REVIEW_TEXT_CHARS: usize = 400;
+
+/// The `max_tokens` of a review request: scores and summary (300 tokens: about 100 for the
+/// summary's 400 characters, the rest for the scores and syntax) plus up to
+/// [`MAX_REVIEW_OBJECTS`] objects of an id and a reason (180 tokens each: about 64 for an id,
+/// 100 for a reason).
+pub const fn review_max_tokens() -> u32 {
+    300 + 180 * MAX_REVIEW_OBJECTS as u32
+}
+
 /// The structured answer asked of the model.
 pub fn review_schema() -> JsonSchema {
     let score = json!({"type": "number", "minimum": 0.0, "maximum": 1.0});
@@ -95,13 +109,16 @@ pub fn review_schema() -> JsonSchema {
                 "category_accuracy": score,
                 "orientation_alignment": score,
                 "spatial_coherence": score,
-                "objects": {"type": "array", "items": {
+                "objects": {"type": "array", "maxItems": MAX_REVIEW_OBJECTS, "items": {
                     "type": "object",
                     "additionalProperties": false,
                     "required": ["id", "reason"],
-                    "properties": {"id": {"type": "string"}, "reason": {"type": "string"}}
+                    "properties": {
+                        "id": {"type": "string", "maxLength": MAX_ID_BYTES},
+                        "reason": {"type": "string", "maxLength": MAX_REVIEW_TEXT_CHARS}
+                    }
                 }},
-                "summary": {"type": "string"}
+                "summary": {"type": "string", "maxLength": MAX_REVIEW_TEXT_CHARS}
             }
         }),
     )
@@ -234,8 +251,9 @@ impl<M: ChatModel> VlmJudge<M> {
                 .map_err(|e| self.provider_error(format!("preview {name}: {e}")))?;
             user = user.with_image(image);
         }
-        let request =
+        let mut request =
             ChatRequest::structured(vec![Message::system(INSTRUCTIONS), user], review_schema());
+        request.max_tokens = Some(review_max_tokens());
         let response = self
             .model
             .chat(&request)

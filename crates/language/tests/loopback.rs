@@ -367,45 +367,317 @@ fn a_detailed_prompt_keeps_what_the_user_stated() {
 }
 
 #[test]
-fn garbage_after_the_repair_round_is_a_provider_error() {
-    // Not JSON even after the client's repair round: an error naming endpoint and model, no
-    // plan invented from offline knowledge.
+fn garbage_after_the_repair_round_is_planned_offline_with_a_note() {
+    // No JSON even after the client's repair round and the planner's re-ask: the offline
+    // knowledge plans it, and the plan says why.
     let server = TestServer::scripted(vec![Reply::json(
         200,
         &openai_completion("m", "I am a small model and I like rooms."),
     )]);
-    let err = LlmPlanner::new(chat(&server))
+    let plan = LlmPlanner::new(chat(&server))
         .plan(&request("a cozy living room"))
-        .unwrap_err();
+        .unwrap();
     assert_eq!(
         server.requests().len(),
-        2,
-        "one answer and its repair round"
+        4,
+        "answer and repair round, twice (the planner re-asks once)"
     );
+    assert!(
+        plan.notes.iter().any(|n| n.contains("unusable twice")),
+        "{:?}",
+        plan.notes
+    );
+
+    // A server answering something that is not a chat completion at all: a provider error.
+    let server = TestServer::scripted(vec![Reply::raw(200, "text/html", "<html>gateway</html>")]);
+    let err = LlmPlanner::new(chat(&server))
+        .plan(&request("a pharmacy"))
+        .unwrap_err();
     let PlanError::Provider { provider, message } = &err else {
         panic!("{err}")
     };
     assert_eq!(provider, "llm:openai-compatible/planner-model");
     assert!(message.contains("(model `planner-model`)"), "{message}");
     assert!(message.contains("malformed"), "{message}");
-
-    // A server answering something that is not a chat completion at all.
-    let server = TestServer::scripted(vec![Reply::raw(200, "text/html", "<html>gateway</html>")]);
-    let err = LlmPlanner::new(chat(&server))
-        .plan(&request("a pharmacy"))
-        .unwrap_err();
-    assert!(matches!(err, PlanError::Provider { .. }), "{err}");
     assert!(err.to_string().contains("<html>gateway</html>"), "{err}");
 
-    // Schema-violating JSON twice (answer and repair): an error quoting the violation.
+    // Schema-violating JSON twice (answer and repair): completed from offline knowledge
+    // without re-asking, saying what was wrong.
     let server = TestServer::scripted(vec![Reply::json(
         200,
         &openai_completion("m", r#"{"objects": 3}"#),
     )]);
-    let err = LlmPlanner::new(chat(&server))
+    let plan = LlmPlanner::new(chat(&server))
         .plan(&request("a pharmacy"))
-        .unwrap_err();
-    assert!(err.to_string().contains("violates the schema"), "{err}");
+        .unwrap();
+    assert_eq!(
+        server.requests().len(),
+        2,
+        "answer and the client's repair round"
+    );
+    let notes = plan.notes.join("\n");
+    assert!(notes.contains("violates the JSON schema"), "{notes}");
+    assert!(
+        notes.contains("completed from offline knowledge"),
+        "{notes}"
+    );
+    assert!(
+        plan.objects.len() >= scenethesis_language::MIN_OBJECTS,
+        "{notes}"
+    );
+}
+
+/// A completion cut off by `max_tokens` (`finish_reason: length`) in OpenAI's shape.
+fn cut_off(content: &str) -> Value {
+    let mut c = openai_completion("small-model", content);
+    c["choices"][0]["finish_reason"] = json!("length");
+    c
+}
+
+#[test]
+fn every_plan_request_states_max_tokens() {
+    let server = TestServer::scripted(vec![Reply::json(
+        200,
+        &openai_completion("m", &pharmacy().to_string()),
+    )]);
+    let _ = LlmPlanner::new(chat(&server)).plan(&request("a pharmacy"));
+    let requests = server.requests();
+    assert!(!requests.is_empty());
+    for r in requests {
+        assert_eq!(
+            r.json()["max_tokens"],
+            json!(scenethesis_language::plan_max_tokens())
+        );
+    }
+    assert_eq!(
+        scenethesis_language::plan_max_tokens(),
+        scenethesis_language::PLAN_OVERHEAD_TOKENS
+            + scenethesis_language::TOKENS_PER_OBJECT
+                * scenethesis_language::MAX_ANSWER_OBJECTS as u32
+    );
+}
+
+#[test]
+fn a_cut_off_answer_keeps_its_complete_objects_and_is_completed_offline() {
+    // A weak local model's answer (issue 20): cut off mid-object, a nonsense category, an
+    // object that is its own parent. It is not re-asked (a repair would be cut off too).
+    let mut answer = pharmacy();
+    let objects = answer["objects"].as_array_mut().unwrap();
+    objects.truncate(4);
+    objects.push(obj(
+        "a3210548967_0",
+        "a3210548967",
+        "middle",
+        ["on-floor", "ground", "free", "any"],
+        json!([]),
+    ));
+    objects.push(obj(
+        "vase_9",
+        "vase",
+        "foreground",
+        ["on", "vase_9", "supported", "any"],
+        json!([]),
+    ));
+    objects.push(obj(
+        "chair_7",
+        "chair",
+        "middle",
+        ["on-floor", "ground", "free", "any"],
+        json!([]),
+    ));
+    let text = answer.to_string();
+    let cut = text.find("\"chair_7\"").unwrap() + 20;
+    let server = TestServer::scripted(vec![Reply::json(200, &cut_off(&text[..cut]))]);
+    let plan = LlmPlanner::new(chat(&server))
+        .plan(&request("a pharmacy"))
+        .unwrap();
+    assert_eq!(
+        server.requests().len(),
+        1,
+        "a cut-off answer is not re-asked"
+    );
+    let notes = plan.notes.join("\n");
+    assert!(notes.contains("cut off at max_tokens"), "{notes}");
+    assert!(
+        notes.contains("a3210548967"),
+        "the dropped category is named: {notes}"
+    );
+    assert!(notes.contains("vase_9: rests on itself"), "{notes}");
+    assert!(
+        notes.contains("completed from offline knowledge"),
+        "{notes}"
+    );
+    // The four complete objects of the model are kept; the partial one is not.
+    for o in &pharmacy()["objects"].as_array().unwrap()[..4] {
+        let id = o["id"].as_str().unwrap();
+        assert!(
+            plan.object(id).is_some() || notes.contains(id),
+            "{id}: {notes}"
+        );
+    }
+    assert!(plan.object("chair_7").is_none(), "{notes}");
+    assert_eq!(plan.object("vase_9").unwrap().parent, ParentRef::Ground);
+    assert!(plan.objects.len() >= scenethesis_language::MIN_OBJECTS);
+    scenethesis_agents::check_plan(&plan, Some(&request("a pharmacy").available_categories))
+        .unwrap();
+}
+
+#[test]
+fn ids_the_scene_validator_refuses_are_renamed_with_a_note() {
+    let mut answer = pharmacy();
+    answer["objects"].as_array_mut().unwrap().pop();
+    answer["objects"][0]["id"] = json!("evil\u{1b}[2J\u{202e}");
+    answer["objects"][1]["id"] = json!("x".repeat(10_000));
+    let server = TestServer::scripted(vec![Reply::json(
+        200,
+        &openai_completion("m", &answer.to_string()),
+    )]);
+    let plan = LlmPlanner::new(chat(&server))
+        .plan(&request("a pharmacy"))
+        .unwrap();
+    for o in &plan.objects {
+        assert!(
+            scenethesis_scene_graph::is_printable_id(&o.id),
+            "{:?}",
+            o.id
+        );
+    }
+    let notes = plan.notes.join("\n");
+    assert!(notes.contains("cannot be written to scene.json"), "{notes}");
+    assert!(
+        !notes.contains('\u{1b}') && !notes.contains('\u{202e}'),
+        "{notes}"
+    );
+    assert!(
+        !notes.contains(&"x".repeat(100)),
+        "the long id is shortened"
+    );
+    scenethesis_agents::check_plan(&plan, None).unwrap();
+}
+
+#[test]
+fn an_oversized_answer_is_capped_live_and_on_replay_alike() {
+    use scenethesis_models::{CacheMode, Cached, ResponseCache};
+    let mut answer = pharmacy();
+    let template = answer["objects"][0].clone();
+    let objects = answer["objects"].as_array_mut().unwrap();
+    for k in 0..10_001 {
+        let mut o = template.clone();
+        o["id"] = json!(format!("extra_{k}"));
+        objects.push(o);
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let server = TestServer::scripted(vec![Reply::json(
+        200,
+        &openai_completion("m", &answer.to_string()),
+    )]);
+    let live = Cached::new(
+        chat(&server),
+        ResponseCache::open(dir.path(), CacheMode::ReadWrite).unwrap(),
+    );
+    let live = LlmPlanner::new(live).plan(&request("a pharmacy")).unwrap();
+    assert!(live.objects.len() <= scenethesis_agents::MAX_PLANNED_OBJECTS);
+    let notes = live.notes.join("\n");
+    assert!(notes.contains("MAX_ANSWER_OBJECTS"), "{notes}");
+    // Replayed from the cache, offline: the same check, the same plan.
+    let replay = Cached::new(
+        OpenAiClient::new(ClientConfig::new("http://127.0.0.1:9/v1"))
+            .unwrap()
+            .chat("planner-model"),
+        ResponseCache::open(dir.path(), CacheMode::ReplayOnly).unwrap(),
+    );
+    let replayed = LlmPlanner::new(replay)
+        .plan(&request("a pharmacy"))
+        .unwrap();
+    assert_eq!(
+        serde_json::to_string(&replayed).unwrap(),
+        serde_json::to_string(&live).unwrap()
+    );
+}
+
+#[test]
+fn a_hand_made_cache_entry_gets_the_live_schema_check() {
+    // A cache entry written by hand (or by another tool) holding 10 001 objects, as the
+    // issue's replay case: capped exactly as a live answer is.
+    use scenethesis_models::{CacheMode, Cached, ChatModel, ChatRequest, ResponseCache};
+    let dir = tempfile::tempdir().unwrap();
+    let model = OpenAiClient::new(ClientConfig::new("http://127.0.0.1:9/v1"))
+        .unwrap()
+        .chat("planner-model");
+    let name = model.name();
+    let mut answer = pharmacy();
+    let template = answer["objects"][0].clone();
+    answer["objects"] = json!((0..10_001)
+        .map(|k| {
+            let mut o = template.clone();
+            o["id"] = json!(format!("extra_{k}"));
+            o
+        })
+        .collect::<Vec<_>>());
+    // Record what the planner will ask, by asking once through a recording model.
+    struct Recorder(std::sync::Mutex<Option<ChatRequest>>, String);
+    impl ChatModel for Recorder {
+        fn name(&self) -> String {
+            self.1.clone()
+        }
+        fn chat(
+            &self,
+            r: &ChatRequest,
+        ) -> Result<scenethesis_models::ChatResponse, scenethesis_models::ProviderError> {
+            *self.0.lock().unwrap() = Some(r.clone());
+            Err(scenethesis_models::ProviderError::new(
+                "x",
+                "m",
+                scenethesis_models::ProviderErrorKind::Unsupported {
+                    operation: "recording".into(),
+                },
+            ))
+        }
+    }
+    let recorder = Recorder(Default::default(), name.clone());
+    let _ = LlmPlanner::new(&recorder).plan(&request("a pharmacy"));
+    let asked = recorder.0.lock().unwrap().clone().unwrap();
+    let cache = ResponseCache::open(dir.path(), CacheMode::ReadWrite).unwrap();
+    let response = scenethesis_models::ChatResponse {
+        text: answer.to_string(),
+        json: Some(answer.clone()),
+        model: "m".into(),
+        usage: Default::default(),
+        notes: vec![],
+    };
+    cache.put("chat", &name, &asked, &response).unwrap();
+    let replay = Cached::new(
+        model,
+        ResponseCache::open(dir.path(), CacheMode::ReplayOnly).unwrap(),
+    );
+    let plan = LlmPlanner::new(replay)
+        .plan(&request("a pharmacy"))
+        .unwrap();
+    assert!(plan.objects.len() <= scenethesis_agents::MAX_PLANNED_OBJECTS);
+    let notes = plan.notes.join("\n");
+    assert!(notes.contains("violates the schema"), "{notes}");
+    assert!(notes.contains("MAX_ANSWER_OBJECTS"), "{notes}");
+}
+
+#[test]
+fn a_key_in_the_model_text_does_not_reach_the_plan() {
+    const KEY: &str = "sk-test-SECRET-0123456789";
+    let mut answer = pharmacy();
+    answer["objects"].as_array_mut().unwrap().pop();
+    answer["interpretation"] = json!(format!("the key is {KEY}"));
+    answer["unavailable"] = json!([{"name": KEY, "reason": format!("because {KEY}")}]);
+    let server = TestServer::scripted(vec![Reply::json(
+        200,
+        &openai_completion("m", &answer.to_string()),
+    )]);
+    let mut c = ClientConfig::new(&server.base_url);
+    c.max_attempts = 1;
+    c.api_key = Some(scenethesis_openai::ApiKey::new(KEY.to_string()));
+    let model = OpenAiClient::new(c).unwrap().chat("planner-model");
+    let plan = LlmPlanner::new(model).plan(&request("a pharmacy")).unwrap();
+    let json = serde_json::to_string(&plan).unwrap();
+    assert!(!json.contains(KEY), "{json}");
+    assert!(json.contains("the key is ***"), "{json}");
 }
 
 #[test]

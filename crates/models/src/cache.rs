@@ -11,7 +11,7 @@ use serde::Serialize;
 use serde_json::Value;
 use sha2::{Digest, Sha256};
 
-use crate::chat::{ChatModel, ChatRequest, ChatResponse};
+use crate::chat::{check_structured, ChatModel, ChatRequest, ChatResponse};
 use crate::error::{ProviderError, ProviderErrorKind};
 use crate::image::ImageData;
 use crate::providers::{
@@ -22,6 +22,10 @@ use crate::usage::UsageMeter;
 
 /// Version of the key derivation and file layout; part of every key.
 const CACHE_VERSION: u32 = 1;
+
+/// Largest response-cache entry read, in bytes (64 MiB: a generated image in base64 with room
+/// to spare). A larger file, a device such as `/dev/zero` or a folder in its place is refused.
+pub const MAX_CACHE_ENTRY_BYTES: u64 = 64 * 1024 * 1024;
 
 /// Whether the cache may call the provider on a miss.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -89,11 +93,22 @@ pub struct ResponseCache {
 static TMP_COUNTER: AtomicU64 = AtomicU64::new(0);
 
 impl ResponseCache {
-    /// Opens (creating if needed) the cache in `dir`.
+    /// Opens the cache in `dir`: created if needed to record, and refused once here (rather
+    /// than at every request) when replaying from a folder that does not exist.
     pub fn open(dir: impl Into<PathBuf>, mode: CacheMode) -> Result<Self, ProviderError> {
         let dir = dir.into();
-        if mode == CacheMode::ReadWrite {
-            fs::create_dir_all(&dir).map_err(|e| cache_error(&dir, "cannot create", e))?;
+        match mode {
+            CacheMode::ReadWrite => {
+                fs::create_dir_all(&dir).map_err(|e| cache_error(&dir, "cannot create", e))?;
+            }
+            CacheMode::ReplayOnly if !dir.is_dir() => {
+                let e = std::io::Error::new(
+                    std::io::ErrorKind::NotFound,
+                    "is not a folder; replay needs the folder a recording run wrote",
+                );
+                return Err(cache_error(&dir, "cannot replay from it", e));
+            }
+            CacheMode::ReplayOnly => {}
         }
         Ok(Self { dir, mode })
     }
@@ -132,13 +147,14 @@ impl ResponseCache {
     /// The recorded answer for `key`, if any.
     pub fn get<R: DeserializeOwned>(&self, key: &str) -> Result<Option<R>, ProviderError> {
         let path = self.path(key);
-        let bytes = match fs::read(&path) {
+        let bytes = match scenethesis_scene_graph::read_bounded(&path, MAX_CACHE_ENTRY_BYTES) {
             Ok(b) => b,
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
             Err(e) => return Err(cache_error(&path, "cannot read", e)),
         };
         let record: Value =
             serde_json::from_slice(&bytes).map_err(|e| cache_error(&path, "is not JSON", e))?;
+        self.check_version(&path, &record)?;
         let response = record.get("response").cloned().ok_or_else(|| {
             ProviderError::new(
                 self.dir.display().to_string(),
@@ -153,6 +169,28 @@ impl ResponseCache {
         serde_json::from_value(response)
             .map(Some)
             .map_err(|e| cache_error(&path, "holds an answer of the wrong shape", e))
+    }
+
+    /// Refuses a record of another cache version than this build writes: its answer may not
+    /// mean what this build expects, so it is not replayed.
+    fn check_version(&self, path: &Path, record: &Value) -> Result<(), ProviderError> {
+        let version = record.get("version");
+        if version.and_then(Value::as_u64) == Some(u64::from(CACHE_VERSION)) {
+            return Ok(());
+        }
+        let found = version.map_or_else(|| "no version".to_string(), |v| format!("version {v}"));
+        Err(ProviderError::new(
+            self.dir.display().to_string(),
+            "",
+            ProviderErrorKind::Cache {
+                path: path.to_path_buf(),
+                message: format!(
+                    "holds {found}, but this build reads cache version {CACHE_VERSION}; record \
+                     it again (run without --llm-replay into an empty --llm-cache folder)"
+                ),
+                source: None,
+            },
+        ))
     }
 
     /// Records `response` for a request (atomically: a temporary file renamed into place).
@@ -306,10 +344,13 @@ impl<M: ChatModel> ChatModel for Cached<M> {
         self.inner.name()
     }
 
+    /// Answers from the cache or the inner model; a recorded answer to a structured request
+    /// is checked against the request's schema as a live one is ([`check_structured`]).
     fn chat(&self, request: &ChatRequest) -> Result<ChatResponse, ProviderError> {
-        self.through("chat", &self.inner.name(), request, || {
-            self.inner.chat(request)
-        })
+        let name = self.inner.name();
+        let response = self.through("chat", &name, request, || self.inner.chat(request))?;
+        check_structured(request, response)
+            .map_err(|kind| ProviderError::new("response cache", name, kind))
     }
 }
 
@@ -478,6 +519,121 @@ mod tests {
         assert!(text.contains(&format!("{key}.json")), "{text}");
         assert!(text.contains("is not JSON"), "{text}");
         assert!(std::error::Error::source(&err).is_some());
+    }
+
+    #[test]
+    fn replaying_from_a_missing_folder_is_refused_when_opened() {
+        let dir = tempfile::tempdir().unwrap();
+        let missing = dir.path().join("nowhere");
+        let text = ResponseCache::open(&missing, CacheMode::ReplayOnly)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            text.contains("nowhere") && text.contains("is not a folder"),
+            "{text}"
+        );
+        ResponseCache::open(&missing, CacheMode::ReadWrite).unwrap();
+        assert!(missing.is_dir(), "created to record");
+        ResponseCache::open(&missing, CacheMode::ReplayOnly).unwrap();
+    }
+
+    #[test]
+    fn a_record_of_another_version_is_refused_naming_both_versions() {
+        let dir = tempfile::tempdir().unwrap();
+        let cache = ResponseCache::open(dir.path(), CacheMode::ReplayOnly).unwrap();
+        let key = "e".repeat(64);
+        for (record, found) in [
+            (json!({"version": 99, "response": 1}), "holds version 99"),
+            (json!({"response": 1}), "holds no version"),
+        ] {
+            fs::write(cache.path(&key), record.to_string()).unwrap();
+            let text = cache.get::<Value>(&key).unwrap_err().to_string();
+            assert!(text.contains(found), "{text}");
+            assert!(text.contains("reads cache version 1"), "{text}");
+            assert!(text.contains(&format!("{key}.json")), "{text}");
+        }
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn an_entry_that_is_a_device_or_too_large_is_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let cache = ResponseCache::open(dir.path(), CacheMode::ReplayOnly).unwrap();
+        let key = "d".repeat(64);
+        std::os::unix::fs::symlink("/dev/zero", cache.path(&key)).unwrap();
+        let text = cache.get::<Value>(&key).unwrap_err().to_string();
+        assert!(text.contains("device"), "{text}");
+        let key = "b".repeat(64);
+        let file = fs::File::create(cache.path(&key)).unwrap();
+        file.set_len(MAX_CACHE_ENTRY_BYTES + 1).unwrap();
+        let text = cache.get::<Value>(&key).unwrap_err().to_string();
+        assert!(text.contains("larger than the limit"), "{text}");
+    }
+
+    /// A chat model that must not be called (replay only).
+    struct Silent;
+
+    impl ChatModel for Silent {
+        fn name(&self) -> String {
+            "test/silent".into()
+        }
+        fn chat(&self, _: &ChatRequest) -> Result<ChatResponse, ProviderError> {
+            unreachable!("replay only")
+        }
+    }
+
+    #[test]
+    fn a_replayed_structured_answer_is_checked_against_the_schema() {
+        let schema = crate::JsonSchema::new(
+            "few",
+            json!({"type": "object", "properties": {"items": {"type": "array", "maxItems": 2}}}),
+        )
+        .unwrap();
+        let mut request = ChatRequest::structured(vec![crate::Message::user("hi")], schema);
+        let many = json!({"items": [1, 2, 3]});
+        let recorded = ChatResponse {
+            text: many.to_string(),
+            json: Some(many),
+            model: "m".into(),
+            usage: Default::default(),
+            notes: vec![],
+        };
+        let dir = tempfile::tempdir().unwrap();
+        let cache = ResponseCache::open(dir.path(), CacheMode::ReadWrite).unwrap();
+        let replay = Cached::new(
+            Silent,
+            ResponseCache::open(dir.path(), CacheMode::ReplayOnly).unwrap(),
+        );
+        cache
+            .put("chat", "test/silent", &request, &recorded)
+            .unwrap();
+        let err = replay.chat(&request).unwrap_err();
+        assert!(
+            matches!(err.kind, ProviderErrorKind::Schema { .. }),
+            "{err}"
+        );
+        // A lenient request gets the answer back with the violation noted, as live.
+        request.lenient = true;
+        cache
+            .put("chat", "test/silent", &request, &recorded)
+            .unwrap();
+        let answer = replay.chat(&request).unwrap();
+        assert!(
+            answer
+                .notes
+                .iter()
+                .any(|n| n.contains("violates the schema `few`")),
+            "{:?}",
+            answer.notes
+        );
+        // A valid answer is replayed as recorded.
+        request.lenient = false;
+        let few = ChatResponse {
+            json: Some(json!({"items": [1]})),
+            ..recorded
+        };
+        cache.put("chat", "test/silent", &request, &few).unwrap();
+        assert_eq!(replay.chat(&request).unwrap(), few);
     }
 
     /// An image model that paints a fresh image per call (a counter in its first pixel byte),

@@ -4,7 +4,7 @@
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
-use crate::error::ProviderError;
+use crate::error::{ProviderError, ProviderErrorKind};
 use crate::image::ImageData;
 use crate::schema::JsonSchema;
 
@@ -102,6 +102,13 @@ pub struct ChatRequest {
     pub max_tokens: Option<u32>,
     /// Sampling seed, for providers that honour one.
     pub seed: Option<u64>,
+    /// For a structured request: when the answer still breaks the schema after the repair
+    /// round (or is not JSON at all, as an answer cut off by `max_tokens` is), hand it back
+    /// instead of failing: [`ChatResponse::json`] is then the parsed value unchecked (or
+    /// `None` when the text is not JSON) and [`ChatResponse::notes`] say what is wrong. The
+    /// caller salvages what it can.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub lenient: bool,
 }
 
 impl ChatRequest {
@@ -113,6 +120,7 @@ impl ChatRequest {
             temperature: Some(0.0),
             max_tokens: None,
             seed: None,
+            lenient: false,
         }
     }
 
@@ -146,7 +154,8 @@ impl std::ops::AddAssign for TokenUsage {
 pub struct ChatResponse {
     /// The answer text.
     pub text: String,
-    /// For a structured request: the parsed answer, valid under the request's schema.
+    /// For a structured request: the parsed answer, valid under the request's schema (unless
+    /// the request is [`ChatRequest::lenient`]).
     pub json: Option<Value>,
     /// The model that answered, as the provider names it.
     pub model: String,
@@ -215,6 +224,46 @@ pub fn extract_json(text: &str) -> Option<Value> {
         }
     }
     None
+}
+
+/// Checks an answer to `request` the way a client checks a live one: for a structured request
+/// the JSON value must be present and satisfy the schema. A lenient request gets the answer
+/// back with a note saying what is wrong; another gets [`ProviderErrorKind::Malformed`] or
+/// [`ProviderErrorKind::Schema`]. Used on answers that did not come from a live check (replayed
+/// from a response cache).
+pub fn check_structured(
+    request: &ChatRequest,
+    mut response: ChatResponse,
+) -> Result<ChatResponse, ProviderErrorKind> {
+    let Some(schema) = &request.schema else {
+        return Ok(response);
+    };
+    let problem = match &response.json {
+        None => format!("is not a JSON value for schema `{}`", schema.name),
+        Some(v) => match schema.violations(v) {
+            violations if violations.is_empty() => return Ok(response),
+            mut violations if !request.lenient => {
+                return Err(ProviderErrorKind::Schema {
+                    schema: schema.name.clone(),
+                    violation: violations.swap_remove(0),
+                })
+            }
+            violations => format!(
+                "violates the schema `{}`: {} ({} violations)",
+                schema.name,
+                violations[0],
+                violations.len()
+            ),
+        },
+    };
+    if !request.lenient {
+        return Err(ProviderErrorKind::Malformed {
+            message: format!("the recorded answer {problem}"),
+            source: None,
+        });
+    }
+    response.notes.push(format!("the answer {problem}"));
+    Ok(response)
 }
 
 #[cfg(test)]

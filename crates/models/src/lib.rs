@@ -71,9 +71,12 @@ mod providers;
 mod schema;
 mod usage;
 
-pub use cache::{canonical_json, sha256_hex, CacheMode, Cached, ResponseCache};
+pub use cache::{
+    canonical_json, sha256_hex, CacheMode, Cached, ResponseCache, MAX_CACHE_ENTRY_BYTES,
+};
 pub use chat::{
-    extract_json, ChatModel, ChatRequest, ChatResponse, ContentPart, Message, Role, TokenUsage,
+    check_structured, extract_json, ChatModel, ChatRequest, ChatResponse, ContentPart, Message,
+    Role, TokenUsage,
 };
 pub use error::{BoxError, ProviderError, ProviderErrorKind};
 pub use image::{ImageData, ImageError, ImageFormat};

@@ -98,30 +98,30 @@ impl OpenAiChat {
         ProviderError::new(self.transport.label(PATH), self.model.clone(), kind)
     }
 
-    /// One completion: sends the body, returns (text, model, tokens).
-    fn complete(
-        &self,
-        body: &Value,
-        on_5xx: On5xx,
-    ) -> Result<(String, String, TokenUsage), ProviderError> {
+    /// One completion: sends the body, returns the answer with the API key masked in all of
+    /// it (a server or a model may echo the key).
+    fn complete(&self, body: &Value, on_5xx: On5xx) -> Result<Completion, ProviderError> {
         let answer =
             self.transport
                 .send(PATH, &self.model, Body::Json(body), on_5xx, &self.meter)?;
-        let value: Value = serde_json::from_slice(&answer.body).map_err(|e| {
+        let masked = self.transport.masked(&answer.body);
+        let value: Value = serde_json::from_str(&masked).map_err(|e| {
             self.error(ProviderErrorKind::Malformed {
                 message: format!(
                     "expected a JSON chat completion, found `{}`",
-                    shorten(&String::from_utf8_lossy(&answer.body))
+                    shorten(&masked)
                 ),
                 source: Some(Box::new(e)),
             })
         })?;
         let message = value.pointer("/choices/0/message");
+        // Masked again once decoded: JSON escapes can spell the key in the raw body otherwise.
         let text = match message.and_then(|m| m.get("content")) {
-            Some(Value::String(s)) => s.clone(),
+            Some(Value::String(s)) => self.transport.mask(s),
             Some(Value::Array(parts)) => parts
                 .iter()
                 .filter_map(|p| p.get("text").and_then(Value::as_str))
+                .map(|t| self.transport.mask(t))
                 .collect::<Vec<_>>()
                 .join(""),
             _ => {
@@ -130,7 +130,9 @@ impl OpenAiChat {
                     .and_then(Value::as_str);
                 return Err(self.error(ProviderErrorKind::Malformed {
                     message: match refusal {
-                        Some(r) => format!("the model refused: {}", shorten(r)),
+                        Some(r) => {
+                            format!("the model refused: {}", shorten(&self.transport.mask(r)))
+                        }
                         None => format!(
                             "expected `choices[0].message.content` text, found `{}`",
                             shorten(&value.to_string())
@@ -156,7 +158,13 @@ impl OpenAiChat {
             .and_then(Value::as_str)
             .unwrap_or(&self.model)
             .to_string();
-        Ok((text, model, tokens))
+        let cut_off = value.pointer("/choices/0/finish_reason") == Some(&json!("length"));
+        Ok(Completion {
+            text,
+            model,
+            tokens,
+            cut_off,
+        })
     }
 
     fn body(
@@ -219,7 +227,7 @@ impl OpenAiChat {
         let mut notes = Vec::new();
         let mut usage = TokenUsage::default();
         let mut format = self.first_format();
-        let (text, model) = loop {
+        let (text, model, cut_off) = loop {
             let on_5xx = if format == OutputFormat::Plain {
                 On5xx::Retry
             } else {
@@ -228,9 +236,9 @@ impl OpenAiChat {
             let body = self.body(request, &request.messages, Some(format));
             let result = self.complete(&body, on_5xx);
             match result {
-                Ok((text, model, tokens)) => {
-                    usage += tokens;
-                    break (text, model);
+                Ok(c) => {
+                    usage += c.tokens;
+                    break (c.text, c.model, c.cut_off);
                 }
                 Err(e) if format != OutputFormat::Plain && rejects_format(&e) => {
                     let next = OutputFormat::from_u8(format as u8 + 1);
@@ -262,6 +270,17 @@ impl OpenAiChat {
             }
             Err(problem) => problem,
         };
+        if request.lenient && cut_off {
+            // Cut off by max_tokens: a repair round would be cut off again.
+            notes.push(format!(
+                "the answer was cut off at max_tokens ({}) and {}",
+                request
+                    .max_tokens
+                    .map_or("the server's limit".to_string(), |n| n.to_string()),
+                problem.summary()
+            ));
+            return Ok(lenient_response(text, model, usage, notes));
+        }
         // One repair round quoting what was wrong.
         notes.push(format!("answer repaired once: {}", problem.summary()));
         let mut messages = request.messages.clone();
@@ -273,8 +292,12 @@ impl OpenAiChat {
             schema.name
         )));
         // The server accepted this format already: a 5xx now is a server failure.
-        let (text, model, tokens) =
-            self.complete(&self.body(request, &messages, Some(format)), On5xx::Retry)?;
+        let Completion {
+            text,
+            model,
+            tokens,
+            ..
+        } = self.complete(&self.body(request, &messages, Some(format)), On5xx::Retry)?;
         usage += tokens;
         match check(schema, &text) {
             Ok(json) => Ok(ChatResponse {
@@ -284,6 +307,13 @@ impl OpenAiChat {
                 usage,
                 notes,
             }),
+            Err(problem) if request.lenient => {
+                notes.push(format!(
+                    "the answer {} (after one repair round)",
+                    problem.summary()
+                ));
+                Ok(lenient_response(text, model, usage, notes))
+            }
             Err(Problem::NotJson) => Err(self.error(ProviderErrorKind::Malformed {
                 message: format!(
                     "expected a JSON value for schema `{}` (after one repair round), found `{}`",
@@ -297,6 +327,35 @@ impl OpenAiChat {
                 violation: v.into_iter().next().expect("at least one violation"),
             })),
         }
+    }
+}
+
+/// One completion's answer.
+struct Completion {
+    /// The answer text.
+    text: String,
+    /// The model that answered.
+    model: String,
+    /// Tokens it consumed.
+    tokens: TokenUsage,
+    /// Whether the server stopped it at `max_tokens` (`finish_reason: length`).
+    cut_off: bool,
+}
+
+/// The answer to a lenient request whose answer breaks its schema: the JSON value as far as
+/// it parses, for the caller to salvage.
+fn lenient_response(
+    text: String,
+    model: String,
+    usage: TokenUsage,
+    notes: Vec<String>,
+) -> ChatResponse {
+    ChatResponse {
+        json: extract_json(&text),
+        text,
+        model,
+        usage,
+        notes,
     }
 }
 
@@ -430,13 +489,13 @@ impl ChatModel for OpenAiChat {
         match &request.schema {
             Some(schema) => self.structured(request, schema),
             None => {
-                let (text, model, usage) =
+                let c =
                     self.complete(&self.body(request, &request.messages, None), On5xx::Retry)?;
                 Ok(ChatResponse {
-                    text,
+                    text: c.text,
                     json: None,
-                    model,
-                    usage,
+                    model: c.model,
+                    usage: c.tokens,
                     notes: Vec::new(),
                 })
             }

@@ -58,6 +58,9 @@ impl fmt::Debug for ApiKey {
     }
 }
 
+/// Largest client configuration file (`--llm-config`) read, in bytes (1 MiB).
+pub const MAX_CONFIG_BYTES: u64 = 1024 * 1024;
+
 /// Why a configuration could not be resolved.
 #[derive(Debug, thiserror::Error)]
 pub enum ConfigError {
@@ -196,6 +199,8 @@ pub struct ClientConfig {
     /// The server software, for request fields beyond OpenAI's (`server` in the file,
     /// `SCENETHESIS_LLM_SERVER`).
     pub server: ServerKind,
+    /// Largest answer body read, in bytes ([`crate::MAX_RESPONSE_BYTES`] unless lowered).
+    pub max_response_bytes: usize,
 }
 
 impl fmt::Debug for ClientConfig {
@@ -212,6 +217,7 @@ impl fmt::Debug for ClientConfig {
             .field("budget", &self.budget)
             .field("backoff", &self.backoff)
             .field("server", &self.server)
+            .field("max_response_bytes", &self.max_response_bytes)
             .finish()
     }
 }
@@ -232,6 +238,7 @@ impl ClientConfig {
             budget: Duration::from_secs(300),
             backoff: Duration::from_millis(500),
             server: ServerKind::OpenAiCompatible,
+            max_response_bytes: crate::MAX_RESPONSE_BYTES,
         }
     }
 
@@ -248,9 +255,17 @@ impl ClientConfig {
     ) -> Result<Self, ConfigError> {
         let file_config = match file {
             Some(path) => {
-                let text = std::fs::read_to_string(path).map_err(|source| ConfigError::Read {
+                let read_err = |source| ConfigError::Read {
                     path: path.to_path_buf(),
                     source,
+                };
+                let bytes = scenethesis_scene_graph::read_bounded(path, MAX_CONFIG_BYTES)
+                    .map_err(read_err)?;
+                let text = String::from_utf8(bytes).map_err(|_| {
+                    read_err(std::io::Error::new(
+                        std::io::ErrorKind::InvalidData,
+                        "is not UTF-8 text",
+                    ))
                 })?;
                 toml::from_str::<FileConfig>(&text).map_err(|e| ConfigError::Parse {
                     path: path.to_path_buf(),

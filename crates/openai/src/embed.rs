@@ -66,7 +66,7 @@ impl TextEmbedder for OpenAiEmbedder {
         let value: Value = serde_json::from_slice(&answer.body).map_err(|_| {
             self.malformed(format!(
                 "expected a JSON embeddings answer, found `{}`",
-                shorten(&String::from_utf8_lossy(&answer.body))
+                shorten(&self.transport.masked(&answer.body))
             ))
         })?;
         if let Some(tokens) = value
@@ -81,7 +81,7 @@ impl TextEmbedder for OpenAiEmbedder {
         let data = value.get("data").and_then(Value::as_array).ok_or_else(|| {
             self.malformed(format!(
                 "expected a `data` array, found `{}`",
-                shorten(&value.to_string())
+                shorten(&self.transport.mask(&value.to_string()))
             ))
         })?;
         if data.len() != texts.len() {

@@ -163,29 +163,24 @@ impl Transport {
             let remaining = budget.saturating_sub(started.elapsed());
             let outcome = self.runtime.block_on(async {
                 let send = build().timeout(self.config.timeout.min(remaining)).send();
-                match send.await {
-                    Ok(response) => {
-                        let status = response.status().as_u16();
-                        let retry_after = response
-                            .headers()
-                            .get(reqwest::header::RETRY_AFTER)
-                            .and_then(|v| v.to_str().ok())
-                            .and_then(parse_retry_after);
-                        match response.bytes().await {
-                            Ok(bytes) => Ok((status, retry_after, bytes.to_vec())),
-                            Err(e) => Err(e),
-                        }
-                    }
-                    Err(e) => Err(e),
-                }
+                let response = send.await?;
+                let status = response.status().as_u16();
+                let retry_after = response
+                    .headers()
+                    .get(reqwest::header::RETRY_AFTER)
+                    .and_then(|v| v.to_str().ok())
+                    .and_then(parse_retry_after);
+                let body = read_capped(response, self.config.max_response_bytes).await?;
+                Ok::<_, reqwest::Error>((status, retry_after, body))
             });
             meter.record_request(TokenUsage::default());
             let (failure, retry_after) = match outcome {
-                Ok((status, _, body)) if (200..300).contains(&status) => {
+                Ok((_, _, None)) => return Err(err(too_large(self.config.max_response_bytes))),
+                Ok((status, _, Some(body))) if (200..300).contains(&status) => {
                     return Ok(Answer { body });
                 }
-                Ok((status, retry_after, body)) => {
-                    let message = server_message(self.masked(&body).as_bytes());
+                Ok((status, retry_after, Some(body))) => {
+                    let message = self.error_message(&body);
                     let transient = status == 429
                         || (status >= 500 && (on_5xx == On5xx::Retry || !about_format(&message)));
                     let kind = ProviderErrorKind::Status { status, message };
@@ -202,11 +197,18 @@ impl Transport {
             let wait = retry_after.unwrap_or(backoff);
             let spent = started.elapsed();
             if spent + wait >= budget {
+                let asked = retry_after.map_or_else(String::new, |w| {
+                    format!(
+                        "; the server asked to wait {:.0} s before retrying (Retry-After), past \
+                         the budget",
+                        w.as_secs_f64()
+                    )
+                });
                 return Err(err(ProviderErrorKind::BudgetExhausted {
                     attempts: attempt,
                     spent,
                     budget,
-                    last: failure.to_string(),
+                    last: format!("{failure}{asked}"),
                 }));
             }
             tracing::warn!(
@@ -224,14 +226,58 @@ impl Transport {
 }
 
 impl Transport {
+    /// The message of an error body, with the API key masked before and after decoding and
+    /// before it is shortened.
+    fn error_message(&self, body: &[u8]) -> String {
+        shorten(&self.mask(&server_message(self.masked(body).as_bytes())))
+    }
+
     /// A server's answer as text with the API key masked (servers may echo it).
-    fn masked(&self, body: &[u8]) -> String {
-        let text = String::from_utf8_lossy(body);
+    pub(crate) fn masked(&self, body: &[u8]) -> String {
+        self.mask(&String::from_utf8_lossy(body))
+    }
+
+    /// `text` (an answer, or a value decoded from one) with the API key masked.
+    pub(crate) fn mask(&self, text: &str) -> String {
         match &self.config.api_key {
-            Some(key) => key.mask(&text).into_owned(),
-            None => text.into_owned(),
+            Some(key) => key.mask(text).into_owned(),
+            None => text.to_string(),
         }
     }
+}
+
+/// Largest HTTP answer read, in bytes (64 MiB: a generated image in base64 with room to
+/// spare). The body is read in chunks and reading stops past the limit.
+pub const MAX_RESPONSE_BYTES: usize = 64 * 1024 * 1024;
+
+/// The error of an answer past `limit` bytes.
+fn too_large(limit: usize) -> ProviderErrorKind {
+    ProviderErrorKind::Malformed {
+        message: format!(
+            "the answer is larger than the limit of {limit} bytes (max_response_bytes, \
+             MAX_RESPONSE_BYTES by default, see docs/limits.md); reading stopped there"
+        ),
+        source: None,
+    }
+}
+
+/// The body of `response`, read chunk by chunk; `None` as soon as it passes `cap` bytes (or
+/// its `Content-Length` says it will).
+async fn read_capped(
+    mut response: reqwest::Response,
+    cap: usize,
+) -> Result<Option<Vec<u8>>, reqwest::Error> {
+    if response.content_length().is_some_and(|n| n > cap as u64) {
+        return Ok(None);
+    }
+    let mut body = Vec::new();
+    while let Some(chunk) = response.chunk().await? {
+        if body.len() + chunk.len() > cap {
+            return Ok(None);
+        }
+        body.extend_from_slice(&chunk);
+    }
+    Ok(Some(body))
 }
 
 fn form(parts: &[Part]) -> reqwest::multipart::Form {
@@ -283,12 +329,15 @@ fn transport_kind(e: reqwest::Error, timeout: Duration) -> ProviderErrorKind {
 /// we target and fall back to the backoff.
 fn parse_retry_after(value: &str) -> Option<Duration> {
     let secs: f64 = value.trim().parse().ok()?;
-    (secs.is_finite() && secs >= 0.0).then(|| Duration::from_secs_f64(secs.min(3600.0)))
+    // Kept as asked (up to a year, so that the sum with elapsed time cannot overflow): a wait
+    // past the budget ends the retries saying so.
+    (secs.is_finite() && secs >= 0.0).then(|| Duration::from_secs_f64(secs.min(31_536_000.0)))
 }
 
 /// The error message of an error body: OpenAI's `error.message`, a string `error`, FastAPI's
 /// `detail`, else the body's start.
-pub(crate) fn server_message(body: &[u8]) -> String {
+/// The message is not shortened (the caller masks the key first).
+fn server_message(body: &[u8]) -> String {
     let text = String::from_utf8_lossy(body);
     if let Ok(v) = serde_json::from_str::<Value>(&text) {
         let found = v
@@ -297,16 +346,16 @@ pub(crate) fn server_message(body: &[u8]) -> String {
             .or_else(|| v.get("detail"))
             .or_else(|| v.get("message"));
         if let Some(m) = found {
-            return shorten(&match m {
+            return match m {
                 Value::String(s) => s.clone(),
                 other => other.to_string(),
-            });
+            };
         }
     }
     if text.trim().is_empty() {
         "(empty body)".to_string()
     } else {
-        shorten(text.trim())
+        text.trim().to_string()
     }
 }
 
@@ -359,6 +408,6 @@ mod tests {
             r#"[{"msg":"bad"}]"#
         );
         assert_eq!(server_message(b""), "(empty body)");
-        assert_eq!(server_message(&[b'x'; 400]).chars().count(), 300);
+        assert_eq!(shorten(&server_message(&[b'x'; 400])).chars().count(), 300);
     }
 }

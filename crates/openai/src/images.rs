@@ -61,13 +61,13 @@ impl OpenAiImages {
         let value: Value = serde_json::from_slice(body).map_err(|_| {
             malformed(format!(
                 "expected a JSON image answer, found `{}`",
-                shorten(&String::from_utf8_lossy(body))
+                shorten(&self.transport.masked(body))
             ))
         })?;
         let first = value.pointer("/data/0").ok_or_else(|| {
             malformed(format!(
                 "expected `data[0]` in the answer, found `{}`",
-                shorten(&value.to_string())
+                shorten(&self.transport.mask(&value.to_string()))
             ))
         })?;
         let revised_prompt = first

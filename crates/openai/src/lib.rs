@@ -53,9 +53,10 @@ pub use chat::{OpenAiChat, OutputFormat};
 pub use config::{
     redact_url, ApiKey, ClientConfig, ConfigError, Overrides, ServerKind, DEFAULT_BASE_URL,
     ENV_API_KEY, ENV_BASE_URL, ENV_EMBEDDING_MODEL, ENV_IMAGE_MODEL, ENV_LLM_MODEL, ENV_SERVER,
-    ENV_VLM_MODEL,
+    ENV_VLM_MODEL, MAX_CONFIG_BYTES,
 };
 pub use embed::OpenAiEmbedder;
+pub use http::MAX_RESPONSE_BYTES;
 pub use images::OpenAiImages;
 use scenethesis_models::ProviderError;
 

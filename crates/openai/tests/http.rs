@@ -403,6 +403,20 @@ fn retry_after_beyond_the_budget_gives_up_at_once() {
         "{err}"
     );
     assert!(err.to_string().contains("slow down"), "{err}");
+    assert!(
+        err.to_string()
+            .contains("the server asked to wait 30 s before retrying (Retry-After)"),
+        "{err}"
+    );
+    // A wait far past any budget is reported as asked, not cut to an hour.
+    let server = TestServer::scripted(vec![
+        Reply::json(429, &json!({"error": "busy"})).header("Retry-After", "100000")
+    ]);
+    let err = client(&server)
+        .chat("m")
+        .chat(&ChatRequest::new(vec![Message::user("hi")]))
+        .unwrap_err();
+    assert!(err.to_string().contains("wait 100000 s"), "{err}");
 }
 
 #[test]
@@ -749,4 +763,143 @@ fn one_client_serves_several_threads_at_once() {
         "{:?}",
         started.elapsed()
     );
+}
+
+#[test]
+fn a_key_echoed_in_a_malformed_body_or_in_model_text_is_masked() {
+    // An HTML error page holding the key, with a 200 status.
+    let page = format!("<html><body>Bad gateway for Bearer {KEY}</body></html>");
+    let server = TestServer::scripted(vec![Reply::raw(200, "text/html", page)]);
+    let err = client(&server).chat("m").chat(&request()).unwrap_err();
+    assert!(err.to_string().contains("Bearer ***"), "{err}");
+    assert_no_key(&format!("{err} {err:?}"));
+    // A 502 HTML page holding the key: retried (the warnings carry the message) then reported.
+    let server = TestServer::scripted(vec![Reply::raw(502, "text/html", format!("<p>{KEY}</p>"))]);
+    let err = client(&server).chat("m").chat(&request()).unwrap_err();
+    assert_no_key(&format!("{err} {err:?}"));
+    // Model text holding the key, raw and spelled with JSON escapes.
+    let escaped: String = KEY
+        .chars()
+        .map(|c| format!("\\u{:04x}", c as u32))
+        .collect();
+    for content in [format!("the key is {KEY}"), format!("the key is {escaped}")] {
+        let body = openai_completion("m", "x")
+            .to_string()
+            .replace("\"content\":\"x\"", &format!("\"content\":\"{content}\""));
+        let server = TestServer::scripted(vec![Reply::raw(200, "application/json", body)]);
+        let answer = client(&server)
+            .chat("m")
+            .chat(&ChatRequest::new(vec![Message::user("hi")]))
+            .unwrap();
+        assert_eq!(answer.text, "the key is ***");
+    }
+    // A structured answer holding the key: masked in the text and the parsed value.
+    let leaky = format!(
+        r#"{{"anchor":"{KEY}","objects":[{{"category":"a","count":1}},{{"category":"b","count":2}}]}}"#
+    );
+    let server = TestServer::scripted(vec![Reply::json(200, &openai_completion("m", &leaky))]);
+    let answer = client(&server).chat("m").chat(&request()).unwrap();
+    assert_no_key(&format!("{answer:?}"));
+    assert_eq!(answer.json.unwrap()["anchor"], "***");
+}
+
+#[test]
+fn an_answer_past_the_size_limit_is_refused_while_reading() {
+    let server = TestServer::scripted(vec![Reply::json(
+        200,
+        &openai_completion("m", &"y".repeat(5000)),
+    )]);
+    let mut c = config(&server);
+    c.max_response_bytes = 1000;
+    let err = OpenAiClient::new(c)
+        .unwrap()
+        .chat("m")
+        .chat(&ChatRequest::new(vec![Message::user("hi")]))
+        .unwrap_err();
+    assert!(
+        matches!(err.kind, ProviderErrorKind::Malformed { .. }),
+        "{err}"
+    );
+    assert!(
+        err.to_string()
+            .contains("larger than the limit of 1000 bytes"),
+        "{err}"
+    );
+    assert_eq!(server.requests().len(), 1, "not retried");
+    assert_eq!(
+        ClientConfig::new("http://x").max_response_bytes,
+        scenethesis_openai::MAX_RESPONSE_BYTES
+    );
+}
+
+#[test]
+fn a_lenient_request_gets_a_cut_off_answer_back_without_a_repair_round() {
+    let mut cut = openai_completion("m", &GOOD[..40]);
+    cut["choices"][0]["finish_reason"] = json!("length");
+    let server = TestServer::scripted(vec![Reply::json(200, &cut)]);
+    let mut lenient = request();
+    lenient.lenient = true;
+    lenient.max_tokens = Some(64);
+    let answer = client(&server).chat("m").chat(&lenient).unwrap();
+    assert_eq!(
+        server.requests().len(),
+        1,
+        "no repair round for a cut-off answer"
+    );
+    assert_eq!(server.requests()[0].json()["max_tokens"], 64);
+    assert_eq!(answer.json, None);
+    assert_eq!(answer.text, &GOOD[..40]);
+    assert!(
+        answer
+            .notes
+            .iter()
+            .any(|n| n.contains("cut off at max_tokens (64)")),
+        "{:?}",
+        answer.notes
+    );
+    // Schema-violating after the repair round: handed back with the violation noted.
+    let bad = r#"{"anchor":"counter","objects":[]}"#;
+    let server = TestServer::scripted(vec![Reply::json(200, &openai_completion("m", bad))]);
+    let answer = client(&server).chat("m").chat(&lenient).unwrap();
+    assert_eq!(server.requests().len(), 2, "one repair round");
+    assert_eq!(
+        answer.json,
+        Some(serde_json::from_str::<Value>(bad).unwrap())
+    );
+    assert!(
+        answer
+            .notes
+            .iter()
+            .any(|n| n.contains("after one repair round")),
+        "{:?}",
+        answer.notes
+    );
+    // The same answer to a strict request is still an error.
+    let err = client(&server).chat("m").chat(&request()).unwrap_err();
+    assert!(
+        matches!(err.kind, ProviderErrorKind::Schema { .. }),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_config_file_is_read_with_a_size_limit() {
+    let missing = std::path::Path::new("/dev/zero");
+    let err =
+        ClientConfig::resolve_with(&Overrides::default(), &|_| None, Some(missing)).unwrap_err();
+    let text = format!("{err} {:?}", std::error::Error::source(&err));
+    assert!(
+        text.contains("/dev/zero") && text.contains("device"),
+        "{text}"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let big = dir.path().join("big.toml");
+    std::fs::write(
+        &big,
+        vec![b'#'; scenethesis_openai::MAX_CONFIG_BYTES as usize + 1],
+    )
+    .unwrap();
+    let err = ClientConfig::resolve_with(&Overrides::default(), &|_| None, Some(&big)).unwrap_err();
+    let text = format!("{err} {:?}", std::error::Error::source(&err));
+    assert!(text.contains("larger than the limit"), "{text}");
 }

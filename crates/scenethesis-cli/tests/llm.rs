@@ -291,13 +291,26 @@ fn provider_failures_give_one_clear_error_and_no_output() {
     assert_fails_cleanly(&server.base_url, "malformed");
     drop(server);
 
+    // An answer breaking the plan schema (answer and repair round) is salvaged: the plan is
+    // completed from offline knowledge and the run gives a scene, saying so (issue 32, item 20).
     let server = Server::start((
         200,
         "application/json",
         completion(r#"{"objects": "a counter and some shelves"}"#),
         Duration::ZERO,
     ));
-    assert_fails_cleanly(&server.base_url, "violates the schema");
+    let tmp = tempfile::tempdir().unwrap();
+    let out_dir = tmp.path().join("pharmacy");
+    let config = fast_config(tmp.path());
+    let out = generate_llm(&server.base_url, &out_dir, &["--llm-config", &config]);
+    assert!(out.status.success(), "{}", text(&out));
+    let report = std::fs::read_to_string(out_dir.join("report.json")).unwrap();
+    assert!(report.contains("violates the JSON schema"), "{report}");
+    assert!(
+        report.contains("completed from offline knowledge"),
+        "{report}"
+    );
+    assert!(!report.contains(KEY), "the key leaked: {report}");
     drop(server);
 
     let server = Server::start((
