@@ -344,7 +344,7 @@ impl scenethesis_models::Segmenter for TrueMasks {
                     label: b.label.clone(),
                     width: w,
                     height: h,
-                    pixels: m.flags()[..(w * h) as usize].to_vec(),
+                    pixels: m.to_flags()[..(w * h) as usize].to_vec(),
                     score: 0.9,
                 }
             })
