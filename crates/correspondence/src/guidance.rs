@@ -5,6 +5,8 @@ use std::collections::BTreeMap;
 
 use scenethesis_scene_graph::Camera;
 
+use crate::mask::Mask;
+
 /// Why guidance data is inconsistent.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum GuidanceError {
@@ -206,91 +208,6 @@ impl DepthMap {
         }
         let d = self.data[y as usize * self.width as usize + x as usize];
         (d.is_finite() && d > 0.0).then_some(d)
-    }
-}
-
-/// A binary per-pixel mask (one object's visible pixels), rows top to bottom.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Mask {
-    width: u32,
-    height: u32,
-    data: Vec<bool>,
-}
-
-impl Mask {
-    /// An empty `width × height` mask.
-    pub fn new(width: u32, height: u32) -> Self {
-        Self {
-            width,
-            height,
-            data: vec![false; width as usize * height as usize],
-        }
-    }
-
-    /// A mask from `width × height` flags, row-major.
-    pub fn from_flags(width: u32, height: u32, data: Vec<bool>) -> Result<Self, GuidanceError> {
-        check_len("mask", width, height, data.len(), 1)?;
-        Ok(Self {
-            width,
-            height,
-            data,
-        })
-    }
-
-    /// Width in pixels.
-    pub fn width(&self) -> u32 {
-        self.width
-    }
-
-    /// Height in pixels.
-    pub fn height(&self) -> u32 {
-        self.height
-    }
-
-    /// Whether pixel (x, y) belongs to the mask (`false` outside the image).
-    pub fn contains(&self, x: u32, y: u32) -> bool {
-        x < self.width
-            && y < self.height
-            && self.data[y as usize * self.width as usize + x as usize]
-    }
-
-    /// Sets pixel (x, y); ignored outside the image.
-    pub fn set(&mut self, x: u32, y: u32, value: bool) {
-        if x < self.width && y < self.height {
-            self.data[y as usize * self.width as usize + x as usize] = value;
-        }
-    }
-
-    /// The flags, row-major.
-    pub fn flags(&self) -> &[bool] {
-        &self.data
-    }
-
-    /// Number of pixels in the mask.
-    pub fn area(&self) -> usize {
-        self.data.iter().filter(|&&m| m).count()
-    }
-
-    /// The pixels in the mask as (x, y), row by row.
-    pub fn pixels(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
-        let w = self.width as usize;
-        self.data
-            .iter()
-            .enumerate()
-            .filter(|(_, &m)| m)
-            .map(move |(i, _)| ((i % w) as u32, (i / w) as u32))
-    }
-
-    /// The tight pixel box `(x0, y0, x1, y1)` (exclusive ends) or `None` when empty.
-    pub fn bounding_box(&self) -> Option<(u32, u32, u32, u32)> {
-        let mut b: Option<(u32, u32, u32, u32)> = None;
-        for (x, y) in self.pixels() {
-            b = Some(match b {
-                None => (x, y, x + 1, y + 1),
-                Some((x0, y0, x1, y1)) => (x0.min(x), y0.min(y), x1.max(x + 1), y1.max(y + 1)),
-            });
-        }
-        b
     }
 }
 

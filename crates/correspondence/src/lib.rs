@@ -33,12 +33,14 @@
 #![warn(missing_docs)]
 
 mod guidance;
+mod mask;
 mod matcher;
 mod pair;
 mod raster;
 pub mod shape;
 
-pub use guidance::{DepthMap, Guidance, GuidanceError, Mask, RgbImage};
+pub use guidance::{DepthMap, Guidance, GuidanceError, RgbImage};
+pub use mask::Mask;
 pub use matcher::{lift, MatchKind, Matcher, PixelMatch, TargetRegion};
 pub use pair::{Correspondence, PairKind};
 pub use raster::{projected_bbox, rasterize, rasterize_coarse, RenderedView, Window};

@@ -4,7 +4,8 @@
 use nalgebra::Point2;
 use scenethesis_scene_graph::Camera;
 
-use crate::guidance::{DepthMap, Mask, RgbImage};
+use crate::guidance::{DepthMap, RgbImage};
+use crate::mask::Mask;
 use crate::pair::{Correspondence, PairKind};
 use crate::raster::RenderedView;
 

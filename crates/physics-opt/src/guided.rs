@@ -2,6 +2,8 @@
 //! yaw hypotheses scored by shape agreement, then rounds of (render the asset at its current
 //! pose → match → lift → robust fit of the alignment loss), keeping the best-agreeing pose.
 
+use std::time::{Duration, Instant};
+
 use nalgebra::Point3;
 use scenethesis_correspondence::shape::{pick_yaw, search_yaw, search_yaw_coarse, shape_score};
 use scenethesis_correspondence::{
@@ -60,6 +62,60 @@ pub struct GuidedSettings {
     /// is the better; the tolerance only guards against a fit that went astray.
     #[serde(default = "default_refine_tolerance")]
     pub refine_tolerance: f64,
+    /// Wall-clock budget of the alignment, in seconds (default
+    /// [`DEFAULT_TIME_BUDGET_SECS`]; infinite: none). It is shared by every object aligned
+    /// with the settings [`GuidedSettings::started`] returned, else counted per call of
+    /// [`align_to_guidance`]. When it runs out, the yaw search and the match rounds not yet
+    /// begun are skipped and the best pose found so far is kept, with
+    /// [`GuidedPose::out_of_time`] set; a run that does not reach it is unchanged by it.
+    #[serde(default = "default_time_budget")]
+    pub time_budget: f64,
+    /// The shared deadline set by [`GuidedSettings::started`] (never serialized).
+    #[serde(skip)]
+    pub deadline: Option<Instant>,
+}
+
+/// Default [`GuidedSettings::time_budget`], seconds. Aligning the objects of a benchmark scene
+/// takes well under a second in a release build, so the budget only ends runaway work (huge
+/// windows, guidance the optimizer cannot agree with).
+pub const DEFAULT_TIME_BUDGET_SECS: f64 = 30.0;
+
+fn default_time_budget() -> f64 {
+    DEFAULT_TIME_BUDGET_SECS
+}
+
+impl GuidedSettings {
+    /// These settings with their deadline fixed `time_budget` seconds from now, to share one
+    /// budget between the objects of a stage.
+    pub fn started(&self) -> Self {
+        Self {
+            deadline: deadline_after(self.time_budget),
+            ..self.clone()
+        }
+    }
+
+    /// The deadline of an alignment starting now: the shared one, else `time_budget` from now.
+    fn deadline(&self) -> Option<Instant> {
+        self.deadline.or_else(|| deadline_after(self.time_budget))
+    }
+}
+
+/// `now + seconds`, `None` for an infinite or unrepresentable budget (a non-positive or NaN
+/// budget is spent at once).
+fn deadline_after(seconds: f64) -> Option<Instant> {
+    let seconds = if seconds.is_nan() {
+        0.0
+    } else {
+        seconds.max(0.0)
+    };
+    Duration::try_from_secs_f64(seconds)
+        .ok()
+        .and_then(|d| Instant::now().checked_add(d))
+}
+
+/// Whether `deadline` has passed.
+fn past(deadline: Option<Instant>) -> bool {
+    deadline.is_some_and(|d| Instant::now() >= d)
 }
 
 fn default_refine_tolerance() -> f64 {
@@ -97,6 +153,8 @@ impl Default for GuidedSettings {
             tolerance: 1e-3,
             scale_sigma: default_scale_sigma(),
             refine_tolerance: default_refine_tolerance(),
+            time_budget: default_time_budget(),
+            deadline: None,
         }
     }
 }
@@ -114,6 +172,8 @@ pub struct GuidedPose {
     pub score: ShapeScore,
     /// Refresh rounds run.
     pub rounds: usize,
+    /// The time budget ran out: the pose is the best found before it did.
+    pub out_of_time: bool,
 }
 
 /// `pose` shifted horizontally so that the asset's visible silhouette (rendered pixels not
@@ -182,6 +242,14 @@ pub fn align_to_guidance(
     settings: &GuidedSettings,
 ) -> Option<GuidedPose> {
     let camera = target.camera;
+    let deadline = settings.deadline();
+    // Set when the budget made a step be skipped.
+    let mut cut = false;
+    let mut over = || {
+        let p = past(deadline);
+        cut |= p;
+        p
+    };
     let (w, h) = (camera.intrinsics.width, camera.intrinsics.height);
     if target.mask.area() < settings.min_mask_pixels {
         return None;
@@ -202,7 +270,7 @@ pub fn align_to_guidance(
     };
     let start_score = score_at(start);
     let mut best = (*start, start_score);
-    if settings.yaw_candidates > 1 {
+    if settings.yaw_candidates > 1 && !over() {
         let step = std::f64::consts::TAU / settings.yaw_candidates as f64;
         let yaws: Vec<f64> = (0..settings.yaw_candidates)
             .map(|k| start.yaw + k as f64 * step)
@@ -255,7 +323,10 @@ pub fn align_to_guidance(
     // A lift thrown off by stray depth (a mask spilling onto the wall behind) can leave the
     // object far from its mask: try the best pose so far moved so that its visible silhouette's centroid
     // and median depth match the mask's.
-    if let Some(moved) = recentred(mesh, &best.0, target, window_at(&best.0)) {
+    let recentred = (!over())
+        .then(|| recentred(mesh, &best.0, target, window_at(&best.0)))
+        .flatten();
+    if let Some(moved) = recentred {
         let score = score_at(&moved);
         if score.score > best.1.score {
             best = (moved, score);
@@ -271,6 +342,9 @@ pub fn align_to_guidance(
     // The shape score of `pose` once known (the view rendered for matching scores it too).
     let mut pose_score = Some(best.1);
     for _ in 0..settings.refreshes {
+        if over() {
+            break;
+        }
         rounds += 1;
         let view = rasterize(mesh, &pose, camera, window_at(&pose));
         let score = *pose_score.get_or_insert_with(|| shape_score(&view, target, &scorer));
@@ -337,5 +411,6 @@ pub fn align_to_guidance(
         start_score,
         score: best.1,
         rounds,
+        out_of_time: cut,
     })
 }

@@ -44,7 +44,7 @@ mod verify;
 pub use alignment::{FitOptions, PoseAlignment, ScalePrior};
 pub use contact::{cluster_contacts, CollisionState, Contact};
 pub use driver::{architecture_fields, optimize_scene, OptimizeSettings, SceneProblem};
-pub use guided::{align_to_guidance, GuidedPose, GuidedSettings};
+pub use guided::{align_to_guidance, GuidedPose, GuidedSettings, DEFAULT_TIME_BUDGET_SECS};
 pub use objective::{LossSettings, Losses, ObjectProblem, RoomBounds, Stage};
 pub use obstacles::Obstacles;
 pub use optimizer::{LearningRates, Optimizer, Sgd, StageOutcome};

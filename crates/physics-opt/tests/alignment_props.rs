@@ -195,3 +195,46 @@ proptest! {
         prop_assert!(found.score.score >= found.start_score.score);
     }
 }
+
+/// The time budget: a spent one ends the alignment at once with the best pose so far (the
+/// start) and says so; the default one is not reached and changes nothing.
+#[test]
+fn a_spent_time_budget_keeps_the_best_pose_so_far_and_an_unspent_one_changes_nothing() {
+    let cam = camera();
+    let mesh = sofa();
+    let truth = Pose::new(1.0, 0.4, Vector3::new(0.1, 0.0, -0.1));
+    let (mask, depth) = guidance(&cam, &mesh, &truth);
+    let target = TargetRegion {
+        camera: &cam,
+        mask: &mask,
+        depth: Some(&depth),
+        image: None,
+    };
+    let start = Pose::new(1.0, 0.9, truth.translation + Vector3::new(0.1, 0.0, 0.05));
+    let run = |settings: &GuidedSettings| {
+        align_to_guidance(
+            &mesh,
+            &start,
+            [0.8, 1.25],
+            &target,
+            &ShapeMatcher::default(),
+            None,
+            settings,
+        )
+        .expect("the object is in view")
+    };
+    let spent = run(&GuidedSettings {
+        time_budget: 0.0,
+        ..GuidedSettings::default()
+    });
+    assert!(spent.out_of_time);
+    assert_eq!((spent.pose, spent.rounds), (start, 0));
+    let normal = run(&GuidedSettings::default().started());
+    let unlimited = run(&GuidedSettings {
+        time_budget: f64::INFINITY,
+        ..GuidedSettings::default()
+    });
+    assert!(!normal.out_of_time && !unlimited.out_of_time);
+    assert_eq!(normal, unlimited);
+    assert!(normal.rounds > 0);
+}

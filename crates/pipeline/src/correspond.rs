@@ -43,7 +43,8 @@ pub fn facing_hint(scene: &Scene, object: &SceneObject) -> Option<f64> {
 /// starting from its pose in `scene`, with scale kept within `scale_ranges` (by object id,
 /// default ×0.7–×1.4 of the starting scale). `depth_scale` multiplies the guidance depth first
 /// (the global scale the guide calibrated on the floor; 1 when the depth is already metric).
-/// Objects run in parallel; the result does not depend on the thread count.
+/// Objects run in parallel; the result does not depend on the thread count unless the
+/// settings' time budget runs out (then each object keeps the best pose found in time).
 pub fn correspond(
     scene: &Scene,
     meshes: &BTreeMap<String, Mesh>,
@@ -53,6 +54,8 @@ pub fn correspond(
     matcher: &dyn Matcher,
     settings: &GuidedSettings,
 ) -> BTreeMap<String, GuidedPose> {
+    // One time budget for the whole stage, shared by the objects aligned in parallel.
+    let settings = &settings.started();
     let scaled;
     let depth = match &guidance.depth {
         Some(d) if (depth_scale - 1.0).abs() > 1e-12 => {

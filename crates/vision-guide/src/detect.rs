@@ -23,7 +23,8 @@ pub struct ObjectBox {
 
 /// Assigns labelled masks to planned objects: a label whose id is planned keeps it; otherwise
 /// the first planned object of the label's category not yet taken gets it. Returns the masks by
-/// planned id and, for labels no planned object matches, `(label id, why)`.
+/// planned id and, for labels no planned object matches or that have no mask (their value does
+/// not occur in the instance image), `(label id, why)`.
 pub fn match_labels(
     plan: &Plan,
     masks: &BTreeMap<String, Mask>,
@@ -33,8 +34,21 @@ pub fn match_labels(
     let mut unmatched = Vec::new();
     let mut taken: BTreeSet<String> = BTreeSet::new();
     let mut handled: BTreeSet<&str> = BTreeSet::new();
+    // A label the instance image does not show has no mask and guides nothing.
+    for (value, label) in labels {
+        if !masks.contains_key(&label.id) {
+            handled.insert(label.id.as_str());
+            unmatched.push((
+                label.id.clone(),
+                format!("labelled but not visible: instance value {value} does not occur in the instance image"),
+            ));
+        }
+    }
     // Ids first, so a category match never steals an object a label names.
     for label in labels.values() {
+        if handled.contains(label.id.as_str()) {
+            continue;
+        }
         if let Some(o) = plan.object(&label.id) {
             if o.category == label.category && taken.insert(o.id.clone()) {
                 out.insert(o.id.clone(), masks[&label.id].clone());

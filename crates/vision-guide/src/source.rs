@@ -133,6 +133,10 @@ impl GivenGuidance {
             Some(path) => {
                 let depth = files::read_depth(path)?;
                 same(path, depth.width(), depth.height())?;
+                check_depth_varies(&depth).map_err(|problem| FileError::Invalid {
+                    path: path.clone(),
+                    problem,
+                })?;
                 Some(depth)
             }
             None => None,
@@ -144,7 +148,7 @@ impl GivenGuidance {
                     same(ids, m.width(), m.height())?;
                 } else {
                     // No label: still check the instance image's size.
-                    let (w, h) = image_size(ids)?;
+                    let (w, h) = files::png_size(ids)?;
                     same(ids, w, h)?;
                 }
                 for (value, label) in &labels {
@@ -184,14 +188,26 @@ impl GivenGuidance {
     }
 }
 
-fn image_size(path: &Path) -> Result<(u32, u32), FileError> {
-    let bytes = files::read_bounded(path)?;
-    image::ImageReader::with_format(std::io::Cursor::new(bytes), image::ImageFormat::Png)
-        .into_dimensions()
-        .map_err(|e| FileError::Invalid {
-            path: path.to_path_buf(),
-            problem: format!("not a readable PNG image ({e})"),
-        })
+/// Depth values closer together than this (metres) count as one constant depth.
+pub const MIN_DEPTH_SPREAD: f32 = 1e-3;
+
+/// Refuses a depth map whose known values are all the same (within [`MIN_DEPTH_SPREAD`]): it
+/// shows no floor, wall or object to place anything by, and fitting objects to it runs for
+/// minutes without agreeing. A map with no known value at all is refused too.
+pub fn check_depth_varies(depth: &DepthMap) -> Result<(), String> {
+    let known = depth.values().iter().filter(|d| d.is_finite() && **d > 0.0);
+    let (lo, hi) = known.fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), d| {
+        (lo.min(*d), hi.max(*d))
+    });
+    if lo > hi {
+        return Err("no pixel has a known depth (every value is 0): expected metric depth of the scene, or leave the depth out".into());
+    }
+    if hi - lo < MIN_DEPTH_SPREAD {
+        return Err(format!(
+            "every known pixel has the same depth ({lo} m): expected the varying depth of a scene (floor, walls, objects)"
+        ));
+    }
+    Ok(())
 }
 
 /// A render of a plan's empty room: the colour image and the camera it was taken with.
@@ -233,4 +249,37 @@ pub fn decode_to_size(bytes: &[u8], size: [u32; 2], what: &str) -> Result<RgbIma
         image::imageops::resize(&decoded, cw, ch, image::imageops::FilterType::Triangle)
     };
     RgbImage::new(cw, ch, decoded.into_raw()).map_err(|e| format!("{what}: {e}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn constant_or_unknown_depth_is_refused_and_a_millimetre_of_relief_is_enough() {
+        let flat = DepthMap::from_fn(8, 8, |_, _| 2.5);
+        assert!(check_depth_varies(&flat)
+            .unwrap_err()
+            .contains("same depth (2.5 m)"));
+        let unknown = DepthMap::from_fn(8, 8, |_, _| 0.0);
+        assert!(check_depth_varies(&unknown)
+            .unwrap_err()
+            .contains("no pixel"));
+        let edge = DepthMap::from_fn(8, 8, |x, _| {
+            if x == 0 {
+                2.5 + 1.01 * MIN_DEPTH_SPREAD
+            } else {
+                2.5
+            }
+        });
+        assert!(check_depth_varies(&edge).is_ok());
+        let under = DepthMap::from_fn(8, 8, |x, _| {
+            if x == 0 {
+                2.5 + 0.99 * MIN_DEPTH_SPREAD
+            } else {
+                2.5
+            }
+        });
+        assert!(check_depth_varies(&under).is_err());
+    }
 }

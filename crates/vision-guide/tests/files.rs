@@ -43,7 +43,8 @@ fn labels(path: &Path, category: &str) {
 }
 
 fn depth(path: &Path, w: u32, h: u32, bad: Option<f32>) {
-    let mut values = vec![2.0f32; (w * h) as usize];
+    // Nearer toward the bottom rows, as a floor seen from above (a constant depth is refused).
+    let mut values: Vec<f32> = (0..w * h).map(|i| 2.0 - (i / w) as f32 * 0.01).collect();
     if let Some(b) = bad {
         values[(w + 3) as usize] = b;
     }
@@ -165,4 +166,19 @@ fn masks_need_labels() {
     set.files.labels = None;
     let e = error(&set.files);
     assert!(e.contains("ids.png") && e.contains("--guide-labels"), "{e}");
+}
+
+#[test]
+fn a_constant_depth_is_refused_naming_the_file() {
+    let set = valid();
+    std::fs::write(
+        set.files.depth.as_ref().unwrap(),
+        write_npy(64, 48, &vec![2.0; 64 * 48]),
+    )
+    .unwrap();
+    let e = error(&set.files);
+    assert!(
+        e.contains("depth.npy") && e.contains("same depth (2 m)"),
+        "{e}"
+    );
 }

@@ -344,7 +344,7 @@ impl scenethesis_models::Segmenter for TrueMasks {
                     label: b.label.clone(),
                     width: w,
                     height: h,
-                    pixels: m.flags()[..(w * h) as usize].to_vec(),
+                    pixels: m.to_flags()[..(w * h) as usize].to_vec(),
                     score: 0.9,
                 }
             })
@@ -514,5 +514,49 @@ fn the_edit_path_lifts_under_the_render_camera_and_reuses_the_edit_across_rounds
     assert!(
         e.contains("test/painter") && e.contains(&format!("{W} × {W}")),
         "{e}"
+    );
+}
+
+/// A label whose value the instance image does not show has no mask: it is reported as not
+/// visible instead of reserving (or panicking over) a planned object.
+#[test]
+fn a_label_not_in_the_image_is_reported_not_visible() {
+    let plan = plan("a bedroom with a bed");
+    let bed = plan
+        .objects
+        .iter()
+        .find(|o| o.category == "bed")
+        .expect("the plan has a bed");
+    let mut mask = Mask::new(W, H);
+    mask.set(5, 5, true);
+    let masks = BTreeMap::from([("seen".to_string(), mask)]);
+    let labels: Labels = BTreeMap::from([
+        (
+            1,
+            Label {
+                id: "seen".into(),
+                category: "bed".into(),
+            },
+        ),
+        (
+            2,
+            Label {
+                id: bed.id.clone(),
+                category: "bed".into(),
+            },
+        ),
+    ]);
+    let (matched, unmatched) =
+        scenethesis_vision_guide::detect::match_labels(&plan, &masks, &labels);
+    assert_eq!(matched.len(), 1);
+    assert_eq!(
+        matched[&bed.id].area(),
+        1,
+        "the visible label takes the bed"
+    );
+    assert_eq!(unmatched.len(), 1);
+    assert!(
+        unmatched[0].0 == bed.id && unmatched[0].1.contains("instance value 2 does not occur"),
+        "{unmatched:?}"
     );
 }

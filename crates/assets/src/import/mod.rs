@@ -25,6 +25,7 @@
 //! rest of the directory is still imported. Without a manifest, every mesh file in the directory
 //! is imported with the defaults and its file stem as category.
 
+mod clean;
 mod gltf_file;
 pub mod limits;
 mod obj;
@@ -40,6 +41,7 @@ use serde::Deserialize;
 
 use crate::{Asset, AssetInfo, Placement, SupportSurface};
 
+pub use clean::{clean_mesh, Cleaned};
 pub use gltf_file::{resolve_inside, GltfError, GltfFile, GltfMaterial, GltfNode, GltfPrimitive};
 pub use surfaces::{find_support_surfaces, SurfaceSearch};
 
@@ -520,6 +522,13 @@ fn import_entry_in(
     let mut mesh = load_mesh_in(path, root)?;
     if mesh.triangle_count() == 0 {
         return Err(MeshLoadError::Empty);
+    }
+    let cleaned = clean::clean_mesh(&mut mesh);
+    if mesh.triangle_count() == 0 {
+        return Err(MeshLoadError::Unusable(format!(
+            "the mesh has zero surface area: no triangle is left after dropping {} zero-area and {} repeated triangles",
+            cleaned.degenerate_triangles, cleaned.duplicate_triangles
+        )));
     }
     normalise(&mut mesh, entry.up_axis, entry.front, entry.unit_scale);
     let bounds = mesh.bounds().ok_or(MeshLoadError::Empty)?;

@@ -626,3 +626,38 @@ fn a_position_accessor_index_past_the_end_is_an_error_not_a_panic_in_gltf_json()
         .to_string();
     assert!(e.contains("meshes[0].primitives[0].attributes"), "{e}");
 }
+
+#[test]
+fn repeated_and_degenerate_triangles_are_dropped_before_the_distance_field() {
+    let dir = tempfile::tempdir().unwrap();
+    // 20 000 copies of one triangle, each with its own three vertices.
+    let mut obj = String::new();
+    for k in 0..20_000 {
+        obj.push_str("v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+        obj.push_str(&format!("f {} {} {}\n", 3 * k + 1, 3 * k + 2, 3 * k + 3));
+    }
+    let report = import_one(
+        dir.path(),
+        "same.obj",
+        obj.as_bytes(),
+        json!({"file": "same.obj", "category": "x"}),
+    );
+    assert!(report.warnings.is_empty(), "{:?}", report.warnings);
+    let mesh = &report.assets[0].mesh;
+    assert_eq!(
+        (mesh.triangle_count(), mesh.parts[0].positions.len()),
+        (1, 3)
+    );
+    // Only lines and repeated corners: nothing is left, and the warning names the file.
+    let obj = "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 1 2\nf 3 2 1\n";
+    let w = only_warning(&import_one(
+        dir.path(),
+        "lines.obj",
+        obj.as_bytes(),
+        json!({"file": "lines.obj", "category": "x"}),
+    ));
+    assert!(
+        w.contains("lines.obj") && w.contains("no triangle is left after dropping"),
+        "{w}"
+    );
+}

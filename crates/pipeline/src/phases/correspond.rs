@@ -37,6 +37,18 @@ pub(crate) fn correspond(
     }
     let guided =
         crate::correspond::correspond(scene, &meshes, &ranges, guidance, 1.0, matcher, settings);
+    let late: Vec<String> = guided
+        .iter()
+        .filter(|(_, g)| g.out_of_time)
+        .map(|(id, _)| scenethesis_scene_graph::printable(id).into_owned())
+        .collect();
+    if !late.is_empty() {
+        tracing::warn!(
+            "the alignment time budget ({} s) ran out: {} kept the best pose found in time",
+            settings.time_budget,
+            late.join(", ")
+        );
+    }
     for object in &mut scene.objects {
         if let Some(g) = guided.get(&object.id) {
             object.pose = g.pose;

@@ -18,14 +18,25 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 
 use image::{ImageBuffer, Luma};
-use scenethesis_correspondence::{DepthMap, Guidance, GuidanceError, Mask, RgbImage};
-use scenethesis_scene_graph::Camera;
+use scenethesis_correspondence::{DepthMap, Guidance, GuidanceError, RgbImage};
 use serde::{Deserialize, Serialize};
 
 /// Largest guidance file read, in bytes (512 MiB).
 pub const MAX_FILE_BYTES: u64 = 512 << 20;
 /// Largest image side read, in pixels.
 pub const MAX_SIDE: u32 = 8192;
+/// Most pixels of a guidance image (16 Mpx, e.g. 4096 × 4096 or a 12 Mpx photo); checked from
+/// the PNG header or `.npy` shape before any pixel buffer is allocated.
+pub const MAX_PIXELS: u64 = 1 << 24;
+
+mod camera;
+mod labels;
+
+pub use camera::{
+    check_camera, read_camera, MAX_CAMERA_JSON_BYTES, MAX_FOCAL_RATIO, MIN_FOCAL_RATIO,
+    PRINCIPAL_POINT_MARGIN,
+};
+pub use labels::{parse_labels, read_masks, MAX_LABELS, MAX_LABELS_JSON_BYTES};
 
 /// Why guidance files could not be read or written.
 #[derive(Debug, thiserror::Error)]
@@ -77,34 +88,70 @@ fn invalid(path: &Path, problem: impl Into<String>) -> FileError {
 /// Reads at most [`MAX_FILE_BYTES`] of `path`; larger files (and endless ones such as
 /// `/dev/zero`) are refused.
 pub fn read_bounded(path: &Path) -> Result<Vec<u8>, FileError> {
+    read_bounded_to(path, MAX_FILE_BYTES)
+}
+
+/// Reads at most `limit` bytes of `path`; larger files are refused naming the limit.
+fn read_bounded_to(path: &Path, limit: u64) -> Result<Vec<u8>, FileError> {
     let read_err = |source| FileError::Read {
         path: path.to_path_buf(),
         source,
     };
     let file = fs::File::open(path).map_err(read_err)?;
     let mut bytes = Vec::new();
-    file.take(MAX_FILE_BYTES + 1)
+    file.take(limit + 1)
         .read_to_end(&mut bytes)
         .map_err(read_err)?;
-    if bytes.len() as u64 > MAX_FILE_BYTES {
+    if bytes.len() as u64 > limit {
         return Err(invalid(
             path,
-            format!(
-                "larger than the {} MiB limit for guidance files",
-                MAX_FILE_BYTES >> 20
-            ),
+            format!("larger than the {} KiB limit for this file", limit >> 10),
         ));
     }
     Ok(bytes)
 }
 
+/// Checks an image size against [`MAX_SIDE`] and [`MAX_PIXELS`].
+pub fn check_image_size(width: u32, height: u32) -> Result<(), String> {
+    if width == 0 || height == 0 || width > MAX_SIDE || height > MAX_SIDE {
+        return Err(format!(
+            "the image is {width} × {height} pixels: expected each side 1–{MAX_SIDE} pixels"
+        ));
+    }
+    let pixels = width as u64 * height as u64;
+    if pixels > MAX_PIXELS {
+        return Err(format!(
+            "the image is {width} × {height} = {pixels} pixels: expected at most {MAX_PIXELS} \
+             (MAX_PIXELS); downscale it and its camera's intrinsics"
+        ));
+    }
+    Ok(())
+}
+
+/// The width and height a PNG's header states, without decoding its pixels.
+pub fn png_size(path: &Path) -> Result<(u32, u32), FileError> {
+    let bytes = read_bounded(path)?;
+    image::ImageReader::with_format(std::io::Cursor::new(bytes), image::ImageFormat::Png)
+        .into_dimensions()
+        .map_err(|e| invalid(path, format!("not a readable PNG image ({e})")))
+}
+
+/// Decodes a PNG after checking the size its header states, so a small file claiming a huge
+/// image is refused before any pixel buffer is allocated.
 fn decode_png(path: &Path) -> Result<image::DynamicImage, FileError> {
     let bytes = read_bounded(path)?;
-    let mut reader =
-        image::ImageReader::with_format(std::io::Cursor::new(bytes), image::ImageFormat::Png);
+    let reader =
+        || image::ImageReader::with_format(std::io::Cursor::new(&bytes), image::ImageFormat::Png);
+    let (w, h) = reader()
+        .into_dimensions()
+        .map_err(|e| invalid(path, format!("not a readable PNG image ({e})")))?;
+    check_image_size(w, h).map_err(|problem| invalid(path, problem))?;
     let mut limits = image::Limits::default();
     limits.max_image_width = Some(MAX_SIDE);
     limits.max_image_height = Some(MAX_SIDE);
+    // 16-bit RGBA, the widest PNG pixel, plus the decoder's own buffers.
+    limits.max_alloc = Some(MAX_PIXELS * 8 * 2);
+    let mut reader = reader();
     reader.limits(limits);
     reader
         .decode()
@@ -231,6 +278,12 @@ pub fn parse_npy(bytes: &[u8]) -> Result<(u32, u32, Vec<f32>), String> {
             "shape ({h}, {w}): each side must be 1–{MAX_SIDE} pixels"
         ));
     }
+    if w * h > MAX_PIXELS {
+        return Err(format!(
+            "shape ({h}, {w}) is {} pixels: expected at most {MAX_PIXELS} (MAX_PIXELS)",
+            w * h
+        ));
+    }
     let data = &bytes[start + header_len..];
     let n = (w * h) as usize;
     if data.len() != n * elem {
@@ -284,92 +337,6 @@ pub struct Label {
     pub category: String,
 }
 
-/// Reads `ids.png` + `labels.json` into one mask per labelled object id. Every non-zero value in
-/// the image must have a label; labels must have distinct printable ids.
-pub fn read_masks(
-    ids_png: &Path,
-    labels_json: &Path,
-) -> Result<(BTreeMap<String, Mask>, Labels), FileError> {
-    let bytes = read_bounded(labels_json)?;
-    let raw: BTreeMap<String, Label> = serde_json::from_slice(&bytes).map_err(|e| {
-        invalid(
-            labels_json,
-            format!("expected {{\"VALUE\": {{\"id\": …, \"category\": …}}, …}} ({e})"),
-        )
-    })?;
-    let mut labels = BTreeMap::new();
-    let mut seen = BTreeMap::new();
-    for (key, label) in raw {
-        let value: u16 = key.parse().ok().filter(|v| *v != 0).ok_or_else(|| {
-            invalid(
-                labels_json,
-                format!(
-                    "key `{}` is not an instance value 1–65535",
-                    key.escape_debug()
-                ),
-            )
-        })?;
-        if label.id.is_empty() || label.id.chars().any(char::is_control) {
-            return Err(invalid(
-                labels_json,
-                format!(
-                    "label {value}: id `{}` must be non-empty printable text",
-                    label.id.escape_debug()
-                ),
-            ));
-        }
-        if let Some(other) = seen.insert(label.id.clone(), value) {
-            return Err(invalid(
-                labels_json,
-                format!("labels {other} and {value} both name object `{}`", label.id),
-            ));
-        }
-        labels.insert(value, label);
-    }
-    let img = match decode_png(ids_png)? {
-        image::DynamicImage::ImageLuma16(i) => i,
-        image::DynamicImage::ImageLuma8(i) => {
-            let (w, h) = i.dimensions();
-            ImageBuffer::from_raw(w, h, i.into_raw().into_iter().map(u16::from).collect())
-                .expect("one value per pixel")
-        }
-        other => {
-            return Err(invalid(
-                ids_png,
-                format!(
-                    "an instance image must be 8- or 16-bit greyscale, found {:?}",
-                    other.color()
-                ),
-            ))
-        }
-    };
-    let (w, h) = img.dimensions();
-    let mut masks: BTreeMap<String, Mask> = labels
-        .values()
-        .map(|l| (l.id.clone(), Mask::new(w, h)))
-        .collect();
-    for (x, y, px) in img.enumerate_pixels() {
-        let v = px.0[0];
-        if v == 0 {
-            continue;
-        }
-        let label = labels.get(&v).ok_or_else(|| {
-            invalid(
-                ids_png,
-                format!(
-                    "pixel ({x}, {y}) has instance value {v}, which {} does not label",
-                    labels_json.display()
-                ),
-            )
-        })?;
-        masks
-            .get_mut(&label.id)
-            .expect("one mask per label")
-            .set(x, y, true);
-    }
-    Ok((masks, labels))
-}
-
 /// The paths of a guidance folder's files.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct GuidancePaths {
@@ -407,30 +374,6 @@ impl GuidancePaths {
     }
 }
 
-/// Reads a camera file, checking that its numbers are finite and its intrinsics positive.
-pub fn read_camera(path: &Path) -> Result<Camera, FileError> {
-    let bytes = read_bounded(path)?;
-    let camera: Camera = serde_json::from_slice(&bytes).map_err(|e| {
-        invalid(
-            path,
-            format!("expected {{\"intrinsics\": {{width, height, fx, fy, cx, cy}}, \"position\": [x, y, z], \"rotation\": [i, j, k, w]}} ({e})"),
-        )
-    })?;
-    let k = &camera.intrinsics;
-    let finite = [k.fx, k.fy, k.cx, k.cy]
-        .iter()
-        .chain(camera.position.iter())
-        .chain(camera.rotation.coords.iter())
-        .all(|v| v.is_finite());
-    if !finite || k.fx <= 0.0 || k.fy <= 0.0 || k.width == 0 || k.height == 0 {
-        return Err(invalid(
-            path,
-            "expected finite numbers, a positive image size and positive focal lengths",
-        ));
-    }
-    Ok(camera)
-}
-
 /// Reads a whole guidance set and checks that every image has the camera's size.
 pub fn read_guidance(paths: &GuidancePaths) -> Result<(Guidance, BTreeMap<u16, Label>), FileError> {
     let camera = read_camera(&paths.camera)?;
@@ -455,9 +398,11 @@ pub fn read_guidance(paths: &GuidancePaths) -> Result<(Guidance, BTreeMap<u16, L
     if let (Some(d), Some(p)) = (&depth, &paths.depth) {
         check(p, d.width(), d.height())?;
     }
-    if let Some(m) = masks.values().next() {
-        check(&paths.ids, m.width(), m.height())?;
-    }
+    let (iw, ih) = match masks.values().next() {
+        Some(m) => (m.width(), m.height()),
+        None => png_size(&paths.ids)?,
+    };
+    check(&paths.ids, iw, ih)?;
     let guidance =
         Guidance::new(camera, image, depth, masks).map_err(|source| FileError::Inconsistent {
             path: paths.rgb.clone(),
