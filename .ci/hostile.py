@@ -114,7 +114,7 @@ def cases(work: Path, binary: str) -> list[Case]:
     many = plan(base)
     template = next(o for o in objects if o["id"] != anchor and o.get("parent") == "ground")
     many["objects"] = [objects[0]] + [dict(template, id=f"extra_{i}", relations=[]) for i in range(60_000)]
-    self_constraint = plan(base, constraints=[{"subject": anchor, "kind": "beside", "target": anchor}])
+    self_constraint = plan(base, constraints=[{"subject": anchor, "kind": "beside", "target": {"kind": "object", "id": anchor}, "phrase": "beside itself"}])
     long_id = renamed(base, anchor, "a" * 256)
 
     # Guidance: 640 x 480 images of a known camera, the lower half one desk.
@@ -210,7 +210,10 @@ def run(case: Case, binary: str) -> dict:
     except subprocess.TimeoutExpired as e:
         code, stderr = "timeout", (e.stderr or b"").decode(errors="replace")
     seconds = time.monotonic() - started
-    errors = [line for line in stderr.splitlines() if line.startswith("error")]
+    lines = stderr.splitlines()
+    first = next((i for i, line in enumerate(lines) if line.startswith("error")), None)
+    # The error and the causes the CLI prints under it, as one line.
+    errors = [] if first is None else [" / ".join(line.strip() for line in lines[first:first + 4])]
     ok = code in (0, 1) and "panicked" not in stderr and (code == 0 or len(errors) >= 1)
     if ok and code == 0 and out is not None and (out / "scene.json").is_file():
         # A scene reported written must be one the tool's own validator accepts.
