@@ -32,6 +32,7 @@
 
 #![warn(missing_docs)]
 
+mod error;
 mod guidance;
 mod mask;
 mod matcher;
@@ -39,7 +40,8 @@ mod pair;
 mod raster;
 pub mod shape;
 
-pub use guidance::{DepthMap, Guidance, GuidanceError, RgbImage};
+pub use error::GuidanceError;
+pub use guidance::{DepthMap, Guidance, RgbImage};
 pub use mask::Mask;
 pub use matcher::{lift, MatchKind, Matcher, PixelMatch, TargetRegion};
 pub use pair::{Correspondence, PairKind};

@@ -4,7 +4,7 @@
 //! its pixels (scattered ones), whichever is smaller, so its memory is bounded by the pixels it
 //! holds (at most 8 bytes each, plus a constant) and never by the image's size alone.
 
-use crate::guidance::GuidanceError;
+use crate::error::GuidanceError;
 
 /// A pixel window `(x0, y0, x1, y1)` with exclusive ends.
 type Window = (u32, u32, u32, u32);
