@@ -73,14 +73,18 @@ fn a_relation_to_an_unknown_object_is_refused() {
     assert!(message.contains("unknown object `unicorn_0`"), "{message}");
 }
 
+/// The index of the first object resting on another.
+fn supported(p: &Plan) -> usize {
+    p.objects
+        .iter()
+        .position(|o| o.parent != ParentRef::Ground)
+        .expect("the plan has a supported object")
+}
+
 #[test]
 fn a_parent_must_be_a_planned_object_listed_before_its_child() {
     let mut p = knowledge_plan();
-    let i = p
-        .objects
-        .iter()
-        .position(|o| o.parent != ParentRef::Ground)
-        .expect("the plan has a supported object");
+    let i = supported(&p);
     p.objects[i].parent = ParentRef::Object("nowhere_0".into());
     let (field, message) = invalid(&p);
     assert_eq!(field, format!("objects[{i}].parent"));
@@ -206,11 +210,7 @@ fn a_missing_file_is_a_read_error_naming_it() {
 #[test]
 fn an_object_resting_on_itself_is_refused_not_a_panic() {
     let mut p = knowledge_plan();
-    let i = p
-        .objects
-        .iter()
-        .position(|o| o.parent != ParentRef::Ground)
-        .expect("the plan has a supported object");
+    let i = supported(&p);
     p.objects[i].parent = ParentRef::Object(p.objects[i].id.clone());
     let (field, message) = invalid(&p);
     assert_eq!(field, format!("objects[{i}].parent"));

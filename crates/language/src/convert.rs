@@ -300,18 +300,15 @@ pub(crate) fn convert(
         let mut id = o.id.trim().to_string();
         let usable = is_printable_id(&id);
         if !usable || taken.contains(&id) || WALLS.contains(&id.as_str()) || id == "ground" {
-            let mut n = 0;
-            while taken.contains(&format!("{category}_{n}")) {
-                n += 1;
-            }
+            let fresh = fresh_id(&category, &mut taken);
             if !usable && !id.is_empty() {
                 notes.push(format!(
                     "id `{}` cannot be written to scene.json (control or bidirectional \
-                     characters, or longer than {MAX_ID_BYTES} bytes); renamed {category}_{n}",
+                     characters, or longer than {MAX_ID_BYTES} bytes); renamed {fresh}",
                     shown(&id)
                 ));
             }
-            id = format!("{category}_{n}");
+            id = fresh;
         }
         taken.insert(id.clone());
         id_map.entry(o.id.clone()).or_insert_with(|| id.clone());
@@ -590,6 +587,17 @@ pub(crate) fn order(objects: Vec<PlannedObject>, anchor: &str) -> Vec<PlannedObj
         }
     }
     out
+}
+
+/// The first `CATEGORY_N` id not in `taken`, which it joins.
+pub(crate) fn fresh_id(category: &str, taken: &mut BTreeSet<String>) -> String {
+    let mut n = 0;
+    while taken.contains(&format!("{category}_{n}")) {
+        n += 1;
+    }
+    let id = format!("{category}_{n}");
+    taken.insert(id.clone());
+    id
 }
 
 #[cfg(test)]

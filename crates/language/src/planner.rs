@@ -10,7 +10,7 @@ use scenethesis_agents::{
 use scenethesis_models::{ChatModel, ChatRequest, Message};
 use scenethesis_scene_graph::ParentRef;
 
-use crate::convert::{convert, order, Answer, Converted};
+use crate::convert::{convert, fresh_id, order, Answer, Converted};
 use crate::salvage::close_truncated;
 use crate::schema::{plan_max_tokens, plan_schema};
 
@@ -242,17 +242,6 @@ impl<M: ChatModel> LlmPlanner<M> {
         }
         Ok(converted.plan)
     }
-}
-
-/// The first `CATEGORY_N` id not in `taken`, which it joins.
-fn fresh_id(category: &str, taken: &mut BTreeSet<String>) -> String {
-    let mut n = 0;
-    while taken.contains(&format!("{category}_{n}")) {
-        n += 1;
-    }
-    let id = format!("{category}_{n}");
-    taken.insert(id.clone());
-    id
 }
 
 fn user_message(request: &PlanRequest) -> String {
