@@ -331,8 +331,15 @@ impl Pipeline {
         }
         let (previews, preview_notes) = match clock.check(Stage::Render, best.round) {
             Ok(()) => previews(self.renderer.as_deref(), &best, options, &mut clock),
-            Err(e) if options.previews && self.renderer.is_some() => {
-                (Vec::new(), vec![format!("no previews: {e}")])
+            // The error's own text says no scene was finished, which is not so here.
+            Err(PipelineError::OutOfTime { limit_seconds, .. })
+                if options.previews && self.renderer.is_some() =>
+            {
+                let note = format!(
+                    "no previews: the time limit of {limit_seconds} s was spent before the render \
+                     stage"
+                );
+                (Vec::new(), vec![note])
             }
             Err(_) => (Vec::new(), Vec::new()),
         };
