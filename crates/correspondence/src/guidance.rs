@@ -80,17 +80,31 @@ impl RgbImage {
     /// assert_eq!(&red.to_png()[1..4], b"PNG");
     /// ```
     pub fn to_png(&self) -> Vec<u8> {
-        let mut bytes = Vec::new();
-        image::write_buffer_with_format(
-            &mut std::io::Cursor::new(&mut bytes),
-            &self.data,
+        let view = image::ImageBuffer::<image::Rgb<u8>, &[u8]>::from_raw(
             self.width,
             self.height,
-            image::ExtendedColorType::Rgb8,
-            image::ImageFormat::Png,
+            &self.data,
         )
-        .expect("an in-memory PNG of a checked RGB buffer encodes");
-        bytes
+        .expect("a checked RGB buffer holds its pixels");
+        crate::encode_png(&view).expect("an in-memory PNG of a checked RGB buffer encodes")
+    }
+
+    /// The colour channels of an RGBA image (alpha dropped), e.g. a render's opaque colour.
+    ///
+    /// ```
+    /// use scenethesis_correspondence::RgbImage;
+    /// let rgba = image::RgbaImage::from_pixel(2, 1, image::Rgba([10, 20, 30, 255]));
+    /// assert_eq!(RgbImage::from_rgba(&rgba).get(1, 0), Some([10, 20, 30]));
+    /// ```
+    pub fn from_rgba(image: &image::RgbaImage) -> Self {
+        Self {
+            width: image.width(),
+            height: image.height(),
+            data: image
+                .pixels()
+                .flat_map(|p| [p.0[0], p.0[1], p.0[2]])
+                .collect(),
+        }
     }
 }
 

@@ -13,6 +13,8 @@
 //! - [`rasterize`]: a small CPU depth rasterizer of an asset's mesh in a window of the guidance
 //!   camera, cheap enough to render every yaw hypothesis of every object.
 //!
+//! - [`encode_png`]: the one PNG encoder of the workspace, next to the image types.
+//!
 //! This crate has no GPU, HTTP or model-runtime dependency: renders and model outputs arrive
 //! as plain buffers.
 //!
@@ -37,6 +39,7 @@ mod guidance;
 mod mask;
 mod matcher;
 mod pair;
+mod png;
 mod raster;
 pub mod shape;
 
@@ -45,5 +48,6 @@ pub use guidance::{DepthMap, Guidance, RgbImage};
 pub use mask::Mask;
 pub use matcher::{lift, MatchKind, Matcher, PixelMatch, TargetRegion};
 pub use pair::{Correspondence, PairKind};
+pub use png::encode_png;
 pub use raster::{projected_bbox, rasterize, rasterize_coarse, RenderedView, Window};
 pub use shape::{ShapeMatcher, ShapeScore};

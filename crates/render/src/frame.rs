@@ -1,6 +1,7 @@
 //! A rendered frame on the CPU: colour, metric depth and instance ids, with encoders.
 
 use image::{GrayImage, ImageBuffer, Luma, RgbaImage};
+use scenethesis_correspondence::encode_png;
 
 use crate::RenderError;
 
@@ -87,7 +88,7 @@ impl Frame {
 
     /// The colour image encoded as PNG.
     pub fn color_png(&self) -> Result<Vec<u8>, RenderError> {
-        encode_png(&self.color)
+        Ok(encode_png(&self.color)?)
     }
 
     /// Depth as a 16-bit greyscale image in millimetres (0 = background, saturating at
@@ -103,7 +104,7 @@ impl Frame {
 
     /// The 16-bit millimetre depth image encoded as PNG.
     pub fn depth_png16(&self) -> Result<Vec<u8>, RenderError> {
-        encode_png(&self.depth_u16_mm())
+        Ok(encode_png(&self.depth_u16_mm())?)
     }
 
     /// The instance image encoded as a 16-bit greyscale PNG of instance indices (ids beyond
@@ -112,22 +113,8 @@ impl Frame {
         let pixels = self.instance.iter().map(|&k| k.min(65535) as u16).collect();
         let img: ImageBuffer<Luma<u16>, Vec<u16>> =
             ImageBuffer::from_raw(self.width(), self.height(), pixels).expect("one per pixel");
-        encode_png(&img)
+        Ok(encode_png(&img)?)
     }
-}
-
-fn encode_png<P, C>(img: &ImageBuffer<P, C>) -> Result<Vec<u8>, RenderError>
-where
-    P: image::PixelWithColorType,
-    [P::Subpixel]: image::EncodableLayout,
-    C: std::ops::Deref<Target = [P::Subpixel]>,
-{
-    let mut bytes = Vec::new();
-    img.write_to(
-        &mut std::io::Cursor::new(&mut bytes),
-        image::ImageFormat::Png,
-    )?;
-    Ok(bytes)
 }
 
 #[cfg(test)]

@@ -18,7 +18,7 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 
 use image::{ImageBuffer, Luma};
-use scenethesis_correspondence::{DepthMap, Guidance, GuidanceError, RgbImage};
+use scenethesis_correspondence::{encode_png, DepthMap, Guidance, GuidanceError, RgbImage};
 use serde::{Deserialize, Serialize};
 
 /// Largest guidance file read, in bytes (512 MiB).
@@ -428,7 +428,10 @@ pub fn encode_guidance(
     let mut out = Vec::new();
     let rgb = image::RgbImage::from_raw(w, h, guidance.image.as_bytes().to_vec())
         .ok_or_else(|| invalid(Path::new("rgb.png"), "image size disagrees with the camera"))?;
-    out.push(("rgb.png", encode(&rgb).map_err(|e| png_err("rgb.png", e))?));
+    out.push((
+        "rgb.png",
+        encode_png(&rgb).map_err(|e| png_err("rgb.png", e))?,
+    ));
     if let Some(d) = &guidance.depth {
         let values: Vec<f32> = d
             .values()
@@ -445,7 +448,10 @@ pub fn encode_guidance(
             }
         }
     }
-    out.push(("ids.png", encode(&ids).map_err(|e| png_err("ids.png", e))?));
+    out.push((
+        "ids.png",
+        encode_png(&ids).map_err(|e| png_err("ids.png", e))?,
+    ));
     let labels_json: BTreeMap<String, &Label> =
         labels.iter().map(|(k, v)| (k.to_string(), v)).collect();
     let mut text = serde_json::to_string_pretty(&labels_json).expect("labels serialize");
@@ -455,20 +461,6 @@ pub fn encode_guidance(
     cam.push('\n');
     out.push(("camera.json", cam.into_bytes()));
     Ok(out)
-}
-
-fn encode<P, C>(img: &ImageBuffer<P, C>) -> Result<Vec<u8>, image::ImageError>
-where
-    P: image::PixelWithColorType,
-    [P::Subpixel]: image::EncodableLayout,
-    C: std::ops::Deref<Target = [P::Subpixel]>,
-{
-    let mut bytes = Vec::new();
-    img.write_to(
-        &mut std::io::Cursor::new(&mut bytes),
-        image::ImageFormat::Png,
-    )?;
-    Ok(bytes)
 }
 
 #[cfg(test)]
