@@ -54,8 +54,9 @@
 //! # Ok::<(), scenethesis_agents::PlanError>(())
 //! ```
 //!
-//! [`VlmJudge`] (a pipeline `Judge`) runs the geometric judge first, then shows a
-//! vision-language model rendered previews and rejects scenes it scores below
+//! [`VlmJudge`] (a `scenethesis_judge::Judge`) runs the geometric judge first, then shows a
+//! vision-language model previews drawn by any renderer of the seam in
+//! `scenethesis-render-api` and rejects scenes it scores below
 //! [`VlmThresholds`], with per-object reasons the pipeline's re-plan acts on.
 #![warn(missing_docs)]
 

@@ -4,10 +4,11 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use scenethesis_models::{ChatModel, ChatRequest, ImageData, JsonSchema, Message};
-use scenethesis_pipeline::{
-    Failure, FailureKind, GeometricJudge, Judge, JudgeError, JudgeInput, PreviewRenderer, Verdict,
+use scenethesis_judge::{
+    Failure, FailureKind, GeometricJudge, Judge, JudgeError, JudgeInput, Verdict,
 };
+use scenethesis_models::{ChatModel, ChatRequest, ImageData, JsonSchema, Message};
+use scenethesis_render_api::{render_previews, SceneRenderer};
 use scenethesis_scene_graph::limits::MAX_ID_BYTES;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
@@ -143,7 +144,7 @@ struct Answer {
 /// and model.
 pub struct VlmJudge<M> {
     model: M,
-    renderer: Box<dyn PreviewRenderer>,
+    renderer: Box<dyn SceneRenderer>,
     geometric: GeometricJudge,
     thresholds: VlmThresholds,
     size: [u32; 2],
@@ -164,7 +165,7 @@ impl<M> std::fmt::Debug for VlmJudge<M> {
 impl<M: ChatModel> VlmJudge<M> {
     /// A judge asking `model` about previews drawn by `renderer` (640 × 480), with the default
     /// thresholds.
-    pub fn new(model: M, renderer: impl PreviewRenderer + 'static) -> Self {
+    pub fn new(model: M, renderer: impl SceneRenderer + 'static) -> Self {
         let name = format!("geometric+vlm:{}", model.name());
         Self {
             model,
@@ -197,15 +198,15 @@ impl<M: ChatModel> VlmJudge<M> {
 
     /// Renders the previews and asks the model; the review of `input`'s scene.
     pub fn review(&self, input: &JudgeInput<'_>) -> Result<VlmReview, JudgeError> {
-        let previews = self
-            .renderer
-            .render(input.scene, input.meshes, self.size)
-            .map_err(|e| {
-                self.provider_error(format!(
-                    "cannot render previews with `{}`: {e}",
-                    self.renderer.name()
-                ))
-            })?;
+        let previews =
+            render_previews(self.renderer.as_ref(), input.scene, input.meshes, self.size).map_err(
+                |e| {
+                    self.provider_error(format!(
+                        "cannot render previews with `{}`: {e}",
+                        self.renderer.name()
+                    ))
+                },
+            )?;
         if previews.is_empty() {
             return Err(self.provider_error(format!(
                 "renderer `{}` drew no previews",

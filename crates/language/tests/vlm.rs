@@ -9,42 +9,45 @@ use std::time::Duration;
 
 use scenethesis_language::{VlmJudge, VlmThresholds};
 use scenethesis_openai::{ClientConfig, OpenAiChat, OpenAiClient};
-use scenethesis_pipeline::{
-    FailureKind, GenerateOptions, NoProgress, Pipeline, PipelineError, PreviewRenderer,
-};
-use scenethesis_scene_graph::{Mesh, Scene};
+use scenethesis_pipeline::{FailureKind, GenerateOptions, NoProgress, Pipeline, PipelineError};
+use scenethesis_render_api::{RendererError, SceneRenderer, ViewImage, ViewKind, ViewRequest};
+use scenethesis_scene_graph::{Camera, Intrinsics, Mesh, Scene};
 use serde_json::{json, Value};
 use support::{openai_completion, Reply, TestServer};
 
-/// A small real PNG of one colour.
-fn png(width: u32, height: u32, rgb: [u8; 3]) -> Vec<u8> {
-    let img = image::RgbImage::from_pixel(width, height, image::Rgb(rgb));
-    let mut out = std::io::Cursor::new(Vec::new());
-    img.write_to(&mut out, image::ImageFormat::Png).unwrap();
-    out.into_inner()
-}
-
-/// Draws one flat image per call, named like the real previews.
+/// Draws each view one flat colour (by view, shaded by the object count).
 struct FlatRenderer;
 
-impl PreviewRenderer for FlatRenderer {
+impl SceneRenderer for FlatRenderer {
     fn name(&self) -> String {
         "flat".into()
     }
-    fn render(
+    fn render_views(
         &self,
         scene: &Scene,
         _: &BTreeMap<String, Mesh>,
-        size: [u32; 2],
-    ) -> Result<Vec<(String, Vec<u8>)>, String> {
+        views: &[ViewRequest],
+    ) -> Result<Vec<ViewImage>, RendererError> {
         let shade = (scene.objects.len() * 10).min(255) as u8;
-        Ok(vec![
-            ("preview.png".into(), png(size[0], size[1], [shade, 90, 40])),
-            (
-                "preview_top.png".into(),
-                png(size[0], size[1], [40, shade, 90]),
-            ),
-        ])
+        Ok(views
+            .iter()
+            .map(|v| {
+                let [w, h] = v.size;
+                let rgba = match v.kind {
+                    ViewKind::Photo => [shade, 90, 40, 255],
+                    ViewKind::Top => [40, shade, 90, 255],
+                };
+                ViewImage {
+                    camera: Camera::look_at(
+                        Intrinsics::from_vertical_fov(w, h, 0.9),
+                        [0.0, 3.0, 5.0].into(),
+                        [0.0, 0.0, 0.0].into(),
+                        nalgebra::Vector3::y(),
+                    ),
+                    color: image::RgbaImage::from_pixel(w, h, image::Rgba(rgba)),
+                }
+            })
+            .collect())
     }
 }
 

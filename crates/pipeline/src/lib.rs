@@ -7,7 +7,8 @@
 //! [`Judge`]) — and, while the judge rejects the scene, re-plans: first it moves the objects at
 //! fault (new asset variants, a new layout seed), then drops them, up to
 //! [`GenerateOptions::max_replans`] times, keeping the best attempt. An optional
-//! [`PreviewRenderer`] renders previews. [`GeneratedScene::write_outputs`] writes the output
+//! [`SceneRenderer`](scenethesis_render_api::SceneRenderer) (the renderer seam, implemented by
+//! `scenethesis_render::Renderer`) renders previews. [`GeneratedScene::write_outputs`] writes the output
 //! folder atomically: `scene.glb`, `scene.json`, `preview.png` + `preview_top.png` and
 //! `report.json` (metrics, verdict, every re-plan, per-stage timings).
 //!
@@ -37,12 +38,8 @@ mod output;
 mod phases;
 mod pipeline;
 mod plan_file;
-#[cfg(feature = "render")]
-mod render;
 mod replan;
 mod report;
-#[cfg(feature = "render")]
-mod room_view;
 #[cfg(feature = "render")]
 pub mod roundtrip;
 mod saved;
@@ -52,17 +49,13 @@ pub use error::PipelineError;
 pub use out_dir::{Existing, OutputDir, REPORT_JSON, SCENE_JSON};
 pub use output::{export_file, export_folder, resolve_meshes};
 pub use pipeline::{
-    time_limit_from_secs, GenerateOptions, GeneratedScene, Pipeline, PreviewRenderer,
-    DEFAULT_TIME_LIMIT, MAX_TIME_LIMIT,
+    time_limit_from_secs, GenerateOptions, GeneratedScene, Pipeline, DEFAULT_TIME_LIMIT,
+    MAX_TIME_LIMIT,
 };
 pub use plan_file::{plan_json, write_plan, PLAN_JSON};
-#[cfg(feature = "render")]
-pub use render::WgpuPreviews;
 pub use replan::replan_action;
 pub use report::{ObjectIssue, Replan, ReplanAction, Report, StageTiming};
-#[cfg(feature = "render")]
-pub use room_view::WgpuRoomRenderer;
-pub use saved::{SavedScene, PREVIEW_FILES};
+pub use saved::SavedScene;
 /// The judge stage (its own crate, `scenethesis-judge`), re-exported for compatibility.
 pub use scenethesis_judge as judge;
 pub use scenethesis_judge::{

@@ -8,6 +8,7 @@ use scenethesis_correspondence::Matcher;
 use scenethesis_physics_opt::{
     GuidedSettings, OptimizeSettings, Optimizer, PrepareSettings, ProjectedGaussNewton,
 };
+use scenethesis_render_api::SceneRenderer;
 use scenethesis_retrieval::{AssetSource, RetrievalSource};
 use scenethesis_scene_graph::{Mesh, Scene};
 use serde::{Deserialize, Serialize};
@@ -116,19 +117,6 @@ pub struct GeneratedScene {
     pub guidance: Option<scenethesis_correspondence::Guidance>,
 }
 
-/// A preview renderer: turns a finished scene into named PNG images.
-pub trait PreviewRenderer: Send + Sync {
-    /// A short name (the adapter) for reports.
-    fn name(&self) -> String;
-    /// Renders the previews of `scene` at `size`.
-    fn render(
-        &self,
-        scene: &Scene,
-        meshes: &BTreeMap<String, Mesh>,
-        size: [u32; 2],
-    ) -> Result<Vec<(String, Vec<u8>)>, String>;
-}
-
 /// The end-to-end pipeline with pluggable stages. [`Pipeline::offline`] needs no network, no
 /// API key and no GPU: the knowledge planner, retrieval over the built-in procedural library,
 /// the procedural guide,
@@ -139,7 +127,7 @@ pub struct Pipeline {
     guide: Box<dyn Guide>,
     optimizer: Box<dyn Optimizer>,
     judge: Box<dyn Judge>,
-    renderer: Option<Box<dyn PreviewRenderer>>,
+    renderer: Option<Box<dyn SceneRenderer>>,
     matcher: Option<(Box<dyn Matcher>, GuidedSettings)>,
 }
 
@@ -220,8 +208,9 @@ impl Pipeline {
         self
     }
 
-    /// Sets the preview renderer.
-    pub fn with_renderer(mut self, renderer: impl PreviewRenderer + 'static) -> Self {
+    /// Sets the renderer of the previews ([`scenethesis_render_api::render_previews`]), e.g.
+    /// `scenethesis_render::Renderer`.
+    pub fn with_renderer(mut self, renderer: impl SceneRenderer + 'static) -> Self {
         self.renderer = Some(Box::new(renderer));
         self
     }

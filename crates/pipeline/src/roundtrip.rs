@@ -8,10 +8,10 @@
 //! Objects whose masks are missing or too small are reported as missing, never invented.
 
 use std::collections::BTreeMap;
-use std::sync::Arc;
 
 use scenethesis_correspondence::{DepthMap, Guidance, Mask, RgbImage};
-use scenethesis_render::{views, Frame, Instance, RenderError, RenderScene, Renderer};
+use scenethesis_render::{view_camera, Frame, RenderError, RenderScene, Renderer};
+use scenethesis_render_api::ViewKind;
 use scenethesis_scene_graph::{fnv1a64, mix64, Mesh, ParentRef, Scene};
 use scenethesis_vision::files::{Label, Labels};
 use scenethesis_vision::{lift_scene, LiftError, LiftOptions, LiftedBox, SupportKind};
@@ -133,19 +133,6 @@ impl Default for RoundtripOptions {
     }
 }
 
-/// The render scene of `scene` with each object's asset-frame mesh from `meshes`.
-fn render_scene(scene: &Scene, meshes: &BTreeMap<String, Mesh>) -> RenderScene {
-    let instances = scene
-        .objects
-        .iter()
-        .filter_map(|o| {
-            let mesh = meshes.get(&o.id)?;
-            Some(Instance::new(o.id.clone(), Arc::new(mesh.clone()), o.pose))
-        })
-        .collect();
-    RenderScene::with_architecture(instances, scene.architecture.clone())
-}
-
 /// Renders the photo view of `scene` as guidance: the colour image, metric depth (architecture
 /// included, `0` for background), one visible mask per object and labels numbering the objects
 /// 1, 2, … in scene order.
@@ -155,11 +142,11 @@ pub fn render_guidance(
     meshes: &BTreeMap<String, Mesh>,
     size: [u32; 2],
 ) -> Result<(Guidance, Labels), RoundtripError> {
-    let rs = render_scene(scene, meshes);
+    let rs = RenderScene::from_scene(scene, meshes);
     if rs.instances.is_empty() {
         return Err(RoundtripError::Empty);
     }
-    let camera = views::photo_view(&rs, size[0], size[1]);
+    let camera = view_camera(&rs, ViewKind::Photo, size);
     let prepared = renderer.prepare(&rs).map_err(RoundtripError::Render)?;
     let frame = renderer
         .render_prepared(&prepared, &camera)
@@ -173,12 +160,7 @@ fn guidance_from_frame(
     camera: scenethesis_scene_graph::Camera,
 ) -> (Guidance, Labels) {
     let (w, h) = (frame.width(), frame.height());
-    let rgb: Vec<u8> = frame
-        .color
-        .pixels()
-        .flat_map(|p| [p.0[0], p.0[1], p.0[2]])
-        .collect();
-    let image = RgbImage::new(w, h, rgb).expect("a frame's colour has its size");
+    let image = RgbImage::from_rgba(&frame.color);
     let depth = DepthMap::new(w, h, frame.depth.clone()).expect("rendered depth is finite");
     let mut masks = BTreeMap::new();
     let mut labels = Labels::new();

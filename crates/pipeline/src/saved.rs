@@ -4,6 +4,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+use scenethesis_render_api::PREVIEW_FILES;
 use scenethesis_retrieval::AssetSource;
 use scenethesis_scene_graph::{limits, read_bounded, Mesh, Scene};
 
@@ -14,9 +15,6 @@ use crate::report::Report;
 
 /// Largest preview image read back, in bytes (a 4096×4096 RGBA PNG stays far below it).
 const MAX_PREVIEW_BYTES: u64 = 256 * 1024 * 1024;
-
-/// The preview images an output folder may hold, in the order `generate` writes them.
-pub const PREVIEW_FILES: [&str; 2] = ["preview.png", "preview_top.png"];
 
 /// An output folder of `generate` read back.
 #[derive(Debug, Clone)]

@@ -7,9 +7,7 @@ use std::path::PathBuf;
 use pyo3::exceptions::PyKeyError;
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
-use scenethesis_pipeline::{
-    export_file, GeneratedScene, OutputDir, PreviewRenderer, Report, SavedScene,
-};
+use scenethesis_pipeline::{export_file, GeneratedScene, OutputDir, Report, SavedScene};
 use scenethesis_scene_graph::{Mesh, Scene};
 use serde::Serialize;
 
@@ -234,9 +232,9 @@ impl NativeScene {
     fn render(&self, py: Python<'_>, name: &str, size: (u32, u32)) -> PyResult<Vec<u8>> {
         let (scene, meshes) = (self.scene(), self.meshes());
         let rendered = py.detach(|| -> Result<_, String> {
-            let renderer =
-                scenethesis_pipeline::WgpuPreviews::from_env().map_err(|e| e.to_string())?;
-            renderer.render(scene, meshes, [size.0, size.1])
+            let renderer = scenethesis_render::Renderer::from_env().map_err(|e| e.to_string())?;
+            scenethesis_render_api::render_previews(&renderer, scene, meshes, [size.0, size.1])
+                .map_err(|e| e.to_string())
         });
         let images = rendered.map_err(|e| {
             crate::errors::ScenethesisError::new_err(format!("rendering the previews: {e}"))

@@ -16,6 +16,10 @@
 //! correspondence agree to the pixel. Walls whose outer side faces the camera are cut away so
 //! that views from outside see into the room. [`views`] computes photo, top and orbit cameras.
 //!
+//! [`Renderer`] implements the workspace's renderer seam,
+//! [`SceneRenderer`](scenethesis_render_api::SceneRenderer): a scene graph goes in through
+//! [`RenderScene::from_scene`], standard views ([`view_camera`]) come out as images.
+//!
 //! ```no_run
 //! use scenethesis_render::{views, Renderer, RendererOptions, RenderScene};
 //! # fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -36,6 +40,7 @@ mod frame;
 mod geometry;
 mod renderer;
 mod scene;
+mod seam;
 pub mod views;
 
 pub use backend::BackendChoice;
@@ -43,3 +48,4 @@ pub use error::RenderError;
 pub use frame::Frame;
 pub use renderer::{PreparedScene, Renderer, RendererOptions};
 pub use scene::{Backdrop, Instance, RenderScene};
+pub use seam::view_camera;

@@ -1,9 +1,10 @@
 //! What to render: posed meshes, the room or ground around them, and the backdrop.
 
+use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use nalgebra::Point3;
-use scenethesis_scene_graph::{Aabb, Architecture, Environment, Mesh, Pose};
+use scenethesis_scene_graph::{Aabb, Architecture, Environment, Mesh, Pose, Scene};
 
 /// One posed mesh with the id its pixels carry in the instance image.
 #[derive(Debug, Clone)]
@@ -85,6 +86,35 @@ impl RenderScene {
             backdrop,
             cut_away_walls: true,
         }
+    }
+
+    /// The render scene of a scene graph: every object whose id `meshes` holds, with that
+    /// asset-frame mesh at the object's pose, in the scene's architecture (in scene order;
+    /// objects without a mesh are left out). The one conversion from a [`Scene`]: meshes held
+    /// by value are shared into the scene, meshes already shared (`Arc<Mesh>`) are not copied.
+    ///
+    /// ```
+    /// use std::collections::BTreeMap;
+    /// use scenethesis_render::RenderScene;
+    /// use scenethesis_scene_graph::{Architecture, Mesh, Scene};
+    ///
+    /// let scene = Scene::new(Architecture::rectangular_room(4.0, 3.0, 2.5, 0.9));
+    /// let empty = RenderScene::from_scene(&scene, &BTreeMap::<String, Mesh>::new());
+    /// assert!(empty.instances.is_empty() && empty.architecture.is_some());
+    /// ```
+    pub fn from_scene<M>(scene: &Scene, meshes: &BTreeMap<String, M>) -> Self
+    where
+        M: Clone + Into<Arc<Mesh>>,
+    {
+        let instances = scene
+            .objects
+            .iter()
+            .filter_map(|o| {
+                let mesh = meshes.get(&o.id)?.clone().into();
+                Some(Instance::new(o.id.clone(), mesh, o.pose))
+            })
+            .collect();
+        Self::with_architecture(instances, scene.architecture.clone())
     }
 
     /// The box around every object, or `None` when no object has geometry.

@@ -409,3 +409,70 @@ fn a_missing_backend_gives_one_clear_error_or_a_working_renderer() {
         }
     }
 }
+
+/// The scene graph of [`room_scene`] (each instance an object of that id and pose) with its
+/// meshes by object id, plus an object whose mesh is missing.
+fn room_scene_graph() -> (
+    scenethesis_scene_graph::Scene,
+    std::collections::BTreeMap<String, Mesh>,
+) {
+    use scenethesis_scene_graph::{AssetRef, ParentRef, RelationKind, Scene, SceneObject};
+    let rs = room_scene();
+    let mut scene = Scene::new(rs.architecture.clone().unwrap());
+    let mut meshes = std::collections::BTreeMap::new();
+    let object = |id: &str, pose: Pose, mesh: &Mesh| SceneObject {
+        id: id.into(),
+        category: "thing".into(),
+        asset: AssetRef::Procedural {
+            generator: "thing".into(),
+            seed: 0,
+        },
+        pose,
+        parent: ParentRef::Ground,
+        support: RelationKind::OnFloor,
+        relations: Vec::new(),
+        local_bounds: mesh.bounds().unwrap(),
+    };
+    for instance in &rs.instances {
+        scene
+            .objects
+            .push(object(&instance.id, instance.pose, &instance.mesh));
+        meshes.insert(instance.id.clone(), (*instance.mesh).clone());
+    }
+    scene
+        .objects
+        .push(object("ghost_0", cube_pose(), &unit_cube()));
+    (scene, meshes)
+}
+
+#[test]
+fn the_seam_draws_exactly_what_the_renderer_draws_of_the_converted_scene() {
+    use scenethesis_render_api::{SceneRenderer, ViewKind, ViewRequest};
+    let (scene, meshes) = room_scene_graph();
+    let rs = RenderScene::from_scene(&scene, &meshes);
+    let ids: Vec<&str> = rs.instances.iter().map(|i| i.id.as_str()).collect();
+    assert_eq!(
+        ids,
+        ["sofa_0", "table_0", "vase_0"],
+        "objects without a mesh are left out"
+    );
+    assert_eq!(rs.backdrop, room_scene().backdrop);
+
+    let requests = [
+        ViewRequest::new(ViewKind::Photo, [96, 72]),
+        ViewRequest::new(ViewKind::Top, [48, 48]).supersampled(2),
+    ];
+    let images = renderer().render_views(&scene, &meshes, &requests).unwrap();
+    let photo = views::photo_view(&rs, 96, 72);
+    let top = views::top_view(&rs, 48, 48);
+    let prepared = renderer().prepare(&rs).unwrap();
+    assert_eq!(images[0].camera, photo);
+    assert!(images[0].color == renderer().render_prepared(&prepared, &photo).unwrap().color);
+    assert_eq!(images[1].camera, top);
+    assert!(
+        images[1].color
+            == renderer()
+                .render_color_supersampled(&prepared, &top, 2)
+                .unwrap()
+    );
+}

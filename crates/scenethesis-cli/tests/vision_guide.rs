@@ -133,7 +133,7 @@ fn generate_from_given_guidance_files_recovers_the_rendered_scene() {
 /// PNG the image server answers the edit with, and the VLM's answer — each object's box read
 /// off the render's instance buffer (the test plays the model).
 fn furnished_render(scene_dir: &Path) -> (Vec<u8>, Value) {
-    use scenethesis_render::{views, Instance, RenderScene, Renderer};
+    use scenethesis_render::{views, RenderScene, Renderer};
     let scene = scenethesis_scene_graph::Scene::read_json(&scene_dir.join("scene.json")).unwrap();
     let meshes = scenethesis_pipeline::resolve_meshes(
         &scene,
@@ -141,29 +141,15 @@ fn furnished_render(scene_dir: &Path) -> (Vec<u8>, Value) {
     )
     .unwrap();
     let [w, h] = [768u32, 512];
-    let empty = RenderScene::with_architecture(Vec::new(), scene.architecture.clone());
+    let no_meshes = std::collections::BTreeMap::<String, scenethesis_scene_graph::Mesh>::new();
+    let empty = RenderScene::from_scene(&scene, &no_meshes);
     let camera = views::photo_view(&empty, w, h);
-    let instances = scene
-        .objects
-        .iter()
-        .map(|o| {
-            Instance::new(
-                o.id.clone(),
-                std::sync::Arc::new(meshes[&o.id].clone()),
-                o.pose,
-            )
-        })
-        .collect();
-    let full = RenderScene::with_architecture(instances, scene.architecture.clone());
+    let full = RenderScene::from_scene(&scene, &meshes);
     let renderer = Renderer::from_env().unwrap();
     let frame = renderer
         .render_prepared(&renderer.prepare(&full).unwrap(), &camera)
         .unwrap();
-    let mut png = Vec::new();
-    image::DynamicImage::ImageRgba8(frame.color.clone())
-        .to_rgb8()
-        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
-        .unwrap();
+    let png = scenethesis_correspondence::RgbImage::from_rgba(&frame.color).to_png();
     let mut out = Vec::new();
     for o in &scene.objects {
         let Some(index) = frame.index_of(&o.id) else {

@@ -86,7 +86,7 @@ impl PipelineSettings {
             built.pipeline = built.pipeline.with_assets(source);
         }
         if self.previews {
-            match scenethesis_pipeline::WgpuPreviews::from_env() {
+            match scenethesis_render::Renderer::from_env() {
                 Ok(renderer) => built.pipeline = built.pipeline.with_renderer(renderer),
                 Err(e) => built
                     .warnings

@@ -191,7 +191,7 @@ impl ProviderSettings {
         }
         if self.judge == JudgeChoice::Vlm {
             let model = self.wrap(client.vlm()?)?;
-            let renderer = scenethesis_pipeline::WgpuPreviews::from_env()
+            let renderer = scenethesis_render::Renderer::from_env()
                 .map_err(|e| SetupError::NoRenderer(e.to_string()))?;
             pipeline = pipeline.with_judge(VlmJudge::new(model, renderer));
         }

@@ -19,7 +19,9 @@ use crate::assemble::build_scene;
 use crate::camera::{estimate_from_floor, DEFAULT_VERTICAL_FOV};
 use crate::detect::{ask_boxes, masks_from_boxes, match_labels};
 use crate::relations::ask_supports;
-use crate::source::{decode_to_size, GivenGuidance, RoomRenderer};
+use scenethesis_render_api::{render_view, RendererError, SceneRenderer, ViewKind, ViewRequest};
+
+use crate::source::{decode_to_size, GivenGuidance};
 
 /// Where the guidance image comes from.
 enum ImageSource {
@@ -27,7 +29,7 @@ enum ImageSource {
     Given(Box<GivenGuidance>),
     /// An image model's edit of the plan's empty room, rendered at `size`.
     EditedRender {
-        renderer: Box<dyn RoomRenderer>,
+        renderer: Box<dyn SceneRenderer>,
         generator: Box<dyn ImageGenerator>,
         size: [u32; 2],
         /// The last edit and the room it was made for: re-plan rounds lay out the same room
@@ -100,7 +102,7 @@ impl VisionGuide {
     /// `generator` edit it into the described scene. Needs a vision-language model
     /// ([`VisionGuide::with_vlm`]) for the objects' boxes.
     pub fn edit_render(
-        renderer: impl RoomRenderer + 'static,
+        renderer: impl SceneRenderer + 'static,
         generator: impl ImageGenerator + 'static,
         size: [u32; 2],
     ) -> Self {
@@ -210,10 +212,11 @@ impl VisionGuide {
                     let e = e.clone();
                     return Ok((e.image, e.png, Some(e.camera), None, None, Vec::new()));
                 }
-                let view = renderer
-                    .render_room(architecture, *size)
-                    .map_err(|e| provider(renderer.name(), e))?;
-                let png = view.image.to_png();
+                let (camera, room_image) = render_room(renderer.as_ref(), architecture, *size)
+                    .map_err(|e| {
+                        provider(format!("room render ({})", renderer.name()), e.to_string())
+                    })?;
+                let png = room_image.to_png();
                 let request = ImageEditRequest {
                     prompt: edit_prompt(plan),
                     image: ImageData::from_bytes(png, "the empty room's render")
@@ -226,7 +229,7 @@ impl VisionGuide {
                     .edit(&request)
                     .map_err(|e| provider(generator.name(), e.to_string()))?;
                 let what = format!("{}: the edited image", generator.name());
-                let size = [view.camera.intrinsics.width, view.camera.intrinsics.height];
+                let size = [camera.intrinsics.width, camera.intrinsics.height];
                 let image = decode_to_size(&edited.image.bytes, size, &what)
                     .map_err(|e| provider(generator.name(), e))?;
                 let png = if edited.image.bytes.len() > 8
@@ -241,12 +244,25 @@ impl VisionGuide {
                     room: architecture.clone(),
                     image: image.clone(),
                     png: png.clone(),
-                    camera: view.camera,
+                    camera,
                 });
-                Ok((image, png, Some(view.camera), None, None, Vec::new()))
+                Ok((image, png, Some(camera), None, None, Vec::new()))
             }
         }
     }
+}
+
+/// The plan's empty room (floor, walls, door) drawn from the photo view at `size`, the view
+/// `preview.png` shows: the camera and the colour image.
+fn render_room(
+    renderer: &dyn SceneRenderer,
+    architecture: &Architecture,
+    size: [u32; 2],
+) -> Result<(Camera, RgbImage), RendererError> {
+    let room = Scene::new(architecture.clone());
+    let request = ViewRequest::new(ViewKind::Photo, size);
+    let view = render_view(renderer, &room, &BTreeMap::new(), request)?;
+    Ok((view.camera, RgbImage::from_rgba(&view.color)))
 }
 
 /// What the image model is asked to draw into the empty room.

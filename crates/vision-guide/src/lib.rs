@@ -12,8 +12,9 @@
 //! [`scenethesis_agents::GuidedLayout::guidance`].
 //!
 //! Models are reached only through the provider traits of `scenethesis-models`; the empty
-//! room is rendered through [`RoomRenderer`], which the pipeline implements with the GPU
-//! renderer. This crate has no HTTP, GPU or model runtime.
+//! room is rendered through the renderer seam,
+//! [`SceneRenderer`](scenethesis_render_api::SceneRenderer), which `scenethesis-render`
+//! implements with the GPU. This crate has no HTTP, GPU or model runtime.
 //!
 //! Modules, one phase each: [`source`] (where the image comes from, and file checks),
 //! [`camera`] (a camera estimated from the floor), [`detect`] (masks for the planned objects),
@@ -29,4 +30,4 @@ pub mod relations;
 pub mod source;
 
 pub use guide::{edit_prompt, VisionGuide};
-pub use source::{GivenGuidance, GuidanceFileError, GuidanceFiles, RoomRenderer, RoomView};
+pub use source::{GivenGuidance, GuidanceFileError, GuidanceFiles};

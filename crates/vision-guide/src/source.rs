@@ -1,12 +1,13 @@
 //! Where the guidance image comes from: files the user gives ([`GivenGuidance`], read and
 //! checked up front), or an image model's edit of our render of the plan's empty room
-//! ([`RoomRenderer`] + [`scenethesis_models::ImageGenerator`]), whose camera is then known.
+//! ([`scenethesis_render_api::SceneRenderer`] + [`scenethesis_models::ImageGenerator`]), whose
+//! camera is then known.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 use scenethesis_correspondence::{DepthMap, Mask, RgbImage};
-use scenethesis_scene_graph::{Architecture, Camera};
+use scenethesis_scene_graph::Camera;
 use scenethesis_vision::files::{self, FileError, Labels};
 
 /// Why given guidance files cannot be used. Every variant names the file at fault and what was
@@ -208,25 +209,6 @@ pub fn check_depth_varies(depth: &DepthMap) -> Result<(), String> {
         ));
     }
     Ok(())
-}
-
-/// A render of a plan's empty room: the colour image and the camera it was taken with.
-#[derive(Debug, Clone, PartialEq)]
-pub struct RoomView {
-    /// The camera (the same view the previews use).
-    pub camera: Camera,
-    /// The rendered colour image, the camera's size.
-    pub image: RgbImage,
-}
-
-/// Renders a plan's empty room (floor, walls, door). The pipeline implements it with the
-/// headless renderer; this crate has no GPU dependency.
-pub trait RoomRenderer: Send + Sync {
-    /// A short name for errors and reports.
-    fn name(&self) -> String;
-
-    /// The empty room seen from the photo view, at `size` pixels.
-    fn render_room(&self, architecture: &Architecture, size: [u32; 2]) -> Result<RoomView, String>;
 }
 
 /// Decodes a provider's PNG or JPEG answer to the camera's size `[w, h]`: an image of another

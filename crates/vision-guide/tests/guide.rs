@@ -416,20 +416,31 @@ fn vlm_boxes_refined_by_a_segmenter_with_model_depth_recover_the_layout() {
 /// The empty room seen from the test camera (a grey image; the test plays the renderer).
 struct TestRoom(Camera);
 
-impl scenethesis_vision_guide::RoomRenderer for TestRoom {
+impl scenethesis_render_api::SceneRenderer for TestRoom {
     fn name(&self) -> String {
         "test/room".into()
     }
-    fn render_room(
+    fn render_views(
         &self,
-        _architecture: &scenethesis_scene_graph::Architecture,
-        size: [u32; 2],
-    ) -> Result<scenethesis_vision_guide::RoomView, String> {
-        assert_eq!(size, [W, H]);
-        Ok(scenethesis_vision_guide::RoomView {
+        scene: &scenethesis_scene_graph::Scene,
+        meshes: &BTreeMap<String, scenethesis_scene_graph::Mesh>,
+        views: &[scenethesis_render_api::ViewRequest],
+    ) -> Result<Vec<scenethesis_render_api::ViewImage>, scenethesis_render_api::RendererError> {
+        assert!(
+            scene.objects.is_empty() && meshes.is_empty(),
+            "the empty room"
+        );
+        assert_eq!(
+            views,
+            [scenethesis_render_api::ViewRequest::new(
+                scenethesis_render_api::ViewKind::Photo,
+                [W, H]
+            )]
+        );
+        Ok(vec![scenethesis_render_api::ViewImage {
             camera: self.0,
-            image: RgbImage::new(W, H, vec![200; (W * H * 3) as usize]).unwrap(),
-        })
+            color: image::RgbaImage::from_pixel(W, H, image::Rgba([200, 200, 200, 255])),
+        }])
     }
 }
 

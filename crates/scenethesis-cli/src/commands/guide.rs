@@ -141,7 +141,7 @@ impl GuideArgs {
                     .vlm()
                     .context("the vision guide boxes the objects with a vision-language model")?;
                 let vlm = models.wrap(chat)?;
-                let renderer = scenethesis_pipeline::WgpuRoomRenderer::from_env().context(
+                let renderer = scenethesis_render::Renderer::from_env().context(
                     "--guide vision without --guide-image renders the empty room and needs a renderer",
                 )?;
                 VisionGuide::edit_render(renderer, images, EDIT_SIZE).with_vlm(vlm)

@@ -8,6 +8,7 @@ use std::sync::Arc;
 use anyhow::{Context, Result};
 use scenethesis_assets::catalog;
 use scenethesis_assets::import::AssetResolver;
+use scenethesis_correspondence::encode_png;
 use scenethesis_render::{
     views, BackendChoice, Instance, PreparedScene, RenderScene, Renderer, RendererOptions,
 };
@@ -128,10 +129,7 @@ fn write_view(
     let color = renderer
         .render_color_supersampled(prepared, camera, args.supersample)
         .with_context(|| format!("rendering {name} failed"))?;
-    let mut png = Vec::new();
-    color
-        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
-        .context("encoding PNG")?;
+    let png = encode_png(&color).with_context(|| format!("encoding {name}.png"))?;
     let path = dir.join(format!("{name}.png"));
     write_file_atomic(&path, &png).with_context(|| format!("cannot write {}", path.display()))?;
     println!("wrote {}", path.display());
@@ -195,17 +193,17 @@ pub fn open_renderer(backend: Option<BackendChoice>) -> Result<Renderer> {
 /// message naming it.
 pub fn render_scene(scene: &Scene) -> (RenderScene, Vec<String>) {
     let mut resolver = AssetResolver::new();
-    let mut meshes: BTreeMap<String, Arc<Mesh>> = BTreeMap::new();
-    let mut instances = Vec::new();
+    let mut by_asset: BTreeMap<String, Arc<Mesh>> = BTreeMap::new();
+    let mut by_object: BTreeMap<String, Arc<Mesh>> = BTreeMap::new();
     let mut skipped = Vec::new();
     for object in &scene.objects {
         let key = object.asset.to_string();
-        let mesh = match meshes.get(&key) {
+        let mesh = match by_asset.get(&key) {
             Some(mesh) => mesh.clone(),
             None => match resolver.mesh(&object.asset) {
                 Ok(mesh) => {
                     let mesh = Arc::new(mesh);
-                    meshes.insert(key, mesh.clone());
+                    by_asset.insert(key, mesh.clone());
                     mesh
                 }
                 Err(e) => {
@@ -217,12 +215,9 @@ pub fn render_scene(scene: &Scene) -> (RenderScene, Vec<String>) {
                 }
             },
         };
-        instances.push(Instance::new(object.id.clone(), mesh, object.pose));
+        by_object.insert(object.id.clone(), mesh);
     }
-    (
-        RenderScene::with_architecture(instances, scene.architecture.clone()),
-        skipped,
-    )
+    (RenderScene::from_scene(scene, &by_object), skipped)
 }
 
 #[cfg(test)]
@@ -280,10 +275,7 @@ pub fn run_sheet(args: SheetArgs) -> Result<()> {
     );
     let renderer = open_renderer(args.backend)?;
     let sheet = contact_sheet(&renderer, category, args.seeds, args.cell)?;
-    let mut png = Vec::new();
-    sheet
-        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
-        .context("encoding PNG")?;
+    let png = encode_png(&sheet).context("encoding the contact sheet as PNG")?;
     write_file_atomic(&args.output, &png)
         .with_context(|| format!("cannot write {}", args.output.display()))?;
     println!(
