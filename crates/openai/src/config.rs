@@ -41,14 +41,14 @@ impl ApiKey {
         &self.0
     }
 
-    /// `text` with every occurrence of the key replaced by `***`: for anything a server sends
-    /// back (error bodies may echo the key), before it is shortened or shown.
+    /// `text` with the key replaced by `***`: for anything a server sends back (error bodies
+    /// and model text may echo the key), before it is shortened or shown. Besides the key
+    /// itself, a reshaped echo is masked: any run of the text that spells
+    /// [`crate::min_masked_run`] or more consecutive letters and digits of the key, whatever
+    /// separators (spaces, newlines, hyphens, punctuation) or letter case it is written with
+    /// (keys of fewer than [`crate::MIN_RESHAPED_KEY_CHARS`] letters and digits only whole).
     pub fn mask<'a>(&self, text: &'a str) -> std::borrow::Cow<'a, str> {
-        if self.0.is_empty() || !text.contains(self.0.as_str()) {
-            std::borrow::Cow::Borrowed(text)
-        } else {
-            std::borrow::Cow::Owned(text.replace(self.0.as_str(), "***"))
-        }
+        crate::mask::mask_key(&self.0, text)
     }
 }
 

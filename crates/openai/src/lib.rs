@@ -44,6 +44,7 @@ mod config;
 mod embed;
 mod http;
 mod images;
+mod mask;
 #[cfg(feature = "test-server")]
 pub mod testing;
 
@@ -58,6 +59,7 @@ pub use config::{
 pub use embed::OpenAiEmbedder;
 pub use http::MAX_RESPONSE_BYTES;
 pub use images::OpenAiImages;
+pub use mask::{min_masked_run, MIN_RESHAPED_KEY_CHARS};
 use scenethesis_models::ProviderError;
 
 /// A connection to one OpenAI-compatible endpoint; hands out model clients that share it.

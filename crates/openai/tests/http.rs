@@ -903,3 +903,33 @@ fn a_config_file_is_read_with_a_size_limit() {
     let text = format!("{err} {:?}", std::error::Error::source(&err));
     assert!(text.contains("larger than the limit"), "{text}");
 }
+
+#[test]
+fn a_key_echoed_reshaped_is_masked() {
+    // Split by newlines and hyphens, re-cased, or in part: an error message and model text.
+    let reshaped = [
+        KEY.replace('-', "\n-\n"),
+        KEY.to_lowercase(),
+        KEY.chars().map(String::from).collect::<Vec<_>>().join(" "),
+        KEY[5..].to_string(),
+    ];
+    for echo in &reshaped {
+        let server = TestServer::scripted(vec![Reply::json(
+            401,
+            &json!({"error": {"message": format!("no such key: {echo}.")}}),
+        )]);
+        let err = client(&server).chat("m").chat(&request()).unwrap_err();
+        let text = format!("{err} {err:?}");
+        assert!(text.contains("no such key: ***."), "{text}");
+        assert!(!text.contains("LEAK"), "{text}");
+        let server = TestServer::scripted(vec![Reply::json(
+            200,
+            &openai_completion("m", &format!("it was {echo}")),
+        )]);
+        let answer = client(&server)
+            .chat("m")
+            .chat(&ChatRequest::new(vec![Message::user("hi")]))
+            .unwrap();
+        assert_eq!(answer.text, "it was ***", "{echo:?}");
+    }
+}
