@@ -66,6 +66,31 @@ impl std::error::Error for ProviderError {
     }
 }
 
+/// The message of [`ProviderErrorKind::Timeout`].
+fn timeout_message(after: Duration, received: Option<usize>) -> String {
+    match received {
+        None => format!("no answer within {:.1} s", after.as_secs_f64()),
+        Some(n) => format!(
+            "timed out after {:.1} s with {} characters of the answer received",
+            after.as_secs_f64(),
+            grouped(n)
+        ),
+    }
+}
+
+/// `n` with its digits grouped by threes (`3,412`), for messages.
+pub fn grouped(n: usize) -> String {
+    let digits = n.to_string();
+    let mut out = String::with_capacity(digits.len() + digits.len() / 3);
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
 /// What went wrong in a provider call.
 #[derive(Debug, thiserror::Error)]
 pub enum ProviderErrorKind {
@@ -79,10 +104,13 @@ pub enum ProviderErrorKind {
         source: Option<BoxError>,
     },
     /// No complete answer arrived in time.
-    #[error("no answer within {:.1} s", after.as_secs_f64())]
+    #[error("{}", timeout_message(*after, *received))]
     Timeout {
         /// The time limit that was exceeded.
         after: Duration,
+        /// Characters of a streamed answer that had arrived when the time ran out (`None`
+        /// when nothing was streamed).
+        received: Option<usize>,
     },
     /// The server answered with an HTTP error status.
     #[error("HTTP {status}: {message}")]
@@ -152,4 +180,31 @@ pub enum ProviderErrorKind {
         /// The operation (`image edits`, …).
         operation: String,
     },
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn timeouts_say_how_much_had_arrived() {
+        assert_eq!(grouped(0), "0");
+        assert_eq!(grouped(999), "999");
+        assert_eq!(grouped(3412), "3,412");
+        assert_eq!(grouped(1_234_567), "1,234,567");
+        let after = Duration::from_secs(120);
+        let none = ProviderErrorKind::Timeout {
+            after,
+            received: None,
+        };
+        assert_eq!(none.to_string(), "no answer within 120.0 s");
+        let some = ProviderErrorKind::Timeout {
+            after,
+            received: Some(3412),
+        };
+        assert_eq!(
+            some.to_string(),
+            "timed out after 120.0 s with 3,412 characters of the answer received"
+        );
+    }
 }

@@ -67,6 +67,7 @@ mod cache;
 mod chat;
 mod error;
 mod image;
+mod progress;
 mod providers;
 mod schema;
 mod usage;
@@ -78,8 +79,9 @@ pub use chat::{
     check_structured, extract_json, ChatModel, ChatRequest, ChatResponse, ContentPart, Message,
     Role, TokenUsage,
 };
-pub use error::{BoxError, ProviderError, ProviderErrorKind};
+pub use error::{grouped, BoxError, ProviderError, ProviderErrorKind};
 pub use image::{ImageData, ImageError, ImageFormat};
+pub use progress::{report_answer_progress, with_answer_listener, AnswerListener, AnswerProgress};
 pub use providers::{
     cosine, BoxPrompt, DepthEstimator, DepthMap, GeneratedImage, ImageEditRequest, ImageGenerator,
     ImageRequest, Intrinsics, Mask, Segmenter, TextEmbedder,

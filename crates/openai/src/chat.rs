@@ -10,7 +10,8 @@ use scenethesis_models::{
 use serde_json::{json, Map, Value};
 
 use crate::config::ServerKind;
-use crate::http::{shorten, Body, On5xx, Transport};
+use crate::http::{shorten, Answered, Body, On5xx, Transport};
+use crate::stream::{Streamed, STREAM_MIN_TOKENS};
 
 const PATH: &str = "/chat/completions";
 
@@ -98,13 +99,76 @@ impl OpenAiChat {
         ProviderError::new(self.transport.label(PATH), self.model.clone(), kind)
     }
 
-    /// One completion: sends the body, returns the answer with the API key masked in all of
-    /// it (a server or a model may echo the key).
-    fn complete(&self, body: &Value, on_5xx: On5xx) -> Result<Completion, ProviderError> {
-        let answer =
-            self.transport
-                .send(PATH, &self.model, Body::Json(body), on_5xx, &self.meter)?;
-        let masked = self.transport.masked(&answer.body);
+    /// Whether `request` is asked for as a stream: when the configuration allows it and its
+    /// answer may be long (no `max_tokens`, or at least [`STREAM_MIN_TOKENS`]).
+    fn streams(&self, request: &ChatRequest) -> bool {
+        self.transport.config().stream && request.max_tokens.is_none_or(|n| n >= STREAM_MIN_TOKENS)
+    }
+
+    /// One completion: sends the body (streamed when it asks for a stream), returns the answer
+    /// with the API key masked in all of it (a server or a model may echo the key). A lenient
+    /// structured request keeps the part of a stream that arrived before a timeout or a cut
+    /// connection, marked as cut off.
+    fn complete(
+        &self,
+        request: &ChatRequest,
+        body: &Value,
+        on_5xx: On5xx,
+    ) -> Result<Completion, ProviderError> {
+        if body.get("stream") != Some(&Value::Bool(true)) {
+            let answer =
+                self.transport
+                    .send(PATH, &self.model, Body::Json(body), on_5xx, &self.meter)?;
+            return self.completion_of_body(&answer.body);
+        }
+        let keep_partial = request.lenient && request.schema.is_some();
+        let answered = self.transport.send_streaming(
+            PATH,
+            &self.model,
+            body,
+            on_5xx,
+            &self.meter,
+            keep_partial,
+        )?;
+        match answered {
+            Answered::Body(answer) => self.completion_of_body(&answer.body),
+            Answered::Streamed(streamed) => self.completion_of_stream(streamed),
+        }
+    }
+
+    /// The completion of an assembled stream, masked.
+    fn completion_of_stream(&self, streamed: Streamed) -> Result<Completion, ProviderError> {
+        if streamed.text.is_empty() {
+            if let Some(refusal) = &streamed.refusal {
+                return Err(self.error(ProviderErrorKind::Malformed {
+                    message: format!(
+                        "the model refused: {}",
+                        shorten(&self.transport.mask(refusal))
+                    ),
+                    source: None,
+                }));
+            }
+        }
+        self.meter.record_tokens(streamed.usage);
+        let interrupted = streamed
+            .interrupted
+            .is_some()
+            .then(|| streamed.interruption_message());
+        Ok(Completion {
+            text: self.transport.mask(&streamed.text),
+            model: streamed
+                .model
+                .as_deref()
+                .map_or_else(|| self.model.clone(), |m| self.transport.mask(m)),
+            tokens: streamed.usage,
+            cut_off: interrupted.is_some() || streamed.finish_reason.as_deref() == Some("length"),
+            interrupted,
+        })
+    }
+
+    /// The completion of an ordinary JSON answer body, masked.
+    fn completion_of_body(&self, body: &[u8]) -> Result<Completion, ProviderError> {
+        let masked = self.transport.masked(body);
         let value: Value = serde_json::from_str(&masked).map_err(|e| {
             self.error(ProviderErrorKind::Malformed {
                 message: format!(
@@ -164,6 +228,7 @@ impl OpenAiChat {
             model,
             tokens,
             cut_off,
+            interrupted: None,
         })
     }
 
@@ -191,6 +256,10 @@ impl OpenAiChat {
         }
         if let Some(s) = request.seed {
             body.insert("seed".into(), json!(s));
+        }
+        if self.streams(request) {
+            body.insert("stream".into(), json!(true));
+            body.insert("stream_options".into(), json!({"include_usage": true}));
         }
         if let (Some(schema), Some(f)) = (&request.schema, format) {
             match f {
@@ -234,11 +303,16 @@ impl OpenAiChat {
                 On5xx::RetryUnlessAboutFormat
             };
             let body = self.body(request, &request.messages, Some(format));
-            let result = self.complete(&body, on_5xx);
+            let result = self.complete(request, &body, on_5xx);
             match result {
                 Ok(c) => {
                     usage += c.tokens;
-                    break (c.text, c.model, c.cut_off);
+                    notes.extend(c.interruption_note());
+                    break (
+                        c.text,
+                        c.model,
+                        c.interrupted.or(c.cut_off.then(String::new)),
+                    );
                 }
                 Err(e) if format != OutputFormat::Plain && rejects_format(&e) => {
                     let next = OutputFormat::from_u8(format as u8 + 1);
@@ -270,15 +344,20 @@ impl OpenAiChat {
             }
             Err(problem) => problem,
         };
-        if request.lenient && cut_off {
-            // Cut off by max_tokens: a repair round would be cut off again.
-            notes.push(format!(
-                "the answer was cut off at max_tokens ({}) and {}",
-                request
-                    .max_tokens
-                    .map_or("the server's limit".to_string(), |n| n.to_string()),
-                problem.summary()
-            ));
+        if let (true, Some(why)) = (request.lenient, &cut_off) {
+            // Cut off by max_tokens (or by a timeout or a closed connection): a repair round
+            // would be cut off again.
+            notes.push(if why.is_empty() {
+                format!(
+                    "the answer was cut off at max_tokens ({}) and {}",
+                    request
+                        .max_tokens
+                        .map_or("the server's limit".to_string(), |n| n.to_string()),
+                    problem.summary()
+                )
+            } else {
+                format!("the part received {}", problem.summary())
+            });
             return Ok(lenient_response(text, model, usage, notes));
         }
         // One repair round quoting what was wrong.
@@ -292,12 +371,18 @@ impl OpenAiChat {
             schema.name
         )));
         // The server accepted this format already: a 5xx now is a server failure.
+        let repaired = self.complete(
+            request,
+            &self.body(request, &messages, Some(format)),
+            On5xx::Retry,
+        )?;
+        notes.extend(repaired.interruption_note());
         let Completion {
             text,
             model,
             tokens,
             ..
-        } = self.complete(&self.body(request, &messages, Some(format)), On5xx::Retry)?;
+        } = repaired;
         usage += tokens;
         match check(schema, &text) {
             Ok(json) => Ok(ChatResponse {
@@ -338,8 +423,21 @@ struct Completion {
     model: String,
     /// Tokens it consumed.
     tokens: TokenUsage,
-    /// Whether the server stopped it at `max_tokens` (`finish_reason: length`).
+    /// Whether the server stopped it at `max_tokens` (`finish_reason: length`), or the stream
+    /// stopped early.
     cut_off: bool,
+    /// Why a streamed answer stopped before its end (a timeout or a closed connection, saying
+    /// how much had arrived); only a lenient request gets such an answer.
+    interrupted: Option<String>,
+}
+
+impl Completion {
+    /// The note saying that the answer stopped early, if it did.
+    fn interruption_note(&self) -> Option<String> {
+        self.interrupted
+            .as_ref()
+            .map(|why| format!("the answer stopped early ({why}); the part received is used"))
+    }
 }
 
 /// The answer to a lenient request whose answer breaks its schema: the JSON value as far as
@@ -489,8 +587,8 @@ impl ChatModel for OpenAiChat {
         match &request.schema {
             Some(schema) => self.structured(request, schema),
             None => {
-                let c =
-                    self.complete(&self.body(request, &request.messages, None), On5xx::Retry)?;
+                let body = self.body(request, &request.messages, None);
+                let c = self.complete(request, &body, On5xx::Retry)?;
                 Ok(ChatResponse {
                     text: c.text,
                     json: None,

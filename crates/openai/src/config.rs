@@ -144,6 +144,7 @@ struct FileConfig {
     budget_secs: Option<f64>,
     backoff_ms: Option<u64>,
     server: Option<String>,
+    stream: Option<bool>,
 }
 
 /// The server software behind an OpenAI-compatible endpoint, where it needs request fields
@@ -201,6 +202,11 @@ pub struct ClientConfig {
     pub server: ServerKind,
     /// Largest answer body read, in bytes ([`crate::MAX_RESPONSE_BYTES`] unless lowered).
     pub max_response_bytes: usize,
+    /// Ask for long chat answers (no `max_tokens`, or at least [`crate::STREAM_MIN_TOKENS`])
+    /// as a stream (`stream: true`), so progress shows while they arrive and a timeout says how
+    /// much had arrived (`stream` in the file; on by default). A server that ignores it and
+    /// answers whole works as well.
+    pub stream: bool,
 }
 
 impl fmt::Debug for ClientConfig {
@@ -218,13 +224,14 @@ impl fmt::Debug for ClientConfig {
             .field("backoff", &self.backoff)
             .field("server", &self.server)
             .field("max_response_bytes", &self.max_response_bytes)
+            .field("stream", &self.stream)
             .finish()
     }
 }
 
 impl ClientConfig {
     /// A configuration for `base_url` with defaults: no key, no models, 120 s timeout,
-    /// 4 attempts, 300 s budget, 500 ms first backoff.
+    /// 4 attempts, 300 s budget, 500 ms first backoff, long answers streamed.
     pub fn new(base_url: impl Into<String>) -> Self {
         Self {
             base_url: base_url.into().trim_end_matches('/').to_string(),
@@ -239,6 +246,7 @@ impl ClientConfig {
             backoff: Duration::from_millis(500),
             server: ServerKind::OpenAiCompatible,
             max_response_bytes: crate::MAX_RESPONSE_BYTES,
+            stream: true,
         }
     }
 
@@ -346,6 +354,9 @@ impl ClientConfig {
         }
         if let Some(ms) = file_config.backoff_ms {
             config.backoff = Duration::from_millis(ms);
+        }
+        if let Some(stream) = file_config.stream {
+            config.stream = stream;
         }
         let (server, origin) = match env(ENV_SERVER) {
             Some(name) => (Some(name), ENV_SERVER.to_string()),

@@ -7,6 +7,7 @@ use scenethesis_models::{ProviderError, ProviderErrorKind, TokenUsage, UsageMete
 use serde_json::Value;
 
 use crate::config::{redact_url, ClientConfig};
+use crate::stream::{read_events, Interruption, Streamed};
 
 /// How a call treats HTTP 5xx answers.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -22,6 +23,33 @@ pub(crate) enum On5xx {
 /// A successful HTTP answer.
 pub(crate) struct Answer {
     pub(crate) body: Vec<u8>,
+}
+
+/// A successful answer to a request that asked for a stream: the server streamed it, or
+/// ignored `stream` and answered with an ordinary body.
+pub(crate) enum Answered {
+    /// An ordinary body.
+    Body(Answer),
+    /// An event stream, assembled; incomplete only when the caller keeps partial answers.
+    Streamed(Streamed),
+}
+
+/// How a request reads a 2xx answer in `text/event-stream`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Events {
+    /// Not streamed: every body is read whole.
+    No,
+    /// Assembled from its events; a stream cut short is retried like any transient failure.
+    Whole,
+    /// Assembled; a stream cut short (timeout, closed connection) after some of the answer
+    /// arrived is returned as it is, for the caller to salvage, instead of being retried.
+    KeepPartial,
+}
+
+/// What one attempt read.
+enum Read {
+    Body(Option<Vec<u8>>),
+    Events(Streamed),
 }
 
 /// One part of a multipart form, rebuilt for every attempt.
@@ -120,8 +148,44 @@ impl Transport {
         on_5xx: On5xx,
         meter: &UsageMeter,
     ) -> Result<Answer, ProviderError> {
+        match self.post(path, model, body, on_5xx, meter, Events::No)? {
+            Answered::Body(answer) => Ok(answer),
+            Answered::Streamed(_) => unreachable!("streams are read only when asked for"),
+        }
+    }
+
+    /// Sends `body` (which asks for `stream: true`) to `path`: a 2xx answer in
+    /// `text/event-stream` is assembled from its events, any other is read whole. With
+    /// `keep_partial`, a stream cut short after some of the answer arrived comes back as it is
+    /// (see [`Events::KeepPartial`]).
+    pub(crate) fn send_streaming(
+        &self,
+        path: &str,
+        model: &str,
+        body: &Value,
+        on_5xx: On5xx,
+        meter: &UsageMeter,
+        keep_partial: bool,
+    ) -> Result<Answered, ProviderError> {
+        let events = if keep_partial {
+            Events::KeepPartial
+        } else {
+            Events::Whole
+        };
+        self.post(path, model, Body::Json(body), on_5xx, meter, events)
+    }
+
+    fn post(
+        &self,
+        path: &str,
+        model: &str,
+        body: Body<'_>,
+        on_5xx: On5xx,
+        meter: &UsageMeter,
+        events: Events,
+    ) -> Result<Answered, ProviderError> {
         let url = self.url(path);
-        self.with_retries(&self.label(path), model, on_5xx, meter, || {
+        let build = || {
             let mut request = self.client.post(&url);
             if let Some(key) = &self.config.api_key {
                 request = request.bearer_auth(key.expose());
@@ -130,7 +194,8 @@ impl Transport {
                 Body::Json(v) => request.json(v),
                 Body::Multipart(parts) => request.multipart(form(parts)),
             }
-        })
+        };
+        self.with_retries(&self.label(path), model, on_5xx, meter, events, build)
     }
 
     /// Downloads `url` (an image an endpoint answered with).
@@ -140,9 +205,18 @@ impl Transport {
         model: &str,
         meter: &UsageMeter,
     ) -> Result<Answer, ProviderError> {
-        self.with_retries(&redact_url(url), model, On5xx::Retry, meter, || {
-            self.client.get(url)
-        })
+        let build = || self.client.get(url);
+        match self.with_retries(
+            &redact_url(url),
+            model,
+            On5xx::Retry,
+            meter,
+            Events::No,
+            build,
+        )? {
+            Answered::Body(answer) => Ok(answer),
+            Answered::Streamed(_) => unreachable!("streams are read only when asked for"),
+        }
     }
 
     fn with_retries(
@@ -151,8 +225,9 @@ impl Transport {
         model: &str,
         on_5xx: On5xx,
         meter: &UsageMeter,
+        events: Events,
         build: impl Fn() -> reqwest::RequestBuilder,
-    ) -> Result<Answer, ProviderError> {
+    ) -> Result<Answered, ProviderError> {
         let started = Instant::now();
         let budget = self.config.budget;
         let err = |kind| ProviderError::new(endpoint, model, kind);
@@ -161,25 +236,41 @@ impl Transport {
         loop {
             attempt += 1;
             let remaining = budget.saturating_sub(started.elapsed());
+            let timeout = self.config.timeout.min(remaining);
             let outcome = self.runtime.block_on(async {
-                let send = build().timeout(self.config.timeout.min(remaining)).send();
-                let response = send.await?;
+                let sent = Instant::now();
+                let response = build().timeout(timeout).send().await?;
                 let status = response.status().as_u16();
                 let retry_after = response
                     .headers()
                     .get(reqwest::header::RETRY_AFTER)
                     .and_then(|v| v.to_str().ok())
                     .and_then(parse_retry_after);
-                let body = read_capped(response, self.config.max_response_bytes).await?;
-                Ok::<_, reqwest::Error>((status, retry_after, body))
+                let cap = self.config.max_response_bytes;
+                let read = if events != Events::No
+                    && (200..300).contains(&status)
+                    && is_event_stream(&response)
+                {
+                    Read::Events(read_events(response, cap, timeout, sent).await)
+                } else {
+                    Read::Body(read_capped(response, cap).await?)
+                };
+                Ok::<_, reqwest::Error>((status, retry_after, read))
             });
             meter.record_request(TokenUsage::default());
             let (failure, retry_after) = match outcome {
-                Ok((_, _, None)) => return Err(err(too_large(self.config.max_response_bytes))),
-                Ok((status, _, Some(body))) if (200..300).contains(&status) => {
-                    return Ok(Answer { body });
+                Ok((_, _, Read::Events(streamed))) => match stream_failure(streamed, events) {
+                    Ok(streamed) => return Ok(Answered::Streamed(streamed)),
+                    Err(StreamFailure::Final(kind)) => return Err(err(kind)),
+                    Err(StreamFailure::Transient(kind)) => (kind, None),
+                },
+                Ok((_, _, Read::Body(None))) => {
+                    return Err(err(too_large(self.config.max_response_bytes)))
                 }
-                Ok((status, retry_after, Some(body))) => {
+                Ok((status, _, Read::Body(Some(body)))) if (200..300).contains(&status) => {
+                    return Ok(Answered::Body(Answer { body }));
+                }
+                Ok((status, retry_after, Read::Body(Some(body)))) => {
                     let message = self.error_message(&body);
                     let transient = status == 429
                         || (status >= 500 && (on_5xx == On5xx::Retry || !about_format(&message)));
@@ -261,6 +352,62 @@ fn too_large(limit: usize) -> ProviderErrorKind {
     }
 }
 
+/// Whether `response` is a Server-Sent Events stream (by its `Content-Type`).
+fn is_event_stream(response: &reqwest::Response) -> bool {
+    response
+        .headers()
+        .get(reqwest::header::CONTENT_TYPE)
+        .and_then(|v| v.to_str().ok())
+        .is_some_and(|v| {
+            v.trim()
+                .to_ascii_lowercase()
+                .starts_with("text/event-stream")
+        })
+}
+
+/// Why an event stream is not an answer.
+enum StreamFailure {
+    /// Not worth retrying (past the size limit).
+    Final(ProviderErrorKind),
+    /// Retried like other transport failures (timeout, connection closed early).
+    Transient(ProviderErrorKind),
+}
+
+/// `streamed` as an answer: complete, or cut short with some of the answer when `events`
+/// keeps partial answers; else the failure, saying how much had arrived.
+fn stream_failure(streamed: Streamed, events: Events) -> Result<Streamed, StreamFailure> {
+    let keep = events == Events::KeepPartial && !streamed.text.is_empty();
+    match &streamed.interrupted {
+        None => Ok(streamed),
+        Some(Interruption::TooLarge(_)) => {
+            Err(StreamFailure::Final(ProviderErrorKind::Malformed {
+                message: streamed.interruption_message(),
+                source: None,
+            }))
+        }
+        Some(_) if keep => Ok(streamed),
+        Some(Interruption::Timeout(after)) => {
+            Err(StreamFailure::Transient(ProviderErrorKind::Timeout {
+                after: *after,
+                received: Some(streamed.characters()),
+            }))
+        }
+        Some(Interruption::Cut(_)) => {
+            let message = streamed.interruption_message();
+            let source = match streamed.interrupted {
+                Some(Interruption::Cut(Some(e))) => {
+                    Some(Box::new(e) as scenethesis_models::BoxError)
+                }
+                _ => None,
+            };
+            Err(StreamFailure::Transient(ProviderErrorKind::Malformed {
+                message,
+                source,
+            }))
+        }
+    }
+}
+
 /// The body of `response`, read chunk by chunk; `None` as soon as it passes `cap` bytes (or
 /// its `Content-Length` says it will).
 async fn read_capped(
@@ -306,7 +453,10 @@ fn form(parts: &[Part]) -> reqwest::multipart::Form {
 /// cannot leak.
 fn transport_kind(e: reqwest::Error, timeout: Duration) -> ProviderErrorKind {
     if e.is_timeout() {
-        ProviderErrorKind::Timeout { after: timeout }
+        ProviderErrorKind::Timeout {
+            after: timeout,
+            received: None,
+        }
     } else if e.is_connect() {
         ProviderErrorKind::Unreachable {
             message: "connection failed (is the server running and the base URL right?)".into(),

@@ -45,6 +45,7 @@ mod embed;
 mod http;
 mod images;
 mod mask;
+mod stream;
 #[cfg(feature = "test-server")]
 pub mod testing;
 
@@ -61,6 +62,7 @@ pub use http::MAX_RESPONSE_BYTES;
 pub use images::OpenAiImages;
 pub use mask::{min_masked_run, MIN_RESHAPED_KEY_CHARS};
 use scenethesis_models::ProviderError;
+pub use stream::STREAM_MIN_TOKENS;
 
 /// A connection to one OpenAI-compatible endpoint; hands out model clients that share it.
 #[derive(Debug, Clone)]

@@ -52,6 +52,12 @@ pub struct Reply {
     pub body: Vec<u8>,
     /// How long to wait before answering.
     pub delay: Duration,
+    /// When not empty, the body is sent in these parts instead (HTTP chunked encoding), each
+    /// after its pause: a streamed answer.
+    pub parts: Vec<(Duration, Vec<u8>)>,
+    /// With `parts`: the connection is closed after the last part without ending the body, as
+    /// a server that crashes mid-answer does.
+    pub cut: bool,
 }
 
 impl Reply {
@@ -62,6 +68,8 @@ impl Reply {
             headers: vec![("Content-Type".into(), "application/json".into())],
             body: body.to_string().into_bytes(),
             delay: Duration::ZERO,
+            parts: Vec::new(),
+            cut: false,
         }
     }
 
@@ -72,6 +80,8 @@ impl Reply {
             headers: vec![("Content-Type".into(), content_type.into())],
             body: body.into(),
             delay: Duration::ZERO,
+            parts: Vec::new(),
+            cut: false,
         }
     }
 
@@ -84,6 +94,32 @@ impl Reply {
     /// Answers only after `delay` (to test timeouts).
     pub fn delayed(mut self, delay: Duration) -> Self {
         self.delay = delay;
+        self
+    }
+
+    /// A `text/event-stream` answer sent event by event, `pause` before each.
+    pub fn events(events: Vec<String>, pause: Duration) -> Self {
+        Self {
+            parts: events
+                .into_iter()
+                .map(|e| (pause, e.into_bytes()))
+                .collect(),
+            ..Self::raw(200, "text/event-stream", Vec::new())
+        }
+    }
+
+    /// Waits `pause` before the part at `index` (to stall a stream mid-answer).
+    pub fn stall_before(mut self, index: usize, pause: Duration) -> Self {
+        if let Some(part) = self.parts.get_mut(index) {
+            part.0 = pause;
+        }
+        self
+    }
+
+    /// Sends only the first `keep` parts, then closes the connection mid-body.
+    pub fn cut_after(mut self, keep: usize) -> Self {
+        self.parts.truncate(keep);
+        self.cut = true;
         self
     }
 }
@@ -224,6 +260,15 @@ fn serve(
     requests.lock().unwrap().push(recorded.clone());
     let reply = handler(index, &recorded);
     std::thread::sleep(reply.delay);
+    if reply.parts.is_empty() {
+        write_whole(stream, &reply);
+    } else {
+        write_parts(stream, &reply);
+    }
+}
+
+/// Writes `reply` with a `Content-Length`.
+fn write_whole(stream: TcpStream, reply: &Reply) {
     let mut out = stream;
     let mut head = format!(
         "HTTP/1.1 {} X\r\nContent-Length: {}\r\nConnection: close\r\n",
@@ -237,6 +282,70 @@ fn serve(
     let _ = out.write_all(head.as_bytes());
     let _ = out.write_all(&reply.body);
     let _ = out.flush();
+}
+
+/// Writes `reply`'s parts in chunked encoding, pausing before each; a cut reply ends without
+/// the last chunk.
+fn write_parts(stream: TcpStream, reply: &Reply) {
+    let mut out = stream;
+    let mut head = format!(
+        "HTTP/1.1 {} X\r\nTransfer-Encoding: chunked\r\nConnection: close\r\n",
+        reply.status
+    );
+    for (k, v) in &reply.headers {
+        head.push_str(&format!("{k}: {v}\r\n"));
+    }
+    head.push_str("\r\n");
+    if out
+        .write_all(head.as_bytes())
+        .and_then(|()| out.flush())
+        .is_err()
+    {
+        return;
+    }
+    for (pause, part) in &reply.parts {
+        std::thread::sleep(*pause);
+        let chunk = [format!("{:x}\r\n", part.len()).as_bytes(), part, b"\r\n"].concat();
+        if out.write_all(&chunk).and_then(|()| out.flush()).is_err() {
+            return;
+        }
+    }
+    if reply.cut {
+        let _ = out.shutdown(std::net::Shutdown::Both);
+    } else {
+        let _ = out.write_all(b"0\r\n\r\n");
+        let _ = out.flush();
+    }
+}
+
+/// A chat answer streamed in OpenAI's shape: one event with the role, one per piece of
+/// content, one with `finish_reason` (`stop`), one with the token usage, then `data: [DONE]`.
+pub fn openai_stream(model: &str, pieces: &[&str]) -> Vec<String> {
+    let event = |v: Value| format!("data: {v}\n\n");
+    let chunk = |delta: Value, finish: Value| {
+        event(serde_json::json!({
+            "id": "chatcmpl-S1", "object": "chat.completion.chunk", "created": 1764100000,
+            "model": model,
+            "choices": [{"index": 0, "delta": delta, "logprobs": null, "finish_reason": finish}]
+        }))
+    };
+    let mut events = vec![chunk(
+        serde_json::json!({"role": "assistant", "content": ""}),
+        Value::Null,
+    )];
+    events.extend(
+        pieces
+            .iter()
+            .map(|p| chunk(serde_json::json!({"content": p}), Value::Null)),
+    );
+    events.push(chunk(serde_json::json!({}), serde_json::json!("stop")));
+    events.push(event(serde_json::json!({
+        "id": "chatcmpl-S1", "object": "chat.completion.chunk", "created": 1764100000,
+        "model": model, "choices": [],
+        "usage": {"prompt_tokens": 90, "completion_tokens": pieces.len(), "total_tokens": 90 + pieces.len()}
+    })));
+    events.push("data: [DONE]\n\n".to_string());
+    events
 }
 
 /// A chat completion in OpenAI's shape.
