@@ -62,6 +62,7 @@
 
 mod convert;
 mod planner;
+mod review;
 mod salvage;
 mod schema;
 mod vlm_judge;

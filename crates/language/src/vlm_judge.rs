@@ -13,6 +13,9 @@ use scenethesis_scene_graph::limits::MAX_ID_BYTES;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
 
+use crate::review::{read_review, ReadReview};
+use crate::salvage::close_truncated;
+
 const INSTRUCTIONS: &str = "You judge 3D scenes made for a physics simulator from a text prompt. \
 You see rendered previews of the scene and a list of its objects (id, category, position in \
 metres with +Y up and the front of the room towards +Z, yaw in degrees about +Y). Score in [0, 1]: \
@@ -81,6 +84,10 @@ pub struct VlmReview {
     pub accepted: bool,
     /// The preview images the model saw.
     pub views: Vec<String>,
+    /// How the answer was read, when it was not a complete, valid review: format fallbacks,
+    /// a cut-off or partly invalid answer salvaged, what was dropped (absent when empty).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub notes: Vec<String>,
 }
 
 /// The most objects a review may blame (`objects.maxItems` of [`review_schema`]).
@@ -124,15 +131,6 @@ pub fn review_schema() -> JsonSchema {
         }),
     )
     .expect("the review schema is valid")
-}
-
-#[derive(Deserialize)]
-struct Answer {
-    category_accuracy: f64,
-    orientation_alignment: f64,
-    spatial_coherence: f64,
-    objects: Vec<ObjectReason>,
-    summary: String,
 }
 
 /// A [`Judge`] that runs the [`GeometricJudge`] first (physics is never delegated to a model)
@@ -196,6 +194,49 @@ impl<M: ChatModel> VlmJudge<M> {
         }
     }
 
+    /// Asks the model for a review of the scene `messages` show, read leniently: an answer
+    /// cut off part way or partly off the schema keeps what is valid (see [`read_review`]);
+    /// only one without the three scores is an error.
+    fn ask(&self, messages: Vec<Message>) -> Result<ReadReview, JudgeError> {
+        let mut request = ChatRequest::structured(messages, review_schema());
+        request.max_tokens = Some(review_max_tokens());
+        request.lenient = true;
+        let response = self
+            .model
+            .chat(&request)
+            .map_err(|e| self.provider_error(e.to_string()))?;
+        let unusable = |what: String| {
+            self.provider_error(format!(
+                "model `{}`: the review {what}{}",
+                self.model.name(),
+                if response.notes.is_empty() {
+                    String::new()
+                } else {
+                    format!(" ({})", response.notes.join("; "))
+                }
+            ))
+        };
+        let (value, salvaged) = match &response.json {
+            Some(v) => (v.clone(), !review_schema().violations(v).is_empty()),
+            None => match close_truncated(&response.text) {
+                Some(v) => (v, true),
+                None => return Err(unusable("holds no JSON object".to_owned())),
+            },
+        };
+        let mut read = read_review(&value).map_err(unusable)?;
+        let mut notes = response.notes.clone();
+        if salvaged {
+            notes.push(
+                "salvaged from an answer that does not fit schema `scene_review`: what is \
+                 valid is kept"
+                    .to_owned(),
+            );
+        }
+        notes.append(&mut read.notes);
+        read.notes = notes;
+        Ok(read)
+    }
+
     /// Renders the previews and asks the model; the review of `input`'s scene.
     pub fn review(&self, input: &JudgeInput<'_>) -> Result<VlmReview, JudgeError> {
         let previews =
@@ -252,32 +293,8 @@ impl<M: ChatModel> VlmJudge<M> {
                 .map_err(|e| self.provider_error(format!("preview {name}: {e}")))?;
             user = user.with_image(image);
         }
-        let mut request =
-            ChatRequest::structured(vec![Message::system(INSTRUCTIONS), user], review_schema());
-        request.max_tokens = Some(review_max_tokens());
-        let response = self
-            .model
-            .chat(&request)
-            .map_err(|e| self.provider_error(e.to_string()))?;
-        let value = response.json.unwrap_or(serde_json::Value::Null);
-        let answer: Answer = serde_json::from_value(value).map_err(|e| {
-            self.provider_error(format!(
-                "model `{}`: the review does not fit schema `scene_review`: {e}",
-                self.model.name()
-            ))
-        })?;
-        let clamp = |v: f64| {
-            if v.is_finite() {
-                v.clamp(0.0, 1.0)
-            } else {
-                0.0
-            }
-        };
-        let (c, o, s) = (
-            clamp(answer.category_accuracy),
-            clamp(answer.orientation_alignment),
-            clamp(answer.spatial_coherence),
-        );
+        let answer = self.ask(vec![Message::system(INSTRUCTIONS), user])?;
+        let [c, o, s] = answer.scores;
         let t = self.thresholds;
         Ok(VlmReview {
             model: self.model.name(),
@@ -286,6 +303,7 @@ impl<M: ChatModel> VlmJudge<M> {
             spatial_coherence: s,
             objects: answer.objects,
             summary: answer.summary,
+            notes: answer.notes,
             thresholds: t,
             accepted: c >= t.category_accuracy
                 && o >= t.orientation_alignment

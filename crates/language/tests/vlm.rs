@@ -281,3 +281,79 @@ fn a_failing_vision_model_is_an_error_naming_endpoint_and_model() {
     assert!(text.contains("vision-model"), "{text}");
     assert!(text.contains("HTTP 500"), "{text}");
 }
+
+/// A review whose scores are all present, cut off inside its second blamed object.
+fn cut_review(blamed: &str) -> String {
+    // In the schema's order, as models write it (`json!` would sort the keys).
+    let full = format!(
+        r#"{{"category_accuracy": 0.9, "orientation_alignment": 0.2, "spatial_coherence": 0.8,
+        "objects": [{{"id": "{blamed}", "reason": "it faces the wall"}},
+        {{"id": "other_1", "reason": "too far from the desk"}}],
+        "summary": "one object is turned the wrong way"}}"#
+    );
+    let cut = full.find("other_1").unwrap() + 12;
+    full[..cut].to_owned()
+}
+
+#[test]
+fn a_cut_off_review_keeps_its_scores_and_complete_objects() {
+    use scenethesis_pipeline::{Judge, JudgeInput};
+    let generated = Pipeline::offline()
+        .generate("a garage", 0, &options(), &mut NoProgress)
+        .unwrap();
+    let input = JudgeInput {
+        plan: &generated.plan,
+        scene: &generated.scene,
+        meshes: &generated.meshes,
+        guidance: None,
+    };
+    let blamed = generated.scene.objects[0].id.clone();
+    // Cut by max_tokens (`finish_reason: length`), and a stream cut off mid-answer.
+    let mut length = openai_completion("vision-model", &cut_review(&blamed));
+    length["choices"][0]["finish_reason"] = json!("length");
+    let text = cut_review(&blamed);
+    let pieces: Vec<String> = text
+        .as_bytes()
+        .chunks(16)
+        .map(|c| String::from_utf8(c.to_vec()).unwrap())
+        .collect();
+    let refs: Vec<&str> = pieces.iter().map(String::as_str).collect();
+    let events = support::openai_stream("vision-model", &refs);
+    let streamed = Reply::events(events.clone(), Duration::ZERO).cut_after(events.len() - 3);
+    for (reply, why) in [
+        (Reply::json(200, &length), "cut off at max_tokens"),
+        (streamed, "the connection closed after"),
+    ] {
+        let server = TestServer::scripted(vec![reply]);
+        let judge = VlmJudge::new(chat(&server), FlatRenderer).with_preview_size([32, 32]);
+        let verdict = judge.judge(&input).unwrap();
+        assert_eq!(server.requests().len(), 1, "not re-asked");
+        assert!(!verdict.accepted);
+        let visual: Vec<_> = verdict
+            .failures
+            .iter()
+            .filter(|f| f.kind == FailureKind::Visual)
+            .collect();
+        assert_eq!(visual.len(), 1, "{:?}", verdict.failures);
+        assert_eq!(visual[0].objects, vec![blamed.clone()]);
+        assert!(visual[0].detail.contains("it faces the wall"));
+        let review = verdict.review.unwrap();
+        assert_eq!(review["orientation_alignment"], 0.2);
+        assert_eq!(review["summary"], "");
+        let notes = review["notes"].to_string();
+        assert!(notes.contains(why), "{notes}");
+        assert!(notes.contains("salvaged"), "{notes}");
+        assert!(notes.contains("no summary"), "{notes}");
+    }
+    // Cut before the scores are all there: an error naming the missing score.
+    let mut early = openai_completion("vision-model", r#"{"category_accuracy": 0.9, "orient"#);
+    early["choices"][0]["finish_reason"] = json!("length");
+    let server = TestServer::scripted(vec![Reply::json(200, &early)]);
+    let judge = VlmJudge::new(chat(&server), FlatRenderer).with_preview_size([32, 32]);
+    let err = judge.judge(&input).unwrap_err().to_string();
+    assert!(
+        err.contains("has no `orientation_alignment` score"),
+        "{err}"
+    );
+    assert!(err.contains("vision-model"), "{err}");
+}
