@@ -773,3 +773,81 @@ fn the_planner_is_send_and_sync() {
     check::<LlmPlanner<OpenAiChat>>();
     check::<LlmPlanner<scenethesis_models::Cached<OpenAiChat>>>();
 }
+
+/// Records how much of each stage's model answer had arrived.
+#[derive(Default)]
+struct Heard(std::rc::Rc<std::cell::RefCell<Vec<(scenethesis_pipeline::Stage, usize)>>>);
+
+impl scenethesis_pipeline::Progress for Heard {
+    fn answer_listener(
+        &mut self,
+        stage: scenethesis_pipeline::Stage,
+        _round: usize,
+    ) -> Option<scenethesis_models::AnswerListener> {
+        let sink = std::rc::Rc::clone(&self.0);
+        Some(Box::new(move |p: &scenethesis_models::AnswerProgress| {
+            sink.borrow_mut().push((stage, p.characters))
+        }))
+    }
+}
+
+#[test]
+fn a_streamed_plan_shows_progress_and_one_that_stalls_is_salvaged() {
+    // The pharmacy plan as a slow local model streams it: 40 characters a piece, then a
+    // stall past the request's timeout two thirds of the way through.
+    let text = include_str!("../../../fixtures/llm/pharmacy_plan.json");
+    let pieces: Vec<String> = text
+        .chars()
+        .collect::<Vec<_>>()
+        .chunks(40)
+        .map(|c| c.iter().collect())
+        .collect();
+    let refs: Vec<&str> = pieces.iter().map(String::as_str).collect();
+    let events = support::openai_stream("small-model", &refs);
+    let stall_at = events.len() * 2 / 3;
+    let server = TestServer::scripted(vec![
+        Reply::events(events, Duration::ZERO).stall_before(stall_at, Duration::from_secs(4))
+    ]);
+    let mut c = ClientConfig::new(&server.base_url);
+    c.timeout = Duration::from_millis(800);
+    c.max_attempts = 2;
+    let planner = LlmPlanner::new(OpenAiClient::new(c).unwrap().chat("small-model"));
+    let heard = Heard::default();
+    let log = std::rc::Rc::clone(&heard.0);
+    let mut progress = heard;
+    let generated = scenethesis_pipeline::Pipeline::offline()
+        .with_planner(planner)
+        .generate(
+            "a pharmacy",
+            0,
+            &scenethesis_pipeline::GenerateOptions {
+                previews: false,
+                ..Default::default()
+            },
+            &mut progress,
+        )
+        .unwrap();
+    assert_eq!(server.requests().len(), 1, "the part received is used");
+    assert_eq!(server.requests()[0].json()["stream"], true);
+    let received = (stall_at - 1) * 40;
+    let log = log.borrow();
+    assert!(!log.is_empty());
+    assert!(log
+        .iter()
+        .all(|(s, _)| *s == scenethesis_pipeline::Stage::Plan));
+    assert_eq!(log.last().unwrap().1, received, "{log:?}");
+    let notes = generated.plan.notes.join("\n");
+    assert!(
+        notes.contains(&format!(
+            "timed out after 0.8 s with {} characters of the answer received",
+            scenethesis_models::grouped(received)
+        )),
+        "{notes}"
+    );
+    assert!(notes.contains("salvaged"), "{notes}");
+    assert!(
+        generated.plan.object("checkout_counter_0").is_some(),
+        "{notes}"
+    );
+    assert!(generated.plan.objects.len() >= scenethesis_language::MIN_OBJECTS);
+}

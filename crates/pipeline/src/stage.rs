@@ -2,6 +2,7 @@
 
 use std::time::Duration;
 
+use scenethesis_models::AnswerListener;
 use serde::{Deserialize, Serialize};
 
 /// The stages of a run, in order.
@@ -62,7 +63,7 @@ impl std::fmt::Display for Stage {
 }
 
 /// Receives progress events; the CLI draws them, libraries can ignore them (pass `&mut ()`).
-/// Both methods do nothing by default.
+/// Every method does nothing by default.
 pub trait Progress {
     /// A stage starts; `round` is 0 for the first attempt and counts re-plans after it.
     fn stage_started(&mut self, stage: Stage, round: usize) {
@@ -71,6 +72,13 @@ pub trait Progress {
     /// A stage ended after `elapsed`, with a short note (e.g. "24 objects").
     fn stage_finished(&mut self, stage: Stage, round: usize, elapsed: Duration, note: &str) {
         let _ = (stage, round, elapsed, note);
+    }
+    /// A listener of how much of a model's answer has arrived while `stage` of `round` runs
+    /// (a streamed plan or review), called on the thread running the stage; `None` (the
+    /// default) hears nothing.
+    fn answer_listener(&mut self, stage: Stage, round: usize) -> Option<AnswerListener> {
+        let _ = (stage, round);
+        None
     }
 }
 

@@ -48,8 +48,9 @@ impl<'p> StageClock<'p> {
         note: impl FnOnce(&T) -> String,
     ) -> Result<T, E> {
         self.progress.stage_started(stage, round);
+        let listener = self.progress.answer_listener(stage, round);
         let started = Instant::now();
-        let result = work();
+        let result = scenethesis_models::with_answer_listener(listener, work);
         *self.totals.entry(stage).or_default() += started.elapsed().as_secs_f64();
         let value = result?;
         self.progress

@@ -6,6 +6,7 @@ use std::time::Duration;
 
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
+use scenethesis_models::{AnswerListener, AnswerProgress};
 use scenethesis_pipeline::{
     export_folder, time_limit_from_secs, FixedPlanner, Format, GenerateOptions, OutputDir,
     Pipeline, Progress, Stage, DEFAULT_TIME_LIMIT,
@@ -151,7 +152,11 @@ impl Drop for WatchdogGuard {
     }
 }
 
-/// Draws one spinner per stage on a terminal, or plain lines otherwise.
+/// How often a plain-lines progress says how much of a model's answer has arrived.
+const ANSWER_LINE_EVERY: Duration = Duration::from_secs(15);
+
+/// Draws one spinner per stage on a terminal, or plain lines otherwise; while a model's answer
+/// streams in, the spinner (or a line every 15 s) says how much has arrived.
 #[derive(Default)]
 pub struct StageProgress {
     bar: Option<ProgressBar>,
@@ -188,6 +193,33 @@ impl Progress for StageProgress {
             bar.enable_steady_tick(Duration::from_millis(100));
             self.bar = Some(bar);
         }
+    }
+
+    fn answer_listener(&mut self, stage: Stage, round: usize) -> Option<AnswerListener> {
+        let label = label(stage, round);
+        let received = |p: &AnswerProgress| {
+            format!(
+                "{} characters of the answer received",
+                scenethesis_models::grouped(p.characters)
+            )
+        };
+        if let Some(bar) = self.bar.clone() {
+            return Some(Box::new(move |p: &AnswerProgress| {
+                bar.set_message(format!("{label} {}", received(p)));
+            }));
+        }
+        // Plain lines (logs of unattended runs): one every ANSWER_LINE_EVERY at most.
+        let mut last = Duration::ZERO;
+        Some(Box::new(move |p: &AnswerProgress| {
+            if p.elapsed >= last + ANSWER_LINE_EVERY {
+                last = p.elapsed;
+                eprintln!(
+                    "… {label} {} in {:.0} s",
+                    received(p),
+                    p.elapsed.as_secs_f64()
+                );
+            }
+        }))
     }
 
     fn stage_finished(&mut self, stage: Stage, round: usize, elapsed: Duration, note: &str) {
