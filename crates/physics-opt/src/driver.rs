@@ -5,6 +5,7 @@
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
+use std::time::Instant;
 
 use nalgebra::{Point3, Vector3};
 use scenethesis_scene_graph::{
@@ -14,6 +15,7 @@ use scenethesis_sdf::{BoxSdf, SignedDistance};
 use serde::{Deserialize, Serialize};
 
 use crate::alignment::PoseAlignment;
+use crate::deadline::{deadline_after, past};
 use crate::finish::{finish, FinishInput};
 use crate::objective::{LossSettings, ObjectProblem, RoomBounds, Stage};
 use crate::obstacles::Obstacles;
@@ -58,7 +60,7 @@ impl SceneProblem {
 }
 
 /// Settings of a scene optimization.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct OptimizeSettings {
     /// Loss tolerances and weights.
     pub losses: LossSettings,
@@ -75,6 +77,44 @@ pub struct OptimizeSettings {
     /// dense samples the post-conditions use; see [`optimize_scene`]).
     #[serde(default)]
     pub skip_finish: bool,
+    /// Wall-clock budget of [`optimize_scene`], in seconds (default
+    /// [`DEFAULT_OPTIMIZE_BUDGET_SECS`]; infinite: none). It is checked before every object,
+    /// every optimizer iteration and every round of the final pass; once spent, the objects not
+    /// reached keep their starting poses, the others the poses reached, the post-conditions are
+    /// checked as usual and [`Placement::out_of_time`] is set. Objects not reached are only
+    /// brought into their scale range, support region and the room. The clock is only compared
+    /// with the deadline, so a budget that is not reached changes nothing. Not serialized (like
+    /// the run's time limit it is not part of the options' digest).
+    #[serde(skip, default = "default_budget")]
+    pub time_budget: f64,
+    /// An instant the optimization must also end by, as if its budget ran out then (the
+    /// pipeline sets the end of the run's time limit); never serialized.
+    #[serde(skip)]
+    pub deadline: Option<Instant>,
+}
+
+/// Default [`OptimizeSettings::time_budget`], seconds. Optimizing a benchmark scene takes a few
+/// seconds in a release build, so the budget only ends runaway work (thousands of objects, a
+/// degenerate scene); the pipeline also ends it with the run's time limit
+/// ([`OptimizeSettings::deadline`]).
+pub const DEFAULT_OPTIMIZE_BUDGET_SECS: f64 = 120.0;
+
+fn default_budget() -> f64 {
+    DEFAULT_OPTIMIZE_BUDGET_SECS
+}
+
+impl Default for OptimizeSettings {
+    fn default() -> Self {
+        Self {
+            losses: LossSettings::default(),
+            tolerances: Tolerances::default(),
+            skip_exact_polish: false,
+            keep_children_in_place: false,
+            skip_finish: false,
+            time_budget: default_budget(),
+            deadline: None,
+        }
+    }
 }
 
 /// Optimizes every object of `problem` with `optimizer` and reports per object whether the
@@ -108,6 +148,10 @@ pub fn optimize_scene(
             });
         }
     }
+    let deadline = match (deadline_after(settings.time_budget), settings.deadline) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        (a, b) => a.or(b),
+    };
     let room = RoomBounds::of(&scene.architecture);
     let mut grid = Obstacles::new(false);
     let mut exact = Obstacles::new(true);
@@ -140,13 +184,18 @@ pub fn optimize_scene(
             room: Some(room),
             alignment,
             settings: &settings.losses,
+            deadline,
         };
-        let aligned = optimizer.optimize(&object_problem, Stage::Alignment, start);
-        let settled = optimizer.optimize(&object_problem, Stage::Physics, aligned.pose);
-        let mut pose = settled.pose;
-        let mut physics_iterations = settled.iterations;
+        let (mut pose, alignment_iterations, mut physics_iterations) = if past(deadline) {
+            // Out of time: not reached, it keeps its starting pose.
+            (object_problem.project(&start), 0, 0)
+        } else {
+            let aligned = optimizer.optimize(&object_problem, Stage::Alignment, start);
+            let settled = optimizer.optimize(&object_problem, Stage::Physics, aligned.pose);
+            (settled.pose, aligned.iterations, settled.iterations)
+        };
         let mut polished = false;
-        if !settings.skip_exact_polish {
+        if !settings.skip_exact_polish && !past(deadline) {
             object_problem.obstacles = &exact;
             if !object_problem.collision(&pose).is_free() {
                 let polish = optimizer.optimize(&object_problem, Stage::Physics, pose);
@@ -164,7 +213,7 @@ pub fn optimize_scene(
             initial_pose: object.pose,
             pose,
             support: support.clone(),
-            alignment_iterations: aligned.iterations,
+            alignment_iterations,
             physics_iterations,
             polished,
             penetration: 0.0,
@@ -188,6 +237,7 @@ pub fn optimize_scene(
             losses: &settings.losses,
             tolerances: settings.tolerances,
             settle: optimizer.settles(),
+            deadline,
         };
         let mut poses: Vec<Pose> = reports.iter().map(|r| r.pose).collect();
         let resolve = |i: usize, pose: &Pose, poses: &[Pose]| {
@@ -222,6 +272,7 @@ pub fn optimize_scene(
             report.physics_iterations += spent;
         }
     }
+    let out_of_time = past(deadline);
     let placed: Vec<Placed<'_>> = order
         .iter()
         .zip(&reports)
@@ -243,6 +294,7 @@ pub fn optimize_scene(
     Ok(Placement {
         optimizer: optimizer.name().to_owned(),
         objects: reports,
+        out_of_time,
     })
 }
 

@@ -11,12 +11,14 @@
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
+use std::time::Instant;
 
 use nalgebra::{Point2, Vector2};
 use scenethesis_correspondence::shape::{turned, yaw_distance};
 use scenethesis_scene_graph::{Pose, SceneObject};
 use scenethesis_sdf::SignedDistance;
 
+use crate::deadline::past;
 use crate::objective::{LossSettings, ObjectProblem, RoomBounds, Stage};
 use crate::obstacles::Obstacles;
 use crate::optimizer::Optimizer;
@@ -54,6 +56,8 @@ pub(crate) struct FinishInput<'a> {
     pub tolerances: Tolerances,
     /// Whether resting objects are settled on their support (the optimizer's stability term).
     pub settle: bool,
+    /// The stage's deadline: no round, and no object of a round, starts after it.
+    pub deadline: Option<Instant>,
 }
 
 /// What the pass needs to re-resolve an object's support after its parent moved.
@@ -98,6 +102,9 @@ pub(crate) fn finish(
     let tol = input.tolerances;
     let mut last = None;
     for _ in 0..ROUNDS {
+        if past(input.deadline) {
+            break;
+        }
         let (todo, verdicts) =
             pending(input, dense, poses, supports, &tol, &index_of, &is_ancestor);
         if todo.is_empty() {
@@ -106,6 +113,9 @@ pub(crate) fn finish(
         }
         let mut moved_any = false;
         for (i, topples) in todo {
+            if past(input.deadline) {
+                break;
+            }
             let others = obstacles_without(input, dense, poses, i, true);
             let asset = densified
                 .entry(Arc::as_ptr(&dense[i]) as usize)
@@ -120,6 +130,7 @@ pub(crate) fn finish(
                 room: Some(input.room),
                 alignment: None,
                 settings: input.losses,
+                deadline: input.deadline,
             };
             let before = poses[i];
             let start = match (&support, topples && input.settle) {

@@ -2,7 +2,7 @@
 //! yaw hypotheses scored by shape agreement, then rounds of (render the asset at its current
 //! pose → match → lift → robust fit of the alignment loss), keeping the best-agreeing pose.
 
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use nalgebra::Point3;
 use scenethesis_correspondence::shape::{pick_yaw, search_yaw, search_yaw_coarse, shape_score};
@@ -13,6 +13,7 @@ use scenethesis_scene_graph::{Mesh, Pose};
 use serde::{Deserialize, Serialize};
 
 use crate::alignment::{FitOptions, PoseAlignment, ScalePrior};
+use crate::deadline::{deadline_after, past};
 
 /// Settings of [`align_to_guidance`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -98,24 +99,6 @@ impl GuidedSettings {
     fn deadline(&self) -> Option<Instant> {
         self.deadline.or_else(|| deadline_after(self.time_budget))
     }
-}
-
-/// `now + seconds`, `None` for an infinite or unrepresentable budget (a non-positive or NaN
-/// budget is spent at once).
-fn deadline_after(seconds: f64) -> Option<Instant> {
-    let seconds = if seconds.is_nan() {
-        0.0
-    } else {
-        seconds.max(0.0)
-    };
-    Duration::try_from_secs_f64(seconds)
-        .ok()
-        .and_then(|d| Instant::now().checked_add(d))
-}
-
-/// Whether `deadline` has passed.
-fn past(deadline: Option<Instant>) -> bool {
-    deadline.is_some_and(|d| Instant::now() >= d)
 }
 
 fn default_refine_tolerance() -> f64 {

@@ -28,6 +28,7 @@
 
 mod alignment;
 mod contact;
+mod deadline;
 mod driver;
 mod finish;
 mod guided;
@@ -43,7 +44,10 @@ mod verify;
 
 pub use alignment::{FitOptions, PoseAlignment, ScalePrior};
 pub use contact::{cluster_contacts, CollisionState, Contact};
-pub use driver::{architecture_fields, optimize_scene, OptimizeSettings, SceneProblem};
+pub use driver::{
+    architecture_fields, optimize_scene, OptimizeSettings, SceneProblem,
+    DEFAULT_OPTIMIZE_BUDGET_SECS,
+};
 pub use guided::{align_to_guidance, GuidedPose, GuidedSettings, DEFAULT_TIME_BUDGET_SECS};
 pub use objective::{LossSettings, Losses, ObjectProblem, RoomBounds, Stage};
 pub use obstacles::Obstacles;

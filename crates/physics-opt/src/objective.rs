@@ -2,6 +2,8 @@
 //! losses over penetrating surface points, the stability loss over bottom points, and the
 //! pose-alignment loss over correspondences.
 
+use std::time::Instant;
+
 use nalgebra::{Point2, Point3, Vector3};
 use scenethesis_scene_graph::{Aabb, Architecture, Pose};
 use serde::{Deserialize, Serialize};
@@ -163,9 +165,18 @@ pub struct ObjectProblem<'a> {
     pub alignment: Option<&'a PoseAlignment>,
     /// Loss tolerances and weights.
     pub settings: &'a LossSettings,
+    /// When set, optimizers stop iterating once this instant has passed and return the pose
+    /// reached (the stage's time budget; see [`crate::OptimizeSettings::time_budget`]).
+    pub deadline: Option<Instant>,
 }
 
 impl ObjectProblem<'_> {
+    /// Whether the [`ObjectProblem::deadline`] has passed: optimizers check it before each
+    /// iteration (it only ever stops work early; a deadline not reached changes nothing).
+    pub fn out_of_time(&self) -> bool {
+        crate::deadline::past(self.deadline)
+    }
+
     /// The allowed scale interval.
     pub fn scale_range(&self) -> [f64; 2] {
         self.asset.scale_range()
@@ -502,6 +513,7 @@ mod tests {
             room: None,
             alignment: None,
             settings,
+            deadline: None,
         }
     }
 

@@ -125,7 +125,7 @@ impl Optimizer for Sgd {
                 losses,
             };
         }
-        while iterations < budget {
+        while iterations < budget && !problem.out_of_time() {
             let (_, grad, state) = problem.losses_gradient_and_state(&pose, stage);
             let settled = state.is_some_and(|s| s.is_free())
                 && lowest_residual(&problem.stability_residuals(&pose))

@@ -110,7 +110,7 @@ impl ProjectedGaussNewton {
         let mut jac = Vec::new();
         let mut iterations = 0;
         let mut cost: f64 = alignment.residuals(&pose, None).iter().map(|r| r * r).sum();
-        while iterations < self.alignment_iterations {
+        while iterations < self.alignment_iterations && !problem.out_of_time() {
             iterations += 1;
             let r = alignment.residuals(&pose, Some(&mut jac));
             let mut jtj = Matrix5::<f64>::zeros();
@@ -158,7 +158,7 @@ impl ProjectedGaussNewton {
         let mut pose = problem.project(&initial);
         let resting = !matches!(problem.support, Support::Free);
         let mut iterations = 0;
-        while iterations < self.physics_iterations {
+        while iterations < self.physics_iterations && !problem.out_of_time() {
             iterations += 1;
             if self.stability {
                 pose = self.settle_vertically(problem, pose);

@@ -116,6 +116,11 @@ pub struct Placement {
     pub optimizer: String,
     /// One report per object, in placement (breadth-first) order.
     pub objects: Vec<ObjectReport>,
+    /// Whether the stage's time budget ([`crate::OptimizeSettings::time_budget`]) ran out
+    /// before its work was done: objects not reached kept their starting poses, the others
+    /// the poses reached, and the post-conditions were checked on those (absent when false).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub out_of_time: bool,
 }
 
 impl Placement {

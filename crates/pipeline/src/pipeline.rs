@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 use scenethesis_agents::{Guide, KnowledgePlanner, Plan, PlanRequest, Planner, ProceduralGuide};
 use scenethesis_correspondence::Matcher;
 use scenethesis_physics_opt::{
-    GuidedSettings, OptimizeSettings, Optimizer, PrepareSettings, ProjectedGaussNewton,
+    GuidedSettings, OptimizeSettings, Optimizer, Placement, PrepareSettings, ProjectedGaussNewton,
 };
 use scenethesis_render_api::SceneRenderer;
 use scenethesis_retrieval::{AssetSource, RetrievalSource};
@@ -420,6 +420,7 @@ impl Pipeline {
             _ => BTreeMap::new(),
         };
         clock.check(Stage::Optimize, round)?;
+        let deadline = clock.deadline();
         let (placement, meshes) = clock.run(
             Stage::Optimize,
             round,
@@ -431,13 +432,15 @@ impl Pipeline {
                     cache,
                     self.optimizer.as_ref(),
                     options,
+                    deadline,
                 )
             },
             |(p, _)| {
                 format!(
-                    "{} objects, {} with issues",
+                    "{} objects, {} with issues{}",
                     p.objects.len(),
-                    p.failures().count()
+                    p.failures().count(),
+                    if p.out_of_time { ", out of time" } else { "" }
                 )
             },
         )?;
@@ -460,14 +463,27 @@ impl Pipeline {
             plan: plan.clone(),
             scene,
             meshes,
+            guide_notes: optimize_notes(layout.notes, &placement),
             placement,
             verdict,
             guide_dropped: layout.dropped,
-            guide_notes: layout.notes,
             guidance: layout.guidance,
             round,
         })
     }
+}
+
+/// The notes of an attempt: the guide's, and one when the optimizer ran out of time.
+fn optimize_notes(mut notes: Vec<String>, placement: &Placement) -> Vec<String> {
+    if placement.out_of_time {
+        notes.push(
+            "the optimize stage ran out of time (its own budget or the run's time limit): \
+             objects it had not reached keep their starting poses, the others the poses \
+             reached so far"
+                .to_owned(),
+        );
+    }
+    notes
 }
 
 /// The report note of a run that stopped re-planning at its time limit.

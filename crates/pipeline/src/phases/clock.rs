@@ -39,6 +39,12 @@ impl<'p> StageClock<'p> {
         }
     }
 
+    /// When the run's time limit runs out (`None`: no limit, or one past what the clock can
+    /// represent).
+    pub(crate) fn deadline(&self) -> Option<Instant> {
+        self.limit.and_then(|limit| self.started.checked_add(limit))
+    }
+
     /// Runs `work` as `stage` of `round`; on success the progress hears `note` of its result.
     pub(crate) fn run<T, E>(
         &mut self,

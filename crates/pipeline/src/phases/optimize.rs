@@ -2,15 +2,20 @@
 //! the scene takes the result.
 
 use std::collections::BTreeMap;
+use std::time::Instant;
 
-use scenethesis_physics_opt::{optimize_scene, Optimizer, Placement, PoseAlignment, SceneProblem};
+use scenethesis_physics_opt::{
+    optimize_scene, OptimizeSettings, Optimizer, Placement, PoseAlignment, SceneProblem,
+};
 use scenethesis_scene_graph::{Mesh, Scene};
 
 use super::retrieve::{AssetCache, Retrieved};
 use crate::{GenerateOptions, PipelineError};
 
 /// Optimizes `scene` in place, with the pose-alignment correspondences of `alignments` (by
-/// object id; empty without guidance); returns the placement report and each object's mesh.
+/// object id; empty without guidance), within the optimizer's own time budget and by
+/// `deadline` (the end of the run's time limit); returns the placement report and each
+/// object's mesh.
 pub(crate) fn optimize(
     scene: &mut Scene,
     alignments: &BTreeMap<String, PoseAlignment>,
@@ -18,6 +23,7 @@ pub(crate) fn optimize(
     cache: &mut AssetCache,
     optimizer: &dyn Optimizer,
     options: &GenerateOptions,
+    deadline: Option<Instant>,
 ) -> Result<(Placement, BTreeMap<String, Mesh>), PipelineError> {
     let mut meshes = BTreeMap::new();
     let mut problem = SceneProblem::new(scene.clone());
@@ -37,7 +43,11 @@ pub(crate) fn optimize(
     for (id, alignment) in alignments {
         problem.set_alignment(id, alignment.clone());
     }
-    let placement = optimize_scene(&problem, optimizer, &options.optimize)?;
+    let settings = OptimizeSettings {
+        deadline,
+        ..options.optimize.clone()
+    };
+    let placement = optimize_scene(&problem, optimizer, &settings)?;
     placement.apply_to(scene);
     Ok((placement, meshes))
 }
