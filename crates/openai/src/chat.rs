@@ -153,7 +153,7 @@ impl OpenAiChat {
         let interrupted = streamed
             .interrupted
             .is_some()
-            .then(|| streamed.interruption_message());
+            .then(|| self.transport.mask(&streamed.interruption_message()));
         Ok(Completion {
             text: self.transport.mask(&streamed.text),
             model: streamed

@@ -34,6 +34,16 @@ pub(crate) enum Answered {
     Streamed(Streamed),
 }
 
+impl Answered {
+    /// The body of an answer to a request that did not ask for a stream.
+    fn into_body(self) -> Answer {
+        match self {
+            Self::Body(answer) => answer,
+            Self::Streamed(_) => unreachable!("streams are read only when asked for"),
+        }
+    }
+}
+
 /// How a request reads a 2xx answer in `text/event-stream`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Events {
@@ -148,10 +158,9 @@ impl Transport {
         on_5xx: On5xx,
         meter: &UsageMeter,
     ) -> Result<Answer, ProviderError> {
-        match self.post(path, model, body, on_5xx, meter, Events::No)? {
-            Answered::Body(answer) => Ok(answer),
-            Answered::Streamed(_) => unreachable!("streams are read only when asked for"),
-        }
+        Ok(self
+            .post(path, model, body, on_5xx, meter, Events::No)?
+            .into_body())
     }
 
     /// Sends `body` (which asks for `stream: true`) to `path`: a 2xx answer in
@@ -206,17 +215,10 @@ impl Transport {
         meter: &UsageMeter,
     ) -> Result<Answer, ProviderError> {
         let build = || self.client.get(url);
-        match self.with_retries(
-            &redact_url(url),
-            model,
-            On5xx::Retry,
-            meter,
-            Events::No,
-            build,
-        )? {
-            Answered::Body(answer) => Ok(answer),
-            Answered::Streamed(_) => unreachable!("streams are read only when asked for"),
-        }
+        let endpoint = redact_url(url);
+        Ok(self
+            .with_retries(&endpoint, model, On5xx::Retry, meter, Events::No, build)?
+            .into_body())
     }
 
     fn with_retries(
@@ -261,8 +263,8 @@ impl Transport {
             let (failure, retry_after) = match outcome {
                 Ok((_, _, Read::Events(streamed))) => match stream_failure(streamed, events) {
                     Ok(streamed) => return Ok(Answered::Streamed(streamed)),
-                    Err(StreamFailure::Final(kind)) => return Err(err(kind)),
-                    Err(StreamFailure::Transient(kind)) => (kind, None),
+                    Err(StreamFailure::Final(kind)) => return Err(err(self.masked_kind(kind))),
+                    Err(StreamFailure::Transient(kind)) => (self.masked_kind(kind), None),
                 },
                 Ok((_, _, Read::Body(None))) => {
                     return Err(err(too_large(self.config.max_response_bytes)))
@@ -321,6 +323,17 @@ impl Transport {
     /// before it is shortened.
     fn error_message(&self, body: &[u8]) -> String {
         shorten(&self.mask(&server_message(self.masked(body).as_bytes())))
+    }
+
+    /// `kind` with the API key masked in its message (a stream's failure may quote the server).
+    fn masked_kind(&self, kind: ProviderErrorKind) -> ProviderErrorKind {
+        match kind {
+            ProviderErrorKind::Malformed { message, source } => ProviderErrorKind::Malformed {
+                message: self.mask(&message),
+                source,
+            },
+            other => other,
+        }
     }
 
     /// A server's answer as text with the API key masked (servers may echo it).

@@ -43,6 +43,8 @@ pub(crate) struct Streamed {
     pub(crate) pieces: usize,
     /// Whether `data: [DONE]` arrived.
     done: bool,
+    /// An error the server reported inside the stream (`data: {"error": ...}`), unmasked.
+    server_error: Option<String>,
     /// Why the stream stopped early, if it did.
     pub(crate) interrupted: Option<Interruption>,
     /// Bytes of the stream read.
@@ -94,6 +96,13 @@ impl Streamed {
     }
 
     fn event(&mut self, event: &Value) {
+        if let Some(error) = event.get("error").filter(|e| !e.is_null()) {
+            let message = error.get("message").unwrap_or(error);
+            self.server_error = Some(match message {
+                Value::String(m) => m.clone(),
+                other => other.to_string(),
+            });
+        }
         if let Some(model) = event.get("model").and_then(Value::as_str) {
             self.model.get_or_insert_with(|| model.to_owned());
         }
@@ -125,7 +134,7 @@ impl Streamed {
     }
 
     /// What happened to an incomplete stream, for messages: "timed out after 2.0 s with 3,412
-    /// characters of the answer received".
+    /// characters of the answer received". It may quote the server: the caller masks the key.
     pub(crate) fn interruption_message(&self) -> String {
         let received = grouped(self.characters());
         match &self.interrupted {
@@ -138,10 +147,17 @@ impl Streamed {
                  (max_response_bytes, MAX_RESPONSE_BYTES by default, see docs/limits.md); \
                  reading stopped with {received} characters of the answer received"
             ),
-            Some(Interruption::Cut(_)) | None => format!(
-                "the connection closed after {received} characters of the answer, before its \
-                 end (`data: [DONE]`)"
-            ),
+            Some(Interruption::Cut(_)) | None => match &self.server_error {
+                Some(error) => format!(
+                    "the server reported an error after {received} characters of the answer: \
+                     {}",
+                    crate::http::shorten(error)
+                ),
+                None => format!(
+                    "the connection closed after {received} characters of the answer, before \
+                     its end (`data: [DONE]`)"
+                ),
+            },
         }
     }
 }
@@ -226,6 +242,15 @@ mod tests {
             assert_eq!(s.pieces, 2);
             assert!(s.is_complete());
         }
+        let mut s = Streamed::default();
+        let failing = "data: {\"choices\":[{\"delta\":{\"content\":\"ab\"}}]}\n\n\
+                       data: {\"error\":{\"message\":\"out of memory\"}}\n\n";
+        assert!(s.feed(failing.as_bytes(), 10_000));
+        assert!(!s.is_complete());
+        assert_eq!(
+            s.interruption_message(),
+            "the server reported an error after 2 characters of the answer: out of memory"
+        );
         let mut s = Streamed::default();
         assert!(!s.feed(stream, 10), "past the cap");
         assert!(s

@@ -271,3 +271,23 @@ fn the_cache_records_the_assembled_answer_and_replays_it_without_streaming() {
     assert_eq!(server.requests().len(), 1);
     assert_eq!(first.text, ANSWER);
 }
+
+#[test]
+fn an_error_inside_the_stream_is_reported_with_the_key_masked() {
+    let mut events = stream_of(ANSWER, 10);
+    events.truncate(3);
+    events.push(format!(
+        "data: {}\n\n",
+        json!({"error": {"message": format!("worker crashed (key {KEY})")}})
+    ));
+    let server = TestServer::scripted(vec![Reply::events(events, Duration::ZERO)]);
+    let err = chat_with(config(&server))
+        .chat(&request(false))
+        .unwrap_err();
+    let text = format!("{err} {err:?}");
+    assert!(
+        text.contains("the server reported an error after 20 characters of the answer: worker crashed (key ***)"),
+        "{text}"
+    );
+    assert!(!text.contains("Secret7"), "{text}");
+}
