@@ -63,7 +63,7 @@ pub struct ProviderArgs {
     #[arg(long, value_name = "VAR")]
     pub api_key_env: Option<String>,
     /// A TOML file with any of base_url, api_key_env, llm_model, vlm_model, image_model,
-    /// timeout_secs, max_attempts, budget_secs, backoff_ms.
+    /// timeout_secs, max_attempts, budget_secs, backoff_ms, server, stream.
     #[arg(long, value_name = "FILE")]
     pub llm_config: Option<PathBuf>,
     /// Time limit of one model request, in seconds.
