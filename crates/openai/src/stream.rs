@@ -41,6 +41,8 @@ pub(crate) struct Streamed {
     pub(crate) usage: TokenUsage,
     /// Pieces received.
     pub(crate) pieces: usize,
+    /// Characters of `text`.
+    characters: usize,
     /// Whether `data: [DONE]` arrived.
     done: bool,
     /// An error the server reported inside the stream (`data: {"error": ...}`), unmasked.
@@ -56,7 +58,7 @@ pub(crate) struct Streamed {
 impl Streamed {
     /// Characters of the answer received.
     pub(crate) fn characters(&self) -> usize {
-        self.text.chars().count()
+        self.characters
     }
 
     /// Whether the stream ended properly: `[DONE]`, or closed after a `finish_reason`.
@@ -71,11 +73,19 @@ impl Streamed {
             self.interrupted = Some(Interruption::TooLarge(cap));
             return false;
         }
+        // Only the new bytes are searched for line ends: a long line arriving in many chunks
+        // is scanned once.
+        let mut search = self.pending.len();
         self.pending.extend_from_slice(chunk);
-        while let Some(end) = self.pending.iter().position(|&b| b == b'\n') {
-            let line: Vec<u8> = self.pending.drain(..=end).collect();
-            self.line(String::from_utf8_lossy(&line).trim_end_matches(['\r', '\n']));
+        let mut start = 0;
+        while let Some(offset) = self.pending[search..].iter().position(|&b| b == b'\n') {
+            let end = search + offset;
+            let line = String::from_utf8_lossy(&self.pending[start..end]).into_owned();
+            self.line(line.trim_end_matches('\r'));
+            start = end + 1;
+            search = start;
         }
+        self.pending.drain(..start);
         true
     }
 
@@ -120,6 +130,7 @@ impl Streamed {
         if let Some(piece) = delta.and_then(|d| d.get("content")).and_then(Value::as_str) {
             if !piece.is_empty() {
                 self.text.push_str(piece);
+                self.characters += piece.chars().count();
                 self.pieces += 1;
             }
         }
@@ -251,6 +262,23 @@ mod tests {
             s.interruption_message(),
             "the server reported an error after 2 characters of the answer: out of memory"
         );
+        // A long line in many small chunks is read in linear time.
+        let long = format!(
+            "data: {}\n\ndata: [DONE]\n\n",
+            serde_json::json!({"choices": [{"delta": {"content": "é".repeat(2_000_000)}}]})
+        );
+        let started = Instant::now();
+        let mut s = Streamed::default();
+        for chunk in long.as_bytes().chunks(1024) {
+            assert!(s.feed(chunk, usize::MAX));
+        }
+        assert!(
+            started.elapsed() < Duration::from_secs(5),
+            "{:?}",
+            started.elapsed()
+        );
+        assert_eq!((s.characters(), s.pieces), (2_000_000, 1));
+        assert!(s.is_complete());
         let mut s = Streamed::default();
         assert!(!s.feed(stream, 10), "past the cap");
         assert!(s
