@@ -131,6 +131,10 @@ const DETAILED: &[&str] = &[
     "a gym with a treadmill against the back wall, an exercise bike beside the treadmill, a weight bench in front of the treadmill, a dumbbell rack against the left wall and a yoga mat beside the weight bench",
 ];
 
+/// Seeds each detailed prompt runs with: two, so that a relation holding by one seed's luck is
+/// still caught, within the suite's time (the README's Development section).
+const DETAILED_SEEDS: u64 = 2;
+
 #[test]
 fn detailed_prompts_keep_every_object_and_almost_every_stated_relation() {
     let pipeline = Pipeline::offline();
@@ -140,7 +144,7 @@ fn detailed_prompts_keep_every_object_and_almost_every_stated_relation() {
     let mut per_prompt = Vec::new();
     for prompt in DETAILED {
         let (mut prompt_held, mut prompt_stated) = (0, 0);
-        for seed in 0..3 {
+        for seed in 0..DETAILED_SEEDS {
             let g = pipeline
                 .generate(prompt, seed, &options(), &mut NoProgress)
                 .unwrap_or_else(|e| panic!("{prompt}: {e}"));
@@ -176,7 +180,8 @@ fn detailed_prompts_keep_every_object_and_almost_every_stated_relation() {
     }
     let share = f64::from(held) / f64::from(stated);
     eprintln!(
-        "stated relations held per prompt, seeds 0-2:\n{}\noverall {:.1} % ({held}/{stated})",
+        "stated relations held per prompt, seeds 0-{}:\n{}\noverall {:.1} % ({held}/{stated})",
+        DETAILED_SEEDS - 1,
         per_prompt.join("\n"),
         100.0 * share
     );
