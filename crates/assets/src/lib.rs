@@ -8,6 +8,8 @@
 //! overlap, with real cavities (shelf compartments, open crates, hollow mugs). Parts are convex
 //! wherever possible, so that per-part convex hulls (physics engines, MuJoCo) keep cavities open.
 
+#![warn(missing_docs)]
+
 pub mod catalog;
 mod category;
 mod furniture;

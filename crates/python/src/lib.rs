@@ -6,6 +6,8 @@
 //! Long calls (generate, plan, load, save, export, evaluate) release the GIL, so Python threads
 //! run them in parallel; a progress callback re-acquires it only for the call.
 
+#![warn(missing_docs)]
+
 use pyo3::prelude::*;
 
 mod errors;

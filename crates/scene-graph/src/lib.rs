@@ -58,6 +58,8 @@
 //! # Ok::<(), scenethesis_scene_graph::ValidationError>(())
 //! ```
 
+#![warn(missing_docs)]
+
 mod aabb;
 mod architecture;
 mod asset;
