@@ -320,6 +320,18 @@ pub enum PlanError {
 /// purpose). Implementations must be deterministic for a fixed request and provider.
 ///
 /// [`crate::FixedPlanner`] is the second implementation: it returns a plan read from a file.
+///
+/// Calling the seam with the offline planner:
+///
+/// ```
+/// use scenethesis_agents::{KnowledgePlanner, PlanRequest, Planner};
+///
+/// let planner: &dyn Planner = &KnowledgePlanner::new();
+/// let request = PlanRequest::new("a bedroom with a bed", ["bed", "nightstand", "lamp"], 0);
+/// let plan = planner.plan(&request).unwrap();
+/// assert!(plan.objects.iter().any(|object| object.category == "bed"));
+/// assert!(plan.objects.iter().all(|o| request.available_categories.contains(&o.category)));
+/// ```
 pub trait Planner: Send + Sync {
     /// A short name for reports (`report.json` records it).
     fn name(&self) -> &str;

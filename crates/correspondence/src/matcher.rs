@@ -89,7 +89,32 @@ pub struct PixelMatch {
 ///         out
 ///     }
 /// }
-/// # let _ = SamePixel;
+///
+/// // A 2 × 2 view at full resolution whose asset covers the top-left pixel, against a mask
+/// // holding that pixel and its right neighbour: one pair.
+/// let camera = scenethesis_scene_graph::Camera::look_at(
+///     scenethesis_scene_graph::Intrinsics::from_vertical_fov(2, 2, 1.0),
+///     nalgebra::Point3::new(0.0, 1.0, 3.0),
+///     nalgebra::Point3::new(0.0, 1.0, 0.0),
+///     nalgebra::Vector3::y(),
+/// );
+/// let view = RenderedView {
+///     camera: camera.clone(),
+///     offset: [0, 0],
+///     stride: 1,
+///     pose: Default::default(),
+///     depth: scenethesis_correspondence::DepthMap::from_fn(2, 2, |x, y| {
+///         if (x, y) == (0, 0) { 3.0 } else { f32::NAN }
+///     }),
+///     color: None,
+/// };
+/// let mut mask = scenethesis_correspondence::Mask::new(2, 2);
+/// mask.set(0, 0, true);
+/// mask.set(1, 0, true);
+/// let target = TargetRegion { camera: &camera, mask: &mask, depth: None, image: None };
+/// let pairs = SamePixel.match_view(&view, &target);
+/// assert_eq!(pairs.len(), 1);
+/// assert_eq!(pairs[0].rendered, [0, 0]);
 /// ```
 pub trait Matcher: Send + Sync {
     /// A short name for reports.

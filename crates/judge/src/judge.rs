@@ -171,6 +171,43 @@ pub enum JudgeError {
 }
 
 /// Stage 5: accepts or rejects a scene with reasons.
+///
+/// A judge of its own that rejects empty scenes and otherwise defers to [`crate::AcceptAll`]:
+///
+/// ```
+/// use std::collections::BTreeMap;
+/// use scenethesis_agents::{KnowledgePlanner, PlanRequest, Planner};
+/// use scenethesis_judge::{AcceptAll, Failure, FailureKind, Judge, JudgeError, JudgeInput, Verdict};
+/// use scenethesis_scene_graph::{Architecture, Scene};
+///
+/// struct NotEmpty(AcceptAll);
+///
+/// impl Judge for NotEmpty {
+///     fn name(&self) -> &str {
+///         "not-empty"
+///     }
+///     fn judge(&self, input: &JudgeInput<'_>) -> Result<Verdict, JudgeError> {
+///         let mut verdict = self.0.judge(input)?;
+///         if input.scene.objects.is_empty() {
+///             verdict.accepted = false;
+///             verdict.failures.push(Failure {
+///                 kind: FailureKind::MissingObject,
+///                 objects: Vec::new(),
+///                 detail: "the scene is empty".into(),
+///             });
+///         }
+///         Ok(verdict)
+///     }
+/// }
+///
+/// let plan = KnowledgePlanner::new().plan(&PlanRequest::new("a bedroom", ["bed"], 0)).unwrap();
+/// let scene = Scene::new(Architecture::rectangular_room(4.0, 3.0, 2.6, 0.9));
+/// let meshes = BTreeMap::new();
+/// let input = JudgeInput { plan: &plan, scene: &scene, meshes: &meshes, guidance: None };
+/// let verdict = NotEmpty(AcceptAll::new()).judge(&input).unwrap();
+/// assert!(!verdict.accepted);
+/// assert_eq!(verdict.reasons(), "the scene is empty");
+/// ```
 pub trait Judge: Send + Sync {
     /// A short name for reports.
     fn name(&self) -> &str;

@@ -22,6 +22,38 @@ pub struct StageOutcome {
 /// once per stage and object in breadth-first order; an implementation only sees the object's
 /// [`ObjectProblem`] (its geometry, the obstacles placed before it, its support, the room and
 /// its correspondences) and must return a pose that respects [`ObjectProblem::project`].
+///
+/// An optimizer of its own that runs [`Sgd`] and then snaps the yaw to the nearest quarter
+/// turn (projected again, so the pose stays feasible), and only separates collisions at the
+/// end:
+///
+/// ```
+/// use scenethesis_physics_opt::{ObjectProblem, Optimizer, Sgd, Stage, StageOutcome};
+/// use scenethesis_scene_graph::Pose;
+///
+/// struct QuarterTurns(Sgd);
+///
+/// impl Optimizer for QuarterTurns {
+///     fn name(&self) -> &str {
+///         "sgd-quarter-turns"
+///     }
+///     fn optimize(&self, problem: &ObjectProblem<'_>, stage: Stage, initial: Pose) -> StageOutcome {
+///         let mut outcome = self.0.optimize(problem, stage, initial);
+///         let quarter = std::f64::consts::FRAC_PI_2;
+///         outcome.pose.yaw = (outcome.pose.yaw / quarter).round() * quarter;
+///         outcome.pose = problem.project(&outcome.pose);
+///         outcome.losses = problem.losses(&outcome.pose, stage);
+///         outcome
+///     }
+///     fn settles(&self) -> bool {
+///         false
+///     }
+/// }
+///
+/// let optimizer: &dyn Optimizer = &QuarterTurns(Sgd::default());
+/// assert_eq!(optimizer.name(), "sgd-quarter-turns");
+/// assert!(!optimizer.settles() && Sgd::default().settles());
+/// ```
 pub trait Optimizer: Send + Sync {
     /// A short name for reports and benchmarks.
     fn name(&self) -> &str;

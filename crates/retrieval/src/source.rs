@@ -65,6 +65,22 @@ impl<'a> AssetQuery<'a> {
 
 /// Where assets come from: the categories offered to the planner, one asset per planned object,
 /// and the mesh behind an [`AssetRef`] stored in a `scene.json` (to re-export a saved scene).
+///
+/// Calling the seam with the built-in procedural library: the same object and variant give the
+/// same asset, and its reference gives its mesh back.
+///
+/// ```
+/// use scenethesis_retrieval::{AssetQuery, AssetSource, CatalogSource};
+///
+/// let source: &dyn AssetSource = &CatalogSource;
+/// assert!(source.categories().contains("mug"));
+/// let query = AssetQuery::new("mug_0", "mug");
+/// let mug = source.retrieve(&query, 0).unwrap();
+/// assert_eq!(mug.info.category, "mug");
+/// assert_eq!(source.retrieve(&query, 0).unwrap().mesh, mug.mesh);
+/// assert_eq!(source.mesh(&mug.info.source).unwrap(), mug.mesh);
+/// assert!(source.retrieve(&AssetQuery::new("x_0", "spaceship"), 0).is_err());
+/// ```
 pub trait AssetSource: Send + Sync {
     /// A short name for reports.
     fn name(&self) -> &str;

@@ -115,6 +115,19 @@ pub enum GuideError {
 /// trait by generating a guidance image for the plan's description, segmenting it, lifting the
 /// masks with depth to 3D boxes and matching them to the planned objects. The same plan,
 /// assets and seed must give the identical scene.
+///
+/// Laying out a small plan with the offline guide and the nominal (category-prior) assets:
+///
+/// ```
+/// use scenethesis_agents::{Guide, KnowledgePlanner, NominalAssets, PlanRequest, Planner};
+///
+/// let request = PlanRequest::new("a bedroom with a bed", ["bed", "nightstand"], 0);
+/// let plan = KnowledgePlanner::new().plan(&request).unwrap();
+/// let guide: &dyn Guide = &scenethesis_agents::ProceduralGuide::default();
+/// let layout = guide.layout(&plan, &NominalAssets::default(), 0).unwrap();
+/// assert!(layout.scene.validate().is_ok());
+/// assert!(layout.scene.objects.iter().any(|object| object.category == "bed"));
+/// ```
 pub trait Guide: Send + Sync {
     /// A short name for reports (`report.json` records it).
     fn name(&self) -> &str;
