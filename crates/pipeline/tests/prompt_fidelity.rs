@@ -132,7 +132,7 @@ const DETAILED: &[&str] = &[
 ];
 
 /// Seeds each detailed prompt runs with: two, so that a relation holding by one seed's luck is
-/// still caught, within the suite's time (the README's Development section).
+/// still caught, at two thirds of the three seeds' cost in the suite's time.
 const DETAILED_SEEDS: u64 = 2;
 
 #[test]
