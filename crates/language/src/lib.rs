@@ -68,10 +68,8 @@ mod schema;
 mod vlm_judge;
 
 pub use planner::{LlmPlanner, MIN_OBJECTS};
+pub use review::{ObjectReason, MAX_REVIEW_OBJECTS, MAX_REVIEW_TEXT_CHARS};
 pub use schema::{
     plan_max_tokens, plan_schema, MAX_ANSWER_OBJECTS, PLAN_OVERHEAD_TOKENS, TOKENS_PER_OBJECT,
 };
-pub use vlm_judge::{
-    review_max_tokens, review_schema, ObjectReason, VlmJudge, VlmReview, VlmThresholds,
-    MAX_REVIEW_OBJECTS, MAX_REVIEW_TEXT_CHARS,
-};
+pub use vlm_judge::{review_max_tokens, review_schema, VlmJudge, VlmReview, VlmThresholds};

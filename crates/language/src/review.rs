@@ -6,9 +6,22 @@
 //! are cut to their length limit, and a missing summary is left empty, each with a note.
 
 use scenethesis_scene_graph::limits::MAX_ID_BYTES;
+use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
-use crate::vlm_judge::{ObjectReason, MAX_REVIEW_OBJECTS, MAX_REVIEW_TEXT_CHARS};
+/// The most objects a review may blame (`objects.maxItems` of [`review_schema`](crate::review_schema)).
+pub const MAX_REVIEW_OBJECTS: usize = 50;
+/// Longest reason or summary of a review, in characters (`maxLength`).
+pub const MAX_REVIEW_TEXT_CHARS: usize = 400;
+
+/// One object the model found wrong.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ObjectReason {
+    /// The object's id.
+    pub id: String,
+    /// Why it is wrong.
+    pub reason: String,
+}
 
 /// The scores of a review, in the schema's order.
 pub(crate) const SCORES: [&str; 3] = [

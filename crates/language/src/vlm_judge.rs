@@ -13,7 +13,9 @@ use scenethesis_scene_graph::limits::MAX_ID_BYTES;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
 
-use crate::review::{read_review, ReadReview};
+use crate::review::{
+    read_review, ObjectReason, ReadReview, MAX_REVIEW_OBJECTS, MAX_REVIEW_TEXT_CHARS,
+};
 use crate::salvage::close_truncated;
 
 const INSTRUCTIONS: &str = "You judge 3D scenes made for a physics simulator from a text prompt. \
@@ -54,15 +56,6 @@ impl Default for VlmThresholds {
     }
 }
 
-/// One object the model found wrong.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct ObjectReason {
-    /// The object's id.
-    pub id: String,
-    /// Why it is wrong.
-    pub reason: String,
-}
-
 /// The model's review of a scene, as recorded in `report.json` (`verdict.review`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct VlmReview {
@@ -89,11 +82,6 @@ pub struct VlmReview {
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub notes: Vec<String>,
 }
-
-/// The most objects a review may blame (`objects.maxItems` of [`review_schema`]).
-pub const MAX_REVIEW_OBJECTS: usize = 50;
-/// Longest reason or summary of a review, in characters (`maxLength`).
-pub const MAX_REVIEW_TEXT_CHARS: usize = 400;
 
 /// The `max_tokens` of a review request: scores and summary (300 tokens: about 100 for the
 /// summary's 400 characters, the rest for the scores and syntax) plus up to

@@ -10,7 +10,8 @@ use scenethesis_models::{
 use serde_json::{json, Map, Value};
 
 use crate::config::ServerKind;
-use crate::http::{shorten, Answered, Body, On5xx, Transport};
+use crate::http::{Answered, Body, On5xx, Transport};
+use crate::message::shorten;
 use crate::stream::{Streamed, STREAM_MIN_TOKENS};
 
 const PATH: &str = "/chat/completions";

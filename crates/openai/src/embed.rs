@@ -5,7 +5,8 @@ use std::sync::Arc;
 use scenethesis_models::{ProviderError, ProviderErrorKind, TextEmbedder, UsageMeter};
 use serde_json::{json, Value};
 
-use crate::http::{shorten, Body, On5xx, Transport};
+use crate::http::{Body, On5xx, Transport};
+use crate::message::shorten;
 
 const PATH: &str = "/embeddings";
 

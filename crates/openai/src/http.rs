@@ -7,6 +7,7 @@ use scenethesis_models::{ProviderError, ProviderErrorKind, TokenUsage, UsageMete
 use serde_json::Value;
 
 use crate::config::{redact_url, ClientConfig};
+use crate::message::shorten;
 use crate::stream::{read_events, Interruption, Streamed};
 
 /// How a call treats HTTP 5xx answers.
@@ -534,16 +535,6 @@ pub(crate) fn about_format(message: &str) -> bool {
     ]
     .iter()
     .any(|k| m.contains(k))
-}
-
-/// Cuts a message to 300 characters.
-pub(crate) fn shorten(text: &str) -> String {
-    if text.chars().count() > 300 {
-        let cut: String = text.chars().take(297).collect();
-        format!("{cut}...")
-    } else {
-        text.to_string()
-    }
 }
 
 #[cfg(test)]

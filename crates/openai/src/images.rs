@@ -8,7 +8,8 @@ use scenethesis_models::{
 };
 use serde_json::{json, Value};
 
-use crate::http::{shorten, Body, On5xx, Part, Transport};
+use crate::http::{Body, On5xx, Part, Transport};
+use crate::message::shorten;
 
 const GENERATIONS: &str = "/images/generations";
 const EDITS: &str = "/images/edits";

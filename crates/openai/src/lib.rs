@@ -45,6 +45,7 @@ mod embed;
 mod http;
 mod images;
 mod mask;
+mod message;
 mod stream;
 #[cfg(feature = "test-server")]
 pub mod testing;

@@ -162,7 +162,7 @@ impl Streamed {
                 Some(error) => format!(
                     "the server reported an error after {received} characters of the answer: \
                      {}",
-                    crate::http::shorten(error)
+                    crate::message::shorten(error)
                 ),
                 None => format!(
                     "the connection closed after {received} characters of the answer, before \
