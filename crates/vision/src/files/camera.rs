@@ -76,7 +76,7 @@ fn check_position(camera: &Camera) -> Result<(), String> {
         return Ok(());
     }
     Err(format!(
-        "position [{}, {}, {}]: expected finite coordinates within ±{MAX_COORDINATE} m (MAX_COORDINATE)",
+        "position [{:?}, {:?}, {:?}]: expected finite coordinates within ±{MAX_COORDINATE} m (MAX_COORDINATE)",
         p.x, p.y, p.z
     ))
 }
@@ -133,6 +133,8 @@ mod tests {
         c.position.x = MAX_COORDINATE * 1.000001;
         assert!(err(c).contains("position ["), "{}", err(c));
         c.position.x = 1e300;
+        // Written short, not as 301 digits.
+        assert!(err(c).starts_with("position [1e300, "), "{}", err(c));
         assert!(err(c).contains("within ±1000 m"));
     }
 
