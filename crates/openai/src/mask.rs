@@ -163,9 +163,9 @@ mod tests {
         assert_eq!(min_masked_run(100), 12);
         assert_eq!(min_masked_run(8), 8);
         let many = format!("{} end", KEY.replace('-', " ").repeat(10_000));
-        let started = std::time::Instant::now();
+        // Quadratic work here (240 kB of the key's letters) would run for minutes, not fail a
+        // wall-clock bound: speed is measured in benches, never timed in unit tests.
         assert_eq!(mask_key(KEY, &many), "*** end");
-        assert!(started.elapsed().as_secs() < 5, "{:?}", started.elapsed());
         // Key-alphabet text that is not the key, and separators only, stay as they are.
         let noise: String = (0..200_000u32)
             .map(|i| char::from(b"abcdefghij0123456789-- \n"[(i * 7919 % 24) as usize]))
