@@ -5,7 +5,7 @@
 //! score. Blamed objects that are not an id and a reason are dropped, reasons and the summary
 //! are cut to their length limit, and a missing summary is left empty, each with a note.
 
-use scenethesis_scene_graph::limits::MAX_ID_BYTES;
+use scenethesis_scene_graph::is_printable_id;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
@@ -93,7 +93,7 @@ fn read_objects(objects: Option<&Value>, notes: &mut Vec<String>) -> Vec<ObjectR
         let id = item.get("id").and_then(Value::as_str);
         let reason = item.get("reason").and_then(Value::as_str);
         match (id, reason) {
-            (Some(id), Some(reason)) if !id.is_empty() && id.len() <= MAX_ID_BYTES => {
+            (Some(id), Some(reason)) if is_printable_id(id) => {
                 kept.push(ObjectReason {
                     id: id.to_owned(),
                     reason: cut_text(reason, &format!("the reason for `{id}`"), notes),
@@ -155,14 +155,15 @@ mod tests {
     fn a_cut_off_or_partly_invalid_review_keeps_what_is_valid() {
         let cut = r#"{"category_accuracy": 0.8, "orientation_alignment": "0.4",
             "spatial_coherence": 0.7, "objects": [{"id": "chair_1", "reason": "faces the wall"},
-            {"id": 7, "reason": "bad id"}, {"id": "desk_1", "reas"#;
+            {"id": 7, "reason": "bad id"}, {"id": "lamp\u202e_1", "reason": "bidi"},
+            {"id": "desk_1", "reas"#;
         let r = read_review(&close_truncated(cut).unwrap()).unwrap();
         assert_eq!(r.scores, [0.8, 0.4, 0.7]);
         assert_eq!(r.objects.len(), 1);
         assert_eq!(r.objects[0].id, "chair_1");
         assert_eq!(r.summary, "");
         let notes = r.notes.join("; ");
-        assert!(notes.contains("2 blamed object(s)"), "{notes}");
+        assert!(notes.contains("3 blamed object(s)"), "{notes}");
         assert!(notes.contains("no summary"), "{notes}");
         let long = json!({"category_accuracy": 1, "orientation_alignment": 1,
                           "spatial_coherence": 1, "summary": "x".repeat(1000)});
