@@ -417,210 +417,23 @@ impl Knowledge {
         let arch: ArchetypesFile =
             toml::from_str(archetypes).map_err(parse_err(ARCHETYPES_FILE))?;
         let voc: VocabularyFile = toml::from_str(vocabulary).map_err(parse_err(VOCABULARY_FILE))?;
-        let invalid = |file: &'static str, entry: &str, message: String| KnowledgeError::Invalid {
-            file,
-            entry: entry.to_owned(),
-            message,
-        };
 
-        for (name, prior) in &priors {
-            if prior.size.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
-                return Err(invalid(
-                    CATEGORIES_FILE,
-                    name,
-                    "size must be three positive numbers".into(),
-                ));
-            }
-            if matches!(prior.shape, NominalShape::Shelves | NominalShape::Cabinet)
-                && prior.shelves == 0
-            {
-                return Err(invalid(
-                    CATEGORIES_FILE,
-                    name,
-                    "shape needs `shelves` ≥ 1".into(),
-                ));
-            }
-        }
+        check_priors(&priors)?;
         let known = |c: &str| priors.contains_key(c);
-        for (name, prior) in &priors {
-            if let Some(small) = prior.small.as_deref().filter(|s| !known(s)) {
-                return Err(invalid(
-                    CATEGORIES_FILE,
-                    name,
-                    format!("`small` names unknown category `{small}`"),
-                ));
-            }
-        }
-
         let mut archetypes = Vec::new();
         let mut names = BTreeSet::new();
         for raw in arch.archetype {
-            let entry = raw.name.clone();
             if !names.insert(raw.name.clone()) {
                 return Err(invalid(
                     ARCHETYPES_FILE,
-                    &entry,
+                    &raw.name,
                     "archetype name used twice".into(),
                 ));
             }
-            let [x0, x1, z0, z1] = raw.size;
-            if !(x0 > 0.0 && x0 <= x1 && z0 > 0.0 && z0 <= z1) {
-                return Err(invalid(
-                    ARCHETYPES_FILE,
-                    &entry,
-                    "size must be [x_min, x_max, z_min, z_max] with 0 < min ≤ max".into(),
-                ));
-            }
-            let mut seen: BTreeSet<String> = BTreeSet::new();
-            let mut objects = Vec::new();
-            for (category, min, max, place_text) in raw.objects {
-                let place = Place::parse(&place_text).ok_or_else(|| {
-                    invalid(
-                        ARCHETYPES_FILE,
-                        &entry,
-                        format!("object `{category}`: unknown place `{place_text}`"),
-                    )
-                })?;
-                if !known(&category) {
-                    return Err(invalid(
-                        ARCHETYPES_FILE,
-                        &entry,
-                        format!("unknown category `{category}` (not in {CATEGORIES_FILE})"),
-                    ));
-                }
-                if min > max {
-                    return Err(invalid(
-                        ARCHETYPES_FILE,
-                        &entry,
-                        format!("object `{category}`: min count {min} > max {max}"),
-                    ));
-                }
-                if let Some(target) = place.target() {
-                    if !seen.contains(target) {
-                        return Err(invalid(ARCHETYPES_FILE, &entry, format!("object `{category}`: place `{place_text}` refers to `{target}`, which is not planned earlier in the list")));
-                    }
-                }
-                seen.insert(category.clone());
-                objects.push(ObjectGroup {
-                    category,
-                    min,
-                    max,
-                    place,
-                });
-            }
-            if !objects
-                .iter()
-                .any(|g| g.place == Place::Anchor && g.category == raw.anchor)
-            {
-                return Err(invalid(
-                    ARCHETYPES_FILE,
-                    &entry,
-                    format!("anchor `{}` has no group with place `anchor`", raw.anchor),
-                ));
-            }
-            for c in &raw.core {
-                if !objects.iter().any(|g| g.category == *c && g.min >= 1) {
-                    return Err(invalid(
-                        ARCHETYPES_FILE,
-                        &entry,
-                        format!("core category `{c}` needs an object group with a minimum count of at least 1"),
-                    ));
-                }
-            }
-            if !raw.core.is_empty() && raw.source.as_deref().is_none_or(str::is_empty) {
-                return Err(invalid(
-                    ARCHETYPES_FILE,
-                    &entry,
-                    "a `core` needs a `source` saying where it comes from".into(),
-                ));
-            }
-            archetypes.push(Archetype {
-                phrases: raw
-                    .words
-                    .iter()
-                    .chain(std::iter::once(&raw.name.replace('_', " ")))
-                    .map(|w| phrase_stems(w))
-                    .filter(|p| !p.is_empty())
-                    .collect(),
-                name: raw.name,
-                environment: raw.environment,
-                size: raw.size,
-                anchor: raw.anchor,
-                anchor_place: raw.anchor_place,
-                aisle: raw.aisle.unwrap_or(0.6).max(0.6),
-                door_clearance: raw.door_clearance.unwrap_or(1.0).max(0.6),
-                objects,
-                core: raw.core,
-                source: raw.source,
-            });
+            archetypes.push(read_archetype(raw, &known)?);
         }
-
-        for (word, list) in &voc.generic {
-            if let Some(bad) = list.iter().find(|c| !known(c)) {
-                return Err(invalid(
-                    VOCABULARY_FILE,
-                    word,
-                    format!("generic noun lists unknown category `{bad}`"),
-                ));
-            }
-        }
-        if !archetypes
-            .iter()
-            .any(|a| a.name == voc.scene_words.default_archetype)
-        {
-            return Err(invalid(
-                VOCABULARY_FILE,
-                "scene_words",
-                format!(
-                    "default_archetype `{}` is not an archetype",
-                    voc.scene_words.default_archetype
-                ),
-            ));
-        }
-        let mut relations = Vec::new();
-        for (phrase, value) in &voc.relations {
-            let (kind_text, modifier) = match value.split_once('/') {
-                Some((k, m)) => (k, Some(m)),
-                None => (value.as_str(), None),
-            };
-            let corner = kind_text == "corner";
-            let kind = if corner {
-                Some(RelationKind::AgainstWall)
-            } else {
-                relation_kind(kind_text)
-            };
-            let kind = kind.ok_or_else(|| {
-                invalid(
-                    VOCABULARY_FILE,
-                    phrase,
-                    format!("unknown relation kind `{kind_text}`"),
-                )
-            })?;
-            let mut rp = RelationPhrase {
-                kind,
-                corner,
-                head: false,
-                split: false,
-                wall: None,
-            };
-            match modifier {
-                None => {}
-                Some("head") => rp.head = true,
-                Some("split") => rp.split = true,
-                Some("any") => rp.wall = Some(String::new()),
-                Some(w) if w.starts_with("wall_") => rp.wall = Some(w.to_owned()),
-                Some(other) => {
-                    return Err(invalid(
-                        VOCABULARY_FILE,
-                        phrase,
-                        format!("unknown modifier `{other}`"),
-                    ))
-                }
-            }
-            relations.push((phrase_stems(phrase), rp));
-        }
-        // Longest phrases first, so "in front of" wins over "in".
-        relations.sort_by(|a, b| b.0.len().cmp(&a.0.len()).then(a.0.cmp(&b.0)));
+        check_vocabulary(&voc, &archetypes, &known)?;
+        let relations = read_relation_phrases(&voc.relations)?;
 
         let phrases = category_phrases_of(&priors);
         Ok(Knowledge {
@@ -673,6 +486,248 @@ impl Knowledge {
     pub fn category_phrases(&self) -> &[(Vec<String>, String)] {
         &self.phrases
     }
+}
+
+/// The error for an invalid `entry` of `file`.
+fn invalid(file: &'static str, entry: &str, message: String) -> KnowledgeError {
+    KnowledgeError::Invalid {
+        file,
+        entry: entry.to_owned(),
+        message,
+    }
+}
+
+/// Checks the category priors: positive sizes, shelves for shelf and cabinet shapes, and
+/// `small` naming a known category.
+fn check_priors(priors: &BTreeMap<String, CategoryPrior>) -> Result<(), KnowledgeError> {
+    for (name, prior) in priors {
+        if prior.size.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
+            return Err(invalid(
+                CATEGORIES_FILE,
+                name,
+                "size must be three positive numbers".into(),
+            ));
+        }
+        if matches!(prior.shape, NominalShape::Shelves | NominalShape::Cabinet)
+            && prior.shelves == 0
+        {
+            return Err(invalid(
+                CATEGORIES_FILE,
+                name,
+                "shape needs `shelves` ≥ 1".into(),
+            ));
+        }
+    }
+    for (name, prior) in priors {
+        if let Some(small) = prior.small.as_deref().filter(|s| !priors.contains_key(*s)) {
+            return Err(invalid(
+                CATEGORIES_FILE,
+                name,
+                format!("`small` names unknown category `{small}`"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Reads and checks one archetype: its size range, object groups, anchor and core.
+fn read_archetype(
+    raw: RawArchetype,
+    known: &dyn Fn(&str) -> bool,
+) -> Result<Archetype, KnowledgeError> {
+    let entry = raw.name.clone();
+    let [x0, x1, z0, z1] = raw.size;
+    if !(x0 > 0.0 && x0 <= x1 && z0 > 0.0 && z0 <= z1) {
+        return Err(invalid(
+            ARCHETYPES_FILE,
+            &entry,
+            "size must be [x_min, x_max, z_min, z_max] with 0 < min ≤ max".into(),
+        ));
+    }
+    let objects = read_object_groups(&entry, raw.objects, known)?;
+    if !objects
+        .iter()
+        .any(|g| g.place == Place::Anchor && g.category == raw.anchor)
+    {
+        return Err(invalid(
+            ARCHETYPES_FILE,
+            &entry,
+            format!("anchor `{}` has no group with place `anchor`", raw.anchor),
+        ));
+    }
+    for c in &raw.core {
+        if !objects.iter().any(|g| g.category == *c && g.min >= 1) {
+            return Err(invalid(
+                ARCHETYPES_FILE,
+                &entry,
+                format!(
+                    "core category `{c}` needs an object group with a minimum count of at least 1"
+                ),
+            ));
+        }
+    }
+    if !raw.core.is_empty() && raw.source.as_deref().is_none_or(str::is_empty) {
+        return Err(invalid(
+            ARCHETYPES_FILE,
+            &entry,
+            "a `core` needs a `source` saying where it comes from".into(),
+        ));
+    }
+    Ok(Archetype {
+        phrases: raw
+            .words
+            .iter()
+            .chain(std::iter::once(&raw.name.replace('_', " ")))
+            .map(|w| phrase_stems(w))
+            .filter(|p| !p.is_empty())
+            .collect(),
+        name: raw.name,
+        environment: raw.environment,
+        size: raw.size,
+        anchor: raw.anchor,
+        anchor_place: raw.anchor_place,
+        aisle: raw.aisle.unwrap_or(0.6).max(0.6),
+        door_clearance: raw.door_clearance.unwrap_or(1.0).max(0.6),
+        objects,
+        core: raw.core,
+        source: raw.source,
+    })
+}
+
+/// Reads archetype `entry`'s object groups (category, min, max, place), checking each
+/// category, count range and place target (planned earlier in the list).
+fn read_object_groups(
+    entry: &str,
+    rows: Vec<(String, u32, u32, String)>,
+    known: &dyn Fn(&str) -> bool,
+) -> Result<Vec<ObjectGroup>, KnowledgeError> {
+    let mut seen: BTreeSet<String> = BTreeSet::new();
+    let mut objects = Vec::new();
+    for (category, min, max, place_text) in rows {
+        let place = Place::parse(&place_text).ok_or_else(|| {
+            invalid(
+                ARCHETYPES_FILE,
+                entry,
+                format!("object `{category}`: unknown place `{place_text}`"),
+            )
+        })?;
+        if !known(&category) {
+            return Err(invalid(
+                ARCHETYPES_FILE,
+                entry,
+                format!("unknown category `{category}` (not in {CATEGORIES_FILE})"),
+            ));
+        }
+        if min > max {
+            return Err(invalid(
+                ARCHETYPES_FILE,
+                entry,
+                format!("object `{category}`: min count {min} > max {max}"),
+            ));
+        }
+        if let Some(target) = place.target() {
+            if !seen.contains(target) {
+                return Err(invalid(ARCHETYPES_FILE, entry, format!("object `{category}`: place `{place_text}` refers to `{target}`, which is not planned earlier in the list")));
+            }
+        }
+        seen.insert(category.clone());
+        objects.push(ObjectGroup {
+            category,
+            min,
+            max,
+            place,
+        });
+    }
+    Ok(objects)
+}
+
+/// Checks the vocabulary against the categories and archetypes: generic nouns list known
+/// categories, and the default archetype exists.
+fn check_vocabulary(
+    voc: &VocabularyFile,
+    archetypes: &[Archetype],
+    known: &dyn Fn(&str) -> bool,
+) -> Result<(), KnowledgeError> {
+    for (word, list) in &voc.generic {
+        if let Some(bad) = list.iter().find(|c| !known(c)) {
+            return Err(invalid(
+                VOCABULARY_FILE,
+                word,
+                format!("generic noun lists unknown category `{bad}`"),
+            ));
+        }
+    }
+    if !archetypes
+        .iter()
+        .any(|a| a.name == voc.scene_words.default_archetype)
+    {
+        return Err(invalid(
+            VOCABULARY_FILE,
+            "scene_words",
+            format!(
+                "default_archetype `{}` is not an archetype",
+                voc.scene_words.default_archetype
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Reads the relation phrases (`phrase = "kind"` or `"kind/modifier"`), longest phrases
+/// first, so "in front of" wins over "in".
+fn read_relation_phrases(
+    table: &BTreeMap<String, String>,
+) -> Result<Vec<(Vec<String>, RelationPhrase)>, KnowledgeError> {
+    let mut relations = Vec::new();
+    for (phrase, value) in table {
+        relations.push((phrase_stems(phrase), read_relation_phrase(phrase, value)?));
+    }
+    relations.sort_by(|a, b| b.0.len().cmp(&a.0.len()).then(a.0.cmp(&b.0)));
+    Ok(relations)
+}
+
+/// Reads the value of relation `phrase`: a relation kind (or `corner`), with an optional
+/// modifier (`head`, `split`, `any` or a wall).
+fn read_relation_phrase(phrase: &str, value: &str) -> Result<RelationPhrase, KnowledgeError> {
+    let (kind_text, modifier) = match value.split_once('/') {
+        Some((k, m)) => (k, Some(m)),
+        None => (value, None),
+    };
+    let corner = kind_text == "corner";
+    let kind = if corner {
+        Some(RelationKind::AgainstWall)
+    } else {
+        relation_kind(kind_text)
+    };
+    let kind = kind.ok_or_else(|| {
+        invalid(
+            VOCABULARY_FILE,
+            phrase,
+            format!("unknown relation kind `{kind_text}`"),
+        )
+    })?;
+    let mut rp = RelationPhrase {
+        kind,
+        corner,
+        head: false,
+        split: false,
+        wall: None,
+    };
+    match modifier {
+        None => {}
+        Some("head") => rp.head = true,
+        Some("split") => rp.split = true,
+        Some("any") => rp.wall = Some(String::new()),
+        Some(w) if w.starts_with("wall_") => rp.wall = Some(w.to_owned()),
+        Some(other) => {
+            return Err(invalid(
+                VOCABULARY_FILE,
+                phrase,
+                format!("unknown modifier `{other}`"),
+            ))
+        }
+    }
+    Ok(rp)
 }
 
 fn category_phrases_of(categories: &BTreeMap<String, CategoryPrior>) -> Vec<(Vec<String>, String)> {

@@ -115,14 +115,41 @@ pub(crate) fn analyze(
     out.scene_words = stems.iter().flatten().any(|w| voc.scene_words.contains(*w));
 
     // 1. Scene type: whole phrases, then shared words.
-    let matches_at = |i: usize, phrase: &[String]| {
-        phrase.len() <= stems.len() - i
-            && phrase
-                .iter()
-                .enumerate()
-                .all(|(k, w)| stems[i + k] == Some(w.as_str()))
+    let consumed = match_scenes(&stems, knowledge, &mut out);
+    let scene_categories = scene_categories(&out, knowledge);
+
+    // 2. Items: mentions, relation phrases, pronouns and joints.
+    let reader = ItemReader {
+        tokens: &tokens,
+        stems: &stems,
+        knowledge,
+        nouns,
+        available,
+        scene_categories: &scene_categories,
+        consumed: &consumed,
     };
-    let mut consumed = vec![false; tokens.len()];
+    let items = reader.read(&mut out);
+
+    // 3. Relations from the item stream.
+    read_relations(&mut out, &items, knowledge);
+    out
+}
+
+/// Whether the stems from `i` on spell `phrase`.
+fn matches_at(stems: &[Option<&str>], i: usize, phrase: &[String]) -> bool {
+    phrase.len() <= stems.len() - i
+        && phrase
+            .iter()
+            .enumerate()
+            .all(|(k, w)| stems[i + k] == Some(w.as_str()))
+}
+
+/// Phase 1, the scene type: scores every archetype by its whole phrases, then by the words it
+/// shares with the prompt, into `out.scenes` (best first), and returns which tokens the best
+/// archetype's phrases cover (they name the scene, not objects).
+fn match_scenes(stems: &[Option<&str>], knowledge: &Knowledge, out: &mut Analysis) -> Vec<bool> {
+    let voc = &knowledge.vocabulary;
+    let mut consumed = vec![false; stems.len()];
     let mut phrase_spans: Vec<(usize, usize, usize)> = Vec::new(); // (archetype, start, len)
     for (ai, arch) in knowledge.archetypes.iter().enumerate() {
         let mut score = 0.0;
@@ -130,7 +157,7 @@ pub(crate) fn analyze(
         let mut best_len = 0;
         for phrase in &arch.phrases {
             for i in 0..stems.len() {
-                if matches_at(i, phrase) {
+                if matches_at(stems, i, phrase) {
                     phrase_hit = true;
                     best_len = best_len.max(phrase.len());
                     phrase_spans.push((ai, i, phrase.len()));
@@ -170,8 +197,12 @@ pub(crate) fn analyze(
             }
         }
     }
-    let scene_categories: BTreeSet<&str> = out
-        .scenes
+    consumed
+}
+
+/// The categories of the two best-matching archetypes (generic nouns prefer them).
+fn scene_categories<'k>(out: &Analysis, knowledge: &'k Knowledge) -> BTreeSet<&'k str> {
+    out.scenes
         .iter()
         .take(2)
         .flat_map(|m| {
@@ -180,213 +211,303 @@ pub(crate) fn analyze(
                 .iter()
                 .map(|g| g.category.as_str())
         })
-        .collect();
+        .collect()
+}
 
-    // 2. Items: mentions, relation phrases, pronouns and joints.
-    let category_phrases = knowledge.category_phrases();
-    let mut items: Vec<Item> = Vec::new();
-    let mut count: Option<u32> = None;
-    let mut definite = false;
-    // "without" negates the mentions up to the next clause or "with"; "no" the next one.
-    let mut negated = false;
-    // Whether the pending count came from an article ("a chair": one, but not a total).
-    let mut article = false;
-    // After "its" / "their" the next noun names a part of the target ("its shelves").
-    let mut possessive = false;
-    let mut i = 0;
-    while i < tokens.len() {
-        let Some(word) = stems[i] else {
-            items.push(Item::Break);
-            count = None;
-            definite = false;
-            possessive = false;
-            negated = false;
+/// What the item reader carries from one word to the next.
+#[derive(Debug, Default)]
+struct Pending {
+    /// The count read last ("three", "a", "no"), for the next mention.
+    count: Option<u32>,
+    /// Whether "the" came before the next noun.
+    definite: bool,
+    /// "without" negates the mentions up to the next clause or "with"; "no" the next one.
+    negated: bool,
+    /// Whether the pending count came from an article ("a chair": one, but not a total).
+    article: bool,
+    /// After "its" / "their" the next noun names a part of the target ("its shelves").
+    possessive: bool,
+}
+
+impl Pending {
+    /// Forgets the count and "the" once a word has used them.
+    fn used(&mut self) {
+        self.count = None;
+        self.definite = false;
+    }
+
+    /// The count a mention gets: none when negated.
+    fn mention_count(&self) -> Option<u32> {
+        if self.negated {
+            Some(0)
+        } else {
+            self.count
+        }
+    }
+}
+
+/// Phase 2: reads the prompt's tokens into items (mentions, relation phrases, pronouns and
+/// joints), the mentions into `Analysis::mentions`.
+struct ItemReader<'a> {
+    tokens: &'a [Token],
+    stems: &'a [Option<&'a str>],
+    knowledge: &'a Knowledge,
+    nouns: &'a [NounAlias],
+    available: &'a BTreeSet<String>,
+    /// The categories of the best-matching scenes.
+    scene_categories: &'a BTreeSet<&'a str>,
+    /// Tokens that named the scene.
+    consumed: &'a [bool],
+}
+
+impl ItemReader<'_> {
+    /// The item stream of the prompt; mentions are added to `out`.
+    fn read(&self, out: &mut Analysis) -> Vec<Item> {
+        let voc = &self.knowledge.vocabulary;
+        let mut items: Vec<Item> = Vec::new();
+        let mut pending = Pending::default();
+        let mut i = 0;
+        while i < self.tokens.len() {
+            let Some(word) = self.stems[i] else {
+                items.push(Item::Break);
+                pending = Pending {
+                    article: pending.article,
+                    ..Pending::default()
+                };
+                i += 1;
+                continue;
+            };
+            if self.consumed[i] {
+                pending.used();
+                i += 1;
+                continue;
+            }
+            if let Some((phrase, rel)) = voc.relations.iter().find(|(p, _)| self.matches_at(i, p)) {
+                let words = phrase.join(" ");
+                items.push(Item::Rel(rel.clone(), words));
+                pending.possessive = false;
+                pending.used();
+                i += phrase.len();
+                continue;
+            }
+            let noun_len = self
+                .knowledge
+                .category_phrases()
+                .iter()
+                .find(|(p, _)| self.matches_at(i, p))
+                .map(|(p, _)| p.len())
+                .or(voc.generic.contains_key(word).then_some(1));
+            if let (true, Some(len)) = (pending.possessive, noun_len) {
+                pending.possessive = false;
+                i += len;
+                continue;
+            }
+            let read = self
+                .read_alias(i, noun_len, &pending, out, &mut items)
+                .or_else(|| self.read_category(i, &pending, out, &mut items))
+                .or_else(|| self.read_generic(i, word, &pending, out, &mut items));
+            if let Some(len) = read {
+                pending.used();
+                i += len;
+                continue;
+            }
+            self.read_word(word, &mut pending, &mut items);
             i += 1;
-            continue;
-        };
-        if consumed[i] {
-            count = None;
-            definite = false;
-            i += 1;
-            continue;
         }
-        if let Some((phrase, rel)) = voc.relations.iter().find(|(p, _)| matches_at(i, p)) {
-            let words = phrase.join(" ");
-            items.push(Item::Rel(rel.clone(), words));
-            possessive = false;
-            count = None;
-            definite = false;
-            i += phrase.len();
-            continue;
-        }
-        let noun_len = category_phrases
-            .iter()
-            .find(|(p, _)| matches_at(i, p))
-            .map(|(p, _)| p.len())
-            .or(voc.generic.contains_key(word).then_some(1));
-        if let (true, Some(len)) = (possessive, noun_len) {
-            possessive = false;
-            i += len;
-            continue;
-        }
-        // A noun the library lacks, when its phrase is longer than any category phrase here.
-        let alias = nouns.iter().find(|a| {
-            matches_at(i, &a.phrase)
+        items
+    }
+
+    fn matches_at(&self, i: usize, phrase: &[String]) -> bool {
+        matches_at(self.stems, i, phrase)
+    }
+
+    /// Whether the phrase ending at token `last` was written in the plural.
+    fn plural_at(&self, last: usize) -> bool {
+        matches!(&self.tokens[last], Token::Word { plural: true, .. })
+    }
+
+    /// A noun the library lacks at token `i`, when its phrase is longer than any category
+    /// phrase here: its stand-in's mention, or a note that it is unavailable. Returns how many
+    /// tokens it read.
+    fn read_alias(
+        &self,
+        i: usize,
+        noun_len: Option<usize>,
+        pending: &Pending,
+        out: &mut Analysis,
+        items: &mut Vec<Item>,
+    ) -> Option<usize> {
+        let alias = self.nouns.iter().find(|a| {
+            self.matches_at(i, &a.phrase)
                 && a.phrase.len() > noun_len.unwrap_or(0)
                 && a.only_with
                     .as_ref()
-                    .is_none_or(|c| scene_categories.contains(c.as_str()))
-        });
-        if let Some(alias) = alias {
-            let last = i + alias.phrase.len() - 1;
-            let plural = matches!(&tokens[last], Token::Word { plural: true, .. });
-            let words = alias.phrase.join(" ");
-            match alias.category.as_deref() {
-                Some(category) => {
-                    let m = push_mention(
-                        &mut out,
-                        &mut items,
-                        category,
-                        if negated { Some(0) } else { count },
-                        negated || !article,
-                        plural,
-                        definite,
-                        words.clone(),
-                    );
-                    if out.mentions[m].words == words {
-                        out.mentions[m].zone = alias.zone.clone();
-                        out.mentions[m].stand_in = true;
-                    }
+                    .is_none_or(|c| self.scene_categories.contains(c.as_str()))
+        })?;
+        let plural = self.plural_at(i + alias.phrase.len() - 1);
+        let words = alias.phrase.join(" ");
+        match alias.category.as_deref() {
+            Some(category) => {
+                let m = push_mention(
+                    out,
+                    items,
+                    category,
+                    pending.mention_count(),
+                    pending.negated || !pending.article,
+                    plural,
+                    pending.definite,
+                    words.clone(),
+                );
+                if out.mentions[m].words == words {
+                    out.mentions[m].zone = alias.zone.clone();
+                    out.mentions[m].stand_in = true;
                 }
-                None if !negated && count != Some(0) => out.unavailable.push(words),
-                None => {}
             }
-            count = None;
-            definite = false;
-            i += alias.phrase.len();
-            continue;
+            None if !pending.negated && pending.count != Some(0) => out.unavailable.push(words),
+            None => {}
         }
-        if let Some((phrase, category)) = category_phrases.iter().find(|(p, _)| matches_at(i, p)) {
-            let last = i + phrase.len() - 1;
-            let plural = matches!(&tokens[last], Token::Word { plural: true, .. });
-            let words = phrase.join(" ");
-            let n = if negated { Some(0) } else { count };
-            push_mention(
-                &mut out,
-                &mut items,
-                category,
-                n,
-                negated || !article,
-                plural,
-                definite,
-                words,
-            );
-            count = None;
-            definite = false;
-            i += phrase.len();
-            continue;
-        }
-        if let Some(list) = voc.generic.get(word) {
-            let plural = matches!(&tokens[i], Token::Word { plural: true, .. });
-            let usable: Vec<&String> = list.iter().filter(|c| available.contains(*c)).collect();
-            let earlier = out
-                .mentions
+        Some(alias.phrase.len())
+    }
+
+    /// A category's phrase at token `i`: its mention. Returns how many tokens it read.
+    fn read_category(
+        &self,
+        i: usize,
+        pending: &Pending,
+        out: &mut Analysis,
+        items: &mut Vec<Item>,
+    ) -> Option<usize> {
+        let (phrase, category) = self
+            .knowledge
+            .category_phrases()
+            .iter()
+            .find(|(p, _)| self.matches_at(i, p))?;
+        let plural = self.plural_at(i + phrase.len() - 1);
+        let words = phrase.join(" ");
+        push_mention(
+            out,
+            items,
+            category,
+            pending.mention_count(),
+            pending.negated || !pending.article,
+            plural,
+            pending.definite,
+            words,
+        );
+        Some(phrase.len())
+    }
+
+    /// A generic noun at token `i` ("toys", "a plant"): an earlier mention it refers to, several
+    /// categories of its list for a bare plural, or the one that fits the scene best. Returns
+    /// how many tokens it read.
+    fn read_generic(
+        &self,
+        i: usize,
+        word: &str,
+        pending: &Pending,
+        out: &mut Analysis,
+        items: &mut Vec<Item>,
+    ) -> Option<usize> {
+        let list = self.knowledge.vocabulary.generic.get(word)?;
+        let (count, negated) = (pending.count, pending.negated);
+        let plural = self.plural_at(i);
+        let usable: Vec<&String> = list
+            .iter()
+            .filter(|c| self.available.contains(*c))
+            .collect();
+        let earlier = out
+            .mentions
+            .iter()
+            .rposition(|m| list.contains(&m.category));
+        if pending.definite && earlier.is_some() {
+            items.push(Item::Mention(earlier.unwrap_or_default()));
+        } else if plural && count.is_none_or(|n| n == 0) && usable.len() > 1 {
+            // "toys": several categories of the list, preferring the scene's own.
+            let mut chosen: Vec<&String> = usable
                 .iter()
-                .rposition(|m| list.contains(&m.category));
-            if definite && earlier.is_some() {
-                items.push(Item::Mention(earlier.unwrap_or_default()));
-            } else if plural && count.is_none_or(|n| n == 0) && usable.len() > 1 {
-                // "toys": several categories of the list, preferring the scene's own.
-                let mut chosen: Vec<&String> = usable
+                .copied()
+                .filter(|c| self.scene_categories.contains(c.as_str()))
+                .collect();
+            chosen.extend(
+                usable
                     .iter()
                     .copied()
-                    .filter(|c| scene_categories.contains(c.as_str()))
-                    .collect();
-                chosen.extend(
-                    usable
-                        .iter()
-                        .copied()
-                        .filter(|c| !scene_categories.contains(c.as_str())),
-                );
-                chosen.truncate(3);
-                for (k, c) in chosen.into_iter().enumerate() {
-                    if k > 0 {
-                        items.push(Item::And);
-                    }
-                    push_mention(
-                        &mut out,
-                        &mut items,
-                        c,
-                        Some(if negated || count == Some(0) { 0 } else { 2 }),
-                        negated || count == Some(0),
-                        true,
-                        false,
-                        word.to_owned(),
-                    );
+                    .filter(|c| !self.scene_categories.contains(c.as_str())),
+            );
+            chosen.truncate(3);
+            for (k, c) in chosen.into_iter().enumerate() {
+                if k > 0 {
+                    items.push(Item::And);
                 }
-            } else if let Some(c) = usable
-                .iter()
-                .find(|c| scene_categories.contains(c.as_str()))
-                .or(usable.first())
-            {
-                let c = (*c).clone();
                 push_mention(
-                    &mut out,
-                    &mut items,
-                    &c,
-                    if negated { Some(0) } else { count },
-                    negated || !article,
-                    plural,
-                    definite,
+                    out,
+                    items,
+                    c,
+                    Some(if negated || count == Some(0) { 0 } else { 2 }),
+                    negated || count == Some(0),
+                    true,
+                    false,
                     word.to_owned(),
                 );
             }
-            count = None;
-            definite = false;
-            i += 1;
-            continue;
+        } else if let Some(c) = usable
+            .iter()
+            .find(|c| self.scene_categories.contains(c.as_str()))
+            .or(usable.first())
+        {
+            let c = (*c).clone();
+            push_mention(
+                out,
+                items,
+                &c,
+                pending.mention_count(),
+                negated || !pending.article,
+                plural,
+                pending.definite,
+                word.to_owned(),
+            );
         }
+        Some(1)
+    }
+
+    /// Any other word: articles, pronouns, joints, negations and counts.
+    fn read_word(&self, word: &str, pending: &mut Pending, items: &mut Vec<Item>) {
         match word {
-            "the" => definite = true,
+            "the" => pending.definite = true,
             "it" | "them" => items.push(Item::Pronoun { possessive: false }),
             "its" | "their" => {
                 items.push(Item::Pronoun { possessive: true });
-                possessive = true;
+                pending.possessive = true;
             }
             "with" | "holding" | "containing" | "featuring" | "including" => {
-                negated = false;
+                pending.negated = false;
                 items.push(Item::With);
             }
-            "without" | "minus" | "lacking" => negated = true,
-            "but" => negated = false,
+            "without" | "minus" | "lacking" => pending.negated = true,
+            "but" => pending.negated = false,
             "no" | "zero" | "none" => {
-                count = Some(0);
-                article = false;
+                pending.count = Some(0);
+                pending.article = false;
             }
             "and" | "plus" => items.push(Item::And),
             _ => {
-                if let Some(n) = voc.counts.get(word) {
+                if let Some(n) = self.knowledge.vocabulary.counts.get(word) {
                     // "a few" → few wins over a; "a couple" → couple wins.
-                    count = Some(*n);
-                    article = matches!(word, "a" | "an");
+                    pending.count = Some(*n);
+                    pending.article = matches!(word, "a" | "an");
                 } else if let Ok(n) = word.parse::<u32>() {
-                    count = Some(n);
-                    article = false;
+                    pending.count = Some(n);
+                    pending.article = false;
                 } else if word.chars().all(|c| c.is_ascii_digit()) {
                     // More digits than a u32 holds.
-                    count = Some(u32::MAX);
-                    article = false;
+                    pending.count = Some(u32::MAX);
+                    pending.article = false;
                 } else if word == "lot" {
-                    count = Some(6);
+                    pending.count = Some(6);
                 }
             }
         }
-        i += 1;
     }
-
-    // 3. Relations from the item stream.
-    read_relations(&mut out, &items, knowledge);
-    out
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -430,45 +551,218 @@ fn push_mention(
     idx
 }
 
+/// Phase 3: the stated relations of the item stream, into `out.stated`.
 fn read_relations(out: &mut Analysis, items: &[Item], knowledge: &Knowledge) {
-    let mut group: Vec<usize> = Vec::new();
-    let mut group_open = true;
-    let mut last_subjects: Vec<usize> = Vec::new();
-    let mut head: Option<usize> = None;
-    let mut with_parent: Option<usize> = None;
-    let mut with_members: Vec<usize> = Vec::new();
-    let mut in_with = false;
-    let mut with_related = false;
-    let mut pending: Option<(RelationPhrase, String, Vec<usize>)> = None;
-    let mut seen: Vec<usize> = Vec::new();
-
-    let emit = |out: &mut Analysis,
-                subjects: &[usize],
-                phrase: &RelationPhrase,
-                target: StatedTarget,
-                words: &str| {
-        for &s in subjects {
-            if StatedTarget::Mention(s) == target {
-                continue;
+    let mut reader = RelationReader::default();
+    for item in items.iter().chain(std::iter::once(&Item::Break)) {
+        match item {
+            Item::Mention(m) => reader.mention(out, *m),
+            Item::And => reader.group_open = true,
+            Item::With => reader.with(),
+            Item::Rel(phrase, words) => reader.relation(out, phrase, words),
+            Item::Pronoun { possessive } => {
+                // A possessive pronoun reads like any other here (the item reader skipped
+                // the part it names).
+                let _ = possessive;
+                reader.pronoun(out)
             }
-            out.stated.push(Stated {
-                subject: s,
-                phrase: phrase.clone(),
-                target: target.clone(),
-                words: words.to_owned(),
-            });
+            Item::Break => reader.clause_break(out, knowledge),
         }
-    };
+    }
+}
 
-    let finish_clause = |out: &mut Analysis,
-                         in_with: bool,
-                         with_related: bool,
-                         with_parent: Option<usize>,
-                         with_members: &[usize]| {
-        if !in_with || with_related {
+/// States `phrase` of every subject toward `target` (a mention is never related to itself).
+fn emit(
+    out: &mut Analysis,
+    subjects: &[usize],
+    phrase: &RelationPhrase,
+    target: StatedTarget,
+    words: &str,
+) {
+    for &s in subjects {
+        if StatedTarget::Mention(s) == target {
+            continue;
+        }
+        out.stated.push(Stated {
+            subject: s,
+            phrase: phrase.clone(),
+            target: target.clone(),
+            words: words.to_owned(),
+        });
+    }
+}
+
+/// What the relation reader carries from item to item within a clause.
+#[derive(Debug)]
+struct RelationReader {
+    /// The mentions joined by "and" so far (the subjects of the next relation phrase).
+    group: Vec<usize>,
+    /// Whether the next mention joins `group` rather than starting a new one.
+    group_open: bool,
+    /// The subjects of the clause's last relation phrase.
+    last_subjects: Vec<usize>,
+    /// The clause's first mention.
+    head: Option<usize>,
+    /// What "with" follows ("a desk with a lamp": the desk).
+    with_parent: Option<usize>,
+    /// The mentions after "with".
+    with_members: Vec<usize>,
+    in_with: bool,
+    /// Whether a relation phrase already placed the "with" members.
+    with_related: bool,
+    /// A relation phrase waiting for its target: phrase, words and subjects.
+    pending: Option<(RelationPhrase, String, Vec<usize>)>,
+    /// Every mention read so far.
+    seen: Vec<usize>,
+}
+
+impl Default for RelationReader {
+    fn default() -> Self {
+        Self {
+            group: Vec::new(),
+            group_open: true,
+            last_subjects: Vec::new(),
+            head: None,
+            with_parent: None,
+            with_members: Vec::new(),
+            in_with: false,
+            with_related: false,
+            pending: None,
+            seen: Vec::new(),
+        }
+    }
+}
+
+impl RelationReader {
+    /// Whether every one of `subjects` came after "with".
+    fn all_with_members(&self, subjects: &[usize]) -> bool {
+        subjects.iter().all(|s| self.with_members.contains(s))
+    }
+
+    /// Mention `m`: the target of a pending phrase, or a subject of the next one.
+    fn mention(&mut self, out: &mut Analysis, m: usize) {
+        if let Some((phrase, words, subjects)) = self.pending.take() {
+            emit(out, &subjects, &phrase, StatedTarget::Mention(m), &words);
+            if self.all_with_members(&subjects) && self.in_with {
+                self.with_related = true;
+            }
+            self.last_subjects = subjects;
+            self.group.clear();
+            self.group_open = false;
+            self.seen.push(m);
             return;
         }
-        let Some(parent) = with_parent else { return };
+        if !self.group_open {
+            self.group.clear();
+        }
+        self.group.push(m);
+        self.group_open = false;
+        self.head.get_or_insert(m);
+        if self.in_with {
+            self.with_members.push(m);
+        }
+        self.seen.push(m);
+    }
+
+    /// "with": the mentions that follow belong to the one before.
+    fn with(&mut self) {
+        self.with_parent = self.head.or(self.seen.last().copied());
+        self.in_with = true;
+        self.with_related = false;
+        self.with_members.clear();
+        self.group.clear();
+        self.group_open = true;
+        self.pending = None;
+    }
+
+    /// A relation phrase: stated at once toward a corner, a wall or the clause's head, or
+    /// pending until its target is read.
+    fn relation(&mut self, out: &mut Analysis, phrase: &RelationPhrase, words: &str) {
+        let subjects = if self.group.is_empty() {
+            self.last_subjects.clone()
+        } else {
+            self.group.clone()
+        };
+        if subjects.is_empty() {
+            return;
+        }
+        let direct = if phrase.corner {
+            Some(StatedTarget::Corner)
+        } else if let Some(w) = &phrase.wall {
+            Some(StatedTarget::Wall(w.clone()))
+        } else if phrase.head {
+            self.with_parent
+                .or(self.head)
+                .filter(|h| !subjects.contains(h))
+                .map(StatedTarget::Mention)
+        } else {
+            None
+        };
+        match direct {
+            Some(target) => {
+                emit(out, &subjects, phrase, target, words);
+                if self.in_with && self.all_with_members(&subjects) {
+                    self.with_related = true;
+                }
+            }
+            None if phrase.head => {}
+            None => self.pending = Some((phrase.clone(), words.to_owned(), subjects.clone())),
+        }
+        self.last_subjects = subjects;
+        self.group.clear();
+        self.group_open = false;
+    }
+
+    /// A pronoun: the target of a pending phrase.
+    fn pronoun(&mut self, out: &mut Analysis) {
+        let Some((phrase, words, subjects)) = self.pending.take() else {
+            return;
+        };
+        // In "X with Y inside it", "it" is X; elsewhere the latest other mention.
+        let with_target = self
+            .with_parent
+            .filter(|p| self.in_with && !subjects.contains(p) && self.all_with_members(&subjects));
+        let target = with_target.or_else(|| {
+            self.seen
+                .iter()
+                .rev()
+                .find(|m| !subjects.contains(m))
+                .copied()
+        });
+        if let Some(target) = target {
+            emit(
+                out,
+                &subjects,
+                &phrase,
+                StatedTarget::Mention(target),
+                &words,
+            );
+            if self.in_with && self.all_with_members(&subjects) {
+                self.with_related = true;
+            }
+        }
+        self.last_subjects = subjects;
+    }
+
+    /// A clause break: the "with" members no phrase placed go on (or inside) their parent,
+    /// and the clause's state is forgotten (the mentions seen are kept).
+    fn clause_break(&mut self, out: &mut Analysis, knowledge: &Knowledge) {
+        self.finish_with(out, knowledge);
+        *self = RelationReader {
+            seen: std::mem::take(&mut self.seen),
+            ..RelationReader::default()
+        };
+    }
+
+    /// "A desk with a lamp and books": the small members after "with" that no relation phrase
+    /// placed rest on (or inside, for shelves and containers) the parent.
+    fn finish_with(&self, out: &mut Analysis, knowledge: &Knowledge) {
+        if !self.in_with || self.with_related {
+            return;
+        }
+        let Some(parent) = self.with_parent else {
+            return;
+        };
         let parent_cat = out.mentions[parent].category.clone();
         let Some(prior) = knowledge.prior(&parent_cat) else {
             return;
@@ -481,7 +775,7 @@ fn read_relations(out: &mut Analysis, items: &[Item], knowledge: &Knowledge) {
             NominalShape::None => return,
             _ => scenethesis_scene_graph::RelationKind::On,
         };
-        for &m in with_members {
+        for &m in &self.with_members {
             let small = knowledge
                 .prior(&out.mentions[m].category)
                 .is_some_and(|p| p.mount == Mount::Surface);
@@ -499,118 +793,6 @@ fn read_relations(out: &mut Analysis, items: &[Item], knowledge: &Knowledge) {
                     target: StatedTarget::Mention(parent),
                     words: "with".into(),
                 });
-            }
-        }
-    };
-
-    for item in items.iter().chain(std::iter::once(&Item::Break)) {
-        match item {
-            Item::Mention(m) => {
-                let m = *m;
-                if let Some((phrase, words, subjects)) = pending.take() {
-                    emit(out, &subjects, &phrase, StatedTarget::Mention(m), &words);
-                    if subjects.iter().all(|s| with_members.contains(s)) && in_with {
-                        with_related = true;
-                    }
-                    last_subjects = subjects;
-                    group.clear();
-                    group_open = false;
-                    seen.push(m);
-                    continue;
-                }
-                if !group_open {
-                    group.clear();
-                }
-                group.push(m);
-                group_open = false;
-                head.get_or_insert(m);
-                if in_with {
-                    with_members.push(m);
-                }
-                seen.push(m);
-            }
-            Item::And => group_open = true,
-            Item::With => {
-                with_parent = head.or(seen.last().copied());
-                in_with = true;
-                with_related = false;
-                with_members.clear();
-                group.clear();
-                group_open = true;
-                pending = None;
-            }
-            Item::Rel(phrase, words) => {
-                let subjects = if group.is_empty() {
-                    last_subjects.clone()
-                } else {
-                    group.clone()
-                };
-                if subjects.is_empty() {
-                    continue;
-                }
-                let direct = if phrase.corner {
-                    Some(StatedTarget::Corner)
-                } else if let Some(w) = &phrase.wall {
-                    Some(StatedTarget::Wall(w.clone()))
-                } else if phrase.head {
-                    with_parent
-                        .or(head)
-                        .filter(|h| !subjects.contains(h))
-                        .map(StatedTarget::Mention)
-                } else {
-                    None
-                };
-                match direct {
-                    Some(target) => {
-                        emit(out, &subjects, phrase, target, words);
-                        if in_with && subjects.iter().all(|s| with_members.contains(s)) {
-                            with_related = true;
-                        }
-                    }
-                    None if phrase.head => {}
-                    None => pending = Some((phrase.clone(), words.clone(), subjects.clone())),
-                }
-                last_subjects = subjects;
-                group.clear();
-                group_open = false;
-            }
-            Item::Pronoun { possessive } => {
-                if let Some((phrase, words, subjects)) = pending.take() {
-                    // In "X with Y inside it", "it" is X; elsewhere the latest other mention.
-                    let with_target = with_parent.filter(|p| {
-                        in_with
-                            && !subjects.contains(p)
-                            && subjects.iter().all(|s| with_members.contains(s))
-                    });
-                    let target = with_target
-                        .or_else(|| seen.iter().rev().find(|m| !subjects.contains(m)).copied());
-                    if let Some(target) = target {
-                        emit(
-                            out,
-                            &subjects,
-                            &phrase,
-                            StatedTarget::Mention(target),
-                            &words,
-                        );
-                        if in_with && subjects.iter().all(|s| with_members.contains(s)) {
-                            with_related = true;
-                        }
-                    }
-                    last_subjects = subjects;
-                    let _ = possessive;
-                }
-            }
-            Item::Break => {
-                finish_clause(out, in_with, with_related, with_parent, &with_members);
-                group.clear();
-                group_open = true;
-                last_subjects.clear();
-                head = None;
-                with_parent = None;
-                with_members.clear();
-                in_with = false;
-                with_related = false;
-                pending = None;
             }
         }
     }

@@ -453,16 +453,14 @@ fn relative_candidates(
     rng: &mut ChaCha8Rng,
 ) -> Vec<Candidate> {
     let _ = infos;
-    let plan = state.plan;
-    let mut out = Vec::new();
     let Some(target_id) = positional_target(o) else {
-        return out;
+        return Vec::new();
     };
     let Some(ti) = state.index_of(target_id) else {
-        return out;
+        return Vec::new();
     };
     let Some(t) = state.placed_of(ti) else {
-        return out;
+        return Vec::new();
     };
     let kind = o
         .relations
@@ -490,9 +488,9 @@ fn relative_candidates(
         .and_then(|i| state.placed_of(i))
         .map(|p| [p.fp.cx, p.fp.cz]);
     let (r_t, f_t) = t.fp.axes();
-    let tc = [t.fp.cx, t.fp.cz];
     // Which of the objects sharing this relation to the target this one is.
-    let peers: Vec<&PlannedObject> = plan
+    let peers: Vec<&PlannedObject> = state
+        .plan
         .objects
         .iter()
         .filter(|p| {
@@ -503,198 +501,285 @@ fn relative_candidates(
                     .any(|r| r.kind == kind && r.target == target_id)
         })
         .collect();
-    let k = peers.iter().position(|p| p.id == o.id).unwrap_or(0);
-    let n = peers.len().max(1);
-    let seat = seat_like(&o.category);
-    let mk = |c: [f64; 2], yaw: f64| Candidate {
-        fp: Footprint {
-            cx: c[0],
-            cz: c[1],
-            yaw,
-            hx,
-            hz,
-        },
-        wall: None,
+    let near = NearTarget {
+        target: t.fp,
+        tc: [t.fp.cx, t.fp.cz],
+        r_t,
+        f_t,
+        hx,
+        hz,
+        k: peers.iter().position(|p| p.id == o.id).unwrap_or(0),
+        n: peers.len().max(1),
+        seat: seat_like(&o.category),
+        facing,
     };
-    let add = |a: [f64; 2], s: f64, b: [f64; 2]| [a[0] + s * b[0], a[1] + s * b[1]];
-    // Half extent along `dir` of this object's footprint turned to `yaw`.
-    let extent_at = |yaw: f64, dir: [f64; 2]| {
+    match kind {
+        RelationKind::InFrontOf | RelationKind::Behind => near.in_front_or_behind(kind, rng),
+        RelationKind::Beside | RelationKind::LeftOf | RelationKind::RightOf => {
+            near.beside(side_rel, kind, rng)
+        }
+        RelationKind::Facing => near.facing(rng),
+        RelationKind::Around => near.around(),
+        _ => Vec::new(),
+    }
+}
+
+/// `a + s·b`.
+fn add(a: [f64; 2], s: f64, b: [f64; 2]) -> [f64; 2] {
+    [a[0] + s * b[0], a[1] + s * b[1]]
+}
+
+/// An object placed relative to a target already on the floor: the target's footprint,
+/// centre and axes, the object's half extents, and which of its peers (objects in the same
+/// relation to the target) it is.
+struct NearTarget {
+    target: Footprint,
+    /// The target's centre.
+    tc: [f64; 2],
+    /// The target's right and front axes.
+    r_t: [f64; 2],
+    f_t: [f64; 2],
+    hx: f64,
+    hz: f64,
+    /// This object's index among its `n` peers.
+    k: usize,
+    n: usize,
+    seat: bool,
+    /// Where the object it should face stands, if any.
+    facing: Option<[f64; 2]>,
+}
+
+impl NearTarget {
+    /// A candidate centred at `c` turned to `yaw`.
+    fn at(&self, c: [f64; 2], yaw: f64) -> Candidate {
+        Candidate {
+            fp: Footprint {
+                cx: c[0],
+                cz: c[1],
+                yaw,
+                hx: self.hx,
+                hz: self.hz,
+            },
+            wall: None,
+        }
+    }
+
+    /// Half extent along `dir` of this object's footprint turned to `yaw`.
+    fn extent_at(&self, yaw: f64, dir: [f64; 2]) -> f64 {
         Footprint {
             cx: 0.0,
             cz: 0.0,
             yaw,
-            hx,
-            hz,
+            hx: self.hx,
+            hz: self.hz,
         }
         .extent_along(dir)
-    };
-    match kind {
-        RelationKind::InFrontOf | RelationKind::Behind => {
-            let dir = if kind == RelationKind::InFrontOf {
-                1.0
-            } else {
-                -1.0
-            };
-            let yaw = match facing {
-                Some(_) => None,
-                None if seat && kind == RelationKind::InFrontOf => Some(t.fp.yaw + PI),
-                None => Some(t.fp.yaw),
-            };
-            let base_gap = if seat { 0.06 } else { 0.45 };
-            let lateral = if n > 1 {
-                ((k as f64 + 0.5) / n as f64 * 2.0 - 1.0) * t.fp.hx
-            } else {
-                rng.random_range(-0.05..=0.05)
-            };
-            for gap in [
-                base_gap,
-                base_gap + 0.1,
-                base_gap + 0.25,
-                base_gap + 0.45,
-                base_gap + 0.7,
-            ] {
-                for dl in [0.0, 0.2, -0.2, 0.4, -0.4] {
-                    let probe = add(add(tc, dir * (t.fp.hz + gap + hz), f_t), lateral + dl, r_t);
-                    let y = yaw.unwrap_or_else(|| yaw_toward(probe, facing.unwrap_or(tc)));
-                    let e = extent_at(y, f_t);
-                    let c = add(add(tc, dir * (t.fp.hz + gap + e), f_t), lateral + dl, r_t);
-                    out.push(mk(c, y));
-                }
+    }
+
+    /// In front of or behind the target: rows of gaps along its front axis, spread
+    /// sideways among the peers.
+    fn in_front_or_behind(&self, kind: RelationKind, rng: &mut ChaCha8Rng) -> Vec<Candidate> {
+        let (t, tc, r_t, f_t) = (&self.target, self.tc, self.r_t, self.f_t);
+        let mut out = Vec::new();
+        let dir = if kind == RelationKind::InFrontOf {
+            1.0
+        } else {
+            -1.0
+        };
+        let yaw = match self.facing {
+            Some(_) => None,
+            None if self.seat && kind == RelationKind::InFrontOf => Some(t.yaw + PI),
+            None => Some(t.yaw),
+        };
+        let base_gap = if self.seat { 0.06 } else { 0.45 };
+        let lateral = if self.n > 1 {
+            ((self.k as f64 + 0.5) / self.n as f64 * 2.0 - 1.0) * t.hx
+        } else {
+            rng.random_range(-0.05..=0.05)
+        };
+        for gap in [
+            base_gap,
+            base_gap + 0.1,
+            base_gap + 0.25,
+            base_gap + 0.45,
+            base_gap + 0.7,
+        ] {
+            for dl in [0.0, 0.2, -0.2, 0.4, -0.4] {
+                let probe = add(
+                    add(tc, dir * (t.hz + gap + self.hz), f_t),
+                    lateral + dl,
+                    r_t,
+                );
+                let y = yaw.unwrap_or_else(|| yaw_toward(probe, self.facing.unwrap_or(tc)));
+                let e = self.extent_at(y, f_t);
+                let c = add(add(tc, dir * (t.hz + gap + e), f_t), lateral + dl, r_t);
+                out.push(self.at(c, y));
             }
         }
-        RelationKind::Beside | RelationKind::LeftOf | RelationKind::RightOf => {
-            let sides: Vec<f64> = match side_rel.unwrap_or(kind) {
-                RelationKind::LeftOf => vec![-1.0],
-                RelationKind::RightOf => vec![1.0],
-                _ => {
-                    let first = if (k % 2 == 0) == rng.random_bool(0.5) {
-                        1.0
-                    } else {
-                        -1.0
-                    };
-                    vec![first, -first]
-                }
-            };
-            for side in sides {
-                for gap in [0.05, 0.12, 0.25, 0.4, 0.6, 0.9, 1.3] {
-                    let y = match facing {
-                        Some(f) => {
-                            let probe = add(tc, side * (t.fp.hx + gap + hx), r_t);
-                            yaw_toward(probe, f)
-                        }
-                        None => t.fp.yaw,
-                    };
-                    let e_r = extent_at(y, r_t);
-                    let e_f = extent_at(y, f_t);
-                    let along_f = if facing.is_some() { 0.0 } else { e_f - t.fp.hz };
-                    let c = add(add(tc, side * (t.fp.hx + gap + e_r), r_t), along_f, f_t);
-                    out.push(mk(c, y));
-                }
-            }
-            if side_rel.is_none() {
-                // Both flanks taken (a corner, a wall, a neighbour): "beside" also holds in
-                // front, behind or diagonally, as long as the gap stays under a metre.
-                for gap in [0.08, 0.25, 0.45, 0.7] {
-                    for (a, b) in [
-                        (0.0, 1.0),
-                        (1.0, 1.0),
-                        (-1.0, 1.0),
-                        (0.0, -1.0),
-                        (1.0, -1.0),
-                        (-1.0, -1.0),
-                    ] {
-                        let dir = [a * r_t[0] + b * f_t[0], a * r_t[1] + b * f_t[1]];
-                        let len = (dir[0] * dir[0] + dir[1] * dir[1]).sqrt();
-                        let dir = [dir[0] / len, dir[1] / len];
-                        let probe = add(tc, t.fp.extent_along(dir) + gap + hx.max(hz), dir);
-                        let y = match facing {
-                            Some(f) => yaw_toward(probe, f),
-                            None => t.fp.yaw,
-                        };
-                        let dist = t.fp.extent_along(dir) + gap + extent_at(y, dir);
-                        out.push(mk(add(tc, dist, dir), y));
-                    }
-                }
-            }
-        }
-        RelationKind::Facing => {
-            let mut angles: Vec<f64> = vec![];
-            for a in [60.0f64, 72.0, 48.0, 84.0, 36.0, 24.0, 96.0, 12.0, 0.0] {
-                let s = if (k % 2 == 0) == rng.random_bool(0.5) {
+        out
+    }
+
+    /// Beside the target (or on the side `side_rel` names): both flanks at growing gaps,
+    /// then, when no side is stated, in front, behind and diagonally.
+    fn beside(
+        &self,
+        side_rel: Option<RelationKind>,
+        kind: RelationKind,
+        rng: &mut ChaCha8Rng,
+    ) -> Vec<Candidate> {
+        let (t, tc, r_t, f_t) = (&self.target, self.tc, self.r_t, self.f_t);
+        let mut out = Vec::new();
+        let sides: Vec<f64> = match side_rel.unwrap_or(kind) {
+            RelationKind::LeftOf => vec![-1.0],
+            RelationKind::RightOf => vec![1.0],
+            _ => {
+                let first = if (self.k % 2 == 0) == rng.random_bool(0.5) {
                     1.0
                 } else {
                     -1.0
                 };
-                angles.push(s * a.to_radians());
-                if a != 0.0 {
-                    angles.push(-s * a.to_radians());
-                }
+                vec![first, -first]
             }
-            for extra in [0.9, 1.2, 0.7, 1.6, 2.1] {
-                for &a in &angles {
-                    let (sa, ca) = a.sin_cos();
-                    let dir = [f_t[0] * ca + r_t[0] * sa, f_t[1] * ca + r_t[1] * sa];
-                    let dist = t.fp.extent_along(dir) + hx.max(hz) + extra;
-                    let c = add(tc, dist, dir);
-                    out.push(mk(c, yaw_toward(c, tc)));
-                }
-            }
-        }
-        RelationKind::Around => {
-            let long_x = t.fp.hx >= t.fp.hz;
-            let mut slots: Vec<([f64; 2], f64)> = Vec::new(); // (local normal, along offset)
-            let along_len = if long_x { t.fp.hx } else { t.fp.hz };
-            let per_side = (((2.0 * along_len) / (2.0 * hx + 0.12)).floor() as usize).max(1);
-            let long_normals: [[f64; 2]; 2] = if long_x {
-                [[0.0, 1.0], [0.0, -1.0]]
-            } else {
-                [[1.0, 0.0], [-1.0, 0.0]]
-            };
-            for m in 0..per_side {
-                let off = ((m as f64 + 0.5) / per_side as f64 * 2.0 - 1.0) * along_len;
-                for nrm in long_normals {
-                    slots.push((nrm, off));
-                }
-            }
-            let short_len = if long_x { t.fp.hz } else { t.fp.hx };
-            if 2.0 * short_len >= 2.0 * hx * 0.8 {
-                let ends: [[f64; 2]; 2] = if long_x {
-                    [[1.0, 0.0], [-1.0, 0.0]]
-                } else {
-                    [[0.0, 1.0], [0.0, -1.0]]
+        };
+        for side in sides {
+            for gap in [0.05, 0.12, 0.25, 0.4, 0.6, 0.9, 1.3] {
+                let y = match self.facing {
+                    Some(f) => {
+                        let probe = add(tc, side * (t.hx + gap + self.hx), r_t);
+                        yaw_toward(probe, f)
+                    }
+                    None => t.yaw,
                 };
-                for nrm in ends {
-                    slots.push((nrm, 0.0));
-                }
-            }
-            // Spread: reorder so consecutive chairs alternate sides.
-            let start = k % slots.len().max(1);
-            let ordered: Vec<([f64; 2], f64)> = slots
-                .iter()
-                .cycle()
-                .skip(start)
-                .take(slots.len())
-                .copied()
-                .collect();
-            for gap in [0.04, 0.12, 0.25] {
-                for (nrm, off) in &ordered {
-                    let (lx, lz) = (nrm[0], nrm[1]);
-                    let half_n = if lx != 0.0 { t.fp.hx } else { t.fp.hz };
-                    let (ox, oz) = if lx != 0.0 {
-                        (lx * (half_n + gap + hz), *off)
-                    } else {
-                        (*off, lz * (half_n + gap + hz))
-                    };
-                    let c = t.fp.to_world(ox, oz);
-                    let toward = t.fp.to_world(
-                        if lx != 0.0 { 0.0 } else { ox },
-                        if lx != 0.0 { oz } else { 0.0 },
-                    );
-                    out.push(mk(c, yaw_toward(c, toward)));
-                }
+                let e_r = self.extent_at(y, r_t);
+                let e_f = self.extent_at(y, f_t);
+                let along_f = if self.facing.is_some() {
+                    0.0
+                } else {
+                    e_f - t.hz
+                };
+                let c = add(add(tc, side * (t.hx + gap + e_r), r_t), along_f, f_t);
+                out.push(self.at(c, y));
             }
         }
-        _ => {}
+        if side_rel.is_none() {
+            self.around_flanks(&mut out);
+        }
+        out
     }
-    out
+
+    /// Both flanks taken (a corner, a wall, a neighbour): "beside" also holds in front,
+    /// behind or diagonally, as long as the gap stays under a metre.
+    fn around_flanks(&self, out: &mut Vec<Candidate>) {
+        let (t, tc, r_t, f_t) = (&self.target, self.tc, self.r_t, self.f_t);
+        for gap in [0.08, 0.25, 0.45, 0.7] {
+            for (a, b) in [
+                (0.0, 1.0),
+                (1.0, 1.0),
+                (-1.0, 1.0),
+                (0.0, -1.0),
+                (1.0, -1.0),
+                (-1.0, -1.0),
+            ] {
+                let dir = [a * r_t[0] + b * f_t[0], a * r_t[1] + b * f_t[1]];
+                let len = (dir[0] * dir[0] + dir[1] * dir[1]).sqrt();
+                let dir = [dir[0] / len, dir[1] / len];
+                let probe = add(tc, t.extent_along(dir) + gap + self.hx.max(self.hz), dir);
+                let y = match self.facing {
+                    Some(f) => yaw_toward(probe, f),
+                    None => t.yaw,
+                };
+                let dist = t.extent_along(dir) + gap + self.extent_at(y, dir);
+                out.push(self.at(add(tc, dist, dir), y));
+            }
+        }
+    }
+
+    /// Facing the target: a fan of angles about its front, alternating sides among the
+    /// peers, at growing distances, each turned toward the target.
+    fn facing(&self, rng: &mut ChaCha8Rng) -> Vec<Candidate> {
+        let (t, tc, r_t, f_t) = (&self.target, self.tc, self.r_t, self.f_t);
+        let mut out = Vec::new();
+        let mut angles: Vec<f64> = vec![];
+        for a in [60.0f64, 72.0, 48.0, 84.0, 36.0, 24.0, 96.0, 12.0, 0.0] {
+            let s = if (self.k % 2 == 0) == rng.random_bool(0.5) {
+                1.0
+            } else {
+                -1.0
+            };
+            angles.push(s * a.to_radians());
+            if a != 0.0 {
+                angles.push(-s * a.to_radians());
+            }
+        }
+        for extra in [0.9, 1.2, 0.7, 1.6, 2.1] {
+            for &a in &angles {
+                let (sa, ca) = a.sin_cos();
+                let dir = [f_t[0] * ca + r_t[0] * sa, f_t[1] * ca + r_t[1] * sa];
+                let dist = t.extent_along(dir) + self.hx.max(self.hz) + extra;
+                let c = add(tc, dist, dir);
+                out.push(self.at(c, yaw_toward(c, tc)));
+            }
+        }
+        out
+    }
+
+    /// Around the target (chairs around a table): slots along its long sides, and its ends
+    /// when wide enough, each object starting at its own slot, turned toward the target.
+    fn around(&self) -> Vec<Candidate> {
+        let (t, hx, hz) = (&self.target, self.hx, self.hz);
+        let mut out = Vec::new();
+        let long_x = t.hx >= t.hz;
+        let mut slots: Vec<([f64; 2], f64)> = Vec::new(); // (local normal, along offset)
+        let along_len = if long_x { t.hx } else { t.hz };
+        let per_side = (((2.0 * along_len) / (2.0 * hx + 0.12)).floor() as usize).max(1);
+        let long_normals: [[f64; 2]; 2] = if long_x {
+            [[0.0, 1.0], [0.0, -1.0]]
+        } else {
+            [[1.0, 0.0], [-1.0, 0.0]]
+        };
+        for m in 0..per_side {
+            let off = ((m as f64 + 0.5) / per_side as f64 * 2.0 - 1.0) * along_len;
+            for nrm in long_normals {
+                slots.push((nrm, off));
+            }
+        }
+        let short_len = if long_x { t.hz } else { t.hx };
+        if 2.0 * short_len >= 2.0 * hx * 0.8 {
+            let ends: [[f64; 2]; 2] = if long_x {
+                [[1.0, 0.0], [-1.0, 0.0]]
+            } else {
+                [[0.0, 1.0], [0.0, -1.0]]
+            };
+            for nrm in ends {
+                slots.push((nrm, 0.0));
+            }
+        }
+        // Spread: reorder so consecutive chairs alternate sides.
+        let start = self.k % slots.len().max(1);
+        let ordered: Vec<([f64; 2], f64)> = slots
+            .iter()
+            .cycle()
+            .skip(start)
+            .take(slots.len())
+            .copied()
+            .collect();
+        for gap in [0.04, 0.12, 0.25] {
+            for (nrm, off) in &ordered {
+                let (lx, lz) = (nrm[0], nrm[1]);
+                let half_n = if lx != 0.0 { t.hx } else { t.hz };
+                let (ox, oz) = if lx != 0.0 {
+                    (lx * (half_n + gap + hz), *off)
+                } else {
+                    (*off, lz * (half_n + gap + hz))
+                };
+                let c = t.to_world(ox, oz);
+                let toward = t.to_world(
+                    if lx != 0.0 { 0.0 } else { ox },
+                    if lx != 0.0 { oz } else { 0.0 },
+                );
+                out.push(self.at(c, yaw_toward(c, toward)));
+            }
+        }
+        out
+    }
 }

@@ -264,13 +264,26 @@ fn lay(
     sides: &[Side],
     rng: &mut ChaCha8Rng,
 ) -> Option<Vec<(usize, Footprint, usize)>> {
-    let n = order.len();
-    let hw = sides[0].half_len;
-    let hd = sides[1].half_len;
-    let len = |p: &[Piece]| -> f64 {
-        p.iter().map(|x| x.w).sum::<f64>() + RUN_GAP * p.len().saturating_sub(1) as f64
-    };
-    // Candidate splits: (left leg, main, right leg / galley) as counts.
+    let mut splits = candidate_splits(shape, order.len());
+    // Balanced splits first, then by the seed.
+    splits.shuffle(rng);
+    splits.sort_by(|a, b| {
+        let spread = |s: &(usize, usize, usize)| s.1.abs_diff(s.0.max(s.2));
+        spread(a).cmp(&spread(b))
+    });
+    splits
+        .into_iter()
+        .find_map(|split| lay_split(shape, split, order, state, sides, rng))
+}
+
+/// Length of a run of `pieces`, gaps included.
+fn run_length(pieces: &[Piece]) -> f64 {
+    pieces.iter().map(|x| x.w).sum::<f64>() + RUN_GAP * pieces.len().saturating_sub(1) as f64
+}
+
+/// Candidate splits of `n` pieces for `shape`: (left leg, main, right leg / galley) as
+/// counts.
+fn candidate_splits(shape: RunShape, n: usize) -> Vec<(usize, usize, usize)> {
     let mut splits: Vec<(usize, usize, usize)> = Vec::new();
     match shape {
         RunShape::OneWall => splits.push((0, n, 0)),
@@ -289,160 +302,192 @@ fn lay(
             }
         }
     }
-    // Balanced splits first, then by the seed.
-    splits.shuffle(rng);
-    splits.sort_by(|a, b| {
-        let spread = |s: &(usize, usize, usize)| s.1.abs_diff(s.0.max(s.2));
-        spread(a).cmp(&spread(b))
-    });
-    for (a, m, b) in splits {
-        let left = &order[..a];
-        let main = &order[a..a + m];
-        let right = &order[a + m..];
-        let lm = len(main);
-        // Interval of the main run's start x0 (main spans [x0, x0 + lm]).
-        let (mut lo, mut hi) = (-hw + WALL_GAP, hw - WALL_GAP - lm);
-        if hi < lo {
-            continue;
-        }
-        let galley = shape == RunShape::Galley;
-        // Corner ownership: per leg, whether the main run's end piece takes the corner.
-        let owners: Vec<(bool, bool)> = match (a > 0, b > 0 && !galley) {
-            (false, false) => vec![(true, true)],
-            (true, false) => vec![(true, true), (false, true)],
-            (false, true) => vec![(true, true), (true, false)],
-            (true, true) => vec![(true, true), (true, false), (false, true), (false, false)],
-        };
-        let mut found = None;
-        for (main_owns_left, main_owns_right) in owners {
-            let (mut l, mut h) = (lo, hi);
-            if a > 0 {
-                let d_leg = left.last().expect("leg").d;
-                let corner = -hw + WALL_GAP;
-                if main_owns_left {
-                    // The main run's first piece reaches into the leg's depth.
-                    h = h.min(corner + d_leg - 0.05);
-                    l = l.max(corner);
-                } else {
-                    l = l.max(corner + d_leg + RUN_GAP);
-                    h = h.min(corner + d_leg + 0.045);
-                }
-            }
-            if b > 0 && !galley {
-                let d_leg = right[0].d;
-                let corner = hw - WALL_GAP;
-                if main_owns_right {
-                    l = l.max(corner - d_leg + 0.05 - lm);
-                    h = h.min(corner - lm);
-                } else {
-                    h = h.min(corner - d_leg - RUN_GAP - lm);
-                    l = l.max(corner - d_leg - 0.045 - lm);
-                }
-            }
-            if l <= h + 1e-9 {
-                found = Some((main_owns_left, main_owns_right, l, h));
-                break;
-            }
-        }
-        let Some((own_l, own_r, l, h)) = found else {
-            continue;
-        };
-        (lo, hi) = (l, h);
-        // Flush against a corner when there is a leg; anywhere (by the seed) otherwise.
-        let x0 = if a > 0 {
-            lo
-        } else if b > 0 && !galley {
-            hi
+    splits
+}
+
+/// `order` laid out as `shape` with the split (left leg, main, right leg / galley), or `None`
+/// when it does not fit or puts a member off the wall the plan gives it.
+fn lay_split(
+    shape: RunShape,
+    (a, m, b): (usize, usize, usize),
+    order: &[Piece],
+    state: &FloorState<'_>,
+    sides: &[Side],
+    rng: &mut ChaCha8Rng,
+) -> Option<Vec<(usize, Footprint, usize)>> {
+    let n = order.len();
+    let hw = sides[0].half_len;
+    let hd = sides[1].half_len;
+    let left = &order[..a];
+    let main = &order[a..a + m];
+    let right = &order[a + m..];
+    let galley = shape == RunShape::Galley;
+    let (own_l, own_r, lo, hi) = main_start_range(hw, left, main, right, galley)?;
+    // Flush against a corner when there is a leg; anywhere (by the seed) otherwise.
+    let x0 = if a > 0 {
+        lo
+    } else if b > 0 && !galley {
+        hi
+    } else {
+        rng.random_range(lo..=hi.max(lo))
+    };
+    let mut out = Vec::with_capacity(n);
+    let mut x = x0;
+    for p in main {
+        out.push((
+            p.index,
+            sides[0].footprint_at(x + p.w / 2.0, p.w / 2.0, p.d / 2.0),
+            0,
+        ));
+        x += p.w + RUN_GAP;
+    }
+    let back = -hd + WALL_GAP;
+    if a > 0 {
+        let start = if own_l {
+            back + main[0].d + RUN_GAP
         } else {
-            rng.random_range(lo..=hi.max(lo))
+            back
         };
-        let mut out = Vec::with_capacity(n);
-        let mut x = x0;
-        for p in main {
-            out.push((
-                p.index,
-                sides[0].footprint_at(x + p.w / 2.0, p.w / 2.0, p.d / 2.0),
-                0,
-            ));
-            x += p.w + RUN_GAP;
+        if !lay_leg(&mut left.iter().rev(), sides, 1, start, &mut out) {
+            return None;
         }
-        // Legs run along +z from the back corner; the piece nearest the corner first.
-        let leg = |pieces: &mut dyn Iterator<Item = &Piece>,
-                   side: usize,
-                   start: f64,
-                   out: &mut Vec<(usize, Footprint, usize)>|
-         -> bool {
-            let mut z = start;
-            for p in pieces {
-                if z + p.w > hd - WALL_GAP - LEG_END {
-                    return false;
-                }
-                out.push((
-                    p.index,
-                    sides[side].footprint_at(z + p.w / 2.0, p.w / 2.0, p.d / 2.0),
-                    side,
-                ));
-                z += p.w + RUN_GAP;
-            }
-            true
+    }
+    if b > 0 && !galley {
+        let start = if own_r {
+            back + main.last().expect("main").d + RUN_GAP
+        } else {
+            back
         };
-        let back = -hd + WALL_GAP;
+        if !lay_leg(&mut right.iter(), sides, 3, start, &mut out) {
+            return None;
+        }
+    }
+    if galley && !lay_galley(right, state, sides, rng, &mut out) {
+        return None;
+    }
+    // A member the plan puts against a particular wall stays on it.
+    let on_its_wall = out.iter().all(|(i, _, side)| {
+        let o = &state.plan.objects[*i];
+        o.relations
+            .iter()
+            .filter(|r| r.kind == RelationKind::AgainstWall)
+            .all(|r| sides[*side].id.as_deref() == Some(r.target.as_str()))
+    });
+    on_its_wall.then_some(out)
+}
+
+/// The interval of the main run's start x0 (the run spans [x0, x0 + its length]) along a
+/// back wall of half length `hw`, with which corners the main run's end pieces own (whether
+/// they reach into the legs' depth), the first ownership that fits: (owns left, owns right,
+/// lowest x0, highest x0).
+fn main_start_range(
+    hw: f64,
+    left: &[Piece],
+    main: &[Piece],
+    right: &[Piece],
+    galley: bool,
+) -> Option<(bool, bool, f64, f64)> {
+    let (a, b) = (left.len(), right.len());
+    let lm = run_length(main);
+    let (lo, hi) = (-hw + WALL_GAP, hw - WALL_GAP - lm);
+    if hi < lo {
+        return None;
+    }
+    // Corner ownership: per leg, whether the main run's end piece takes the corner.
+    let owners: Vec<(bool, bool)> = match (a > 0, b > 0 && !galley) {
+        (false, false) => vec![(true, true)],
+        (true, false) => vec![(true, true), (false, true)],
+        (false, true) => vec![(true, true), (true, false)],
+        (true, true) => vec![(true, true), (true, false), (false, true), (false, false)],
+    };
+    for (main_owns_left, main_owns_right) in owners {
+        let (mut l, mut h) = (lo, hi);
         if a > 0 {
-            let start = if own_l {
-                back + main[0].d + RUN_GAP
+            let d_leg = left.last().expect("leg").d;
+            let corner = -hw + WALL_GAP;
+            if main_owns_left {
+                // The main run's first piece reaches into the leg's depth.
+                h = h.min(corner + d_leg - 0.05);
+                l = l.max(corner);
             } else {
-                back
-            };
-            if !leg(&mut left.iter().rev(), 1, start, &mut out) {
-                continue;
+                l = l.max(corner + d_leg + RUN_GAP);
+                h = h.min(corner + d_leg + 0.045);
             }
         }
         if b > 0 && !galley {
-            let start = if own_r {
-                back + main.last().expect("main").d + RUN_GAP
+            let d_leg = right[0].d;
+            let corner = hw - WALL_GAP;
+            if main_owns_right {
+                l = l.max(corner - d_leg + 0.05 - lm);
+                h = h.min(corner - lm);
             } else {
-                back
-            };
-            if !leg(&mut right.iter(), 3, start, &mut out) {
-                continue;
+                h = h.min(corner - d_leg - RUN_GAP - lm);
+                l = l.max(corner - d_leg - 0.045 - lm);
             }
         }
-        if galley {
-            // Beside the door on the door wall, flush in one of its corners.
-            let door_half = state.door_zone.map_or(0.0, |d| d.hx);
-            let lg = len(right);
-            let room = hw - WALL_GAP - door_half - 0.05;
-            if lg > room {
-                continue;
-            }
-            let side = &sides[2];
-            let mut x = if rng.random_bool(0.5) {
-                -hw + WALL_GAP
-            } else {
-                hw - WALL_GAP - lg
-            };
-            for p in right {
-                out.push((
-                    p.index,
-                    side.footprint_at(x + p.w / 2.0, p.w / 2.0, p.d / 2.0),
-                    2,
-                ));
-                x += p.w + RUN_GAP;
-            }
-        }
-        // A member the plan puts against a particular wall stays on it.
-        let on_its_wall = out.iter().all(|(i, _, side)| {
-            let o = &state.plan.objects[*i];
-            o.relations
-                .iter()
-                .filter(|r| r.kind == RelationKind::AgainstWall)
-                .all(|r| sides[*side].id.as_deref() == Some(r.target.as_str()))
-        });
-        if on_its_wall {
-            return Some(out);
+        if l <= h + 1e-9 {
+            return Some((main_owns_left, main_owns_right, l, h));
         }
     }
     None
+}
+
+/// Lays a leg along `sides[side]`: legs run along +z from the back corner, from `start`, the
+/// piece nearest the corner first. Whether it fits before the wall's end.
+fn lay_leg(
+    pieces: &mut dyn Iterator<Item = &Piece>,
+    sides: &[Side],
+    side: usize,
+    start: f64,
+    out: &mut Vec<(usize, Footprint, usize)>,
+) -> bool {
+    let hd = sides[1].half_len;
+    let mut z = start;
+    for p in pieces {
+        if z + p.w > hd - WALL_GAP - LEG_END {
+            return false;
+        }
+        out.push((
+            p.index,
+            sides[side].footprint_at(z + p.w / 2.0, p.w / 2.0, p.d / 2.0),
+            side,
+        ));
+        z += p.w + RUN_GAP;
+    }
+    true
+}
+
+/// Lays the galley's second run beside the door on the door wall, flush in one of its
+/// corners (by the seed). Whether it fits beside the door.
+fn lay_galley(
+    pieces: &[Piece],
+    state: &FloorState<'_>,
+    sides: &[Side],
+    rng: &mut ChaCha8Rng,
+    out: &mut Vec<(usize, Footprint, usize)>,
+) -> bool {
+    let hw = sides[0].half_len;
+    let door_half = state.door_zone.map_or(0.0, |d| d.hx);
+    let lg = run_length(pieces);
+    let room = hw - WALL_GAP - door_half - 0.05;
+    if lg > room {
+        return false;
+    }
+    let side = &sides[2];
+    let mut x = if rng.random_bool(0.5) {
+        -hw + WALL_GAP
+    } else {
+        hw - WALL_GAP - lg
+    };
+    for p in pieces {
+        out.push((
+            p.index,
+            side.footprint_at(x + p.w / 2.0, p.w / 2.0, p.d / 2.0),
+            2,
+        ));
+        x += p.w + RUN_GAP;
+    }
+    true
 }
 
 /// Places the plan's islands (ground objects of the rule's `island` categories) in front of

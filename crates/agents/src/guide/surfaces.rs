@@ -67,26 +67,10 @@ pub(crate) fn place_children(
         .enumerate()
         .map(|(i, o)| (o.id.as_str(), i))
         .collect();
-    // Occupied rectangles per (parent, surface index).
-    let mut occupied: BTreeMap<(usize, usize), Vec<Rect>> = BTreeMap::new();
-    // The shelf each parent fills next, chosen at random once.
-    let mut next_shelf: BTreeMap<usize, usize> = BTreeMap::new();
+    let mut packer = Packer::default();
     let mut dropped = Vec::new();
     let mut done = vec![false; plan.objects.len()];
-    // What the prompt asked for first (a crowded top drops an extra, never the stated mug),
-    // then largest first, so a small item never blocks a big one on a shared surface.
-    let area = |i: usize| -(infos[i].size[0] as f64 * infos[i].size[2] as f64);
-    let asked = |i: usize| {
-        let o = &plan.objects[i];
-        o.hard || plan.requested.iter().any(|r| r.ids.contains(&o.id))
-    };
-    let mut order: Vec<usize> = (0..plan.objects.len()).collect();
-    order.sort_by(|&a, &b| {
-        asked(b)
-            .cmp(&asked(a))
-            .then(area(a).total_cmp(&area(b)))
-            .then(a.cmp(&b))
-    });
+    let order = fill_order(plan, infos);
     loop {
         let mut progress = false;
         for &i in &order {
@@ -117,97 +101,9 @@ pub(crate) fn place_children(
                 });
                 continue;
             };
-            let parent = &infos[p];
-            let child = &infos[i];
             let kinds = kinds_for(o.support);
-            let mut surfaces: Vec<usize> = Vec::new();
-            for kind in kinds {
-                let mut of_kind: Vec<usize> = parent
-                    .support_surfaces
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, s)| s.kind == *kind)
-                    .map(|(k, _)| k)
-                    .collect();
-                if o.support == RelationKind::Under && *kind == SurfaceKind::Under {
-                    // A low shelf beneath a table top is "under" it too (measured against the
-                    // asset's height).
-                    let low = parent.size[1] * LOW_SHELF_SHARE as f32;
-                    of_kind.extend(
-                        parent
-                            .support_surfaces
-                            .iter()
-                            .enumerate()
-                            .filter(|(_, s)| {
-                                s.kind == SurfaceKind::Shelf
-                                    && s.height <= low
-                                    && parent
-                                        .support_surfaces
-                                        .iter()
-                                        .any(|t| t.kind == SurfaceKind::Top && t.height > s.height)
-                            })
-                            .map(|(k, _)| k),
-                    );
-                }
-                if *kind == SurfaceKind::Shelf && !of_kind.is_empty() {
-                    // Fill shelves from a random one onward, so items cluster.
-                    let start = *next_shelf
-                        .entry(p)
-                        .or_insert_with(|| rng.random_range(0..of_kind.len()));
-                    let n = of_kind.len();
-                    of_kind.rotate_left(start % n);
-                }
-                surfaces.extend(of_kind);
-            }
-            let mut placed = None;
-            'surfaces: for sk in surfaces {
-                let surface = &parent.support_surfaces[sk];
-                let occ = occupied.entry((p, sk)).or_default();
-                let (cw, ch, cd) = (
-                    child.size[0] as f64,
-                    child.size[1] as f64,
-                    child.size[2] as f64,
-                );
-                let mut scale = 1.0f64;
-                if let Some(clear) = surface.clearance {
-                    scale = scale.min((clear as f64 - 0.01) / ch);
-                }
-                let b = surface_bounds(surface);
-                for rel_yaw in [0.0, FRAC_PI_2] {
-                    let (w, d) = if rel_yaw == 0.0 { (cw, cd) } else { (cd, cw) };
-                    let fit = ((b[2] - b[0]) * 0.98 / w).min((b[3] - b[1]) * 0.98 / d);
-                    let largest = scale.min(fit).min(1.0);
-                    let smallest = child.scale_range[0] as f64;
-                    // The natural size first, then a little smaller within the scale range.
-                    let tries = [largest, largest * 0.92, largest * 0.85];
-                    for s in tries.into_iter().filter(|s| *s >= smallest && *s > 0.0) {
-                        let (hw, hd) = (w * s / 2.0, d * s / 2.0);
-                        let round = (w - d).abs() <= 0.15 * w.max(d);
-                        if let Some((x, z)) = find_spot(surface, &b, occ, hw, hd, round, rng) {
-                            occ.push([x - hw, z - hd, x + hw, z + hd]);
-                            let local = Point3::new(x, surface.height as f64, z);
-                            let world = parent_pose.transform_point(&local);
-                            let yaw = parent_pose.yaw + rel_yaw;
-                            placed = Some(Pose::new(s * parent_pose.scale, yaw, world.coords));
-                            // Keep filling this shelf next time.
-                            if surface.kind == SurfaceKind::Shelf {
-                                let shelves: Vec<usize> = parent
-                                    .support_surfaces
-                                    .iter()
-                                    .enumerate()
-                                    .filter(|(_, s)| s.kind == SurfaceKind::Shelf)
-                                    .map(|(k, _)| k)
-                                    .collect();
-                                if let Some(pos) = shelves.iter().position(|&k| k == sk) {
-                                    next_shelf.insert(p, pos);
-                                }
-                            }
-                            break 'surfaces;
-                        }
-                    }
-                }
-            }
-            match placed {
+            let surfaces = packer.surfaces(o.support, &infos[p], p, rng);
+            match packer.place(&infos[p], &infos[i], p, parent_pose, surfaces, rng) {
                 Some(pose) => {
                     poses.insert(i, pose);
                 }
@@ -238,6 +134,149 @@ pub(crate) fn place_children(
         }
     }
     dropped
+}
+
+/// The order children are placed in: what the prompt asked for first (a crowded top drops an
+/// extra, never the stated mug), then largest first, so a small item never blocks a big one
+/// on a shared surface.
+fn fill_order(plan: &Plan, infos: &[AssetInfo]) -> Vec<usize> {
+    let area = |i: usize| -(infos[i].size[0] as f64 * infos[i].size[2] as f64);
+    let asked = |i: usize| {
+        let o = &plan.objects[i];
+        o.hard || plan.requested.iter().any(|r| r.ids.contains(&o.id))
+    };
+    let mut order: Vec<usize> = (0..plan.objects.len()).collect();
+    order.sort_by(|&a, &b| {
+        asked(b)
+            .cmp(&asked(a))
+            .then(area(a).total_cmp(&area(b)))
+            .then(a.cmp(&b))
+    });
+    order
+}
+
+/// What the children placed so far take up on their parents' surfaces.
+#[derive(Debug, Default)]
+struct Packer {
+    /// Occupied rectangles per (parent, surface index).
+    occupied: BTreeMap<(usize, usize), Vec<Rect>>,
+    /// The shelf each parent fills next, chosen at random once.
+    next_shelf: BTreeMap<usize, usize>,
+}
+
+impl Packer {
+    /// The surfaces of `parent` (plan index `p`) a child held by `support` may use, best kind
+    /// first; shelves from the one the parent fills next onward, so items cluster.
+    fn surfaces(
+        &mut self,
+        support: RelationKind,
+        parent: &AssetInfo,
+        p: usize,
+        rng: &mut ChaCha8Rng,
+    ) -> Vec<usize> {
+        let mut surfaces: Vec<usize> = Vec::new();
+        for kind in kinds_for(support) {
+            let mut of_kind: Vec<usize> = parent
+                .support_surfaces
+                .iter()
+                .enumerate()
+                .filter(|(_, s)| s.kind == *kind)
+                .map(|(k, _)| k)
+                .collect();
+            if support == RelationKind::Under && *kind == SurfaceKind::Under {
+                // A low shelf beneath a table top is "under" it too (measured against the
+                // asset's height).
+                let low = parent.size[1] * LOW_SHELF_SHARE as f32;
+                of_kind.extend(
+                    parent
+                        .support_surfaces
+                        .iter()
+                        .enumerate()
+                        .filter(|(_, s)| {
+                            s.kind == SurfaceKind::Shelf
+                                && s.height <= low
+                                && parent
+                                    .support_surfaces
+                                    .iter()
+                                    .any(|t| t.kind == SurfaceKind::Top && t.height > s.height)
+                        })
+                        .map(|(k, _)| k),
+                );
+            }
+            if *kind == SurfaceKind::Shelf && !of_kind.is_empty() {
+                // Fill shelves from a random one onward, so items cluster.
+                let start = *self
+                    .next_shelf
+                    .entry(p)
+                    .or_insert_with(|| rng.random_range(0..of_kind.len()));
+                let n = of_kind.len();
+                of_kind.rotate_left(start % n);
+            }
+            surfaces.extend(of_kind);
+        }
+        surfaces
+    }
+
+    /// The pose of `child` on the first of `surfaces` of `parent` (plan index `p`, at
+    /// `parent_pose`) with room for it: square to the parent or turned a quarter, at its
+    /// natural size or a little smaller within its scale range. `None` when none has room.
+    fn place(
+        &mut self,
+        parent: &AssetInfo,
+        child: &AssetInfo,
+        p: usize,
+        parent_pose: Pose,
+        surfaces: Vec<usize>,
+        rng: &mut ChaCha8Rng,
+    ) -> Option<Pose> {
+        for sk in surfaces {
+            let surface = &parent.support_surfaces[sk];
+            let occ = self.occupied.entry((p, sk)).or_default();
+            let (cw, ch, cd) = (
+                child.size[0] as f64,
+                child.size[1] as f64,
+                child.size[2] as f64,
+            );
+            let mut scale = 1.0f64;
+            if let Some(clear) = surface.clearance {
+                scale = scale.min((clear as f64 - 0.01) / ch);
+            }
+            let b = surface_bounds(surface);
+            for rel_yaw in [0.0, FRAC_PI_2] {
+                let (w, d) = if rel_yaw == 0.0 { (cw, cd) } else { (cd, cw) };
+                let fit = ((b[2] - b[0]) * 0.98 / w).min((b[3] - b[1]) * 0.98 / d);
+                let largest = scale.min(fit).min(1.0);
+                let smallest = child.scale_range[0] as f64;
+                // The natural size first, then a little smaller within the scale range.
+                let tries = [largest, largest * 0.92, largest * 0.85];
+                for s in tries.into_iter().filter(|s| *s >= smallest && *s > 0.0) {
+                    let (hw, hd) = (w * s / 2.0, d * s / 2.0);
+                    let round = (w - d).abs() <= 0.15 * w.max(d);
+                    if let Some((x, z)) = find_spot(surface, &b, occ, hw, hd, round, rng) {
+                        occ.push([x - hw, z - hd, x + hw, z + hd]);
+                        let local = Point3::new(x, surface.height as f64, z);
+                        let world = parent_pose.transform_point(&local);
+                        let yaw = parent_pose.yaw + rel_yaw;
+                        // Keep filling this shelf next time.
+                        if surface.kind == SurfaceKind::Shelf {
+                            let shelves: Vec<usize> = parent
+                                .support_surfaces
+                                .iter()
+                                .enumerate()
+                                .filter(|(_, s)| s.kind == SurfaceKind::Shelf)
+                                .map(|(k, _)| k)
+                                .collect();
+                            if let Some(pos) = shelves.iter().position(|&k| k == sk) {
+                                self.next_shelf.insert(p, pos);
+                            }
+                        }
+                        return Some(Pose::new(s * parent_pose.scale, yaw, world.coords));
+                    }
+                }
+            }
+        }
+        None
+    }
 }
 
 /// A free centre for a `2hw × 2hd` rectangle on the surface: packed left to right on shelves

@@ -35,12 +35,76 @@ pub(super) fn build(
     request: &PlanRequest,
     mut drafts: Vec<Draft>,
 ) -> Result<Tree, PlanError> {
-    let knowledge = &planner.knowledge;
     let primary = &reading.archetypes[0];
-    let prompt = reading.prompt.as_str();
-    let available = &request.available_categories;
     // The anchor.
-    let anchor = drafts
+    let anchor = choose_anchor(planner, &drafts).ok_or_else(|| PlanError::NothingAvailable {
+        prompt: reading.prompt.clone(),
+        available: request.available_categories.len(),
+    })?;
+    if drafts[anchor].place != DraftPlace::Anchor {
+        drafts[anchor].place = DraftPlace::Anchor;
+    }
+    // A relative place must not point at itself or form loops: fall back to free.
+    for d in 0..drafts.len() {
+        if let DraftPlace::Relative(_, t) | DraftPlace::Opposite(t) = drafts[d].place {
+            if t == d || matches!(drafts[t].place, DraftPlace::Support(..)) {
+                drafts[d].place = DraftPlace::Zone(Zone::Free);
+            }
+        }
+    }
+    break_support_cycles(&mut drafts);
+
+    // Order: anchor, other ground objects, then supported objects by depth.
+    let order = ground_first(&drafts, anchor);
+    let mut ids = vec![String::new(); drafts.len()];
+    let mut counters: BTreeMap<&str, usize> = BTreeMap::new();
+    for &d in &order {
+        let n = counters.entry(drafts[d].category.as_str()).or_default();
+        ids[d] = format!("{}_{}", drafts[d].category, n);
+        *n += 1;
+    }
+
+    let indoor = primary.environment == Environment::Indoor;
+    let mut objects: Vec<PlannedObject> = Vec::with_capacity(drafts.len());
+    let mut layers: BTreeMap<usize, Layer> = BTreeMap::new();
+    let mut constraints = Vec::new();
+    for &d in &order {
+        let draft = &drafts[d];
+        let (zone, support, parent, mut relations) =
+            placement(draft, primary.anchor_place, indoor, &ids);
+        for (kind, t) in &draft.extra {
+            let r = Relation::new(*kind, ids[*t].clone());
+            if !relations.contains(&r) && *t != d {
+                relations.push(r);
+            }
+        }
+        let layer = layer_of(&draft.place, &zone, &layers, primary.anchor_place);
+        layers.insert(d, layer);
+        constraints.extend(stated_constraints(draft, &ids[d], &ids));
+        objects.push(PlannedObject {
+            id: ids[d].clone(),
+            category: draft.category.clone(),
+            layer,
+            support,
+            parent,
+            zone,
+            relations,
+            hard: draft.hard,
+        });
+    }
+    Ok(Tree {
+        anchor: ids[anchor].clone(),
+        objects,
+        constraints,
+        ids,
+    })
+}
+
+/// The anchor: the draft placed as one, else the largest floor object standing in a zone or
+/// next to another.
+fn choose_anchor(planner: &KnowledgePlanner, drafts: &[Draft]) -> Option<usize> {
+    let knowledge = &planner.knowledge;
+    drafts
         .iter()
         .position(|d| d.place == DraftPlace::Anchor)
         .or_else(|| {
@@ -61,24 +125,11 @@ pub(super) fn build(
                 })
                 .map(|(i, _)| i)
         })
-        .ok_or_else(|| PlanError::NothingAvailable {
-            prompt: prompt.to_owned(),
-            available: available.len(),
-        })?;
-    if drafts[anchor].place != DraftPlace::Anchor {
-        drafts[anchor].place = DraftPlace::Anchor;
-    }
-    // A relative place must not point at itself or form loops: fall back to free.
-    for d in 0..drafts.len() {
-        if let DraftPlace::Relative(_, t) | DraftPlace::Opposite(t) = drafts[d].place {
-            if t == d || matches!(drafts[t].place, DraftPlace::Support(..)) {
-                drafts[d].place = DraftPlace::Zone(Zone::Free);
-            }
-        }
-    }
-    break_support_cycles(&mut drafts);
+}
 
-    // Order: anchor, other ground objects, then supported objects by depth.
+/// The drafts in plan order: the anchor, other ground objects, then supported objects by
+/// depth (ties in drafting order).
+fn ground_first(drafts: &[Draft], anchor: usize) -> Vec<usize> {
     let depth = |mut d: usize| {
         let mut n = 0;
         while let DraftPlace::Support(_, p) = drafts[d].place {
@@ -92,157 +143,141 @@ pub(super) fn build(
     };
     let mut order: Vec<usize> = (0..drafts.len()).collect();
     order.sort_by_key(|&d| (d != anchor, depth(d), d));
-    let mut ids = vec![String::new(); drafts.len()];
-    let mut counters: BTreeMap<&str, usize> = BTreeMap::new();
-    for &d in &order {
-        let n = counters.entry(drafts[d].category.as_str()).or_default();
-        ids[d] = format!("{}_{}", drafts[d].category, n);
-        *n += 1;
-    }
+    order
+}
 
-    let environment = primary.environment;
-    let indoor = environment == Environment::Indoor;
-    let mut objects: Vec<PlannedObject> = Vec::with_capacity(drafts.len());
-    let mut layers: BTreeMap<usize, Layer> = BTreeMap::new();
-    let mut constraints = Vec::new();
-    for &d in &order {
-        let draft = &drafts[d];
-        let (zone, support, parent, mut relations) = match &draft.place {
-            DraftPlace::Anchor => {
-                let wall = draft.wall.clone().or_else(|| {
-                    (primary.anchor_place == AnchorPlace::Wall && indoor)
-                        .then(|| BACK_WALL.to_owned())
-                });
-                match wall {
-                    Some(w) if indoor => (
-                        Zone::Wall {
-                            wall: Some(w.clone()),
-                        },
-                        RelationKind::AgainstWall,
-                        ParentRef::Ground,
-                        vec![Relation::new(RelationKind::AgainstWall, w)],
-                    ),
-                    _ => (
-                        Zone::Center,
-                        RelationKind::OnFloor,
-                        ParentRef::Ground,
-                        vec![],
-                    ),
-                }
-            }
-            DraftPlace::Zone(zone) => {
-                let against =
-                    indoor && matches!(zone, Zone::Wall { .. } | Zone::Corner | Zone::WallMounted);
-                let mut rel = vec![];
-                if let (true, Zone::Wall { wall: Some(w) }) = (indoor, zone) {
-                    rel.push(Relation::new(RelationKind::AgainstWall, w.clone()));
-                }
-                let zone = if indoor || !matches!(zone, Zone::WallMounted) {
-                    zone.clone()
-                } else {
-                    Zone::Free
-                };
-                (
-                    zone,
-                    if against {
-                        RelationKind::AgainstWall
-                    } else {
-                        RelationKind::OnFloor
+/// A draft's zone, support, parent and relations, from its place (`ids`: every draft's id).
+fn placement(
+    draft: &Draft,
+    anchor_place: AnchorPlace,
+    indoor: bool,
+    ids: &[String],
+) -> (Zone, RelationKind, ParentRef, Vec<Relation>) {
+    match &draft.place {
+        DraftPlace::Anchor => {
+            let wall = draft.wall.clone().or_else(|| {
+                (anchor_place == AnchorPlace::Wall && indoor).then(|| BACK_WALL.to_owned())
+            });
+            match wall {
+                Some(w) if indoor => (
+                    Zone::Wall {
+                        wall: Some(w.clone()),
                     },
+                    RelationKind::AgainstWall,
                     ParentRef::Ground,
-                    rel,
-                )
-            }
-            DraftPlace::Relative(kind, t) => {
-                let mut rel = vec![Relation::new(*kind, ids[*t].clone())];
-                if *kind == RelationKind::Around {
-                    rel.push(Relation::new(RelationKind::Facing, ids[*t].clone()));
-                }
-                (
-                    Zone::Relative,
+                    vec![Relation::new(RelationKind::AgainstWall, w)],
+                ),
+                _ => (
+                    Zone::Center,
                     RelationKind::OnFloor,
                     ParentRef::Ground,
-                    rel,
-                )
+                    vec![],
+                ),
             }
-            DraftPlace::Opposite(t) => {
-                let support = if indoor {
+        }
+        DraftPlace::Zone(zone) => {
+            let against =
+                indoor && matches!(zone, Zone::Wall { .. } | Zone::Corner | Zone::WallMounted);
+            let mut rel = vec![];
+            if let (true, Zone::Wall { wall: Some(w) }) = (indoor, zone) {
+                rel.push(Relation::new(RelationKind::AgainstWall, w.clone()));
+            }
+            let zone = if indoor || !matches!(zone, Zone::WallMounted) {
+                zone.clone()
+            } else {
+                Zone::Free
+            };
+            (
+                zone,
+                if against {
                     RelationKind::AgainstWall
                 } else {
                     RelationKind::OnFloor
-                };
-                (
-                    Zone::Wall { wall: None },
-                    support,
-                    ParentRef::Ground,
-                    vec![Relation::new(RelationKind::Facing, ids[*t].clone())],
-                )
-            }
-            DraftPlace::Support(kind, p) => (
-                Zone::Supported,
-                *kind,
-                ParentRef::Object(ids[*p].clone()),
-                vec![],
-            ),
-        };
-        for (kind, t) in &draft.extra {
-            let r = Relation::new(*kind, ids[*t].clone());
-            if !relations.contains(&r) && *t != d {
-                relations.push(r);
-            }
+                },
+                ParentRef::Ground,
+                rel,
+            )
         }
-        let layer = match (&draft.place, &zone) {
-            (DraftPlace::Anchor, _) => Layer::Middle,
-            // Small things on the anchor group come forward; on storage they stay back.
-            (DraftPlace::Support(_, p), _) => {
-                match layers.get(p).copied().unwrap_or(Layer::Middle) {
-                    Layer::Background => Layer::Background,
-                    _ => Layer::Foreground,
-                }
+        DraftPlace::Relative(kind, t) => {
+            let mut rel = vec![Relation::new(*kind, ids[*t].clone())];
+            if *kind == RelationKind::Around {
+                rel.push(Relation::new(RelationKind::Facing, ids[*t].clone()));
             }
-            (_, Zone::Center) if !matches!(primary.anchor_place, AnchorPlace::Center) => {
-                Layer::Foreground
-            }
-            (_, Zone::Wall { .. } | Zone::Corner | Zone::WallMounted) => Layer::Background,
-            (DraftPlace::Relative(RelationKind::InFrontOf | RelationKind::Facing, _), _) => {
-                Layer::Foreground
-            }
-            (_, Zone::Free) => Layer::Foreground,
-            _ => Layer::Middle,
-        };
-        layers.insert(d, layer);
-        for (kind, target, words) in &draft.constraints {
-            let (target, phrase) = match target {
-                ConstraintTarget::Object(_) => {
-                    let (words, t) = words.rsplit_once('#').unwrap_or((words, "0"));
-                    let t: usize = t.parse().unwrap_or(0);
-                    (ConstraintTarget::Object(ids[t].clone()), words.to_owned())
-                }
-                other => (other.clone(), words.clone()),
+            (
+                Zone::Relative,
+                RelationKind::OnFloor,
+                ParentRef::Ground,
+                rel,
+            )
+        }
+        DraftPlace::Opposite(t) => {
+            let support = if indoor {
+                RelationKind::AgainstWall
+            } else {
+                RelationKind::OnFloor
             };
-            constraints.push(PlanConstraint {
-                subject: ids[d].clone(),
-                kind: *kind,
-                target,
-                phrase,
-            });
+            (
+                Zone::Wall { wall: None },
+                support,
+                ParentRef::Ground,
+                vec![Relation::new(RelationKind::Facing, ids[*t].clone())],
+            )
         }
-        objects.push(PlannedObject {
-            id: ids[d].clone(),
-            category: draft.category.clone(),
-            layer,
-            support,
-            parent,
-            zone,
-            relations,
-            hard: draft.hard,
-        });
+        DraftPlace::Support(kind, p) => (
+            Zone::Supported,
+            *kind,
+            ParentRef::Object(ids[*p].clone()),
+            vec![],
+        ),
     }
-    Ok(Tree {
-        anchor: ids[anchor].clone(),
-        objects,
-        constraints,
-        ids,
+}
+
+/// The depth layer of a draft at `place` in `zone` (`layers`: those of the drafts before it).
+fn layer_of(
+    place: &DraftPlace,
+    zone: &Zone,
+    layers: &BTreeMap<usize, Layer>,
+    anchor_place: AnchorPlace,
+) -> Layer {
+    match (place, zone) {
+        (DraftPlace::Anchor, _) => Layer::Middle,
+        // Small things on the anchor group come forward; on storage they stay back.
+        (DraftPlace::Support(_, p), _) => match layers.get(p).copied().unwrap_or(Layer::Middle) {
+            Layer::Background => Layer::Background,
+            _ => Layer::Foreground,
+        },
+        (_, Zone::Center) if !matches!(anchor_place, AnchorPlace::Center) => Layer::Foreground,
+        (_, Zone::Wall { .. } | Zone::Corner | Zone::WallMounted) => Layer::Background,
+        (DraftPlace::Relative(RelationKind::InFrontOf | RelationKind::Facing, _), _) => {
+            Layer::Foreground
+        }
+        (_, Zone::Free) => Layer::Foreground,
+        _ => Layer::Middle,
+    }
+}
+
+/// The hard constraints the prompt stated on `draft` (whose id is `subject`), with object
+/// targets named by their ids.
+fn stated_constraints<'a>(
+    draft: &'a Draft,
+    subject: &'a str,
+    ids: &'a [String],
+) -> impl Iterator<Item = PlanConstraint> + 'a {
+    draft.constraints.iter().map(move |(kind, target, words)| {
+        let (target, phrase) = match target {
+            ConstraintTarget::Object(_) => {
+                let (words, t) = words.rsplit_once('#').unwrap_or((words, "0"));
+                let t: usize = t.parse().unwrap_or(0);
+                (ConstraintTarget::Object(ids[t].clone()), words.to_owned())
+            }
+            other => (other.clone(), words.clone()),
+        };
+        PlanConstraint {
+            subject: subject.to_owned(),
+            kind: *kind,
+            target,
+            phrase,
+        }
     })
 }
 

@@ -172,297 +172,430 @@ pub(super) fn build(
     center: [f32; 2],
     prefix: &str,
 ) {
-    let (cx, cz) = (center[0], center[1]);
-    let (hw, hd, t) = (0.5 * c.width, 0.5 * c.depth, c.board);
-    let y0 = c.body_bottom();
-    let h = c.height;
-    let back_t = if c.back { (0.6 * t).max(0.008) } else { 0.0 };
-    let glass_t = 0.008;
-    let zb = cz - hd + back_t;
-    let mut zf = cz + hd;
-    if c.front == Front::Glass {
-        zf -= glass_t;
-    }
-    let (xi0, xi1) = match c.posts {
-        Some(p) => (cx - hw + p, cx + hw - p),
-        None => (cx - hw + t, cx + hw - t),
-    };
-    let yi0 = y0 + t;
-    let yi1 = if c.top_board { h - t } else { h };
-
-    // Feet.
-    match c.feet {
-        Feet::Plinth { height, recess } => b.cuboid(
-            &format!("{prefix}plinth"),
-            m.body,
-            [cx - hw + 0.01, 0.0, cz - hd + 0.01],
-            [cx + hw - 0.01, height + 0.002, cz + hd - recess],
-        ),
-        Feet::Legs { height, section } => {
-            for (i, (sx, sz)) in CORNERS.iter().enumerate() {
-                let (x, z) = (
-                    cx + sx * (hw - 0.02 - 0.5 * section),
-                    cz + sz * (hd - 0.02 - 0.5 * section),
-                );
-                b.part(square_post(
-                    &format!("{prefix}leg_{i}"),
-                    m.body,
-                    [x, z],
-                    section,
-                    0.0,
-                    height + 0.005,
-                ));
-            }
-            if height >= 0.12 {
-                let (ix, iz) = (hw - 0.02 - section, hd - 0.02 - section);
-                b.surface(rect_surface(
-                    &format!("{prefix}under"),
-                    SurfaceKind::Under,
-                    [cx - ix, cz - iz],
-                    [cx + ix, cz + iz],
-                    0.0,
-                    Some(height - 0.02),
-                    0.02,
-                ));
-            }
-        }
-        Feet::Casters { height } => {
-            let r = 0.35 * height;
-            for (i, (sx, sz)) in CORNERS.iter().enumerate() {
-                let (x, z) = (cx + sx * (hw - 0.05), cz + sz * (hd - 0.05));
-                b.part(ellipsoid(
-                    &format!("{prefix}wheel_{i}"),
-                    m.handle,
-                    [x, r, z],
-                    [0.4 * r, r, r],
-                    6,
-                    10,
-                ));
-                b.part(cylinder(
-                    &format!("{prefix}caster_{i}"),
-                    m.handle,
-                    [x, z],
-                    0.6 * r,
-                    1.6 * r,
-                    height + 0.003,
-                    8,
-                ));
-            }
-        }
-    }
-
-    // Body boards.
-    b.cuboid(
-        &format!("{prefix}bottom"),
-        m.body,
-        [cx - hw, y0, cz - hd],
-        [cx + hw, yi0, cz + hd],
-    );
-    if c.top_board {
-        b.cuboid(
-            &format!("{prefix}top"),
-            m.body,
-            [cx - hw, h - t, cz - hd],
-            [cx + hw, h, cz + hd],
-        );
-    }
-    if c.back {
-        b.cuboid(
-            &format!("{prefix}back"),
-            m.back,
-            [cx - hw, y0, cz - hd],
-            [cx + hw, h, zb],
-        );
-    }
-    let side_y0 = match c.feet {
-        Feet::Plinth { .. } => 0.0,
-        _ => y0,
-    };
-    let column_w = (xi1 - xi0 - (c.columns as f32 - 1.0) * t) / c.columns as f32;
-    let column_x0 = |i: usize| xi0 + i as f32 * (column_w + t);
-    match c.posts {
-        Some(p) => {
-            let mut xs = vec![cx - hw + 0.5 * p, cx + hw - 0.5 * p];
-            xs.extend((1..c.columns).map(|i| column_x0(i) - 0.5 * t));
-            for (i, x) in xs.into_iter().enumerate() {
-                for (k, z) in [cz - hd + 0.5 * p, cz + hd - 0.5 * p]
-                    .into_iter()
-                    .enumerate()
-                {
-                    b.part(square_post(
-                        &format!("{prefix}post_{i}_{k}"),
-                        m.side,
-                        [x, z],
-                        p,
-                        side_y0,
-                        h,
-                    ));
-                }
-            }
-        }
-        None => {
-            b.cuboid(
-                &format!("{prefix}side_left"),
-                m.side,
-                [cx - hw, side_y0, cz - hd],
-                [cx - hw + t, h, cz + hd],
-            );
-            b.cuboid(
-                &format!("{prefix}side_right"),
-                m.side,
-                [cx + hw - t, side_y0, cz - hd],
-                [cx + hw, h, cz + hd],
-            );
-            for i in 1..c.columns {
-                let x = column_x0(i);
-                b.cuboid(
-                    &format!("{prefix}divider_{i}"),
-                    m.body,
-                    [x - t, yi0 - 0.001, zb - 0.001],
-                    [x, yi1 + 0.001, zf],
-                );
-            }
-        }
-    }
-
-    // Rows: floors and ceilings.
-    let mut floors = vec![yi0];
-    let mut ceilings = Vec::new();
-    for (k, f) in c.shelves.iter().enumerate() {
-        let y = yi0 + f * (yi1 - yi0);
-        let (lo, hi) = (y - 0.5 * t, y + 0.5 * t);
-        b.cuboid(
-            &format!("{prefix}shelf_{k}"),
-            m.shelf,
-            [xi0 - 0.001, lo, zb - 0.001],
-            [xi1 + 0.001, hi, zf - 0.005],
-        );
-        ceilings.push(lo);
-        floors.push(hi);
-    }
-    ceilings.push(yi1);
-    let rows = floors.len();
-
-    for col in 0..c.columns {
-        let (x0, x1) = (column_x0(col), column_x0(col) + column_w);
-        for row in 0..rows {
-            let (floor, ceiling) = (floors[row], ceilings[row]);
-            let name = if c.columns == 1 {
-                format!("{prefix}shelf_{row}")
-            } else {
-                format!("{prefix}shelf_{col}_{row}")
-            };
-            if row < c.drawer_rows {
-                let gap = 0.003;
-                b.cuboid(
-                    &format!("{prefix}drawer_{col}_{row}"),
-                    m.front,
-                    [x0 + gap, floor + gap, zb + 0.02],
-                    [x1 - gap, ceiling - gap, cz + hd + 0.006],
-                );
-                let (mx, my) = (0.5 * (x0 + x1), 0.5 * (floor + ceiling));
-                let hl = (0.25 * (x1 - x0)).min(0.08);
-                b.cuboid(
-                    &format!("{prefix}drawer_handle_{col}_{row}"),
-                    m.handle,
-                    [mx - hl, my - 0.008, cz + hd + 0.005],
-                    [mx + hl, my + 0.008, cz + hd + 0.025],
-                );
-                continue;
-            }
-            let mut front = zf;
-            if c.lip > 0.0 {
-                let lip_t = 0.012;
-                b.cuboid(
-                    &format!("{prefix}lip_{col}_{row}"),
-                    m.shelf,
-                    [x0, floor - 0.001, zf - 0.005 - lip_t],
-                    [x1, floor + c.lip, zf - 0.005],
-                );
-                front = zf - 0.005 - lip_t;
-            }
-            let open_above = row + 1 == rows && !c.top_board;
-            b.surface(rect_surface(
-                &name,
-                if open_above {
-                    SurfaceKind::Top
-                } else {
-                    SurfaceKind::Shelf
-                },
-                [x0, zb],
-                [x1, front],
-                floor,
-                (!open_above).then_some(ceiling - floor),
-                0.015,
-            ));
-        }
-    }
-
-    // Front.
-    match c.front {
-        Front::Open => {}
-        Front::Glass => b.cuboid(
-            &format!("{prefix}glass_front"),
-            m.front,
-            [cx - hw, y0, cz + hd - glass_t],
-            [cx + hw, h, cz + hd],
-        ),
-        Front::Doors { angle } => {
-            let door_y0 = floors.get(c.drawer_rows).map_or(y0, |f| f - t);
-            let door_t = t.max(0.015);
-            let mut door = 0;
-            for col in 0..c.columns {
-                let (x0, x1) = (column_x0(col) - t, column_x0(col) + column_w + t);
-                let pair = x1 - x0 > 0.65;
-                let leaves: Vec<(f32, f32, bool)> = if pair {
-                    let mid = 0.5 * (x0 + x1);
-                    vec![(x0, mid, true), (mid, x1, false)]
-                } else {
-                    vec![(x0, x1, col % 2 == 0)]
-                };
-                for (a, bx, hinge_left) in leaves {
-                    let width = bx - a - 0.004;
-                    let (hinge_x, dir_x, yaw) = if hinge_left {
-                        (a, angle.cos(), -angle)
-                    } else {
-                        (bx, -angle.cos(), angle + PI)
-                    };
-                    let dir_z = angle.sin();
-                    // The door's inner face stays at the hinge line, so it never enters a bay.
-                    let along = 0.5 * width;
-                    let out = 0.5 * door_t;
-                    let normal = if hinge_left {
-                        [dir_z, -dir_x]
-                    } else {
-                        [-dir_z, dir_x]
-                    };
-                    let centre = [
-                        hinge_x + dir_x * along + normal[0] * out,
-                        cz + hd + dir_z * along + normal[1] * out,
-                    ];
-                    b.part(box_yaw(
-                        &format!("{prefix}door_{door}"),
-                        m.front,
-                        centre,
-                        [0.5 * width, 0.5 * door_t],
-                        door_y0,
-                        h,
-                        yaw,
-                    ));
-                    door += 1;
-                }
-            }
-        }
-    }
-
+    let f = Frame::new(c, m, center, prefix);
+    f.add_feet(b);
+    f.add_body(b);
+    let floors = f.add_rows(b);
+    f.add_front(b, &floors);
     if c.top_board {
         b.top_surface(
             &format!("{prefix}top"),
-            [cx - hw, cz - hd],
-            [cx + hw, cz + hd],
-            h,
+            [f.cx - f.hw, f.cz - f.hd],
+            [f.cx + f.hw, f.cz + f.hd],
+            f.h,
             0.03,
         );
+    }
+}
+
+/// Thickness of a glass front.
+const GLASS_T: f32 = 0.008;
+
+/// A carcass being built: its parts' materials, name prefix and the measures every phase
+/// shares (asset frame, metres).
+struct Frame<'a> {
+    c: &'a Carcass,
+    m: CarcassMaterials,
+    prefix: &'a str,
+    /// Centre of the footprint.
+    cx: f32,
+    cz: f32,
+    /// Half width, half depth and board thickness.
+    hw: f32,
+    hd: f32,
+    t: f32,
+    /// Underside of the bottom board, and the total height.
+    y0: f32,
+    h: f32,
+    /// Front face of the back board, and the front of the compartments.
+    zb: f32,
+    zf: f32,
+    /// Interior x range between the sides (or posts) and y range between bottom and top.
+    xi0: f32,
+    xi1: f32,
+    yi0: f32,
+    yi1: f32,
+    /// Clear width of one column.
+    column_w: f32,
+}
+
+impl<'a> Frame<'a> {
+    fn new(c: &'a Carcass, m: CarcassMaterials, center: [f32; 2], prefix: &'a str) -> Self {
+        let (cx, cz) = (center[0], center[1]);
+        let (hw, hd, t) = (0.5 * c.width, 0.5 * c.depth, c.board);
+        let y0 = c.body_bottom();
+        let h = c.height;
+        let back_t = if c.back { (0.6 * t).max(0.008) } else { 0.0 };
+        let zb = cz - hd + back_t;
+        let mut zf = cz + hd;
+        if c.front == Front::Glass {
+            zf -= GLASS_T;
+        }
+        let (xi0, xi1) = match c.posts {
+            Some(p) => (cx - hw + p, cx + hw - p),
+            None => (cx - hw + t, cx + hw - t),
+        };
+        let yi0 = y0 + t;
+        let yi1 = if c.top_board { h - t } else { h };
+        let column_w = (xi1 - xi0 - (c.columns as f32 - 1.0) * t) / c.columns as f32;
+        Self {
+            c,
+            m,
+            prefix,
+            cx,
+            cz,
+            hw,
+            hd,
+            t,
+            y0,
+            h,
+            zb,
+            zf,
+            xi0,
+            xi1,
+            yi0,
+            yi1,
+            column_w,
+        }
+    }
+
+    /// Left edge of column `i`'s clear space.
+    fn column_x0(&self, i: usize) -> f32 {
+        self.xi0 + i as f32 * (self.column_w + self.t)
+    }
+
+    /// Feet: a plinth, legs (with the surface under the body when tall enough) or casters.
+    fn add_feet(&self, b: &mut AssetBuilder) {
+        let (prefix, m) = (self.prefix, self.m);
+        let (cx, cz, hw, hd) = (self.cx, self.cz, self.hw, self.hd);
+        match self.c.feet {
+            Feet::Plinth { height, recess } => b.cuboid(
+                &format!("{prefix}plinth"),
+                m.body,
+                [cx - hw + 0.01, 0.0, cz - hd + 0.01],
+                [cx + hw - 0.01, height + 0.002, cz + hd - recess],
+            ),
+            Feet::Legs { height, section } => {
+                for (i, (sx, sz)) in CORNERS.iter().enumerate() {
+                    let (x, z) = (
+                        cx + sx * (hw - 0.02 - 0.5 * section),
+                        cz + sz * (hd - 0.02 - 0.5 * section),
+                    );
+                    b.part(square_post(
+                        &format!("{prefix}leg_{i}"),
+                        m.body,
+                        [x, z],
+                        section,
+                        0.0,
+                        height + 0.005,
+                    ));
+                }
+                if height >= 0.12 {
+                    let (ix, iz) = (hw - 0.02 - section, hd - 0.02 - section);
+                    b.surface(rect_surface(
+                        &format!("{prefix}under"),
+                        SurfaceKind::Under,
+                        [cx - ix, cz - iz],
+                        [cx + ix, cz + iz],
+                        0.0,
+                        Some(height - 0.02),
+                        0.02,
+                    ));
+                }
+            }
+            Feet::Casters { height } => {
+                let r = 0.35 * height;
+                for (i, (sx, sz)) in CORNERS.iter().enumerate() {
+                    let (x, z) = (cx + sx * (hw - 0.05), cz + sz * (hd - 0.05));
+                    b.part(ellipsoid(
+                        &format!("{prefix}wheel_{i}"),
+                        m.handle,
+                        [x, r, z],
+                        [0.4 * r, r, r],
+                        6,
+                        10,
+                    ));
+                    b.part(cylinder(
+                        &format!("{prefix}caster_{i}"),
+                        m.handle,
+                        [x, z],
+                        0.6 * r,
+                        1.6 * r,
+                        height + 0.003,
+                        8,
+                    ));
+                }
+            }
+        }
+    }
+
+    /// Body boards: bottom, top, back, then the sides and dividers (or the corner posts).
+    fn add_body(&self, b: &mut AssetBuilder) {
+        let (c, prefix, m) = (self.c, self.prefix, self.m);
+        let (cx, cz, hw, hd, h, y0) = (self.cx, self.cz, self.hw, self.hd, self.h, self.y0);
+        b.cuboid(
+            &format!("{prefix}bottom"),
+            m.body,
+            [cx - hw, y0, cz - hd],
+            [cx + hw, self.yi0, cz + hd],
+        );
+        if c.top_board {
+            b.cuboid(
+                &format!("{prefix}top"),
+                m.body,
+                [cx - hw, h - self.t, cz - hd],
+                [cx + hw, h, cz + hd],
+            );
+        }
+        if c.back {
+            b.cuboid(
+                &format!("{prefix}back"),
+                m.back,
+                [cx - hw, y0, cz - hd],
+                [cx + hw, h, self.zb],
+            );
+        }
+        let side_y0 = match c.feet {
+            Feet::Plinth { .. } => 0.0,
+            _ => y0,
+        };
+        match c.posts {
+            Some(p) => self.add_posts(b, p, side_y0),
+            None => self.add_sides(b, side_y0),
+        }
+    }
+
+    /// Corner posts of section `p` instead of side boards, and posts between the columns.
+    fn add_posts(&self, b: &mut AssetBuilder, p: f32, side_y0: f32) {
+        let (cx, cz, hw, hd, t) = (self.cx, self.cz, self.hw, self.hd, self.t);
+        let mut xs = vec![cx - hw + 0.5 * p, cx + hw - 0.5 * p];
+        xs.extend((1..self.c.columns).map(|i| self.column_x0(i) - 0.5 * t));
+        for (i, x) in xs.into_iter().enumerate() {
+            for (k, z) in [cz - hd + 0.5 * p, cz + hd - 0.5 * p]
+                .into_iter()
+                .enumerate()
+            {
+                b.part(square_post(
+                    &format!("{}post_{i}_{k}", self.prefix),
+                    self.m.side,
+                    [x, z],
+                    p,
+                    side_y0,
+                    self.h,
+                ));
+            }
+        }
+    }
+
+    /// Side boards and the dividers between the columns.
+    fn add_sides(&self, b: &mut AssetBuilder, side_y0: f32) {
+        let (prefix, m) = (self.prefix, self.m);
+        let (cx, cz, hw, hd, h, t) = (self.cx, self.cz, self.hw, self.hd, self.h, self.t);
+        b.cuboid(
+            &format!("{prefix}side_left"),
+            m.side,
+            [cx - hw, side_y0, cz - hd],
+            [cx - hw + t, h, cz + hd],
+        );
+        b.cuboid(
+            &format!("{prefix}side_right"),
+            m.side,
+            [cx + hw - t, side_y0, cz - hd],
+            [cx + hw, h, cz + hd],
+        );
+        for i in 1..self.c.columns {
+            let x = self.column_x0(i);
+            b.cuboid(
+                &format!("{prefix}divider_{i}"),
+                m.body,
+                [x - t, self.yi0 - 0.001, self.zb - 0.001],
+                [x, self.yi1 + 0.001, self.zf],
+            );
+        }
+    }
+
+    /// Rows: the shelf boards, then each compartment (a drawer, or an open shelf surface with
+    /// its lip). Returns the rows' floors, bottom up.
+    fn add_rows(&self, b: &mut AssetBuilder) -> Vec<f32> {
+        let t = self.t;
+        let (yi0, yi1) = (self.yi0, self.yi1);
+        let mut floors = vec![yi0];
+        let mut ceilings = Vec::new();
+        for (k, f) in self.c.shelves.iter().enumerate() {
+            let y = yi0 + f * (yi1 - yi0);
+            let (lo, hi) = (y - 0.5 * t, y + 0.5 * t);
+            b.cuboid(
+                &format!("{}shelf_{k}", self.prefix),
+                self.m.shelf,
+                [self.xi0 - 0.001, lo, self.zb - 0.001],
+                [self.xi1 + 0.001, hi, self.zf - 0.005],
+            );
+            ceilings.push(lo);
+            floors.push(hi);
+        }
+        ceilings.push(yi1);
+        let rows = floors.len();
+        for col in 0..self.c.columns {
+            for row in 0..rows {
+                let span = [floors[row], ceilings[row]];
+                if row < self.c.drawer_rows {
+                    self.add_drawer(b, col, row, span);
+                } else {
+                    self.add_compartment(b, col, row, span, row + 1 == rows);
+                }
+            }
+        }
+        floors
+    }
+
+    /// The drawer closing compartment (`col`, `row`) between `span` (floor, ceiling), with its
+    /// handle.
+    fn add_drawer(&self, b: &mut AssetBuilder, col: usize, row: usize, span: [f32; 2]) {
+        let (prefix, m) = (self.prefix, self.m);
+        let (x0, x1) = (self.column_x0(col), self.column_x0(col) + self.column_w);
+        let (floor, ceiling) = (span[0], span[1]);
+        let (cz, hd) = (self.cz, self.hd);
+        let gap = 0.003;
+        b.cuboid(
+            &format!("{prefix}drawer_{col}_{row}"),
+            m.front,
+            [x0 + gap, floor + gap, self.zb + 0.02],
+            [x1 - gap, ceiling - gap, cz + hd + 0.006],
+        );
+        let (mx, my) = (0.5 * (x0 + x1), 0.5 * (floor + ceiling));
+        let hl = (0.25 * (x1 - x0)).min(0.08);
+        b.cuboid(
+            &format!("{prefix}drawer_handle_{col}_{row}"),
+            m.handle,
+            [mx - hl, my - 0.008, cz + hd + 0.005],
+            [mx + hl, my + 0.008, cz + hd + 0.025],
+        );
+    }
+
+    /// The open compartment (`col`, `row`) between `span` (floor, ceiling): its lip and its
+    /// support surface (a top surface when it is the last row and nothing covers it).
+    fn add_compartment(
+        &self,
+        b: &mut AssetBuilder,
+        col: usize,
+        row: usize,
+        span: [f32; 2],
+        last_row: bool,
+    ) {
+        let (c, prefix, zf) = (self.c, self.prefix, self.zf);
+        let (x0, x1) = (self.column_x0(col), self.column_x0(col) + self.column_w);
+        let (floor, ceiling) = (span[0], span[1]);
+        let name = if c.columns == 1 {
+            format!("{prefix}shelf_{row}")
+        } else {
+            format!("{prefix}shelf_{col}_{row}")
+        };
+        let mut front = zf;
+        if c.lip > 0.0 {
+            let lip_t = 0.012;
+            b.cuboid(
+                &format!("{prefix}lip_{col}_{row}"),
+                self.m.shelf,
+                [x0, floor - 0.001, zf - 0.005 - lip_t],
+                [x1, floor + c.lip, zf - 0.005],
+            );
+            front = zf - 0.005 - lip_t;
+        }
+        let open_above = last_row && !c.top_board;
+        b.surface(rect_surface(
+            &name,
+            if open_above {
+                SurfaceKind::Top
+            } else {
+                SurfaceKind::Shelf
+            },
+            [x0, self.zb],
+            [x1, front],
+            floor,
+            (!open_above).then_some(ceiling - floor),
+            0.015,
+        ));
+    }
+
+    /// Front: nothing, a glass pane, or doors left open at their angle above the drawer rows
+    /// (`floors` are the rows' floors).
+    fn add_front(&self, b: &mut AssetBuilder, floors: &[f32]) {
+        let (cx, cz, hw, hd) = (self.cx, self.cz, self.hw, self.hd);
+        match self.c.front {
+            Front::Open => {}
+            Front::Glass => b.cuboid(
+                &format!("{}glass_front", self.prefix),
+                self.m.front,
+                [cx - hw, self.y0, cz + hd - GLASS_T],
+                [cx + hw, self.h, cz + hd],
+            ),
+            Front::Doors { angle } => {
+                let door_y0 = floors
+                    .get(self.c.drawer_rows)
+                    .map_or(self.y0, |f| f - self.t);
+                let mut door = 0;
+                for col in 0..self.c.columns {
+                    let t = self.t;
+                    let (x0, x1) = (
+                        self.column_x0(col) - t,
+                        self.column_x0(col) + self.column_w + t,
+                    );
+                    let pair = x1 - x0 > 0.65;
+                    let leaves: Vec<(f32, f32, bool)> = if pair {
+                        let mid = 0.5 * (x0 + x1);
+                        vec![(x0, mid, true), (mid, x1, false)]
+                    } else {
+                        vec![(x0, x1, col % 2 == 0)]
+                    };
+                    for leaf in leaves {
+                        self.add_door(b, door, leaf, door_y0, angle);
+                        door += 1;
+                    }
+                }
+            }
+        }
+    }
+
+    /// Door number `door`, the leaf (left edge, right edge, hinged on the left) above
+    /// `door_y0`, open by `angle`.
+    fn add_door(
+        &self,
+        b: &mut AssetBuilder,
+        door: usize,
+        leaf: (f32, f32, bool),
+        door_y0: f32,
+        angle: f32,
+    ) {
+        let (a, bx, hinge_left) = leaf;
+        let door_t = self.t.max(0.015);
+        let width = bx - a - 0.004;
+        let (hinge_x, dir_x, yaw) = if hinge_left {
+            (a, angle.cos(), -angle)
+        } else {
+            (bx, -angle.cos(), angle + PI)
+        };
+        let dir_z = angle.sin();
+        // The door's inner face stays at the hinge line, so it never enters a bay.
+        let along = 0.5 * width;
+        let out = 0.5 * door_t;
+        let normal = if hinge_left {
+            [dir_z, -dir_x]
+        } else {
+            [-dir_z, dir_x]
+        };
+        let centre = [
+            hinge_x + dir_x * along + normal[0] * out,
+            self.cz + self.hd + dir_z * along + normal[1] * out,
+        ];
+        b.part(box_yaw(
+            &format!("{}door_{door}", self.prefix),
+            self.m.front,
+            centre,
+            [0.5 * width, 0.5 * door_t],
+            door_y0,
+            self.h,
+            yaw,
+        ));
     }
 }
 
