@@ -13,10 +13,10 @@ use std::fmt::Write;
 
 use nalgebra::{UnitQuaternion, Vector3};
 
-use crate::architecture::{pieces, OrientedBox, PieceKind};
+use crate::architecture::{pieces, OrientedBox, Piece, PieceKind};
 use crate::geometry::{num, num32, to_z_up, y_up_to_z_up, Identifiers};
 use crate::{Dynamics, ExportScene, DENSITY, FRICTION};
-use scenethesis_scene_graph::Material;
+use scenethesis_scene_graph::{Material, SceneObject};
 
 /// The simulation time step written into the file, in seconds.
 pub const TIMESTEP: f64 = 0.001;
@@ -24,30 +24,52 @@ pub const TIMESTEP: f64 = 0.001;
 /// The scene as an MJCF document (meshes inline, no other files needed).
 pub fn to_mjcf(export: &ExportScene<'_>) -> String {
     let scene = export.scene();
-    let mut names = Identifiers::new(true);
-    let mut materials: Vec<(String, Material)> = Vec::new();
-    let mut material_name = |m: &Material, names: &mut Identifiers| -> String {
-        if let Some((name, _)) = materials.iter().find(|(_, known)| known == m) {
+    let mut doc = MjcfParts {
+        names: Identifiers::new(true),
+        materials: Vec::new(),
+        meshes: String::new(),
+        world: String::new(),
+    };
+    for piece in &pieces(&scene.architecture) {
+        doc.add_architecture(piece);
+    }
+    for object in &scene.objects {
+        doc.add_object(export, object);
+    }
+    doc.into_document(&scene.prompt)
+}
+
+/// The MJCF document being written: unique names, the materials met so far, the `<asset>`
+/// meshes and the `<worldbody>` contents.
+struct MjcfParts {
+    names: Identifiers,
+    materials: Vec<(String, Material)>,
+    meshes: String,
+    world: String,
+}
+
+impl MjcfParts {
+    /// The name of material `m`, added on first use.
+    fn material_name(&mut self, m: &Material) -> String {
+        if let Some((name, _)) = self.materials.iter().find(|(_, known)| known == m) {
             return name.clone();
         }
-        let name = names.make(&format!("mat_{}", m.name));
-        materials.push((name.clone(), m.clone()));
+        let name = self.names.make(&format!("mat_{}", m.name));
+        self.materials.push((name.clone(), m.clone()));
         name
-    };
+    }
 
-    let mut meshes = String::new();
-    let mut world = String::new();
-    let arch = pieces(&scene.architecture);
-    for piece in &arch {
+    /// A piece of the architecture: the floor as a plane, a wall as its boxes.
+    fn add_architecture(&mut self, piece: &Piece) {
         let mesh = piece.to_mesh();
-        let mat = material_name(&mesh.materials[0], &mut names);
+        let mat = self.material_name(&mesh.materials[0]);
         match piece.kind {
             PieceKind::Floor => {
                 let b = &piece.boxes[0];
                 let c = to_z_up(&(b.center.coords + Vector3::new(0.0, b.half_extents.y, 0.0)));
-                let name = names.make(&piece.id);
+                let name = self.names.make(&piece.id);
                 let _ = writeln!(
-                    world,
+                    self.world,
                     "    <geom name=\"{}\" type=\"plane\" pos=\"{} {} 0\" size=\"{} {} 0.1\" material=\"{mat}\" condim=\"3\"/>",
                     attr(&name),
                     num(c.x),
@@ -58,9 +80,9 @@ pub fn to_mjcf(export: &ExportScene<'_>) -> String {
             }
             PieceKind::Wall => {
                 for (i, b) in piece.boxes.iter().enumerate() {
-                    let name = names.make(&format!("{}_{i}", piece.id));
+                    let name = self.names.make(&format!("{}_{i}", piece.id));
                     let _ = writeln!(
-                        world,
+                        self.world,
                         "    <geom name=\"{}\" type=\"box\" {} material=\"{mat}\"/>",
                         attr(&name),
                         box_attributes(b)
@@ -70,14 +92,14 @@ pub fn to_mjcf(export: &ExportScene<'_>) -> String {
         }
     }
 
-    let body_frame = y_up_to_z_up();
-    for object in &scene.objects {
-        let body = names.make(&object.id);
+    /// An object: a body at its pose (free when it moves), with one mesh geom per part.
+    fn add_object(&mut self, export: &ExportScene<'_>, object: &SceneObject) {
+        let body = self.names.make(&object.id);
         let pose = &object.pose;
         let pos = to_z_up(&pose.translation);
-        let q = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), pose.yaw) * body_frame;
+        let q = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), pose.yaw) * y_up_to_z_up();
         let _ = writeln!(
-            world,
+            self.world,
             "    <body name=\"{}\" pos=\"{} {} {}\" quat=\"{}\">",
             attr(&body),
             num(pos.x),
@@ -86,11 +108,11 @@ pub fn to_mjcf(export: &ExportScene<'_>) -> String {
             quat(&q),
         );
         if export.dynamics(object) == Dynamics::Free {
-            let _ = writeln!(world, "      <freejoint name=\"{}\"/>", attr(&body));
+            let _ = writeln!(self.world, "      <freejoint name=\"{}\"/>", attr(&body));
         }
         let mesh = export.mesh(object);
         for part in mesh.parts.iter().filter(|p| !p.triangles.is_empty()) {
-            let name = names.make(&format!("{}_{}", object.id, part.name));
+            let name = self.names.make(&format!("{}_{}", object.id, part.name));
             let vertices: Vec<String> = part
                 .positions
                 .iter()
@@ -103,50 +125,53 @@ pub fn to_mjcf(export: &ExportScene<'_>) -> String {
                 .collect();
             let s = num(pose.scale);
             let _ = writeln!(
-                meshes,
+                self.meshes,
                 "    <mesh name=\"{}\" scale=\"{s} {s} {s}\" vertex=\"{}\" face=\"{}\"/>",
                 attr(&name),
                 vertices.join("  "),
                 faces.join("  "),
             );
-            let mat = material_name(&mesh.materials[part.material], &mut names);
+            let mat = self.material_name(&mesh.materials[part.material]);
             let _ = writeln!(
-                world,
+                self.world,
                 "      <geom name=\"{n}\" type=\"mesh\" mesh=\"{n}\" material=\"{mat}\"/>",
                 n = attr(&name),
             );
         }
-        world.push_str("    </body>\n");
+        self.world.push_str("    </body>\n");
     }
 
-    let mut out = String::new();
-    let _ = write!(
-        out,
-        "<mujoco model=\"scenethesis\">\n  <!-- {} -->\n  <compiler angle=\"radian\" autolimits=\"true\"/>\n  <option timestep=\"{}\" gravity=\"0 0 -9.81\"/>\n  <visual>\n    <headlight ambient=\"0.4 0.4 0.4\" diffuse=\"0.6 0.6 0.6\"/>\n  </visual>\n  <default>\n    <geom density=\"{}\" friction=\"{} 0.005 0.0001\"/>\n  </default>\n  <asset>\n",
-        comment(&scene.prompt),
-        num(TIMESTEP),
-        num(DENSITY),
-        num(FRICTION),
-    );
-    for (name, m) in &materials {
-        let c = m.base_color;
-        let _ = writeln!(
+    /// The whole document: header and defaults, the materials and meshes, the world.
+    fn into_document(self, prompt: &str) -> String {
+        let mut out = String::new();
+        let _ = write!(
             out,
-            "    <material name=\"{}\" rgba=\"{} {} {} {}\" specular=\"{}\" shininess=\"{}\" reflectance=\"0\"/>",
-            attr(name),
-            num32(c[0]),
-            num32(c[1]),
-            num32(c[2]),
-            num32(c[3]),
-            num32(0.5 * (1.0 - m.roughness.clamp(0.0, 1.0))),
-            num32(1.0 - m.roughness.clamp(0.0, 1.0)),
+            "<mujoco model=\"scenethesis\">\n  <!-- {} -->\n  <compiler angle=\"radian\" autolimits=\"true\"/>\n  <option timestep=\"{}\" gravity=\"0 0 -9.81\"/>\n  <visual>\n    <headlight ambient=\"0.4 0.4 0.4\" diffuse=\"0.6 0.6 0.6\"/>\n  </visual>\n  <default>\n    <geom density=\"{}\" friction=\"{} 0.005 0.0001\"/>\n  </default>\n  <asset>\n",
+            comment(prompt),
+            num(TIMESTEP),
+            num(DENSITY),
+            num(FRICTION),
         );
+        for (name, m) in &self.materials {
+            let c = m.base_color;
+            let _ = writeln!(
+                out,
+                "    <material name=\"{}\" rgba=\"{} {} {} {}\" specular=\"{}\" shininess=\"{}\" reflectance=\"0\"/>",
+                attr(name),
+                num32(c[0]),
+                num32(c[1]),
+                num32(c[2]),
+                num32(c[3]),
+                num32(0.5 * (1.0 - m.roughness.clamp(0.0, 1.0))),
+                num32(1.0 - m.roughness.clamp(0.0, 1.0)),
+            );
+        }
+        out.push_str(&self.meshes);
+        out.push_str("  </asset>\n  <worldbody>\n    <light name=\"sun\" directional=\"true\" pos=\"0 0 10\" dir=\"0.3 0.2 -1\"/>\n");
+        out.push_str(&self.world);
+        out.push_str("  </worldbody>\n</mujoco>\n");
+        out
     }
-    out.push_str(&meshes);
-    out.push_str("  </asset>\n  <worldbody>\n    <light name=\"sun\" directional=\"true\" pos=\"0 0 10\" dir=\"0.3 0.2 -1\"/>\n");
-    out.push_str(&world);
-    out.push_str("  </worldbody>\n</mujoco>\n");
-    out
 }
 
 /// `pos`, `quat` and `size` of a static box in Z-up: the box's local up (y) becomes z.

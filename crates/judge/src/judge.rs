@@ -299,36 +299,7 @@ impl Judge for GeometricJudge {
                 },
             });
         }
-        let mut relations_checked = 0;
-        for planned in &input.plan.objects {
-            if scene.object(&planned.id).is_none() {
-                continue;
-            }
-            // The plan's support, or for an object the layout hung on a wall, the scene's:
-            // mounted on that wall (back on it, off the floor).
-            let support = match scene.object(&planned.id) {
-                Some(o) if o.fixed_to_world() => Relation::new(o.support, o.parent.as_str()),
-                _ => Relation::new(planned.support, planned.parent.as_str()),
-            };
-            for relation in std::iter::once(&support).chain(&planned.relations) {
-                match relation_holds(scene, &planned.id, relation) {
-                    Some(true) => relations_checked += 1,
-                    Some(false) => {
-                        relations_checked += 1;
-                        failures.push(Failure {
-                            kind: FailureKind::Relation,
-                            objects: vec![planned.id.clone()],
-                            detail: format!(
-                                "`{}` {} `{}` does not hold",
-                                planned.id, relation.kind, relation.target
-                            ),
-                        });
-                    }
-                    // The target is not in the scene (dropped earlier): nothing to check.
-                    None => {}
-                }
-            }
-        }
+        let relations_checked = plan_relation_failures(input.plan, scene, &mut failures);
         failures.extend(prompt_failures(input.plan, scene));
         if !metrics.unreachable_floor_objects.is_empty() {
             failures.push(Failure {
@@ -366,6 +337,42 @@ impl Judge for GeometricJudge {
             review: None,
         })
     }
+}
+
+/// Checks every relation of the plan (each object's support first) between objects present in
+/// the scene, adding a failure per relation that does not hold; returns how many were checked.
+fn plan_relation_failures(plan: &Plan, scene: &Scene, failures: &mut Vec<Failure>) -> usize {
+    let mut relations_checked = 0;
+    for planned in &plan.objects {
+        if scene.object(&planned.id).is_none() {
+            continue;
+        }
+        // The plan's support, or for an object the layout hung on a wall, the scene's:
+        // mounted on that wall (back on it, off the floor).
+        let support = match scene.object(&planned.id) {
+            Some(o) if o.fixed_to_world() => Relation::new(o.support, o.parent.as_str()),
+            _ => Relation::new(planned.support, planned.parent.as_str()),
+        };
+        for relation in std::iter::once(&support).chain(&planned.relations) {
+            match relation_holds(scene, &planned.id, relation) {
+                Some(true) => relations_checked += 1,
+                Some(false) => {
+                    relations_checked += 1;
+                    failures.push(Failure {
+                        kind: FailureKind::Relation,
+                        objects: vec![planned.id.clone()],
+                        detail: format!(
+                            "`{}` {} `{}` does not hold",
+                            planned.id, relation.kind, relation.target
+                        ),
+                    });
+                }
+                // The target is not in the scene (dropped earlier): nothing to check.
+                None => {}
+            }
+        }
+    }
+    relations_checked
 }
 
 /// One failure per broken arrangement rule instance the judge rejects for, blaming its subject and naming the rule.

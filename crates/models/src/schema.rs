@@ -260,84 +260,45 @@ fn validate(schema: &Value, value: &Value, path: &mut String, out: &mut Vec<Sche
         }
         _ => return,
     };
-    let mut fail = |path: &str, message: String| {
+    let mut fail = |message: String| {
         out.push(SchemaViolation {
             path: pointer(path),
             message,
         })
     };
-    if let Some(t) = map.get("type") {
-        let names: Vec<&str> = match t {
-            Value::Array(list) => list.iter().filter_map(Value::as_str).collect(),
-            other => other.as_str().into_iter().collect(),
-        };
-        if !names.iter().any(|n| type_matches(n, value)) {
-            fail(
-                path,
-                format!(
-                    "expected {}, found {} {}",
-                    names.join(" or "),
-                    kind(value),
-                    show(value)
-                ),
-            );
-            return;
-        }
+    if let Some(message) = type_mismatch(map, value) {
+        fail(message);
+        return;
     }
     if let Some(Value::Array(allowed)) = map.get("enum") {
         if !allowed.contains(value) {
             let list: Vec<String> = allowed.iter().map(show).collect();
-            fail(
-                path,
-                format!("expected one of {}, found {}", list.join(", "), show(value)),
-            );
+            fail(format!(
+                "expected one of {}, found {}",
+                list.join(", "),
+                show(value)
+            ));
         }
     }
     if let Some(c) = map.get("const") {
         if c != value {
-            fail(path, format!("expected {}, found {}", show(c), show(value)));
+            fail(format!("expected {}, found {}", show(c), show(value)));
         }
     }
     if let Some(x) = value.as_f64() {
-        let bound = |k: &str| map.get(k).and_then(Value::as_f64);
-        if let Some(min) = bound("minimum") {
-            if x < min {
-                fail(path, format!("expected at least {min}, found {x}"));
-            }
-        }
-        if let Some(max) = bound("maximum") {
-            if x > max {
-                fail(path, format!("expected at most {max}, found {x}"));
-            }
-        }
-        if let Some(min) = bound("exclusiveMinimum") {
-            if x <= min {
-                fail(path, format!("expected more than {min}, found {x}"));
-            }
-        }
-        if let Some(max) = bound("exclusiveMaximum") {
-            if x >= max {
-                fail(path, format!("expected less than {max}, found {x}"));
-            }
-        }
+        number_bounds(map, x, &mut fail);
     }
     let limit = |k: &str| map.get(k).and_then(Value::as_u64);
     if let Value::String(s) = value {
         let n = s.chars().count() as u64;
         if let Some(min) = limit("minLength") {
             if n < min {
-                fail(
-                    path,
-                    format!("expected at least {min} characters, found {n}"),
-                );
+                fail(format!("expected at least {min} characters, found {n}"));
             }
         }
         if let Some(max) = limit("maxLength") {
             if n > max {
-                fail(
-                    path,
-                    format!("expected at most {max} characters, found {n}"),
-                );
+                fail(format!("expected at most {max} characters, found {n}"));
             }
         }
     }
@@ -345,12 +306,12 @@ fn validate(schema: &Value, value: &Value, path: &mut String, out: &mut Vec<Sche
         let n = items.len() as u64;
         if let Some(min) = limit("minItems") {
             if n < min {
-                fail(path, format!("expected at least {min} items, found {n}"));
+                fail(format!("expected at least {min} items, found {n}"));
             }
         }
         if let Some(max) = limit("maxItems") {
             if n > max {
-                fail(path, format!("expected at most {max} items, found {n}"));
+                fail(format!("expected at most {max} items, found {n}"));
             }
         }
         if let Some(item_schema) = map.get("items") {
@@ -363,34 +324,87 @@ fn validate(schema: &Value, value: &Value, path: &mut String, out: &mut Vec<Sche
         }
     }
     if let Value::Object(fields) = value {
-        if let Some(Value::Array(required)) = map.get("required") {
-            for name in required.iter().filter_map(Value::as_str) {
-                if !fields.contains_key(name) {
-                    out.push(SchemaViolation {
-                        path: pointer(path),
-                        message: format!("missing required property `{name}`"),
-                    });
-                }
+        validate_object(map, fields, path, out);
+    }
+}
+
+/// The message when `value` has none of the types `schema` allows.
+fn type_mismatch(schema: &Map<String, Value>, value: &Value) -> Option<String> {
+    let t = schema.get("type")?;
+    let names: Vec<&str> = match t {
+        Value::Array(list) => list.iter().filter_map(Value::as_str).collect(),
+        other => other.as_str().into_iter().collect(),
+    };
+    (!names.iter().any(|n| type_matches(n, value))).then(|| {
+        format!(
+            "expected {}, found {} {}",
+            names.join(" or "),
+            kind(value),
+            show(value)
+        )
+    })
+}
+
+/// Checks number `x` against the schema's (exclusive) minimum and maximum.
+fn number_bounds(schema: &Map<String, Value>, x: f64, fail: &mut dyn FnMut(String)) {
+    let bound = |k: &str| schema.get(k).and_then(Value::as_f64);
+    if let Some(min) = bound("minimum") {
+        if x < min {
+            fail(format!("expected at least {min}, found {x}"));
+        }
+    }
+    if let Some(max) = bound("maximum") {
+        if x > max {
+            fail(format!("expected at most {max}, found {x}"));
+        }
+    }
+    if let Some(min) = bound("exclusiveMinimum") {
+        if x <= min {
+            fail(format!("expected more than {min}, found {x}"));
+        }
+    }
+    if let Some(max) = bound("exclusiveMaximum") {
+        if x >= max {
+            fail(format!("expected less than {max}, found {x}"));
+        }
+    }
+}
+
+/// Checks an object's required properties, then each property against its schema (or
+/// `additionalProperties`).
+fn validate_object(
+    schema: &Map<String, Value>,
+    fields: &Map<String, Value>,
+    path: &mut String,
+    out: &mut Vec<SchemaViolation>,
+) {
+    if let Some(Value::Array(required)) = schema.get("required") {
+        for name in required.iter().filter_map(Value::as_str) {
+            if !fields.contains_key(name) {
+                out.push(SchemaViolation {
+                    path: pointer(path),
+                    message: format!("missing required property `{name}`"),
+                });
             }
         }
-        let props = map.get("properties").and_then(Value::as_object);
-        for (key, field) in fields {
-            let len = path.len();
-            path.push('/');
-            path.push_str(&escape(key));
-            match props.and_then(|p| p.get(key)) {
-                Some(sub) => validate(sub, field, path, out),
-                None => match map.get("additionalProperties") {
-                    Some(Value::Bool(false)) => out.push(SchemaViolation {
-                        path: pointer(path),
-                        message: format!("unexpected property `{key}`"),
-                    }),
-                    Some(sub @ Value::Object(_)) => validate(sub, field, path, out),
-                    _ => {}
-                },
-            }
-            path.truncate(len);
+    }
+    let props = schema.get("properties").and_then(Value::as_object);
+    for (key, field) in fields {
+        let len = path.len();
+        path.push('/');
+        path.push_str(&escape(key));
+        match props.and_then(|p| p.get(key)) {
+            Some(sub) => validate(sub, field, path, out),
+            None => match schema.get("additionalProperties") {
+                Some(Value::Bool(false)) => out.push(SchemaViolation {
+                    path: pointer(path),
+                    message: format!("unexpected property `{key}`"),
+                }),
+                Some(sub @ Value::Object(_)) => validate(sub, field, path, out),
+                _ => {}
+            },
         }
+        path.truncate(len);
     }
 }
 

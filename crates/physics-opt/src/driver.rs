@@ -24,7 +24,7 @@ use crate::params::carry;
 use crate::prepare::PreparedAsset;
 use crate::report::{ObjectReport, Placement};
 use crate::support::{choose_surface, Support, SupportPlane};
-use crate::verify::{verify, Placed, Tolerances};
+use crate::verify::{verify, Placed, Tolerances, Verdict};
 use crate::PhysicsOptError;
 
 /// A scene to optimize: the scene graph with the guide's initial poses, each object's prepared
@@ -135,142 +135,35 @@ pub fn optimize_scene(
 ) -> Result<Placement, PhysicsOptError> {
     let scene = &problem.scene;
     let order = scene.bfs_order()?;
-    for object in &order {
-        if !problem.assets.contains_key(&object.id) {
-            return Err(PhysicsOptError::MissingAsset {
-                id: object.id.clone(),
-            });
-        }
-        if !object.pose.is_finite() || object.pose.scale <= 0.0 {
-            return Err(PhysicsOptError::InvalidPose {
-                id: object.id.clone(),
-                pose: object.pose,
-            });
-        }
-    }
+    check_objects(problem, &order)?;
     let deadline = match (deadline_after(settings.time_budget), settings.deadline) {
         (Some(a), Some(b)) => Some(a.min(b)),
         (a, b) => a.or(b),
     };
     let room = RoomBounds::of(&scene.architecture);
-    let mut grid = Obstacles::new(false);
-    let mut exact = Obstacles::new(true);
-    for (id, field, pose) in architecture_fields(&scene.architecture) {
-        grid.insert(&id, field.clone(), pose, true, &[]);
-        exact.insert(&id, field, pose, true, &[]);
-    }
-    let mut finals: BTreeMap<&str, Pose> = BTreeMap::new();
-    let mut reports: Vec<ObjectReport> = Vec::with_capacity(order.len());
-    let mut supports: Vec<Support> = Vec::with_capacity(order.len());
+    let mut sweep = Sweep::new(&scene.architecture, order.len());
     for object in &order {
-        let asset = &problem.assets[&object.id];
-        let start = match object.parent.object_id() {
-            Some(parent) if !settings.keep_children_in_place => {
-                let before = scene.object(parent).map(|p| p.pose);
-                match (before, finals.get(parent)) {
-                    (Some(before), Some(after)) => carry(&before, after, &object.pose),
-                    _ => object.pose,
-                }
-            }
-            _ => object.pose,
-        };
-        let support = resolve_support(problem, object, &start, &finals);
-        let alignment = problem.alignments.get(&object.id);
-        let mut object_problem = ObjectProblem {
-            id: &object.id,
-            asset,
-            obstacles: &grid,
-            support: &support,
-            room: Some(room),
-            alignment,
-            settings: &settings.losses,
-            deadline,
-        };
-        let (mut pose, alignment_iterations, mut physics_iterations) = if past(deadline) {
-            // Out of time: not reached, it keeps its starting pose.
-            (object_problem.project(&start), 0, 0)
-        } else {
-            let aligned = optimizer.optimize(&object_problem, Stage::Alignment, start);
-            let settled = optimizer.optimize(&object_problem, Stage::Physics, aligned.pose);
-            (settled.pose, aligned.iterations, settled.iterations)
-        };
-        let mut polished = false;
-        if !settings.skip_exact_polish && !past(deadline) {
-            object_problem.obstacles = &exact;
-            if !object_problem.collision(&pose).is_free() {
-                let polish = optimizer.optimize(&object_problem, Stage::Physics, pose);
-                pose = polish.pose;
-                physics_iterations += polish.iterations;
-                polished = true;
-            }
-        }
-        let samples = asset.surface_points();
-        grid.insert(&object.id, asset.grid_field(), pose, false, samples);
-        exact.insert(&object.id, asset.exact_field(), pose, false, samples);
-        finals.insert(&object.id, pose);
-        reports.push(ObjectReport {
-            id: object.id.clone(),
-            initial_pose: object.pose,
-            pose,
-            support: support.clone(),
-            alignment_iterations,
-            physics_iterations,
-            polished,
-            penetration: 0.0,
-            support_gap: None,
-            issues: Vec::new(),
-        });
-        supports.push(support);
+        sweep.place(problem, optimizer, settings, object, room, deadline);
     }
+    let Sweep {
+        mut exact,
+        mut reports,
+        mut supports,
+        ..
+    } = sweep;
     let mut checked = None;
     if !settings.skip_finish {
-        let assets: Vec<Arc<PreparedAsset>> = order
-            .iter()
-            .map(|o| problem.assets[&o.id].clone())
-            .collect();
-        let architecture = architecture_fields(&scene.architecture);
-        let input = FinishInput {
+        let mut finished = Finished {
+            reports: &mut reports,
+            supports: &mut supports,
+            exact: &mut exact,
+        };
+        let scope = FinishScope {
             order: &order,
-            assets: &assets,
-            architecture: &architecture,
             room,
-            losses: &settings.losses,
-            tolerances: settings.tolerances,
-            settle: optimizer.settles(),
             deadline,
         };
-        let mut poses: Vec<Pose> = reports.iter().map(|r| r.pose).collect();
-        let resolve = |i: usize, pose: &Pose, poses: &[Pose]| {
-            let finals: BTreeMap<&str, Pose> = order
-                .iter()
-                .zip(poses)
-                .map(|(o, p)| (o.id.as_str(), *p))
-                .collect();
-            resolve_support(problem, order[i], pose, &finals)
-        };
-        let (spent, verdicts) = finish(&input, optimizer, &resolve, &mut poses, &mut supports);
-        checked = verdicts;
-        if poses.iter().zip(&reports).any(|(p, r)| *p != r.pose) {
-            exact = Obstacles::new(true);
-            for (id, field, pose) in architecture {
-                exact.insert(&id, field, pose, true, &[]);
-            }
-            for ((object, report), pose) in order.iter().zip(&mut reports).zip(&poses) {
-                let asset = &problem.assets[&object.id];
-                exact.insert(
-                    &object.id,
-                    asset.exact_field(),
-                    *pose,
-                    false,
-                    asset.surface_points(),
-                );
-                report.pose = *pose;
-            }
-        }
-        for (report, (support, spent)) in reports.iter_mut().zip(supports.iter().zip(spent)) {
-            report.support = support.clone();
-            report.physics_iterations += spent;
-        }
+        checked = finish_pass(problem, optimizer, settings, &scope, &mut finished);
     }
     let out_of_time = past(deadline);
     let placed: Vec<Placed<'_>> = order
@@ -296,6 +189,213 @@ pub fn optimize_scene(
         objects: reports,
         out_of_time,
     })
+}
+
+/// Every object of `order` has a prepared asset and a finite pose of positive scale.
+fn check_objects(problem: &SceneProblem, order: &[&SceneObject]) -> Result<(), PhysicsOptError> {
+    for object in order {
+        if !problem.assets.contains_key(&object.id) {
+            return Err(PhysicsOptError::MissingAsset {
+                id: object.id.clone(),
+            });
+        }
+        if !object.pose.is_finite() || object.pose.scale <= 0.0 {
+            return Err(PhysicsOptError::InvalidPose {
+                id: object.id.clone(),
+                pose: object.pose,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The breadth-first sweep: the obstacles placed so far (baked grids and exact fields), the
+/// final poses by id, and each placed object's report and support.
+struct Sweep<'a> {
+    grid: Obstacles,
+    exact: Obstacles,
+    finals: BTreeMap<&'a str, Pose>,
+    reports: Vec<ObjectReport>,
+    supports: Vec<Support>,
+}
+
+impl<'a> Sweep<'a> {
+    /// A sweep over `objects` objects, with the architecture as the first obstacles.
+    fn new(architecture: &Architecture, objects: usize) -> Self {
+        let mut grid = Obstacles::new(false);
+        let mut exact = Obstacles::new(true);
+        for (id, field, pose) in architecture_fields(architecture) {
+            grid.insert(&id, field.clone(), pose, true, &[]);
+            exact.insert(&id, field, pose, true, &[]);
+        }
+        Self {
+            grid,
+            exact,
+            finals: BTreeMap::new(),
+            reports: Vec::with_capacity(objects),
+            supports: Vec::with_capacity(objects),
+        }
+    }
+
+    /// Places `object`: moved with its parent, aligned, settled, polished against the exact
+    /// fields when it still collides, then added to the obstacles. Past `deadline` it keeps
+    /// its starting pose (brought into its scale range, support region and the room).
+    fn place(
+        &mut self,
+        problem: &SceneProblem,
+        optimizer: &dyn Optimizer,
+        settings: &OptimizeSettings,
+        object: &'a SceneObject,
+        room: RoomBounds,
+        deadline: Option<Instant>,
+    ) {
+        let scene = &problem.scene;
+        let asset = &problem.assets[&object.id];
+        let start = match object.parent.object_id() {
+            Some(parent) if !settings.keep_children_in_place => {
+                let before = scene.object(parent).map(|p| p.pose);
+                match (before, self.finals.get(parent)) {
+                    (Some(before), Some(after)) => carry(&before, after, &object.pose),
+                    _ => object.pose,
+                }
+            }
+            _ => object.pose,
+        };
+        let support = resolve_support(problem, object, &start, &self.finals);
+        let alignment = problem.alignments.get(&object.id);
+        let mut object_problem = ObjectProblem {
+            id: &object.id,
+            asset,
+            obstacles: &self.grid,
+            support: &support,
+            room: Some(room),
+            alignment,
+            settings: &settings.losses,
+            deadline,
+        };
+        let (mut pose, alignment_iterations, mut physics_iterations) = if past(deadline) {
+            // Out of time: not reached, it keeps its starting pose.
+            (object_problem.project(&start), 0, 0)
+        } else {
+            let aligned = optimizer.optimize(&object_problem, Stage::Alignment, start);
+            let settled = optimizer.optimize(&object_problem, Stage::Physics, aligned.pose);
+            (settled.pose, aligned.iterations, settled.iterations)
+        };
+        let mut polished = false;
+        if !settings.skip_exact_polish && !past(deadline) {
+            object_problem.obstacles = &self.exact;
+            if !object_problem.collision(&pose).is_free() {
+                let polish = optimizer.optimize(&object_problem, Stage::Physics, pose);
+                pose = polish.pose;
+                physics_iterations += polish.iterations;
+                polished = true;
+            }
+        }
+        let samples = asset.surface_points();
+        self.grid
+            .insert(&object.id, asset.grid_field(), pose, false, samples);
+        self.exact
+            .insert(&object.id, asset.exact_field(), pose, false, samples);
+        self.finals.insert(&object.id, pose);
+        self.reports.push(ObjectReport {
+            id: object.id.clone(),
+            initial_pose: object.pose,
+            pose,
+            support: support.clone(),
+            alignment_iterations,
+            physics_iterations,
+            polished,
+            penetration: 0.0,
+            support_gap: None,
+            issues: Vec::new(),
+        });
+        self.supports.push(support);
+    }
+}
+
+/// What the final separation pass updates: the reports, the supports and the exact fields.
+struct Finished<'r> {
+    reports: &'r mut Vec<ObjectReport>,
+    supports: &'r mut Vec<Support>,
+    exact: &'r mut Obstacles,
+}
+
+/// What the final separation pass works over: the objects in sweep order, the room and the
+/// instant it must end by.
+struct FinishScope<'s, 'o> {
+    order: &'s [&'o SceneObject],
+    room: RoomBounds,
+    deadline: Option<Instant>,
+}
+
+/// The final separation pass ([`finish`]) over the swept objects; when it moved any, the
+/// exact fields are rebuilt at the new poses. Returns the pass's last check, when it was
+/// made on the final poses.
+fn finish_pass(
+    problem: &SceneProblem,
+    optimizer: &dyn Optimizer,
+    settings: &OptimizeSettings,
+    scope: &FinishScope<'_, '_>,
+    finished: &mut Finished<'_>,
+) -> Option<Vec<Verdict>> {
+    let scene = &problem.scene;
+    let order = scope.order;
+    let assets: Vec<Arc<PreparedAsset>> = order
+        .iter()
+        .map(|o| problem.assets[&o.id].clone())
+        .collect();
+    let architecture = architecture_fields(&scene.architecture);
+    let input = FinishInput {
+        order,
+        assets: &assets,
+        architecture: &architecture,
+        room: scope.room,
+        losses: &settings.losses,
+        tolerances: settings.tolerances,
+        settle: optimizer.settles(),
+        deadline: scope.deadline,
+    };
+    let mut poses: Vec<Pose> = finished.reports.iter().map(|r| r.pose).collect();
+    let resolve = |i: usize, pose: &Pose, poses: &[Pose]| {
+        let finals: BTreeMap<&str, Pose> = order
+            .iter()
+            .zip(poses)
+            .map(|(o, p)| (o.id.as_str(), *p))
+            .collect();
+        resolve_support(problem, order[i], pose, &finals)
+    };
+    let (spent, verdicts) = finish(&input, optimizer, &resolve, &mut poses, finished.supports);
+    if poses
+        .iter()
+        .zip(finished.reports.iter())
+        .any(|(p, r)| *p != r.pose)
+    {
+        let mut exact = Obstacles::new(true);
+        for (id, field, pose) in architecture {
+            exact.insert(&id, field, pose, true, &[]);
+        }
+        for ((object, report), pose) in order.iter().zip(finished.reports.iter_mut()).zip(&poses) {
+            let asset = &problem.assets[&object.id];
+            exact.insert(
+                &object.id,
+                asset.exact_field(),
+                *pose,
+                false,
+                asset.surface_points(),
+            );
+            report.pose = *pose;
+        }
+        *finished.exact = exact;
+    }
+    for (report, (support, spent)) in finished
+        .reports
+        .iter_mut()
+        .zip(finished.supports.iter().zip(spent))
+    {
+        report.support = support.clone();
+        report.physics_iterations += spent;
+    }
+    verdicts
 }
 
 /// Head room an object needs under a compartment's clearance beyond its own height, metres

@@ -75,26 +75,8 @@ pub(crate) fn finish(
 ) -> (Vec<usize>, Option<Vec<Verdict>>) {
     let n = input.order.len();
     let mut iterations = vec![0usize; n];
-    let index_of: BTreeMap<&str, usize> = input
-        .order
-        .iter()
-        .enumerate()
-        .map(|(i, o)| (o.id.as_str(), i))
-        .collect();
-    let parent_of: Vec<Option<usize>> = input
-        .order
-        .iter()
-        .map(|o| o.parent.object_id().and_then(|p| index_of.get(p).copied()))
-        .collect();
-    let is_ancestor = |a: usize, mut b: usize| {
-        while let Some(p) = parent_of[b] {
-            if p == a {
-                return true;
-            }
-            b = p;
-        }
-        false
-    };
+    let tree = Tree::of(input.order);
+    let is_ancestor = |a: usize, b: usize| tree.is_ancestor(a, b);
     // The check (and the obstacles' samples) use each asset's dense check points as they
     // are; only an object settled again needs them as its collision samples too.
     let dense = input.assets;
@@ -105,8 +87,15 @@ pub(crate) fn finish(
         if past(input.deadline) {
             break;
         }
-        let (todo, verdicts) =
-            pending(input, dense, poses, supports, &tol, &index_of, &is_ancestor);
+        let (todo, verdicts) = pending(
+            input,
+            dense,
+            poses,
+            supports,
+            &tol,
+            &tree.index_of,
+            &is_ancestor,
+        );
         if todo.is_empty() {
             last = Some(verdicts);
             break;
@@ -132,166 +121,21 @@ pub(crate) fn finish(
                 settings: input.losses,
                 deadline: input.deadline,
             };
+            let resettle = Resettle {
+                input,
+                optimizer,
+                tree: &tree,
+                problem,
+                dense: &dense[i],
+                i,
+                topples,
+            };
             let before = poses[i];
-            let start = match (&support, topples && input.settle) {
-                (Support::Surface(plane), true) => rest_inward(&dense[i], plane, &before),
-                _ => before,
-            };
-            // Contacts with what cannot make room (the architecture, the object's holders) and
-            // with what can (anything else, moved in its own turn).
-            let score = |p: &Pose| {
-                let (mut fixed, mut movable) = (0.0f64, 0.0f64);
-                for c in problem
-                    .collision(p)
-                    .contacts
-                    .iter()
-                    .filter(|c| c.violation > 0.0)
-                {
-                    let id = others.id(c.obstacle);
-                    let holds = others.is_architecture(c.obstacle)
-                        || index_of.get(id).is_none_or(|&j| is_ancestor(j, i));
-                    if holds {
-                        fixed = fixed.max(c.violation);
-                    } else {
-                        movable = movable.max(c.violation);
-                    }
-                }
-                (fixed, movable)
-            };
-            let resolved = |s: (f64, f64)| s.0.max(s.1) <= tol.penetration;
-            let stable = |p: &Pose| {
-                !input.settle
-                    || support
-                        .plane()
-                        .is_none_or(|plane| rests_stably(&dense[i], plane, p))
-            };
-            let was = score(&before);
-            let was_stable = stable(&before);
-            let acceptable = |p: &Pose, s: (f64, f64)| {
-                if topples && input.settle {
-                    stable(p) && resolved(s)
-                } else {
-                    // Never trade a collision for a topple, nor press harder into a holder.
-                    (!was_stable || stable(p))
-                        && s.0 <= was.0 + 1e-6
-                        && (s.0 < was.0 - 1e-6 || s.1 < was.1 - 1e-6)
-                }
-            };
-            let mut best: Option<(Pose, (f64, f64))> = None;
-            let consider = |best: &mut Option<(Pose, (f64, f64))>, p: Pose, s: (f64, f64)| {
-                if acceptable(&p, s)
-                    && best
-                        .is_none_or(|(_, b)| (resolved(s), -s.0, -s.1) > (resolved(b), -b.0, -b.1))
-                {
-                    *best = Some((p, s));
-                }
-            };
-            let outcome = optimizer.optimize(&problem, Stage::Physics, start);
-            iterations[i] += outcome.iterations;
-            let first = score(&outcome.pose);
-            consider(&mut best, outcome.pose, first);
-            // Another start: settled from it, kept if better; whether the best so far resolves.
-            let mut spent = 0;
-            let mut settle_from = |best: &mut Option<(Pose, (f64, f64))>, from: Pose| {
-                let o = optimizer.optimize(&problem, Stage::Physics, from);
-                spent += o.iterations;
-                let s = score(&o.pose);
-                consider(best, o.pose, s);
-                best.is_some_and(|(_, b)| resolved(b))
-            };
-            if !resolved(first) {
-                // The smallest move is blocked: try starts shifted along the object's own axes
-                // and the world's by about the penetration.
-                let step = was.0.max(was.1) + 0.005;
-                let (sin, cos) = before.yaw.sin_cos();
-                let axes = [
-                    Vector2::new(cos, -sin),
-                    Vector2::new(sin, cos),
-                    Vector2::new(1.0, 0.0),
-                    Vector2::new(0.0, 1.0),
-                ];
-                'starts: for axis in axes {
-                    for sign in [1.0, -1.0] {
-                        let mut shifted = start;
-                        shifted.translation.x += sign * step * axis.x;
-                        shifted.translation.z += sign * step * axis.y;
-                        if settle_from(&mut best, shifted) {
-                            break 'starts;
-                        }
-                    }
-                }
-            }
-            // Clear of its holder and pressing only into siblings, it waits for them to make
-            // room (next round); still pressed into its holder, it turns.
-            if !best.is_some_and(|(_, b)| b.0 <= tol.penetration) {
-                if let Some(j) = parent_of[i] {
-                    // Still pressed into its holder (or a wall): held things line up with their
-                    // holder (a magazine in its pocket, a toy car along a shelf level) and sit
-                    // inside its surface, not on its rim. Try the holder's four square turns (the
-                    // nearest first) about the object's centre, there and moved a few
-                    // centimetres toward the middle of the surface.
-                    let pivot = dense[i].bounds().center();
-                    let centre = start.transform_point(&pivot);
-                    let mut yaws: Vec<f64> = (0..4)
-                        .map(|k| poses[j].yaw + k as f64 * std::f64::consts::FRAC_PI_2)
-                        .collect();
-                    yaws.sort_by(|a, b| {
-                        yaw_distance(*a, start.yaw).total_cmp(&yaw_distance(*b, start.yaw))
-                    });
-                    yaws.insert(0, start.yaw);
-                    let inward = support
-                        .plane()
-                        .and_then(region_centre)
-                        .map(|m| m - Vector2::new(centre.x, centre.z))
-                        .filter(|t| t.norm() > 1e-9)
-                        .map(|t| t / t.norm());
-                    let steps: &[f64] = if inward.is_some() {
-                        &HELD_STEPS
-                    } else {
-                        &HELD_STEPS[..1]
-                    };
-                    'held: for &step in steps {
-                        for (k, &yaw) in yaws.iter().enumerate() {
-                            if step == 0.0 && k == 0 {
-                                continue; // the start itself, tried above
-                            }
-                            let toward = inward.unwrap_or_else(Vector2::zeros) * step;
-                            let mut turned = turned(&start, &pivot, yaw);
-                            turned.translation.x += toward.x;
-                            turned.translation.z += toward.y;
-                            // Clear of the holder but pressing into a sibling, the start itself
-                            // will do: the sibling makes room in its turn.
-                            let here = score(&turned);
-                            if here.0 <= tol.penetration {
-                                consider(&mut best, turned, here);
-                            }
-                            if settle_from(&mut best, turned) {
-                                break 'held;
-                            }
-                        }
-                    }
-                }
-            }
+            let (after, spent) = resettle.run(before, poses);
             iterations[i] += spent;
-            let mut after = best.map_or(before, |(p, _)| p);
-            let mut better = best.is_some();
-            if !better
-                && topples
-                && input.settle
-                && stable(&start)
-                && start != before
-                && only_movable_contacts(&problem, &start, &|j| {
-                    index_of.get(j).is_some_and(|&j| !is_ancestor(j, i))
-                })
-            {
-                // Resting stably, it presses into a sibling that is free to make room: take
-                // the stable pose, and let the sibling move next round.
-                after = start;
-                better = true;
-            }
-            if !better || after == before {
+            let Some(after) = after.filter(|after| *after != before) else {
                 continue;
-            }
+            };
             moved_any = true;
             poses[i] = after;
             // Children move with it, and rest on its surfaces where they now are.
@@ -309,6 +153,265 @@ pub(crate) fn finish(
         }
     }
     (iterations, last)
+}
+
+/// The objects' hierarchy, by position in the breadth-first order.
+struct Tree<'a> {
+    index_of: BTreeMap<&'a str, usize>,
+    parent_of: Vec<Option<usize>>,
+}
+
+impl<'a> Tree<'a> {
+    fn of(order: &'a [&'a SceneObject]) -> Self {
+        let index_of: BTreeMap<&str, usize> = order
+            .iter()
+            .enumerate()
+            .map(|(i, o)| (o.id.as_str(), i))
+            .collect();
+        let parent_of: Vec<Option<usize>> = order
+            .iter()
+            .map(|o| o.parent.object_id().and_then(|p| index_of.get(p).copied()))
+            .collect();
+        Self {
+            index_of,
+            parent_of,
+        }
+    }
+
+    /// Whether `a` holds `b`, directly or through others.
+    fn is_ancestor(&self, a: usize, mut b: usize) -> bool {
+        while let Some(p) = self.parent_of[b] {
+            if p == a {
+                return true;
+            }
+            b = p;
+        }
+        false
+    }
+}
+
+/// A collision score: the deepest contact with what cannot make room (the architecture, the
+/// object's holders) and with what can (anything else, moved in its own turn).
+type Score = (f64, f64);
+
+/// One object settled again against every other: the starts it tries and the best pose
+/// found.
+struct Resettle<'a> {
+    input: &'a FinishInput<'a>,
+    optimizer: &'a dyn Optimizer,
+    tree: &'a Tree<'a>,
+    problem: ObjectProblem<'a>,
+    /// The object's asset with its dense check samples as they are.
+    dense: &'a PreparedAsset,
+    /// The object's position in the breadth-first order.
+    i: usize,
+    /// Whether it topples (rather than collides).
+    topples: bool,
+}
+
+/// The state of one object's attempts: the score and stability it started from, the best
+/// pose so far and the physics iterations spent on further starts.
+struct Attempts {
+    was: Score,
+    was_stable: bool,
+    best: Option<(Pose, Score)>,
+    spent: usize,
+}
+
+impl Resettle<'_> {
+    /// Settles the object again from `before`; returns the pose to move it to (if any) and
+    /// the physics iterations spent. `poses`: everyone's current poses.
+    fn run(&self, before: Pose, poses: &[Pose]) -> (Option<Pose>, usize) {
+        let input = self.input;
+        let tol = input.tolerances;
+        let start = match (self.problem.support, self.topples && input.settle) {
+            (Support::Surface(plane), true) => rest_inward(self.dense, plane, &before),
+            _ => before,
+        };
+        let mut attempts = Attempts {
+            was: self.score(&before),
+            was_stable: self.stable(&before),
+            best: None,
+            spent: 0,
+        };
+        let outcome = self
+            .optimizer
+            .optimize(&self.problem, Stage::Physics, start);
+        let first = self.score(&outcome.pose);
+        self.consider(&mut attempts, outcome.pose, first);
+        if !self.resolved(first) {
+            self.try_shifted_starts(&mut attempts, start, &before);
+        }
+        // Clear of its holder and pressing only into siblings, it waits for them to make
+        // room (next round); still pressed into its holder, it turns.
+        if !attempts.best.is_some_and(|(_, b)| b.0 <= tol.penetration) {
+            if let Some(j) = self.tree.parent_of[self.i] {
+                self.try_holder_turns(&mut attempts, start, poses[j].yaw);
+            }
+        }
+        let spent = outcome.iterations + attempts.spent;
+        let mut after = attempts.best.map(|(p, _)| p);
+        if after.is_none()
+            && self.topples
+            && input.settle
+            && self.stable(&start)
+            && start != before
+            && only_movable_contacts(&self.problem, &start, &|j| {
+                self.tree
+                    .index_of
+                    .get(j)
+                    .is_some_and(|&j| !self.tree.is_ancestor(j, self.i))
+            })
+        {
+            // Resting stably, it presses into a sibling that is free to make room: take
+            // the stable pose, and let the sibling move next round.
+            after = Some(start);
+        }
+        (after, spent)
+    }
+
+    /// The object's contacts at `p`: (deepest with what holds it, deepest with the rest).
+    fn score(&self, p: &Pose) -> Score {
+        let others = self.problem.obstacles;
+        let (mut fixed, mut movable) = (0.0f64, 0.0f64);
+        for c in self
+            .problem
+            .collision(p)
+            .contacts
+            .iter()
+            .filter(|c| c.violation > 0.0)
+        {
+            let id = others.id(c.obstacle);
+            let holds = others.is_architecture(c.obstacle)
+                || self
+                    .tree
+                    .index_of
+                    .get(id)
+                    .is_none_or(|&j| self.tree.is_ancestor(j, self.i));
+            if holds {
+                fixed = fixed.max(c.violation);
+            } else {
+                movable = movable.max(c.violation);
+            }
+        }
+        (fixed, movable)
+    }
+
+    fn resolved(&self, s: Score) -> bool {
+        s.0.max(s.1) <= self.input.tolerances.penetration
+    }
+
+    fn stable(&self, p: &Pose) -> bool {
+        !self.input.settle
+            || self
+                .problem
+                .support
+                .plane()
+                .is_none_or(|plane| rests_stably(self.dense, plane, p))
+    }
+
+    /// Whether pose `p` scoring `s` may replace the start.
+    fn acceptable(&self, attempts: &Attempts, p: &Pose, s: Score) -> bool {
+        if self.topples && self.input.settle {
+            self.stable(p) && self.resolved(s)
+        } else {
+            // Never trade a collision for a topple, nor press harder into a holder.
+            (!attempts.was_stable || self.stable(p))
+                && s.0 <= attempts.was.0 + 1e-6
+                && (s.0 < attempts.was.0 - 1e-6 || s.1 < attempts.was.1 - 1e-6)
+        }
+    }
+
+    /// Keeps `p` (scoring `s`) when acceptable and better than the best so far.
+    fn consider(&self, attempts: &mut Attempts, p: Pose, s: Score) {
+        if self.acceptable(attempts, &p, s)
+            && attempts.best.is_none_or(|(_, b)| {
+                (self.resolved(s), -s.0, -s.1) > (self.resolved(b), -b.0, -b.1)
+            })
+        {
+            attempts.best = Some((p, s));
+        }
+    }
+
+    /// Another start: settled from it, kept if better; whether the best so far resolves.
+    fn settle_from(&self, attempts: &mut Attempts, from: Pose) -> bool {
+        let o = self.optimizer.optimize(&self.problem, Stage::Physics, from);
+        attempts.spent += o.iterations;
+        let s = self.score(&o.pose);
+        self.consider(attempts, o.pose, s);
+        attempts.best.is_some_and(|(_, b)| self.resolved(b))
+    }
+
+    /// The smallest move is blocked: try starts shifted along the object's own axes and the
+    /// world's by about the penetration.
+    fn try_shifted_starts(&self, attempts: &mut Attempts, start: Pose, before: &Pose) {
+        let step = attempts.was.0.max(attempts.was.1) + 0.005;
+        let (sin, cos) = before.yaw.sin_cos();
+        let axes = [
+            Vector2::new(cos, -sin),
+            Vector2::new(sin, cos),
+            Vector2::new(1.0, 0.0),
+            Vector2::new(0.0, 1.0),
+        ];
+        for axis in axes {
+            for sign in [1.0, -1.0] {
+                let mut shifted = start;
+                shifted.translation.x += sign * step * axis.x;
+                shifted.translation.z += sign * step * axis.y;
+                if self.settle_from(attempts, shifted) {
+                    return;
+                }
+            }
+        }
+    }
+
+    /// Still pressed into its holder (or a wall): held things line up with their holder (a
+    /// magazine in its pocket, a toy car along a shelf level) and sit inside its surface, not
+    /// on its rim. Try the holder's four square turns (the holder turned to `holder_yaw`; the
+    /// nearest first) about the object's centre, there and moved a few centimetres toward the
+    /// middle of the surface.
+    fn try_holder_turns(&self, attempts: &mut Attempts, start: Pose, holder_yaw: f64) {
+        let pivot = self.dense.bounds().center();
+        let centre = start.transform_point(&pivot);
+        let mut yaws: Vec<f64> = (0..4)
+            .map(|k| holder_yaw + k as f64 * std::f64::consts::FRAC_PI_2)
+            .collect();
+        yaws.sort_by(|a, b| yaw_distance(*a, start.yaw).total_cmp(&yaw_distance(*b, start.yaw)));
+        yaws.insert(0, start.yaw);
+        let inward = self
+            .problem
+            .support
+            .plane()
+            .and_then(region_centre)
+            .map(|m| m - Vector2::new(centre.x, centre.z))
+            .filter(|t| t.norm() > 1e-9)
+            .map(|t| t / t.norm());
+        let steps: &[f64] = if inward.is_some() {
+            &HELD_STEPS
+        } else {
+            &HELD_STEPS[..1]
+        };
+        for &step in steps {
+            for (k, &yaw) in yaws.iter().enumerate() {
+                if step == 0.0 && k == 0 {
+                    continue; // the start itself, tried above
+                }
+                let toward = inward.unwrap_or_else(Vector2::zeros) * step;
+                let mut turned = turned(&start, &pivot, yaw);
+                turned.translation.x += toward.x;
+                turned.translation.z += toward.y;
+                // Clear of the holder but pressing into a sibling, the start itself
+                // will do: the sibling makes room in its turn.
+                let here = self.score(&turned);
+                if here.0 <= self.input.tolerances.penetration {
+                    self.consider(attempts, turned, here);
+                }
+                if self.settle_from(attempts, turned) {
+                    return;
+                }
+            }
+        }
+    }
 }
 
 /// The objects that still miss a post-condition the pass can act on, in order, each with
