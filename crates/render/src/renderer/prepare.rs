@@ -1,0 +1,171 @@
+//! Uploading a scene: its vertices, the sun's orthographic frustum around it, and the shadow
+//! map rendered once for every view of the scene.
+
+use std::ops::Range;
+
+use bytemuck::Zeroable;
+use nalgebra::{Matrix4, Point3, Vector3};
+use scenethesis_scene_graph::Aabb;
+use wgpu::util::DeviceExt;
+
+use super::{mat, Globals, PreparedScene, Renderer, DEPTH_FORMAT, SUN_DIRECTION};
+use crate::geometry::SceneGeometry;
+use crate::{RenderError, RenderScene};
+
+impl Renderer {
+    /// Uploads a scene's geometry and renders its shadow map, for rendering many views.
+    pub fn prepare(&self, scene: &RenderScene) -> Result<PreparedScene, RenderError> {
+        let geometry = SceneGeometry::build(scene)?;
+        let bounds = scene.bounds();
+        let center = bounds.center();
+        let reach = geometry
+            .vertices
+            .iter()
+            .map(|v| (Point3::from(v.position).cast::<f64>() - center).norm())
+            .fold(bounds.size().norm() / 2.0, f64::max);
+        let vertices = (!geometry.vertices.is_empty()).then(|| {
+            self.device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("scene vertices"),
+                    contents: bytemuck::cast_slice(&geometry.vertices),
+                    usage: wgpu::BufferUsages::VERTEX,
+                })
+        });
+
+        // The sun's orthographic frustum: a cube around the objects' and room's bounding sphere.
+        let radius = (bounds.size().norm() / 2.0).max(0.5);
+        let light_from_world = light_matrix(&bounds, radius);
+        let size = self.options.shadow_map_size.max(1);
+        let shadow_view = self.shadow_map(size);
+        let casters = vertices.as_ref().filter(|_| self.options.shadows);
+        self.draw_shadow_map(
+            &shadow_view,
+            casters.map(|b| (b, geometry.objects.clone())),
+            &light_from_world,
+        );
+        Ok(PreparedScene {
+            vertices,
+            always: geometry.always,
+            walls: geometry.walls,
+            ids: geometry.ids,
+            backdrop: scene.backdrop,
+            cut_away_walls: scene.cut_away_walls,
+            bounds,
+            reach,
+            light_from_world,
+            shadow_texel: 2.0 * radius / size as f64,
+            shadow_group: self.shadow_group(&shadow_view),
+        })
+    }
+
+    /// A square depth texture of `size` texels a side, to render into and sample.
+    fn shadow_map(&self, size: u32) -> wgpu::TextureView {
+        let texture = self.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("shadow map"),
+            size: wgpu::Extent3d {
+                width: size,
+                height: size,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: DEPTH_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        });
+        texture.create_view(&Default::default())
+    }
+
+    /// Renders the `casters` (a vertex buffer and the range of object vertices in it) into
+    /// the shadow map from the sun; with none, only clears it, so every lookup reads "lit".
+    fn draw_shadow_map(
+        &self,
+        view: &wgpu::TextureView,
+        casters: Option<(&wgpu::Buffer, Range<u32>)>,
+        light_from_world: &Matrix4<f64>,
+    ) {
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        let label = if casters.is_some() {
+            "shadow"
+        } else {
+            "shadow clear"
+        };
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some(label),
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                ..Default::default()
+            });
+            if let Some((buffer, objects)) = casters {
+                let mut globals = Globals::zeroed();
+                globals.light_from_world = mat(light_from_world);
+                let uniform = self.uniform(&globals);
+                pass.set_pipeline(&self.pipelines.shadow);
+                pass.set_bind_group(0, &uniform, &[]);
+                pass.set_vertex_buffer(0, buffer.slice(..));
+                pass.draw(objects, 0..1);
+            }
+        }
+        self.queue.submit([encoder.finish()]);
+    }
+
+    /// Group 1 of the scene pass: the shadow map `view` and the comparison sampler.
+    fn shadow_group(&self, view: &wgpu::TextureView) -> wgpu::BindGroup {
+        self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("shadow map"),
+            layout: &self.pipelines.shadow_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::Sampler(&self.pipelines.shadow_sampler),
+                },
+            ],
+        })
+    }
+}
+
+/// The sun's orthographic clip-from-world matrix for a sphere of `radius` around the box's
+/// centre: x, y in [−1, 1] across the sun's view, depth in [0, 1] along its rays.
+fn light_matrix(bounds: &Aabb, radius: f64) -> Matrix4<f64> {
+    let toward_sun = Vector3::from(SUN_DIRECTION).normalize();
+    let forward = -toward_sun;
+    let reference = if forward.y.abs() > 0.99 {
+        Vector3::z()
+    } else {
+        Vector3::y()
+    };
+    let right = forward.cross(&reference).normalize();
+    let up = right.cross(&forward);
+    let c = bounds.center().coords;
+    let r = radius;
+    Matrix4::new(
+        right.x / r,
+        right.y / r,
+        right.z / r,
+        -right.dot(&c) / r,
+        up.x / r,
+        up.y / r,
+        up.z / r,
+        -up.dot(&c) / r,
+        forward.x / (2.0 * r),
+        forward.y / (2.0 * r),
+        forward.z / (2.0 * r),
+        (r - forward.dot(&c)) / (2.0 * r),
+        0.0,
+        0.0,
+        0.0,
+        1.0,
+    )
+}

@@ -1,0 +1,300 @@
+//! Rendering one view of a prepared scene: the camera checked, the uniform block for it, the
+//! scene pass into three targets (colour, linear depth, instance), and their read-back.
+
+use std::sync::mpsc;
+
+use image::RgbaImage;
+use nalgebra::Vector3;
+use scenethesis_scene_graph::Camera;
+
+use super::{mat, palette, Globals, PreparedScene, Renderer, SUN_DIRECTION};
+use super::{COLOR_FORMAT, DEPTH_FORMAT, VALUE_FORMAT};
+use crate::geometry::WallRange;
+use crate::{Frame, RenderError};
+
+impl Renderer {
+    /// Renders a prepared scene from `camera` and reads the three images back.
+    pub fn render_prepared(
+        &self,
+        scene: &PreparedScene,
+        camera: &Camera,
+    ) -> Result<Frame, RenderError> {
+        self.check_camera(camera)?;
+        let uniform = self.uniform(&self.view_globals(scene, camera));
+        let targets = ViewTargets::new(
+            &self.device,
+            camera.intrinsics.width,
+            camera.intrinsics.height,
+        );
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        self.draw_view(&mut encoder, scene, camera, &uniform, &targets);
+        targets.copy_out(&mut encoder);
+        self.queue.submit([encoder.finish()]);
+        let [color, depth, instance] = targets.read_back(&self.device)?;
+        let (width, height) = (targets.width, targets.height);
+        Ok(Frame {
+            color: RgbaImage::from_raw(width, height, color).expect("4 bytes per pixel"),
+            depth: depth
+                .chunks_exact(4)
+                .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+                .collect(),
+            instance: instance
+                .chunks_exact(4)
+                .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+                .collect(),
+            ids: scene.ids.clone(),
+        })
+    }
+
+    /// Refuses an image size the device cannot hold and a camera with non-finite values or
+    /// non-positive focal lengths.
+    fn check_camera(&self, camera: &Camera) -> Result<(), RenderError> {
+        let k = camera.intrinsics;
+        let max = self.device.limits().max_texture_dimension_2d;
+        if k.width == 0 || k.height == 0 || k.width > max || k.height > max {
+            return Err(RenderError::InvalidSize {
+                width: k.width,
+                height: k.height,
+                max,
+            });
+        }
+        let finite = [k.fx, k.fy, k.cx, k.cy]
+            .iter()
+            .chain(camera.position.iter())
+            .chain(camera.rotation.coords.iter())
+            .all(|v| v.is_finite());
+        if !finite || k.fx <= 0.0 || k.fy <= 0.0 {
+            return Err(RenderError::InvalidCamera(format!("{camera:?}")));
+        }
+        Ok(())
+    }
+
+    /// The uniform block of `camera`'s view: projection with a depth range fitted to the
+    /// scene's extent as seen from the camera, the sun and the backdrop's colours.
+    fn view_globals(&self, scene: &PreparedScene, camera: &Camera) -> Globals {
+        let k = camera.intrinsics;
+        let distance = (camera.position - scene.bounds.center()).norm();
+        let far = distance + scene.reach + 1.0;
+        let near = ((distance - scene.reach) * 0.5).clamp(0.01, far * 0.01);
+        let view = camera.view_matrix();
+        let clip_from_world = camera.clip_from_camera(near, far) * view;
+        let rotation = camera.rotation.to_rotation_matrix();
+        let column = |i: usize| {
+            let c = rotation.matrix().column(i);
+            [c[0] as f32, c[1] as f32, c[2] as f32, 0.0]
+        };
+        let sun = Vector3::from(SUN_DIRECTION).normalize();
+        let colors = palette(scene.backdrop);
+        let rgb = |c: [f32; 3]| [c[0], c[1], c[2], 1.0];
+        let shadows = if self.options.shadows { 1.0 } else { 0.0 };
+        Globals {
+            clip_from_world: mat(&clip_from_world),
+            light_from_world: mat(&scene.light_from_world),
+            view_z: [0, 1, 2, 3].map(|c| view[(2, c)] as f32),
+            light_dir: [
+                sun.x as f32,
+                sun.y as f32,
+                sun.z as f32,
+                scene.shadow_texel as f32,
+            ],
+            sun: [colors.sun[0], colors.sun[1], colors.sun[2], shadows],
+            sky_ambient: rgb(colors.sky_ambient),
+            ground_ambient: rgb(colors.ground_ambient),
+            cam_right: column(0),
+            cam_up: column(1),
+            cam_back: column(2),
+            intrinsics: [k.fx as f32, k.fy as f32, k.cx as f32, k.cy as f32],
+            bg_top: rgb(colors.top),
+            bg_horizon: rgb(colors.horizon),
+            bg_bottom: rgb(colors.bottom),
+        }
+    }
+
+    /// The scene pass: the backdrop, then the objects and floor, then each wall unless the
+    /// scene cuts away walls the camera stands behind.
+    fn draw_view(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &PreparedScene,
+        camera: &Camera,
+        uniform: &wgpu::BindGroup,
+        targets: &ViewTargets,
+    ) {
+        let attachments = targets.views.each_ref().map(|view| {
+            Some(wgpu::RenderPassColorAttachment {
+                view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    store: wgpu::StoreOp::Store,
+                },
+            })
+        });
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("scene"),
+            color_attachments: &attachments,
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &targets.zbuffer,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Discard,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_bind_group(0, uniform, &[]);
+        pass.set_pipeline(&self.pipelines.background);
+        pass.draw(0..3, 0..1);
+        if let Some(buffer) = &scene.vertices {
+            pass.set_pipeline(&self.pipelines.scene);
+            pass.set_bind_group(1, &scene.shadow_group, &[]);
+            pass.set_vertex_buffer(0, buffer.slice(..));
+            pass.draw(scene.always.clone(), 0..1);
+            for wall in &scene.walls {
+                if !(scene.cut_away_walls && camera_behind_wall(camera, wall)) {
+                    pass.draw(wall.vertices.clone(), 0..1);
+                }
+            }
+        }
+    }
+}
+
+/// Whether the camera stands on the outer side of a wall (so the wall would hide the room).
+fn camera_behind_wall(camera: &Camera, wall: &WallRange) -> bool {
+    let c = nalgebra::Vector2::new(camera.position.x, camera.position.z);
+    (c - wall.start.coords).dot(&wall.inward) < -wall.thickness / 2.0
+}
+
+/// The targets of one view (colour, linear depth bits, instance; all 4 bytes a pixel), the
+/// z-buffer, and the buffer they are copied into for reading back.
+struct ViewTargets {
+    width: u32,
+    height: u32,
+    textures: [wgpu::Texture; 3],
+    views: [wgpu::TextureView; 3],
+    zbuffer: wgpu::TextureView,
+    readback: wgpu::Buffer,
+}
+
+impl ViewTargets {
+    /// Targets of `width` × `height` pixels on `device`.
+    fn new(device: &wgpu::Device, width: u32, height: u32) -> Self {
+        let extent = extent(width, height);
+        let target = |label, format, usage| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: extent,
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats: &[],
+            })
+        };
+        let readable = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
+        let textures = [
+            target("colour", COLOR_FORMAT, readable),
+            target("linear depth", VALUE_FORMAT, readable),
+            target("instance", VALUE_FORMAT, readable),
+        ];
+        let zbuffer = target(
+            "z-buffer",
+            DEPTH_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT,
+        );
+        let views = textures
+            .each_ref()
+            .map(|t| t.create_view(&Default::default()));
+        let readback = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("read-back"),
+            size: plane_size(width, height) * 3,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        Self {
+            width,
+            height,
+            textures,
+            views,
+            zbuffer: zbuffer.create_view(&Default::default()),
+            readback,
+        }
+    }
+
+    /// Copies the three targets into the read-back buffer, one padded plane each.
+    fn copy_out(&self, encoder: &mut wgpu::CommandEncoder) {
+        let plane = plane_size(self.width, self.height);
+        for (i, texture) in self.textures.iter().enumerate() {
+            encoder.copy_texture_to_buffer(
+                texture.as_image_copy(),
+                wgpu::TexelCopyBufferInfo {
+                    buffer: &self.readback,
+                    layout: wgpu::TexelCopyBufferLayout {
+                        offset: plane * i as u64,
+                        bytes_per_row: Some(padded_row(self.width) as u32),
+                        rows_per_image: Some(self.height),
+                    },
+                },
+                extent(self.width, self.height),
+            );
+        }
+    }
+
+    /// Waits for the copies and returns the three planes' pixels with the row padding removed.
+    fn read_back(&self, device: &wgpu::Device) -> Result<[Vec<u8>; 3], RenderError> {
+        let (sender, receiver) = mpsc::channel();
+        self.readback
+            .map_async(wgpu::MapMode::Read, .., move |result| {
+                // The receiver outlives the poll below; a failed send only means it was dropped.
+                let _ = sender.send(result);
+            });
+        let failed = |e: &dyn std::fmt::Display| RenderError::Readback(e.to_string());
+        device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| failed(&e))?;
+        receiver
+            .recv()
+            .map_err(|e| failed(&e))?
+            .map_err(|e| failed(&e))?;
+        let mapped = self.readback.get_mapped_range(..).map_err(|e| failed(&e))?;
+        let (row, padded) = (self.width as u64 * 4, padded_row(self.width));
+        let plane = plane_size(self.width, self.height);
+        let unpad = |plane_index: u64| -> Vec<u8> {
+            let base = plane * plane_index;
+            let mut out = Vec::with_capacity((row * self.height as u64) as usize);
+            for y in 0..self.height as u64 {
+                let start = (base + y * padded) as usize;
+                out.extend_from_slice(&mapped[start..start + row as usize]);
+            }
+            out
+        };
+        let planes = [unpad(0), unpad(1), unpad(2)];
+        drop(mapped);
+        self.readback.unmap();
+        Ok(planes)
+    }
+}
+
+/// A `width` × `height` single-layer extent.
+fn extent(width: u32, height: u32) -> wgpu::Extent3d {
+    wgpu::Extent3d {
+        width,
+        height,
+        depth_or_array_layers: 1,
+    }
+}
+
+/// Bytes of a row of 4-byte pixels, padded to the 256 bytes a texture copy needs.
+fn padded_row(width: u32) -> u64 {
+    (width as u64 * 4).div_ceil(256) * 256
+}
+
+/// Bytes of one padded plane.
+fn plane_size(width: u32, height: u32) -> u64 {
+    padded_row(width) * height as u64
+}
