@@ -7,7 +7,7 @@ use scenethesis_scene_graph::{Aabb, Mesh};
 use scenethesis_sdf::MeshSdf;
 use serde::{Deserialize, Serialize};
 
-use crate::raster::wall_pieces;
+use crate::raster::{wall_pieces, WallPiece};
 use crate::scene::EvalScene;
 
 /// A pair (or an object and the architecture) collides when the penetration exceeds this (m).
@@ -179,44 +179,8 @@ pub fn collisions(scene: &EvalScene) -> CollisionReport {
             points: test_points(&o.mesh, 0x5eed_0000 + k as u64),
         })
         .collect();
-    let mut candidates = Vec::new();
-    for i in 0..objects.len() {
-        for j in i + 1..objects.len() {
-            if let (Some(a), Some(b)) = (&prepared[i].bounds, &prepared[j].bounds) {
-                if boxes_touch(a, b) {
-                    candidates.push((i, j));
-                }
-            }
-        }
-    }
-    let mut involved = vec![false; objects.len()];
-    for &(i, j) in &candidates {
-        involved[i] = true;
-        involved[j] = true;
-    }
-    let fields: Vec<Vec<PartField>> = objects
-        .par_iter()
-        .zip(&involved)
-        .map(|(o, &needed)| {
-            if needed {
-                part_fields(&o.mesh)
-            } else {
-                Vec::new()
-            }
-        })
-        .collect();
-    let depths: Vec<f64> = candidates
-        .par_iter()
-        .map(|&(i, j)| match (&prepared[i].bounds, &prepared[j].bounds) {
-            (Some(bi), Some(bj)) => {
-                let ab = penetration(&prepared[i].points, bj, &fields[j]);
-                let ba = penetration(&prepared[j].points, bi, &fields[i]);
-                ab.max(ba)
-            }
-            // Candidates are pairs with both boxes.
-            _ => 0.0,
-        })
-        .collect();
+    let candidates = candidate_pairs(&prepared);
+    let depths = pair_depths(scene, &prepared, &candidates);
     let mut report = CollisionReport {
         pairs_tested: candidates.len(),
         ..Default::default()
@@ -239,17 +203,76 @@ pub fn collisions(scene: &EvalScene) -> CollisionReport {
         .filter(|(_, &c)| c)
         .map(|(o, _)| o.id.clone())
         .collect();
+    report.architecture = architecture_penetrations(scene, &prepared);
+    report
+}
 
-    // Floor and walls.
+/// The pairs `(i, j)`, `i < j`, whose bounding boxes touch.
+fn candidate_pairs(prepared: &[Prepared]) -> Vec<(usize, usize)> {
+    let mut candidates = Vec::new();
+    for i in 0..prepared.len() {
+        for j in i + 1..prepared.len() {
+            if let (Some(a), Some(b)) = (&prepared[i].bounds, &prepared[j].bounds) {
+                if boxes_touch(a, b) {
+                    candidates.push((i, j));
+                }
+            }
+        }
+    }
+    candidates
+}
+
+/// Each candidate pair's deepest penetration, either way round, against the exact fields of
+/// the parts of the objects some pair involves.
+fn pair_depths(
+    scene: &EvalScene,
+    prepared: &[Prepared],
+    candidates: &[(usize, usize)],
+) -> Vec<f64> {
+    let objects = &scene.objects;
+    let mut involved = vec![false; objects.len()];
+    for &(i, j) in candidates {
+        involved[i] = true;
+        involved[j] = true;
+    }
+    let fields: Vec<Vec<PartField>> = objects
+        .par_iter()
+        .zip(&involved)
+        .map(|(o, &needed)| {
+            if needed {
+                part_fields(&o.mesh)
+            } else {
+                Vec::new()
+            }
+        })
+        .collect();
+    candidates
+        .par_iter()
+        .map(|&(i, j)| match (&prepared[i].bounds, &prepared[j].bounds) {
+            (Some(bi), Some(bj)) => {
+                let ab = penetration(&prepared[i].points, bj, &fields[j]);
+                let ba = penetration(&prepared[j].points, bi, &fields[i]);
+                ab.max(ba)
+            }
+            // Candidates are pairs with both boxes.
+            _ => 0.0,
+        })
+        .collect()
+}
+
+/// Every object's penetration of the floor and of each wall (the deepest over the wall's
+/// pieces), where deeper than [`PENETRATION_TOLERANCE`].
+fn architecture_penetrations(scene: &EvalScene, prepared: &[Prepared]) -> Vec<ArchPenetration> {
     let walls = wall_pieces(scene);
-    for (object, prep) in objects.iter().zip(&prepared) {
+    let mut found = Vec::new();
+    for (object, prep) in scene.objects.iter().zip(prepared) {
         let floor_depth = prep
             .points
             .iter()
             .map(|p| -(p.y as f64))
             .fold(0.0, f64::max);
         if floor_depth > PENETRATION_TOLERANCE {
-            report.architecture.push(ArchPenetration {
+            found.push(ArchPenetration {
                 object: object.id.clone(),
                 architecture: scene.architecture.floor.id.clone(),
                 depth: floor_depth,
@@ -257,23 +280,9 @@ pub fn collisions(scene: &EvalScene) -> CollisionReport {
         }
         let mut per_wall: Vec<(&str, f64)> = Vec::new();
         for piece in &walls {
-            let (rect, height, id) = (&piece.rect, piece.height, piece.wall.as_str());
-            let mut deepest = 0.0f64;
-            for p in &prep.points {
-                let (x, y, z) = (p.x as f64, p.y as f64, p.z as f64);
-                if y <= 0.0 || y >= height {
-                    continue;
-                }
-                let (dx, dz) = (x - rect.center[0], z - rect.center[1]);
-                let u = dx * rect.axis[0] + dz * rect.axis[1];
-                let v = -dx * rect.axis[1] + dz * rect.axis[0];
-                let inside = (rect.half[0] - u.abs())
-                    .min(rect.half[1] - v.abs())
-                    .min(y)
-                    .min(height - y);
-                deepest = deepest.max(inside);
-            }
+            let deepest = piece_depth(piece, &prep.points);
             if deepest > PENETRATION_TOLERANCE {
+                let id = piece.wall.as_str();
                 match per_wall.iter_mut().find(|(w, _)| *w == id) {
                     Some(entry) => entry.1 = entry.1.max(deepest),
                     None => per_wall.push((id, deepest)),
@@ -281,12 +290,33 @@ pub fn collisions(scene: &EvalScene) -> CollisionReport {
             }
         }
         for (id, depth) in per_wall {
-            report.architecture.push(ArchPenetration {
+            found.push(ArchPenetration {
                 object: object.id.clone(),
                 architecture: id.to_owned(),
                 depth,
             });
         }
     }
-    report
+    found
+}
+
+/// How deep the deepest of `points` lies inside the wall piece's box (0 when none is inside).
+fn piece_depth(piece: &WallPiece, points: &[Point3<f32>]) -> f64 {
+    let (rect, height) = (&piece.rect, piece.height);
+    let mut deepest = 0.0f64;
+    for p in points {
+        let (x, y, z) = (p.x as f64, p.y as f64, p.z as f64);
+        if y <= 0.0 || y >= height {
+            continue;
+        }
+        let (dx, dz) = (x - rect.center[0], z - rect.center[1]);
+        let u = dx * rect.axis[0] + dz * rect.axis[1];
+        let v = -dx * rect.axis[1] + dz * rect.axis[0];
+        let inside = (rect.half[0] - u.abs())
+            .min(rect.half[1] - v.abs())
+            .min(y)
+            .min(height - y);
+        deepest = deepest.max(inside);
+    }
+    deepest
 }

@@ -317,6 +317,22 @@ pub fn is_convex(part: &MeshPart) -> bool {
 
 /// Simulates the scene for [`SIM_DURATION`] and reports which objects are unstable.
 pub fn simulate(scene: &EvalScene, cache: &DecompositionCache) -> StabilityReport {
+    let mut world = new_world();
+    add_architecture(&mut world, scene);
+    let mut report = StabilityReport::default();
+    let bodies = add_objects(&mut world, scene, cache, &mut report);
+    report.tested = bodies.len();
+    report.simulated_seconds = run(&mut world) as f64 * SIM_STEP;
+    for (id, handle) in bodies {
+        if let Some(unstable) = motion(id, &world.bodies[handle]) {
+            report.unstable.push(unstable);
+        }
+    }
+    report
+}
+
+/// An empty world with the metric's gravity and time step.
+fn new_world() -> PhysicsWorld {
     let mut world = PhysicsWorld::new();
     world.gravity = Vec3::new(0.0, -GRAVITY as f32, 0.0);
     world.integration_parameters.dt = SIM_STEP as f32;
@@ -325,13 +341,18 @@ pub fn simulate(scene: &EvalScene, cache: &DecompositionCache) -> StabilityRepor
     // acceptable: it made tall, symmetric objects (lamps, plants, umbrellas) creep and tilt by
     // a few hundredths of a radian while standing still. Recompute contacts every step.
     world.integration_parameters.contact_recycling = false;
+    world
+}
 
-    let material = |b: ColliderBuilder| {
-        b.friction(FRICTION as f32)
-            .restitution(0.0)
-            .density(DENSITY as f32)
-    };
-    // Static floor (a slab whose top is y = 0, well beyond the floor rectangle) and walls.
+/// The metric's surface: [`FRICTION`], no bounce, [`DENSITY`].
+fn material(b: ColliderBuilder) -> ColliderBuilder {
+    b.friction(FRICTION as f32)
+        .restitution(0.0)
+        .density(DENSITY as f32)
+}
+
+/// The static floor (a slab whose top is y = 0, well beyond the floor rectangle) and walls.
+fn add_architecture(world: &mut PhysicsWorld, scene: &EvalScene) {
     let floor = &scene.architecture.floor;
     let floor_center = [
         (floor.min.x + floor.max.x) / 2.0,
@@ -378,8 +399,17 @@ pub fn simulate(scene: &EvalScene, cache: &DecompositionCache) -> StabilityRepor
             )),
         );
     }
+}
 
-    let mut report = StabilityReport::default();
+/// One body per object made of its convex pieces: free, or fixed when welded to a wall (noted
+/// in `report`); objects with nothing to simulate are noted as skipped. Returns the free
+/// bodies by id.
+fn add_objects(
+    world: &mut PhysicsWorld,
+    scene: &EvalScene,
+    cache: &DecompositionCache,
+    report: &mut StabilityReport,
+) -> Vec<(String, RigidBodyHandle)> {
     let mut bodies = Vec::new();
     for object in &scene.objects {
         let shapes: Vec<(Pose3, SharedShape)> = object
@@ -419,8 +449,11 @@ pub fn simulate(scene: &EvalScene, cache: &DecompositionCache) -> StabilityRepor
             bodies.push((object.id.clone(), handle));
         }
     }
-    report.tested = bodies.len();
+    bodies
+}
 
+/// Steps the world for [`SIM_DURATION`], or until every body sleeps; returns the steps run.
+fn run(world: &mut PhysicsWorld) -> usize {
     let steps = (SIM_DURATION / SIM_STEP).round() as usize;
     let mut ran = 0;
     while ran < steps {
@@ -430,27 +463,27 @@ pub fn simulate(scene: &EvalScene, cache: &DecompositionCache) -> StabilityRepor
             break;
         }
     }
-    report.simulated_seconds = ran as f64 * SIM_STEP;
+    ran
+}
 
-    for (id, handle) in bodies {
-        let body = &world.bodies[handle];
-        let local_com = body.local_center_of_mass();
-        let pose = body.position();
-        let moved = pose.transform_point(local_com) - local_com;
-        let rotation = quat_angle(pose.rotation);
-        let non_finite = !pose.is_finite() || !moved.is_finite() || !rotation.is_finite();
-        let displacement = moved.length() as f64;
-        let rotation = rotation as f64;
-        if non_finite || displacement > MAX_DISPLACEMENT || rotation > MAX_ROTATION {
-            report.unstable.push(UnstableObject {
-                id,
-                displacement: if non_finite { 0.0 } else { displacement },
-                rotation: if non_finite { 0.0 } else { rotation },
-                non_finite,
-            });
-        }
-    }
-    report
+/// The body of object `id` as unstable, when its centre of mass moved more than
+/// [`MAX_DISPLACEMENT`], it turned more than [`MAX_ROTATION`] or its state is not finite.
+fn motion(id: String, body: &RigidBody) -> Option<UnstableObject> {
+    let local_com = body.local_center_of_mass();
+    let pose = body.position();
+    let moved = pose.transform_point(local_com) - local_com;
+    let rotation = quat_angle(pose.rotation);
+    let non_finite = !pose.is_finite() || !moved.is_finite() || !rotation.is_finite();
+    let displacement = moved.length() as f64;
+    let rotation = rotation as f64;
+    (non_finite || displacement > MAX_DISPLACEMENT || rotation > MAX_ROTATION).then_some(
+        UnstableObject {
+            id,
+            displacement: if non_finite { 0.0 } else { displacement },
+            rotation: if non_finite { 0.0 } else { rotation },
+            non_finite,
+        },
+    )
 }
 
 /// The rotation angle of a unit quaternion, in [0, π].
