@@ -93,55 +93,7 @@ pub(super) fn candidates(
                 out.extend(wall_candidates(side, hx, hz, rng));
             }
         }
-        Zone::Wall { wall: None } => {
-            // Opposite a target: the wall facing it first.
-            let facing = o
-                .relations
-                .iter()
-                .find(|r| r.kind == RelationKind::Facing)
-                .and_then(|r| state.index_of(&r.target))
-                .and_then(|t| state.placed_of(t));
-            let mut order: Vec<usize> = (0..sides.len()).collect();
-            order.shuffle(rng);
-            if let Some(t) = facing {
-                let (_, f) = t.fp.axes();
-                order.sort_by(|&a, &b| {
-                    let da = sides[a].normal[0] * f[0] + sides[a].normal[1] * f[1];
-                    let db = sides[b].normal[0] * f[0] + sides[b].normal[1] * f[1];
-                    da.total_cmp(&db)
-                });
-                let side = &sides[order[0]];
-                let s_t = (t.fp.cx - side.face[0]) * side.along[0]
-                    + (t.fp.cz - side.face[1]) * side.along[1];
-                let lim = side.limit(hx);
-                if lim > 0.0 {
-                    let mut ss: Vec<f64> = (0..=(2.0 * lim / 0.1) as usize)
-                        .map(|k| -lim + k as f64 * 0.1)
-                        .collect();
-                    ss.sort_by(|a, b| (a - s_t).abs().total_cmp(&(b - s_t).abs()));
-                    out.extend(ss.into_iter().map(|s| Candidate {
-                        fp: side.footprint_at(s, hx, hz),
-                        wall: side.id.clone(),
-                    }));
-                }
-                order.remove(0);
-            }
-            for k in order {
-                out.extend(wall_candidates(&sides[k], hx, hz, rng));
-            }
-            if let Some(t) = facing {
-                // Places on the other walls from which the object would not face its target
-                // (a television on a side wall, turned away from the sofa) come last.
-                let faces = |c: &Candidate| {
-                    let d = [t.fp.cx - c.fp.cx, t.fp.cz - c.fp.cz];
-                    let len = (d[0] * d[0] + d[1] * d[1]).sqrt();
-                    len > 1e-9
-                        && (c.fp.yaw.sin() * d[0] + c.fp.yaw.cos() * d[1]) / len
-                            >= 50f64.to_radians().cos()
-                };
-                out.sort_by_key(|c| !faces(c));
-            }
-        }
+        Zone::Wall { wall: None } => out.extend(any_wall_candidates(state, o, sides, hx, hz, rng)),
         Zone::Corner => out.extend(corner_candidates(sides, hx, hz, rng)),
         Zone::Center => out.extend(center_candidates(state, hx, hz, rng, is_anchor)),
         Zone::Rows => out.extend(row_candidates(state, hx, hz, seat_like(&o.category))),
@@ -166,21 +118,100 @@ pub(super) fn candidates(
         Zone::Free | Zone::Relative | Zone::Center | Zone::Rows
     ) || (is_anchor && out.is_empty())
     {
-        let anchor_toward = state
-            .index_of(&plan.anchor)
-            .and_then(|a| state.placed_of(a))
-            .map(|p| [p.fp.cx, p.fp.cz]);
-        let seat = seat_like(&o.category);
-        let facing = seat.then_some(anchor_toward).flatten();
-        let from = out.len();
-        out.extend(free_candidates(state, info, rng, facing));
-        if o.zone == Zone::Rows && !seat {
-            // A desk of the rows that finds no row spot still turns like the rows.
-            for c in &mut out[from..] {
-                c.fp.yaw = 0.0;
-            }
+        add_free_candidates(state, o, info, rng, &mut out);
+    }
+    order_by_service(state, o, &mut out);
+    out
+}
+
+/// Spots along any wall: with a target to face, the wall facing it first (nearest the
+/// target's line first), then the other walls in a random order, those from which the object
+/// would not face its target last.
+fn any_wall_candidates(
+    state: &FloorState<'_>,
+    o: &PlannedObject,
+    sides: &[Side],
+    hx: f64,
+    hz: f64,
+    rng: &mut ChaCha8Rng,
+) -> Vec<Candidate> {
+    let mut out = Vec::new();
+    // Opposite a target: the wall facing it first.
+    let facing = o
+        .relations
+        .iter()
+        .find(|r| r.kind == RelationKind::Facing)
+        .and_then(|r| state.index_of(&r.target))
+        .and_then(|t| state.placed_of(t));
+    let mut order: Vec<usize> = (0..sides.len()).collect();
+    order.shuffle(rng);
+    if let Some(t) = facing {
+        let (_, f) = t.fp.axes();
+        order.sort_by(|&a, &b| {
+            let da = sides[a].normal[0] * f[0] + sides[a].normal[1] * f[1];
+            let db = sides[b].normal[0] * f[0] + sides[b].normal[1] * f[1];
+            da.total_cmp(&db)
+        });
+        let side = &sides[order[0]];
+        let s_t =
+            (t.fp.cx - side.face[0]) * side.along[0] + (t.fp.cz - side.face[1]) * side.along[1];
+        let lim = side.limit(hx);
+        if lim > 0.0 {
+            let mut ss: Vec<f64> = (0..=(2.0 * lim / 0.1) as usize)
+                .map(|k| -lim + k as f64 * 0.1)
+                .collect();
+            ss.sort_by(|a, b| (a - s_t).abs().total_cmp(&(b - s_t).abs()));
+            out.extend(ss.into_iter().map(|s| Candidate {
+                fp: side.footprint_at(s, hx, hz),
+                wall: side.id.clone(),
+            }));
+        }
+        order.remove(0);
+    }
+    for k in order {
+        out.extend(wall_candidates(&sides[k], hx, hz, rng));
+    }
+    if let Some(t) = facing {
+        // Places on the other walls from which the object would not face its target
+        // (a television on a side wall, turned away from the sofa) come last.
+        let faces = |c: &Candidate| {
+            let d = [t.fp.cx - c.fp.cx, t.fp.cz - c.fp.cz];
+            let len = (d[0] * d[0] + d[1] * d[1]).sqrt();
+            len > 1e-9
+                && (c.fp.yaw.sin() * d[0] + c.fp.yaw.cos() * d[1]) / len >= 50f64.to_radians().cos()
+        };
+        out.sort_by_key(|c| !faces(c));
+    }
+    out
+}
+
+/// Appends free spots on the floor (a seat turned toward the anchor); a desk of the rows
+/// turns like the rows.
+fn add_free_candidates(
+    state: &FloorState<'_>,
+    o: &PlannedObject,
+    info: &AssetInfo,
+    rng: &mut ChaCha8Rng,
+    out: &mut Vec<Candidate>,
+) {
+    let anchor_toward = state
+        .index_of(&state.plan.anchor)
+        .and_then(|a| state.placed_of(a))
+        .map(|p| [p.fp.cx, p.fp.cz]);
+    let seat = seat_like(&o.category);
+    let facing = seat.then_some(anchor_toward).flatten();
+    let from = out.len();
+    out.extend(free_candidates(state, info, rng, facing));
+    if o.zone == Zone::Rows && !seat {
+        // A desk of the rows that finds no row spot still turns like the rows.
+        for c in &mut out[from..] {
+            c.fp.yaw = 0.0;
         }
     }
+}
+
+/// Orders `out` so that spots breaking the object's `faces` and `served by` rules come last.
+fn order_by_service(state: &FloorState<'_>, o: &PlannedObject, out: &mut [Candidate]) {
     let serves = ArrangementRules::builtin().faces_of(&o.category);
     if !serves.is_empty() {
         // Spots from which the object would stand by a table (screen, …) of its `faces` rule
@@ -195,7 +226,6 @@ pub(super) fn candidates(
         // order: their seats are drawn up to them afterwards.
         out.sort_by_key(|c| strands_a_seat(state, &c.fp, &served));
     }
-    out
 }
 
 /// Whether a subject at `subject` faces a target at `target`: its front within 50° of the
