@@ -28,8 +28,6 @@
 
 #![warn(missing_docs)]
 
-#[cfg(feature = "render")]
-pub mod ablation;
 pub mod batch;
 pub mod correspond;
 mod error;
@@ -40,8 +38,6 @@ mod pipeline;
 mod plan_file;
 mod replan;
 mod report;
-#[cfg(feature = "render")]
-pub mod roundtrip;
 mod saved;
 mod stage;
 

@@ -52,6 +52,9 @@ pub enum RenderError {
     /// Two instances share one id, so the instance image could not tell them apart.
     #[error("two instances share the id `{0}`")]
     DuplicateId(String),
+    /// The scene has no object with a mesh, so there is no guidance to render.
+    #[error("the scene has no object with a mesh to render guidance of")]
+    NoObjects,
     /// Mapping the read-back buffer failed.
     #[error("reading the rendered images back from the GPU failed: {0}")]
     Readback(String),

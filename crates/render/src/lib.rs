@@ -38,6 +38,7 @@ mod backend;
 mod error;
 mod frame;
 mod geometry;
+mod guidance;
 mod renderer;
 mod scene;
 mod seam;

@@ -156,13 +156,10 @@ fn write_guidance(scene: &Scene, file: &Path, dir: &Path, args: &RenderArgs) -> 
     )
     .with_context(|| format!("cannot rebuild the meshes of {}", file.display()))?;
     let renderer = open_renderer(args.backend)?;
-    let (guidance, labels) = scenethesis_pipeline::roundtrip::render_guidance(
-        &renderer,
-        scene,
-        &meshes,
-        [args.size.width, args.size.height],
-    )
-    .with_context(|| format!("cannot render the guidance of {}", file.display()))?;
+    let guidance = renderer
+        .render_guidance(scene, &meshes, [args.size.width, args.size.height])
+        .with_context(|| format!("cannot render the guidance of {}", file.display()))?;
+    let labels = scenethesis_vision::files::scene_labels(scene);
     let out = dir.join("guidance");
     std::fs::create_dir_all(&out).with_context(|| format!("cannot write {}", out.display()))?;
     for (name, bytes) in scenethesis_vision::files::encode_guidance(&guidance, &labels)? {

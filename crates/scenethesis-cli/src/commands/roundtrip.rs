@@ -5,8 +5,8 @@
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
-use scenethesis_pipeline::ablation::ablation;
-use scenethesis_pipeline::roundtrip::{roundtrip, Perturbation, RoundtripOptions};
+use scenethesis_experiments::ablation::ablation;
+use scenethesis_experiments::roundtrip::{roundtrip, Perturbation, RoundtripOptions};
 use scenethesis_pipeline::{resolve_meshes, RetrievalSource};
 use scenethesis_render::BackendChoice;
 use scenethesis_scene_graph::Scene;

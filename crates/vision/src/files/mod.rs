@@ -327,6 +327,23 @@ pub fn write_npy(width: u32, height: u32, values: &[f32]) -> Vec<u8> {
 /// The labels of an instance image, by instance value.
 pub type Labels = BTreeMap<u16, Label>;
 
+/// The labels of guidance rendered from `scene`: its objects numbered 1, 2, … in scene order
+/// (what `render --guidance` writes beside the instance image).
+pub fn scene_labels(scene: &scenethesis_scene_graph::Scene) -> Labels {
+    scene
+        .objects
+        .iter()
+        .zip(1u16..)
+        .map(|(object, value)| {
+            let label = Label {
+                id: object.id.clone(),
+                category: object.category.clone(),
+            };
+            (value, label)
+        })
+        .collect()
+}
+
 /// One entry of `labels.json`: the object an instance value stands for.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -1,9 +1,7 @@
 //! The vision round trip on a generated scene: render its guidance, lift it back to boxes and
 //! compare with the truth (Mesa's software renderer in CI).
 
-#![cfg(feature = "render")]
-
-use scenethesis_pipeline::roundtrip::{roundtrip, Perturbation, RoundtripOptions};
+use scenethesis_experiments::roundtrip::{roundtrip, Perturbation, RoundtripOptions};
 use scenethesis_pipeline::{GenerateOptions, GeneratedScene, NoProgress, Pipeline};
 use scenethesis_render::Renderer;
 
@@ -56,7 +54,7 @@ fn unperturbed_round_trip_recovers_the_scene() {
 /// where they truly are than the raw lift, and the full optimizer leaves no collision and nothing unstable.
 #[test]
 fn ablation_alignment_beats_the_raw_lift_and_the_full_optimizer_is_clean() {
-    use scenethesis_pipeline::ablation::{ablation, AblationStage};
+    use scenethesis_experiments::ablation::{ablation, AblationStage};
 
     let (generated, renderer) =
         generated("a living room with a sofa, a coffee table, a tv stand and a bookshelf");

@@ -5,7 +5,7 @@
 //!
 //! 1. `raw`: each true asset placed in its lifted box (yaw from the box, scale from the
 //!    median ratio of box to asset extents, centre on the box's);
-//! 2. `alignment`: after the correspond stage ([`crate::correspond`]: yaw hypotheses, shape
+//! 2. `alignment`: after the correspond stage ([`scenethesis_pipeline::correspond`]: yaw hypotheses, shape
 //!    matching against mask and depth, matches refreshed while the pose moves);
 //! 3. `collision`: after the optimizer's alignment stage and a physics stage that only resolves
 //!    collisions ([`ProjectedGaussNewton::stability`] off);
@@ -33,11 +33,10 @@ use scenethesis_vision::boxes::DepthSource;
 use scenethesis_vision::{lift_scene, LiftOptions, LiftedBox};
 use serde::{Deserialize, Serialize};
 
-use crate::correspond::correspond;
 use crate::roundtrip::{
-    median, perturb, render_guidance, true_boxes, yaw_error, yaw_symmetry, RoundtripError,
-    RoundtripOptions,
+    median, perturb, true_boxes, yaw_error, yaw_symmetry, RoundtripError, RoundtripOptions,
 };
+use scenethesis_pipeline::correspond::correspond;
 
 /// The four rows of the ablation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -105,7 +104,9 @@ pub fn ablation(
     meshes: &BTreeMap<String, Mesh>,
     options: &RoundtripOptions,
 ) -> Result<AblationReport, AblationError> {
-    let (guidance, _) = render_guidance(renderer, scene, meshes, options.size)?;
+    let guidance = renderer
+        .render_guidance(scene, meshes, options.size)
+        .map_err(RoundtripError::Render)?;
     let guidance = perturb(&guidance, options.perturb, options.seed);
     ablate(scene, meshes, &guidance)
 }

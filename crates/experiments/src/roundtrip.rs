@@ -9,11 +9,9 @@
 
 use std::collections::BTreeMap;
 
-use scenethesis_correspondence::{DepthMap, Guidance, Mask, RgbImage};
-use scenethesis_render::{view_camera, Frame, RenderError, RenderScene, Renderer};
-use scenethesis_render_api::ViewKind;
+use scenethesis_correspondence::{DepthMap, Guidance, Mask};
+use scenethesis_render::{RenderError, Renderer};
 use scenethesis_scene_graph::{fnv1a64, mix64, Mesh, ParentRef, Scene};
-use scenethesis_vision::files::{Label, Labels};
 use scenethesis_vision::{lift_scene, LiftError, LiftOptions, LiftedBox, SupportKind};
 use serde::{Deserialize, Serialize};
 
@@ -39,9 +37,6 @@ pub enum RoundtripError {
     /// The lift refused the guidance.
     #[error("cannot lift the guidance")]
     Lift(#[source] LiftError),
-    /// The scene has no object with a mesh.
-    #[error("the scene has no object to render")]
-    Empty,
 }
 
 /// The comparison of one recovered object with the truth.
@@ -131,61 +126,6 @@ impl Default for RoundtripOptions {
             seed: 0,
         }
     }
-}
-
-/// Renders the photo view of `scene` as guidance: the colour image, metric depth (architecture
-/// included, `0` for background), one visible mask per object and labels numbering the objects
-/// 1, 2, … in scene order.
-pub fn render_guidance(
-    renderer: &Renderer,
-    scene: &Scene,
-    meshes: &BTreeMap<String, Mesh>,
-    size: [u32; 2],
-) -> Result<(Guidance, Labels), RoundtripError> {
-    let rs = RenderScene::from_scene(scene, meshes);
-    if rs.instances.is_empty() {
-        return Err(RoundtripError::Empty);
-    }
-    let camera = view_camera(&rs, ViewKind::Photo, size);
-    let prepared = renderer.prepare(&rs).map_err(RoundtripError::Render)?;
-    let frame = renderer
-        .render_prepared(&prepared, &camera)
-        .map_err(RoundtripError::Render)?;
-    Ok(guidance_from_frame(scene, &frame, camera))
-}
-
-fn guidance_from_frame(
-    scene: &Scene,
-    frame: &Frame,
-    camera: scenethesis_scene_graph::Camera,
-) -> (Guidance, Labels) {
-    let (w, h) = (frame.width(), frame.height());
-    let image = RgbImage::from_rgba(&frame.color);
-    let depth = DepthMap::new(w, h, frame.depth.clone()).expect("rendered depth is finite");
-    let mut masks = BTreeMap::new();
-    let mut labels = Labels::new();
-    for (k, object) in scene.objects.iter().enumerate() {
-        let value = k as u16 + 1;
-        labels.insert(
-            value,
-            Label {
-                id: object.id.clone(),
-                category: object.category.clone(),
-            },
-        );
-        let mut mask = Mask::new(w, h);
-        if let Some(index) = frame.index_of(&object.id) {
-            for (i, &v) in frame.instance.iter().enumerate() {
-                if v == index {
-                    mask.set(i as u32 % w, i as u32 / w, true);
-                }
-            }
-        }
-        masks.insert(object.id.clone(), mask);
-    }
-    let guidance =
-        Guidance::new(camera, image, Some(depth), masks).expect("all images share the frame size");
-    (guidance, labels)
 }
 
 /// A deterministic uniform value in [0, 1) from a key. The FNV hash is passed through
@@ -476,7 +416,9 @@ pub fn roundtrip(
     meshes: &BTreeMap<String, Mesh>,
     options: &RoundtripOptions,
 ) -> Result<RoundtripReport, RoundtripError> {
-    let (guidance, _) = render_guidance(renderer, scene, meshes, options.size)?;
+    let guidance = renderer
+        .render_guidance(scene, meshes, options.size)
+        .map_err(RoundtripError::Render)?;
     let guidance = perturb(&guidance, options.perturb, options.seed);
     compare(scene, meshes, &guidance, options.perturb)
 }
@@ -499,6 +441,7 @@ mod tests {
 
     #[test]
     fn depth_noise_is_independent_per_pixel_with_two_percent_spread() {
+        use scenethesis_correspondence::RgbImage;
         use scenethesis_scene_graph::{Camera, Intrinsics};
         let (w, h) = (64u32, 48u32);
         let k = Intrinsics::from_vertical_fov(w, h, 1.0);
