@@ -1,12 +1,13 @@
 //! Pose alignment: 2D pixel and 3D point distances of correspondences between an object's
 //! asset and the guidance image, under the guide's pinhole camera.
 
-use nalgebra::{Matrix5, Vector3};
+use nalgebra::Vector3;
 use scenethesis_correspondence::{Correspondence, PairKind};
 use scenethesis_scene_graph::{Camera, Pose};
 use serde::{Deserialize, Serialize};
 
-use crate::params::{from_vector, to_vector, world_point, world_point_jacobian, PoseVector, SCALE};
+use crate::damped::{damped_step, NormalEquations};
+use crate::params::{world_point, world_point_jacobian, PoseVector, SCALE};
 
 /// Which pair a residual row belongs to, and whether it is measured in pixels.
 #[derive(Debug, Clone, Copy)]
@@ -329,45 +330,25 @@ impl PoseAlignment {
                 break;
             }
             let weights = self.huber_weights(&r, &tags, options);
-            let mut jtj = Matrix5::<f64>::zeros();
-            let mut jtr = PoseVector::zeros();
-            for ((ri, row), w) in r.iter().zip(&jac).zip(&weights) {
-                jtj += row * row.transpose() * *w;
-                jtr += row * (*ri * *w);
-            }
+            let mut normal = NormalEquations::of(&r, &jac, Some(&weights));
             if options.fix_scale {
                 for k in 0..5 {
-                    jtj[(SCALE, k)] = 0.0;
-                    jtj[(k, SCALE)] = 0.0;
+                    normal.jtj[(SCALE, k)] = 0.0;
+                    normal.jtj[(k, SCALE)] = 0.0;
                 }
-                jtj[(SCALE, SCALE)] = 1.0;
-                jtr[SCALE] = 0.0;
+                normal.jtj[(SCALE, SCALE)] = 1.0;
+                normal.jtr[SCALE] = 0.0;
             }
-            let mut improved = false;
-            for _ in 0..10 {
-                let mut a = jtj;
-                for k in 0..5 {
-                    a[(k, k)] += lambda * jtj[(k, k)].max(1e-9) + 1e-12;
+            let cost_of = |p: &Pose| self.robust_loss(p, options);
+            match damped_step(&normal, &pose, cost, &mut lambda, 10, clamp, cost_of) {
+                Some(step) => {
+                    pose = step.pose;
+                    cost = step.cost;
+                    if !step.moved {
+                        break;
+                    }
                 }
-                let Some(chol) = a.cholesky() else {
-                    lambda *= 10.0;
-                    continue;
-                };
-                let step = chol.solve(&(-jtr));
-                let candidate = clamp(from_vector(&(to_vector(&pose) + step)));
-                let c = self.robust_loss(&candidate, options);
-                if c < cost {
-                    let moved = (to_vector(&candidate) - to_vector(&pose)).amax();
-                    pose = candidate;
-                    cost = c;
-                    lambda = (lambda / 3.0).max(1e-9);
-                    improved = moved > 1e-9;
-                    break;
-                }
-                lambda *= 4.0;
-            }
-            if !improved {
-                break;
+                None => break,
             }
         }
         pose
@@ -393,6 +374,7 @@ impl PoseAlignment {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::params::{from_vector, to_vector};
     use nalgebra::Point3;
     use scenethesis_scene_graph::Intrinsics;
 

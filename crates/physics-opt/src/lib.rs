@@ -28,6 +28,7 @@
 
 mod alignment;
 mod contact;
+mod damped;
 mod deadline;
 mod driver;
 mod finish;

@@ -3,14 +3,14 @@
 //! step and resolves penetration with the minimum-norm translation satisfying the linearized
 //! contact constraints, shrinking the object only when those constraints contradict each other.
 
-use nalgebra::{Matrix5, Vector3};
+use nalgebra::Vector3;
 use scenethesis_scene_graph::Pose;
 use serde::{Deserialize, Serialize};
 
 use crate::contact::CollisionState;
+use crate::damped::{damped_step, NormalEquations};
 use crate::objective::{ObjectProblem, Stage};
 use crate::optimizer::{lowest_residual, Optimizer, StageOutcome};
-use crate::params::{from_vector, to_vector, PoseVector};
 use crate::support::{horizontal, Support};
 
 /// Projected Gauss–Newton / Levenberg–Marquardt solver.
@@ -113,41 +113,18 @@ impl ProjectedGaussNewton {
         while iterations < self.alignment_iterations && !problem.out_of_time() {
             iterations += 1;
             let r = alignment.residuals(&pose, Some(&mut jac));
-            let mut jtj = Matrix5::<f64>::zeros();
-            let mut jtr = PoseVector::zeros();
-            for (ri, row) in r.iter().zip(&jac) {
-                jtj += row * row.transpose();
-                jtr += row * *ri;
-            }
-            let mut improved = false;
-            for _ in 0..12 {
-                let mut a = jtj;
-                for k in 0..5 {
-                    a[(k, k)] += lambda * jtj[(k, k)].max(1e-9) + 1e-12;
+            let normal = NormalEquations::of(&r, &jac, None);
+            let project = |p: Pose| problem.project(&p);
+            let cost_of = |p: &Pose| alignment.residuals(p, None).iter().map(|r| r * r).sum();
+            match damped_step(&normal, &pose, cost, &mut lambda, 12, project, cost_of) {
+                Some(step) => {
+                    pose = step.pose;
+                    cost = step.cost;
+                    if !step.moved {
+                        break;
+                    }
                 }
-                let Some(chol) = a.cholesky() else {
-                    lambda *= 10.0;
-                    continue;
-                };
-                let step = chol.solve(&(-jtr));
-                let candidate = problem.project(&from_vector(&(to_vector(&pose) + step)));
-                let c: f64 = alignment
-                    .residuals(&candidate, None)
-                    .iter()
-                    .map(|r| r * r)
-                    .sum();
-                if c < cost {
-                    let moved = (to_vector(&candidate) - to_vector(&pose)).amax();
-                    pose = candidate;
-                    cost = c;
-                    lambda = (lambda / 3.0).max(1e-9);
-                    improved = moved > 1e-9;
-                    break;
-                }
-                lambda *= 4.0;
-            }
-            if !improved {
-                break;
+                None => break,
             }
         }
         (pose, iterations)
