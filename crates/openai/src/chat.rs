@@ -289,6 +289,9 @@ impl OpenAiChat {
         Value::Object(body)
     }
 
+    /// A structured answer: asked in the most constrained output format the server accepts
+    /// ([`Self::formatted_answer`]), checked against `schema`, and repaired once when it
+    /// fails the check (unless lenient and cut off, when the part received is kept).
     fn structured(
         &self,
         request: &ChatRequest,
@@ -296,43 +299,12 @@ impl OpenAiChat {
     ) -> Result<ChatResponse, ProviderError> {
         let mut notes = Vec::new();
         let mut usage = TokenUsage::default();
-        let mut format = self.first_format();
-        let (text, model, cut_off) = loop {
-            let on_5xx = if format == OutputFormat::Plain {
-                On5xx::Retry
-            } else {
-                On5xx::RetryUnlessAboutFormat
-            };
-            let body = self.body(request, &request.messages, Some(format));
-            let result = self.complete(request, &body, on_5xx);
-            match result {
-                Ok(c) => {
-                    usage += c.tokens;
-                    notes.extend(c.interruption_note());
-                    break (
-                        c.text,
-                        c.model,
-                        c.interrupted.or(c.cut_off.then(String::new)),
-                    );
-                }
-                Err(e) if format != OutputFormat::Plain && rejects_format(&e) => {
-                    let next = OutputFormat::from_u8(format as u8 + 1);
-                    let note = format!(
-                        "{} rejected response format {} ({}); using {}",
-                        e.endpoint,
-                        format.label(),
-                        e.kind,
-                        next.label()
-                    );
-                    tracing::info!(model = %self.model, "{note}");
-                    notes.push(note);
-                    // Remember for later calls (only ever moves to less constrained formats).
-                    self.first_format.fetch_max(next as u8, Ordering::Relaxed);
-                    format = next;
-                }
-                Err(e) => return Err(e),
-            }
-        };
+        let (answer, format) = self.formatted_answer(request, &mut notes, &mut usage)?;
+        let FormattedAnswer {
+            text,
+            model,
+            cut_off,
+        } = answer;
         let problem = match check(schema, &text) {
             Ok(json) => {
                 return Ok(ChatResponse {
@@ -361,7 +333,77 @@ impl OpenAiChat {
             });
             return Ok(lenient_response(text, model, usage, notes));
         }
-        // One repair round quoting what was wrong.
+        let failed = Failed {
+            text,
+            problem,
+            format,
+        };
+        self.repair(request, schema, failed, notes, usage)
+    }
+
+    /// The first answer, in the most constrained output format the server accepts: a format
+    /// the server rejects is noted, remembered for later calls, and the next less constrained
+    /// one tried.
+    fn formatted_answer(
+        &self,
+        request: &ChatRequest,
+        notes: &mut Vec<String>,
+        usage: &mut TokenUsage,
+    ) -> Result<(FormattedAnswer, OutputFormat), ProviderError> {
+        let mut format = self.first_format();
+        loop {
+            let on_5xx = if format == OutputFormat::Plain {
+                On5xx::Retry
+            } else {
+                On5xx::RetryUnlessAboutFormat
+            };
+            let body = self.body(request, &request.messages, Some(format));
+            match self.complete(request, &body, on_5xx) {
+                Ok(c) => {
+                    *usage += c.tokens;
+                    notes.extend(c.interruption_note());
+                    let answer = FormattedAnswer {
+                        text: c.text,
+                        model: c.model,
+                        cut_off: c.interrupted.or(c.cut_off.then(String::new)),
+                    };
+                    return Ok((answer, format));
+                }
+                Err(e) if format != OutputFormat::Plain && rejects_format(&e) => {
+                    let next = OutputFormat::from_u8(format as u8 + 1);
+                    let note = format!(
+                        "{} rejected response format {} ({}); using {}",
+                        e.endpoint,
+                        format.label(),
+                        e.kind,
+                        next.label()
+                    );
+                    tracing::info!(model = %self.model, "{note}");
+                    notes.push(note);
+                    // Remember for later calls (only ever moves to less constrained formats).
+                    self.first_format.fetch_max(next as u8, Ordering::Relaxed);
+                    format = next;
+                }
+                Err(e) => return Err(e),
+            }
+        }
+    }
+
+    /// One repair round quoting what was wrong with the `failed` answer; a second failure is
+    /// an error, or the lenient answer with a note.
+    fn repair(
+        &self,
+        request: &ChatRequest,
+        schema: &JsonSchema,
+        failed: Failed,
+        mut notes: Vec<String>,
+        mut usage: TokenUsage,
+    ) -> Result<ChatResponse, ProviderError> {
+        let Failed {
+            text,
+            problem,
+            format,
+        } = failed;
         notes.push(format!("answer repaired once: {}", problem.summary()));
         let mut messages = request.messages.clone();
         messages.push(Message::assistant(text));
@@ -414,6 +456,21 @@ impl OpenAiChat {
             })),
         }
     }
+}
+
+/// The first answer of a structured request.
+struct FormattedAnswer {
+    text: String,
+    model: String,
+    /// Why it was cut off: empty for `max_tokens`, else the interruption; `None` when whole.
+    cut_off: Option<String>,
+}
+
+/// An answer that failed the schema check, with the format it was asked in.
+struct Failed {
+    text: String,
+    problem: Problem,
+    format: OutputFormat,
 }
 
 /// One completion's answer.
