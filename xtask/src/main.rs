@@ -11,6 +11,7 @@
 //!   throughput (`throughput/…`: scenes per hour per core through the CLI batch and Ray).
 //!   Naming only those sections (`roundtrip`, `rooms`, `throughput`) skips the criterion runs.
 
+mod rooms;
 mod throughput;
 
 use std::collections::BTreeMap;
@@ -93,7 +94,7 @@ fn bench(args: &[String]) -> Result<()> {
         add_roundtrip(&root, &target, json_out, &mut figures)?;
     }
     if filter.is_empty() || filter.iter().any(|f| "rooms".contains(f)) {
-        add_rooms(&root, &target, json_out, &mut figures)?;
+        rooms::add_rooms(&root, &target, json_out, &mut figures)?;
     }
     if filter.is_empty() || filter.contains(&"throughput") {
         let exe = release_cli(&root, &target, json_out)?;
@@ -238,200 +239,6 @@ fn add_roundtrip(
         json!({ "prompts": ablations.len(), "rows": ablation_rows }),
     );
     Ok(())
-}
-
-/// Seeds over which the benchmark scenes' content is measured (`rooms/…`).
-const ROOM_SEEDS: u64 = 4;
-
-/// The content of the benchmark scenes (`fixtures/prompts/benchmark.txt`) and of the kitchen
-/// prompts (`fixtures/prompts/kitchens.txt`), each prompt generated with the release binary (no
-/// previews) at seeds 0–3. Adds one `rooms/pNN` figure per benchmark prompt and one `rooms/kNN`
-/// per kitchen prompt — seed 0's acceptance, objects, stated relations held / stated and their
-/// share, functional arrangement rules held / checked, the mean pairwise Jaccard similarity of
-/// the category sets over the seeds, and per seed: accepted, objects, rules held / checked and
-/// the run layout (`one-wall`, `l-shaped`, `u-shaped`, `galley`) — then `rooms/all`: accepted
-/// benchmark prompts at seed 0, the pooled relation and rule shares at seed 0, and the mean of
-/// the per-prompt Jaccard similarities (issue #16's target is ≤ 0.75); and
-/// `rooms/arrangement`: the arrangement rules held over every prompt of both files and every
-/// seed (issue #16's target is ≥ 95 %), with the broken instances.
-fn add_rooms(
-    root: &Path,
-    target: &Path,
-    json_out: bool,
-    figures: &mut BTreeMap<String, Value>,
-) -> Result<()> {
-    let exe = release_cli(root, target, json_out)?;
-    let prompts_text = benchmark_prompts(root)?;
-    let kitchens_file = root.join("fixtures/prompts/kitchens.txt");
-    let kitchens_text = std::fs::read_to_string(&kitchens_file)
-        .with_context(|| format!("cannot read {}", kitchens_file.display()))?;
-    let prompts: Vec<(String, &str)> = prompt_lines(&prompts_text)
-        .into_iter()
-        .enumerate()
-        .map(|(k, p)| (format!("p{k:02}"), p))
-        .chain(
-            prompt_lines(&kitchens_text)
-                .into_iter()
-                .enumerate()
-                .map(|(k, p)| (format!("k{k:02}"), p)),
-        )
-        .collect();
-    let scratch = target.join("xtask-rooms");
-    let _ = std::fs::remove_dir_all(&scratch);
-    std::fs::create_dir_all(&scratch)?;
-    let (mut accepted, mut held, mut stated, mut rules_held, mut rules) = (0, 0, 0, 0, 0);
-    let (mut all_rules_held, mut all_rules) = (0, 0);
-    let mut all_broken: Vec<Value> = Vec::new();
-    let mut jaccards = Vec::new();
-    for (key, prompt) in &prompts {
-        let benchmark = key.starts_with('p');
-        let mut sets: Vec<std::collections::BTreeSet<String>> = Vec::new();
-        let mut first: Option<Value> = None;
-        let mut per_seed = Vec::new();
-        for seed in 0..ROOM_SEEDS {
-            let dir = scratch.join(format!("{key}-s{seed}"));
-            generate(&exe, prompt, seed, &dir)?;
-            let report: Value = serde_json::from_str(
-                &std::fs::read_to_string(dir.join("report.json")).with_context(|| {
-                    format!("cannot read {}", dir.join("report.json").display())
-                })?,
-            )?;
-            sets.push(
-                report["verdict"]["metrics"]["category_names"]
-                    .as_array()
-                    .map(|a| {
-                        a.iter()
-                            .filter_map(|c| c.as_str().map(str::to_owned))
-                            .collect()
-                    })
-                    .unwrap_or_default(),
-            );
-            let arrangement = &report["verdict"]["arrangement"];
-            let r_held = arrangement["held"].as_u64().unwrap_or(0);
-            let r_checked = arrangement["checked"].as_u64().unwrap_or(0);
-            all_rules_held += r_held;
-            all_rules += r_checked;
-            if let Some(broken) = arrangement["broken"].as_array() {
-                all_broken.extend(broken.iter().map(|b| {
-                    json!({ "prompt": prompt, "seed": seed, "subject": b["subject"],
-                            "rule": b["rule"], "reason": b["reason"] })
-                }));
-            }
-            let m = &report["verdict"]["metrics"];
-            per_seed.push(json!({
-                "seed": seed,
-                "accepted": report["accepted"],
-                "objects": report["objects"],
-                "rules_held": r_held,
-                "rules_checked": r_checked,
-                "layout": arrangement["layout"],
-                "col_o": m["col_o"],
-                "inst_o": m["inst_o"],
-                "walk": m["walk"],
-                "reach_floor": m["reach_floor"],
-            }));
-            if seed == 0 {
-                first = Some(report);
-            }
-        }
-        let report = first.expect("seed 0 generated");
-        let jaccard = mean_pairwise_jaccard(&sets);
-        let p_held = report["prompt_check"]["relations_held"]
-            .as_u64()
-            .unwrap_or(0);
-        let p_stated = report["prompt_check"]["relations_stated"]
-            .as_u64()
-            .unwrap_or(0);
-        let arrangement = &report["verdict"]["arrangement"];
-        let r_held = arrangement["held"].as_u64().unwrap_or(0);
-        let r_checked = arrangement["checked"].as_u64().unwrap_or(0);
-        let ok = report["accepted"].as_bool().unwrap_or(false);
-        if benchmark {
-            jaccards.push(jaccard);
-            accepted += usize::from(ok);
-            held += p_held;
-            stated += p_stated;
-            rules_held += r_held;
-            rules += r_checked;
-        }
-        figures.insert(
-            format!("rooms/{key}"),
-            json!({
-                "prompt": prompt,
-                "accepted": ok,
-                "objects": report["objects"],
-                "relations_held": p_held,
-                "relations_stated": p_stated,
-                "relations_share": share(p_held, p_stated),
-                "rules_held": r_held,
-                "rules_checked": r_checked,
-                "rules_share": share(r_held, r_checked),
-                "jaccard_mean": jaccard,
-                "seeds": ROOM_SEEDS,
-                "per_seed": per_seed,
-            }),
-        );
-    }
-    let benchmark_count = prompts.iter().filter(|(k, _)| k.starts_with('p')).count();
-    figures.insert(
-        "rooms/all".to_owned(),
-        json!({
-            "prompts": benchmark_count,
-            "accepted": accepted,
-            "relations_held": held,
-            "relations_stated": stated,
-            "relations_share": share(held, stated),
-            "rules_held": rules_held,
-            "rules_checked": rules,
-            "rules_share": share(rules_held, rules),
-            "jaccard_mean": jaccards.iter().sum::<f64>() / jaccards.len().max(1) as f64,
-            "jaccard_max": jaccards.iter().copied().fold(f64::NAN, f64::max),
-        }),
-    );
-    figures.insert(
-        "rooms/arrangement".to_owned(),
-        json!({
-            "prompts": prompts.len(),
-            "seeds": ROOM_SEEDS,
-            "rules_held": all_rules_held,
-            "rules_checked": all_rules,
-            "rules_share": share(all_rules_held, all_rules),
-            "broken": all_broken,
-        }),
-    );
-    Ok(())
-}
-
-/// `held / total`, or null when nothing was counted.
-fn share(held: u64, total: u64) -> Value {
-    if total == 0 {
-        Value::Null
-    } else {
-        json!(held as f64 / total as f64)
-    }
-}
-
-/// Mean over all pairs of sets of |A ∩ B| / |A ∪ B| (1 for fewer than two sets).
-fn mean_pairwise_jaccard(sets: &[std::collections::BTreeSet<String>]) -> f64 {
-    let mut sum = 0.0;
-    let mut pairs = 0;
-    for (i, a) in sets.iter().enumerate() {
-        for b in &sets[i + 1..] {
-            let union = a.union(b).count();
-            let inter = a.intersection(b).count();
-            sum += if union == 0 {
-                1.0
-            } else {
-                inter as f64 / union as f64
-            };
-            pairs += 1;
-        }
-    }
-    if pairs == 0 {
-        1.0
-    } else {
-        sum / f64::from(pairs)
-    }
 }
 
 /// Builds the release `scenethesis` binary and returns its path.
