@@ -8,8 +8,8 @@ use std::sync::Arc;
 use nalgebra::{Point3, Vector3};
 use scenethesis_assets::{catalog, Asset, SurfaceKind};
 use scenethesis_physics_opt::{
-    optimize_scene, OptimizeSettings, Optimizer, PrepareSettings, PreparedAsset,
-    ProjectedGaussNewton, Sgd,
+    optimize_scene, OptimizeSettings, Optimizer, Placement, PrepareSettings, PreparedAsset,
+    ProjectedGaussNewton, SceneProblem, Sgd,
 };
 use scenethesis_scene_graph::{Pose, RelationKind, Scene, SceneObject};
 use support::{object, problem};
@@ -35,18 +35,44 @@ fn asset(name: &str, seed: u64) -> (Asset, Arc<PreparedAsset>) {
     (asset, Arc::new(prepared))
 }
 
+/// The four library assets of the room.
+struct Library {
+    shelf: (Asset, Arc<PreparedAsset>),
+    table: (Asset, Arc<PreparedAsset>),
+    book: (Asset, Arc<PreparedAsset>),
+    mug: (Asset, Arc<PreparedAsset>),
+}
+
 #[test]
 fn library_bookshelf_and_dining_table_are_settled() {
-    let shelf_full = asset("bookshelf", 1);
-    let table_full = asset("dining_table", 2);
-    let book_full = asset("book", 3);
-    let mug_full = asset("mug", 4);
-    let (shelf_asset, shelf) = (&shelf_full.0, shelf_full.1.clone());
-    let (table_asset, table) = (&table_full.0, table_full.1.clone());
-    let book = book_full.1.clone();
-    let mug = mug_full.1.clone();
-    // The 6 × 4 m room's back wall is at z = −2.
-    let shelf_depth = shelf_asset.info.size[2] as f64;
+    let library = Library {
+        shelf: asset("bookshelf", 1),
+        table: asset("dining_table", 2),
+        book: asset("book", 3),
+        mug: asset("mug", 4),
+    };
+    let (problem, expected_surface) = furnished_room(&library);
+    let optimizers: Vec<Box<dyn Optimizer>> = vec![
+        Box::new(ProjectedGaussNewton::default()),
+        Box::new(Sgd::default()),
+    ];
+    for opt in optimizers {
+        let placement =
+            optimize_scene(&problem, opt.as_ref(), &OptimizeSettings::default()).unwrap();
+        check_settled(&problem, &placement, &expected_surface);
+    }
+    // The starting layout (books sunk 5 mm into the boards) does collide by the same metric.
+    let before = scenethesis_eval::evaluate(
+        &scenethesis_eval::EvalScene::from_scene_procedural(&problem.scene).unwrap(),
+    );
+    assert!(before.col_o > 0.0, "{:?}", before.colliding_pairs);
+}
+
+/// A 6 × 4 m room (back wall at z = −2): the bookshelf against the back wall with a book sunk
+/// 5 mm into each shelf board, the dining table with two mugs floating 1 cm above its top and
+/// a turned book sunk 1 cm into it. Returns the problem and each shelf book's expected surface.
+fn furnished_room(library: &Library) -> (SceneProblem, Vec<(String, String)>) {
+    let shelf_depth = library.shelf.0.info.size[2] as f64;
     let shelf_pose = Pose::new(
         1.0,
         0.0,
@@ -59,24 +85,38 @@ fn library_bookshelf_and_dining_table_are_settled() {
                 "bookshelf",
                 None,
                 RelationKind::AgainstWall,
-                &shelf_full,
+                &library.shelf,
                 shelf_pose,
             ),
-            shelf.clone(),
+            library.shelf.1.clone(),
         ),
         (
             library_object(
                 "table",
                 None,
                 RelationKind::OnFloor,
-                &table_full,
+                &library.table,
                 table_pose,
             ),
-            table.clone(),
+            library.table.1.clone(),
         ),
     ];
+    let expected_surface = shelf_books(library, &shelf_pose, &mut objects);
+    table_items(library, &mut objects);
+    (problem("bookshelf", objects), expected_surface)
+}
+
+/// A book sunk 5 mm into each shelf board of the bookshelf at `shelf_pose`; returns each
+/// book's id and the surface it should rest on.
+fn shelf_books(
+    library: &Library,
+    shelf_pose: &Pose,
+    objects: &mut Vec<(SceneObject, Arc<PreparedAsset>)>,
+) -> Vec<(String, String)> {
     let mut expected_surface = Vec::new();
-    for (i, s) in shelf_asset
+    for (i, s) in library
+        .shelf
+        .0
         .info
         .support_surfaces
         .iter()
@@ -86,7 +126,6 @@ fn library_bookshelf_and_dining_table_are_settled() {
         let c = s.center();
         let at =
             shelf_pose.transform_point(&Point3::new(c[0] as f64, s.height as f64, c[1] as f64));
-        // Sunk 5 mm into the board.
         let pose = Pose::new(1.0, 0.0, at.coords - Vector3::new(0.0, 0.005, 0.0));
         let id = format!("book_{i}");
         objects.push((
@@ -94,10 +133,10 @@ fn library_bookshelf_and_dining_table_are_settled() {
                 &id,
                 Some("bookshelf"),
                 RelationKind::Inside,
-                &book_full,
+                &library.book,
                 pose,
             ),
-            book.clone(),
+            library.book.1.clone(),
         ));
         expected_surface.push((id, s.name.clone()));
     }
@@ -105,7 +144,14 @@ fn library_bookshelf_and_dining_table_are_settled() {
         !expected_surface.is_empty(),
         "the bookshelf has no shelf surfaces"
     );
-    let top = table_asset
+    expected_surface
+}
+
+/// Two mugs 1 cm above the table top and a turned book 1 cm into it.
+fn table_items(library: &Library, objects: &mut Vec<(SceneObject, Arc<PreparedAsset>)>) {
+    let top = library
+        .table
+        .0
         .info
         .support_surfaces
         .iter()
@@ -119,10 +165,10 @@ fn library_bookshelf_and_dining_table_are_settled() {
                 &format!("mug_{i}"),
                 Some("table"),
                 RelationKind::On,
-                &mug_full,
+                &library.mug,
                 pose,
             ),
-            mug.clone(),
+            library.mug.1.clone(),
         ));
     }
     let book_pose = Pose::new(1.0, 0.4, Vector3::new(0.8, top_y - 0.01, 0.45));
@@ -131,54 +177,48 @@ fn library_bookshelf_and_dining_table_are_settled() {
             "table_book",
             Some("table"),
             RelationKind::On,
-            &book_full,
+            &library.book,
             book_pose,
         ),
-        book.clone(),
+        library.book.1.clone(),
     ));
-    let problem = problem("bookshelf", objects);
-    let optimizers: Vec<Box<dyn Optimizer>> = vec![
-        Box::new(ProjectedGaussNewton::default()),
-        Box::new(Sgd::default()),
-    ];
-    for opt in optimizers {
-        let placement =
-            optimize_scene(&problem, opt.as_ref(), &OptimizeSettings::default()).unwrap();
-        let failures: Vec<String> = placement.failures().map(|o| o.to_string()).collect();
+}
+
+/// Every post-condition holds, each shelf book rests on its shelf within 2 mm, and the
+/// project's own metrics (real meshes regenerated from the library, rigid-body simulation)
+/// agree: no collision, nothing in the walls or floor, nothing moves.
+fn check_settled(
+    problem: &SceneProblem,
+    placement: &Placement,
+    expected_surface: &[(String, String)],
+) {
+    let failures: Vec<String> = placement.failures().map(|o| o.to_string()).collect();
+    assert!(
+        failures.is_empty(),
+        "[{}] {failures:#?}",
+        placement.optimizer
+    );
+    for (id, surface) in expected_surface {
+        let report = placement.object(id).unwrap();
+        assert_eq!(&report.support.plane().unwrap().surface, surface, "{id}");
+        let gap = report.support_gap.unwrap();
         assert!(
-            failures.is_empty(),
-            "[{}] {failures:#?}",
+            (0.0..=0.002).contains(&gap),
+            "[{}] {id} gap {gap}",
             placement.optimizer
         );
-        for (id, surface) in &expected_surface {
-            let report = placement.object(id).unwrap();
-            assert_eq!(&report.support.plane().unwrap().surface, surface, "{id}");
-            let gap = report.support_gap.unwrap();
-            assert!(
-                (0.0..=0.002).contains(&gap),
-                "[{}] {id} gap {gap}",
-                placement.optimizer
-            );
-        }
-        // The project's own metrics (real meshes regenerated from the library, rigid-body
-        // simulation) agree: no collision, nothing in the walls or floor, nothing moves.
-        let mut scene: Scene = problem.scene.clone();
-        placement.apply_to(&mut scene);
-        let metrics = scenethesis_eval::evaluate(
-            &scenethesis_eval::EvalScene::from_scene_procedural(&scene).unwrap(),
-        );
-        let name = &placement.optimizer;
-        assert_eq!(metrics.col_o, 0.0, "[{name}] {:?}", metrics.colliding_pairs);
-        assert_eq!(
-            metrics.col_arch, 0.0,
-            "[{name}] {:?}",
-            metrics.arch_penetrations
-        );
-        assert_eq!(metrics.inst_o, 0.0, "[{name}] {:?}", metrics.unstable);
     }
-    // The starting layout (books sunk 5 mm into the boards) does collide by the same metric.
-    let before = scenethesis_eval::evaluate(
-        &scenethesis_eval::EvalScene::from_scene_procedural(&problem.scene).unwrap(),
+    let mut scene: Scene = problem.scene.clone();
+    placement.apply_to(&mut scene);
+    let metrics = scenethesis_eval::evaluate(
+        &scenethesis_eval::EvalScene::from_scene_procedural(&scene).unwrap(),
     );
-    assert!(before.col_o > 0.0, "{:?}", before.colliding_pairs);
+    let name = &placement.optimizer;
+    assert_eq!(metrics.col_o, 0.0, "[{name}] {:?}", metrics.colliding_pairs);
+    assert_eq!(
+        metrics.col_arch, 0.0,
+        "[{name}] {:?}",
+        metrics.arch_penetrations
+    );
+    assert_eq!(metrics.inst_o, 0.0, "[{name}] {:?}", metrics.unstable);
 }

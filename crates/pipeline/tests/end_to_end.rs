@@ -8,8 +8,8 @@ use std::sync::Arc;
 
 use scenethesis_pipeline::batch::{self, BatchEvent, BatchOptions, JobStatus, Prompt, Shard};
 use scenethesis_pipeline::{
-    export_folder, CatalogSource, FailureKind, Format, GenerateOptions, GeometricJudge, Judge,
-    JudgeInput, NoProgress, OutputDir, Pipeline, Stage,
+    export_folder, CatalogSource, FailureKind, Format, GenerateOptions, GeneratedScene,
+    GeometricJudge, Judge, JudgeInput, NoProgress, OutputDir, Pipeline, Stage,
 };
 use scenethesis_scene_graph::Scene;
 
@@ -29,7 +29,20 @@ fn generate_writes_a_complete_deterministic_folder() {
     let mut a = pipeline
         .generate(PROMPT, 7, &options(), &mut NoProgress)
         .expect("offline generation works");
-    let scene = a.scene.clone();
+    check_complete(&a);
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("office");
+    check_written_folder(&mut a, &dir);
+    let b = check_identical_rerun(&pipeline, &dir, tmp.path());
+    check_exports(&dir, &a.scene);
+    check_rewrites(&mut a, &dir, tmp.path());
+    check_failed_write_keeps_the_folder(&mut a, &dir, tmp.path());
+    check_judge_names_a_pushed_object(&b);
+}
+
+/// Every object has a mesh, every stage a timing, and the report counts agree.
+fn check_complete(a: &GeneratedScene) {
+    let scene = &a.scene;
     assert!(scene.objects.len() >= 3, "{} objects", scene.objects.len());
     assert!(scene.validate().is_ok(), "{:?}", scene.validate());
     for object in &scene.objects {
@@ -53,10 +66,13 @@ fn generate_writes_a_complete_deterministic_folder() {
     assert_eq!(a.report.objects, scene.objects.len());
     assert_eq!(a.report.verdict.metrics.objects, scene.objects.len());
     assert_eq!(a.report.accepted, a.report.verdict.failures.is_empty());
+}
 
-    let tmp = tempfile::tempdir().unwrap();
-    let dir = tmp.path().join("office");
-    a.write_outputs(&dir).unwrap();
+/// The folder holds the three files; `scene.json` round-trips and names every object; the GLB
+/// loads in the eval crate's reader with one node per object named by its id.
+fn check_written_folder(a: &mut GeneratedScene, dir: &Path) {
+    let scene = a.scene.clone();
+    a.write_outputs(dir).unwrap();
     for file in ["scene.glb", "scene.json", "report.json"] {
         assert!(dir.join(file).is_file(), "{file} missing");
     }
@@ -69,9 +85,6 @@ fn generate_writes_a_complete_deterministic_folder() {
         .any(|t| t["stage"] == "export"));
     assert!(report["verdict"]["metrics"]["walk"].is_number());
     assert!(report["replans"].is_array());
-
-    // scene.json round-trips and names every object; the GLB loads in the eval crate's
-    // reader with one node per object named by its id.
     let saved = Scene::read_json(&dir.join("scene.json")).unwrap();
     assert_eq!(&saved.objects.len(), &scene.objects.len());
     let glb = scenethesis_eval::load_glb(&dir.join("scene.glb")).unwrap();
@@ -80,12 +93,14 @@ fn generate_writes_a_complete_deterministic_folder() {
     glb_ids.sort();
     ids.sort();
     assert_eq!(glb_ids, ids);
+}
 
-    // Same prompt and seed: byte-identical scene files.
+/// Same prompt and seed: byte-identical scene files. Returns the second run.
+fn check_identical_rerun(pipeline: &Pipeline, dir: &Path, tmp: &Path) -> GeneratedScene {
     let mut b = pipeline
         .generate(PROMPT, 7, &options(), &mut NoProgress)
         .unwrap();
-    let dir_b = tmp.path().join("office_again");
+    let dir_b = tmp.join("office_again");
     b.write_outputs(&dir_b).unwrap();
     for file in ["scene.glb", "scene.json"] {
         assert_eq!(
@@ -94,61 +109,66 @@ fn generate_writes_a_complete_deterministic_folder() {
             "{file} differs between identical runs"
         );
     }
+    b
+}
 
-    // Exports of the saved folder, regenerating meshes from scene.json.
-    let written = export_folder(&dir, &Format::ALL, &CatalogSource).unwrap();
+/// Exports of the saved folder, regenerating meshes from scene.json.
+fn check_exports(dir: &Path, scene: &Scene) {
+    let written = export_folder(dir, &Format::ALL, &CatalogSource).unwrap();
     assert_eq!(written.len(), 4);
     for path in &written {
         assert!(path.is_file());
     }
     let mjcf = std::fs::read_to_string(dir.join("scene.mjcf.xml")).unwrap();
     assert_eq!(mjcf.matches("<body ").count(), scene.objects.len());
+}
 
-    // Re-writing replaces an earlier output atomically (the exports written into it above are
-    // ours too), and no staging folders are left beside it.
-    a.write_outputs(&dir).unwrap();
+/// Re-writing replaces an earlier output atomically (the exports written into it are ours
+/// too), and no staging folders are left beside it. A file scenethesis did not write makes
+/// the folder foreign: refused without `force`, untouched; replaced with it.
+fn check_rewrites(a: &mut GeneratedScene, dir: &Path, tmp: &Path) {
+    a.write_outputs(dir).unwrap();
     assert!(
         !dir.join("scene.usda").exists(),
         "the old folder was replaced"
     );
     assert!(dir.join("scene.glb").is_file());
-    // A file scenethesis did not write makes the folder foreign: refused without `force`,
-    // untouched; replaced with it.
     std::fs::write(dir.join("notes.txt"), "mine").unwrap();
-    let err = a.write_outputs(&dir).unwrap_err();
+    let err = a.write_outputs(dir).unwrap_err();
     assert!(err.to_string().contains("notes.txt"), "{err}");
     assert!(dir.join("notes.txt").is_file());
-    a.write_to(&OutputDir::prepare(&dir, true).unwrap())
-        .unwrap();
+    a.write_to(&OutputDir::prepare(dir, true).unwrap()).unwrap();
     assert!(!dir.join("notes.txt").exists());
     assert!(dir.join("scene.glb").is_file());
-    let leftovers: Vec<_> = std::fs::read_dir(tmp.path())
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .filter(|n| n.starts_with('.'))
-        .collect();
-    assert!(leftovers.is_empty(), "staging left behind: {leftovers:?}");
+    assert_eq!(
+        staging_left(tmp),
+        Vec::<String>::new(),
+        "staging left behind"
+    );
+}
 
-    // A failing write (an object without a mesh) leaves the previous folder intact.
+/// A failing write (an object without a mesh) leaves the previous folder intact.
+fn check_failed_write_keeps_the_folder(a: &mut GeneratedScene, dir: &Path, tmp: &Path) {
     let before = std::fs::read(dir.join("scene.json")).unwrap();
     let victim = a.scene.objects[0].id.clone();
     a.meshes.remove(&victim);
-    let err = a.write_outputs(&dir).unwrap_err();
+    let err = a.write_outputs(dir).unwrap_err();
     assert!(err.to_string().contains(&victim), "{err}");
     assert_eq!(std::fs::read(dir.join("scene.json")).unwrap(), before);
-    let leftovers = std::fs::read_dir(tmp.path())
-        .unwrap()
-        .filter(|e| {
-            e.as_ref()
-                .unwrap()
-                .file_name()
-                .to_string_lossy()
-                .starts_with('.')
-        })
-        .count();
-    assert_eq!(leftovers, 0);
+    assert_eq!(staging_left(tmp), Vec::<String>::new());
+}
 
-    // The judge rejects a scene with an object pushed into another one, naming both.
+/// Hidden (staging) entries of `dir`.
+fn staging_left(dir: &Path) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with('.'))
+        .collect()
+}
+
+/// The judge rejects a scene with an object pushed into another one, naming both.
+fn check_judge_names_a_pushed_object(b: &GeneratedScene) {
     let mut broken = b.scene.clone();
     let floor_objects: Vec<String> = broken
         .objects
