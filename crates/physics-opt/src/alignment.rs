@@ -6,7 +6,7 @@ use scenethesis_correspondence::{Correspondence, PairKind};
 use scenethesis_scene_graph::{Camera, Pose};
 use serde::{Deserialize, Serialize};
 
-use crate::damped::{damped_step, NormalEquations};
+use crate::damped::{damped_step, take, NormalEquations};
 use crate::params::{world_point, world_point_jacobian, PoseVector, SCALE};
 
 /// Which pair a residual row belongs to, and whether it is measured in pixels.
@@ -340,15 +340,9 @@ impl PoseAlignment {
                 normal.jtr[SCALE] = 0.0;
             }
             let cost_of = |p: &Pose| self.robust_loss(p, options);
-            match damped_step(&normal, &pose, cost, &mut lambda, 10, clamp, cost_of) {
-                Some(step) => {
-                    pose = step.pose;
-                    cost = step.cost;
-                    if !step.moved {
-                        break;
-                    }
-                }
-                None => break,
+            let step = damped_step(&normal, &pose, cost, &mut lambda, 10, clamp, cost_of);
+            if !take(step, &mut pose, &mut cost) {
+                break;
             }
         }
         pose

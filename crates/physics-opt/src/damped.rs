@@ -84,3 +84,16 @@ pub(crate) fn damped_step(
     }
     None
 }
+
+/// Moves `pose` and `cost` to an accepted `step`; whether the iteration goes on (a step was
+/// accepted and it moved).
+pub(crate) fn take(step: Option<Step>, pose: &mut Pose, cost: &mut f64) -> bool {
+    match step {
+        Some(step) => {
+            *pose = step.pose;
+            *cost = step.cost;
+            step.moved
+        }
+        None => false,
+    }
+}

@@ -8,7 +8,7 @@ use scenethesis_scene_graph::Pose;
 use serde::{Deserialize, Serialize};
 
 use crate::contact::CollisionState;
-use crate::damped::{damped_step, NormalEquations};
+use crate::damped::{damped_step, take, NormalEquations};
 use crate::objective::{ObjectProblem, Stage};
 use crate::optimizer::{lowest_residual, Optimizer, StageOutcome};
 use crate::support::{horizontal, Support};
@@ -116,15 +116,9 @@ impl ProjectedGaussNewton {
             let normal = NormalEquations::of(&r, &jac, None);
             let project = |p: Pose| problem.project(&p);
             let cost_of = |p: &Pose| alignment.residuals(p, None).iter().map(|r| r * r).sum();
-            match damped_step(&normal, &pose, cost, &mut lambda, 12, project, cost_of) {
-                Some(step) => {
-                    pose = step.pose;
-                    cost = step.cost;
-                    if !step.moved {
-                        break;
-                    }
-                }
-                None => break,
+            let step = damped_step(&normal, &pose, cost, &mut lambda, 12, project, cost_of);
+            if !take(step, &mut pose, &mut cost) {
+                break;
             }
         }
         (pose, iterations)
