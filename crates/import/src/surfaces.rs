@@ -161,40 +161,71 @@ fn surface(
     if poly_area < search.min_area as f64 * 0.5 {
         return None;
     }
-    // Probe a grid over the polygon: a sample is blocked when geometry stands on it (a vertical
-    // ray hits within `min_clearance`) or hugs it (a wall within `wall_gap` sideways, which also
-    // catches samples inside walls that overlap the floor). Free samples give the clearance.
-    let nearby: Vec<[V; 3]> = {
-        let (lo, hi) = polygon
-            .iter()
-            .fold(([f64::MAX; 2], [f64::MIN; 2]), |(lo, hi), p| {
-                (
-                    [lo[0].min(p[0]), lo[1].min(p[1])],
-                    [hi[0].max(p[0]), hi[1].max(p[1])],
-                )
-            });
-        let reach = 0.05;
-        triangles
-            .iter()
-            .filter(|t| {
-                t.iter().any(|v| v.y > height + 1e-4)
-                    && t.iter().any(|v| v.x >= lo[0] - reach)
-                    && t.iter().any(|v| v.x <= hi[0] + reach)
-                    && t.iter().any(|v| v.z >= lo[1] - reach)
-                    && t.iter().any(|v| v.z <= hi[1] + reach)
-            })
-            .copied()
-            .collect()
+    let probe = probe(&polygon, height, triangles, search);
+    if probe.free.is_empty() {
+        return None;
+    }
+    let polygon = if probe.blocked == 0 {
+        polygon
+    } else {
+        let hull = convex_hull_2d(&probe.free);
+        if hull.len() < 3 || shoelace(&hull).abs() / 2.0 < search.min_area as f64 * 0.5 {
+            return None;
+        }
+        hull
     };
-    let wall_gap = (search.margin as f64).max(0.015);
-    let (lo, hi) = polygon
+    let kind = surface_kind(&polygon, height, probe.clearance, triangles);
+    Some(SupportSurface {
+        name: String::new(),
+        kind,
+        polygon: polygon.iter().map(|p| [p[0] as f32, p[1] as f32]).collect(),
+        height: height as f32,
+        clearance: probe.clearance.map(|c| (c + 1e-3) as f32),
+    })
+}
+
+/// What probing a grid over a candidate surface found.
+struct Probe {
+    /// The free samples, (x, z).
+    free: Vec<[f64; 2]>,
+    /// How many samples were blocked.
+    blocked: usize,
+    /// The least free height above a free sample, when anything is above at all.
+    clearance: Option<f64>,
+}
+
+/// The (x, z) bounding box of a polygon, as (min, max).
+fn bounds_2d(polygon: &[[f64; 2]]) -> ([f64; 2], [f64; 2]) {
+    polygon
         .iter()
         .fold(([f64::MAX; 2], [f64::MIN; 2]), |(lo, hi), p| {
             (
                 [lo[0].min(p[0]), lo[1].min(p[1])],
                 [hi[0].max(p[0]), hi[1].max(p[1])],
             )
-        });
+        })
+}
+
+/// Probes a grid over the polygon at `height`: a sample is blocked when geometry stands on it
+/// (a vertical ray hits within `min_clearance`) or hugs it (a wall within `wall_gap` sideways,
+/// which also catches samples inside walls that overlap the floor). Free samples give the
+/// clearance.
+fn probe(polygon: &[[f64; 2]], height: f64, triangles: &[[V; 3]], search: &SurfaceSearch) -> Probe {
+    let (lo, hi) = bounds_2d(polygon);
+    // Only triangles reaching above the surface near its box can block it.
+    let reach = 0.05;
+    let nearby: Vec<[V; 3]> = triangles
+        .iter()
+        .filter(|t| {
+            t.iter().any(|v| v.y > height + 1e-4)
+                && t.iter().any(|v| v.x >= lo[0] - reach)
+                && t.iter().any(|v| v.x <= hi[0] + reach)
+                && t.iter().any(|v| v.z >= lo[1] - reach)
+                && t.iter().any(|v| v.z <= hi[1] + reach)
+        })
+        .copied()
+        .collect();
+    let wall_gap = (search.margin as f64).max(0.015);
     let grid = 9;
     let mut free = Vec::new();
     let mut blocked = 0;
@@ -203,7 +234,7 @@ fn surface(
         for gz in 0..grid {
             let x = lo[0] + (hi[0] - lo[0]) * (gx as f64 + 0.5) / grid as f64;
             let z = lo[1] + (hi[1] - lo[1]) * (gz as f64 + 0.5) / grid as f64;
-            if !inside(&polygon, [x, z]) {
+            if !inside(polygon, [x, z]) {
                 continue;
             }
             let origin = V::new(x, height + 1e-3, z);
@@ -222,23 +253,26 @@ fn surface(
             free.push([x, z]);
         }
     }
-    if free.is_empty() {
-        return None;
+    Probe {
+        free,
+        blocked,
+        clearance,
     }
-    let polygon = if blocked == 0 {
-        polygon
-    } else {
-        let hull = convex_hull_2d(&free);
-        if hull.len() < 3 || shoelace(&hull).abs() / 2.0 < search.min_area as f64 * 0.5 {
-            return None;
-        }
-        hull
-    };
+}
+
+/// A shelf when something is above it; else an interior when walls stand on all four sides of
+/// its centroid just above it (an open container), else a top.
+fn surface_kind(
+    polygon: &[[f64; 2]],
+    height: f64,
+    clearance: Option<f64>,
+    triangles: &[[V; 3]],
+) -> SurfaceKind {
     let centroid = polygon
         .iter()
         .fold([0.0, 0.0], |c, p| [c[0] + p[0], c[1] + p[1]])
         .map(|c| c / polygon.len() as f64);
-    let kind = match clearance {
+    match clearance {
         Some(_) => SurfaceKind::Shelf,
         None => {
             let origin = V::new(centroid[0], height + 0.02, centroid[1]);
@@ -251,14 +285,7 @@ fn surface(
                 SurfaceKind::Top
             }
         }
-    };
-    Some(SupportSurface {
-        name: String::new(),
-        kind,
-        polygon: polygon.iter().map(|p| [p[0] as f32, p[1] as f32]).collect(),
-        height: height as f32,
-        clearance: clearance.map(|c| (c + 1e-3) as f32),
-    })
+    }
 }
 
 /// Whether an (x, z) point lies inside a convex polygon (either winding) or on its border.

@@ -55,14 +55,37 @@ struct ChairMaterials {
     back: usize,
 }
 
+/// The thickness of a chair's back slab, whose front the seat surface stops short of.
+const BACK_THICKNESS: f32 = 0.03;
+
 fn build_chair(b: &mut AssetBuilder, c: &Chair, m: ChairMaterials) {
+    chair_seat(b, c, m.seat);
+    match c.base {
+        Base::Legs {
+            section,
+            splay,
+            stretcher,
+        } => chair_legs(b, c, m.frame, section, splay, stretcher),
+        Base::Star { arms, radius } => star_base(b, c, m.frame, arms, radius),
+    }
+    if let Some((height, lean)) = c.back {
+        chair_back(b, c, m, height, lean);
+    }
+    if let Some(arm_height) = c.arms {
+        chair_arms(b, c, m.frame, arm_height);
+    }
+    chair_seat_surface(b, c);
+}
+
+/// The seat: a round slab or a rectangular one.
+fn chair_seat(b: &mut AssetBuilder, c: &Chair, material: usize) {
     let (hw, hd) = (0.5 * c.width, 0.5 * c.depth);
     let seat_bottom = c.seat_height - c.seat_thickness;
     match c.round {
         Some(r) => {
             b.part(cylinder(
                 "seat",
-                m.seat,
+                material,
                 [0.0, 0.0],
                 r,
                 seat_bottom,
@@ -72,165 +95,184 @@ fn build_chair(b: &mut AssetBuilder, c: &Chair, m: ChairMaterials) {
         }
         None => b.cuboid(
             "seat",
-            m.seat,
+            material,
             [-hw, seat_bottom, -hd],
             [hw, c.seat_height, hd],
         ),
     }
-    let back_thickness = 0.03;
-    match c.base {
-        Base::Legs {
-            section,
-            splay,
-            stretcher,
-        } => {
-            let (lx, lz) = match c.round {
-                Some(r) => (0.62 * r, 0.62 * r),
-                None => (hw - 0.6 * section, hd - 0.6 * section),
-            };
-            let feet: Vec<([f32; 3], [f32; 3])> =
-                [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
-                    .iter()
-                    .map(|&(sx, sz)| {
-                        (
-                            [sx * lx, seat_bottom + 0.005, sz * lz],
-                            [sx * (lx + splay), 0.0, sz * (lz + splay)],
-                        )
-                    })
-                    .collect();
-            for (i, (top, foot)) in feet.iter().enumerate() {
-                b.part(strut(
-                    &format!("leg_{i}"),
-                    m.frame,
-                    *foot,
-                    *top,
-                    [section, section],
-                ));
-            }
-            if let Some(h) = stretcher {
-                let t = h / seat_bottom;
-                let at = |(top, foot): &([f32; 3], [f32; 3])| -> [f32; 3] {
-                    std::array::from_fn(|k| foot[k] + t * (top[k] - foot[k]))
-                };
-                for i in 0..4 {
-                    let (p, q) = (at(&feet[i]), at(&feet[(i + 1) % 4]));
-                    b.part(beam(
-                        &format!("stretcher_{i}"),
-                        m.frame,
-                        p,
-                        q,
-                        [0.6 * section, 0.6 * section],
-                    ));
-                }
-            }
-            let under = seat_bottom - 0.02;
-            if under > 0.2 && c.round.is_none() {
-                let (ix, iz) = (lx - 0.5 * section, lz - 0.5 * section);
-                b.surface(rect_surface(
-                    "under",
-                    SurfaceKind::Under,
-                    [-ix, -iz],
-                    [ix, iz],
-                    0.0,
-                    Some(stretcher.map_or(under, |h| under.min(h - 0.02))),
-                    0.02,
-                ));
-            }
-        }
-        Base::Star { arms, radius } => {
-            let caster = 0.03;
-            let column_top = seat_bottom + 0.005;
-            b.part(cylinder(
-                "column",
-                m.frame,
-                [0.0, 0.0],
-                0.028,
-                0.08,
-                column_top,
-                16,
-            ));
-            b.part(cylinder(
-                "hub",
-                m.frame,
-                [0.0, 0.0],
-                0.05,
-                2.0 * caster,
-                0.12,
-                16,
-            ));
-            for i in 0..arms {
-                let a = i as f32 / arms as f32 * TAU + 0.5 * PI;
-                let (x, z) = (radius * a.cos(), radius * a.sin());
-                b.part(beam(
-                    &format!("foot_{i}"),
-                    m.frame,
-                    [0.0, 2.0 * caster + 0.025, 0.0],
-                    [x, 2.0 * caster + 0.015, z],
-                    [0.04, 0.03],
-                ));
-                b.part(ellipsoid(
-                    &format!("caster_{i}"),
-                    m.frame,
-                    [x, caster, z],
-                    [0.022, caster, 0.03],
-                    6,
-                    10,
-                ));
-            }
-        }
+}
+
+/// Four splayed legs from under the seat to the floor, the stretchers between them, and the
+/// space under the seat when it is tall enough to hold something.
+fn chair_legs(
+    b: &mut AssetBuilder,
+    c: &Chair,
+    frame: usize,
+    section: f32,
+    splay: f32,
+    stretcher: Option<f32>,
+) {
+    let (hw, hd) = (0.5 * c.width, 0.5 * c.depth);
+    let seat_bottom = c.seat_height - c.seat_thickness;
+    let (lx, lz) = match c.round {
+        Some(r) => (0.62 * r, 0.62 * r),
+        None => (hw - 0.6 * section, hd - 0.6 * section),
+    };
+    let feet: Vec<([f32; 3], [f32; 3])> = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+        .iter()
+        .map(|&(sx, sz)| {
+            (
+                [sx * lx, seat_bottom + 0.005, sz * lz],
+                [sx * (lx + splay), 0.0, sz * (lz + splay)],
+            )
+        })
+        .collect();
+    for (i, (top, foot)) in feet.iter().enumerate() {
+        b.part(strut(
+            &format!("leg_{i}"),
+            frame,
+            *foot,
+            *top,
+            [section, section],
+        ));
     }
-    if let Some((height, lean)) = c.back {
-        let y0 = c.seat_height - 0.01;
-        let y1 = c.seat_height + height;
-        let z0 = -hd;
-        let bw = match c.round {
-            Some(r) => 0.8 * r,
-            None => hw,
+    if let Some(h) = stretcher {
+        let t = h / seat_bottom;
+        let at = |(top, foot): &([f32; 3], [f32; 3])| -> [f32; 3] {
+            std::array::from_fn(|k| foot[k] + t * (top[k] - foot[k]))
         };
-        let bz = match c.round {
-            Some(r) => -r,
-            None => z0,
-        };
-        // A slab leaning back: bottom edge on the seat's rear edge, top edge `lean` further back.
-        let corners = std::array::from_fn(|i| {
-            let x = if i & 1 == 0 { -bw } else { bw };
-            let top = i & 2 != 0;
-            let y = if top { y1 } else { y0 };
-            let z =
-                bz - if top { lean } else { 0.0 } + if i & 4 == 0 { 0.0 } else { back_thickness };
-            [x, y, z]
-        });
-        b.part(hexahedron("back", m.back, corners));
-        if let Base::Star { .. } = c.base {
+        for i in 0..4 {
+            let (p, q) = (at(&feet[i]), at(&feet[(i + 1) % 4]));
             b.part(beam(
-                "back_post",
-                m.frame,
-                [0.0, seat_bottom, bz - 0.01],
-                [0.0, y0 + 0.5 * height, bz - 0.5 * lean - 0.01],
-                [0.05, 0.02],
+                &format!("stretcher_{i}"),
+                frame,
+                p,
+                q,
+                [0.6 * section, 0.6 * section],
             ));
         }
     }
-    if let Some(arm_height) = c.arms {
-        let y = c.seat_height + arm_height;
-        for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
-            let x = sx * (hw - 0.025);
-            b.cuboid(
-                &format!("armrest_{i}"),
-                m.frame,
-                [x - 0.025, y - 0.03, -hd + 0.03],
-                [x + 0.025, y, hd - 0.04],
-            );
-            b.cuboid(
-                &format!("arm_post_{i}"),
-                m.frame,
-                [x - 0.015, c.seat_height - 0.02, 0.2 * hd - 0.015],
-                [x + 0.015, y - 0.02, 0.2 * hd + 0.015],
-            );
-        }
+    let under = seat_bottom - 0.02;
+    if under > 0.2 && c.round.is_none() {
+        let (ix, iz) = (lx - 0.5 * section, lz - 0.5 * section);
+        b.surface(rect_surface(
+            "under",
+            SurfaceKind::Under,
+            [-ix, -iz],
+            [ix, iz],
+            0.0,
+            Some(stretcher.map_or(under, |h| under.min(h - 0.02))),
+            0.02,
+        ));
     }
+}
+
+/// An office chair's base: a gas column on a hub with a star of feet ending in casters.
+fn star_base(b: &mut AssetBuilder, c: &Chair, frame: usize, arms: u32, radius: f32) {
+    let seat_bottom = c.seat_height - c.seat_thickness;
+    let caster = 0.03;
+    let column_top = seat_bottom + 0.005;
+    b.part(cylinder(
+        "column",
+        frame,
+        [0.0, 0.0],
+        0.028,
+        0.08,
+        column_top,
+        16,
+    ));
+    b.part(cylinder(
+        "hub",
+        frame,
+        [0.0, 0.0],
+        0.05,
+        2.0 * caster,
+        0.12,
+        16,
+    ));
+    for i in 0..arms {
+        let a = i as f32 / arms as f32 * TAU + 0.5 * PI;
+        let (x, z) = (radius * a.cos(), radius * a.sin());
+        b.part(beam(
+            &format!("foot_{i}"),
+            frame,
+            [0.0, 2.0 * caster + 0.025, 0.0],
+            [x, 2.0 * caster + 0.015, z],
+            [0.04, 0.03],
+        ));
+        b.part(ellipsoid(
+            &format!("caster_{i}"),
+            frame,
+            [x, caster, z],
+            [0.022, caster, 0.03],
+            6,
+            10,
+        ));
+    }
+}
+
+/// The back: a slab leaning back from the seat's rear edge, on a post for a star base.
+fn chair_back(b: &mut AssetBuilder, c: &Chair, m: ChairMaterials, height: f32, lean: f32) {
+    let hd = 0.5 * c.depth;
+    let seat_bottom = c.seat_height - c.seat_thickness;
+    let hw = 0.5 * c.width;
+    let y0 = c.seat_height - 0.01;
+    let y1 = c.seat_height + height;
+    let z0 = -hd;
+    let bw = match c.round {
+        Some(r) => 0.8 * r,
+        None => hw,
+    };
+    let bz = match c.round {
+        Some(r) => -r,
+        None => z0,
+    };
+    // A slab leaning back: bottom edge on the seat's rear edge, top edge `lean` further back.
+    let corners = std::array::from_fn(|i| {
+        let x = if i & 1 == 0 { -bw } else { bw };
+        let top = i & 2 != 0;
+        let y = if top { y1 } else { y0 };
+        let z = bz - if top { lean } else { 0.0 } + if i & 4 == 0 { 0.0 } else { BACK_THICKNESS };
+        [x, y, z]
+    });
+    b.part(hexahedron("back", m.back, corners));
+    if let Base::Star { .. } = c.base {
+        b.part(beam(
+            "back_post",
+            m.frame,
+            [0.0, seat_bottom, bz - 0.01],
+            [0.0, y0 + 0.5 * height, bz - 0.5 * lean - 0.01],
+            [0.05, 0.02],
+        ));
+    }
+}
+
+/// Two armrests on posts, `arm_height` above the seat.
+fn chair_arms(b: &mut AssetBuilder, c: &Chair, frame: usize, arm_height: f32) {
+    let (hw, hd) = (0.5 * c.width, 0.5 * c.depth);
+    let y = c.seat_height + arm_height;
+    for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
+        let x = sx * (hw - 0.025);
+        b.cuboid(
+            &format!("armrest_{i}"),
+            frame,
+            [x - 0.025, y - 0.03, -hd + 0.03],
+            [x + 0.025, y, hd - 0.04],
+        );
+        b.cuboid(
+            &format!("arm_post_{i}"),
+            frame,
+            [x - 0.015, c.seat_height - 0.02, 0.2 * hd - 0.015],
+            [x + 0.015, y - 0.02, 0.2 * hd + 0.015],
+        );
+    }
+}
+
+/// The seat's support surface: between the arms and in front of the back.
+fn chair_seat_surface(b: &mut AssetBuilder, c: &Chair) {
+    let (hw, hd) = (0.5 * c.width, 0.5 * c.depth);
     let inner = if c.arms.is_some() { hw - 0.05 } else { hw };
-    let back_front = -hd + back_thickness + 0.01;
+    let back_front = -hd + BACK_THICKNESS + 0.01;
     match c.round {
         Some(r) => {
             b.surface(disc_surface(
@@ -893,6 +935,119 @@ pub(super) fn log_bench(rng: &mut ChaCha8Rng) -> Asset {
 
 /// Wheelchair: width 0.6–0.7, height 0.88–0.98, depth 0.8–1.0; two large wheels, casters, a
 /// sling seat 0.46–0.52 high, armrests and foot plates.
+/// The sizes a wheelchair's parts are laid out from: half width, seat height, wheel radius,
+/// height of the back, seat depth and the wheels' axle position along z.
+#[derive(Debug, Clone, Copy)]
+struct WheelchairSize {
+    hw: f32,
+    seat_h: f32,
+    wheel_r: f32,
+    top: f32,
+    seat_d: f32,
+    wheel_z: f32,
+}
+
+/// One side of a wheelchair (`sx` −1 left, +1 right): drive wheel and caster, the frame's fork,
+/// rail, back cane and push handle, leg rest and foot plate, armrest on its post.
+fn wheelchair_side(
+    b: &mut AssetBuilder,
+    size: &WheelchairSize,
+    frame: usize,
+    tyre: usize,
+    i: usize,
+    sx: f32,
+) {
+    let WheelchairSize {
+        hw,
+        seat_h,
+        wheel_r,
+        top,
+        seat_d,
+        wheel_z,
+    } = *size;
+    b.part(rod(
+        &format!("wheel_{i}"),
+        tyre,
+        [sx * (hw - 0.035), wheel_r, wheel_z],
+        [sx * hw, wheel_r, wheel_z],
+        wheel_r,
+        wheel_r,
+        24,
+    ));
+    b.part(rod(
+        &format!("caster_{i}"),
+        tyre,
+        [sx * (hw - 0.1), 0.07, 0.36],
+        [sx * (hw - 0.07), 0.07, 0.36],
+        0.07,
+        0.07,
+        12,
+    ));
+    let x = sx * (hw - 0.06);
+    b.part(beam(
+        &format!("caster_fork_{i}"),
+        frame,
+        [x, 0.07, 0.36],
+        [x, seat_h - 0.04, 0.3],
+        [0.025, 0.025],
+    ));
+    b.part(beam(
+        &format!("side_rail_{i}"),
+        frame,
+        [x, seat_h - 0.04, -0.5 * seat_d],
+        [x, seat_h - 0.04, 0.5 * seat_d],
+        [0.025, 0.025],
+    ));
+    b.part(beam(
+        &format!("back_cane_{i}"),
+        frame,
+        [x, seat_h - 0.06, -0.5 * seat_d],
+        [x, top, -0.5 * seat_d - 0.06],
+        [0.025, 0.025],
+    ));
+    b.part(beam(
+        &format!("push_handle_{i}"),
+        frame,
+        [x, top - 0.015, -0.5 * seat_d - 0.06],
+        [x, top - 0.015, -0.5 * seat_d - 0.16],
+        [0.028, 0.028],
+    ));
+    b.part(beam(
+        &format!("leg_rest_{i}"),
+        frame,
+        [x, seat_h - 0.04, 0.5 * seat_d - 0.02],
+        [x, 0.1, 0.5 * seat_d + 0.12],
+        [0.022, 0.022],
+    ));
+    b.cuboid(
+        &format!("foot_plate_{i}"),
+        frame,
+        [
+            x.min(0.0) + if sx < 0.0 { 0.0 } else { -0.16 },
+            0.08,
+            0.5 * seat_d + 0.06,
+        ],
+        [
+            x.max(0.0) + if sx < 0.0 { 0.16 } else { 0.0 },
+            0.1,
+            0.5 * seat_d + 0.2,
+        ],
+    );
+    b.cuboid(
+        &format!("armrest_{i}"),
+        frame,
+        [x - 0.025, seat_h + 0.2, -0.5 * seat_d + 0.02],
+        [x + 0.025, seat_h + 0.23, 0.5 * seat_d - 0.08],
+    );
+    b.part(beam(
+        &format!("arm_post_{i}"),
+        frame,
+        [x, seat_h - 0.04, -0.1],
+        [x, seat_h + 0.21, -0.1],
+        [0.02, 0.02],
+    ));
+}
+
 pub(super) fn wheelchair(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let frame = mat_either(&mut b, 0.5, Palette::Metal, Palette::CoatedMetal, rng);
@@ -903,90 +1058,17 @@ pub(super) fn wheelchair(rng: &mut ChaCha8Rng) -> Asset {
     let seat_h = uniform(rng, 0.46, 0.52);
     let wheel_r = uniform(rng, 0.28, 0.31);
     let top = uniform(rng, 0.88, 0.96);
-    let seat_d = 0.42;
-    let wheel_z = -0.08;
+    let size = WheelchairSize {
+        hw,
+        seat_h,
+        wheel_r,
+        top,
+        seat_d: 0.42,
+        wheel_z: -0.08,
+    };
+    let seat_d = size.seat_d;
     for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
-        b.part(rod(
-            &format!("wheel_{i}"),
-            tyre,
-            [sx * (hw - 0.035), wheel_r, wheel_z],
-            [sx * hw, wheel_r, wheel_z],
-            wheel_r,
-            wheel_r,
-            24,
-        ));
-        b.part(rod(
-            &format!("caster_{i}"),
-            tyre,
-            [sx * (hw - 0.1), 0.07, 0.36],
-            [sx * (hw - 0.07), 0.07, 0.36],
-            0.07,
-            0.07,
-            12,
-        ));
-        let x = sx * (hw - 0.06);
-        b.part(beam(
-            &format!("caster_fork_{i}"),
-            frame,
-            [x, 0.07, 0.36],
-            [x, seat_h - 0.04, 0.3],
-            [0.025, 0.025],
-        ));
-        b.part(beam(
-            &format!("side_rail_{i}"),
-            frame,
-            [x, seat_h - 0.04, -0.5 * seat_d],
-            [x, seat_h - 0.04, 0.5 * seat_d],
-            [0.025, 0.025],
-        ));
-        b.part(beam(
-            &format!("back_cane_{i}"),
-            frame,
-            [x, seat_h - 0.06, -0.5 * seat_d],
-            [x, top, -0.5 * seat_d - 0.06],
-            [0.025, 0.025],
-        ));
-        b.part(beam(
-            &format!("push_handle_{i}"),
-            frame,
-            [x, top - 0.015, -0.5 * seat_d - 0.06],
-            [x, top - 0.015, -0.5 * seat_d - 0.16],
-            [0.028, 0.028],
-        ));
-        b.part(beam(
-            &format!("leg_rest_{i}"),
-            frame,
-            [x, seat_h - 0.04, 0.5 * seat_d - 0.02],
-            [x, 0.1, 0.5 * seat_d + 0.12],
-            [0.022, 0.022],
-        ));
-        b.cuboid(
-            &format!("foot_plate_{i}"),
-            frame,
-            [
-                x.min(0.0) + if sx < 0.0 { 0.0 } else { -0.16 },
-                0.08,
-                0.5 * seat_d + 0.06,
-            ],
-            [
-                x.max(0.0) + if sx < 0.0 { 0.16 } else { 0.0 },
-                0.1,
-                0.5 * seat_d + 0.2,
-            ],
-        );
-        b.cuboid(
-            &format!("armrest_{i}"),
-            frame,
-            [x - 0.025, seat_h + 0.2, -0.5 * seat_d + 0.02],
-            [x + 0.025, seat_h + 0.23, 0.5 * seat_d - 0.08],
-        );
-        b.part(beam(
-            &format!("arm_post_{i}"),
-            frame,
-            [x, seat_h - 0.04, -0.1],
-            [x, seat_h + 0.21, -0.1],
-            [0.02, 0.02],
-        ));
+        wheelchair_side(&mut b, &size, frame, tyre, i, sx);
     }
     let sx = hw - 0.06;
     b.cuboid(

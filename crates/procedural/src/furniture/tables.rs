@@ -44,7 +44,40 @@ struct Table {
     lower_shelf: Option<f32>,
 }
 
+/// The floor region under a table, between its legs or ends, as (min, max) in (x, z).
+type UnderRegion = Option<([f32; 2], [f32; 2])>;
+
 fn build_table(b: &mut AssetBuilder, t: &Table, top_m: usize, leg_m: usize) {
+    table_top(b, t, top_m);
+    let under_top = t.height - t.top_thickness;
+    // Each support returns the lowest part above the floor and the floor region under it.
+    let (lowest_above_floor, under) = match t.support {
+        Support::Legs { section, inset } => table_legs(b, t, top_m, leg_m, section, inset),
+        Support::Pedestal => {
+            pedestal(b, t, leg_m);
+            (under_top, None)
+        }
+        Support::Trestle => trestles(b, t, leg_m),
+        Support::Panels { thickness } => end_panels(b, t, top_m, leg_m, thickness),
+    };
+    if let Some((min, max)) = under {
+        let clearance = lowest_above_floor - 0.02;
+        if clearance >= 0.08 {
+            b.surface(rect_surface(
+                "under",
+                SurfaceKind::Under,
+                min,
+                max,
+                0.0,
+                Some(clearance),
+                0.03,
+            ));
+        }
+    }
+}
+
+/// The top, round or rectangular, with its support surface.
+fn table_top(b: &mut AssetBuilder, t: &Table, top_m: usize) {
     let (hw, hd, h) = (0.5 * t.width, 0.5 * t.depth, t.height);
     let under_top = h - t.top_thickness;
     if t.round {
@@ -62,6 +95,20 @@ fn build_table(b: &mut AssetBuilder, t: &Table, top_m: usize, leg_m: usize) {
         b.cuboid("top", top_m, [-hw, under_top, -hd], [hw, h, hd]);
         b.top_surface("top", [-hw, -hd], [hw, hd], h, 0.03);
     }
+}
+
+/// Four legs inset from the top's edge (within the inscribed square of a round top), with the
+/// apron and the lower shelf when the table has them.
+fn table_legs(
+    b: &mut AssetBuilder,
+    t: &Table,
+    top_m: usize,
+    leg_m: usize,
+    section: f32,
+    inset: f32,
+) -> (f32, UnderRegion) {
+    let (hw, hd) = (0.5 * t.width, 0.5 * t.depth);
+    let under_top = t.height - t.top_thickness;
     // Leg footprint: the rectangle the legs stand on (inner faces).
     let (fx, fz) = if t.round {
         (0.707 * hw, 0.707 * hd)
@@ -69,166 +116,170 @@ fn build_table(b: &mut AssetBuilder, t: &Table, top_m: usize, leg_m: usize) {
         (hw, hd)
     };
     let mut lowest_above_floor = under_top;
-    let mut under: Option<([f32; 2], [f32; 2])> = None;
-    match t.support {
-        Support::Legs { section, inset } => {
-            let (lx, lz) = (fx - inset - 0.5 * section, fz - inset - 0.5 * section);
-            for (i, (sx, sz)) in CORNERS.iter().enumerate() {
-                b.part(square_post(
-                    &format!("leg_{i}"),
-                    leg_m,
-                    [sx * lx, sz * lz],
-                    section,
-                    0.0,
-                    under_top + 0.002,
-                ));
-            }
-            if t.apron > 0.0 {
-                let y0 = under_top - t.apron;
-                let a = 0.02;
-                b.cuboid(
-                    "apron_back",
-                    leg_m,
-                    [-lx, y0, -lz - 0.5 * a],
-                    [lx, under_top + 0.001, -lz + 0.5 * a],
-                );
-                b.cuboid(
-                    "apron_front",
-                    leg_m,
-                    [-lx, y0, lz - 0.5 * a],
-                    [lx, under_top + 0.001, lz + 0.5 * a],
-                );
-                b.cuboid(
-                    "apron_left",
-                    leg_m,
-                    [-lx - 0.5 * a, y0, -lz],
-                    [-lx + 0.5 * a, under_top + 0.001, lz],
-                );
-                b.cuboid(
-                    "apron_right",
-                    leg_m,
-                    [lx - 0.5 * a, y0, -lz],
-                    [lx + 0.5 * a, under_top + 0.001, lz],
-                );
-                lowest_above_floor = y0;
-            }
-            let (ix, iz) = (lx - 0.5 * section, lz - 0.5 * section);
-            if let Some(shelf_y) = t.lower_shelf {
-                let st = 0.02;
-                b.cuboid(
-                    "lower_shelf",
-                    top_m,
-                    [-lx, shelf_y - st, -lz],
-                    [lx, shelf_y, lz],
-                );
-                b.surface(rect_surface(
-                    "lower_shelf",
-                    SurfaceKind::Shelf,
-                    [-ix, -iz],
-                    [ix, iz],
-                    shelf_y,
-                    Some(lowest_above_floor - shelf_y - 0.01),
-                    0.02,
-                ));
-                lowest_above_floor = shelf_y - st;
-            }
-            under = Some(([-ix, -iz], [ix, iz]));
-        }
-        Support::Pedestal => {
-            let r = (0.12 * t.width).clamp(0.04, 0.07);
-            b.part(cylinder(
-                "column",
-                leg_m,
-                [0.0, 0.0],
-                r,
-                0.03,
-                under_top + 0.002,
-                16,
-            ));
-            b.part(frustum(
-                "foot",
-                leg_m,
-                [0.0, 0.0],
-                0.32 * t.width.min(t.depth) + 0.05,
-                r,
-                0.0,
-                0.06,
-                24,
-            ));
-        }
-        Support::Trestle => {
-            let post = 0.06;
-            let x = hw - 0.12;
-            for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
-                b.cuboid(
-                    &format!("trestle_post_{i}"),
-                    leg_m,
-                    [sx * x - 0.5 * post, 0.04, -0.5 * post],
-                    [sx * x + 0.5 * post, under_top + 0.002, 0.5 * post],
-                );
-                b.cuboid(
-                    &format!("trestle_foot_{i}"),
-                    leg_m,
-                    [sx * x - 0.04, 0.0, -hd + 0.05],
-                    [sx * x + 0.04, 0.06, hd - 0.05],
-                );
-                b.cuboid(
-                    &format!("trestle_head_{i}"),
-                    leg_m,
-                    [sx * x - 0.04, under_top - 0.05, -hd + 0.05],
-                    [sx * x + 0.04, under_top + 0.001, hd - 0.05],
-                );
-            }
-            let y = under_top - 0.12;
-            b.cuboid("stretcher", leg_m, [-x, y - 0.05, -0.025], [x, y, 0.025]);
-            lowest_above_floor = y - 0.05;
-            under = Some(([-x + 0.5 * post, -hd + 0.06], [x - 0.5 * post, hd - 0.06]));
-        }
-        Support::Panels { thickness } => {
-            for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
-                let x0 = if sx < 0.0 { -hw } else { hw - thickness };
-                b.cuboid(
-                    &format!("end_panel_{i}"),
-                    leg_m,
-                    [x0, 0.0, -hd],
-                    [x0 + thickness, under_top + 0.002, hd],
-                );
-            }
-            if let Some(shelf_y) = t.lower_shelf {
-                b.cuboid(
-                    "lower_shelf",
-                    top_m,
-                    [-hw + thickness - 0.001, shelf_y - 0.02, -hd],
-                    [hw - thickness + 0.001, shelf_y, hd],
-                );
-                b.surface(rect_surface(
-                    "lower_shelf",
-                    SurfaceKind::Shelf,
-                    [-hw + thickness, -hd],
-                    [hw - thickness, hd],
-                    shelf_y,
-                    Some(under_top - shelf_y - 0.01),
-                    0.02,
-                ));
-                lowest_above_floor = shelf_y - 0.02;
-            }
-            under = Some(([-hw + thickness, -hd], [hw - thickness, hd]));
-        }
+    let (lx, lz) = (fx - inset - 0.5 * section, fz - inset - 0.5 * section);
+    for (i, (sx, sz)) in CORNERS.iter().enumerate() {
+        b.part(square_post(
+            &format!("leg_{i}"),
+            leg_m,
+            [sx * lx, sz * lz],
+            section,
+            0.0,
+            under_top + 0.002,
+        ));
     }
-    if let Some((min, max)) = under {
-        let clearance = lowest_above_floor - 0.02;
-        if clearance >= 0.08 {
-            b.surface(rect_surface(
-                "under",
-                SurfaceKind::Under,
-                min,
-                max,
-                0.0,
-                Some(clearance),
-                0.03,
-            ));
-        }
+    if t.apron > 0.0 {
+        let y0 = under_top - t.apron;
+        let a = 0.02;
+        b.cuboid(
+            "apron_back",
+            leg_m,
+            [-lx, y0, -lz - 0.5 * a],
+            [lx, under_top + 0.001, -lz + 0.5 * a],
+        );
+        b.cuboid(
+            "apron_front",
+            leg_m,
+            [-lx, y0, lz - 0.5 * a],
+            [lx, under_top + 0.001, lz + 0.5 * a],
+        );
+        b.cuboid(
+            "apron_left",
+            leg_m,
+            [-lx - 0.5 * a, y0, -lz],
+            [-lx + 0.5 * a, under_top + 0.001, lz],
+        );
+        b.cuboid(
+            "apron_right",
+            leg_m,
+            [lx - 0.5 * a, y0, -lz],
+            [lx + 0.5 * a, under_top + 0.001, lz],
+        );
+        lowest_above_floor = y0;
     }
+    let (ix, iz) = (lx - 0.5 * section, lz - 0.5 * section);
+    if let Some(shelf_y) = t.lower_shelf {
+        let st = 0.02;
+        b.cuboid(
+            "lower_shelf",
+            top_m,
+            [-lx, shelf_y - st, -lz],
+            [lx, shelf_y, lz],
+        );
+        b.surface(rect_surface(
+            "lower_shelf",
+            SurfaceKind::Shelf,
+            [-ix, -iz],
+            [ix, iz],
+            shelf_y,
+            Some(lowest_above_floor - shelf_y - 0.01),
+            0.02,
+        ));
+        lowest_above_floor = shelf_y - st;
+    }
+    (lowest_above_floor, Some(([-ix, -iz], [ix, iz])))
+}
+
+/// One central column on a round foot.
+fn pedestal(b: &mut AssetBuilder, t: &Table, leg_m: usize) {
+    let under_top = t.height - t.top_thickness;
+    let r = (0.12 * t.width).clamp(0.04, 0.07);
+    b.part(cylinder(
+        "column",
+        leg_m,
+        [0.0, 0.0],
+        r,
+        0.03,
+        under_top + 0.002,
+        16,
+    ));
+    b.part(frustum(
+        "foot",
+        leg_m,
+        [0.0, 0.0],
+        0.32 * t.width.min(t.depth) + 0.05,
+        r,
+        0.0,
+        0.06,
+        24,
+    ));
+}
+
+/// Two end frames (post on a foot beam, under a head) joined by a high stretcher.
+fn trestles(b: &mut AssetBuilder, t: &Table, leg_m: usize) -> (f32, UnderRegion) {
+    let (hw, hd) = (0.5 * t.width, 0.5 * t.depth);
+    let under_top = t.height - t.top_thickness;
+    let post = 0.06;
+    let x = hw - 0.12;
+    for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
+        b.cuboid(
+            &format!("trestle_post_{i}"),
+            leg_m,
+            [sx * x - 0.5 * post, 0.04, -0.5 * post],
+            [sx * x + 0.5 * post, under_top + 0.002, 0.5 * post],
+        );
+        b.cuboid(
+            &format!("trestle_foot_{i}"),
+            leg_m,
+            [sx * x - 0.04, 0.0, -hd + 0.05],
+            [sx * x + 0.04, 0.06, hd - 0.05],
+        );
+        b.cuboid(
+            &format!("trestle_head_{i}"),
+            leg_m,
+            [sx * x - 0.04, under_top - 0.05, -hd + 0.05],
+            [sx * x + 0.04, under_top + 0.001, hd - 0.05],
+        );
+    }
+    let y = under_top - 0.12;
+    b.cuboid("stretcher", leg_m, [-x, y - 0.05, -0.025], [x, y, 0.025]);
+    (
+        y - 0.05,
+        Some(([-x + 0.5 * post, -hd + 0.06], [x - 0.5 * post, hd - 0.06])),
+    )
+}
+
+/// Two solid end panels, with the lower shelf between them when the table has one.
+fn end_panels(
+    b: &mut AssetBuilder,
+    t: &Table,
+    top_m: usize,
+    leg_m: usize,
+    thickness: f32,
+) -> (f32, UnderRegion) {
+    let (hw, hd) = (0.5 * t.width, 0.5 * t.depth);
+    let under_top = t.height - t.top_thickness;
+    let mut lowest_above_floor = under_top;
+    for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
+        let x0 = if sx < 0.0 { -hw } else { hw - thickness };
+        b.cuboid(
+            &format!("end_panel_{i}"),
+            leg_m,
+            [x0, 0.0, -hd],
+            [x0 + thickness, under_top + 0.002, hd],
+        );
+    }
+    if let Some(shelf_y) = t.lower_shelf {
+        b.cuboid(
+            "lower_shelf",
+            top_m,
+            [-hw + thickness - 0.001, shelf_y - 0.02, -hd],
+            [hw - thickness + 0.001, shelf_y, hd],
+        );
+        b.surface(rect_surface(
+            "lower_shelf",
+            SurfaceKind::Shelf,
+            [-hw + thickness, -hd],
+            [hw - thickness, hd],
+            shelf_y,
+            Some(under_top - shelf_y - 0.01),
+            0.02,
+        ));
+        lowest_above_floor = shelf_y - 0.02;
+    }
+    (
+        lowest_above_floor,
+        Some(([-hw + thickness, -hd], [hw - thickness, hd])),
+    )
 }
 
 fn table_materials(rng: &mut ChaCha8Rng, b: &mut AssetBuilder) -> (usize, usize) {
