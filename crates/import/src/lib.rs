@@ -23,8 +23,8 @@
 //!
 //! Normalisation scales to metres, turns the up axis to +Y and the front to +Z, then moves the
 //! origin to the footprint centre at the lowest point. A file that is missing, unreadable, not
-//! readable by its loader or without triangles is skipped with an [`ImportWarning`] naming it; the
-//! rest of the directory is still imported. Without a manifest, every mesh file in the directory
+//! readable by its loader or without triangles is skipped with an [`ImportWarning`] naming it;
+//! the rest of the directory is still imported. Without a manifest, every mesh file in the directory
 //! is imported with the defaults and its file stem as category.
 //!
 //! ## Loaders

@@ -1,7 +1,9 @@
 //! Closed, outward-oriented mesh parts to build assets from. Every function returns a part that
-//! passes [`MeshPart::is_closed_and_oriented`] with positive volume, and [`AssetBuilder`]
-//! gathers parts and support surfaces into an asset whose origin is the centre of its footprint
-//! at its lowest point (the scene conventions: metres, +Y up, front +Z).
+//! passes
+//! [`MeshPart::is_closed_and_oriented`](scenethesis_scene_graph::MeshPart::is_closed_and_oriented)
+//! with positive volume, and [`AssetBuilder`] gathers parts and support surfaces into an asset
+//! whose origin is the centre of its footprint at its lowest point (the scene conventions:
+//! metres, +Y up, front +Z).
 //!
 //! The building blocks of the procedural generators (`scenethesis-procedural`), also used by
 //! the importers (to tidy parts) and by tests and benches that need simple shapes. One module per
