@@ -16,7 +16,7 @@ const PROMPTS: &[&str] = &[
 
 fn bench(c: &mut Criterion) {
     let planner = KnowledgePlanner::new();
-    let available: Vec<String> = scenethesis_assets::catalog::categories()
+    let available: Vec<String> = scenethesis_procedural::catalog::categories()
         .map(|c| c.name.to_owned())
         .collect();
     let requests: Vec<PlanRequest> = PROMPTS

@@ -10,7 +10,7 @@ fn main() {
     let prompt = args.next().unwrap_or_else(|| "a gym room".into());
     let seed: u64 = args.next().and_then(|s| s.parse().ok()).unwrap_or(0);
     let planner = KnowledgePlanner::new();
-    let available: Vec<String> = scenethesis_assets::catalog::categories()
+    let available: Vec<String> = scenethesis_procedural::catalog::categories()
         .map(|c| c.name.to_owned())
         .collect();
     let request = PlanRequest::new(prompt, available, seed);

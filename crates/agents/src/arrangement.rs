@@ -479,7 +479,7 @@ mod tests {
     fn builtin_rules_parse_and_name_known_categories() {
         let rules = ArrangementRules::builtin();
         assert!(!rules.faces.is_empty() && !rules.runs.is_empty());
-        let known: Vec<&str> = scenethesis_assets::catalog::categories()
+        let known: Vec<&str> = scenethesis_procedural::catalog::categories()
             .map(|c| c.name)
             .collect();
         for name in rules.categories() {

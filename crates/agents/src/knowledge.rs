@@ -1,7 +1,7 @@
 //! The planner's knowledge: scene archetypes, category priors and prompt vocabulary, read from
 //! TOML files embedded at build time or supplied by the caller. Category names, words,
 //! placement and priors come from the one category table of the asset library
-//! ([`scenethesis_assets::catalog::CATEGORIES_TOML`]), which retrieval reads too; archetypes and
+//! ([`scenethesis_procedural::catalog::CATEGORIES_TOML`]), which retrieval reads too; archetypes and
 //! vocabulary are this crate's `knowledge/*.toml`.
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -16,7 +16,7 @@ use crate::text::phrase_stems;
 pub const ARCHETYPES_TOML: &str = include_str!("../knowledge/archetypes.toml");
 /// The embedded category table (names, words, placement, size ranges and planner priors),
 /// shared with the asset library and retrieval.
-pub const CATEGORIES_TOML: &str = scenethesis_assets::catalog::CATEGORIES_TOML;
+pub const CATEGORIES_TOML: &str = scenethesis_procedural::catalog::CATEGORIES_TOML;
 /// The embedded vocabulary file.
 pub const VOCABULARY_TOML: &str = include_str!("../knowledge/vocabulary.toml");
 
@@ -308,7 +308,7 @@ struct CategoriesFile {
     category: BTreeMap<String, RawCategory>,
 }
 
-/// A row of the category table (see `crates/assets/data/categories.toml`).
+/// A row of the category table (see `crates/procedural/data/categories.toml`).
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawCategory {
@@ -376,7 +376,7 @@ struct SceneWords {
 }
 
 const ARCHETYPES_FILE: &str = "knowledge/archetypes.toml";
-const CATEGORIES_FILE: &str = "crates/assets/data/categories.toml";
+const CATEGORIES_FILE: &str = "crates/procedural/data/categories.toml";
 const VOCABULARY_FILE: &str = "knowledge/vocabulary.toml";
 
 fn relation_kind(name: &str) -> Option<RelationKind> {

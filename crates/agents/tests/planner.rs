@@ -109,7 +109,7 @@ fn every_knowledge_category_exists_in_the_asset_registry() {
     for name in Knowledge::builtin().category_names() {
         assert!(
             registry.contains(name),
-            "`{name}` has no generator in scenethesis_assets::catalog"
+            "`{name}` has no generator in scenethesis_procedural::catalog"
         );
     }
 }

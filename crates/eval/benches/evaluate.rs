@@ -30,7 +30,7 @@ fn evaluate_thirty_objects(c: &mut Criterion) {
 
 /// A catalog store shelf on the floor with a catalog can every 9 cm along each shelf board.
 fn stocked_shelf() -> scenethesis_eval::EvalScene {
-    use scenethesis_assets::catalog;
+    use scenethesis_procedural::catalog;
     use scenethesis_scene_graph::{Architecture, RelationKind, SurfaceKind};
     let generate = |name: &str, seed| {
         let category = catalog::categories()

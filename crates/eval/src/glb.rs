@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use nalgebra::Matrix4;
-use scenethesis_assets::import::{GltfError, GltfFile, GltfNode};
+use scenethesis_import::{GltfError, GltfFile, GltfNode};
 use scenethesis_scene_graph::{Mesh, MeshPart};
 
 use crate::EvalError;
@@ -62,7 +62,7 @@ pub struct GlbScene {
 
 impl GlbScene {
     /// Reads a `.glb` or `.gltf` file with the workspace's hardened glTF reader
-    /// ([`scenethesis_assets::import::GltfFile`]): size, depth, cycle, count and coordinate
+    /// ([`scenethesis_import::GltfFile`]): size, depth, cycle, count and coordinate
     /// limits; external buffers must lie in the file's own folder (or be `data:` URIs).
     pub fn read(path: &Path) -> Result<Self, EvalError> {
         let file = GltfFile::read(path, None).map_err(|e| bad(path, e))?;

@@ -1,6 +1,6 @@
 //! The evaluation input: objects with world-space meshes, their support links, and the room.
 
-use scenethesis_assets::import::{AssetResolver, ResolveError};
+use scenethesis_import::{AssetResolver, ResolveError};
 use scenethesis_scene_graph::{
     Aabb, Architecture, Mesh, Relation, RelationKind, Scene, SceneObject,
 };
@@ -213,7 +213,7 @@ impl EvalScene {
 
 /// The asset-frame mesh of an object, regenerated from its generator and seed (procedural) or
 /// imported again from its asset folder (imported; see
-/// [`scenethesis_assets::import::AssetResolver`]).
+/// [`scenethesis_import::AssetResolver`]).
 pub fn procedural_mesh(object: &SceneObject) -> Result<Mesh, EvalError> {
     resolve(&mut AssetResolver::new(), object)
 }

@@ -495,7 +495,7 @@ fn quat_angle(q: Quat) -> f32 {
 mod tests {
     use super::*;
     use crate::scene::EvalObject;
-    use scenethesis_assets::primitives::{cuboid, cylinder, frustum};
+    use scenethesis_primitives::{cuboid, cylinder, frustum};
 
     #[test]
     fn finely_segmented_cylinders_and_cones_become_round_primitives() {

@@ -5,9 +5,10 @@
 
 mod support;
 
-use scenethesis_assets::{catalog, Placement};
 use scenethesis_eval::stability::simulate;
 use scenethesis_eval::{DecompositionCache, EvalScene};
+use scenethesis_procedural::catalog;
+use scenethesis_scene_graph::Placement;
 use scenethesis_scene_graph::{Architecture, RelationKind};
 use support::{at, place};
 

@@ -6,9 +6,9 @@
 
 mod support;
 
-use scenethesis_assets::catalog;
 use scenethesis_eval::stability::simulate;
 use scenethesis_eval::{DecompositionCache, EvalScene};
+use scenethesis_procedural::catalog;
 use scenethesis_scene_graph::{Architecture, RelationKind};
 use support::{at, place};
 

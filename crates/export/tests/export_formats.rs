@@ -8,8 +8,8 @@ use std::collections::BTreeMap;
 use std::f64::consts::FRAC_PI_2;
 
 use nalgebra::{Point3, Vector3};
-use scenethesis_assets::primitives::{cuboid, cylinder, sphere};
 use scenethesis_export::{Dynamics, ExportError, ExportScene, Format};
+use scenethesis_primitives::{cuboid, cylinder, sphere};
 use scenethesis_scene_graph::{
     Aabb, Architecture, AssetRef, Material, Mesh, MeshPart, ParentRef, Pose, RelationKind, Scene,
     SceneObject,

@@ -8,9 +8,9 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 use proptest::prelude::*;
-use scenethesis_assets::catalog;
-use scenethesis_assets::import::{import_directory, parse_obj, GltfFile, MANIFEST_FILE};
 use scenethesis_fuzz::{config, mutate, mutations, Budget};
+use scenethesis_import::{import_directory, parse_obj, GltfFile, MANIFEST_FILE};
+use scenethesis_procedural::catalog;
 use scenethesis_scene_graph::{AssetRef, Mesh, Scene};
 use scenethesis_vision::files::{read_guidance, GuidancePaths};
 

@@ -484,8 +484,8 @@ fn siblings_wedged_in_a_compartment_make_room_in_turn() {
 /// A 1.0 × 0.6 m coffee table, 0.45 m high, with a lower shelf board at 0.12 m; the floor
 /// beneath the shelf has 10 cm of clearance.
 fn coffee_table() -> PreparedAsset {
-    use scenethesis_assets::primitives::cuboid;
-    use scenethesis_assets::{Placement, SupportSurface, SurfaceKind};
+    use scenethesis_primitives::cuboid;
+    use scenethesis_scene_graph::{Placement, SupportSurface, SurfaceKind};
     let mut parts = vec![
         cuboid("top", 0, [-0.5, 0.42, -0.3], [0.5, 0.45, 0.3]),
         cuboid("shelf", 0, [-0.45, 0.1, -0.25], [0.45, 0.12, 0.25]),
@@ -592,7 +592,7 @@ fn basket_too_tall_for_the_floor_under_a_table_rests_on_its_low_shelf() {
 /// 10 cm behind it (+z), and the frame leaning back over the foot (its centre of mass 2 cm in
 /// front of the foot).
 fn kickstand_frame() -> PreparedAsset {
-    use scenethesis_assets::primitives::cuboid;
+    use scenethesis_primitives::cuboid;
     let parts = vec![
         cuboid("bar", 0, [-0.1, 0.0, -0.05], [0.1, 0.01, -0.04]),
         cuboid("foot", 0, [-0.02, 0.0, 0.04], [0.02, 0.01, 0.05]),
@@ -611,7 +611,7 @@ fn kickstand_frame() -> PreparedAsset {
         &mesh,
         Vec::new(),
         [0.9, 1.1],
-        scenethesis_assets::Placement::Surface,
+        scenethesis_scene_graph::Placement::Surface,
         &scenethesis_physics_opt::PrepareSettings::default(),
     )
     .unwrap()

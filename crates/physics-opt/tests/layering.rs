@@ -1,5 +1,5 @@
 //! The optimizer stands below the generators: it needs the asset metadata types, which live in
-//! `scenethesis-scene-graph`, not the 13k-line generator crate (with `gltf`) or the metrics.
+//! `scenethesis-scene-graph`, not the generators, the importers (with `gltf`) or the metrics.
 
 /// The names of the `[dependencies]` of this crate's manifest (not dev- or build-dependencies).
 fn normal_dependencies() -> Vec<String> {
@@ -26,7 +26,11 @@ fn physics_opt_does_not_depend_on_the_generators_or_the_metrics() {
         deps.contains(&"scenethesis-scene-graph".to_owned()),
         "{deps:?}"
     );
-    for crate_name in ["scenethesis-assets", "scenethesis-eval"] {
+    for crate_name in [
+        "scenethesis-procedural",
+        "scenethesis-import",
+        "scenethesis-eval",
+    ] {
         assert!(
             !deps.iter().any(|d| d == crate_name),
             "physics-opt must not depend on {crate_name}: {deps:?}"

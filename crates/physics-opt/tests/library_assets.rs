@@ -6,11 +6,12 @@ mod support;
 use std::sync::Arc;
 
 use nalgebra::{Point3, Vector3};
-use scenethesis_assets::{catalog, Asset, SurfaceKind};
 use scenethesis_physics_opt::{
     optimize_scene, OptimizeSettings, Optimizer, Placement, PrepareSettings, PreparedAsset,
     ProjectedGaussNewton, SceneProblem, Sgd,
 };
+use scenethesis_procedural::catalog;
+use scenethesis_scene_graph::{Asset, SurfaceKind};
 use scenethesis_scene_graph::{Pose, RelationKind, Scene, SceneObject};
 use support::{object, problem};
 

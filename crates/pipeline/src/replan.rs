@@ -104,7 +104,7 @@ mod tests {
     use scenethesis_agents::{KnowledgePlanner, PlanRequest, Planner};
 
     fn plan() -> Plan {
-        let categories = scenethesis_assets::catalog::categories().map(|c| c.name.to_owned());
+        let categories = scenethesis_procedural::catalog::categories().map(|c| c.name.to_owned());
         KnowledgePlanner::new()
             .plan(&PlanRequest::new(
                 "a bedroom with a desk and a lamp on the desk",

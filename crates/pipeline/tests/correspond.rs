@@ -7,8 +7,8 @@ use std::sync::{Arc, Mutex};
 
 use nalgebra::{Point3, Vector3};
 use scenethesis_agents::{AssetLookup, Guide, GuideError, GuidedLayout, Plan, ProceduralGuide};
-use scenethesis_assets::import::AssetResolver;
 use scenethesis_correspondence::ShapeMatcher;
+use scenethesis_import::AssetResolver;
 use scenethesis_physics_opt::GuidedSettings;
 use scenethesis_pipeline::correspond::rasterized_guidance;
 use scenethesis_pipeline::{GenerateOptions, Pipeline, Progress, Stage};

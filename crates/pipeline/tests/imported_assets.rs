@@ -5,11 +5,11 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use scenethesis_assets::catalog;
 use scenethesis_pipeline::{
     export_folder, AssetError, AssetSource, Format, GenerateOptions, NoProgress, Pipeline,
     PipelineError, RetrievalSource,
 };
+use scenethesis_procedural::catalog;
 use scenethesis_scene_graph::{AssetRef, Mesh, Scene};
 
 /// Writes `mesh` as an OBJ in centimetres with Z up (so the import has to convert both), one

@@ -4,7 +4,7 @@ use std::sync::Arc;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::Vector3;
-use scenethesis_assets::primitives::{cuboid, cylinder, sphere};
+use scenethesis_primitives::{cuboid, cylinder, sphere};
 use scenethesis_render::{views, Instance, RenderScene, Renderer, RendererOptions};
 use scenethesis_scene_graph::{Architecture, Material, Mesh, Pose};
 

@@ -2,9 +2,9 @@
 //! assets.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use scenethesis_assets::{AssetInfo, Placement};
 use scenethesis_retrieval::AssetIndex;
 use scenethesis_scene_graph::AssetRef;
+use scenethesis_scene_graph::{AssetInfo, Placement};
 
 const QUERIES: &[&str] = &[
     "sofa",
@@ -27,7 +27,7 @@ const QUERIES: &[&str] = &[
 
 fn index_with_imports(imported: usize) -> AssetIndex {
     let mut index = AssetIndex::builtin();
-    let categories: Vec<&str> = scenethesis_assets::catalog::categories()
+    let categories: Vec<&str> = scenethesis_procedural::catalog::categories()
         .map(|c| c.name)
         .collect();
     for k in 0..imported {

@@ -3,8 +3,9 @@
 use std::collections::BTreeMap;
 use std::fmt;
 
-use scenethesis_assets::{catalog, AssetInfo, Placement};
+use scenethesis_procedural::catalog;
 use scenethesis_scene_graph::AssetRef;
+use scenethesis_scene_graph::{AssetInfo, Placement};
 
 use crate::text::{normalise, word_similarity, words};
 
@@ -124,7 +125,7 @@ impl AssetIndex {
     /// An index of every built-in category.
     pub fn builtin() -> Self {
         let mut index = Self::empty();
-        for c in scenethesis_assets::catalog::categories() {
+        for c in scenethesis_procedural::catalog::categories() {
             let i = index.entry(c.name, c.placement);
             index.entries[i].builtin = true;
             for s in c.synonyms {

@@ -5,7 +5,7 @@
 //! 1. the query names a category exactly (`"coffee table"`, `"coffee_tables"`);
 //! 2. the query is a synonym: the category's own synonyms, the imported asset's synonyms, or the
 //!    words of the one category table that the planner reads too
-//!    ([`scenethesis_assets::catalog::words`]: couch → sofa, bookcase → bookshelf, TV →
+//!    ([`scenethesis_procedural::catalog::words`]: couch → sofa, bookcase → bookshelf, TV →
 //!    television, …);
 //! 3. fuzzy word match: overlap of the query's words with a name's words, tolerant of typos
 //!    (edit distance), and with single aliased words replaced (`"big tv"` → `big television`);

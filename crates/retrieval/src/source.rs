@@ -8,10 +8,11 @@ use std::path::{Path, PathBuf};
 use std::sync::{Mutex, PoisonError};
 
 use crate::index::AssetIndex;
-use scenethesis_assets::import::{
+use scenethesis_import::{
     import_directory, AssetResolver, ImportWarning, ResolveError, MANIFEST_FILE,
 };
-use scenethesis_assets::{catalog, Asset};
+use scenethesis_procedural::catalog;
+use scenethesis_scene_graph::Asset;
 use scenethesis_scene_graph::{AssetRef, Mesh};
 
 /// Why an asset could not be retrieved or regenerated.
@@ -97,7 +98,7 @@ pub trait AssetSource: Send + Sync {
     fn mesh(&self, asset: &AssetRef) -> Result<Mesh, AssetError>;
 }
 
-/// The built-in procedural library (`scenethesis_assets::catalog`): every category the registry
+/// The built-in procedural library (`scenethesis_procedural::catalog`): every category the registry
 /// lists, each object's asset generated with a seed derived from its id and the variant. It
 /// never retrieves imported assets, but [`AssetSource::mesh`] re-imports those a saved scene
 /// references from their file's directory.
@@ -176,8 +177,8 @@ impl RetrievalSource {
     }
 
     /// Retrieval over the built-in library plus `assets` (e.g. the
-    /// [`ImportReport::assets`](scenethesis_assets::import::ImportReport) of
-    /// [`scenethesis_assets::import::import_directory`]). Assets that are not imported ones
+    /// [`ImportReport::assets`](scenethesis_import::ImportReport) of
+    /// [`scenethesis_import::import_directory`]). Assets that are not imported ones
     /// (their source is procedural) are ignored.
     pub fn with_imported(assets: impl IntoIterator<Item = Asset>) -> Self {
         let imported: BTreeMap<String, Asset> = assets
@@ -279,7 +280,7 @@ impl AssetSource for RetrievalSource {
     }
 }
 
-/// Loads the imported asset `asset` through the assets crate's resolver (its asset folder
+/// Loads the imported asset `asset` through the import crate's resolver (its asset folder
 /// imported again, so the manifest's units, axes and front apply).
 fn load_imported(asset: &AssetRef, _id: &str, _path: &str) -> Result<Asset, AssetError> {
     AssetResolver::new()

@@ -1,9 +1,9 @@
 //! One table for categories: retrieval and the offline planner read the same rows of
-//! `crates/assets/data/categories.toml`, so every category name and every word of the table
+//! `crates/procedural/data/categories.toml`, so every category name and every word of the table
 //! resolves to the same category on both sides.
 
 use scenethesis_agents::Knowledge;
-use scenethesis_assets::catalog;
+use scenethesis_procedural::catalog;
 use scenethesis_retrieval::AssetIndex;
 
 #[test]

@@ -19,7 +19,7 @@ fn assets_list_prints_one_line_per_category() {
     );
     let text = String::from_utf8(out.stdout).unwrap();
     let lines: Vec<&str> = text.lines().collect();
-    let count = scenethesis_assets::catalog::categories().count();
+    let count = scenethesis_procedural::catalog::categories().count();
     // Header, one line per category, summary.
     assert_eq!(lines.len(), count + 2, "{text}");
     assert!(lines
@@ -52,11 +52,11 @@ fn assets_list_json_matches_the_library() {
     let rows: Vec<serde_json::Value> = serde_json::from_slice(&out.stdout).expect("valid JSON");
     assert_eq!(
         rows.len(),
-        scenethesis_assets::catalog::categories().count()
+        scenethesis_procedural::catalog::categories().count()
     );
     let desk = rows.iter().find(|r| r["name"] == "desk").expect("desk row");
-    let expected = scenethesis_assets::catalog::generate(
-        scenethesis_assets::catalog::category("desk").unwrap(),
+    let expected = scenethesis_procedural::catalog::generate(
+        scenethesis_procedural::catalog::category("desk").unwrap(),
         3,
     );
     let size: Vec<f32> = desk["size"]

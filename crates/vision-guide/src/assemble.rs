@@ -16,10 +16,10 @@ use std::f64::consts::PI;
 
 use nalgebra::{Point3, Vector2, Vector3};
 use scenethesis_agents::Plan;
-use scenethesis_assets::{AssetInfo, Placement};
 use scenethesis_scene_graph::{
     Aabb, Architecture, ParentRef, Pose, Relation, RelationKind, Scene, SceneObject, GROUND_ID,
 };
+use scenethesis_scene_graph::{AssetInfo, Placement};
 use scenethesis_vision::{LiftedBox, SupportGuess, SupportKind};
 
 /// Largest gap between a box's back and a wall that still counts as backing onto it.

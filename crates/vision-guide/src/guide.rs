@@ -7,11 +7,11 @@ use scenethesis_agents::{
     room_architecture, AssetLookup, DroppedObject, Guide, GuideError, GuidedLayout, Plan,
     WalkwayReport,
 };
-use scenethesis_assets::AssetInfo;
 use scenethesis_correspondence::{DepthMap, Guidance, Mask, RgbImage};
 use scenethesis_models::{
     ChatModel, DepthEstimator, ImageData, ImageEditRequest, ImageGenerator, Segmenter,
 };
+use scenethesis_scene_graph::AssetInfo;
 use scenethesis_scene_graph::{Architecture, Camera, Intrinsics, Material, Mesh, Scene};
 use scenethesis_vision::{lift_scene, LiftOptions};
 

@@ -19,7 +19,7 @@ const W: u32 = 320;
 const H: u32 = 240;
 
 fn plan(prompt: &str) -> Plan {
-    let categories: BTreeSet<String> = scenethesis_assets::catalog::categories()
+    let categories: BTreeSet<String> = scenethesis_procedural::catalog::categories()
         .map(|c| c.name.to_string())
         .collect();
     KnowledgePlanner::new()

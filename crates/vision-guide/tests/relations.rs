@@ -14,9 +14,10 @@ use scenethesis_vision_guide::relations::ask_supports;
 use serde_json::json;
 
 fn plan() -> Plan {
-    let categories: std::collections::BTreeSet<String> = scenethesis_assets::catalog::categories()
-        .map(|c| c.name.to_string())
-        .collect();
+    let categories: std::collections::BTreeSet<String> =
+        scenethesis_procedural::catalog::categories()
+            .map(|c| c.name.to_string())
+            .collect();
     KnowledgePlanner::new()
         .plan(&PlanRequest::new("a living room", categories, 0))
         .unwrap()

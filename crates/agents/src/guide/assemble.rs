@@ -6,7 +6,7 @@
 use std::collections::BTreeMap;
 
 use nalgebra::Vector3;
-use scenethesis_assets::AssetInfo;
+use scenethesis_scene_graph::AssetInfo;
 use scenethesis_scene_graph::{Aabb, ParentRef, Pose, Relation, RelationKind, Scene, SceneObject};
 
 use super::room::Room;

@@ -7,7 +7,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use rand::seq::SliceRandom;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
-use scenethesis_assets::AssetInfo;
+use scenethesis_scene_graph::AssetInfo;
 use scenethesis_scene_graph::RelationKind;
 
 use super::geometry::Footprint;

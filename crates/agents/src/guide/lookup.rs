@@ -1,13 +1,14 @@
 //! Asset lookups: nominal priors from the knowledge files, and the built-in catalog.
 
-use scenethesis_assets::{catalog, AssetInfo, Placement, SupportSurface, SurfaceKind};
+use scenethesis_procedural::catalog;
 use scenethesis_scene_graph::AssetRef;
+use scenethesis_scene_graph::{AssetInfo, Placement, SupportSurface, SurfaceKind};
 
 use super::AssetLookup;
 use crate::knowledge::{Knowledge, Mount, NominalShape};
 use crate::plan::PlannedObject;
 
-/// Box-shaped metadata from the category priors (the `plan` rows of `crates/assets/data/categories.toml`): nominal size
+/// Box-shaped metadata from the category priors (the `plan` rows of `crates/procedural/data/categories.toml`): nominal size
 /// and support surfaces by shape. For planning and layout before real assets are chosen, and
 /// for categories no generator provides.
 #[derive(Debug, Clone, Copy)]

@@ -18,7 +18,7 @@ pub use room::room_architecture;
 
 use std::collections::BTreeMap;
 
-use scenethesis_assets::AssetInfo;
+use scenethesis_scene_graph::AssetInfo;
 use scenethesis_scene_graph::Scene;
 use serde::{Deserialize, Serialize};
 

@@ -5,7 +5,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use rand_chacha::ChaCha8Rng;
-use scenethesis_assets::AssetInfo;
+use scenethesis_scene_graph::AssetInfo;
 use scenethesis_scene_graph::ParentRef;
 
 use super::candidates::{candidates, free_candidates, mount_ok};
@@ -282,7 +282,7 @@ mod tests {
     use crate::{KnowledgePlanner, PlanRequest, Planner};
 
     fn plan(prompt: &str) -> Plan {
-        let available: Vec<String> = scenethesis_assets::catalog::categories()
+        let available: Vec<String> = scenethesis_procedural::catalog::categories()
             .map(|c| c.name.to_owned())
             .collect();
         KnowledgePlanner::new()

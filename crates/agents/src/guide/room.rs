@@ -1,7 +1,7 @@
 //! The room a plan asks for: its size checked, its walls (or, outdoors, the edges of the
 //! ground) as sides objects back onto, and every planned object's asset metadata.
 
-use scenethesis_assets::AssetInfo;
+use scenethesis_scene_graph::AssetInfo;
 use scenethesis_scene_graph::{Architecture, Environment, ParentRef};
 
 use super::geometry::Footprint;

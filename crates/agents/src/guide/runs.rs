@@ -16,7 +16,7 @@ use std::f64::consts::PI;
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use scenethesis_assets::AssetInfo;
+use scenethesis_scene_graph::AssetInfo;
 use scenethesis_scene_graph::{ParentRef, RelationKind};
 
 use super::geometry::Footprint;

@@ -7,7 +7,7 @@ use nalgebra::Point3;
 use rand::seq::SliceRandom;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
-use scenethesis_assets::{AssetInfo, SupportSurface, SurfaceKind};
+use scenethesis_scene_graph::{AssetInfo, SupportSurface, SurfaceKind};
 use scenethesis_scene_graph::{ParentRef, Pose, RelationKind, LOW_SHELF_SHARE};
 
 use super::DroppedObject;

@@ -151,7 +151,7 @@ pub const DETAILED: &str = "a living room with a grey three-seat sofa against th
 
 /// The built-in library's categories.
 pub fn available() -> Vec<String> {
-    scenethesis_assets::catalog::categories()
+    scenethesis_procedural::catalog::categories()
         .map(|c| c.name.to_owned())
         .collect()
 }

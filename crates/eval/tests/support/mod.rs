@@ -4,8 +4,8 @@
 use std::f64::consts::FRAC_PI_2;
 
 use nalgebra::{Point2, Vector3};
-use scenethesis_assets::primitives::{cuboid, cylinder};
 use scenethesis_eval::{EvalObject, EvalScene};
+use scenethesis_primitives::{cuboid, cylinder};
 use scenethesis_scene_graph::{
     Architecture, DoorOpening, Material, Mesh, MeshPart, Pose, RelationKind, Wall,
 };

@@ -7,13 +7,13 @@ use std::sync::Arc;
 use nalgebra::Vector3;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use scenethesis_assets::primitives::{cuboid, cylinder};
-use scenethesis_assets::{Placement, SupportSurface, SurfaceKind};
 use scenethesis_physics_opt::{PrepareSettings, PreparedAsset, SceneProblem};
+use scenethesis_primitives::{cuboid, cylinder};
 use scenethesis_scene_graph::{
     Aabb, Architecture, AssetRef, Material, Mesh, MeshPart, ParentRef, Pose, RelationKind, Scene,
     SceneObject,
 };
+use scenethesis_scene_graph::{Placement, SupportSurface, SurfaceKind};
 
 /// Table top height.
 pub const TABLE_TOP: f64 = 0.76;

@@ -5,9 +5,9 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use scenethesis_agents::Plan;
-use scenethesis_assets::{Asset, AssetInfo};
 use scenethesis_physics_opt::{PrepareSettings, PreparedAsset};
 use scenethesis_retrieval::{AssetQuery, AssetSource};
+use scenethesis_scene_graph::{Asset, AssetInfo};
 
 use crate::PipelineError;
 

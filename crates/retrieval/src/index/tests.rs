@@ -124,7 +124,7 @@ fn builtin_index_gives_procedural_candidates_with_seed_dependent_variants() {
     let index = AssetIndex::builtin();
     assert_eq!(
         index.len(),
-        scenethesis_assets::catalog::categories().count()
+        scenethesis_procedural::catalog::categories().count()
     );
     let c = top(&index, "mug");
     assert_eq!(c.category, "mug");

@@ -4,7 +4,8 @@ use std::io::{self, Write};
 
 use anyhow::{Context, Result};
 use clap::Subcommand;
-use scenethesis_assets::{catalog, Placement};
+use scenethesis_procedural::catalog;
+use scenethesis_scene_graph::Placement;
 
 /// The `assets` subcommands.
 #[derive(Debug, Subcommand)]

@@ -6,9 +6,9 @@ use std::str::FromStr;
 use std::sync::Arc;
 
 use anyhow::{Context, Result};
-use scenethesis_assets::catalog;
-use scenethesis_assets::import::AssetResolver;
 use scenethesis_correspondence::encode_png;
+use scenethesis_import::AssetResolver;
+use scenethesis_procedural::catalog;
 use scenethesis_render::{
     views, BackendChoice, Instance, PreparedScene, RenderScene, Renderer, RendererOptions,
 };
@@ -185,7 +185,7 @@ pub fn open_renderer(backend: Option<BackendChoice>) -> Result<Renderer> {
 
 /// The scene's objects with their meshes (procedural assets regenerated, imported assets
 /// imported again from their asset folder, both through
-/// [`scenethesis_assets::import::AssetResolver`]), in the scene's architecture; objects whose
+/// [`scenethesis_import::AssetResolver`]), in the scene's architecture; objects whose
 /// mesh cannot be made (unknown generators, missing asset files) are left out, each with a
 /// message naming it.
 pub fn render_scene(scene: &Scene) -> (RenderScene, Vec<String>) {

@@ -27,7 +27,8 @@ pub fn run(path: PathBuf) -> Result<()> {
         }
         Err(err) => return Err(err).context("validation failed"),
     };
-    let unknown = scene.generator_errors(|g| scenethesis_assets::catalog::category(g).is_some());
+    let unknown =
+        scene.generator_errors(|g| scenethesis_procedural::catalog::category(g).is_some());
     if !unknown.is_empty() {
         for problem in &unknown {
             eprintln!("  - {problem}");

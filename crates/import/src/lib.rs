@@ -1,0 +1,206 @@
+//! Bring-your-own assets: import a directory of mesh files (GLB, glTF and OBJ built in)
+//! described by an `assets.json` manifest, normalised to the scene conventions; and the
+//! [`AssetResolver`] that turns any asset reference of a scene, procedural or imported, back
+//! into an asset.
+//!
+//! The manifest is a JSON array of entries, or an object with an `assets` array:
+//!
+//! ```json
+//! [
+//!   { "file": "armchair.glb", "category": "armchair", "synonyms": ["lounge chair"],
+//!     "up_axis": "z", "unit_scale": 0.01, "front": "-x" },
+//!   { "file": "lamp.obj", "id": "lamp_brass", "category": "floor_lamp", "placement": "floor" }
+//! ]
+//! ```
+//!
+//! Fields: `file` (path relative to the directory), `category`, and optionally `id` (defaults to
+//! the file stem, made unique), `synonyms`, `up_axis` (`"y"` or `"z"`, default `"y"`),
+//! `unit_scale` (metres per file unit, default 1), `front` (`"+z"`, `"-z"`, `"+x"` or `"-x"`:
+//! the asset's front in the file's frame after the up axis has been turned to +Y; default
+//! `"+z"`), `placement` (`floor`, `wall`, `surface` or `ceiling`; defaults to the built-in
+//! category's, else `floor`), `support_surfaces` (in the normalised asset frame, metres; found
+//! automatically when absent) and `scale_range` (default `[0.9, 1.1]`).
+//!
+//! Normalisation scales to metres, turns the up axis to +Y and the front to +Z, then moves the
+//! origin to the footprint centre at the lowest point. A file that is missing, unreadable, not
+//! readable by its loader or without triangles is skipped with an [`ImportWarning`] naming it;
+//! the rest of the directory is still imported. Without a manifest, every mesh file in the directory
+//! is imported with the defaults and its file stem as category.
+//!
+//! ## Loaders
+//!
+//! Each file format is read by an [`AssetLoader`], chosen by file extension: [`GltfLoader`]
+//! (`.glb`, `.gltf`) and [`ObjLoader`] (`.obj`) are built in. An [`Importer`] holds the list;
+//! [`Importer::with_loader`] adds a format, and everything after loading (cleaning, units,
+//! axes, front, limits, support surfaces) applies to its meshes as to the built-in ones:
+//!
+//! ```
+//! use std::path::Path;
+//! use scenethesis_import::{AssetLoader, Importer, MeshLoadError};
+//! use scenethesis_scene_graph::{Material, Mesh, MeshPart};
+//!
+//! /// `.box` files: "width height depth" in the file's units.
+//! struct BoxLoader;
+//!
+//! impl AssetLoader for BoxLoader {
+//!     fn extensions(&self) -> &[&str] {
+//!         &["box"]
+//!     }
+//!     fn load(&self, path: &Path, _root: &Path) -> Result<Mesh, MeshLoadError> {
+//!         let text = std::fs::read_to_string(path)?;
+//!         let size: Vec<f32> = text.split_whitespace().filter_map(|w| w.parse().ok()).collect();
+//!         let [w, h, d] = size[..] else {
+//!             return Err(MeshLoadError::Unusable("expected three sizes".into()));
+//!         };
+//!         Ok(Mesh {
+//!             materials: vec![Material {
+//!                 name: "pine".into(),
+//!                 base_color: [0.8, 0.6, 0.4, 1.0],
+//!                 roughness: 0.7,
+//!                 metallic: 0.0,
+//!             }],
+//!             parts: vec![MeshPart::cuboid("box", 0, [0.0; 3], [w, h, d])],
+//!         })
+//!     }
+//! }
+//!
+//! let dir = tempfile::tempdir()?;
+//! std::fs::write(dir.path().join("crate.box"), "50 40 30")?;
+//! std::fs::write(
+//!     dir.path().join("assets.json"),
+//!     r#"[{ "file": "crate.box", "category": "crate", "unit_scale": 0.01 }]"#,
+//! )?;
+//! let report = Importer::new().with_loader(BoxLoader).import_directory(dir.path())?;
+//! assert!(report.warnings.is_empty(), "{:?}", report.warnings);
+//! let size = report.assets[0].info.size;
+//! assert!((size[0] - 0.5).abs() < 1e-6 && (size[1] - 0.4).abs() < 1e-6);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+#![warn(missing_docs)]
+
+mod clean;
+mod gltf_file;
+mod importer;
+pub mod limits;
+mod loader;
+mod manifest;
+mod obj;
+mod resolver;
+mod surfaces;
+
+use std::fmt;
+use std::path::PathBuf;
+
+use scenethesis_scene_graph::Asset;
+
+pub use clean::{clean_mesh, Cleaned};
+pub use gltf_file::{resolve_inside, GltfError, GltfFile, GltfMaterial, GltfNode, GltfPrimitive};
+pub use importer::{import_directory, import_entry, load_mesh, normalise, Importer};
+pub use loader::{parse_obj, AssetLoader, GltfLoader, ObjLoader};
+pub use manifest::{Front, ManifestEntry, UpAxis, MANIFEST_FILE};
+pub use resolver::{AssetResolver, ResolveError};
+pub use surfaces::{find_support_surfaces, SurfaceSearch};
+
+/// What importing a directory produced: the assets that loaded and a warning for each file that
+/// did not.
+#[derive(Debug, Clone, Default)]
+pub struct ImportReport {
+    /// Imported assets in manifest order (or file-name order without a manifest).
+    pub assets: Vec<Asset>,
+    /// One warning per skipped entry or file, and notes about defaults that were applied.
+    pub warnings: Vec<ImportWarning>,
+}
+
+/// A file that was skipped (or imported with a caveat), and why.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ImportWarning {
+    /// The file concerned.
+    pub path: PathBuf,
+    /// What went wrong, e.g. `not a valid GLB: ...`.
+    pub reason: String,
+}
+
+impl fmt::Display for ImportWarning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.path.display(), self.reason)
+    }
+}
+
+/// Why a directory could not be imported at all (a single bad mesh file is only a warning).
+#[derive(Debug, thiserror::Error)]
+pub enum ImportError {
+    /// The directory could not be listed.
+    #[error("cannot read asset directory {path}: {source}")]
+    Directory {
+        /// The directory.
+        path: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// The manifest exists but could not be read.
+    #[error("cannot read manifest {path}: {source}")]
+    ManifestIo {
+        /// The manifest path.
+        path: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// The manifest is JSON but not an array of entries (nor an object with an `assets` array).
+    #[error("invalid manifest {path}: {reason}")]
+    ManifestShape {
+        /// The manifest path.
+        path: PathBuf,
+        /// What is wrong.
+        reason: String,
+    },
+    /// The manifest is not valid JSON.
+    #[error("invalid manifest {path}: {source}")]
+    ManifestJson {
+        /// The manifest path.
+        path: PathBuf,
+        /// The parse error, with line and column.
+        source: serde_json::Error,
+    },
+}
+
+/// Why one mesh file could not be loaded.
+#[derive(Debug, thiserror::Error)]
+pub enum MeshLoadError {
+    /// The file could not be read.
+    #[error("cannot read file: {0}")]
+    Io(#[from] std::io::Error),
+    /// The file is not valid glTF or GLB.
+    #[error("{0}")]
+    Gltf(String),
+    /// The OBJ file has a malformed line.
+    #[error("invalid OBJ at line {line}: {message}")]
+    Obj {
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// The file holds no triangles.
+    #[error("the file holds no triangles")]
+    Empty,
+    /// The mesh loaded but cannot be used as an asset (no area, too large, ...).
+    #[error("{0}")]
+    Unusable(String),
+    /// The manifest entry itself is unusable.
+    #[error("invalid manifest entry: {0}")]
+    Entry(String),
+    /// No loader of the importer reads the file's extension.
+    #[error("unsupported file type (expected {expected})")]
+    Unsupported {
+        /// The extensions the importer's loaders read, as a list (`.glb, .gltf or .obj`).
+        expected: String,
+    },
+}
+
+fn printable(text: &str) -> std::borrow::Cow<'_, str> {
+    scenethesis_scene_graph::printable(text)
+}
+
+#[cfg(test)]
+mod tests;
