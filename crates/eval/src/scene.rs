@@ -7,10 +7,6 @@ use scenethesis_scene_graph::{
 
 use crate::EvalError;
 
-/// Height (m) above which an object of a foreign scene (one without `scene.json`) that touches
-/// a wall with nothing beneath it is taken to hang on that wall (support `mounted`).
-pub const WALL_MOUNT_MIN_BOTTOM: f64 = 0.3;
-
 /// One movable object to evaluate.
 #[derive(Debug, Clone, PartialEq)]
 pub struct EvalObject {

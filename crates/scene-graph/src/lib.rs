@@ -78,7 +78,10 @@ mod validate;
 mod walkway;
 
 pub use aabb::Aabb;
-pub use architecture::{Architecture, DoorOpening, Environment, Floor, Wall};
+pub use architecture::{
+    hangs_on_wall, Architecture, DoorOpening, Environment, Floor, Wall, MOUNT_MIN_BOTTOM,
+    MOUNT_WALL_REACH,
+};
 pub use asset::{Asset, AssetInfo, Placement, SupportSurface, SurfaceKind, LOW_SHELF_SHARE};
 pub use camera::{Camera, Intrinsics, Projection};
 pub use floor_raster::{Components, FloorRaster, BLOCKED_CELL};
