@@ -92,7 +92,7 @@ pub use object::{AssetRef, ParentRef, Relation, RelationKind, SceneObject, GROUN
 pub use pose::Pose;
 pub use relations::{floor_centre, floor_gap, front_dir, relation_holds, right_dir};
 pub use scene::{Scene, FORMAT_VERSION};
-pub use validate::{is_printable_id, printable, ValidationError};
+pub use validate::{is_printable_id, printable, OutOfBounds, ValidationError};
 pub use walkway::ROBOT_RADIUS;
 
 /// Re-export of the linear-algebra crate used in this crate's public types.
