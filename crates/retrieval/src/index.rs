@@ -91,8 +91,8 @@ pub struct AssetIndex {
     by_category: BTreeMap<String, usize>,
     embedder: Option<Box<dyn TextEmbedder + Send + Sync>>,
     entry_vectors: Vec<Vec<f32>>,
-    /// The words of the category table ([`catalog::words`]), normalised, with their categories.
-    aliases: Vec<(String, &'static str)>,
+    /// The words of the category table ([`catalog::words`]), as [`words`], with their categories.
+    aliases: Vec<(Vec<String>, &'static str)>,
     /// Every distinct word of every name, so a query word is compared with each only once.
     vocabulary: Vec<String>,
     word_ids: BTreeMap<String, u32>,
@@ -150,7 +150,7 @@ impl AssetIndex {
             by_category: BTreeMap::new(),
             embedder: None,
             entry_vectors: Vec::new(),
-            aliases: catalog::words().map(|(a, c)| (normalise(a), c)).collect(),
+            aliases: catalog::words().map(|(a, c)| (words(a), c)).collect(),
             vocabulary: Vec::new(),
             word_ids: BTreeMap::new(),
         }
@@ -342,10 +342,8 @@ impl AssetIndex {
 
     /// The category a normalised alias stands for.
     fn alias_of(&self, word: &str) -> Option<&'static str> {
-        self.aliases
-            .iter()
-            .find(|(alias, _)| alias == word)
-            .map(|(_, c)| *c)
+        let rows = self.aliases.iter().map(|(alias, c)| (alias.as_slice(), *c));
+        scenethesis_words::category_of_phrase(&[word.to_owned()], rows)
     }
 
     fn add_name(&mut self, i: usize, name: &str) {
