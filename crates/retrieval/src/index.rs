@@ -4,6 +4,7 @@ use std::collections::BTreeMap;
 use std::fmt;
 
 use scenethesis_assets::{catalog, AssetInfo, Placement};
+use scenethesis_models::{ProviderError, TextEmbedder};
 use scenethesis_scene_graph::AssetRef;
 
 use crate::text::{normalise, word_similarity, words};
@@ -52,7 +53,7 @@ pub struct Candidate {
 pub enum EmbedError {
     /// The embedding model or service failed.
     #[error("text embedding failed: {0}")]
-    Failed(String),
+    Failed(#[from] ProviderError),
     /// The embedder returned the wrong number of vectors.
     #[error("embedder returned {got} vectors for {expected} texts")]
     Count {
@@ -61,13 +62,6 @@ pub enum EmbedError {
         /// Vectors received.
         got: usize,
     },
-}
-
-/// Turns texts into vectors whose cosine similarity reflects meaning; the seam for a semantic
-/// model (a later stage implements it with a real sentence-embedding model).
-pub trait TextEmbedder {
-    /// One vector per text, all of the same length.
-    fn embed(&self, texts: &[&str]) -> Result<Vec<Vec<f32>>, EmbedError>;
 }
 
 /// A group of assets sharing one category, with the names it answers to.
@@ -89,7 +83,7 @@ struct Entry {
 pub struct AssetIndex {
     entries: Vec<Entry>,
     by_category: BTreeMap<String, usize>,
-    embedder: Option<Box<dyn TextEmbedder + Send + Sync>>,
+    embedder: Option<Box<dyn TextEmbedder>>,
     entry_vectors: Vec<Vec<f32>>,
     /// The words of the category table ([`catalog::words`]), as [`words`], with their categories.
     aliases: Vec<(Vec<String>, &'static str)>,
@@ -183,10 +177,7 @@ impl AssetIndex {
 
     /// Attaches a semantic embedder and embeds every category's description once
     /// (`"sofa: couch, settee"`). Later searches re-rank by cosine similarity to the query.
-    pub fn set_embedder(
-        &mut self,
-        embedder: Box<dyn TextEmbedder + Send + Sync>,
-    ) -> Result<(), EmbedError> {
+    pub fn set_embedder(&mut self, embedder: Box<dyn TextEmbedder>) -> Result<(), EmbedError> {
         let texts: Vec<String> = self.entries.iter().map(describe).collect();
         let refs: Vec<&str> = texts.iter().map(String::as_str).collect();
         let vectors = embedder.embed(&refs)?;
