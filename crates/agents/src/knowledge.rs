@@ -474,11 +474,8 @@ impl Knowledge {
     /// The category a whole phrase names (`"couch"` → `sofa`), matched on word stems against the
     /// category names and words, as the planner reads prompts.
     pub fn category_of_phrase(&self, phrase: &str) -> Option<&str> {
-        let stems = phrase_stems(phrase);
-        self.phrases
-            .iter()
-            .find(|(p, _)| *p == stems)
-            .map(|(_, c)| c.as_str())
+        let rows = self.phrases.iter().map(|(p, c)| (p.as_slice(), c.as_str()));
+        scenethesis_words::category_of_phrase(&phrase_stems(phrase), rows)
     }
 
     /// The phrases (as word stems) that name each category, its name and its words, longest

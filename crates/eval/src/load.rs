@@ -3,10 +3,12 @@
 use std::path::Path;
 
 use nalgebra::Point2;
-use scenethesis_scene_graph::{Aabb, Architecture, Environment, Floor, Mesh, Scene, Wall};
+use scenethesis_scene_graph::{
+    hangs_on_wall, Aabb, Architecture, Environment, Floor, Mesh, Scene, Wall,
+};
 
 use crate::glb::GlbScene;
-use crate::scene::{EvalObject, EvalScene, WALL_MOUNT_MIN_BOTTOM};
+use crate::scene::{EvalObject, EvalScene};
 use crate::EvalError;
 
 /// Gap (m) under which an object counts as resting on the floor or on the object below it when
@@ -287,8 +289,9 @@ fn wall_from_box(id: &str, b: &Aabb) -> Wall {
 }
 
 /// Fills parents and wall mounting for objects of a scene that states neither: an object with
-/// nothing beneath it that touches a wall and whose bottom is above [`WALL_MOUNT_MIN_BOTTOM`]
-/// hangs on that wall (support `mounted`, so welded); anything else off the floor and
+/// nothing beneath it that hangs on a wall by the scene graph's [`hangs_on_wall`] rule (its
+/// bottom above `MOUNT_MIN_BOTTOM`, its box within `MOUNT_WALL_REACH` of the wall's) hangs
+/// on that wall (support `mounted`, so welded); anything else off the floor and
 /// unsupported stays without a support and is simulated, so it falls.
 fn infer_support(objects: &mut [EvalObject], walls: &[Wall]) {
     use scenethesis_scene_graph::RelationKind;
@@ -320,14 +323,15 @@ fn infer_support(objects: &mut [EvalObject], walls: &[Wall]) {
                 object.support = Some(RelationKind::On);
             }
             None => {
-                let near_wall = walls.iter().any(|w| {
+                // A foreign wall has no known inner side: the gap is the distance between the
+                // boxes on the floor plane, along the axis that parts them most.
+                let hangs = walls.iter().any(|w| {
                     let wb = w.aabb();
-                    b.min.x <= wb.max.x + 0.05
-                        && wb.min.x - 0.05 <= b.max.x
-                        && b.min.z <= wb.max.z + 0.05
-                        && wb.min.z - 0.05 <= b.max.z
+                    let dx = (wb.min.x - b.max.x).max(b.min.x - wb.max.x).max(0.0);
+                    let dz = (wb.min.z - b.max.z).max(b.min.z - wb.max.z).max(0.0);
+                    hangs_on_wall(b.min.y, dx.max(dz))
                 });
-                if near_wall && b.min.y > WALL_MOUNT_MIN_BOTTOM {
+                if hangs {
                     object.support = Some(RelationKind::Mounted);
                 }
             }
@@ -351,5 +355,44 @@ mod tests {
         assert_eq!(architecture_kind("chair"), None);
         assert_eq!(category_of("Chair.001"), "chair");
         assert_eq!(category_of("dining_table_12"), "dining_table");
+    }
+
+    #[test]
+    fn an_object_hangs_on_a_foreign_wall_by_the_scene_graph_rule() {
+        // A wall along x whose room-side face is at z = -1.95, and boxes 0.3 m deep.
+        let wall = wall_from_box(
+            "wall_0",
+            &Aabb::new(
+                nalgebra::Point3::new(-2.0, 0.0, -2.1),
+                nalgebra::Point3::new(2.0, 2.5, -1.95),
+            ),
+        );
+        let object = |id: &str, x: f32, gap: f64, bottom: f64| EvalObject {
+            id: id.into(),
+            category: "frame".into(),
+            mesh: Mesh::cuboid(
+                "body",
+                scenethesis_scene_graph::Material::new("m", [0.5; 3], 0.5),
+                [x - 0.2, bottom as f32, (-1.95 + gap) as f32],
+                [x + 0.2, bottom as f32 + 0.3, (-1.65 + gap) as f32],
+            ),
+            yaw: 0.0,
+            parent: None,
+            support: None,
+            relations: Vec::new(),
+        };
+        let mut objects = vec![
+            object("close", -1.5, 0.0, 1.2),
+            object("proud", -0.5, 0.1, 1.2),
+            object("far", 0.5, 0.2, 1.2),
+            object("low", 1.5, 0.0, 0.2),
+        ];
+        infer_support(&mut objects, &[wall]);
+        let mounted: Vec<&str> = objects
+            .iter()
+            .filter(|o| o.support == Some(scenethesis_scene_graph::RelationKind::Mounted))
+            .map(|o| o.id.as_str())
+            .collect();
+        assert_eq!(mounted, ["close", "proud"]);
     }
 }

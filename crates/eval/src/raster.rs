@@ -3,7 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use scenethesis_scene_graph::FloorRaster;
+use scenethesis_scene_graph::{Components, Floor, FloorRaster};
 
 use crate::scene::{EvalObject, EvalScene};
 
@@ -157,49 +157,81 @@ pub fn wall_pieces(scene: &EvalScene) -> Vec<WallPiece> {
     out
 }
 
-/// Computes Walk and Reach exactly as `metrics.md` defines them.
-pub fn walk_and_reach(scene: &EvalScene) -> WalkReach {
-    let floor = &scene.architecture.floor;
+/// The raster the Walk and Reach metrics use for `floor`: `RASTER_SIZE` × `RASTER_SIZE` cells
+/// over the floor's bounding square plus `RASTER_MARGIN` on every side.
+pub fn metric_grid(floor: &Floor) -> FloorRaster {
     let ext = floor.extent();
     let side = ext.x.max(ext.y).max(0.0) + 2.0 * RASTER_MARGIN;
     let center = nalgebra::center(&floor.min, &floor.max);
-    let grid = FloorRaster::square(
+    FloorRaster::square(
         center.x - side / 2.0,
         center.y - side / 2.0,
         side,
         RASTER_SIZE,
-    );
-    let n = RASTER_SIZE;
+    )
+}
+
+/// The free cells of `grid` before any object: the floor eroded by the robot radius, minus the
+/// `walls` grown by it.
+pub fn free_floor(grid: &FloorRaster, floor: &Floor, walls: &[WallPiece]) -> Vec<bool> {
     let r = ROBOT_RADIUS;
-    // The floor eroded by the robot, minus the walls grown by the robot.
-    let walls = wall_pieces(scene);
-    let mut free = vec![false; n * n];
-    for j in 0..n {
-        for i in 0..n {
+    let mut free = vec![false; grid.len()];
+    for j in 0..grid.nz {
+        for i in 0..grid.nx {
             let [x, z] = grid.center(i, j);
             let inside = x - floor.min.x >= r
                 && floor.max.x - x >= r
                 && z - floor.min.y >= r
                 && floor.max.y - z >= r;
-            free[j * n + i] = inside && walls.iter().all(|w| w.rect.distance(x, z) > r);
+            free[j * grid.nx + i] = inside && walls.iter().all(|w| w.rect.distance(x, z) > r);
         }
     }
+    free
+}
+
+/// The cells of `grid` an obstacle takes: its footprint grown (round) by the robot radius.
+pub fn grown_cells(grid: &FloorRaster, rect: &FloorRect) -> Vec<usize> {
+    let r = ROBOT_RADIUS;
+    let mut px = Vec::new();
+    grid.for_cells_where(
+        rect.bounds(r),
+        |x, z| rect.distance(x, z) <= r,
+        |p| px.push(p),
+    );
+    px
+}
+
+/// The walkable components by the Walk metric's rules: the metric's raster of `floor`
+/// ([`metric_grid`]), its free floor ([`free_floor`]) minus every obstacle's grown footprint
+/// ([`grown_cells`]), split into 8-connected components. The caller picks the obstacles (Walk
+/// counts the objects whose box centre is below [`WALK_HEIGHT_LIMIT`]).
+pub fn walk_components(
+    floor: &Floor,
+    walls: &[WallPiece],
+    obstacles: &[FloorRect],
+) -> (FloorRaster, Components) {
+    let grid = metric_grid(floor);
+    let mut free = free_floor(&grid, floor, walls);
+    for rect in obstacles {
+        for p in grown_cells(&grid, rect) {
+            free[p] = false;
+        }
+    }
+    let parts = grid.components8(&free);
+    (grid, parts)
+}
+
+/// Computes Walk and Reach exactly as `metrics.md` defines them.
+pub fn walk_and_reach(scene: &EvalScene) -> WalkReach {
+    let floor = &scene.architecture.floor;
+    let grid = metric_grid(floor);
+    // The floor eroded by the robot, minus the walls grown by the robot.
+    let free = free_floor(&grid, floor, &wall_pieces(scene));
     // Each object's footprint grown by the robot radius, as pixel indices.
     let grown: Vec<Vec<usize>> = scene
         .objects
         .iter()
-        .map(|o| match footprint(o) {
-            Some(rect) => {
-                let mut px = Vec::new();
-                grid.for_cells_where(
-                    rect.bounds(r),
-                    |x, z| rect.distance(x, z) <= r,
-                    |p| px.push(p),
-                );
-                px
-            }
-            None => Vec::new(),
-        })
+        .map(|o| footprint(o).map_or_else(Vec::new, |rect| grown_cells(&grid, &rect)))
         .collect();
 
     // Walk: only objects whose box centre is below the height limit are obstacles.

@@ -7,10 +7,6 @@ use scenethesis_scene_graph::{
 
 use crate::EvalError;
 
-/// Height (m) above which an object of a foreign scene (one without `scene.json`) that touches
-/// a wall with nothing beneath it is taken to hang on that wall (support `mounted`).
-pub const WALL_MOUNT_MIN_BOTTOM: f64 = 0.3;
-
 /// One movable object to evaluate.
 #[derive(Debug, Clone, PartialEq)]
 pub struct EvalObject {
@@ -113,7 +109,8 @@ impl EvalScene {
 
     /// Checks the scene against [`crate::limits`]: object and wall counts, triangles per object,
     /// finite vertex coordinates within ±[`crate::limits::MAX_COORDINATE`] m and valid triangle
-    /// indices, finite room numbers. Evaluating a scene that passes does bounded work and
+    /// indices, room numbers within the scene graph's bounds
+    /// ([`scenethesis_scene_graph::Architecture::out_of_bounds`]). Evaluating a scene that passes does bounded work and
     /// cannot panic in the geometry libraries.
     pub fn check_limits(&self) -> Result<(), EvalError> {
         use crate::limits::{MAX_COORDINATE, MAX_OBJECTS, MAX_TRIANGLES_PER_OBJECT, MAX_WALLS};
@@ -140,35 +137,22 @@ impl EvalScene {
                 ),
             ));
         }
-        let ok = |v: f64| v.is_finite() && v.abs() <= MAX_COORDINATE;
-        if !arch
-            .floor
-            .min
-            .iter()
-            .chain(arch.floor.max.iter())
-            .all(|&v| ok(v))
-        {
+        if let Some(bad) = arch.out_of_bounds() {
+            let numbers = match bad.kind {
+                "floor" => "corners",
+                "wall" => "end points, height and thickness",
+                _ => "offset, width and height",
+            };
+            let what = match bad.kind {
+                "floor" => "floor".to_owned(),
+                kind => format!("{kind} {}", bad.id),
+            };
             return Err(over(
-                "floor",
-                format!("corners must be finite and within ±{MAX_COORDINATE} m"),
+                &what,
+                format!("{numbers} must be finite and within ±{MAX_COORDINATE} m"),
             ));
         }
-        for w in &arch.walls {
-            let numbers = [
-                w.start.x,
-                w.start.y,
-                w.end.x,
-                w.end.y,
-                w.height,
-                w.thickness,
-            ];
-            if !numbers.iter().all(|&v| ok(v)) {
-                return Err(over(
-                    &format!("wall {}", w.id),
-                    format!("end points, height and thickness must be finite and within ±{MAX_COORDINATE} m"),
-                ));
-            }
-        }
+        let ok = |v: f64| v.is_finite() && v.abs() <= MAX_COORDINATE;
         for o in &self.objects {
             let what = format!("object {}", o.id);
             if o.mesh.triangle_count() > MAX_TRIANGLES_PER_OBJECT {

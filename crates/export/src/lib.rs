@@ -156,7 +156,7 @@ impl<'a> ExportScene<'a> {
             let in_range = pose.is_finite()
                 && pose.scale > 0.0
                 && pose.scale <= limits::MAX_SCALE
-                && pose.yaw.abs() <= 1000.0
+                && pose.yaw.abs() <= limits::MAX_YAW
                 && pose
                     .translation
                     .iter()
@@ -194,45 +194,17 @@ impl<'a> ExportScene<'a> {
     }
 }
 
-/// Floor, walls and doors: every number finite and within the coordinate limit, so that no
-/// format (GLB stores `f32`) receives a value it cannot hold.
+/// Floor, walls and doors: every number finite and within the coordinate limit
+/// ([`scenethesis_scene_graph::Architecture::out_of_bounds`]), so that no format (GLB stores
+/// `f32`) receives a value it cannot hold.
 fn check_architecture(scene: &Scene) -> Result<(), ExportError> {
-    let ok = |v: f64| v.is_finite() && v.abs() <= limits::MAX_COORDINATE;
-    let bad = |element: &str, field| ExportError::InvalidArchitecture {
-        element: printable(element).into_owned(),
-        field,
-    };
-    let arch = &scene.architecture;
-    if !arch
-        .floor
-        .min
-        .iter()
-        .chain(arch.floor.max.iter())
-        .all(|&v| ok(v))
-    {
-        return Err(bad(&arch.floor.id, "min/max"));
+    match scene.architecture.out_of_bounds() {
+        Some(bad) => Err(ExportError::InvalidArchitecture {
+            element: printable(bad.id).into_owned(),
+            field: bad.fields,
+        }),
+        None => Ok(()),
     }
-    for w in &arch.walls {
-        if ![
-            w.start.x,
-            w.start.y,
-            w.end.x,
-            w.end.y,
-            w.height,
-            w.thickness,
-        ]
-        .iter()
-        .all(|&v| ok(v))
-        {
-            return Err(bad(&w.id, "start/end/height/thickness"));
-        }
-    }
-    for d in &arch.doors {
-        if ![d.offset, d.width, d.height].iter().all(|&v| ok(v)) {
-            return Err(bad(&d.id, "offset/width/height"));
-        }
-    }
-    Ok(())
 }
 
 fn check_mesh(id: &str, mesh: &Mesh) -> Result<(), ExportError> {

@@ -191,56 +191,19 @@ pub(crate) struct Converted {
     pub(crate) detailed: bool,
 }
 
-/// Lower case, words split on anything not alphanumeric, each word singular.
+/// The words of a name in the one text vocabulary (`scenethesis-words`): lower case, split on
+/// anything not a letter or digit, each word singular.
 pub(crate) fn normalise(name: &str) -> Vec<String> {
-    name.to_lowercase()
-        .split(|c: char| !c.is_alphanumeric())
-        .filter(|w| !w.is_empty())
-        .map(singular)
-        .collect()
+    scenethesis_words::words(name)
 }
 
-fn singular(word: &str) -> String {
-    if let Some(stem) = word.strip_suffix("ies") {
-        if stem.len() >= 2 {
-            return format!("{stem}y");
-        }
-    }
-    for suffix in ["ches", "shes", "sses", "xes"] {
-        if word.ends_with(suffix) {
-            return word[..word.len() - 2].to_string();
-        }
-    }
-    if word.len() > 3 && word.ends_with("ves") && !word.ends_with("eaves") {
-        return format!("{}f", &word[..word.len() - 3]);
-    }
-    if word.len() > 3 && word.ends_with('s') && !word.ends_with("ss") && !word.ends_with("us") {
-        return word[..word.len() - 1].to_string();
-    }
-    word.to_string()
-}
-
-/// The library category nearest to `name`: the same words (after normalising), else the
-/// category with the most words all contained in the name ("pharmacy shelf" → `shelf`).
+/// The library category nearest to `name` ([`scenethesis_words::nearest_category`]): the same
+/// words, else the category with the most words all contained in the name ("pharmacy shelf" →
+/// `shelf`; ties go to the first in sorted order).
 pub(crate) fn nearest_category(name: &str, available: &BTreeSet<String>) -> Option<String> {
-    let words = normalise(name);
-    if words.is_empty() {
-        return None;
-    }
-    let mut best: Option<(usize, &String)> = None;
-    for category in available {
-        let cw = normalise(category);
-        if cw == words {
-            return Some(category.clone());
-        }
-        if !cw.is_empty() && cw.iter().all(|w| words.contains(w)) {
-            // More matched words first; ties go to the first in sorted order.
-            if best.is_none_or(|(n, _)| cw.len() > n) {
-                best = Some((cw.len(), category));
-            }
-        }
-    }
-    best.map(|(_, c)| c.clone())
+    let rows: Vec<(Vec<String>, &String)> = available.iter().map(|c| (normalise(c), c)).collect();
+    let rows = rows.iter().map(|(w, c)| (w.as_slice(), *c));
+    scenethesis_words::nearest_category(&normalise(name), rows).cloned()
 }
 
 fn zone_of(zone: &str, wall: &str) -> Zone {
@@ -636,19 +599,5 @@ mod tests {
             Some("potted_plant")
         );
         assert_eq!(nearest_category("x-ray machine", &c), None);
-    }
-
-    #[test]
-    fn singulars() {
-        for (w, s) in [
-            ("benches", "bench"),
-            ("shelves", "shelf"),
-            ("boxes", "box"),
-            ("glass", "glass"),
-            ("cabinets", "cabinet"),
-            ("batteries", "battery"),
-        ] {
-            assert_eq!(singular(w), s);
-        }
     }
 }

@@ -10,9 +10,9 @@ use crate::message::shorten;
 
 const PATH: &str = "/embeddings";
 
-/// An embedding model behind an OpenAI-compatible `/embeddings` endpoint. It implements both
-/// the provider trait and retrieval's embedder seam, so a configured endpoint ranks assets and
-/// maps unknown nouns to categories by meaning.
+/// An embedding model behind an OpenAI-compatible `/embeddings` endpoint. It implements the one
+/// embedder trait ([`TextEmbedder`]), which retrieval uses too, so a configured endpoint ranks
+/// assets and maps unknown nouns to categories by meaning.
 #[derive(Debug)]
 pub struct OpenAiEmbedder {
     transport: Arc<Transport>,
@@ -122,12 +122,5 @@ impl TextEmbedder for OpenAiEmbedder {
             return Err(self.malformed("expected non-empty embeddings of one length".to_string()));
         }
         Ok(out)
-    }
-}
-
-impl scenethesis_retrieval::TextEmbedder for OpenAiEmbedder {
-    fn embed(&self, texts: &[&str]) -> Result<Vec<Vec<f32>>, scenethesis_retrieval::EmbedError> {
-        TextEmbedder::embed(self, texts)
-            .map_err(|e| scenethesis_retrieval::EmbedError::Failed(e.to_string()))
     }
 }

@@ -4,7 +4,7 @@
 //! and image parts, structured output with format fallback, local validation and one repair
 //! round), [`OpenAiImages`] ([`ImageGenerator`](scenethesis_models::ImageGenerator):
 //! generations and multipart edits, `b64_json` or `url` answers) and [`OpenAiEmbedder`]
-//! ([`TextEmbedder`](scenethesis_models::TextEmbedder), and retrieval's embedder seam).
+//! ([`TextEmbedder`](scenethesis_models::TextEmbedder), the one embedder trait retrieval uses too).
 //!
 //! This is the workspace's only crate with HTTP. Its methods are synchronous: each client
 //! drives reqwest on a private current-thread tokio runtime, so callers need no async runtime

@@ -637,7 +637,7 @@ fn image_answer_without_image_is_malformed() {
 }
 
 #[test]
-fn embeddings_in_index_order_and_as_retrieval_embedder() {
+fn embeddings_in_index_order_and_as_a_trait_object() {
     let server = TestServer::start(|_, r| {
         let body = r.json();
         let n = body["input"].as_array().unwrap().len();
@@ -666,11 +666,8 @@ fn embeddings_in_index_order_and_as_retrieval_embedder() {
         server.requests()[0].json()["input"],
         json!(["sofa", "couch", "lamp"])
     );
-    let as_retrieval: &dyn scenethesis_retrieval::TextEmbedder = &embedder;
-    assert_eq!(
-        as_retrieval.embed(&["x"]).unwrap(),
-        vec![vec![0.0, 1.0, 0.5]]
-    );
+    let as_dyn: &dyn TextEmbedder = &embedder;
+    assert_eq!(as_dyn.embed(&["x"]).unwrap(), vec![vec![0.0, 1.0, 0.5]]);
     assert_eq!(embedder.meter().snapshot().prompt_tokens, 12);
 
     let server = TestServer::scripted(vec![Reply::json(

@@ -4,6 +4,7 @@ use std::collections::BTreeMap;
 use std::fmt;
 
 use scenethesis_procedural::catalog;
+use scenethesis_models::{ProviderError, TextEmbedder};
 use scenethesis_scene_graph::AssetRef;
 use scenethesis_scene_graph::{AssetInfo, Placement};
 
@@ -53,7 +54,7 @@ pub struct Candidate {
 pub enum EmbedError {
     /// The embedding model or service failed.
     #[error("text embedding failed: {0}")]
-    Failed(String),
+    Failed(#[from] ProviderError),
     /// The embedder returned the wrong number of vectors.
     #[error("embedder returned {got} vectors for {expected} texts")]
     Count {
@@ -62,13 +63,6 @@ pub enum EmbedError {
         /// Vectors received.
         got: usize,
     },
-}
-
-/// Turns texts into vectors whose cosine similarity reflects meaning; the seam for a semantic
-/// model (a later stage implements it with a real sentence-embedding model).
-pub trait TextEmbedder {
-    /// One vector per text, all of the same length.
-    fn embed(&self, texts: &[&str]) -> Result<Vec<Vec<f32>>, EmbedError>;
 }
 
 /// A group of assets sharing one category, with the names it answers to.
@@ -90,10 +84,10 @@ struct Entry {
 pub struct AssetIndex {
     entries: Vec<Entry>,
     by_category: BTreeMap<String, usize>,
-    embedder: Option<Box<dyn TextEmbedder + Send + Sync>>,
+    embedder: Option<Box<dyn TextEmbedder>>,
     entry_vectors: Vec<Vec<f32>>,
-    /// The words of the category table ([`catalog::words`]), normalised, with their categories.
-    aliases: Vec<(String, &'static str)>,
+    /// The words of the category table ([`catalog::words`]), as [`words`], with their categories.
+    aliases: Vec<(Vec<String>, &'static str)>,
     /// Every distinct word of every name, so a query word is compared with each only once.
     vocabulary: Vec<String>,
     word_ids: BTreeMap<String, u32>,
@@ -151,7 +145,7 @@ impl AssetIndex {
             by_category: BTreeMap::new(),
             embedder: None,
             entry_vectors: Vec::new(),
-            aliases: catalog::words().map(|(a, c)| (normalise(a), c)).collect(),
+            aliases: catalog::words().map(|(a, c)| (words(a), c)).collect(),
             vocabulary: Vec::new(),
             word_ids: BTreeMap::new(),
         }
@@ -184,10 +178,7 @@ impl AssetIndex {
 
     /// Attaches a semantic embedder and embeds every category's description once
     /// (`"sofa: couch, settee"`). Later searches re-rank by cosine similarity to the query.
-    pub fn set_embedder(
-        &mut self,
-        embedder: Box<dyn TextEmbedder + Send + Sync>,
-    ) -> Result<(), EmbedError> {
+    pub fn set_embedder(&mut self, embedder: Box<dyn TextEmbedder>) -> Result<(), EmbedError> {
         let texts: Vec<String> = self.entries.iter().map(describe).collect();
         let refs: Vec<&str> = texts.iter().map(String::as_str).collect();
         let vectors = embedder.embed(&refs)?;
@@ -343,10 +334,8 @@ impl AssetIndex {
 
     /// The category a normalised alias stands for.
     fn alias_of(&self, word: &str) -> Option<&'static str> {
-        self.aliases
-            .iter()
-            .find(|(alias, _)| alias == word)
-            .map(|(_, c)| *c)
+        let rows = self.aliases.iter().map(|(alias, c)| (alias.as_slice(), *c));
+        scenethesis_words::category_of_phrase(&[word.to_owned()], rows)
     }
 
     fn add_name(&mut self, i: usize, name: &str) {

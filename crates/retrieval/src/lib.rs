@@ -40,7 +40,9 @@ mod index;
 mod source;
 pub mod text;
 
-pub use index::{AssetIndex, Candidate, EmbedError, MatchReason, TextEmbedder};
+pub use index::{AssetIndex, Candidate, EmbedError, MatchReason};
+/// The embedding seam retrieval ranks by meaning with: the one trait of `scenethesis-models`.
+pub use scenethesis_models::TextEmbedder;
 pub use source::{
     object_seed, AssetError, AssetQuery, AssetSource, CatalogSource, RetrievalSource,
 };

@@ -1,70 +1,11 @@
-//! Text normalisation and fuzzy word matching.
+//! Text normalisation and fuzzy word matching. Words and singular forms are those of the one
+//! text vocabulary, `scenethesis-words`, which the offline and language planners share.
 
-/// Lower-cases, turns `_`, `-` and punctuation into spaces, and reduces every word to its
-/// singular form: `"Coffee_Tables!"` → `["coffee", "table"]`.
-pub fn words(text: &str) -> Vec<String> {
-    text.to_lowercase()
-        .split(|c: char| !c.is_alphanumeric())
-        .filter(|w| !w.is_empty())
-        .map(singular)
-        .collect()
-}
+pub use scenethesis_words::{singular, words};
 
 /// The words of `text` joined by single spaces (see [`words`]).
 pub fn normalise(text: &str) -> String {
     words(text).join(" ")
-}
-
-/// An English singular for common plural endings (`shelves` → `shelf`, `boxes` → `box`,
-/// `bodies` → `body`, `chairs` → `chair`); words that only look plural are kept.
-pub fn singular(word: &str) -> String {
-    const KEEP: &[&str] = &[
-        "glass", "grass", "bus", "cactus", "canvas", "chess", "dress", "gas", "lens", "mattress",
-        "news", "series", "species", "stairs", "tennis", "chassis", "compass", "pants", "jeans",
-        "glasses", "scissors", "trousers", "shorts", "goods", "this", "plus", "bonus",
-    ];
-    const IRREGULAR: &[(&str, &str)] = &[
-        ("knives", "knife"),
-        ("leaves", "leaf"),
-        ("loaves", "loaf"),
-        ("people", "person"),
-        ("children", "child"),
-        ("men", "man"),
-        ("women", "woman"),
-        ("mice", "mouse"),
-        ("feet", "foot"),
-        ("teeth", "tooth"),
-        ("geese", "goose"),
-        ("dice", "die"),
-    ];
-    if word.len() <= 3 || KEEP.contains(&word) {
-        return word.to_owned();
-    }
-    if let Some((_, s)) = IRREGULAR.iter().find(|(p, _)| *p == word) {
-        return (*s).to_owned();
-    }
-    if let Some(stem) = word.strip_suffix("ies") {
-        return format!("{stem}y");
-    }
-    if let Some(stem) = word.strip_suffix("ves") {
-        // shelves → shelf, wolves → wolf; but not "curves" → "curf".
-        if stem.ends_with('l') || stem.ends_with("ar") {
-            return format!("{stem}f");
-        }
-    }
-    for suffix in ["ches", "shes", "xes", "sses", "zzes"] {
-        if let Some(stem) = word.strip_suffix(suffix) {
-            return format!("{stem}{}", &suffix[..suffix.len() - 2]);
-        }
-    }
-    if word.ends_with('s')
-        && !word.ends_with("ss")
-        && !word.ends_with("us")
-        && !word.ends_with("is")
-    {
-        return word[..word.len() - 1].to_owned();
-    }
-    word.to_owned()
 }
 
 /// Levenshtein distance between two words, counted in characters.
@@ -130,7 +71,8 @@ mod tests {
     fn words_are_lowercase_singular_and_split_on_separators() {
         assert_eq!(words("Coffee_Tables!"), vec!["coffee", "table"]);
         assert_eq!(words("book-shelves"), vec!["book", "shelf"]);
-        assert_eq!(words("two wine glasses"), vec!["two", "wine", "glasses"]);
+        assert_eq!(words("two wine glasses"), vec!["two", "wine", "glass"]);
+        assert_eq!(words("children's chair"), vec!["child", "chair"]);
         assert_eq!(normalise("BOXES  of  Toys"), "box of toy");
         assert_eq!(singular("bodies"), "body");
         assert_eq!(singular("benches"), "bench");

@@ -79,6 +79,22 @@ pub struct Wall {
     pub thickness: f64,
 }
 
+/// How high (m) the bottom of an object with nothing beneath it must be for it to hang on a
+/// wall rather than be a floor object lifted wrongly.
+pub const MOUNT_MIN_BOTTOM: f64 = 0.3;
+
+/// How far (m) an object's back may be from a wall's face, either side, and still hang on it:
+/// lifted boxes are a few centimetres off, and a frame sits proud of the wall.
+pub const MOUNT_WALL_REACH: f64 = 0.12;
+
+/// Whether an object with nothing beneath it hangs on a wall: its bottom, `bottom` m above the
+/// floor, is above [`MOUNT_MIN_BOTTOM`], and its back, `gap` m in front of the wall's face
+/// (negative: behind it), is within [`MOUNT_WALL_REACH`] of that face. The one rule behind
+/// wall mounting in the vision reader and in the evaluation of foreign scenes.
+pub fn hangs_on_wall(bottom: f64, gap: f64) -> bool {
+    bottom > MOUNT_MIN_BOTTOM && gap.abs() <= MOUNT_WALL_REACH
+}
+
 impl Wall {
     /// Length of the centre line.
     pub fn length(&self) -> f64 {

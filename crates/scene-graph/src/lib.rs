@@ -78,7 +78,10 @@ mod validate;
 mod walkway;
 
 pub use aabb::Aabb;
-pub use architecture::{Architecture, DoorOpening, Environment, Floor, Wall};
+pub use architecture::{
+    hangs_on_wall, Architecture, DoorOpening, Environment, Floor, Wall, MOUNT_MIN_BOTTOM,
+    MOUNT_WALL_REACH,
+};
 pub use asset::{Asset, AssetInfo, Placement, SupportSurface, SurfaceKind, LOW_SHELF_SHARE};
 pub use camera::{Camera, Intrinsics, Projection};
 pub use floor_raster::{Components, FloorRaster, BLOCKED_CELL};
@@ -89,7 +92,7 @@ pub use object::{AssetRef, ParentRef, Relation, RelationKind, SceneObject, GROUN
 pub use pose::Pose;
 pub use relations::{floor_centre, floor_gap, front_dir, relation_holds, right_dir};
 pub use scene::{Scene, FORMAT_VERSION};
-pub use validate::{is_printable_id, printable, ValidationError};
+pub use validate::{is_printable_id, printable, OutOfBounds, ValidationError};
 pub use walkway::ROBOT_RADIUS;
 
 /// Re-export of the linear-algebra crate used in this crate's public types.

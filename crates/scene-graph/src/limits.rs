@@ -23,6 +23,8 @@ pub const MAX_COORDINATE: f64 = 1000.0;
 /// Largest extent (m) of an object: every local bound within ±this, and every scaled side at
 /// most this long.
 pub const MAX_OBJECT_SIZE: f64 = 50.0;
+/// Largest absolute yaw (rad) of an object's pose.
+pub const MAX_YAW: f64 = 1000.0;
 /// Smallest uniform scale of an object.
 pub const MIN_SCALE: f64 = 0.01;
 /// Largest uniform scale of an object.

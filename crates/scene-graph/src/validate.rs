@@ -3,9 +3,11 @@ use std::collections::HashMap;
 
 use crate::limits::{
     MAX_COORDINATE, MAX_DOORS, MAX_ID_BYTES, MAX_OBJECTS, MAX_OBJECT_SIZE, MAX_RELATIONS,
-    MAX_SCALE, MAX_WALLS, MAX_WALL_HEIGHT, MAX_WALL_THICKNESS, MIN_SCALE,
+    MAX_SCALE, MAX_WALLS, MAX_WALL_HEIGHT, MAX_WALL_THICKNESS, MAX_YAW, MIN_SCALE,
 };
-use crate::{Aabb, AssetRef, ParentRef, RelationKind, Scene, FORMAT_VERSION, GROUND_ID};
+use crate::{
+    Aabb, Architecture, AssetRef, ParentRef, RelationKind, Scene, FORMAT_VERSION, GROUND_ID,
+};
 
 /// `text` safe to print on a terminal or write into a log line: control characters (escape
 /// sequences, newlines, carriage returns, bidi overrides are not the only danger, but the control
@@ -507,12 +509,12 @@ impl Scene {
             }
             if !pose.yaw.is_finite() {
                 errors.push(non_finite(id, "pose.yaw"));
-            } else if pose.yaw.abs() > 1000.0 {
+            } else if pose.yaw.abs() > MAX_YAW {
                 errors.push(out_of_range(
                     id,
                     "pose.yaw",
                     pose.yaw,
-                    "an angle within ±1000 rad",
+                    "an angle within ±1000 rad (limits::MAX_YAW)",
                 ));
             }
             if !pose.translation.iter().all(|v| v.is_finite()) {
@@ -595,6 +597,66 @@ impl Scene {
                 }
             }
         }
+    }
+}
+
+/// A floor, wall or door of an [`Architecture`] with a number that is not finite or lies beyond
+/// ±[`MAX_COORDINATE`] m (see [`Architecture::out_of_bounds`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct OutOfBounds<'a> {
+    /// What the element is: `floor`, `wall` or `door`.
+    pub kind: &'static str,
+    /// The element's id.
+    pub id: &'a str,
+    /// The fields checked together: `min/max` (floor), `start/end/height/thickness` (wall) or
+    /// `offset/width/height` (door).
+    pub fields: &'static str,
+}
+
+impl Architecture {
+    /// The first element (the floor, then the walls, then the doors) with a number that is not
+    /// finite or lies beyond ±[`MAX_COORDINATE`] m, if any: the bounds that every reader of
+    /// architecture (the exporter, whose GLB stores `f32`, and the evaluator, before parry and
+    /// rapier see the room) checks through this one method. [`Scene::validate`] holds the
+    /// architecture to these and the narrower wall and door limits, field by field.
+    pub fn out_of_bounds(&self) -> Option<OutOfBounds<'_>> {
+        let ok = |v: &f64| v.is_finite() && v.abs() <= MAX_COORDINATE;
+        let floor = &self.floor;
+        if !floor.min.iter().chain(floor.max.iter()).all(ok) {
+            return Some(OutOfBounds {
+                kind: "floor",
+                id: &floor.id,
+                fields: "min/max",
+            });
+        }
+        let wall = self.walls.iter().find(|w| {
+            ![
+                w.start.x,
+                w.start.y,
+                w.end.x,
+                w.end.y,
+                w.height,
+                w.thickness,
+            ]
+            .iter()
+            .all(ok)
+        });
+        if let Some(w) = wall {
+            return Some(OutOfBounds {
+                kind: "wall",
+                id: &w.id,
+                fields: "start/end/height/thickness",
+            });
+        }
+        let door = self
+            .doors
+            .iter()
+            .find(|d| ![d.offset, d.width, d.height].iter().all(ok));
+        door.map(|d| OutOfBounds {
+            kind: "door",
+            id: &d.id,
+            fields: "offset/width/height",
+        })
     }
 }
 
@@ -699,6 +761,27 @@ mod tests {
         assert_eq!(printable("plain"), "plain");
         assert_eq!(printable("a\u{202e}b"), "a\\u{202e}b");
         assert!(is_printable_id("sofa_0") && !is_printable_id("") && !is_printable_id("a\tb"));
+    }
+
+    #[test]
+    fn architecture_numbers_out_of_bounds_name_their_element() {
+        let mut scene = scene_with(Vec::new());
+        assert_eq!(scene.architecture.out_of_bounds(), None);
+        scene.architecture.doors[0].width = f64::NAN;
+        let door = scene.architecture.doors[0].id.clone();
+        let bad = scene.architecture.out_of_bounds().unwrap();
+        assert_eq!(
+            (bad.kind, bad.id, bad.fields),
+            ("door", door.as_str(), "offset/width/height")
+        );
+        scene.architecture.walls[1].height = 2.0 * MAX_COORDINATE;
+        let bad = scene.architecture.out_of_bounds().unwrap();
+        assert_eq!(
+            (bad.kind, bad.fields),
+            ("wall", "start/end/height/thickness")
+        );
+        scene.architecture.floor.min.x = -MAX_COORDINATE - 1.0;
+        assert_eq!(scene.architecture.out_of_bounds().unwrap().kind, "floor");
     }
 
     #[test]

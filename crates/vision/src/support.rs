@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::footprint::FloorRectangle;
 use crate::lifted_box::LiftedBox;
-use scenethesis_scene_graph::Wall;
+use scenethesis_scene_graph::{hangs_on_wall, Wall};
 
 /// How a lifted box is held up.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -218,13 +218,8 @@ pub fn infer_supports_within(boxes: &[LiftedBox], gap: f64, reach: f64) -> Vec<S
     out
 }
 
-/// How far (metres) a box's back may be from a wall's inner face, either side, and still hang
-/// on it: lifted boxes are a few centimetres off, and a frame sits proud of the wall.
-pub const MOUNT_WALL_REACH: f64 = 0.12;
-
-/// How high (metres) the bottom of a box with nothing below it must be to hang on a wall rather
-/// than be a floor object lifted wrongly.
-pub const MOUNT_MIN_BOTTOM: f64 = 0.3;
+/// The wall-mounting thresholds, whose one home is the scene graph's [`hangs_on_wall`] rule.
+pub use scenethesis_scene_graph::{MOUNT_MIN_BOTTOM, MOUNT_WALL_REACH};
 
 /// How far (metres) the corner of `footprint` nearest `wall`'s inner face lies in front of it
 /// (negative: behind it, inside the wall).
@@ -239,8 +234,9 @@ pub fn wall_offset(wall: &Wall, footprint: &FloorRectangle) -> f64 {
 }
 
 /// Turns every [`SupportKind::Unsupported`] guess whose box backs onto one of `walls` (the
-/// footprint corner nearest the wall within [`MOUNT_WALL_REACH`] of its inner face, the box
-/// overlapping the wall along its length) and whose bottom is above [`MOUNT_MIN_BOTTOM`] into
+/// box overlapping the wall along its length) and hangs on it by [`hangs_on_wall`] (the bottom
+/// above [`MOUNT_MIN_BOTTOM`], the footprint corner nearest the wall within
+/// [`MOUNT_WALL_REACH`] of its inner face) into
 /// [`SupportKind::Mounted`] with that wall as parent (the nearest wall when several qualify).
 /// Other guesses are left as they are.
 pub fn mount_on_walls(guesses: &mut [SupportGuess], boxes: &[LiftedBox], walls: &[Wall]) {
@@ -251,9 +247,6 @@ pub fn mount_on_walls(guesses: &mut [SupportGuess], boxes: &[LiftedBox], walls: 
         let Some(b) = boxes.iter().find(|b| b.id == guess.id) else {
             continue;
         };
-        if b.bottom() <= MOUNT_MIN_BOTTOM {
-            continue;
-        }
         let corners = b.footprint().corners();
         let mut best: Option<(f64, &Wall)> = None;
         for wall in walls.iter().filter(|w| w.length() > 0.0) {
@@ -266,7 +259,7 @@ pub fn mount_on_walls(guesses: &mut [SupportGuess], boxes: &[LiftedBox], walls: 
                 .fold((f64::MAX, f64::MIN), |(lo, hi), a| (lo.min(a), hi.max(a)));
             let overlaps = hi > 0.0 && lo < wall.length();
             if overlaps
-                && nearest.abs() <= MOUNT_WALL_REACH
+                && hangs_on_wall(b.bottom(), nearest)
                 && best.is_none_or(|(e, _)| nearest.abs() < e)
             {
                 best = Some((nearest.abs(), wall));

@@ -2,7 +2,9 @@
 //! every object's access side and one connected free floor, checked on the guide's raster and,
 //! at the end, by the Walk metric's own raster rules.
 
-use scenethesis_scene_graph::ROBOT_RADIUS;
+use nalgebra::Point2;
+use scenethesis_eval::raster::{walk_components, FloorRect, WALK_HEIGHT_LIMIT};
+use scenethesis_scene_graph::{Components, Floor, ROBOT_RADIUS};
 
 use super::geometry::{Footprint, Raster, RasterExt};
 use super::room::Room;
@@ -221,55 +223,34 @@ impl FloorState<'_> {
     }
 }
 
-/// Free-floor components by the Walk metric's rules: a 256 × 256 raster over the floor's
-/// bounding square plus 0.2 m, the floor eroded by the robot radius, footprints grown (round)
-/// by it, 8-connected.
-fn metric_components(floor: [f64; 4], obstacles: &[Footprint]) -> (Raster, Vec<u32>, Vec<usize>) {
-    let side = (floor[2] - floor[0]).max(floor[3] - floor[1]) + 0.4;
-    let (cx, cz) = ((floor[0] + floor[2]) / 2.0, (floor[1] + floor[3]) / 2.0);
-    let raster = Raster::new(
-        cx - side / 2.0,
-        cz - side / 2.0,
-        cx + side / 2.0,
-        cz + side / 2.0,
-        side / 256.0,
-    );
-    let r = ROBOT_RADIUS;
-    let mut free = vec![false; raster.nx * raster.nz];
-    for j in 0..raster.nz {
-        for i in 0..raster.nx {
-            let [x, z] = raster.center(i, j);
-            free[j * raster.nx + i] =
-                x >= floor[0] + r && x <= floor[2] - r && z >= floor[1] + r && z <= floor[3] - r;
-        }
+/// An obstacle's footprint as the Walk metric's floor rectangle.
+fn metric_rect(fp: &Footprint) -> FloorRect {
+    FloorRect {
+        center: [fp.cx, fp.cz],
+        axis: fp.axes().0,
+        half: [fp.hx, fp.hz],
     }
-    for fp in obstacles {
-        raster.for_cells_in(fp, r, |idx| {
-            let (i, j) = (idx % raster.nx, idx / raster.nx);
-            let [x, z] = raster.center(i, j);
-            let [lx, lz] = fp.to_local(x, z);
-            let (ex, ez) = ((lx.abs() - fp.hx).max(0.0), (lz.abs() - fp.hz).max(0.0));
-            if ex.hypot(ez) <= r {
-                free[idx] = false;
-            }
-        });
-    }
-    let c = raster.components8(&free);
-    (raster, c.labels, c.sizes)
 }
 
 /// The final check by the metric's own raster rules: objects that close off a pocket of floor
 /// are dropped (at most eight), newest and softest first, and reported in `dropped`.
 pub(super) fn drop_pocket_closers(state: &mut FloorState<'_>, dropped: &mut Vec<DroppedObject>) {
     let plan = state.plan;
+    let [x0, z0, x1, z1] = state.floor;
+    let floor = Floor {
+        id: "floor".into(),
+        min: Point2::new(x0, z0),
+        max: Point2::new(x1, z1),
+    };
     for _ in 0..8 {
-        let walk_obstacles: Vec<Footprint> = state
+        // Floor objects stand at y = 0: the box centre is at half their height.
+        let walk_obstacles: Vec<FloorRect> = state
             .placed
             .iter()
-            .filter(|p| !p.mounted && p.height / 2.0 < 1.5)
-            .map(|p| p.fp)
+            .filter(|p| !p.mounted && p.height / 2.0 < WALK_HEIGHT_LIMIT)
+            .map(|p| metric_rect(&p.fp))
             .collect();
-        let (raster, labels, sizes) = metric_components(state.floor, &walk_obstacles);
+        let (raster, Components { labels, sizes }) = walk_components(&floor, &[], &walk_obstacles);
         let total: usize = sizes.iter().sum();
         let main = (1..sizes.len()).max_by_key(|&l| sizes[l]).unwrap_or(0);
         if total == 0 || sizes[main] as f64 >= MIN_WALK * total as f64 {

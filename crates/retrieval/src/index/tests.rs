@@ -1,4 +1,5 @@
 use super::*;
+use scenethesis_models::ProviderErrorKind;
 
 /// An index with a handful of categories, independent of what the built-in library holds.
 fn small_index() -> AssetIndex {
@@ -172,7 +173,11 @@ fn imported_assets_rank_next_to_and_just_above_the_builtin_generator() {
 struct TrigramEmbedder;
 
 impl TextEmbedder for TrigramEmbedder {
-    fn embed(&self, texts: &[&str]) -> Result<Vec<Vec<f32>>, EmbedError> {
+    fn name(&self) -> String {
+        "test/trigram".into()
+    }
+
+    fn embed(&self, texts: &[&str]) -> Result<Vec<Vec<f32>>, ProviderError> {
         Ok(texts
             .iter()
             .map(|t| {
@@ -207,9 +212,17 @@ impl TextEmbedder for TrigramEmbedder {
 struct FailingEmbedder;
 
 impl TextEmbedder for FailingEmbedder {
-    fn embed(&self, texts: &[&str]) -> Result<Vec<Vec<f32>>, EmbedError> {
+    fn name(&self) -> String {
+        "test/failing".into()
+    }
+
+    fn embed(&self, texts: &[&str]) -> Result<Vec<Vec<f32>>, ProviderError> {
         if texts.len() == 1 {
-            Err(EmbedError::Failed("model unavailable".into()))
+            let kind = ProviderErrorKind::Unreachable {
+                message: "model unavailable".into(),
+                source: None,
+            };
+            Err(ProviderError::new("test", "failing", kind))
         } else {
             Ok(texts.iter().map(|_| vec![1.0, 0.0]).collect())
         }
@@ -243,7 +256,11 @@ fn a_failing_embedder_is_reported_or_falls_back_to_lexical_ranking() {
     assert_eq!(top(&index, "couch").category, "sofa");
     struct Short;
     impl TextEmbedder for Short {
-        fn embed(&self, _: &[&str]) -> Result<Vec<Vec<f32>>, EmbedError> {
+        fn name(&self) -> String {
+            "test/short".into()
+        }
+
+        fn embed(&self, _: &[&str]) -> Result<Vec<Vec<f32>>, ProviderError> {
             Ok(vec![vec![1.0]])
         }
     }
