@@ -3,7 +3,8 @@
 
 use nalgebra::{Matrix5, Vector3};
 use scenethesis_correspondence::{Correspondence, PairKind};
-use scenethesis_scene_graph::{Camera, Pose};
+use scenethesis_imagery::Camera;
+use scenethesis_scene_graph::Pose;
 use serde::{Deserialize, Serialize};
 
 use crate::params::{from_vector, to_vector, world_point, world_point_jacobian, PoseVector, SCALE};
@@ -394,7 +395,7 @@ impl PoseAlignment {
 mod tests {
     use super::*;
     use nalgebra::Point3;
-    use scenethesis_scene_graph::Intrinsics;
+    use scenethesis_imagery::Intrinsics;
 
     fn setup() -> (PoseAlignment, Pose) {
         let camera = Camera::look_at(

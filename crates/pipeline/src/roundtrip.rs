@@ -9,7 +9,7 @@
 
 use std::collections::BTreeMap;
 
-use scenethesis_correspondence::{DepthMap, Guidance, Mask, RgbImage};
+use scenethesis_imagery::{DepthMap, Guidance, Mask, RgbImage};
 use scenethesis_render::{view_camera, Frame, RenderError, RenderScene, Renderer};
 use scenethesis_render_api::ViewKind;
 use scenethesis_scene_graph::{fnv1a64, mix64, Mesh, ParentRef, Scene};
@@ -157,11 +157,11 @@ pub fn render_guidance(
 fn guidance_from_frame(
     scene: &Scene,
     frame: &Frame,
-    camera: scenethesis_scene_graph::Camera,
+    camera: scenethesis_imagery::Camera,
 ) -> (Guidance, Labels) {
     let (w, h) = (frame.width(), frame.height());
     let image = RgbImage::from_rgba(&frame.color);
-    let depth = DepthMap::new(w, h, frame.depth.clone()).expect("rendered depth is finite");
+    let depth = frame.depth.clone();
     let mut masks = BTreeMap::new();
     let mut labels = Labels::new();
     for (k, object) in scene.objects.iter().enumerate() {
@@ -330,8 +330,7 @@ pub fn wall_yaws(architecture: &scenethesis_scene_graph::Architecture) -> Vec<f6
 
 /// Yaw error in degrees modulo `period` radians.
 pub(crate) fn yaw_error(a: f64, b: f64, period: f64) -> f64 {
-    let d = (a - b).rem_euclid(period);
-    d.min(period - d).to_degrees()
+    scenethesis_scene_graph::yaw_distance_modulo(a, b, period).to_degrees()
 }
 
 pub(crate) fn median(mut v: Vec<f64>) -> f64 {
@@ -499,7 +498,7 @@ mod tests {
 
     #[test]
     fn depth_noise_is_independent_per_pixel_with_two_percent_spread() {
-        use scenethesis_scene_graph::{Camera, Intrinsics};
+        use scenethesis_imagery::{Camera, Intrinsics};
         let (w, h) = (64u32, 48u32);
         let k = Intrinsics::from_vertical_fov(w, h, 1.0);
         let camera = Camera::look_at(

@@ -6,7 +6,8 @@ use std::sync::mpsc;
 use bytemuck::{Pod, Zeroable};
 use image::RgbaImage;
 use nalgebra::{Matrix4, Point3, Vector3};
-use scenethesis_scene_graph::{Aabb, Camera};
+use scenethesis_imagery::{Camera, DepthMap};
+use scenethesis_scene_graph::Aabb;
 use wgpu::util::DeviceExt;
 
 use crate::backend::{adapter_rank, backend_names};
@@ -697,6 +698,10 @@ impl Renderer {
             .chunks_exact(4)
             .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
             .collect();
+        // The depth target holds distances ≥ 0 (0 = background), so the map always builds.
+        let depth = DepthMap::new(width, height, depth).map_err(|e| {
+            RenderError::Readback(format!("the depth buffer read back malformed: {e}"))
+        })?;
         let instance: Vec<u32> = unpad(2)
             .chunks_exact(4)
             .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
