@@ -2,10 +2,8 @@
 //! matched pixel pairs with confidences, and [`lift`] from pixel pairs to [`Correspondence`]s.
 
 use nalgebra::Point2;
-use scenethesis_scene_graph::Camera;
+use scenethesis_imagery::{Camera, DepthMap, Mask, RgbImage};
 
-use crate::guidance::{DepthMap, RgbImage};
-use crate::mask::Mask;
 use crate::pair::{Correspondence, PairKind};
 use crate::raster::RenderedView;
 
@@ -92,8 +90,8 @@ pub struct PixelMatch {
 ///
 /// // A 2 × 2 view at full resolution whose asset covers the top-left pixel, against a mask
 /// // holding that pixel and its right neighbour: one pair.
-/// let camera = scenethesis_scene_graph::Camera::look_at(
-///     scenethesis_scene_graph::Intrinsics::from_vertical_fov(2, 2, 1.0),
+/// let camera = scenethesis_imagery::Camera::look_at(
+///     scenethesis_imagery::Intrinsics::from_vertical_fov(2, 2, 1.0),
 ///     nalgebra::Point3::new(0.0, 1.0, 3.0),
 ///     nalgebra::Point3::new(0.0, 1.0, 0.0),
 ///     nalgebra::Vector3::y(),
@@ -103,12 +101,12 @@ pub struct PixelMatch {
 ///     offset: [0, 0],
 ///     stride: 1,
 ///     pose: Default::default(),
-///     depth: scenethesis_correspondence::DepthMap::from_fn(2, 2, |x, y| {
+///     depth: scenethesis_imagery::DepthMap::from_fn(2, 2, |x, y| {
 ///         if (x, y) == (0, 0) { 3.0 } else { f32::NAN }
 ///     }),
 ///     color: None,
 /// };
-/// let mut mask = scenethesis_correspondence::Mask::new(2, 2);
+/// let mut mask = scenethesis_imagery::Mask::new(2, 2);
 /// mask.set(0, 0, true);
 /// mask.set(1, 0, true);
 /// let target = TargetRegion { camera: &camera, mask: &mask, depth: None, image: None };

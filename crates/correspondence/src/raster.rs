@@ -4,9 +4,8 @@
 //! so it renders only the object's region and only depth (no colour, no lighting).
 
 use nalgebra::{Point2, Point3, Vector3};
-use scenethesis_scene_graph::{Camera, Intrinsics, Mesh, Pose};
-
-use crate::guidance::{DepthMap, RgbImage};
+use scenethesis_imagery::{Camera, DepthMap, Intrinsics, RgbImage};
+use scenethesis_scene_graph::{Mesh, Pose};
 
 /// A rectangle of pixels of a camera's image: columns `x0 .. x0 + width`, rows
 /// `y0 .. y0 + height`.

@@ -7,7 +7,8 @@
 //! refinement.
 
 use nalgebra::{Point2, Vector3};
-use scenethesis_scene_graph::{Camera, Mesh, Pose};
+use scenethesis_imagery::Camera;
+use scenethesis_scene_graph::{yaw_distance, Mesh, Pose};
 
 use crate::matcher::{MatchKind, Matcher, PixelMatch, TargetRegion};
 use crate::raster::{rasterize_coarse, RenderedView, Window};
@@ -369,12 +370,6 @@ pub fn search_yaw_coarse(
             }
         })
         .collect()
-}
-
-/// The angle between two yaws, in [0, π].
-pub fn yaw_distance(a: f64, b: f64) -> f64 {
-    let d = (a - b).rem_euclid(std::f64::consts::TAU);
-    d.min(std::f64::consts::TAU - d)
 }
 
 /// The best candidate; among those within `tie` (relative) of the best score, the one nearest

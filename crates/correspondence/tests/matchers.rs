@@ -3,12 +3,13 @@
 //! same `lift`.
 
 use nalgebra::{Point3, Vector3};
-use scenethesis_correspondence::shape::{pick_yaw, search_yaw, yaw_distance};
+use scenethesis_correspondence::shape::{pick_yaw, search_yaw};
 use scenethesis_correspondence::{
-    lift, rasterize, DepthMap, Mask, MatchKind, Matcher, PairKind, PixelMatch, RenderedView,
-    ShapeMatcher, TargetRegion, Window,
+    lift, rasterize, MatchKind, Matcher, PairKind, PixelMatch, RenderedView, ShapeMatcher,
+    TargetRegion, Window,
 };
-use scenethesis_scene_graph::{Camera, Intrinsics, Material, Mesh, Pose};
+use scenethesis_imagery::{Camera, DepthMap, Intrinsics, Mask};
+use scenethesis_scene_graph::{yaw_distance, Material, Mesh, Pose};
 
 /// A grey axis-aligned box from `min` to `max`.
 fn box_mesh(min: [f32; 3], max: [f32; 3]) -> Mesh {

@@ -20,8 +20,9 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::sync::Arc;
 
-use scenethesis_correspondence::{Guidance, ShapeMatcher};
+use scenethesis_correspondence::ShapeMatcher;
 use scenethesis_eval::{evaluate_with_cache, DecompositionCache, EvalObject, EvalScene};
+use scenethesis_imagery::Guidance;
 use scenethesis_import::AssetResolver;
 use scenethesis_physics_opt::{
     optimize_scene, GuidedSettings, OptimizeSettings, PrepareSettings, PreparedAsset,

@@ -9,7 +9,7 @@
 
 use std::collections::BTreeMap;
 
-use scenethesis_correspondence::{DepthMap, Guidance, Mask};
+use scenethesis_imagery::{DepthMap, Guidance, Mask};
 use scenethesis_render::{RenderError, Renderer};
 use scenethesis_scene_graph::{fnv1a64, mix64, Mesh, ParentRef, Scene};
 use scenethesis_vision::{lift_scene, LiftError, LiftOptions, LiftedBox, SupportKind};
@@ -270,8 +270,7 @@ pub fn wall_yaws(architecture: &scenethesis_scene_graph::Architecture) -> Vec<f6
 
 /// Yaw error in degrees modulo `period` radians.
 pub(crate) fn yaw_error(a: f64, b: f64, period: f64) -> f64 {
-    let d = (a - b).rem_euclid(period);
-    d.min(period - d).to_degrees()
+    scenethesis_scene_graph::yaw_distance_modulo(a, b, period).to_degrees()
 }
 
 pub(crate) fn median(mut v: Vec<f64>) -> f64 {
@@ -441,8 +440,7 @@ mod tests {
 
     #[test]
     fn depth_noise_is_independent_per_pixel_with_two_percent_spread() {
-        use scenethesis_correspondence::RgbImage;
-        use scenethesis_scene_graph::{Camera, Intrinsics};
+        use scenethesis_imagery::{Camera, Intrinsics, RgbImage};
         let (w, h) = (64u32, 48u32);
         let k = Intrinsics::from_vertical_fov(w, h, 1.0);
         let camera = Camera::look_at(

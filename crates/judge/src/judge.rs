@@ -4,10 +4,10 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use scenethesis_agents::{check_arrangement, check_prompt, ArrangementCheck, Plan};
-use scenethesis_correspondence::Guidance;
 use scenethesis_eval::{
     evaluate_with_cache, DecompositionCache, EvalError, EvalScene, SceneMetrics,
 };
+use scenethesis_imagery::Guidance;
 use scenethesis_scene_graph::{relation_holds, Mesh, ParentRef, Relation, Scene};
 use serde::{Deserialize, Serialize};
 

@@ -7,11 +7,12 @@ mod support;
 use std::collections::BTreeMap;
 use std::time::Duration;
 
+use scenethesis_imagery::{Camera, Intrinsics};
 use scenethesis_language::{VlmJudge, VlmThresholds};
 use scenethesis_openai::{ClientConfig, OpenAiChat, OpenAiClient};
 use scenethesis_pipeline::{FailureKind, GenerateOptions, NoProgress, Pipeline, PipelineError};
 use scenethesis_render_api::{RendererError, SceneRenderer, ViewImage, ViewKind, ViewRequest};
-use scenethesis_scene_graph::{Camera, Intrinsics, Mesh, Scene};
+use scenethesis_scene_graph::{Mesh, Scene};
 use serde_json::{json, Value};
 use support::{openai_completion, Reply, TestServer};
 
@@ -181,9 +182,8 @@ fn thresholds_decide_and_failures_are_visual() {
 
 #[test]
 fn the_judge_sees_the_guidance_image_first_when_there_is_one() {
-    use scenethesis_correspondence::{Guidance, RgbImage};
+    use scenethesis_imagery::{Camera, Guidance, Intrinsics, RgbImage};
     use scenethesis_pipeline::{Judge, JudgeInput};
-    use scenethesis_scene_graph::{Camera, Intrinsics};
 
     let server = TestServer::start(|_, _| {
         Reply::json(

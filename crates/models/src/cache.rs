@@ -15,10 +15,11 @@ use crate::chat::{check_structured, ChatModel, ChatRequest, ChatResponse};
 use crate::error::{ProviderError, ProviderErrorKind};
 use crate::image::ImageData;
 use crate::providers::{
-    BoxPrompt, DepthEstimator, DepthMap, GeneratedImage, ImageEditRequest, ImageGenerator,
-    ImageRequest, Intrinsics, Mask, Segmenter, TextEmbedder,
+    BoxPrompt, DepthEstimate, DepthEstimator, GeneratedImage, ImageEditRequest, ImageGenerator,
+    ImageRequest, Segment, Segmenter, TextEmbedder,
 };
 use crate::usage::UsageMeter;
+use scenethesis_imagery::Intrinsics;
 
 /// Version of the key derivation and file layout; part of every key.
 const CACHE_VERSION: u32 = 1;
@@ -419,7 +420,11 @@ impl<M: Segmenter> Segmenter for Cached<M> {
         self.inner.name()
     }
 
-    fn segment(&self, image: &ImageData, boxes: &[BoxPrompt]) -> Result<Vec<Mask>, ProviderError> {
+    fn segment(
+        &self,
+        image: &ImageData,
+        boxes: &[BoxPrompt],
+    ) -> Result<Vec<Segment>, ProviderError> {
         self.through("segment", &self.inner.name(), &(image, boxes), || {
             self.inner.segment(image, boxes)
         })
@@ -435,7 +440,7 @@ impl<M: DepthEstimator> DepthEstimator for Cached<M> {
         &self,
         image: &ImageData,
         intrinsics: Option<Intrinsics>,
-    ) -> Result<DepthMap, ProviderError> {
+    ) -> Result<DepthEstimate, ProviderError> {
         self.through("depth", &self.inner.name(), &(image, intrinsics), || {
             self.inner.estimate(image, intrinsics)
         })

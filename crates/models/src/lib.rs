@@ -3,8 +3,9 @@
 //!
 //! - [`ChatModel`]: chat and vision-language models; messages with text and image parts
 //!   ([`ImageData`], PNG or JPEG, sent as data URLs); structured output under a [`JsonSchema`].
-//! - [`ImageGenerator`] (generate and edit), [`Segmenter`] (box-prompted masks),
-//!   [`DepthEstimator`] (metric depth), [`TextEmbedder`].
+//! - [`ImageGenerator`] (generate and edit), [`Segmenter`] (box-prompted masks, each a
+//!   [`Segment`]), [`DepthEstimator`] (metric depth, a [`DepthEstimate`]), [`TextEmbedder`];
+//!   masks, depth maps and intrinsics are the `scenethesis-imagery` types every stage uses.
 //! - [`ProviderError`]: every failure names the endpoint and the model.
 //! - [`JsonSchema`]: a local validator for the schema subset the project emits, with JSON-pointer
 //!   paths in its violations, so every structured answer is checked whatever the server claims.
@@ -83,8 +84,8 @@ pub use error::{grouped, BoxError, ProviderError, ProviderErrorKind};
 pub use image::{ImageData, ImageError, ImageFormat};
 pub use progress::{report_answer_progress, with_answer_listener, AnswerListener, AnswerProgress};
 pub use providers::{
-    cosine, BoxPrompt, DepthEstimator, DepthMap, GeneratedImage, ImageEditRequest, ImageGenerator,
-    ImageRequest, Intrinsics, Mask, Segmenter, TextEmbedder,
+    cosine, BoxPrompt, DepthEstimate, DepthEstimator, GeneratedImage, ImageEditRequest,
+    ImageGenerator, ImageRequest, Segment, Segmenter, TextEmbedder,
 };
 pub use schema::{JsonSchema, SchemaError, SchemaViolation};
 pub use usage::{metered, UsageMeter, UsageReport};

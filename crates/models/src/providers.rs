@@ -1,5 +1,6 @@
 //! Image generators, segmenters, depth estimators and text embedders.
 
+use scenethesis_imagery::{DepthMap, Intrinsics, Mask};
 use serde::{Deserialize, Serialize};
 
 use crate::error::ProviderError;
@@ -77,26 +78,18 @@ pub struct BoxPrompt {
     pub bbox: [f32; 4],
 }
 
-/// A binary mask of one prompted object.
+/// One prompted object as a segmenter sees it: its mask (the image's size), the prompt's label
+/// and the model's confidence. In JSON (a recorded answer) the mask's `width`, `height` and
+/// `pixels` sit beside `label` and `score`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Mask {
+pub struct Segment {
     /// The prompt's label.
     pub label: String,
-    /// Width in pixels.
-    pub width: u32,
-    /// Height in pixels.
-    pub height: u32,
-    /// Row-major, one entry per pixel, `true` inside the object.
-    pub pixels: Vec<bool>,
+    /// The object's pixels.
+    #[serde(flatten)]
+    pub mask: Mask,
     /// The model's confidence in [0, 1].
     pub score: f32,
-}
-
-impl Mask {
-    /// Number of pixels inside the object.
-    pub fn area(&self) -> usize {
-        self.pixels.iter().filter(|p| **p).count()
-    }
 }
 
 /// Segments prompted objects of an image.
@@ -105,41 +98,23 @@ pub trait Segmenter: Send + Sync {
     fn name(&self) -> String;
 
     /// One mask per box, in the order of `boxes`, each the size of the image.
-    fn segment(&self, image: &ImageData, boxes: &[BoxPrompt]) -> Result<Vec<Mask>, ProviderError>;
+    fn segment(
+        &self,
+        image: &ImageData,
+        boxes: &[BoxPrompt],
+    ) -> Result<Vec<Segment>, ProviderError>;
 }
 
-/// Pinhole intrinsics in pixels.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct Intrinsics {
-    /// Focal length along x.
-    pub fx: f32,
-    /// Focal length along y.
-    pub fy: f32,
-    /// Principal point x.
-    pub cx: f32,
-    /// Principal point y.
-    pub cy: f32,
-}
-
-/// A metric depth map.
+/// A depth estimator's answer: metric depth at the image's size and the intrinsics the model
+/// used or estimated. In JSON (a recorded answer) the depth map's `width`, `height` and
+/// `metres` sit beside `intrinsics`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct DepthMap {
-    /// Width in pixels.
-    pub width: u32,
-    /// Height in pixels.
-    pub height: u32,
-    /// Row-major distance along the optical axis in metres; 0 where unknown (JSON, and so the
-    /// response cache, cannot hold non-finite numbers).
-    pub metres: Vec<f32>,
-    /// The intrinsics used or estimated.
+pub struct DepthEstimate {
+    /// Distance along the optical axis in metres, per pixel.
+    #[serde(flatten)]
+    pub depth: DepthMap,
+    /// The intrinsics used or estimated (the image's size).
     pub intrinsics: Intrinsics,
-}
-
-impl DepthMap {
-    /// Depth at pixel (x, y), if inside the map.
-    pub fn at(&self, x: u32, y: u32) -> Option<f32> {
-        (x < self.width && y < self.height).then(|| self.metres[(y * self.width + x) as usize])
-    }
 }
 
 /// Estimates metric depth from one image.
@@ -152,7 +127,7 @@ pub trait DepthEstimator: Send + Sync {
         &self,
         image: &ImageData,
         intrinsics: Option<Intrinsics>,
-    ) -> Result<DepthMap, ProviderError>;
+    ) -> Result<DepthEstimate, ProviderError>;
 }
 
 /// Turns texts into vectors whose cosine similarity reflects meaning.
@@ -179,5 +154,44 @@ pub fn cosine(a: &[f32], b: &[f32]) -> f32 {
         0.0
     } else {
         (dot / (na.sqrt() * nb.sqrt())) as f32
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_segment_records_its_mask_beside_its_label_and_score() {
+        let mut mask = Mask::new(2, 1);
+        mask.set(1, 0, true);
+        let segment = Segment {
+            label: "sofa_0".into(),
+            mask,
+            score: 0.5,
+        };
+        let json = serde_json::to_value(&segment).unwrap();
+        assert_eq!(
+            json,
+            serde_json::json!({"label": "sofa_0", "width": 2, "height": 1,
+                "pixels": [false, true], "score": 0.5})
+        );
+        assert_eq!(serde_json::from_value::<Segment>(json).unwrap(), segment);
+    }
+
+    #[test]
+    fn a_depth_estimate_records_unknown_depth_as_zero() {
+        let estimate = DepthEstimate {
+            depth: DepthMap::from_fn(2, 1, |x, _| if x == 0 { f32::NAN } else { 1.5 }),
+            intrinsics: Intrinsics::from_vertical_fov(2, 1, 1.0),
+        };
+        let json = serde_json::to_value(&estimate).unwrap();
+        assert_eq!(json["metres"], serde_json::json!([0.0, 1.5]));
+        let back: DepthEstimate = serde_json::from_value(json).unwrap();
+        assert_eq!(
+            (back.depth.get(0, 0), back.depth.get(1, 0)),
+            (None, Some(1.5))
+        );
+        assert_eq!(back.intrinsics, estimate.intrinsics);
     }
 }

@@ -2,11 +2,12 @@
 //! the generic [`Cached`] wrapper: the traits carry what a real provider needs and nothing
 //! ties them to HTTP.
 
+use scenethesis_imagery::{DepthMap, Intrinsics, Mask};
 use scenethesis_models::{
-    cosine, BoxPrompt, CacheMode, Cached, ChatModel, ChatRequest, ChatResponse, DepthEstimator,
-    DepthMap, GeneratedImage, ImageData, ImageEditRequest, ImageGenerator, ImageRequest,
-    Intrinsics, JsonSchema, Mask, Message, ProviderError, ProviderErrorKind, ResponseCache,
-    Segmenter, TextEmbedder, TokenUsage, UsageMeter,
+    cosine, BoxPrompt, CacheMode, Cached, ChatModel, ChatRequest, ChatResponse, DepthEstimate,
+    DepthEstimator, GeneratedImage, ImageData, ImageEditRequest, ImageGenerator, ImageRequest,
+    JsonSchema, Message, ProviderError, ProviderErrorKind, ResponseCache, Segment, Segmenter,
+    TextEmbedder, TokenUsage, UsageMeter,
 };
 use serde_json::json;
 
@@ -117,7 +118,11 @@ impl Segmenter for ContrastSegmenter {
         "local/contrast".into()
     }
 
-    fn segment(&self, image: &ImageData, boxes: &[BoxPrompt]) -> Result<Vec<Mask>, ProviderError> {
+    fn segment(
+        &self,
+        image: &ImageData,
+        boxes: &[BoxPrompt],
+    ) -> Result<Vec<Segment>, ProviderError> {
         let img = decode(image);
         let (w, h) = img.dimensions();
         let background = *img.get_pixel(0, 0);
@@ -135,11 +140,9 @@ impl Segmenter for ContrastSegmenter {
                         x >= x0 && x < x1 && y >= y0 && y < y1 && *img.get_pixel(x, y) != background
                     })
                     .collect();
-                Mask {
+                Segment {
                     label: b.label.clone(),
-                    width: w,
-                    height: h,
-                    pixels,
+                    mask: Mask::from_flags(w, h, pixels).unwrap(),
                     score: 1.0,
                 }
             })
@@ -150,7 +153,7 @@ impl Segmenter for ContrastSegmenter {
 /// Depth of a level floor seen by a level camera at a known height: rows below the horizon hit
 /// the floor at fy·h / (v − cy); rows at or above it see no floor (0, unknown).
 struct FloorPlane {
-    camera_height: f32,
+    camera_height: f64,
 }
 
 impl DepthEstimator for FloorPlane {
@@ -162,29 +165,26 @@ impl DepthEstimator for FloorPlane {
         &self,
         image: &ImageData,
         k: Option<Intrinsics>,
-    ) -> Result<DepthMap, ProviderError> {
+    ) -> Result<DepthEstimate, ProviderError> {
         let (w, h) = decode(image).dimensions();
         let k = k.unwrap_or(Intrinsics {
-            fx: w as f32,
-            fy: w as f32,
-            cx: w as f32 / 2.0,
-            cy: h as f32 / 2.0,
-        });
-        let metres = (0..h)
-            .flat_map(|v| {
-                let dv = v as f32 + 0.5 - k.cy;
-                let d = if dv > 0.0 {
-                    k.fy * self.camera_height / dv
-                } else {
-                    0.0
-                };
-                std::iter::repeat_n(d, w as usize)
-            })
-            .collect();
-        Ok(DepthMap {
             width: w,
             height: h,
-            metres,
+            fx: w as f64,
+            fy: w as f64,
+            cx: w as f64 / 2.0,
+            cy: h as f64 / 2.0,
+        });
+        let depth = DepthMap::from_fn(w, h, |_, v| {
+            let dv = v as f64 + 0.5 - k.cy;
+            if dv > 0.0 {
+                (k.fy * self.camera_height / dv) as f32
+            } else {
+                0.0
+            }
+        });
+        Ok(DepthEstimate {
+            depth,
             intrinsics: k,
         })
     }
@@ -316,8 +316,11 @@ fn segmenter_masks_follow_boxes_and_content() {
     ];
     let masks = seg.segment(&png(&img), &boxes).unwrap();
     assert_eq!(masks.len(), 2);
-    assert_eq!((masks[0].label.as_str(), masks[0].area()), ("sofa_0", 12));
-    assert_eq!(masks[1].area(), 0);
+    assert_eq!(
+        (masks[0].label.as_str(), masks[0].mask.area()),
+        ("sofa_0", 12)
+    );
+    assert_eq!(masks[1].mask.area(), 0);
     let replay = Cached::new(ContrastSegmenter, cache(dir.path(), CacheMode::ReplayOnly));
     assert_eq!(replay.segment(&png(&img), &boxes).unwrap(), masks);
 }
@@ -326,6 +329,8 @@ fn segmenter_masks_follow_boxes_and_content() {
 fn depth_estimator_gives_metric_floor_depth() {
     let img = png(&image::RgbaImage::new(8, 8));
     let k = Intrinsics {
+        width: 8,
+        height: 8,
         fx: 8.0,
         fy: 8.0,
         cx: 4.0,
@@ -338,9 +343,10 @@ fn depth_estimator_gives_metric_floor_depth() {
     );
     let map = depth.estimate(&img, Some(k)).unwrap();
     // Row 7: dv = 3.5 → 8 · 1.5 / 3.5 m.
-    assert!((map.at(0, 7).unwrap() - 12.0 / 3.5).abs() < 1e-6);
-    assert_eq!(map.at(3, 0), Some(0.0));
-    assert_eq!(map.at(8, 0), None);
+    assert!((map.depth.get(0, 7).unwrap() - 12.0 / 3.5).abs() < 1e-6);
+    // Above the horizon: no floor, so unknown.
+    assert_eq!(map.depth.get(3, 0), None);
+    assert_eq!(map.depth.get(8, 0), None);
     let replay = Cached::new(
         FloorPlane { camera_height: 1.5 },
         cache(dir.path(), CacheMode::ReplayOnly),
@@ -356,18 +362,22 @@ impl DepthEstimator for Broken {
         "local/broken".into()
     }
 
-    fn estimate(&self, _: &ImageData, k: Option<Intrinsics>) -> Result<DepthMap, ProviderError> {
-        let k = k.unwrap_or(Intrinsics {
-            fx: 1.0,
-            fy: 1.0,
-            cx: 0.5,
-            cy: 0.5,
-        });
-        Ok(DepthMap {
-            width: 1,
-            height: 1,
-            metres: vec![f32::NAN],
-            intrinsics: k,
+    fn estimate(
+        &self,
+        _: &ImageData,
+        _: Option<Intrinsics>,
+    ) -> Result<DepthEstimate, ProviderError> {
+        // A focal length of NaN: JSON writes it as null, which reads back as no number.
+        Ok(DepthEstimate {
+            depth: DepthMap::from_fn(1, 1, |_, _| 1.0),
+            intrinsics: Intrinsics {
+                width: 1,
+                height: 1,
+                fx: f64::NAN,
+                fy: 1.0,
+                cx: 0.5,
+                cy: 0.5,
+            },
         })
     }
 }

@@ -11,7 +11,8 @@
 //!   relative inverse depth (disparity) at any resolution covering the whole input; it is
 //!   resized back to the image size bilinearly and converted by [`DepthOutput`].
 
-use scenethesis_models::{DepthMap, Intrinsics};
+use scenethesis_imagery::{DepthMap, Intrinsics};
+use scenethesis_models::DepthEstimate;
 
 use crate::raster::Normalisation;
 
@@ -84,13 +85,15 @@ impl DepthConfig {
     /// Intrinsics for an image of `width` x `height` from [`Self::assumed_hfov_deg`], principal
     /// point at the centre.
     pub fn assumed_intrinsics(&self, width: u32, height: u32) -> Intrinsics {
-        let half = (self.assumed_hfov_deg.to_radians() / 2.0).tan();
-        let f = width as f32 / 2.0 / half;
+        let half = (f64::from(self.assumed_hfov_deg).to_radians() / 2.0).tan();
+        let f = f64::from(width) / 2.0 / half;
         Intrinsics {
+            width,
+            height,
             fx: f,
             fy: f,
-            cx: width as f32 / 2.0,
-            cy: height as f32 / 2.0,
+            cx: f64::from(width) / 2.0,
+            cy: f64::from(height) / 2.0,
         }
     }
 
@@ -175,13 +178,14 @@ pub(crate) fn depth_map(
     plane_size: (usize, usize),
     image_size: (u32, u32),
     intrinsics: Intrinsics,
-) -> DepthMap {
+) -> DepthEstimate {
     let (w, h) = (image_size.0 as usize, image_size.1 as usize);
     let resized = crate::raster::resize_plane(plane, plane_size.0, plane_size.1, w, h);
-    DepthMap {
-        width: image_size.0,
-        height: image_size.1,
-        metres: resized.into_iter().map(|v| config.metres(v)).collect(),
+    let mut metres = resized.into_iter().map(|v| config.metres(v));
+    DepthEstimate {
+        depth: DepthMap::from_fn(image_size.0, image_size.1, |_, _| {
+            metres.next().expect("one value per pixel")
+        }),
         intrinsics,
     }
 }
@@ -193,8 +197,9 @@ pub use provider::OnnxDepth;
 mod provider {
     use std::path::Path;
 
+    use scenethesis_imagery::Intrinsics;
     use scenethesis_models::{
-        DepthEstimator, DepthMap, ImageData, Intrinsics, ProviderError, ProviderErrorKind,
+        DepthEstimate, DepthEstimator, ImageData, ProviderError, ProviderErrorKind,
     };
 
     use super::{depth_map, output_plane, DepthConfig};
@@ -282,7 +287,7 @@ mod provider {
             &self,
             image: &ImageData,
             intrinsics: Option<Intrinsics>,
-        ) -> Result<DepthMap, ProviderError> {
+        ) -> Result<DepthEstimate, ProviderError> {
             let rgb = decode_rgb(image)
                 .map_err(|message| self.error(ProviderErrorKind::InvalidRequest { message }))?;
             let (width, height) = rgb.dimensions();
@@ -381,7 +386,7 @@ mod tests {
         let c = DepthConfig::default();
         let k = c.assumed_intrinsics(4, 2);
         let map = depth_map(&c, &[1.0, 3.0], (2, 1), (4, 2), k);
-        assert_eq!((map.width, map.height), (4, 2));
-        assert_eq!(map.metres, vec![1.0, 1.5, 2.5, 3.0, 1.0, 1.5, 2.5, 3.0]);
+        assert_eq!((map.depth.width(), map.depth.height()), (4, 2));
+        assert_eq!(map.depth.values(), [1.0, 1.5, 2.5, 3.0, 1.0, 1.5, 2.5, 3.0]);
     }
 }

@@ -547,8 +547,8 @@ mod with_runtime {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use scenethesis_correspondence::{DepthMap, Mask, RgbImage};
-    use scenethesis_scene_graph::{Camera, Intrinsics, Pose};
+    use scenethesis_imagery::{Camera, DepthMap, Intrinsics, Mask, RgbImage};
+    use scenethesis_scene_graph::Pose;
 
     fn camera(w: u32, h: u32) -> Camera {
         Camera::look_at(

@@ -248,8 +248,9 @@ pub use provider::OnnxSegmenter;
 mod provider {
     use std::path::Path;
 
+    use scenethesis_imagery::Mask;
     use scenethesis_models::{
-        BoxPrompt, ImageData, Mask, ProviderError, ProviderErrorKind, Segmenter,
+        BoxPrompt, ImageData, ProviderError, ProviderErrorKind, Segment, Segmenter,
     };
 
     use super::{best_mask, check_box, mask_grid, mask_pixels, LongestSide, SegmenterConfig};
@@ -402,7 +403,7 @@ mod provider {
             embeddings: &TensorF32,
             transform: &LongestSide,
             prompt: &BoxPrompt,
-        ) -> Result<Mask, ProviderError> {
+        ) -> Result<Segment, ProviderError> {
             let names = &self.config.decoder;
             let [x0, y0, x1, y1] = transform.box_in_frame(prompt.bbox);
             let mut inputs = vec![
@@ -470,17 +471,19 @@ mod provider {
                 )
             })?;
             let plane = &masks.data[best * gw * gh..(best + 1) * gw * gh];
-            Ok(Mask {
+            let pixels = mask_pixels(
+                plane,
+                (gw, gh),
+                transform,
+                self.config.mask_frame,
+                self.config.mask_threshold,
+            );
+            let mask = Mask::from_flags(width, height, pixels).map_err(|e| {
+                self.malformed(&self.decoder, format!("box `{}`: {e}", prompt.label))
+            })?;
+            Ok(Segment {
                 label: prompt.label.clone(),
-                width,
-                height,
-                pixels: mask_pixels(
-                    plane,
-                    (gw, gh),
-                    transform,
-                    self.config.mask_frame,
-                    self.config.mask_threshold,
-                ),
+                mask,
                 score,
             })
         }
@@ -499,7 +502,7 @@ mod provider {
             &self,
             image: &ImageData,
             boxes: &[BoxPrompt],
-        ) -> Result<Vec<Mask>, ProviderError> {
+        ) -> Result<Vec<Segment>, ProviderError> {
             for prompt in boxes {
                 check_box(prompt).map_err(|message| {
                     self.error(&self.decoder, ProviderErrorKind::InvalidRequest { message })

@@ -10,9 +10,8 @@
 use std::path::PathBuf;
 
 use image::{Rgb, RgbImage};
-use scenethesis_models::{
-    BoxPrompt, DepthEstimator, ImageData, Intrinsics, ProviderErrorKind, Segmenter,
-};
+use scenethesis_imagery::Intrinsics;
+use scenethesis_models::{BoxPrompt, DepthEstimator, ImageData, ProviderErrorKind, Segmenter};
 use scenethesis_onnx::{
     DepthConfig, DepthOutput, Normalisation, OnnxDepth, OnnxError, OnnxSegmenter, Runtime,
     SegmenterConfig,
@@ -61,21 +60,34 @@ fn depth_on_a_dynamic_model_comes_back_at_image_size() {
     let (a, b) = ([200, 30, 90], [10, 220, 140]);
     let img = RgbImage::from_fn(40, 30, |x, _| Rgb(if x < 20 { a } else { b }));
     let k = Intrinsics {
+        width: 40,
+        height: 30,
         fx: 50.0,
         fy: 51.0,
         cx: 20.0,
         cy: 15.0,
     };
     let map = depth.estimate(&png(&img), Some(k)).unwrap();
-    assert_eq!((map.width, map.height, map.metres.len()), (40, 30, 1200));
+    assert_eq!(
+        (
+            map.depth.width(),
+            map.depth.height(),
+            map.depth.values().len()
+        ),
+        (40, 30, 1200)
+    );
     assert_eq!(map.intrinsics, k);
     for y in 0..30 {
         for x in (0..=16).chain(23..40) {
             let want = 2.0 * depth_of(if x < 20 { a } else { b });
-            assert_close(map.at(x, y).unwrap(), want, &format!("depth at ({x}, {y})"));
+            assert_close(
+                map.depth.get(x, y).unwrap(),
+                want,
+                &format!("depth at ({x}, {y})"),
+            );
         }
         // Across the boundary the depth moves monotonically from one side to the other.
-        let row: Vec<f32> = (16..=23).map(|x| map.at(x, y).unwrap()).collect();
+        let row: Vec<f32> = (16..=23).map(|x| map.depth.get(x, y).unwrap()).collect();
         let rising = depth_of(b) > depth_of(a);
         assert!(
             row.windows(2)
@@ -85,7 +97,7 @@ fn depth_on_a_dynamic_model_comes_back_at_image_size() {
     }
     // Without intrinsics the assumed 60 degree field of view is used.
     let map = depth.estimate(&png(&img), None).unwrap();
-    let f = 20.0 / (30f32.to_radians()).tan();
+    let f = 20.0 / (30f64.to_radians()).tan();
     assert!((map.intrinsics.fx - f).abs() < 1e-3, "{:?}", map.intrinsics);
 }
 
@@ -104,11 +116,15 @@ fn depth_on_a_static_model_uses_its_size_and_keeps_rows_and_columns() {
     let (a, b) = ([250, 250, 250], [0, 0, 60]);
     let img = RgbImage::from_fn(60, 20, |_, y| Rgb(if y < 10 { a } else { b }));
     let map = depth.estimate(&png(&img), None).unwrap();
-    assert_eq!((map.width, map.height), (60, 20));
+    assert_eq!((map.depth.width(), map.depth.height()), (60, 20));
     for x in 0..60 {
         for y in (0..=6).chain(13..20) {
             let want = 10.0 / depth_of(if y < 10 { a } else { b });
-            assert_close(map.at(x, y).unwrap(), want, &format!("depth at ({x}, {y})"));
+            assert_close(
+                map.depth.get(x, y).unwrap(),
+                want,
+                &format!("depth at ({x}, {y})"),
+            );
         }
     }
 }
@@ -173,12 +189,12 @@ fn check_segmentation(width: u32, height: u32, boxes: &[[f32; 4]]) {
 
     for (mask, (prompt, bbox)) in masks.iter().zip(prompts.iter().zip(boxes)) {
         assert_eq!(mask.label, prompt.label);
-        assert_eq!((mask.width, mask.height), (width, height));
+        assert_eq!((mask.mask.width(), mask.mask.height()), (width, height));
         assert_close(mask.score, want_score as f32, "score");
         let mut unsure = 0;
         for y in 0..height {
             for x in 0..width {
-                let got = mask.pixels[(y * width + x) as usize];
+                let got = mask.mask.contains(x, y);
                 match inside(*bbox, width, height, x, y, 0.0) {
                     // Away from the corners the logits are linear across the edges, so the
                     // mask edge is exact; within a pixel of a corner it may cut the corner.
@@ -326,12 +342,11 @@ fn library_errors_name_the_path_and_how_to_get_the_library() {
 
 mod dense_matcher {
     use nalgebra::{Point3, Vector3};
-    use scenethesis_correspondence::{
-        lift, rasterize, DepthMap, Mask, Matcher, RgbImage, TargetRegion, Window,
-    };
+    use scenethesis_correspondence::{lift, rasterize, Matcher, TargetRegion, Window};
+    use scenethesis_imagery::{Camera, DepthMap, Intrinsics, Mask, RgbImage};
     use scenethesis_onnx::matcher::{crop_for, matcher_inputs};
     use scenethesis_onnx::{MatcherConfig, OnnxError, OnnxMatcher};
-    use scenethesis_scene_graph::{Camera, Intrinsics, Material, Mesh, Pose};
+    use scenethesis_scene_graph::{Material, Mesh, Pose};
 
     use super::{fixture, runtime};
 

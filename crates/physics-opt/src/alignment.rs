@@ -3,7 +3,8 @@
 
 use nalgebra::Vector3;
 use scenethesis_correspondence::{Correspondence, PairKind};
-use scenethesis_scene_graph::{Camera, Pose};
+use scenethesis_imagery::Camera;
+use scenethesis_scene_graph::Pose;
 use serde::{Deserialize, Serialize};
 
 use crate::damped::{damped_step, take, NormalEquations};
@@ -370,7 +371,7 @@ mod tests {
     use super::*;
     use crate::params::{from_vector, to_vector};
     use nalgebra::Point3;
-    use scenethesis_scene_graph::Intrinsics;
+    use scenethesis_imagery::Intrinsics;
 
     fn setup() -> (PoseAlignment, Pose) {
         let camera = Camera::look_at(

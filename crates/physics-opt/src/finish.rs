@@ -14,8 +14,8 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use nalgebra::{Point2, Vector2};
-use scenethesis_correspondence::shape::{turned, yaw_distance};
-use scenethesis_scene_graph::{Pose, SceneObject};
+use scenethesis_correspondence::shape::turned;
+use scenethesis_scene_graph::{yaw_distance, Pose, SceneObject};
 use scenethesis_sdf::SignedDistance;
 
 use crate::deadline::past;

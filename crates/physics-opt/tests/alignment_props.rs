@@ -7,10 +7,11 @@ use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use scenethesis_correspondence::{
-    rasterize, Correspondence, DepthMap, Mask, PairKind, ShapeMatcher, TargetRegion, Window,
+    rasterize, Correspondence, PairKind, ShapeMatcher, TargetRegion, Window,
 };
+use scenethesis_imagery::{Camera, DepthMap, Intrinsics, Mask};
 use scenethesis_physics_opt::{align_to_guidance, FitOptions, GuidedSettings, PoseAlignment};
-use scenethesis_scene_graph::{Camera, Intrinsics, Mesh, MeshPart, Pose};
+use scenethesis_scene_graph::{Mesh, MeshPart, Pose};
 
 /// A sofa-like asset: a seat with a back and one arm, so no turn but the identity maps its
 /// shape onto itself. One part holding the three boxes.
@@ -96,8 +97,7 @@ fn alignment(camera: &Camera, pairs: Vec<Correspondence>) -> PoseAlignment {
 }
 
 fn yaw_error(a: f64, b: f64) -> f64 {
-    let d = (a - b).rem_euclid(std::f64::consts::TAU);
-    d.min(std::f64::consts::TAU - d)
+    scenethesis_scene_graph::yaw_distance(a, b)
 }
 
 proptest! {

@@ -5,11 +5,12 @@ mod support;
 use std::sync::Arc;
 
 use nalgebra::{Point3, Vector3};
+use scenethesis_imagery::{Camera, Intrinsics};
 use scenethesis_physics_opt::{
     optimize_scene, Correspondence, Issue, OptimizeSettings, Optimizer, Placement, PoseAlignment,
     PreparedAsset, ProjectedGaussNewton, SceneProblem, Sgd,
 };
-use scenethesis_scene_graph::{Camera, Intrinsics, Pose, RelationKind};
+use scenethesis_scene_graph::{Pose, RelationKind};
 use support::*;
 
 fn optimizers() -> Vec<Box<dyn Optimizer>> {

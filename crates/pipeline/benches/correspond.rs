@@ -6,13 +6,14 @@ use std::collections::BTreeMap;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::{Point3, Vector3};
-use scenethesis_correspondence::{Guidance, ShapeMatcher};
+use scenethesis_correspondence::ShapeMatcher;
+use scenethesis_imagery::{Camera, Guidance, Intrinsics};
 use scenethesis_physics_opt::GuidedSettings;
 use scenethesis_pipeline::correspond::{correspond, rasterized_guidance};
 use scenethesis_pipeline::{
     resolve_meshes, GenerateOptions, NoProgress, Pipeline, RetrievalSource,
 };
-use scenethesis_scene_graph::{Camera, Intrinsics, Mesh, Pose, Scene};
+use scenethesis_scene_graph::{Mesh, Pose, Scene};
 
 const PROMPT: &str = "a living room with a grey three-seat sofa against the back wall, a low \
      round coffee table in front of it with two mugs and a small vase on top, two armchairs on \

@@ -8,7 +8,8 @@
 use std::collections::BTreeMap;
 
 use rayon::prelude::*;
-use scenethesis_correspondence::{DepthMap, Guidance, Matcher, TargetRegion};
+use scenethesis_correspondence::{Matcher, TargetRegion};
+use scenethesis_imagery::{DepthMap, Guidance};
 use scenethesis_physics_opt::{align_to_guidance, GuidedPose, GuidedSettings};
 use scenethesis_scene_graph::{Mesh, RelationKind, Scene, SceneObject};
 
@@ -99,9 +100,10 @@ pub fn correspond(
 pub fn rasterized_guidance(
     scene: &Scene,
     meshes: &BTreeMap<String, Mesh>,
-    camera: &scenethesis_scene_graph::Camera,
+    camera: &scenethesis_imagery::Camera,
 ) -> Guidance {
-    use scenethesis_correspondence::{rasterize, Mask, RgbImage, Window};
+    use scenethesis_correspondence::{rasterize, Window};
+    use scenethesis_imagery::{Mask, RgbImage};
     let (w, h) = (camera.intrinsics.width, camera.intrinsics.height);
     let window = Window::full(camera);
     let views: Vec<(&str, scenethesis_correspondence::RenderedView)> = scene

@@ -114,7 +114,7 @@ pub struct GeneratedScene {
     /// What the guide of the chosen attempt saw — camera, guidance image, depth and masks —
     /// when it read an image (the vision guide); `None` for the procedural guide. A VLM judge
     /// can compare the scene with this image.
-    pub guidance: Option<scenethesis_correspondence::Guidance>,
+    pub guidance: Option<scenethesis_imagery::Guidance>,
 }
 
 /// The end-to-end pipeline with pluggable stages. [`Pipeline::offline`] needs no network, no

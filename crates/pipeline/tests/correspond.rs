@@ -9,10 +9,11 @@ use nalgebra::{Point3, Vector3};
 use scenethesis_agents::{AssetLookup, Guide, GuideError, GuidedLayout, Plan, ProceduralGuide};
 use scenethesis_correspondence::ShapeMatcher;
 use scenethesis_import::AssetResolver;
+use scenethesis_imagery::{Camera, Intrinsics};
 use scenethesis_physics_opt::GuidedSettings;
 use scenethesis_pipeline::correspond::rasterized_guidance;
 use scenethesis_pipeline::{GenerateOptions, Pipeline, Progress, Stage};
-use scenethesis_scene_graph::{Camera, Intrinsics, ParentRef, Pose, Scene};
+use scenethesis_scene_graph::{ParentRef, Pose, Scene};
 
 /// The procedural layout as guidance, with the floor objects' starting poses shifted by
 /// (6, −5) cm and turned 8°. Remembers the unshifted layouts.

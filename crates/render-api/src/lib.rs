@@ -20,7 +20,8 @@
 //! ```
 //! use std::collections::BTreeMap;
 //! use scenethesis_render_api::{render_view, RendererError, SceneRenderer, ViewImage, ViewKind, ViewRequest};
-//! use scenethesis_scene_graph::{Architecture, Camera, Intrinsics, Mesh, Scene};
+//! use scenethesis_imagery::{Camera, Intrinsics};
+//! use scenethesis_scene_graph::{Architecture, Mesh, Scene};
 //!
 //! /// Draws every view as one flat grey, from a camera two metres up.
 //! struct Grey;
@@ -66,7 +67,8 @@ mod previews;
 use std::collections::BTreeMap;
 use std::fmt;
 
-use scenethesis_scene_graph::{Camera, Mesh, Scene};
+use scenethesis_imagery::Camera;
+use scenethesis_scene_graph::{Mesh, Scene};
 
 pub use error::RendererError;
 pub use previews::{preview_views, render_previews, PREVIEW_FILES, PREVIEW_SUPERSAMPLE};

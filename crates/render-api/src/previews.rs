@@ -2,7 +2,7 @@
 
 use std::collections::BTreeMap;
 
-use scenethesis_correspondence::encode_png;
+use scenethesis_imagery::encode_png;
 use scenethesis_scene_graph::{Mesh, Scene};
 
 use crate::{render_checked, RendererError, SceneRenderer, ViewKind, ViewRequest};

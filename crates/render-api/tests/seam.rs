@@ -3,11 +3,12 @@
 
 use std::collections::BTreeMap;
 
+use scenethesis_imagery::{Camera, Intrinsics};
 use scenethesis_render_api::{
     preview_views, render_previews, render_view, RendererError, SceneRenderer, ViewImage, ViewKind,
     ViewRequest, PREVIEW_FILES,
 };
-use scenethesis_scene_graph::{Architecture, Camera, Intrinsics, Mesh, Scene};
+use scenethesis_scene_graph::{Architecture, Mesh, Scene};
 
 /// Paints every view flat; `short` drops the last view, `wrong_size` draws one pixel too wide.
 #[derive(Default)]

@@ -1,7 +1,7 @@
 //! A rendered frame on the CPU: colour, metric depth and instance ids, with encoders.
 
 use image::{GrayImage, ImageBuffer, Luma, RgbaImage};
-use scenethesis_correspondence::encode_png;
+use scenethesis_imagery::{encode_png, DepthMap};
 
 use crate::RenderError;
 
@@ -10,9 +10,9 @@ use crate::RenderError;
 pub struct Frame {
     /// sRGB colour, opaque.
     pub color: RgbaImage,
-    /// Distance along the camera's optical axis (its −Z) in metres, row-major; `0.0` where no
+    /// Distance along the camera's optical axis (its −Z) in metres; `0.0` (unknown) where no
     /// geometry was hit (background).
-    pub depth: Vec<f32>,
+    pub depth: DepthMap,
     /// Instance index per pixel, row-major: `0` for background, `k ≥ 1` for `ids[k - 1]`.
     pub instance: Vec<u32>,
     /// The id table: objects in the scene's order, then the architecture (floor, walls) and
@@ -41,10 +41,9 @@ impl Frame {
         (y * self.width() + x) as usize
     }
 
-    /// Depth at pixel (x, y) in metres, or `None` for background.
+    /// Depth at pixel (x, y) in metres, or `None` for background (and outside the frame).
     pub fn depth_at(&self, x: u32, y: u32) -> Option<f32> {
-        let d = self.depth[self.index(x, y)];
-        (d > 0.0).then_some(d)
+        self.depth.get(x, y)
     }
 
     /// The id shown at pixel (x, y), or `None` for background.
@@ -96,6 +95,7 @@ impl Frame {
     pub fn depth_u16_mm(&self) -> ImageBuffer<Luma<u16>, Vec<u16>> {
         let pixels = self
             .depth
+            .values()
             .iter()
             .map(|&d| (d * 1000.0).round().clamp(0.0, 65535.0) as u16)
             .collect();
@@ -124,7 +124,7 @@ mod tests {
     fn frame() -> Frame {
         Frame {
             color: RgbaImage::new(3, 2),
-            depth: vec![0.0, 1.5, 2.0, 0.0, 0.25, 70.0],
+            depth: DepthMap::new(3, 2, vec![0.0, 1.5, 2.0, 0.0, 0.25, 70.0]).unwrap(),
             instance: vec![0, 1, 2, 0, 1, 2],
             ids: vec!["chair_0".into(), "floor".into()],
         }

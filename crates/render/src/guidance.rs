@@ -5,9 +5,9 @@
 
 use std::collections::BTreeMap;
 
-use scenethesis_correspondence::{DepthMap, Guidance, Mask, RgbImage};
+use scenethesis_imagery::{Camera, Guidance, Mask, RgbImage};
 use scenethesis_render_api::ViewKind;
-use scenethesis_scene_graph::{Camera, Mesh, Scene};
+use scenethesis_scene_graph::{Mesh, Scene};
 
 use crate::{view_camera, Frame, RenderError, RenderScene, Renderer};
 
@@ -36,7 +36,7 @@ impl Renderer {
 fn guidance_from_frame(scene: &Scene, frame: &Frame, camera: Camera) -> Guidance {
     let (w, h) = (frame.width(), frame.height());
     let image = RgbImage::from_rgba(&frame.color);
-    let depth = DepthMap::new(w, h, frame.depth.clone()).expect("rendered depth is finite");
+    let depth = frame.depth.clone();
     let mut masks = BTreeMap::new();
     for object in &scene.objects {
         let mut mask = Mask::new(w, h);

@@ -1,5 +1,5 @@
 //! Headless rendering of posed meshes with wgpu: colour, metric depth and instance-id images
-//! from a scene-graph [`Camera`](scenethesis_scene_graph::Camera), on real GPUs or Mesa's
+//! from a pinhole [`Camera`](scenethesis_imagery::Camera), on real GPUs or Mesa's
 //! software drivers (GL llvmpipe through EGL, Vulkan lavapipe).
 //!
 //! A [`RenderScene`] holds [`Instance`]s (an id, a shared [`Mesh`](scenethesis_scene_graph::Mesh)
@@ -30,8 +30,8 @@
 //! # Ok(()) }
 //! ```
 //!
-//! [`Camera::project`]: scenethesis_scene_graph::Camera::project
-//! [`Camera::clip_from_camera`]: scenethesis_scene_graph::Camera::clip_from_camera
+//! [`Camera::project`]: scenethesis_imagery::Camera::project
+//! [`Camera::clip_from_camera`]: scenethesis_imagery::Camera::clip_from_camera
 #![warn(missing_docs)]
 
 mod backend;

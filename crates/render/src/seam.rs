@@ -2,8 +2,9 @@
 
 use std::collections::BTreeMap;
 
+use scenethesis_imagery::Camera;
 use scenethesis_render_api::{RendererError, SceneRenderer, ViewImage, ViewKind, ViewRequest};
-use scenethesis_scene_graph::{Camera, Mesh, Scene};
+use scenethesis_scene_graph::{Mesh, Scene};
 
 use crate::{views, RenderScene, Renderer};
 

@@ -6,12 +6,11 @@
 use std::f64::consts::{FRAC_PI_2, TAU};
 
 use nalgebra::{Point3, Vector3};
-use scenethesis_scene_graph::{Camera, Environment, Intrinsics};
+use scenethesis_imagery::{Camera, Intrinsics, DEFAULT_VERTICAL_FOV};
+use scenethesis_scene_graph::Environment;
 
 use crate::{Backdrop, RenderScene};
 
-/// Vertical field of view of the presets (50°).
-pub const VERTICAL_FOV: f64 = 50.0 * std::f64::consts::PI / 180.0;
 /// Azimuth of the photo view: seen from the front (+Z), turned 26° toward +X.
 pub const PHOTO_AZIMUTH: f64 = 0.45;
 /// Elevation of the photo view above the horizon (about 29°).
@@ -30,7 +29,7 @@ pub fn photo_view(scene: &RenderScene, width: u32, height: u32) -> Camera {
 /// A view straight down onto the scene, with the back (−Z) at the top of the image and +X to
 /// the right.
 pub fn top_view(scene: &RenderScene, width: u32, height: u32) -> Camera {
-    let intrinsics = Intrinsics::from_vertical_fov(width, height, VERTICAL_FOV);
+    let intrinsics = Intrinsics::from_vertical_fov(width, height, DEFAULT_VERTICAL_FOV);
     let points = framing_points(scene, true);
     fit(&points, Vector3::y(), -Vector3::z(), intrinsics)
 }
@@ -60,7 +59,7 @@ pub fn orbit_view(
         elevation.sin(),
         azimuth.cos() * elevation.cos(),
     );
-    let intrinsics = Intrinsics::from_vertical_fov(width, height, VERTICAL_FOV);
+    let intrinsics = Intrinsics::from_vertical_fov(width, height, DEFAULT_VERTICAL_FOV);
     let points = framing_points(scene, false);
     fit(&points, direction, Vector3::y(), intrinsics)
 }

@@ -4,8 +4,9 @@ use std::path::PathBuf;
 use std::sync::{Arc, OnceLock};
 
 use nalgebra::{Point2, Point3, Vector3};
+use scenethesis_imagery::{Camera, Intrinsics};
 use scenethesis_render::{views, Frame, Instance, RenderScene, Renderer, RendererOptions};
-use scenethesis_scene_graph::{Architecture, Camera, Intrinsics, Material, Mesh, MeshPart, Pose};
+use scenethesis_scene_graph::{Architecture, Material, Mesh, MeshPart, Pose};
 
 fn renderer() -> &'static Renderer {
     static RENDERER: OnceLock<Renderer> = OnceLock::new();

@@ -7,9 +7,10 @@
 //! [`Relation`]s. It reads and
 //! writes `scene.json` ([`Scene::from_json_str`], [`Scene::write_json_atomic`]), checks itself
 //! ([`Scene::validate`]) and walks its hierarchy breadth-first from the ground
-//! ([`Scene::bfs_order`]). The pinhole [`Camera`] and the triangle [`Mesh`] with per-part
-//! [`Material`]s live here too, so that assets, rendering, signed distance fields, correspondence
-//! and export share one geometry and one projection.
+//! ([`Scene::bfs_order`]). The triangle [`Mesh`] with per-part [`Material`]s lives here too, so
+//! that assets, rendering, signed distance fields, correspondence and export share one geometry,
+//! and so do the yaw rules every stage uses ([`wrap_yaw`], [`yaw_distance`]). The pinhole camera
+//! and the images live in `scenethesis-imagery`.
 //!
 //! Conventions: metres, right-handed, +Y up, ground plane at y = 0. An object's canonical front
 //! is +Z in its own frame, and the origin of an asset's frame is the centre of its footprint at
@@ -63,7 +64,6 @@
 mod aabb;
 mod architecture;
 mod asset;
-mod camera;
 mod floor_raster;
 mod hash;
 mod io;
@@ -83,13 +83,12 @@ pub use architecture::{
     MOUNT_WALL_REACH,
 };
 pub use asset::{Asset, AssetInfo, Placement, SupportSurface, SurfaceKind, LOW_SHELF_SHARE};
-pub use camera::{Camera, Intrinsics, Projection};
 pub use floor_raster::{Components, FloorRaster, BLOCKED_CELL};
 pub use hash::{fnv1a64, fnv1a64_from, mix64, FNV_OFFSET_BASIS, GOLDEN_GAMMA};
 pub use io::{read_bounded, write_file_atomic, SceneIoError};
 pub use mesh::{Material, Mesh, MeshPart};
 pub use object::{AssetRef, ParentRef, Relation, RelationKind, SceneObject, GROUND_ID};
-pub use pose::Pose;
+pub use pose::{wrap_yaw, yaw_distance, yaw_distance_modulo, Pose};
 pub use relations::{floor_centre, floor_gap, front_dir, relation_holds, right_dir};
 pub use scene::{Scene, FORMAT_VERSION};
 pub use validate::{is_printable_id, printable, OutOfBounds, ValidationError};

@@ -1,6 +1,54 @@
 use nalgebra::{Matrix4, Point3, Rotation3, Vector3};
 use serde::{Deserialize, Serialize};
 
+/// `yaw` wrapped into (−π, π], the range every yaw the stages write lies in.
+///
+/// ```
+/// use scenethesis_scene_graph::wrap_yaw;
+/// use std::f64::consts::PI;
+/// assert_eq!(wrap_yaw(1.5 * PI), -0.5 * PI);
+/// assert_eq!(wrap_yaw(-PI), PI);
+/// assert_eq!(wrap_yaw(0.25), 0.25);
+/// ```
+pub fn wrap_yaw(yaw: f64) -> f64 {
+    let tau = std::f64::consts::TAU;
+    let pi = std::f64::consts::PI;
+    let mut y = yaw % tau;
+    if y > pi {
+        y -= tau;
+    }
+    if y <= -pi {
+        y += tau;
+    }
+    y
+}
+
+/// The angle between two yaws, in [0, π].
+///
+/// ```
+/// use scenethesis_scene_graph::yaw_distance;
+/// use std::f64::consts::PI;
+/// assert!((yaw_distance(0.9 * PI, -0.9 * PI) - 0.2 * PI).abs() < 1e-12);
+/// ```
+pub fn yaw_distance(a: f64, b: f64) -> f64 {
+    yaw_distance_modulo(a, b, std::f64::consts::TAU)
+}
+
+/// The angle between two yaws when turns of `period` radians look the same (a shape with a
+/// `TAU / period`-fold symmetry: `PI` for a rectangle's axes, `FRAC_PI_2` for a square), in
+/// [0, `period` / 2].
+///
+/// ```
+/// use scenethesis_scene_graph::yaw_distance_modulo;
+/// use std::f64::consts::{FRAC_PI_2, PI};
+/// assert!(yaw_distance_modulo(0.1, 0.1 + PI, PI) < 1e-12);
+/// assert!((yaw_distance_modulo(0.0, 0.4 * PI, FRAC_PI_2) - 0.1 * PI).abs() < 1e-12);
+/// ```
+pub fn yaw_distance_modulo(a: f64, b: f64, period: f64) -> f64 {
+    let d = (a - b).rem_euclid(period);
+    d.min(period - d)
+}
+
 /// The 5-DoF pose of an object: uniform scale, yaw about +Y and translation.
 ///
 /// A point `p` of the asset's own frame maps to the world as `translation + R_y(yaw) · (scale · p)`.

@@ -149,7 +149,7 @@ fn furnished_render(scene_dir: &Path) -> (Vec<u8>, Value) {
     let frame = renderer
         .render_prepared(&renderer.prepare(&full).unwrap(), &camera)
         .unwrap();
-    let png = scenethesis_correspondence::RgbImage::from_rgba(&frame.color).to_png();
+    let png = scenethesis_imagery::RgbImage::from_rgba(&frame.color).to_png();
     let mut out = Vec::new();
     for o in &scene.objects {
         let Some(index) = frame.index_of(&o.id) else {

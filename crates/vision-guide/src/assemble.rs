@@ -17,22 +17,14 @@ use std::f64::consts::PI;
 use nalgebra::{Point3, Vector2, Vector3};
 use scenethesis_agents::Plan;
 use scenethesis_scene_graph::{
-    Aabb, Architecture, ParentRef, Pose, Relation, RelationKind, Scene, SceneObject, GROUND_ID,
+    wrap_yaw, Aabb, Architecture, ParentRef, Pose, Relation, RelationKind, Scene, SceneObject,
+    GROUND_ID,
 };
 use scenethesis_scene_graph::{AssetInfo, Placement};
 use scenethesis_vision::{LiftedBox, SupportGuess, SupportKind};
 
 /// Largest gap between a box's back and a wall that still counts as backing onto it.
 pub const WALL_GAP: f64 = 0.15;
-
-/// Wraps an angle into (−π, π].
-pub fn wrap(yaw: f64) -> f64 {
-    let mut y = yaw.rem_euclid(2.0 * PI);
-    if y > PI {
-        y -= 2.0 * PI;
-    }
-    y
-}
 
 /// The wall a footprint backs onto: `(wall id, inward normal)` of the nearest wall whose inner
 /// face is within [`WALL_GAP`] of the box.
@@ -72,9 +64,9 @@ fn backing_wall(architecture: &Architecture, b: &LiftedBox) -> Option<(String, V
 fn facing(b: &LiftedBox, toward: Vector2<f64>) -> f64 {
     let front = |yaw: f64| Vector2::new(yaw.sin(), yaw.cos());
     if front(b.yaw).dot(&toward) >= front(b.yaw + PI).dot(&toward) {
-        wrap(b.yaw)
+        wrap_yaw(b.yaw)
     } else {
-        wrap(b.yaw + PI)
+        wrap_yaw(b.yaw + PI)
     }
 }
 

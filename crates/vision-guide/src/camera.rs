@@ -1,7 +1,7 @@
 //! A camera for a guidance image that comes without one, estimated from the floor in its
 //! depth map.
 //!
-//! The intrinsics are the depth model's, or a pinhole of [`DEFAULT_VERTICAL_FOV`] centred on
+//! The intrinsics are the depth model's, or a pinhole of [`DEFAULT_VERTICAL_FOV`](scenethesis_imagery::DEFAULT_VERTICAL_FOV) centred on
 //! the image. The floor is the horizontal-looking plane (its normal within 72° of the image's
 //! up) that most depth points lie on (deterministic RANSAC, 3 cm tolerance); it gives the
 //! camera's height and its pitch and roll. What one image cannot tell — where in the room the
@@ -9,12 +9,8 @@
 //! and the visible floor's median point is the floor's centre.
 
 use nalgebra::{Matrix3, Point3, Rotation3, UnitQuaternion, Vector3};
-use scenethesis_correspondence::DepthMap;
-use scenethesis_scene_graph::{Architecture, Camera, Intrinsics};
-
-/// Vertical field of view assumed for an image without intrinsics (radians; 50°, the
-/// renderer's).
-pub const DEFAULT_VERTICAL_FOV: f64 = 50.0 * std::f64::consts::PI / 180.0;
+use scenethesis_imagery::{Camera, DepthMap, Intrinsics};
+use scenethesis_scene_graph::Architecture;
 
 /// Estimates the camera of a depth map from its floor; the error says what was missing.
 pub fn estimate_from_floor(
@@ -130,6 +126,7 @@ pub fn estimate_from_floor(
 mod tests {
     use super::*;
     use nalgebra::Point2;
+    use scenethesis_imagery::DEFAULT_VERTICAL_FOV;
 
     #[test]
     fn recovers_height_and_pitch_of_a_floor_view() {

@@ -5,7 +5,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use scenethesis_agents::Plan;
-use scenethesis_correspondence::Mask;
+use scenethesis_imagery::Mask;
 use scenethesis_models::{
     BoxPrompt, ChatModel, ChatRequest, ImageData, JsonSchema, Message, Segmenter,
 };
@@ -265,19 +265,17 @@ pub fn masks_from_boxes(
                 boxes.len()
             ));
         }
-        for (b, m) in boxes.iter().zip(masks) {
-            if (m.width, m.height) != (width, height) {
+        for (b, s) in boxes.iter().zip(masks) {
+            if (s.mask.width(), s.mask.height()) != (width, height) {
                 return Err(format!(
                     "{}: the mask of `{}` is {} × {} pixels; expected the image's {width} × {height}",
                     segmenter.name(),
                     b.id,
-                    m.width,
-                    m.height
+                    s.mask.width(),
+                    s.mask.height()
                 ));
             }
-            let mask = Mask::from_flags(width, height, m.pixels)
-                .map_err(|e| format!("{}: the mask of `{}`: {e}", segmenter.name(), b.id))?;
-            out.insert(b.id.clone(), mask);
+            out.insert(b.id.clone(), s.mask);
         }
         return Ok(out);
     }

@@ -7,16 +7,17 @@ use scenethesis_agents::{
     room_architecture, AssetLookup, DroppedObject, Guide, GuideError, GuidedLayout, Plan,
     WalkwayReport,
 };
-use scenethesis_correspondence::{DepthMap, Guidance, Mask, RgbImage};
+use scenethesis_imagery::{
+    Camera, DepthMap, Guidance, Intrinsics, Mask, RgbImage, DEFAULT_VERTICAL_FOV,
+};
 use scenethesis_models::{
     ChatModel, DepthEstimator, ImageData, ImageEditRequest, ImageGenerator, Segmenter,
 };
-use scenethesis_scene_graph::AssetInfo;
-use scenethesis_scene_graph::{Architecture, Camera, Intrinsics, Material, Mesh, Scene};
+use scenethesis_scene_graph::{Architecture, AssetInfo, Material, Mesh, Scene};
 use scenethesis_vision::{lift_scene, LiftOptions};
 
 use crate::assemble::build_scene;
-use crate::camera::{estimate_from_floor, DEFAULT_VERTICAL_FOV};
+use crate::camera::estimate_from_floor;
 use crate::detect::{ask_boxes, masks_from_boxes, match_labels};
 use crate::relations::ask_supports;
 use scenethesis_render_api::{render_view, RendererError, SceneRenderer, ViewKind, ViewRequest};
@@ -283,15 +284,6 @@ pub fn edit_prompt(plan: &Plan) -> String {
     )
 }
 
-fn to_model_intrinsics(k: &Intrinsics) -> scenethesis_models::Intrinsics {
-    scenethesis_models::Intrinsics {
-        fx: k.fx as f32,
-        fy: k.fy as f32,
-        cx: k.cx as f32,
-        cy: k.cy as f32,
-    }
-}
-
 /// Drops box-mask pixels whose depth puts them on the room's structure: the floor (unless the
 /// object is itself flat, under 10 cm) or behind a wall's inner face. Used only for masks that
 /// are plain boxes.
@@ -359,22 +351,21 @@ impl Guide for VisionGuide {
         let depth = match (given_depth, &self.depth) {
             (Some(d), _) => Some(d),
             (None, Some(model)) => {
-                let k = camera.map(|c| to_model_intrinsics(&c.intrinsics));
                 let d = model
-                    .estimate(&image_data, k)
-                    .map_err(|e| provider(model.name(), e.to_string()))?;
-                if (d.width, d.height) != (w, h) {
+                    .estimate(&image_data, camera.map(|c| c.intrinsics))
+                    .map_err(|e| provider(model.name(), e.to_string()))?
+                    .depth;
+                if (d.width(), d.height()) != (w, h) {
                     return Err(provider(
                         model.name(),
                         format!(
                             "the depth map is {} × {}; expected the guidance image's {w} × {h}",
-                            d.width, d.height
+                            d.width(),
+                            d.height()
                         ),
                     ));
                 }
-                let depth = DepthMap::new(w, h, d.metres.clone())
-                    .map_err(|e| provider(model.name(), e.to_string()))?;
-                Some(depth)
+                Some(d)
             }
             (None, None) => None,
         };

@@ -8,7 +8,7 @@
 //! from a file, a depth model or nobody (single-view metrology under the known camera), lifts
 //! every mask to a gravity-aligned box with `scenethesis-vision` and assembles the scene graph
 //! (ground → anchor → parents → children) with 5-DoF poses of the retrieved assets. It hands the
-//! optimizer what it saw ([`scenethesis_correspondence::Guidance`]) through
+//! optimizer what it saw ([`scenethesis_imagery::Guidance`]) through
 //! [`scenethesis_agents::GuidedLayout::guidance`].
 //!
 //! Models are reached only through the provider traits of `scenethesis-models`; the empty

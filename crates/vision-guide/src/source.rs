@@ -6,8 +6,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
-use scenethesis_correspondence::{DepthMap, Mask, RgbImage};
-use scenethesis_scene_graph::Camera;
+use scenethesis_imagery::{Camera, DepthMap, Mask, RgbImage};
 use scenethesis_vision::files::{self, FileError, Labels};
 
 /// Why given guidance files cannot be used. Every variant names the file at fault and what was
@@ -70,7 +69,7 @@ pub struct GuidanceFiles {
     pub labels: Option<PathBuf>,
     /// Metric depth: `.npy` float32 metres, or a 16-bit PNG in millimetres.
     pub depth: Option<PathBuf>,
-    /// `camera.json` (the serde form of `scenethesis_scene_graph::Camera`).
+    /// `camera.json` (the serde form of `scenethesis_imagery::Camera`).
     pub camera: Option<PathBuf>,
 }
 

@@ -4,7 +4,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 use nalgebra::{Point3, Vector3};
-use scenethesis_scene_graph::{Camera, Intrinsics};
+use scenethesis_imagery::{Camera, Intrinsics};
 use scenethesis_vision::files::write_npy;
 use scenethesis_vision_guide::{GivenGuidance, GuidanceFiles};
 

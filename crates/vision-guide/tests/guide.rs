@@ -9,9 +9,9 @@ use scenethesis_agents::{
     AssetLookup, CatalogAssets, Guide, KnowledgePlanner, Plan, PlanRequest, Planner,
     ProceduralGuide,
 };
-use scenethesis_correspondence::{DepthMap, Mask, RgbImage};
+use scenethesis_imagery::{Camera, DepthMap, Intrinsics, Mask, RgbImage};
 use scenethesis_models::{ChatModel, ChatRequest, ChatResponse, ProviderError, TokenUsage};
-use scenethesis_scene_graph::{Camera, Intrinsics, ParentRef, Scene};
+use scenethesis_scene_graph::{ParentRef, Scene};
 use scenethesis_vision::files::{Label, Labels};
 use scenethesis_vision_guide::{GivenGuidance, GuidanceFiles, VisionGuide};
 
@@ -330,7 +330,7 @@ impl scenethesis_models::Segmenter for TrueMasks {
         &self,
         image: &scenethesis_models::ImageData,
         boxes: &[scenethesis_models::BoxPrompt],
-    ) -> Result<Vec<scenethesis_models::Mask>, ProviderError> {
+    ) -> Result<Vec<scenethesis_models::Segment>, ProviderError> {
         assert!(
             image.bytes.starts_with(b"\x89PNG"),
             "the segmenter gets the image"
@@ -340,11 +340,10 @@ impl scenethesis_models::Segmenter for TrueMasks {
             .map(|b| {
                 let m = &self.0[&b.label];
                 let (w, h) = if self.1 { (W / 2, H) } else { (W, H) };
-                scenethesis_models::Mask {
+                scenethesis_models::Segment {
                     label: b.label.clone(),
-                    width: w,
-                    height: h,
-                    pixels: m.to_flags()[..(w * h) as usize].to_vec(),
+                    mask: Mask::from_flags(w, h, m.to_flags()[..(w * h) as usize].to_vec())
+                        .unwrap(),
                     score: 0.9,
                 }
             })
@@ -362,13 +361,11 @@ impl scenethesis_models::DepthEstimator for CastDepth {
     fn estimate(
         &self,
         _image: &scenethesis_models::ImageData,
-        intrinsics: Option<scenethesis_models::Intrinsics>,
-    ) -> Result<scenethesis_models::DepthMap, ProviderError> {
+        intrinsics: Option<scenethesis_imagery::Intrinsics>,
+    ) -> Result<scenethesis_models::DepthEstimate, ProviderError> {
         let k = intrinsics.expect("the known camera's intrinsics are passed on");
-        Ok(scenethesis_models::DepthMap {
-            width: self.0.width(),
-            height: self.0.height(),
-            metres: self.0.values().to_vec(),
+        Ok(scenethesis_models::DepthEstimate {
+            depth: self.0.clone(),
             intrinsics: k,
         })
     }

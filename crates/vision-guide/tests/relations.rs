@@ -62,7 +62,7 @@ fn the_models_answer_flips_an_ambiguous_support_and_not_a_clear_one() {
     config.timeout = Duration::from_secs(5);
     config.max_attempts = 1;
     let vlm = OpenAiClient::new(config).unwrap().vlm().unwrap();
-    let img = scenethesis_correspondence::RgbImage::new(4, 4, vec![90; 48]).unwrap();
+    let img = scenethesis_imagery::RgbImage::new(4, 4, vec![90; 48]).unwrap();
     let image = ImageData::from_bytes(img.to_png(), "png").unwrap();
     let ids = ["cabinet_0", "frame_0", "lamp_0", "table_0"];
     let objects = [

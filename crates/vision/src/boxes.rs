@@ -23,9 +23,9 @@ use crate::points::{
 use crate::support::{
     infer_supports_within, mount_on_walls, wall_offset, SupportGuess, SupportKind, MOUNT_WALL_REACH,
 };
-use crate::{Guidance, LiftError};
-use scenethesis_correspondence::{DepthMap, Mask};
-use scenethesis_scene_graph::{Camera, Wall};
+use crate::LiftError;
+use scenethesis_imagery::{Camera, DepthMap, Guidance, Mask};
+use scenethesis_scene_graph::Wall;
 
 /// Tuning of the lift. The defaults suit indoor scenes seen from a person's height.
 #[derive(Debug, Clone, PartialEq)]
@@ -937,8 +937,7 @@ mod tests {
     /// far wall at z = −6, every depth off by 2 % Gaussian noise (a fixed generator), and the
     /// block's mask dilated by 2 px so it bleeds onto the floor and the wall behind.
     fn bleeding_block() -> (Guidance, Point3<f64>) {
-        use scenethesis_correspondence::RgbImage;
-        use scenethesis_scene_graph::Intrinsics;
+        use scenethesis_imagery::{Intrinsics, RgbImage};
         let (w, h) = (320u32, 240u32);
         let k = Intrinsics::from_vertical_fov(w, h, 1.0);
         let camera = Camera::look_at(

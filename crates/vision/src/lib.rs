@@ -15,13 +15,12 @@
 //!    [`cross_check`] reconciles them with the relations a vision-language model states.
 //!
 //! Everything here is deterministic and free of GPU, HTTP and model runtimes; the model-backed
-//! pieces (segmentation, monocular depth) produce the [`Guidance`] this crate reads.
+//! pieces (segmentation, monocular depth) produce the [`Guidance`](scenethesis_imagery::Guidance) this crate reads.
 //!
 //! ```
 //! use nalgebra::{Point3, Vector3};
-//! use scenethesis_scene_graph::{Camera, Intrinsics};
+//! use scenethesis_imagery::{Camera, DepthMap, Guidance, Intrinsics, Mask, RgbImage};
 //! use scenethesis_vision::{lift_scene, LiftOptions};
-//! use scenethesis_correspondence::{DepthMap, Guidance, Mask, RgbImage};
 //! use std::collections::BTreeMap;
 //!
 //! // A camera 1.6 m up, looking at the floor point (0, 0, -3).
@@ -62,5 +61,3 @@ pub use support::{
     infer_supports, infer_supports_within, mount_on_walls, SupportGuess, SupportKind,
     MOUNT_MIN_BOTTOM, MOUNT_WALL_REACH,
 };
-
-pub use scenethesis_correspondence::Guidance;

@@ -9,8 +9,7 @@
 use std::collections::BTreeMap;
 
 use nalgebra::{Point2, Point3, Vector3};
-use scenethesis_correspondence::Mask;
-use scenethesis_scene_graph::Camera;
+use scenethesis_imagery::{Camera, Mask};
 
 use crate::points::median;
 use crate::LiftError;

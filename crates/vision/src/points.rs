@@ -7,8 +7,7 @@
 use std::collections::{BTreeMap, BTreeSet, VecDeque};
 
 use nalgebra::{Point2, Point3};
-use scenethesis_correspondence::{DepthMap, Mask};
-use scenethesis_scene_graph::Camera;
+use scenethesis_imagery::{Camera, DepthMap, Mask};
 
 /// The world points seen through `mask`, one per pixel with a valid depth, in row order.
 ///

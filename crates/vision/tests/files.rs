@@ -4,8 +4,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use nalgebra::{Point3, Vector3};
-use scenethesis_correspondence::{DepthMap, Guidance, Mask, RgbImage};
-use scenethesis_scene_graph::{Camera, Intrinsics};
+use scenethesis_imagery::{Camera, DepthMap, Guidance, Intrinsics, Mask, RgbImage};
 use scenethesis_vision::files::{encode_guidance, read_guidance, write_npy, GuidancePaths, Label};
 
 fn sample() -> (Guidance, BTreeMap<u16, Label>) {

@@ -3,8 +3,7 @@
 use std::collections::BTreeMap;
 
 use nalgebra::{Point2, Point3, Rotation3, Vector3};
-use scenethesis_correspondence::{DepthMap, Guidance, Mask, RgbImage};
-use scenethesis_scene_graph::{Camera, Intrinsics};
+use scenethesis_imagery::{Camera, DepthMap, Guidance, Intrinsics, Mask, RgbImage};
 use scenethesis_vision::{lift_scene, LiftError, LiftOptions, SupportKind};
 
 struct TrueBox {
@@ -102,8 +101,7 @@ fn priors(boxes: &[TrueBox]) -> BTreeMap<String, Vector3<f64>> {
 
 /// Yaw difference modulo 180° (a box's front is ambiguous), in degrees.
 fn yaw_error(a: f64, b: f64) -> f64 {
-    let d = (a - b).rem_euclid(std::f64::consts::PI);
-    d.min(std::f64::consts::PI - d).to_degrees()
+    scenethesis_scene_graph::yaw_distance_modulo(a, b, std::f64::consts::PI).to_degrees()
 }
 
 #[test]

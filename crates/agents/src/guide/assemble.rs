@@ -6,11 +6,12 @@
 use std::collections::BTreeMap;
 
 use nalgebra::Vector3;
-use scenethesis_scene_graph::AssetInfo;
-use scenethesis_scene_graph::{Aabb, ParentRef, Pose, Relation, RelationKind, Scene, SceneObject};
+use scenethesis_scene_graph::{
+    wrap_yaw, AssetInfo, Aabb, ParentRef, Pose, Relation, RelationKind, Scene, SceneObject,
+};
 
 use super::room::Room;
-use super::shared::{wrap, WALL_MOUNT_HEIGHT};
+use super::shared::WALL_MOUNT_HEIGHT;
 use super::walkway::FloorState;
 use crate::plan::Plan;
 
@@ -40,7 +41,7 @@ pub(super) fn ground_poses(
         };
         poses.insert(
             p.plan_index,
-            Pose::new(1.0, wrap(p.fp.yaw), Vector3::new(p.fp.cx, y, p.fp.cz)),
+            Pose::new(1.0, wrap_yaw(p.fp.yaw), Vector3::new(p.fp.cx, y, p.fp.cz)),
         );
         if let Some(w) = &p.wall {
             let contact = if p.mounted {

@@ -70,7 +70,7 @@ pub struct GuidedLayout {
     /// What the guide saw, for the optimizer to align the assets to (camera, image, optional
     /// depth, per-object masks). Guides that read no image (the [`ProceduralGuide`]) give
     /// `None`, and the pipeline then optimizes without alignment terms.
-    pub guidance: Option<scenethesis_correspondence::Guidance>,
+    pub guidance: Option<scenethesis_imagery::Guidance>,
     /// What the guide wants said in the run's report (e.g. where a model's answer and the
     /// geometry disagreed, and which was kept).
     pub notes: Vec<String>,

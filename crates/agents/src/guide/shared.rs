@@ -1,7 +1,6 @@
 //! Facts every phase of the procedural guide shares: the door and wall-mount dimensions, a
-//! floor object once placed, yaw wrapping and the target a relative placement is made against.
-
-use std::f64::consts::PI;
+//! floor object once placed and the target a relative placement is made against (yaws are
+//! wrapped by `scenethesis_scene_graph::wrap_yaw`).
 
 use scenethesis_scene_graph::RelationKind;
 
@@ -50,18 +49,6 @@ impl Placed {
             ..self
         }
     }
-}
-
-/// `yaw` wrapped into (-π, π].
-pub(super) fn wrap(yaw: f64) -> f64 {
-    let mut y = yaw % (2.0 * PI);
-    if y > PI {
-        y -= 2.0 * PI;
-    }
-    if y <= -PI {
-        y += 2.0 * PI;
-    }
-    y
 }
 
 /// The object a relative placement positions against (the first positional relation).

@@ -5,7 +5,8 @@
 
 use std::collections::BTreeMap;
 
-use scenethesis_correspondence::{Guidance, Matcher};
+use scenethesis_correspondence::Matcher;
+use scenethesis_imagery::Guidance;
 use scenethesis_physics_opt::{GuidedSettings, PoseAlignment};
 use scenethesis_scene_graph::Scene;
 

@@ -3,7 +3,7 @@
 use std::collections::BTreeMap;
 
 use scenethesis_agents::{DroppedObject, Plan};
-use scenethesis_correspondence::Guidance;
+use scenethesis_imagery::Guidance;
 use scenethesis_physics_opt::Placement;
 use scenethesis_scene_graph::{Mesh, Scene};
 
@@ -21,7 +21,7 @@ pub(crate) struct Attempt {
     /// The guide's notes for the report.
     pub(crate) guide_notes: Vec<String>,
     /// What the guide saw (vision guides), handed on to the result.
-    pub(crate) guidance: Option<scenethesis_correspondence::Guidance>,
+    pub(crate) guidance: Option<scenethesis_imagery::Guidance>,
     pub(crate) round: usize,
 }
 

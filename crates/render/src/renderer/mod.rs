@@ -12,7 +12,8 @@ use std::ops::Range;
 
 use bytemuck::{Pod, Zeroable};
 use nalgebra::Matrix4;
-use scenethesis_scene_graph::{Aabb, Camera};
+use scenethesis_imagery::Camera;
+use scenethesis_scene_graph::Aabb;
 use wgpu::util::DeviceExt;
 
 use crate::geometry::WallRange;

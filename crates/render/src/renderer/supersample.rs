@@ -2,7 +2,7 @@
 //! linear light.
 
 use image::RgbaImage;
-use scenethesis_scene_graph::Camera;
+use scenethesis_imagery::Camera;
 
 use super::{PreparedScene, Renderer};
 use crate::RenderError;

@@ -5,7 +5,7 @@ use std::sync::mpsc;
 
 use image::RgbaImage;
 use nalgebra::Vector3;
-use scenethesis_scene_graph::Camera;
+use scenethesis_imagery::{Camera, DepthMap};
 
 use super::{mat, palette, Globals, PreparedScene, Renderer, SUN_DIRECTION};
 use super::{COLOR_FORMAT, DEPTH_FORMAT, VALUE_FORMAT};
@@ -32,12 +32,17 @@ impl Renderer {
         self.queue.submit([encoder.finish()]);
         let [color, depth, instance] = targets.read_back(&self.device)?;
         let (width, height) = (targets.width, targets.height);
+        let depth = depth
+            .chunks_exact(4)
+            .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+            .collect();
+        // The depth target holds distances ≥ 0 (0 = background), so the map always builds.
+        let depth = DepthMap::new(width, height, depth).map_err(|e| {
+            RenderError::Readback(format!("the depth buffer read back malformed: {e}"))
+        })?;
         Ok(Frame {
             color: RgbaImage::from_raw(width, height, color).expect("4 bytes per pixel"),
-            depth: depth
-                .chunks_exact(4)
-                .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-                .collect(),
+            depth,
             instance: instance
                 .chunks_exact(4)
                 .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]))

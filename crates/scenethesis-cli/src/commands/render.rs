@@ -6,13 +6,13 @@ use std::str::FromStr;
 use std::sync::Arc;
 
 use anyhow::{Context, Result};
-use scenethesis_correspondence::encode_png;
+use scenethesis_imagery::{encode_png, Camera};
 use scenethesis_import::AssetResolver;
 use scenethesis_procedural::catalog;
 use scenethesis_render::{
     views, BackendChoice, Instance, PreparedScene, RenderScene, Renderer, RendererOptions,
 };
-use scenethesis_scene_graph::{write_file_atomic, Camera, Mesh, Scene};
+use scenethesis_scene_graph::{write_file_atomic, Mesh, Scene};
 
 /// An image size written `WIDTHxHEIGHT`, e.g. `800x600`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -140,7 +140,11 @@ fn write_view(
         let path = dir.join(format!("{name}_depth.npy"));
         write_file_atomic(
             &path,
-            &scenethesis_vision::files::write_npy(frame.width(), frame.height(), &frame.depth),
+            &scenethesis_vision::files::write_npy(
+                frame.width(),
+                frame.height(),
+                frame.depth.values(),
+            ),
         )
         .with_context(|| format!("cannot write {}", path.display()))?;
         println!("wrote {}", path.display());

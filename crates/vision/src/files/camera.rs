@@ -3,8 +3,8 @@
 use std::path::Path;
 
 use nalgebra::{Quaternion, UnitQuaternion};
+use scenethesis_imagery::Camera;
 use scenethesis_scene_graph::limits::MAX_COORDINATE;
-use scenethesis_scene_graph::Camera;
 
 use super::{check_image_size, invalid, read_bounded_to, FileError};
 #[cfg(doc)]
@@ -104,7 +104,7 @@ fn unit_rotation(q: &Quaternion<f64>) -> Result<UnitQuaternion<f64>, String> {
 mod tests {
     use super::*;
     use nalgebra::{Point3, Vector3};
-    use scenethesis_scene_graph::Intrinsics;
+    use scenethesis_imagery::Intrinsics;
 
     fn camera(w: u32, h: u32) -> Camera {
         Camera::look_at(

@@ -9,7 +9,7 @@ use std::fmt;
 use std::path::Path;
 
 use image::{ImageBuffer, Luma};
-use scenethesis_correspondence::Mask;
+use scenethesis_imagery::Mask;
 use scenethesis_scene_graph::{is_printable_id, limits::MAX_ID_BYTES, printable};
 use serde::de::{self, MapAccess, Visitor};
 use serde::{Deserialize, Deserializer};

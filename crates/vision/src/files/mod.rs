@@ -7,7 +7,7 @@
 //! | `depth.png` | the same as a 16-bit greyscale PNG in millimetres (`0` = unknown) |
 //! | `ids.png` | a 16-bit greyscale PNG of instance values, `0` = none |
 //! | `labels.json` | `{"VALUE": {"id": "sofa_0", "category": "sofa"}, …}` for every value used in `ids.png` |
-//! | `camera.json` | `scenethesis_scene_graph::Camera`: `{"intrinsics": {"width", "height", "fx", "fy", "cx", "cy"}, "position": [x, y, z], "rotation": [i, j, k, w]}` (world-from-camera; camera looks along its −Z, +Y up) |
+//! | `camera.json` | `scenethesis_imagery::Camera`: `{"intrinsics": {"width", "height", "fx", "fy", "cx", "cy"}, "position": [x, y, z], "rotation": [i, j, k, w]}` (world-from-camera; camera looks along its −Z, +Y up) |
 //!
 //! Every reader treats its file as hostile: sizes are bounded ([`MAX_FILE_BYTES`],
 //! [`MAX_SIDE`]), values are checked, and errors name the file and what was expected.
@@ -18,7 +18,7 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 
 use image::{ImageBuffer, Luma};
-use scenethesis_correspondence::{encode_png, DepthMap, Guidance, GuidanceError, RgbImage};
+use scenethesis_imagery::{encode_png, DepthMap, Guidance, GuidanceError, RgbImage};
 use serde::{Deserialize, Serialize};
 
 /// Largest guidance file read, in bytes (512 MiB).

@@ -1,10 +1,11 @@
-//! The guidance data a vision guide hands the optimizer: camera, colour image, optional metric
-//! depth and one instance mask per object.
+//! The colour image, the metric depth map and the guidance data a vision guide hands the
+//! optimizer: camera, colour image, optional metric depth and one instance mask per object.
 
 use std::collections::BTreeMap;
 
-use scenethesis_scene_graph::Camera;
+use serde::{Deserialize, Serialize};
 
+use crate::camera::Camera;
 use crate::error::GuidanceError;
 use crate::mask::Mask;
 
@@ -75,7 +76,7 @@ impl RgbImage {
     /// The image as PNG file bytes (8-bit RGB).
     ///
     /// ```
-    /// use scenethesis_correspondence::RgbImage;
+    /// use scenethesis_imagery::RgbImage;
     /// let red = RgbImage::new(2, 1, vec![255, 0, 0, 255, 0, 0]).unwrap();
     /// assert_eq!(&red.to_png()[1..4], b"PNG");
     /// ```
@@ -92,7 +93,7 @@ impl RgbImage {
     /// The colour channels of an RGBA image (alpha dropped), e.g. a render's opaque colour.
     ///
     /// ```
-    /// use scenethesis_correspondence::RgbImage;
+    /// use scenethesis_imagery::RgbImage;
     /// let rgba = image::RgbaImage::from_pixel(2, 1, image::Rgba([10, 20, 30, 255]));
     /// assert_eq!(RgbImage::from_rgba(&rgba).get(1, 0), Some([10, 20, 30]));
     /// ```
@@ -110,11 +111,45 @@ impl RgbImage {
 
 /// Metric depth along the camera's optical axis (its −Z), in metres, rows top to bottom.
 /// `NaN` or `0` marks an unknown pixel.
-#[derive(Debug, Clone, PartialEq)]
+///
+/// In JSON (a depth model's recorded answer) it is `{"width", "height", "metres"}` with `0`
+/// for every unknown pixel, since JSON holds no `NaN`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(into = "DepthRecord", try_from = "DepthRecord")]
 pub struct DepthMap {
     width: u32,
     height: u32,
     data: Vec<f32>,
+}
+
+/// A [`DepthMap`] as written to JSON.
+#[derive(Serialize, Deserialize)]
+struct DepthRecord {
+    width: u32,
+    height: u32,
+    metres: Vec<f32>,
+}
+
+impl From<DepthMap> for DepthRecord {
+    fn from(d: DepthMap) -> Self {
+        Self {
+            width: d.width,
+            height: d.height,
+            metres: d
+                .data
+                .into_iter()
+                .map(|v| if v.is_nan() { 0.0 } else { v })
+                .collect(),
+        }
+    }
+}
+
+impl TryFrom<DepthRecord> for DepthMap {
+    type Error = GuidanceError;
+
+    fn try_from(r: DepthRecord) -> Result<Self, GuidanceError> {
+        DepthMap::new(r.width, r.height, r.metres)
+    }
 }
 
 impl DepthMap {
@@ -237,8 +272,8 @@ impl Guidance {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::camera::Intrinsics;
     use nalgebra::{Point3, Vector3};
-    use scenethesis_scene_graph::Intrinsics;
 
     fn camera(w: u32, h: u32) -> Camera {
         Camera::look_at(
@@ -275,6 +310,18 @@ mod tests {
             (None, None, Some(1.5))
         );
         assert_eq!(d.get(3, 0), None);
+    }
+
+    #[test]
+    fn depth_round_trips_through_json_with_unknown_as_zero() {
+        let d = DepthMap::new(3, 1, vec![f32::NAN, 0.0, 1.5]).unwrap();
+        let json = serde_json::to_string(&d).unwrap();
+        assert_eq!(json, r#"{"width":3,"height":1,"metres":[0.0,0.0,1.5]}"#);
+        let back: DepthMap = serde_json::from_str(&json).unwrap();
+        assert_eq!((back.get(0, 0), back.get(2, 0)), (None, Some(1.5)));
+        assert!(
+            serde_json::from_str::<DepthMap>(r#"{"width":2,"height":1,"metres":[1.0]}"#).is_err()
+        );
     }
 
     #[test]

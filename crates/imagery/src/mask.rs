@@ -4,6 +4,8 @@
 //! its pixels (scattered ones), whichever is smaller, so its memory is bounded by the pixels it
 //! holds (at most 8 bytes each, plus a constant) and never by the image's size alone.
 
+use serde::{Deserialize, Serialize};
+
 use crate::error::GuidanceError;
 
 /// A pixel window `(x0, y0, x1, y1)` with exclusive ends.
@@ -22,11 +24,41 @@ enum Store {
 /// Its memory grows with the pixels it holds (a bit window around them, or a pixel list when
 /// they are scattered), not with the image: an empty mask of an 8192 × 8192 image costs a few
 /// bytes.
-#[derive(Debug, Clone)]
+///
+/// In JSON (a segmenter's recorded answer) it is `{"width", "height", "pixels"}` with one
+/// `true`/`false` per pixel, row-major.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(into = "MaskRecord", try_from = "MaskRecord")]
 pub struct Mask {
     width: u32,
     height: u32,
     store: Store,
+}
+
+/// A [`Mask`] as written to JSON.
+#[derive(Serialize, Deserialize)]
+struct MaskRecord {
+    width: u32,
+    height: u32,
+    pixels: Vec<bool>,
+}
+
+impl From<Mask> for MaskRecord {
+    fn from(m: Mask) -> Self {
+        Self {
+            width: m.width,
+            height: m.height,
+            pixels: m.to_flags(),
+        }
+    }
+}
+
+impl TryFrom<MaskRecord> for Mask {
+    type Error = GuidanceError;
+
+    fn try_from(r: MaskRecord) -> Result<Self, GuidanceError> {
+        Mask::from_flags(r.width, r.height, r.pixels)
+    }
 }
 
 fn window_area(w: &Window) -> u64 {
@@ -348,6 +380,19 @@ mod tests {
         assert_eq!(block, same);
         assert_ne!(far, same);
         assert_eq!(far.to_flags().iter().filter(|&&f| f).count(), 2);
+    }
+
+    #[test]
+    fn a_mask_round_trips_through_json_as_flags() {
+        let mut m = Mask::new(3, 2);
+        m.set(2, 1, true);
+        let json = serde_json::to_string(&m).unwrap();
+        assert_eq!(
+            json,
+            r#"{"width":3,"height":2,"pixels":[false,false,false,false,false,true]}"#
+        );
+        assert_eq!(serde_json::from_str::<Mask>(&json).unwrap(), m);
+        assert!(serde_json::from_str::<Mask>(r#"{"width":3,"height":2,"pixels":[true]}"#).is_err());
     }
 
     #[test]

@@ -1,5 +1,11 @@
+//! The pinhole camera: intrinsics in pixels, the pose in the world, projection and its inverse.
+
 use nalgebra::{Matrix3, Matrix4, Point2, Point3, Rotation3, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
+
+/// Vertical field of view of the renderer's view presets and of a guidance image that comes
+/// without intrinsics (radians; 50°).
+pub const DEFAULT_VERTICAL_FOV: f64 = 50.0 * std::f64::consts::PI / 180.0;
 
 /// Pinhole intrinsics in pixels. Pixel (0, 0) is the top-left corner of the image; the centre
 /// of the top-left pixel is (0.5, 0.5); `u` grows to the right and `v` downward.

@@ -11,7 +11,7 @@ use image::{EncodableLayout, ImageBuffer, ImageFormat, PixelWithColorType};
 /// bytes wherever they are encoded.
 ///
 /// ```
-/// use scenethesis_correspondence::encode_png;
+/// use scenethesis_imagery::encode_png;
 /// let grey = image::GrayImage::from_pixel(3, 2, image::Luma([128]));
 /// let bytes = encode_png(&grey).unwrap();
 /// assert_eq!(&bytes[1..4], b"PNG");

@@ -1,4 +1,4 @@
-//! The error of inconsistent guidance data, shared by the guidance and its masks.
+//! The error of inconsistent image data: buffer sizes, image sizes against the camera, depth values.
 
 /// Why guidance data is inconsistent.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
