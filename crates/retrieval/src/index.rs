@@ -3,8 +3,8 @@
 use std::collections::BTreeMap;
 use std::fmt;
 
-use scenethesis_procedural::catalog;
 use scenethesis_models::{ProviderError, TextEmbedder};
+use scenethesis_procedural::catalog;
 use scenethesis_scene_graph::AssetRef;
 use scenethesis_scene_graph::{AssetInfo, Placement};
 

@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 
 use nalgebra::Vector3;
 use scenethesis_scene_graph::{
-    wrap_yaw, AssetInfo, Aabb, ParentRef, Pose, Relation, RelationKind, Scene, SceneObject,
+    wrap_yaw, Aabb, AssetInfo, ParentRef, Pose, Relation, RelationKind, Scene, SceneObject,
 };
 
 use super::room::Room;
