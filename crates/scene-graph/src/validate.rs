@@ -6,7 +6,8 @@ use crate::limits::{
     MAX_SCALE, MAX_WALLS, MAX_WALL_HEIGHT, MAX_WALL_THICKNESS, MAX_YAW, MIN_SCALE,
 };
 use crate::{
-    Aabb, Architecture, AssetRef, ParentRef, RelationKind, Scene, FORMAT_VERSION, GROUND_ID,
+    Aabb, Architecture, AssetRef, DoorOpening, Floor, ParentRef, Pose, RelationKind, Scene,
+    SceneObject, Wall, FORMAT_VERSION, GROUND_ID,
 };
 
 /// `text` safe to print on a terminal or write into a log line: control characters (escape
@@ -318,285 +319,327 @@ impl Scene {
 
     fn check_architecture(&self, errors: &mut Vec<ValidationError>) {
         let arch = &self.architecture;
-        let floor = &arch.floor;
-        if !(floor
-            .min
-            .iter()
-            .chain(floor.max.iter())
-            .all(|v| v.is_finite()))
-        {
-            errors.push(non_finite(&floor.id, "min/max"));
-        } else if let Some(v) = floor
-            .min
-            .iter()
-            .chain(floor.max.iter())
-            .find(|v| v.abs() > MAX_COORDINATE)
-        {
-            errors.push(out_of_range(
-                &floor.id,
-                "min/max",
-                *v,
-                "coordinates within ±1000 m (limits::MAX_COORDINATE)",
-            ));
-        } else {
-            let e = floor.extent();
-            for (v, field) in [(e.x, "max.x - min.x"), (e.y, "max.z - min.z")] {
-                if v <= 0.0 {
-                    errors.push(out_of_range(&floor.id, field, v, "a positive floor size"));
-                }
-            }
-        }
+        check_floor(&arch.floor, errors);
         for wall in &arch.walls {
-            let numbers = [
-                wall.start.x,
-                wall.start.y,
-                wall.end.x,
-                wall.end.y,
-                wall.height,
-                wall.thickness,
-            ];
-            if !numbers.iter().all(|v| v.is_finite()) {
-                errors.push(non_finite(&wall.id, "start/end/height/thickness"));
-                continue;
-            }
-            if let Some(v) = numbers[..4].iter().find(|v| v.abs() > MAX_COORDINATE) {
-                errors.push(out_of_range(
-                    &wall.id,
-                    "start/end",
-                    *v,
-                    "coordinates within ±1000 m (limits::MAX_COORDINATE)",
-                ));
-            }
-            if wall.height > MAX_WALL_HEIGHT {
-                errors.push(out_of_range(
-                    &wall.id,
-                    "height",
-                    wall.height,
-                    "at most 100 m (limits::MAX_WALL_HEIGHT)",
-                ));
-            }
-            if wall.thickness > MAX_WALL_THICKNESS {
-                errors.push(out_of_range(
-                    &wall.id,
-                    "thickness",
-                    wall.thickness,
-                    "at most 10 m (limits::MAX_WALL_THICKNESS)",
-                ));
-            }
-            if wall.length() <= 0.0 {
-                errors.push(out_of_range(
-                    &wall.id,
-                    "end",
-                    wall.length(),
-                    "an end point different from start",
-                ));
-            }
-            if wall.height <= 0.0 {
-                errors.push(out_of_range(
-                    &wall.id,
-                    "height",
-                    wall.height,
-                    "a positive height",
-                ));
-            }
-            if wall.thickness <= 0.0 {
-                errors.push(out_of_range(
-                    &wall.id,
-                    "thickness",
-                    wall.thickness,
-                    "a positive thickness",
-                ));
-            }
+            check_wall(wall, errors);
         }
         for door in &arch.doors {
-            if ![door.offset, door.width, door.height]
-                .iter()
-                .all(|v| v.is_finite())
-            {
-                errors.push(non_finite(&door.id, "offset/width/height"));
-                continue;
-            }
-            if door.height > MAX_WALL_HEIGHT {
-                errors.push(out_of_range(
-                    &door.id,
-                    "height",
-                    door.height,
-                    "at most 100 m (limits::MAX_WALL_HEIGHT)",
-                ));
-            }
-            if door.width <= 0.0 {
-                errors.push(out_of_range(
-                    &door.id,
-                    "width",
-                    door.width,
-                    "a positive width",
-                ));
-            }
-            if door.height <= 0.0 {
-                errors.push(out_of_range(
-                    &door.id,
-                    "height",
-                    door.height,
-                    "a positive height",
-                ));
-            }
-            match arch.wall(&door.wall) {
-                None => errors.push(ValidationError::UnknownDoorWall {
-                    door: door.id.clone(),
-                    wall: door.wall.clone(),
-                }),
-                Some(wall) => {
-                    let half = door.width / 2.0;
-                    if door.offset - half < 0.0 || door.offset + half > wall.length() {
-                        errors.push(out_of_range(
-                            &door.id,
-                            "offset",
-                            door.offset,
-                            "an opening that lies within its wall's length",
-                        ));
-                    }
-                }
-            }
+            check_door(arch, door, errors);
         }
     }
 
     fn check_objects(&self, errors: &mut Vec<ValidationError>) {
-        let arch = &self.architecture;
         for object in &self.objects {
             let id = &*printable(&object.id);
-            let pose = &object.pose;
-            for (field, value) in
-                [("category", object.category.as_str())]
-                    .into_iter()
-                    .chain(match &object.asset {
-                        AssetRef::Procedural { generator, .. } => {
-                            Some(("asset.generator", generator.as_str()))
-                        }
-                        AssetRef::Imported { id, .. } => Some(("asset.id", id.as_str())),
-                    })
-            {
-                if !is_printable_id(value) {
-                    errors.push(ValidationError::UnprintableId {
-                        owner: format!("object `{id}`"),
-                        field,
-                        shown: shorten(value),
+            check_object_names(object, id, errors);
+            check_pose(&object.pose, id, errors);
+            check_local_bounds(object, id, errors);
+            self.check_parent(object, id, errors);
+            self.check_relation_targets(object, id, errors);
+        }
+    }
+
+    /// A wall parent is a wall of the architecture and holds the object `mounted`; a mounted
+    /// object hangs on a wall.
+    fn check_parent(&self, object: &SceneObject, id: &str, errors: &mut Vec<ValidationError>) {
+        let arch = &self.architecture;
+        match &object.parent {
+            ParentRef::Wall(wall) => {
+                if arch.wall(wall).is_none() {
+                    errors.push(ValidationError::UnknownParent {
+                        id: id.to_owned(),
+                        parent: shorten(wall),
+                    });
+                } else if object.support != RelationKind::Mounted {
+                    errors.push(ValidationError::WallParentNotMounted {
+                        id: id.to_owned(),
+                        wall: shorten(wall),
+                        support: object.support.to_string(),
                     });
                 }
             }
-            if let AssetRef::Imported { path, .. } = &object.asset {
-                if path.is_empty() || path.chars().any(needs_escape) || path.len() > 4096 {
-                    errors.push(ValidationError::UnprintableId {
-                        owner: format!("object `{id}`"),
-                        field: "asset.path",
-                        shown: shorten(path),
-                    });
-                }
-            }
-            if !pose.scale.is_finite() {
-                errors.push(non_finite(id, "pose.scale"));
-            } else if pose.scale <= 0.0 {
-                errors.push(ValidationError::NonPositiveScale {
+            parent if object.support == RelationKind::Mounted => {
+                errors.push(ValidationError::MountedOffWall {
                     id: id.to_owned(),
-                    scale: pose.scale,
+                    parent: shorten(parent.as_str()),
                 });
-            } else if !(MIN_SCALE..=MAX_SCALE).contains(&pose.scale) {
-                errors.push(out_of_range(
-                    id,
-                    "pose.scale",
-                    pose.scale,
-                    "a scale from 0.01 to 10 (limits::MIN_SCALE..=MAX_SCALE)",
-                ));
             }
-            if !pose.yaw.is_finite() {
-                errors.push(non_finite(id, "pose.yaw"));
-            } else if pose.yaw.abs() > MAX_YAW {
-                errors.push(out_of_range(
-                    id,
-                    "pose.yaw",
-                    pose.yaw,
-                    "an angle within ±1000 rad (limits::MAX_YAW)",
-                ));
-            }
-            if !pose.translation.iter().all(|v| v.is_finite()) {
-                errors.push(non_finite(id, "pose.translation"));
-            } else if let Some(v) = pose.translation.iter().find(|v| v.abs() > MAX_COORDINATE) {
-                errors.push(out_of_range(
-                    id,
-                    "pose.translation",
-                    *v,
-                    "coordinates within ±1000 m (limits::MAX_COORDINATE)",
-                ));
-            }
-            if !bounds_finite(&object.local_bounds) {
-                errors.push(non_finite(id, "local_bounds"));
-            } else if !object.local_bounds.is_valid() {
-                errors.push(out_of_range(
-                    id,
-                    "local_bounds",
-                    (object.local_bounds.max - object.local_bounds.min).min(),
-                    "min <= max on every axis",
-                ));
-            } else if let Some(v) = object
-                .local_bounds
-                .min
-                .iter()
-                .chain(object.local_bounds.max.iter())
-                .find(|v| v.abs() > MAX_OBJECT_SIZE)
-            {
-                errors.push(out_of_range(
-                    id,
-                    "local_bounds",
-                    *v,
-                    "coordinates within ±50 m of the asset origin (limits::MAX_OBJECT_SIZE)",
-                ));
-            } else if (MIN_SCALE..=MAX_SCALE).contains(&pose.scale)
-                && (object.local_bounds.max - object.local_bounds.min).max() * pose.scale
-                    > MAX_OBJECT_SIZE
-            {
-                errors.push(out_of_range(
-                    id,
-                    "pose.scale",
-                    pose.scale,
-                    "a scaled size of at most 50 m on every axis (limits::MAX_OBJECT_SIZE)",
-                ));
-            }
-            match &object.parent {
-                ParentRef::Wall(wall) => {
-                    if arch.wall(wall).is_none() {
-                        errors.push(ValidationError::UnknownParent {
-                            id: id.to_owned(),
-                            parent: shorten(wall),
-                        });
-                    } else if object.support != RelationKind::Mounted {
-                        errors.push(ValidationError::WallParentNotMounted {
-                            id: id.to_owned(),
-                            wall: shorten(wall),
-                            support: object.support.to_string(),
-                        });
-                    }
-                }
-                parent if object.support == RelationKind::Mounted => {
-                    errors.push(ValidationError::MountedOffWall {
-                        id: id.to_owned(),
-                        parent: shorten(parent.as_str()),
-                    });
-                }
-                _ => {}
-            }
-            for relation in &object.relations {
-                let t = relation.target.as_str();
-                let exists = t == GROUND_ID
-                    || self.object(t).is_some()
-                    || self.architecture.ids().any(|a| a == t);
-                if !exists {
-                    errors.push(ValidationError::MissingRelationTarget {
-                        id: id.to_owned(),
-                        kind: relation.kind.to_string(),
-                        target: shorten(t),
-                    });
-                }
+            _ => {}
+        }
+    }
+
+    /// Every relation names the ground, an object or a part of the architecture.
+    fn check_relation_targets(
+        &self,
+        object: &SceneObject,
+        id: &str,
+        errors: &mut Vec<ValidationError>,
+    ) {
+        for relation in &object.relations {
+            let t = relation.target.as_str();
+            let exists = t == GROUND_ID
+                || self.object(t).is_some()
+                || self.architecture.ids().any(|a| a == t);
+            if !exists {
+                errors.push(ValidationError::MissingRelationTarget {
+                    id: id.to_owned(),
+                    kind: relation.kind.to_string(),
+                    target: shorten(t),
+                });
             }
         }
+    }
+}
+
+/// The floor's numbers are finite, within ±[`MAX_COORDINATE`], and span a positive area.
+fn check_floor(floor: &Floor, errors: &mut Vec<ValidationError>) {
+    if !(floor
+        .min
+        .iter()
+        .chain(floor.max.iter())
+        .all(|v| v.is_finite()))
+    {
+        errors.push(non_finite(&floor.id, "min/max"));
+    } else if let Some(v) = floor
+        .min
+        .iter()
+        .chain(floor.max.iter())
+        .find(|v| v.abs() > MAX_COORDINATE)
+    {
+        errors.push(out_of_range(
+            &floor.id,
+            "min/max",
+            *v,
+            "coordinates within ±1000 m (limits::MAX_COORDINATE)",
+        ));
+    } else {
+        let e = floor.extent();
+        for (v, field) in [(e.x, "max.x - min.x"), (e.y, "max.z - min.z")] {
+            if v <= 0.0 {
+                errors.push(out_of_range(&floor.id, field, v, "a positive floor size"));
+            }
+        }
+    }
+}
+
+/// A wall's numbers are finite and within the limits, its length, height and thickness positive.
+fn check_wall(wall: &Wall, errors: &mut Vec<ValidationError>) {
+    let numbers = [
+        wall.start.x,
+        wall.start.y,
+        wall.end.x,
+        wall.end.y,
+        wall.height,
+        wall.thickness,
+    ];
+    if !numbers.iter().all(|v| v.is_finite()) {
+        errors.push(non_finite(&wall.id, "start/end/height/thickness"));
+        return;
+    }
+    if let Some(v) = numbers[..4].iter().find(|v| v.abs() > MAX_COORDINATE) {
+        errors.push(out_of_range(
+            &wall.id,
+            "start/end",
+            *v,
+            "coordinates within ±1000 m (limits::MAX_COORDINATE)",
+        ));
+    }
+    if wall.height > MAX_WALL_HEIGHT {
+        errors.push(out_of_range(
+            &wall.id,
+            "height",
+            wall.height,
+            "at most 100 m (limits::MAX_WALL_HEIGHT)",
+        ));
+    }
+    if wall.thickness > MAX_WALL_THICKNESS {
+        errors.push(out_of_range(
+            &wall.id,
+            "thickness",
+            wall.thickness,
+            "at most 10 m (limits::MAX_WALL_THICKNESS)",
+        ));
+    }
+    if wall.length() <= 0.0 {
+        errors.push(out_of_range(
+            &wall.id,
+            "end",
+            wall.length(),
+            "an end point different from start",
+        ));
+    }
+    if wall.height <= 0.0 {
+        errors.push(out_of_range(
+            &wall.id,
+            "height",
+            wall.height,
+            "a positive height",
+        ));
+    }
+    if wall.thickness <= 0.0 {
+        errors.push(out_of_range(
+            &wall.id,
+            "thickness",
+            wall.thickness,
+            "a positive thickness",
+        ));
+    }
+}
+
+/// A door's numbers are finite and within the limits, and it opens within a wall of `arch`.
+fn check_door(arch: &Architecture, door: &DoorOpening, errors: &mut Vec<ValidationError>) {
+    if ![door.offset, door.width, door.height]
+        .iter()
+        .all(|v| v.is_finite())
+    {
+        errors.push(non_finite(&door.id, "offset/width/height"));
+        return;
+    }
+    if door.height > MAX_WALL_HEIGHT {
+        errors.push(out_of_range(
+            &door.id,
+            "height",
+            door.height,
+            "at most 100 m (limits::MAX_WALL_HEIGHT)",
+        ));
+    }
+    if door.width <= 0.0 {
+        errors.push(out_of_range(
+            &door.id,
+            "width",
+            door.width,
+            "a positive width",
+        ));
+    }
+    if door.height <= 0.0 {
+        errors.push(out_of_range(
+            &door.id,
+            "height",
+            door.height,
+            "a positive height",
+        ));
+    }
+    match arch.wall(&door.wall) {
+        None => errors.push(ValidationError::UnknownDoorWall {
+            door: door.id.clone(),
+            wall: door.wall.clone(),
+        }),
+        Some(wall) => {
+            let half = door.width / 2.0;
+            if door.offset - half < 0.0 || door.offset + half > wall.length() {
+                errors.push(out_of_range(
+                    &door.id,
+                    "offset",
+                    door.offset,
+                    "an opening that lies within its wall's length",
+                ));
+            }
+        }
+    }
+}
+
+/// The category and the asset's generator, id and path are printable names.
+fn check_object_names(object: &SceneObject, id: &str, errors: &mut Vec<ValidationError>) {
+    for (field, value) in [("category", object.category.as_str())]
+        .into_iter()
+        .chain(match &object.asset {
+            AssetRef::Procedural { generator, .. } => Some(("asset.generator", generator.as_str())),
+            AssetRef::Imported { id, .. } => Some(("asset.id", id.as_str())),
+        })
+    {
+        if !is_printable_id(value) {
+            errors.push(ValidationError::UnprintableId {
+                owner: format!("object `{id}`"),
+                field,
+                shown: shorten(value),
+            });
+        }
+    }
+    if let AssetRef::Imported { path, .. } = &object.asset {
+        if path.is_empty() || path.chars().any(needs_escape) || path.len() > 4096 {
+            errors.push(ValidationError::UnprintableId {
+                owner: format!("object `{id}`"),
+                field: "asset.path",
+                shown: shorten(path),
+            });
+        }
+    }
+}
+
+/// The pose's scale, yaw and translation are finite and within the limits.
+fn check_pose(pose: &Pose, id: &str, errors: &mut Vec<ValidationError>) {
+    if !pose.scale.is_finite() {
+        errors.push(non_finite(id, "pose.scale"));
+    } else if pose.scale <= 0.0 {
+        errors.push(ValidationError::NonPositiveScale {
+            id: id.to_owned(),
+            scale: pose.scale,
+        });
+    } else if !(MIN_SCALE..=MAX_SCALE).contains(&pose.scale) {
+        errors.push(out_of_range(
+            id,
+            "pose.scale",
+            pose.scale,
+            "a scale from 0.01 to 10 (limits::MIN_SCALE..=MAX_SCALE)",
+        ));
+    }
+    if !pose.yaw.is_finite() {
+        errors.push(non_finite(id, "pose.yaw"));
+    } else if pose.yaw.abs() > MAX_YAW {
+        errors.push(out_of_range(
+            id,
+            "pose.yaw",
+            pose.yaw,
+            "an angle within ±1000 rad (limits::MAX_YAW)",
+        ));
+    }
+    if !pose.translation.iter().all(|v| v.is_finite()) {
+        errors.push(non_finite(id, "pose.translation"));
+    } else if let Some(v) = pose.translation.iter().find(|v| v.abs() > MAX_COORDINATE) {
+        errors.push(out_of_range(
+            id,
+            "pose.translation",
+            *v,
+            "coordinates within ±1000 m (limits::MAX_COORDINATE)",
+        ));
+    }
+}
+
+/// The local bounds are finite, ordered, within ±[`MAX_OBJECT_SIZE`] of the origin and, scaled
+/// by the pose, at most that large.
+fn check_local_bounds(object: &SceneObject, id: &str, errors: &mut Vec<ValidationError>) {
+    let pose = &object.pose;
+    if !bounds_finite(&object.local_bounds) {
+        errors.push(non_finite(id, "local_bounds"));
+    } else if !object.local_bounds.is_valid() {
+        errors.push(out_of_range(
+            id,
+            "local_bounds",
+            (object.local_bounds.max - object.local_bounds.min).min(),
+            "min <= max on every axis",
+        ));
+    } else if let Some(v) = object
+        .local_bounds
+        .min
+        .iter()
+        .chain(object.local_bounds.max.iter())
+        .find(|v| v.abs() > MAX_OBJECT_SIZE)
+    {
+        errors.push(out_of_range(
+            id,
+            "local_bounds",
+            *v,
+            "coordinates within ±50 m of the asset origin (limits::MAX_OBJECT_SIZE)",
+        ));
+    } else if (MIN_SCALE..=MAX_SCALE).contains(&pose.scale)
+        && (object.local_bounds.max - object.local_bounds.min).max() * pose.scale > MAX_OBJECT_SIZE
+    {
+        errors.push(out_of_range(
+            id,
+            "pose.scale",
+            pose.scale,
+            "a scaled size of at most 50 m on every axis (limits::MAX_OBJECT_SIZE)",
+        ));
     }
 }
 
