@@ -2,6 +2,7 @@
 //! yaw hypotheses scored by shape agreement, then rounds of (render the asset at its current
 //! pose → match → lift → robust fit of the alignment loss), keeping the best-agreeing pose.
 
+use std::cell::Cell;
 use std::time::Instant;
 
 use nalgebra::Point3;
@@ -225,14 +226,6 @@ pub fn align_to_guidance(
     settings: &GuidedSettings,
 ) -> Option<GuidedPose> {
     let camera = target.camera;
-    let deadline = settings.deadline();
-    // Set when the budget made a step be skipped.
-    let mut cut = false;
-    let mut over = || {
-        let p = past(deadline);
-        cut |= p;
-        p
-    };
     let (w, h) = (camera.intrinsics.width, camera.intrinsics.height);
     if target.mask.area() < settings.min_mask_pixels {
         return None;
@@ -240,20 +233,105 @@ pub fn align_to_guidance(
     let bbox = target.mask.bounding_box()?;
     let side = (bbox.2 - bbox.0).max(bbox.3 - bbox.1) as f64;
     let margin = ((side * settings.window_margin) as u32).max(6);
-    let mask_window = Window::around(bbox, margin, w, h)?;
-    let window_at = |pose: &Pose| {
-        projected_bbox(mesh, pose, camera)
-            .and_then(|b| Window::around(b, 2, w, h))
-            .map_or(mask_window, |p| p.union(&mask_window))
+    let aligner = Aligner {
+        mesh,
+        target,
+        matcher,
+        settings,
+        mask_window: Window::around(bbox, margin, w, h)?,
+        scorer: ShapeMatcher::default(),
+        deadline: settings.deadline(),
+        cut: Cell::new(false),
     };
-    let scorer = ShapeMatcher::default();
-    let score_at = |pose: &Pose| {
-        let view = rasterize(mesh, pose, camera, window_at(pose));
-        shape_score(&view, target, &scorer)
-    };
-    let start_score = score_at(start);
+    let start_score = aligner.score_at(start);
     let mut best = (*start, start_score);
-    if settings.yaw_candidates > 1 && !over() {
+    if settings.yaw_candidates > 1 && !aligner.over() {
+        if let Some(found) = aligner.best_yaw(start, hint) {
+            if found.1.score > best.1.score {
+                best = found;
+            }
+        }
+    }
+    // A lift thrown off by stray depth (a mask spilling onto the wall behind) can leave the
+    // object far from its mask: try the best pose so far moved so that its visible silhouette's centroid
+    // and median depth match the mask's.
+    let recentred = (!aligner.over())
+        .then(|| recentred(mesh, &best.0, target, aligner.window_at(&best.0)))
+        .flatten();
+    if let Some(moved) = recentred {
+        let score = aligner.score_at(&moved);
+        if score.score > best.1.score {
+            best = (moved, score);
+        }
+    }
+    let refined = aligner.refine(start, scale_range, &mut best)?;
+    let rounds = refined.rounds;
+    let (best, alignment) = aligner.keep(refined, scale_range, best)?;
+    Some(GuidedPose {
+        pose: best.0,
+        alignment,
+        start_score,
+        score: best.1,
+        rounds,
+        out_of_time: aligner.cut.get(),
+    })
+}
+
+/// One object's alignment: its mesh, its guidance, the matcher and settings, the mask's
+/// window, the shape scorer, and the time budget (with whether it cut a step short).
+struct Aligner<'a> {
+    mesh: &'a Mesh,
+    target: &'a TargetRegion<'a>,
+    matcher: &'a dyn Matcher,
+    settings: &'a GuidedSettings,
+    mask_window: Window,
+    scorer: ShapeMatcher,
+    deadline: Option<Instant>,
+    /// Set when the budget made a step be skipped.
+    cut: Cell<bool>,
+}
+
+/// What the refresh rounds leave: the last fitted pose, its shape score when known, the
+/// alignment of its matches, and the rounds run.
+struct Refined {
+    pose: Pose,
+    pose_score: Option<ShapeScore>,
+    alignment: PoseAlignment,
+    rounds: usize,
+}
+
+impl Aligner<'_> {
+    /// Whether the budget is spent (and so a step is skipped).
+    fn over(&self) -> bool {
+        let p = past(self.deadline);
+        if p {
+            self.cut.set(true);
+        }
+        p
+    }
+
+    /// The window a view of the asset at `pose` is rendered in: its projected box grown by 2
+    /// pixels, joined with the mask's window.
+    fn window_at(&self, pose: &Pose) -> Window {
+        let camera = self.target.camera;
+        let (w, h) = (camera.intrinsics.width, camera.intrinsics.height);
+        projected_bbox(self.mesh, pose, camera)
+            .and_then(|b| Window::around(b, 2, w, h))
+            .map_or(self.mask_window, |p| p.union(&self.mask_window))
+    }
+
+    /// The shape agreement of the asset at `pose` with the guidance.
+    fn score_at(&self, pose: &Pose) -> ShapeScore {
+        let view = rasterize(self.mesh, pose, self.target.camera, self.window_at(pose));
+        shape_score(&view, self.target, &self.scorer)
+    }
+
+    /// The yaw hypotheses over the full turn from `start` (a coarse pass first when set),
+    /// the pick among them (a facing `hint` settling ties), and its score.
+    fn best_yaw(&self, start: &Pose, hint: Option<f64>) -> Option<(Pose, ShapeScore)> {
+        let (mesh, camera, target, settings) =
+            (self.mesh, self.target.camera, self.target, self.settings);
+        let (w, h) = (camera.intrinsics.width, camera.intrinsics.height);
         let step = std::f64::consts::TAU / settings.yaw_candidates as f64;
         let yaws: Vec<f64> = (0..settings.yaw_candidates)
             .map(|k| start.yaw + k as f64 * step)
@@ -271,9 +349,10 @@ pub fn align_to_guidance(
             Window::around((x, y, x + 1, y + 1), r, w, h)
         });
         let window = match reach.flatten() {
-            Some(r) => r.union(&window_at(start)),
-            None => window_at(start),
+            Some(r) => r.union(&self.window_at(start)),
+            None => self.window_at(start),
         };
+        let scorer = &self.scorer;
         let candidates = if settings.coarse_stride > 1 && settings.coarse_keep < yaws.len() {
             let mut coarse = search_yaw_coarse(
                 mesh,
@@ -282,7 +361,7 @@ pub fn align_to_guidance(
                 target,
                 window,
                 &yaws,
-                &scorer,
+                scorer,
                 settings.coarse_stride,
             );
             // Stable: equal scores keep their order, so the shortlist is deterministic.
@@ -292,108 +371,124 @@ pub fn align_to_guidance(
                 .take(settings.coarse_keep.max(1))
                 .map(|c| c.pose.yaw)
                 .collect();
-            search_yaw(mesh, start, camera, target, window, &shortlist, &scorer)
+            search_yaw(mesh, start, camera, target, window, &shortlist, scorer)
         } else {
-            search_yaw(mesh, start, camera, target, window, &yaws, &scorer)
+            search_yaw(mesh, start, camera, target, window, &yaws, scorer)
         };
-        if let Some(pick) = pick_yaw(&candidates, hint, settings.hint_tie) {
-            let score = score_at(&pick.pose);
+        let pick = pick_yaw(&candidates, hint, settings.hint_tie)?;
+        Some((pick.pose, self.score_at(&pick.pose)))
+    }
+
+    /// Rounds of matching at the current pose and robust fitting of the alignment loss, from
+    /// the best pose so far, until the pose stops moving, too few matches remain, the rounds
+    /// or the budget run out; `best` follows every scored pose. `None` when the mesh has no
+    /// bounds.
+    fn refine(
+        &self,
+        start: &Pose,
+        scale_range: [f64; 2],
+        best: &mut (Pose, ShapeScore),
+    ) -> Option<Refined> {
+        let (mesh, camera, target, settings) =
+            (self.mesh, self.target.camera, self.target, self.settings);
+        let scale_prior = (settings.scale_sigma > 0.0).then_some(ScalePrior {
+            scale: start.scale,
+            sigma: settings.scale_sigma,
+        });
+        let mut pose = best.0;
+        let mut alignment = PoseAlignment::new(*camera, Vec::new());
+        let mut rounds = 0;
+        // The shape score of `pose` once known (the view rendered for matching scores it too).
+        let mut pose_score = Some(best.1);
+        for _ in 0..settings.refreshes {
+            if self.over() {
+                break;
+            }
+            rounds += 1;
+            let view = rasterize(mesh, &pose, camera, self.window_at(&pose));
+            let score = *pose_score.get_or_insert_with(|| shape_score(&view, target, &self.scorer));
             if score.score > best.1.score {
-                best = (pick.pose, score);
+                *best = (pose, score);
+            }
+            let pairs = lift(&self.matcher.match_view(&view, target), &view, target);
+            let depth = camera
+                .project(&pose.transform_point(&mesh.bounds()?.center()))
+                .map_or(1.0, |p| p.depth);
+            let sigma = (settings.depth_noise * depth).max(0.01);
+            alignment = PoseAlignment {
+                weight_2d: settings.weight_2d,
+                weight_3d: 1.0 / (sigma * sigma),
+                scale_prior,
+                ..PoseAlignment::new(*camera, pairs)
+            };
+            if alignment.active().count() < 6 {
+                break;
+            }
+            let fit = FitOptions {
+                scale_range,
+                huber_m: settings.fit.huber_m.max(2.0 * sigma),
+                ..settings.fit
+            };
+            let next = alignment.fit(&pose, &fit);
+            let moved = (next.translation - pose.translation)
+                .norm()
+                .max((next.yaw - pose.yaw).abs())
+                .max((next.scale - pose.scale).abs());
+            pose = next;
+            pose_score = None;
+            if moved < settings.tolerance {
+                break;
             }
         }
+        Some(Refined {
+            pose,
+            pose_score,
+            alignment,
+            rounds,
+        })
     }
-    // A lift thrown off by stray depth (a mask spilling onto the wall behind) can leave the
-    // object far from its mask: try the best pose so far moved so that its visible silhouette's centroid
-    // and median depth match the mask's.
-    let recentred = (!over())
-        .then(|| recentred(mesh, &best.0, target, window_at(&best.0)))
-        .flatten();
-    if let Some(moved) = recentred {
-        let score = score_at(&moved);
-        if score.score > best.1.score {
-            best = (moved, score);
+
+    /// The pose kept — the fitted one, unless it scores clearly worse than the best seen —
+    /// with the matches of that pose, their outliers trimmed. `None` when the mesh has no
+    /// bounds.
+    fn keep(
+        &self,
+        refined: Refined,
+        scale_range: [f64; 2],
+        mut best: (Pose, ShapeScore),
+    ) -> Option<((Pose, ShapeScore), PoseAlignment)> {
+        let (mesh, camera, target, settings) =
+            (self.mesh, self.target.camera, self.target, self.settings);
+        let Refined {
+            pose,
+            pose_score,
+            mut alignment,
+            ..
+        } = refined;
+        if best.0 != pose {
+            let score = pose_score.unwrap_or_else(|| self.score_at(&pose));
+            if score.score >= best.1.score * (1.0 - settings.refine_tolerance.clamp(0.0, 1.0)) {
+                best = (pose, score);
+            }
         }
-    }
-    let scale_prior = (settings.scale_sigma > 0.0).then_some(ScalePrior {
-        scale: start.scale,
-        sigma: settings.scale_sigma,
-    });
-    let mut pose = best.0;
-    let mut alignment = PoseAlignment::new(*camera, Vec::new());
-    let mut rounds = 0;
-    // The shape score of `pose` once known (the view rendered for matching scores it too).
-    let mut pose_score = Some(best.1);
-    for _ in 0..settings.refreshes {
-        if over() {
-            break;
+        if best.0 != pose {
+            // Hand the optimizer the matches of the pose kept.
+            let view = rasterize(mesh, &best.0, camera, self.window_at(&best.0));
+            alignment.correspondences =
+                lift(&self.matcher.match_view(&view, target), &view, target);
         }
-        rounds += 1;
-        let view = rasterize(mesh, &pose, camera, window_at(&pose));
-        let score = *pose_score.get_or_insert_with(|| shape_score(&view, target, &scorer));
-        if score.score > best.1.score {
-            best = (pose, score);
-        }
-        let pairs = lift(&matcher.match_view(&view, target), &view, target);
         let depth = camera
-            .project(&pose.transform_point(&mesh.bounds()?.center()))
+            .project(&best.0.transform_point(&mesh.bounds()?.center()))
             .map_or(1.0, |p| p.depth);
-        let sigma = (settings.depth_noise * depth).max(0.01);
-        alignment = PoseAlignment {
-            weight_2d: settings.weight_2d,
-            weight_3d: 1.0 / (sigma * sigma),
-            scale_prior,
-            ..PoseAlignment::new(*camera, pairs)
-        };
-        if alignment.active().count() < 6 {
-            break;
-        }
-        let fit = FitOptions {
+        let trim = FitOptions {
             scale_range,
-            huber_m: settings.fit.huber_m.max(2.0 * sigma),
+            huber_m: settings
+                .fit
+                .huber_m
+                .max(2.0 * (settings.depth_noise * depth).max(0.01)),
             ..settings.fit
         };
-        let next = alignment.fit(&pose, &fit);
-        let moved = (next.translation - pose.translation)
-            .norm()
-            .max((next.yaw - pose.yaw).abs())
-            .max((next.scale - pose.scale).abs());
-        pose = next;
-        pose_score = None;
-        if moved < settings.tolerance {
-            break;
-        }
+        alignment.trim_outliers(&best.0, &trim, 2.0);
+        Some((best, alignment))
     }
-    // The fitted pose, unless it scores clearly worse than the best seen.
-    if best.0 != pose {
-        let score = pose_score.unwrap_or_else(|| score_at(&pose));
-        if score.score >= best.1.score * (1.0 - settings.refine_tolerance.clamp(0.0, 1.0)) {
-            best = (pose, score);
-        }
-    }
-    if best.0 != pose {
-        // Hand the optimizer the matches of the pose kept.
-        let view = rasterize(mesh, &best.0, camera, window_at(&best.0));
-        alignment.correspondences = lift(&matcher.match_view(&view, target), &view, target);
-    }
-    let depth = camera
-        .project(&best.0.transform_point(&mesh.bounds()?.center()))
-        .map_or(1.0, |p| p.depth);
-    let trim = FitOptions {
-        scale_range,
-        huber_m: settings
-            .fit
-            .huber_m
-            .max(2.0 * (settings.depth_noise * depth).max(0.01)),
-        ..settings.fit
-    };
-    alignment.trim_outliers(&best.0, &trim, 2.0);
-    Some(GuidedPose {
-        pose: best.0,
-        alignment,
-        start_score,
-        score: best.1,
-        rounds,
-        out_of_time: cut,
-    })
 }
