@@ -14,7 +14,7 @@ use scenethesis_models::{
     ChatModel, DepthEstimator, ImageData, ImageEditRequest, ImageGenerator, Segmenter,
 };
 use scenethesis_scene_graph::{Architecture, AssetInfo, Material, Mesh, Scene};
-use scenethesis_vision::{lift_scene, LiftOptions};
+use scenethesis_vision::{lift_scene, LiftOptions, LiftedScene};
 
 use crate::assemble::build_scene;
 use crate::camera::estimate_from_floor;
@@ -331,157 +331,43 @@ impl Guide for VisionGuide {
         seed: u64,
     ) -> Result<GuidedLayout, GuideError> {
         let architecture = room_architecture(plan)?;
-        let mut infos: BTreeMap<String, AssetInfo> = BTreeMap::new();
-        for o in &plan.objects {
-            let info = assets
-                .asset_info(o)
-                .ok_or_else(|| GuideError::MissingAsset {
-                    id: o.id.clone(),
-                    category: o.category.clone(),
-                })?;
-            infos.insert(o.id.clone(), info);
-        }
+        let infos = asset_infos(plan, assets)?;
         let (image, png, camera, given_depth, given_masks, mut dropped) =
             self.image(plan, &architecture, seed)?;
         let (w, h) = (image.width(), image.height());
         let image_data = ImageData::from_bytes(png, "the guidance image")
             .map_err(|e| provider("guidance image", e.to_string()))?;
-
-        // Depth: given, else the depth model's, else none.
-        let depth = match (given_depth, &self.depth) {
-            (Some(d), _) => Some(d),
-            (None, Some(model)) => {
-                let d = model
-                    .estimate(&image_data, camera.map(|c| c.intrinsics))
-                    .map_err(|e| provider(model.name(), e.to_string()))?
-                    .depth;
-                if (d.width(), d.height()) != (w, h) {
-                    return Err(provider(
-                        model.name(),
-                        format!(
-                            "the depth map is {} × {}; expected the guidance image's {w} × {h}",
-                            d.width(),
-                            d.height()
-                        ),
-                    ));
-                }
-                Some(d)
-            }
-            (None, None) => None,
+        let depth = match given_depth {
+            Some(d) => Some(d),
+            None => self.estimated_depth(&image_data, camera, (w, h))?,
         };
-
-        // Camera: given or rendered, else estimated from the floor of the depth.
         let camera = match camera {
             Some(c) => c,
-            None => {
-                let Some(depth) = &depth else {
-                    return Err(provider(
-                        "camera",
-                        "the guidance image has no camera: give --camera camera.json, or depth \
-                         (--guide-depth or a depth model) to estimate it from the floor",
-                    ));
-                };
-                let k = Intrinsics::from_vertical_fov(w, h, DEFAULT_VERTICAL_FOV);
-                estimate_from_floor(depth, k, &architecture)
-                    .map_err(|e| provider("camera estimate from the floor", e))?
-            }
+            None => camera_from_floor(depth.as_ref(), (w, h), &architecture)?,
         };
         scenethesis_vision::metrology::check_camera(&camera)
             .map_err(|e| provider("camera", e.to_string()))?;
-
-        // Masks: given, else boxes from the VLM (segmented, or as they are).
         let masks = match given_masks {
             Some(m) => m,
             None => {
-                let Some(vlm) = &self.vlm else {
-                    return Err(provider(
-                        "vision guide",
-                        "no masks: give --guide-masks ids.png with --guide-labels labels.json, \
-                         or a vision-language model (--vlm-model) to box the objects",
-                    ));
+                let seen = Seen {
+                    image: &image_data,
+                    size: (w, h),
+                    camera: &camera,
+                    depth: depth.as_ref(),
+                    architecture: &architecture,
+                    infos: &infos,
                 };
-                let (boxes, notes) = ask_boxes(vlm.as_ref(), plan, image_data.clone(), seed)
-                    .map_err(|e| provider(vlm.name(), e))?;
-                for (id, note) in notes {
-                    dropped.push(DroppedObject {
-                        id,
-                        reason: format!("{}: {note}", vlm.name()),
-                    });
-                }
-                let seg = self
-                    .segmenter
-                    .as_ref()
-                    .map(|s| (s.as_ref() as &dyn Segmenter, &image_data));
-                let mut masks = masks_from_boxes(&boxes, w, h, seg).map_err(|e| {
-                    provider(
-                        self.segmenter
-                            .as_ref()
-                            .map_or("box masks".into(), |s| s.name()),
-                        e,
-                    )
-                })?;
-                if self.segmenter.is_none() {
-                    if let Some(d) = &depth {
-                        for (id, m) in masks.iter_mut() {
-                            let flat = infos[id].size[1] < 0.1;
-                            *m = subtract_room(m, &camera, d, &architecture, flat);
-                        }
-                    }
-                }
-                masks
+                self.boxed_masks(plan, &seen, seed, &mut dropped)?
             }
         };
         let guidance = Guidance::new(camera, image, depth, masks)
             .map_err(|e| provider("guidance", e.to_string()))?;
-
-        let mut options = self.lift.clone();
-        options.priors = infos
-            .iter()
-            .filter(|(id, _)| guidance.masks.contains_key(*id))
-            .map(|(id, i)| {
-                let [x, y, z] = i.size.map(f64::from);
-                (id.clone(), nalgebra::Vector3::new(x, y, z))
-            })
-            .collect();
-        // The room is known: a box hanging on a wall is put against it.
-        options.walls = architecture.walls.clone();
+        let options = self.lift_options(&infos, &guidance, &architecture);
         let mut lifted =
             lift_scene(&guidance, &options).map_err(|e| provider("lift", e.to_string()))?;
-        // The model's support relations, cross-checked with the lift's: where the geometry is
-        // ambiguous the model decides, where they clearly disagree the geometry is kept and
-        // the disagreement noted.
-        let mut notes = Vec::new();
-        if let (Some(vlm), false) = (&self.vlm, lifted.boxes.is_empty()) {
-            let objects: Vec<(&str, &str)> = lifted
-                .boxes
-                .iter()
-                .filter_map(|b| plan.object(&b.id))
-                .map(|o| (o.id.as_str(), o.category.as_str()))
-                .collect();
-            let (stated, skipped) =
-                ask_supports(vlm.as_ref(), plan, &objects, image_data.clone(), seed)
-                    .map_err(|e| provider(vlm.name(), e))?;
-            for (id, why) in skipped {
-                notes.push(format!("{}: support of `{id}` ignored: {why}", vlm.name()));
-            }
-            for check in lifted.cross_check(&stated, &options) {
-                notes.push(format!("{}: {}", vlm.name(), check.note()));
-            }
-        }
-        for o in &plan.objects {
-            if lifted.boxes.iter().any(|b| b.id == o.id) {
-                continue;
-            }
-            let reason = if lifted.missing.contains(&o.id) {
-                "its mask in the guidance image gave too few 3D points to place it"
-            } else {
-                "not found in the guidance image (no mask)"
-            };
-            dropped.push(DroppedObject {
-                id: o.id.clone(),
-                reason: reason.into(),
-            });
-        }
+        let notes = self.cross_check_supports(plan, &mut lifted, &options, &image_data, seed)?;
+        dropped.extend(unplaced(plan, &lifted));
         if lifted.boxes.is_empty() {
             return Err(provider(
                 "vision guide",
@@ -509,6 +395,205 @@ impl Guide for VisionGuide {
             notes,
         })
     }
+}
+
+/// What the masks of a guidance image are cut against: the image, its size, the camera, the
+/// depth (if any), the room and the planned objects' asset metadata.
+struct Seen<'a> {
+    image: &'a ImageData,
+    size: (u32, u32),
+    camera: &'a Camera,
+    depth: Option<&'a DepthMap>,
+    architecture: &'a Architecture,
+    infos: &'a BTreeMap<String, AssetInfo>,
+}
+
+impl VisionGuide {
+    /// The depth model's depth of the image, checked to have the image's size; `None`
+    /// without a depth model.
+    fn estimated_depth(
+        &self,
+        image: &ImageData,
+        camera: Option<Camera>,
+        (w, h): (u32, u32),
+    ) -> Result<Option<DepthMap>, GuideError> {
+        let Some(model) = &self.depth else {
+            return Ok(None);
+        };
+        let d = model
+            .estimate(image, camera.map(|c| c.intrinsics))
+            .map_err(|e| provider(model.name(), e.to_string()))?
+            .depth;
+        if (d.width(), d.height()) != (w, h) {
+            return Err(provider(
+                model.name(),
+                format!(
+                    "the depth map is {} × {}; expected the guidance image's {w} × {h}",
+                    d.width(),
+                    d.height()
+                ),
+            ));
+        }
+        Ok(Some(d))
+    }
+
+    /// Masks from the VLM's boxes of the planned objects: segmented when a segmenter is set,
+    /// else the boxes themselves with the room's floor and walls cut away (by the depth).
+    /// Boxes the answer could not use are noted in `dropped`.
+    fn boxed_masks(
+        &self,
+        plan: &Plan,
+        seen: &Seen<'_>,
+        seed: u64,
+        dropped: &mut Vec<DroppedObject>,
+    ) -> Result<BTreeMap<String, Mask>, GuideError> {
+        let Some(vlm) = &self.vlm else {
+            return Err(provider(
+                "vision guide",
+                "no masks: give --guide-masks ids.png with --guide-labels labels.json, \
+                 or a vision-language model (--vlm-model) to box the objects",
+            ));
+        };
+        let (boxes, notes) = ask_boxes(vlm.as_ref(), plan, seen.image.clone(), seed)
+            .map_err(|e| provider(vlm.name(), e))?;
+        for (id, note) in notes {
+            dropped.push(DroppedObject {
+                id,
+                reason: format!("{}: {note}", vlm.name()),
+            });
+        }
+        let seg = self
+            .segmenter
+            .as_ref()
+            .map(|s| (s.as_ref() as &dyn Segmenter, seen.image));
+        let (w, h) = seen.size;
+        let mut masks = masks_from_boxes(&boxes, w, h, seg).map_err(|e| {
+            provider(
+                self.segmenter
+                    .as_ref()
+                    .map_or("box masks".into(), |s| s.name()),
+                e,
+            )
+        })?;
+        if self.segmenter.is_none() {
+            if let Some(d) = seen.depth {
+                for (id, m) in masks.iter_mut() {
+                    let flat = seen.infos[id].size[1] < 0.1;
+                    *m = subtract_room(m, seen.camera, d, seen.architecture, flat);
+                }
+            }
+        }
+        Ok(masks)
+    }
+
+    /// The lift's options with each masked object's asset size as its prior and the room's
+    /// walls (a box hanging on a wall is put against it).
+    fn lift_options(
+        &self,
+        infos: &BTreeMap<String, AssetInfo>,
+        guidance: &Guidance,
+        architecture: &Architecture,
+    ) -> LiftOptions {
+        let mut options = self.lift.clone();
+        options.priors = infos
+            .iter()
+            .filter(|(id, _)| guidance.masks.contains_key(*id))
+            .map(|(id, i)| {
+                let [x, y, z] = i.size.map(f64::from);
+                (id.clone(), nalgebra::Vector3::new(x, y, z))
+            })
+            .collect();
+        options.walls = architecture.walls.clone();
+        options
+    }
+
+    /// The model's support relations, cross-checked with the lift's: where the geometry is
+    /// ambiguous the model decides, where they clearly disagree the geometry is kept and the
+    /// disagreement noted. Nothing changes without a VLM or without lifted boxes.
+    fn cross_check_supports(
+        &self,
+        plan: &Plan,
+        lifted: &mut LiftedScene,
+        options: &LiftOptions,
+        image: &ImageData,
+        seed: u64,
+    ) -> Result<Vec<String>, GuideError> {
+        let mut notes = Vec::new();
+        let Some(vlm) = self.vlm.as_ref().filter(|_| !lifted.boxes.is_empty()) else {
+            return Ok(notes);
+        };
+        let objects: Vec<(&str, &str)> = lifted
+            .boxes
+            .iter()
+            .filter_map(|b| plan.object(&b.id))
+            .map(|o| (o.id.as_str(), o.category.as_str()))
+            .collect();
+        let (stated, skipped) = ask_supports(vlm.as_ref(), plan, &objects, image.clone(), seed)
+            .map_err(|e| provider(vlm.name(), e))?;
+        for (id, why) in skipped {
+            notes.push(format!("{}: support of `{id}` ignored: {why}", vlm.name()));
+        }
+        for check in lifted.cross_check(&stated, options) {
+            notes.push(format!("{}: {}", vlm.name(), check.note()));
+        }
+        Ok(notes)
+    }
+}
+
+/// Each planned object's asset metadata, by id; an object without an asset is an error.
+fn asset_infos(
+    plan: &Plan,
+    assets: &dyn AssetLookup,
+) -> Result<BTreeMap<String, AssetInfo>, GuideError> {
+    let mut infos = BTreeMap::new();
+    for o in &plan.objects {
+        let info = assets
+            .asset_info(o)
+            .ok_or_else(|| GuideError::MissingAsset {
+                id: o.id.clone(),
+                category: o.category.clone(),
+            })?;
+        infos.insert(o.id.clone(), info);
+    }
+    Ok(infos)
+}
+
+/// The camera estimated from the floor of `depth` with the default field of view; without
+/// depth there is nothing to estimate it from.
+fn camera_from_floor(
+    depth: Option<&DepthMap>,
+    (w, h): (u32, u32),
+    architecture: &Architecture,
+) -> Result<Camera, GuideError> {
+    let Some(depth) = depth else {
+        return Err(provider(
+            "camera",
+            "the guidance image has no camera: give --camera camera.json, or depth \
+             (--guide-depth or a depth model) to estimate it from the floor",
+        ));
+    };
+    let k = Intrinsics::from_vertical_fov(w, h, DEFAULT_VERTICAL_FOV);
+    estimate_from_floor(depth, k, architecture)
+        .map_err(|e| provider("camera estimate from the floor", e))
+}
+
+/// The planned objects the lift did not place, with why.
+fn unplaced(plan: &Plan, lifted: &LiftedScene) -> Vec<DroppedObject> {
+    plan.objects
+        .iter()
+        .filter(|o| !lifted.boxes.iter().any(|b| b.id == o.id))
+        .map(|o| {
+            let reason = if lifted.missing.contains(&o.id) {
+                "its mask in the guidance image gave too few 3D points to place it"
+            } else {
+                "not found in the guidance image (no mask)"
+            };
+            DroppedObject {
+                id: o.id.clone(),
+                reason: reason.into(),
+            }
+        })
+        .collect()
 }
 
 /// Walk and reach of the guided floor by the metric's raster rules, with each object as its
