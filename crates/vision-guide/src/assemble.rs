@@ -15,7 +15,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::f64::consts::PI;
 
 use nalgebra::{Point3, Vector2, Vector3};
-use scenethesis_agents::Plan;
+use scenethesis_agents::{Plan, PlannedObject};
 use scenethesis_scene_graph::{
     wrap_yaw, Aabb, Architecture, ParentRef, Pose, Relation, RelationKind, Scene, SceneObject,
     GROUND_ID,
@@ -84,57 +84,92 @@ pub fn build_scene(
     let by_id: BTreeMap<&str, &LiftedBox> = boxes.iter().map(|b| (b.id.as_str(), b)).collect();
     let support: BTreeMap<&str, &SupportGuess> =
         supports.iter().map(|s| (s.id.as_str(), s)).collect();
-    // Parent and support kind per recovered object.
-    let mut placed: BTreeMap<String, (ParentRef, RelationKind, Option<String>)> = BTreeMap::new();
+    let mut placed: BTreeMap<String, Placed> = BTreeMap::new();
     for b in boxes {
         let Some(object) = plan.object(&b.id) else {
             continue;
         };
-        let guess = support.get(b.id.as_str());
-        let wall = backing_wall(&architecture, b);
-        let entry = match guess.map(|g| (g.kind, g.parent.clone())) {
-            Some((SupportKind::On, Some(p))) => (ParentRef::Object(p), RelationKind::On, None),
-            Some((SupportKind::Inside, Some(p))) => {
-                (ParentRef::Object(p), RelationKind::Inside, None)
-            }
-            Some((SupportKind::Under, Some(p))) => {
-                (ParentRef::Object(p), RelationKind::Under, None)
-            }
-            Some((SupportKind::Mounted, Some(w))) if architecture.wall(&w).is_some() => {
-                (ParentRef::Wall(w), RelationKind::Mounted, None)
-            }
-            Some((SupportKind::Unsupported | SupportKind::Mounted, _)) => {
-                let planned_parent = object
-                    .parent
-                    .object_id()
-                    .filter(|p| by_id.contains_key(p))
-                    .map(str::to_owned);
-                let mounts = infos
-                    .get(&b.id)
-                    .is_some_and(|i| i.placement == Placement::Wall);
-                match (planned_parent, mounts) {
-                    // A wall asset with a wall behind it hangs on that wall.
-                    (_, true) => match &wall {
-                        Some((w, _)) => (ParentRef::Wall(w.clone()), RelationKind::Mounted, None),
-                        None => (ParentRef::Ground, RelationKind::AgainstWall, None),
-                    },
-                    (Some(p), false) => (ParentRef::Object(p), object.support, None),
-                    (None, false) => (ParentRef::Ground, RelationKind::OnFloor, None),
-                }
-            }
-            _ => match &wall {
-                Some((w, _)) => (
-                    ParentRef::Ground,
-                    RelationKind::AgainstWall,
-                    Some(w.clone()),
-                ),
-                None => (ParentRef::Ground, RelationKind::OnFloor, None),
-            },
-        };
+        let guess = support.get(b.id.as_str()).copied();
+        let entry = placement(&architecture, infos, &by_id, object, b, guess);
         placed.insert(b.id.clone(), entry);
     }
-    // Parents before children (lifted parents are strictly lower, planned ones acyclic; any
-    // object left in a cycle goes to the floor).
+    let (order, done) = parents_first(plan, &mut placed);
+    let mut scene = Scene::new(architecture);
+    scene.prompt = plan.prompt.clone();
+    scene.seed = seed;
+    for id in &order {
+        let (object, b, info) = (
+            plan.object(id).expect("planned"),
+            by_id[id.as_str()],
+            &infos[id],
+        );
+        let built = scene_object(&scene, object, b, info, placed[id].clone(), &done, eye);
+        scene.objects.push(built);
+    }
+    scene.anchor = anchor(&scene, plan);
+    scene
+}
+
+/// An object's parent, support kind and, for one standing against a wall, that wall.
+type Placed = (ParentRef, RelationKind, Option<String>);
+
+/// Where the recovered box `b` of `object` hangs or stands: on, inside or under the lifted
+/// support's parent; on a wall (a wall asset with a wall behind it, or a mounted guess); on its
+/// planned parent when the lift found no support; else on the floor, against the wall behind
+/// it when there is one.
+fn placement(
+    architecture: &Architecture,
+    infos: &BTreeMap<String, AssetInfo>,
+    by_id: &BTreeMap<&str, &LiftedBox>,
+    object: &PlannedObject,
+    b: &LiftedBox,
+    guess: Option<&SupportGuess>,
+) -> Placed {
+    let wall = backing_wall(architecture, b);
+    match guess.map(|g| (g.kind, g.parent.clone())) {
+        Some((SupportKind::On, Some(p))) => (ParentRef::Object(p), RelationKind::On, None),
+        Some((SupportKind::Inside, Some(p))) => (ParentRef::Object(p), RelationKind::Inside, None),
+        Some((SupportKind::Under, Some(p))) => (ParentRef::Object(p), RelationKind::Under, None),
+        Some((SupportKind::Mounted, Some(w))) if architecture.wall(&w).is_some() => {
+            (ParentRef::Wall(w), RelationKind::Mounted, None)
+        }
+        Some((SupportKind::Unsupported | SupportKind::Mounted, _)) => {
+            let planned_parent = object
+                .parent
+                .object_id()
+                .filter(|p| by_id.contains_key(p))
+                .map(str::to_owned);
+            let mounts = infos
+                .get(&b.id)
+                .is_some_and(|i| i.placement == Placement::Wall);
+            match (planned_parent, mounts) {
+                // A wall asset with a wall behind it hangs on that wall.
+                (_, true) => match &wall {
+                    Some((w, _)) => (ParentRef::Wall(w.clone()), RelationKind::Mounted, None),
+                    None => (ParentRef::Ground, RelationKind::AgainstWall, None),
+                },
+                (Some(p), false) => (ParentRef::Object(p), object.support, None),
+                (None, false) => (ParentRef::Ground, RelationKind::OnFloor, None),
+            }
+        }
+        _ => match &wall {
+            Some((w, _)) => (
+                ParentRef::Ground,
+                RelationKind::AgainstWall,
+                Some(w.clone()),
+            ),
+            None => (ParentRef::Ground, RelationKind::OnFloor, None),
+        },
+    }
+}
+
+/// The placed objects in plan order with parents before children (lifted parents are
+/// strictly lower, planned ones acyclic; any object left in a cycle goes to the floor), and
+/// the set of them.
+fn parents_first(
+    plan: &Plan,
+    placed: &mut BTreeMap<String, Placed>,
+) -> (Vec<String>, BTreeSet<String>) {
     let mut order: Vec<String> = Vec::new();
     let mut done: BTreeSet<String> = BTreeSet::new();
     loop {
@@ -167,71 +202,79 @@ pub fn build_scene(
             order.push(o.id.clone());
         }
     }
+    (order, done)
+}
 
-    let mut scene = Scene::new(architecture);
-    scene.prompt = plan.prompt.clone();
-    scene.seed = seed;
-    for id in &order {
-        let (object, b, info) = (
-            plan.object(id).expect("planned"),
-            by_id[id.as_str()],
-            &infos[id],
-        );
-        let (parent, support_kind, wall) = placed[id].clone();
-        let [sx, sy, sz] = info.size.map(f64::from);
-        let [lo, hi] = info.scale_range.map(f64::from);
-        let scale = (b.size().y / sy.max(1e-6)).clamp(lo.min(hi), hi.max(lo));
-        let yaw = match backing_wall(&scene.architecture, b) {
-            Some((_, inward)) => facing(b, inward),
-            None => facing(b, Vector2::new(eye.x - b.center.x, eye.z - b.center.z)),
-        };
-        let on_floor = parent == ParentRef::Ground
-            && (support_kind != RelationKind::AgainstWall || b.bottom() < 0.1);
-        let y = if on_floor { 0.0 } else { b.bottom().max(0.0) };
-        let mut relations: Vec<Relation> = object
-            .relations
-            .iter()
-            .filter(|r| {
-                r.kind != RelationKind::AgainstWall
-                    && (done.contains(&r.target)
-                        || scene.architecture.wall(&r.target).is_some()
-                        || r.target == GROUND_ID)
-            })
-            .cloned()
-            .collect();
-        if let Some(w) = wall {
-            relations.insert(0, Relation::new(RelationKind::AgainstWall, w));
-        }
-        let support_kind = if support_kind == RelationKind::AgainstWall
-            && !relations
-                .iter()
-                .any(|r| r.kind == RelationKind::AgainstWall)
-        {
-            RelationKind::OnFloor
-        } else {
-            support_kind
-        };
-        scene.objects.push(SceneObject {
-            id: id.clone(),
-            category: object.category.clone(),
-            asset: info.source.clone(),
-            pose: Pose::new(scale, yaw, Vector3::new(b.center.x, y, b.center.z)),
-            parent,
-            support: support_kind,
-            relations,
-            local_bounds: Aabb::new(
-                Point3::new(-sx / 2.0, 0.0, -sz / 2.0),
-                Point3::new(sx / 2.0, sy, sz / 2.0),
-            ),
-        });
+/// The scene object of box `b`: scaled to the box's height within the asset's range, turned
+/// to face out of its wall (or toward the camera at `eye`), standing on the floor or at the
+/// box's bottom, with the planned relations whose targets exist (`done`, the walls, the
+/// ground) and the wall it stands against.
+fn scene_object(
+    scene: &Scene,
+    object: &PlannedObject,
+    b: &LiftedBox,
+    info: &AssetInfo,
+    (parent, support_kind, wall): Placed,
+    done: &BTreeSet<String>,
+    eye: Point3<f64>,
+) -> SceneObject {
+    let [sx, sy, sz] = info.size.map(f64::from);
+    let [lo, hi] = info.scale_range.map(f64::from);
+    let scale = (b.size().y / sy.max(1e-6)).clamp(lo.min(hi), hi.max(lo));
+    let yaw = match backing_wall(&scene.architecture, b) {
+        Some((_, inward)) => facing(b, inward),
+        None => facing(b, Vector2::new(eye.x - b.center.x, eye.z - b.center.z)),
+    };
+    let on_floor = parent == ParentRef::Ground
+        && (support_kind != RelationKind::AgainstWall || b.bottom() < 0.1);
+    let y = if on_floor { 0.0 } else { b.bottom().max(0.0) };
+    let mut relations: Vec<Relation> = object
+        .relations
+        .iter()
+        .filter(|r| {
+            r.kind != RelationKind::AgainstWall
+                && (done.contains(&r.target)
+                    || scene.architecture.wall(&r.target).is_some()
+                    || r.target == GROUND_ID)
+        })
+        .cloned()
+        .collect();
+    if let Some(w) = wall {
+        relations.insert(0, Relation::new(RelationKind::AgainstWall, w));
     }
+    let support_kind = if support_kind == RelationKind::AgainstWall
+        && !relations
+            .iter()
+            .any(|r| r.kind == RelationKind::AgainstWall)
+    {
+        RelationKind::OnFloor
+    } else {
+        support_kind
+    };
+    SceneObject {
+        id: object.id.clone(),
+        category: object.category.clone(),
+        asset: info.source.clone(),
+        pose: Pose::new(scale, yaw, Vector3::new(b.center.x, y, b.center.z)),
+        parent,
+        support: support_kind,
+        relations,
+        local_bounds: Aabb::new(
+            Point3::new(-sx / 2.0, 0.0, -sz / 2.0),
+            Point3::new(sx / 2.0, sy, sz / 2.0),
+        ),
+    }
+}
+
+/// The plan's anchor when it stands on the ground, else the first ground object.
+fn anchor(scene: &Scene, plan: &Plan) -> Option<String> {
     let is_ground = |id: &str| {
         scene
             .objects
             .iter()
             .any(|o| o.id == id && o.parent == ParentRef::Ground)
     };
-    scene.anchor = if is_ground(&plan.anchor) {
+    if is_ground(&plan.anchor) {
         Some(plan.anchor.clone())
     } else {
         scene
@@ -239,6 +282,5 @@ pub fn build_scene(
             .iter()
             .find(|o| o.parent == ParentRef::Ground)
             .map(|o| o.id.clone())
-    };
-    scene
+    }
 }
