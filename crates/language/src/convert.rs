@@ -242,8 +242,50 @@ pub(crate) fn convert(
     let mut notes = Vec::new();
     let mut issues = Vec::new();
     let indoor = answer.environment != "outdoor";
+    let (kept, id_map) = kept_objects(answer, available, &mut notes, &mut issues);
+    let mut objects: Vec<PlannedObject> = kept
+        .iter()
+        .map(|(o, id, category)| {
+            let mut object = planned_object(o, id, category, &id_map, indoor, &mut notes);
+            object.hard = o.stated && answer.detailed;
+            object
+        })
+        .collect();
+    break_cycles(&mut objects, &mut notes);
+    let anchor = anchor_of(answer, &id_map, &objects);
+    if anchor.is_none() {
+        issues.push(format!(
+            "the anchor `{}` is not a floor-standing object of the plan",
+            shown(&answer.anchor)
+        ));
+    }
+    if !answer.detailed && objects.len() < min_objects {
+        issues.push(format!(
+            "the plan has only {} usable objects; a simple prompt needs at least {min_objects}",
+            objects.len()
+        ));
+    }
+    let plan = assemble_plan(answer, prompt, objects, anchor, notes);
+    Converted {
+        plan,
+        issues,
+        detailed: answer.detailed,
+    }
+}
 
-    // 1. Categories and ids.
+/// The objects of a known category, each with a usable unique id (renamed `CATEGORY_N` when
+/// not), and the map from the answer's ids to those; unknown categories and unavailable
+/// objects are noted, unknown categories also raised as an issue.
+#[allow(clippy::type_complexity)]
+fn kept_objects<'a>(
+    answer: &'a Answer,
+    available: &BTreeSet<String>,
+    notes: &mut Vec<String>,
+    issues: &mut Vec<String>,
+) -> (
+    Vec<(&'a AnswerObject, String, String)>,
+    BTreeMap<String, String>,
+) {
     let mut unknown = Vec::new();
     let mut id_map: BTreeMap<String, String> = BTreeMap::new();
     let mut taken: BTreeSet<String> = BTreeSet::new();
@@ -267,7 +309,7 @@ pub(crate) fn convert(
             if !usable && !id.is_empty() {
                 notes.push(format!(
                     "id `{}` cannot be written to scene.json (control or bidirectional \
-                     characters, or longer than {MAX_ID_BYTES} bytes); renamed {fresh}",
+                 characters, or longer than {MAX_ID_BYTES} bytes); renamed {fresh}",
                     shown(&id)
                 ));
             }
@@ -294,110 +336,119 @@ pub(crate) fn convert(
             printable(&u.reason)
         ));
     }
+    (kept, id_map)
+}
 
-    // 2. Objects with consistent support, parent, zone and relations.
-    let mut objects: Vec<PlannedObject> = Vec::new();
-    for (o, id, category) in &kept {
-        let parent_id = id_map.get(&o.parent).filter(|p| *p != id).cloned();
-        let supported = matches!(
-            o.support,
-            RelationKind::On | RelationKind::Inside | RelationKind::Under
-        );
-        let (support, parent, mut zone) = match (supported, parent_id) {
-            (true, Some(p)) => (o.support, ParentRef::Object(p), Zone::Supported),
-            (true, None) => {
-                notes.push(if id_map.get(&o.parent) == Some(id) {
-                    format!("{id}: rests on itself; placed on the floor instead")
-                } else {
-                    format!(
-                        "{id}: parent `{}` is not in the plan; placed on the floor instead",
-                        shown(&o.parent)
-                    )
-                });
-                (RelationKind::OnFloor, ParentRef::Ground, Zone::Free)
-            }
-            (false, _) => {
-                let zone = match zone_of(&o.zone, &o.wall) {
-                    Zone::Supported => Zone::Free,
-                    z => z,
-                };
-                let zone = match (indoor, zone, o.support) {
-                    (false, Zone::WallMounted | Zone::Wall { .. } | Zone::Corner, _) => Zone::Free,
-                    (
-                        true,
-                        Zone::Free | Zone::Center | Zone::Relative,
-                        RelationKind::AgainstWall,
-                    ) => Zone::Wall { wall: None },
-                    (_, z, _) => z,
-                };
-                let against =
-                    indoor && matches!(zone, Zone::Wall { .. } | Zone::Corner | Zone::WallMounted);
-                let support = if against {
-                    RelationKind::AgainstWall
-                } else {
-                    RelationKind::OnFloor
-                };
-                (support, ParentRef::Ground, zone)
-            }
-        };
-        let mut relations = Vec::new();
-        if let Zone::Wall { wall: Some(w) } = &zone {
-            relations.push(Relation::new(RelationKind::AgainstWall, w.clone()));
-        }
-        for r in &o.relations {
-            let target = if indoor && WALLS.contains(&r.target.as_str()) {
-                Some(r.target.clone())
+/// The planned object of answer object `o` (kept as `id` of `category`): its support,
+/// parent and zone made consistent, and its relations to objects of the plan (or walls).
+fn planned_object(
+    o: &AnswerObject,
+    id: &String,
+    category: &str,
+    id_map: &BTreeMap<String, String>,
+    indoor: bool,
+    notes: &mut Vec<String>,
+) -> PlannedObject {
+    let parent_id = id_map.get(&o.parent).filter(|p| *p != id).cloned();
+    let supported = matches!(
+        o.support,
+        RelationKind::On | RelationKind::Inside | RelationKind::Under
+    );
+    let (support, parent, mut zone) = match (supported, parent_id) {
+        (true, Some(p)) => (o.support, ParentRef::Object(p), Zone::Supported),
+        (true, None) => {
+            notes.push(if id_map.get(&o.parent) == Some(id) {
+                format!("{id}: rests on itself; placed on the floor instead")
             } else {
-                id_map.get(&r.target).filter(|t| *t != id).cloned()
+                format!(
+                    "{id}: parent `{}` is not in the plan; placed on the floor instead",
+                    shown(&o.parent)
+                )
+            });
+            (RelationKind::OnFloor, ParentRef::Ground, Zone::Free)
+        }
+        (false, _) => {
+            let zone = match zone_of(&o.zone, &o.wall) {
+                Zone::Supported => Zone::Free,
+                z => z,
             };
-            match target {
-                Some(t) if !r.kind.is_support() => relations.push(Relation::new(r.kind, t)),
-                _ => notes.push(format!(
-                    "{id}: relation {} `{}` dropped (no such object)",
-                    r.kind,
-                    shown(&r.target)
-                )),
-            }
+            let zone = match (indoor, zone, o.support) {
+                (false, Zone::WallMounted | Zone::Wall { .. } | Zone::Corner, _) => Zone::Free,
+                (true, Zone::Free | Zone::Center | Zone::Relative, RelationKind::AgainstWall) => {
+                    Zone::Wall { wall: None }
+                }
+                (_, z, _) => z,
+            };
+            let against =
+                indoor && matches!(zone, Zone::Wall { .. } | Zone::Corner | Zone::WallMounted);
+            let support = if against {
+                RelationKind::AgainstWall
+            } else {
+                RelationKind::OnFloor
+            };
+            (support, ParentRef::Ground, zone)
         }
-        if zone == Zone::Relative && relations.is_empty() {
-            zone = Zone::Free;
-        }
-        objects.push(PlannedObject {
-            id: id.clone(),
-            category: category.clone(),
-            layer: o.layer,
-            support,
-            parent,
-            zone,
-            relations,
-            hard: o.stated && answer.detailed,
-        });
+    };
+    let mut relations = Vec::new();
+    if let Zone::Wall { wall: Some(w) } = &zone {
+        relations.push(Relation::new(RelationKind::AgainstWall, w.clone()));
     }
-    break_cycles(&mut objects, &mut notes);
+    for r in &o.relations {
+        let target = if indoor && WALLS.contains(&r.target.as_str()) {
+            Some(r.target.clone())
+        } else {
+            id_map.get(&r.target).filter(|t| *t != id).cloned()
+        };
+        match target {
+            Some(t) if !r.kind.is_support() => relations.push(Relation::new(r.kind, t)),
+            _ => notes.push(format!(
+                "{id}: relation {} `{}` dropped (no such object)",
+                r.kind,
+                shown(&r.target)
+            )),
+        }
+    }
+    if zone == Zone::Relative && relations.is_empty() {
+        zone = Zone::Free;
+    }
+    PlannedObject {
+        id: id.clone(),
+        category: category.to_owned(),
+        layer: o.layer,
+        support,
+        parent,
+        zone,
+        relations,
+        hard: false,
+    }
+}
 
-    // 3. The anchor.
-    let anchor = id_map
+/// The answer's anchor, when it is a floor-standing object of the plan.
+fn anchor_of(
+    answer: &Answer,
+    id_map: &BTreeMap<String, String>,
+    objects: &[PlannedObject],
+) -> Option<String> {
+    id_map
         .get(&answer.anchor)
         .filter(|a| {
             objects
                 .iter()
                 .any(|o| &o.id == *a && o.parent == ParentRef::Ground)
         })
-        .cloned();
-    if anchor.is_none() {
-        issues.push(format!(
-            "the anchor `{}` is not a floor-standing object of the plan",
-            shown(&answer.anchor)
-        ));
-    }
-    if !answer.detailed && objects.len() < min_objects {
-        issues.push(format!(
-            "the plan has only {} usable objects; a simple prompt needs at least {min_objects}",
-            objects.len()
-        ));
-    }
+        .cloned()
+}
 
-    // 4. Hard constraints from what the prompt stated.
+/// The plan: the objects in order around the anchor, the hard constraints of what the prompt
+/// stated, the room from the answer, and the notes after the model's interpretation.
+fn assemble_plan(
+    answer: &Answer,
+    prompt: &str,
+    objects: Vec<PlannedObject>,
+    anchor: Option<String>,
+    notes: Vec<String>,
+) -> Plan {
+    let indoor = answer.environment != "outdoor";
     let constraints = constraints_of(&objects, indoor);
     let description = if answer.detailed {
         // A detailed prompt is kept as written: it already names objects and relations.
@@ -407,7 +458,7 @@ pub(crate) fn convert(
     };
     let anchor_id = anchor.clone().unwrap_or_default();
     let objects = order(objects, &anchor_id);
-    let plan = Plan {
+    Plan {
         prompt: prompt.trim().to_string(),
         scene_type: answer.scene_type.trim().to_lowercase().replace(' ', "_"),
         archetypes: Vec::new(),
@@ -435,11 +486,6 @@ pub(crate) fn convert(
             n.extend(notes);
             n
         },
-    };
-    Converted {
-        plan,
-        issues,
-        detailed: answer.detailed,
     }
 }
 
