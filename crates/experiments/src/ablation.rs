@@ -35,7 +35,8 @@ use scenethesis_vision::{lift_scene, LiftOptions, LiftedBox};
 use serde::{Deserialize, Serialize};
 
 use crate::roundtrip::{
-    median, perturb, true_boxes, yaw_error, yaw_symmetry, RoundtripError, RoundtripOptions,
+    median, perturbed_guidance, true_boxes, yaw_error, yaw_symmetry, RoundtripError,
+    RoundtripOptions,
 };
 use scenethesis_pipeline::correspond::correspond;
 
@@ -105,10 +106,7 @@ pub fn ablation(
     meshes: &BTreeMap<String, Mesh>,
     options: &RoundtripOptions,
 ) -> Result<AblationReport, AblationError> {
-    let guidance = renderer
-        .render_guidance(scene, meshes, options.size)
-        .map_err(RoundtripError::Render)?;
-    let guidance = perturb(&guidance, options.perturb, options.seed);
+    let guidance = perturbed_guidance(renderer, scene, meshes, options)?;
     ablate(scene, meshes, &guidance)
 }
 

@@ -415,11 +415,22 @@ pub fn roundtrip(
     meshes: &BTreeMap<String, Mesh>,
     options: &RoundtripOptions,
 ) -> Result<RoundtripReport, RoundtripError> {
+    let guidance = perturbed_guidance(renderer, scene, meshes, options)?;
+    compare(scene, meshes, &guidance, options.perturb)
+}
+
+/// The photo view's guidance of `scene` rendered at `options.size` and perturbed as
+/// `options` say (the input of both the round trip and the ablation).
+pub fn perturbed_guidance(
+    renderer: &Renderer,
+    scene: &Scene,
+    meshes: &BTreeMap<String, Mesh>,
+    options: &RoundtripOptions,
+) -> Result<Guidance, RoundtripError> {
     let guidance = renderer
         .render_guidance(scene, meshes, options.size)
         .map_err(RoundtripError::Render)?;
-    let guidance = perturb(&guidance, options.perturb, options.seed);
-    compare(scene, meshes, &guidance, options.perturb)
+    Ok(perturb(&guidance, options.perturb, options.seed))
 }
 
 #[cfg(test)]

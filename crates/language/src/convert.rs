@@ -246,9 +246,12 @@ pub(crate) fn convert(
     let mut objects: Vec<PlannedObject> = kept
         .iter()
         .map(|(o, id, category)| {
-            let mut object = planned_object(o, id, category, &id_map, indoor, &mut notes);
-            object.hard = o.stated && answer.detailed;
-            object
+            let place = Placing {
+                id_map: &id_map,
+                indoor,
+                detailed: answer.detailed,
+            };
+            planned_object(o, id, category, &place, &mut notes)
         })
         .collect();
     break_cycles(&mut objects, &mut notes);
@@ -339,16 +342,24 @@ fn kept_objects<'a>(
     (kept, id_map)
 }
 
+/// What every planned object is read against: the answer's ids mapped to the plan's, whether
+/// the scene is indoors, and whether the prompt was detailed (its stated objects are hard).
+struct Placing<'a> {
+    id_map: &'a BTreeMap<String, String>,
+    indoor: bool,
+    detailed: bool,
+}
+
 /// The planned object of answer object `o` (kept as `id` of `category`): its support,
 /// parent and zone made consistent, and its relations to objects of the plan (or walls).
 fn planned_object(
     o: &AnswerObject,
     id: &String,
     category: &str,
-    id_map: &BTreeMap<String, String>,
-    indoor: bool,
+    place: &Placing<'_>,
     notes: &mut Vec<String>,
 ) -> PlannedObject {
+    let (id_map, indoor) = (place.id_map, place.indoor);
     let parent_id = id_map.get(&o.parent).filter(|p| *p != id).cloned();
     let supported = matches!(
         o.support,
@@ -419,7 +430,7 @@ fn planned_object(
         parent,
         zone,
         relations,
-        hard: false,
+        hard: o.stated && place.detailed,
     }
 }
 
