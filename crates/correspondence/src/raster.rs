@@ -1,11 +1,15 @@
 //! A small CPU depth rasterizer: an asset's triangle mesh at a pose, seen by a camera, inside a
 //! pixel window of that camera's image. It is what the shape matcher compares with a guidance
 //! mask and depth, many times per object (one render per yaw candidate and per match refresh),
-//! so it renders only the object's region and only depth (no colour, no lighting).
+//! so it renders only the object's region and only depth (no colour, no lighting). It also
+//! draws a whole scene's guidance ([`rasterized_guidance`]) for tests and benchmarks of the
+//! stage without a GPU.
+
+use std::collections::BTreeMap;
 
 use nalgebra::{Point2, Point3, Vector3};
-use scenethesis_imagery::{Camera, DepthMap, Intrinsics, RgbImage};
-use scenethesis_scene_graph::{Mesh, Pose};
+use scenethesis_imagery::{Camera, DepthMap, Guidance, Intrinsics, Mask, RgbImage};
+use scenethesis_scene_graph::{Mesh, Pose, Scene};
 
 /// A rectangle of pixels of a camera's image: columns `x0 .. x0 + width`, rows
 /// `y0 .. y0 + height`.
@@ -282,6 +286,50 @@ fn fill_triangle(
             }
         }
     }
+}
+
+/// Guidance of `scene` seen by `camera`, drawn by the CPU rasterizer: each pixel belongs to the
+/// nearest object's mask and holds its depth (0 where no object is; no architecture, a grey
+/// image). For tests and benchmarks of the correspond stage without a GPU.
+pub fn rasterized_guidance(
+    scene: &Scene,
+    meshes: &BTreeMap<String, Mesh>,
+    camera: &Camera,
+) -> Guidance {
+    let (w, h) = (camera.intrinsics.width, camera.intrinsics.height);
+    let window = Window::full(camera);
+    let views: Vec<(&str, RenderedView)> = scene
+        .objects
+        .iter()
+        .filter_map(|o| {
+            Some((
+                o.id.as_str(),
+                rasterize(meshes.get(&o.id)?, &o.pose, camera, window),
+            ))
+        })
+        .collect();
+    let mut masks: BTreeMap<String, Mask> = views
+        .iter()
+        .map(|(id, _)| (id.to_string(), Mask::new(w, h)))
+        .collect();
+    let depth = DepthMap::from_fn(w, h, |x, y| {
+        let nearest = views
+            .iter()
+            .filter_map(|(id, v)| v.depth.get(x, y).map(|d| (d, *id)))
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        match nearest {
+            Some((d, id)) => {
+                if let Some(m) = masks.get_mut(id) {
+                    m.set(x, y, true);
+                }
+                d
+            }
+            None => 0.0,
+        }
+    });
+    let image = RgbImage::new(w, h, vec![128; w as usize * h as usize * 3])
+        .expect("the image has the camera's size");
+    Guidance::new(*camera, image, Some(depth), masks).expect("every buffer has the camera's size")
 }
 
 #[cfg(test)]

@@ -5,8 +5,9 @@
 //!
 //! 1. `raw`: each true asset placed in its lifted box (yaw from the box, scale from the
 //!    median ratio of box to asset extents, centre on the box's);
-//! 2. `alignment`: after the correspond stage ([`scenethesis_pipeline::correspond`]: yaw hypotheses, shape
-//!    matching against mask and depth, matches refreshed while the pose moves);
+//! 2. `alignment`: after the correspond stage ([`scenethesis_correspondence::correspond`]: yaw
+//!    hypotheses, shape matching against mask and depth, matches refreshed while the pose
+//!    moves);
 //! 3. `collision`: after the optimizer's alignment stage and a physics stage that only resolves
 //!    collisions ([`ProjectedGaussNewton::stability`] off);
 //! 4. `stability`: after the full optimizer (collision and stability).
@@ -20,13 +21,13 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::sync::Arc;
 
-use scenethesis_correspondence::ShapeMatcher;
+use scenethesis_correspondence::{correspond, GuidedSettings, ShapeMatcher};
 use scenethesis_eval::{evaluate_with_cache, DecompositionCache, EvalObject, EvalScene};
 use scenethesis_imagery::Guidance;
 use scenethesis_import::AssetResolver;
 use scenethesis_physics_opt::{
-    optimize_scene, GuidedSettings, OptimizeSettings, PrepareSettings, PreparedAsset,
-    ProjectedGaussNewton, SceneProblem,
+    optimize_scene, OptimizeSettings, PrepareSettings, PreparedAsset, ProjectedGaussNewton,
+    SceneProblem,
 };
 use scenethesis_render::Renderer;
 use scenethesis_scene_graph::{Mesh, ParentRef, Pose, Scene};
@@ -38,7 +39,6 @@ use crate::roundtrip::{
     median, perturbed_guidance, true_boxes, yaw_error, yaw_symmetry, RoundtripError,
     RoundtripOptions,
 };
-use scenethesis_pipeline::correspond::correspond;
 
 /// The four rows of the ablation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

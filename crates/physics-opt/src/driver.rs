@@ -8,19 +8,19 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use nalgebra::{Point3, Vector3};
+use scenethesis_correspondence::deadline::{deadline_after, past};
+use scenethesis_correspondence::params::{rotate_y, unrotate_y};
+use scenethesis_correspondence::PoseAlignment;
 use scenethesis_scene_graph::{
     Architecture, ParentRef, Pose, RelationKind, Scene, SceneObject, SupportSurface,
 };
 use scenethesis_sdf::{BoxSdf, SignedDistance};
 use serde::{Deserialize, Serialize};
 
-use crate::alignment::PoseAlignment;
-use crate::deadline::{deadline_after, past};
 use crate::finish::{finish, FinishInput};
 use crate::objective::{LossSettings, ObjectProblem, RoomBounds, Stage};
 use crate::obstacles::Obstacles;
 use crate::optimizer::Optimizer;
-use crate::params::carry;
 use crate::prepare::PreparedAsset;
 use crate::report::{ObjectReport, Placement};
 use crate::support::{choose_surface, Support, SupportPlane};
@@ -509,6 +509,18 @@ pub fn architecture_fields(
         ));
     }
     out
+}
+
+/// A child's pose moved rigidly with its parent from `before` to `after` (position and yaw
+/// follow the parent; the child's own scale is kept).
+pub(crate) fn carry(before: &Pose, after: &Pose, child: &Pose) -> Pose {
+    let local = unrotate_y(before.yaw, &(child.translation - before.translation)) / before.scale;
+    let translation = after.translation + rotate_y(after.yaw, &(local * after.scale));
+    Pose::new(
+        child.scale,
+        child.yaw + (after.yaw - before.yaw),
+        translation,
+    )
 }
 
 #[cfg(test)]

@@ -18,15 +18,15 @@ use scenethesis_correspondence::shape::turned;
 use scenethesis_scene_graph::{yaw_distance, Pose, SceneObject};
 use scenethesis_sdf::SignedDistance;
 
-use crate::deadline::past;
 use crate::objective::{LossSettings, ObjectProblem, RoomBounds, Stage};
 use crate::obstacles::Obstacles;
 use crate::optimizer::Optimizer;
-use crate::params::world_point;
 use crate::prepare::PreparedAsset;
 use crate::report::Issue;
 use crate::support::{Support, SupportPlane};
 use crate::verify::{verify, Placed, Tolerances, Verdict};
+use scenethesis_correspondence::deadline::past;
+use scenethesis_correspondence::params::world_point;
 
 /// Rounds of the pass at most.
 const ROUNDS: usize = 8;
@@ -141,7 +141,7 @@ pub(crate) fn finish(
             // Children move with it, and rest on its surfaces where they now are.
             let carried: Vec<usize> = (0..n).filter(|&d| d != i && is_ancestor(i, d)).collect();
             for &d in &carried {
-                poses[d] = crate::params::carry(&before, &after, &poses[d]);
+                poses[d] = crate::driver::carry(&before, &after, &poses[d]);
             }
             for &d in &carried {
                 supports[d] = resolve(d, &poses[d], poses);

@@ -7,7 +7,10 @@
 //! architecture (floor slab and walls):
 //!
 //! 1. **pose alignment** to the guidance image: 2D pixel and 3D point distances of
-//!    [`Correspondence`]s under the guide's pinhole camera ([`PoseAlignment`]);
+//!    [`Correspondence`](scenethesis_correspondence::Correspondence)s under the guide's pinhole
+//!    camera ([`PoseAlignment`](scenethesis_correspondence::PoseAlignment): the correspond
+//!    stage's loss, which `scenethesis-correspondence` holds with the pose parameters and the
+//!    damped least-squares step both stages take);
 //! 2. **physics**: the paper's translation collision loss (penetrating surface points push the
 //!    object along point → centroid by their depth), scale collision loss (only when the
 //!    penetration forms two or more separate clusters, pulling the scale toward
@@ -16,7 +19,8 @@
 //!
 //! Two optimizers implement [`Optimizer`]: [`Sgd`], the paper's gradient descent, and
 //! [`ProjectedGaussNewton`], which settles objects on their support in one step and resolves
-//! penetration with minimum-norm translations (Levenberg–Marquardt for the alignment).
+//! penetration with minimum-norm translations (Levenberg–Marquardt for the alignment, the
+//! step of [`scenethesis_correspondence::damped`]).
 //!
 //! Inner loops use baked grid fields; afterwards every object is polished and checked against
 //! the exact mesh fields: no pair penetrates more than 1 mm, every resting object's bottom is
@@ -26,37 +30,29 @@
 
 #![warn(missing_docs)]
 
-mod alignment;
 mod contact;
-mod damped;
-mod deadline;
 mod driver;
 mod finish;
-mod guided;
 mod objective;
 mod obstacles;
 mod optimizer;
-pub mod params;
 mod prepare;
 mod projected;
 mod report;
 pub mod support;
 mod verify;
 
-pub use alignment::{FitOptions, PoseAlignment, ScalePrior};
 pub use contact::{cluster_contacts, CollisionState, Contact};
 pub use driver::{
     architecture_fields, optimize_scene, OptimizeSettings, SceneProblem,
     DEFAULT_OPTIMIZE_BUDGET_SECS,
 };
-pub use guided::{align_to_guidance, GuidedPose, GuidedSettings, DEFAULT_TIME_BUDGET_SECS};
 pub use objective::{LossSettings, Losses, ObjectProblem, RoomBounds, Stage};
 pub use obstacles::Obstacles;
 pub use optimizer::{LearningRates, Optimizer, Sgd, StageOutcome};
 pub use prepare::{PrepareSettings, PreparedAsset};
 pub use projected::ProjectedGaussNewton;
 pub use report::{Issue, ObjectReport, Placement};
-pub use scenethesis_correspondence::Correspondence;
 pub use support::{Support, SupportPlane};
 pub use verify::Tolerances;
 

@@ -8,13 +8,15 @@ use nalgebra::{Point2, Point3, Vector3};
 use scenethesis_scene_graph::{Aabb, Architecture, Pose};
 use serde::{Deserialize, Serialize};
 
-use crate::alignment::PoseAlignment;
 use crate::contact::{cluster_contacts, CollisionState, Contact};
 use crate::obstacles::box_distance;
 use crate::obstacles::Obstacles;
-use crate::params::{rotate_y, unrotate_y, world_point, PoseVector, SCALE, TX, TY, TZ};
 use crate::prepare::PreparedAsset;
 use crate::support::Support;
+use scenethesis_correspondence::params::{
+    rotate_y, unrotate_y, world_point, PoseVector, SCALE, TX, TY, TZ,
+};
+use scenethesis_correspondence::PoseAlignment;
 
 /// Tolerances and weights of the losses.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -174,7 +176,7 @@ impl ObjectProblem<'_> {
     /// Whether the [`ObjectProblem::deadline`] has passed: optimizers check it before each
     /// iteration (it only ever stops work early; a deadline not reached changes nothing).
     pub fn out_of_time(&self) -> bool {
-        crate::deadline::past(self.deadline)
+        scenethesis_correspondence::deadline::past(self.deadline)
     }
 
     /// The allowed scale interval.

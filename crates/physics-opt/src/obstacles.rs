@@ -8,7 +8,7 @@ use nalgebra::{Point3, Vector3};
 use scenethesis_scene_graph::{Aabb, Pose};
 use scenethesis_sdf::{SceneSdf, SignedDistance};
 
-use crate::params::world_point;
+use scenethesis_correspondence::params::world_point;
 
 /// A [`SceneSdf`] (negative inside) plus, per field, a stable index, its world box and whether
 /// it is architecture.

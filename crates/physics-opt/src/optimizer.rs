@@ -5,7 +5,7 @@ use scenethesis_scene_graph::Pose;
 use serde::{Deserialize, Serialize};
 
 use crate::objective::{Losses, ObjectProblem, Stage};
-use crate::params::{from_vector, to_vector, PoseVector};
+use scenethesis_correspondence::params::{from_vector, to_vector, PoseVector};
 
 /// What one stage of optimizing one object produced.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

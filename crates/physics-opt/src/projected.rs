@@ -8,10 +8,10 @@ use scenethesis_scene_graph::Pose;
 use serde::{Deserialize, Serialize};
 
 use crate::contact::CollisionState;
-use crate::damped::{damped_step, take, NormalEquations};
 use crate::objective::{ObjectProblem, Stage};
 use crate::optimizer::{lowest_residual, Optimizer, StageOutcome};
 use crate::support::{horizontal, Support};
+use scenethesis_correspondence::damped::{damped_step, take, NormalEquations};
 
 /// Projected Gauss–Newton / Levenberg–Marquardt solver.
 ///

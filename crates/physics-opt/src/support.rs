@@ -7,7 +7,7 @@ use scenethesis_scene_graph::{Architecture, Pose, RelationKind};
 use scenethesis_scene_graph::{SupportSurface, SurfaceKind, LOW_SHELF_SHARE};
 use serde::{Deserialize, Serialize};
 
-use crate::params::world_point;
+use scenethesis_correspondence::params::world_point;
 
 /// A horizontal support surface placed in the world.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

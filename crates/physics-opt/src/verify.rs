@@ -10,10 +10,10 @@ use serde::{Deserialize, Serialize};
 
 use crate::objective::RoomBounds;
 use crate::obstacles::{box_distance, posed_points, Obstacles};
-use crate::params::world_point;
 use crate::prepare::PreparedAsset;
 use crate::report::Issue;
 use crate::support::Support;
+use scenethesis_correspondence::params::world_point;
 
 /// Tolerances of the post-conditions, in metres.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

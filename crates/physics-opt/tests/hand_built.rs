@@ -5,10 +5,11 @@ mod support;
 use std::sync::Arc;
 
 use nalgebra::{Point3, Vector3};
+use scenethesis_correspondence::{Correspondence, PoseAlignment};
 use scenethesis_imagery::{Camera, Intrinsics};
 use scenethesis_physics_opt::{
-    optimize_scene, Correspondence, Issue, OptimizeSettings, Optimizer, Placement, PoseAlignment,
-    PreparedAsset, ProjectedGaussNewton, SceneProblem, Sgd,
+    optimize_scene, Issue, OptimizeSettings, Optimizer, Placement, PreparedAsset,
+    ProjectedGaussNewton, SceneProblem, Sgd,
 };
 use scenethesis_scene_graph::{Pose, RelationKind};
 use support::*;

@@ -6,10 +6,8 @@ use std::collections::BTreeMap;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::{Point3, Vector3};
-use scenethesis_correspondence::ShapeMatcher;
+use scenethesis_correspondence::{correspond, rasterized_guidance, GuidedSettings, ShapeMatcher};
 use scenethesis_imagery::{Camera, Guidance, Intrinsics};
-use scenethesis_physics_opt::GuidedSettings;
-use scenethesis_pipeline::correspond::{correspond, rasterized_guidance};
 use scenethesis_pipeline::{
     resolve_meshes, GenerateOptions, NoProgress, Pipeline, RetrievalSource,
 };

@@ -29,7 +29,6 @@
 #![warn(missing_docs)]
 
 pub mod batch;
-pub mod correspond;
 mod error;
 pub mod out_dir;
 mod output;
@@ -66,6 +65,5 @@ pub use scenethesis_agents::{
     check_plan, cut_prompt, FixedPlanner, Plan, PlanFileError, PlanIssue,
 };
 /// The correspond stage's default matcher and its settings ([`Pipeline::with_matcher`]).
-pub use scenethesis_correspondence::ShapeMatcher;
+pub use scenethesis_correspondence::{GuidedSettings, ShapeMatcher};
 pub use scenethesis_export::Format;
-pub use scenethesis_physics_opt::GuidedSettings;

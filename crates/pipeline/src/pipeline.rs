@@ -4,9 +4,9 @@ use std::collections::BTreeMap;
 use std::time::{Duration, Instant};
 
 use scenethesis_agents::{Guide, KnowledgePlanner, Plan, PlanRequest, Planner, ProceduralGuide};
-use scenethesis_correspondence::Matcher;
+use scenethesis_correspondence::{GuidedSettings, Matcher};
 use scenethesis_physics_opt::{
-    GuidedSettings, OptimizeSettings, Optimizer, Placement, PrepareSettings, ProjectedGaussNewton,
+    OptimizeSettings, Optimizer, Placement, PrepareSettings, ProjectedGaussNewton,
 };
 use scenethesis_render_api::SceneRenderer;
 use scenethesis_retrieval::{AssetSource, RetrievalSource};

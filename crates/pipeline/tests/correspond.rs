@@ -7,11 +7,9 @@ use std::sync::{Arc, Mutex};
 
 use nalgebra::{Point3, Vector3};
 use scenethesis_agents::{AssetLookup, Guide, GuideError, GuidedLayout, Plan, ProceduralGuide};
-use scenethesis_correspondence::ShapeMatcher;
+use scenethesis_correspondence::{rasterized_guidance, GuidedSettings, ShapeMatcher};
 use scenethesis_imagery::{Camera, Intrinsics};
 use scenethesis_import::AssetResolver;
-use scenethesis_physics_opt::GuidedSettings;
-use scenethesis_pipeline::correspond::rasterized_guidance;
 use scenethesis_pipeline::{GenerateOptions, Pipeline, Progress, Stage};
 use scenethesis_scene_graph::{ParentRef, Pose, Scene};
 

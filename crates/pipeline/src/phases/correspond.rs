@@ -1,13 +1,13 @@
 //! Correspond: when the guide produced guidance and a matcher is configured, every object the
-//! guidance shows is matched against its mask and depth and its pose aligned
-//! ([`crate::correspond::correspond`]); the aligned poses replace the guide's and the final
-//! matches become the optimizer's pose-alignment term (stage 1 of its two stages).
+//! guidance shows is matched against its mask and depth and its pose aligned (the stage itself
+//! is [`scenethesis_correspondence::correspond`]; this phase hands it the retrieved meshes and
+//! scale ranges); the aligned poses replace the guide's and the final matches become the
+//! optimizer's pose-alignment term (stage 1 of its two stages).
 
 use std::collections::BTreeMap;
 
-use scenethesis_correspondence::Matcher;
+use scenethesis_correspondence::{GuidedSettings, Matcher, PoseAlignment};
 use scenethesis_imagery::Guidance;
-use scenethesis_physics_opt::{GuidedSettings, PoseAlignment};
 use scenethesis_scene_graph::Scene;
 
 use super::retrieve::{AssetCache, Retrieved};
@@ -36,8 +36,9 @@ pub(crate) fn correspond(
         );
         meshes.insert(object.id.clone(), cache.asset(key).mesh.clone());
     }
-    let guided =
-        crate::correspond::correspond(scene, &meshes, &ranges, guidance, 1.0, matcher, settings);
+    let guided = scenethesis_correspondence::correspond(
+        scene, &meshes, &ranges, guidance, 1.0, matcher, settings,
+    );
     let late: Vec<String> = guided
         .iter()
         .filter(|(_, g)| g.out_of_time)

@@ -4,8 +4,9 @@
 use std::collections::BTreeMap;
 use std::time::Instant;
 
+use scenethesis_correspondence::PoseAlignment;
 use scenethesis_physics_opt::{
-    optimize_scene, OptimizeSettings, Optimizer, Placement, PoseAlignment, SceneProblem,
+    optimize_scene, OptimizeSettings, Optimizer, Placement, SceneProblem,
 };
 use scenethesis_scene_graph::{Mesh, Scene};
 

@@ -1,17 +1,18 @@
-//! The correspond stage: between the guide and the optimizer, every object the guidance
-//! shows is matched against its mask and depth ([`Matcher`], by default the shape matcher) and
-//! its pose aligned with matches refreshed while it moves
-//! ([`scenethesis_physics_opt::align_to_guidance`]). The aligned poses become the optimizer's
-//! starting poses and the final matches its pose-alignment term, so the optimizer runs the
-//! paper's two stages: alignment first, then the physical losses.
+//! The correspond stage over a whole scene: between the guide and the optimizer, every object
+//! the guidance shows is matched against its mask and depth ([`Matcher`], by default the shape
+//! matcher) and its pose aligned with matches refreshed while it moves
+//! ([`align_to_guidance`]). The aligned poses become the optimizer's starting poses and the
+//! final matches its pose-alignment term, so the optimizer runs the paper's two stages:
+//! alignment first, then the physical losses.
 
 use std::collections::BTreeMap;
 
 use rayon::prelude::*;
-use scenethesis_correspondence::{Matcher, TargetRegion};
 use scenethesis_imagery::{DepthMap, Guidance};
-use scenethesis_physics_opt::{align_to_guidance, GuidedPose, GuidedSettings};
 use scenethesis_scene_graph::{Mesh, RelationKind, Scene, SceneObject};
+
+use crate::guided::{align_to_guidance, GuidedPose, GuidedSettings};
+use crate::matcher::{Matcher, TargetRegion};
 
 /// The yaw that turns `object`'s front (+Z) the way the plan says, when it says so: toward the
 /// target of a `facing` relation (an object of `scene`), or away from the wall of an
@@ -92,50 +93,4 @@ pub fn correspond(
         .collect::<Vec<_>>()
         .into_iter()
         .collect()
-}
-
-/// Guidance of `scene` seen by `camera`, drawn by the CPU rasterizer: each pixel belongs to the
-/// nearest object's mask and holds its depth (0 where no object is; no architecture, a grey
-/// image). For tests and benchmarks of the correspond stage without a GPU.
-pub fn rasterized_guidance(
-    scene: &Scene,
-    meshes: &BTreeMap<String, Mesh>,
-    camera: &scenethesis_imagery::Camera,
-) -> Guidance {
-    use scenethesis_correspondence::{rasterize, Window};
-    use scenethesis_imagery::{Mask, RgbImage};
-    let (w, h) = (camera.intrinsics.width, camera.intrinsics.height);
-    let window = Window::full(camera);
-    let views: Vec<(&str, scenethesis_correspondence::RenderedView)> = scene
-        .objects
-        .iter()
-        .filter_map(|o| {
-            Some((
-                o.id.as_str(),
-                rasterize(meshes.get(&o.id)?, &o.pose, camera, window),
-            ))
-        })
-        .collect();
-    let mut masks: BTreeMap<String, Mask> = views
-        .iter()
-        .map(|(id, _)| (id.to_string(), Mask::new(w, h)))
-        .collect();
-    let depth = DepthMap::from_fn(w, h, |x, y| {
-        let nearest = views
-            .iter()
-            .filter_map(|(id, v)| v.depth.get(x, y).map(|d| (d, *id)))
-            .min_by(|a, b| a.0.total_cmp(&b.0));
-        match nearest {
-            Some((d, id)) => {
-                if let Some(m) = masks.get_mut(id) {
-                    m.set(x, y, true);
-                }
-                d
-            }
-            None => 0.0,
-        }
-    });
-    let image = RgbImage::new(w, h, vec![128; w as usize * h as usize * 3])
-        .expect("the image has the camera's size");
-    Guidance::new(*camera, image, Some(depth), masks).expect("every buffer has the camera's size")
 }

@@ -7,10 +7,10 @@ use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use scenethesis_correspondence::{
-    rasterize, Correspondence, PairKind, ShapeMatcher, TargetRegion, Window,
+    align_to_guidance, rasterize, Correspondence, FitOptions, GuidedSettings, PairKind,
+    PoseAlignment, ShapeMatcher, TargetRegion, Window,
 };
 use scenethesis_imagery::{Camera, DepthMap, Intrinsics, Mask};
-use scenethesis_physics_opt::{align_to_guidance, FitOptions, GuidedSettings, PoseAlignment};
 use scenethesis_scene_graph::{Mesh, MeshPart, Pose};
 
 /// A sofa-like asset: a seat with a back and one arm, so no turn but the identity maps its

@@ -1,7 +1,8 @@
 //! One damped least-squares (Levenberg–Marquardt) step over the five pose parameters: the
 //! step both the alignment fit ([`crate::PoseAlignment::fit`], robust reweighting) and the
-//! optimizer's alignment stage ([`crate::ProjectedGaussNewton`]) take, each with its own
-//! residuals, projection and number of tries.
+//! alignment stage of the physics optimizer (`scenethesis_physics_opt::ProjectedGaussNewton`)
+//! take, each with its own residuals, projection and number of tries. It lives here, with the
+//! alignment loss, because the optimizer sits above this crate and imports it.
 
 use nalgebra::Matrix5;
 use scenethesis_scene_graph::Pose;
@@ -9,7 +10,7 @@ use scenethesis_scene_graph::Pose;
 use crate::params::{from_vector, to_vector, PoseVector};
 
 /// The normal equations of one linearisation: `JᵀWJ` and `JᵀWr`.
-pub(crate) struct NormalEquations {
+pub struct NormalEquations {
     /// `JᵀWJ`.
     pub jtj: Matrix5<f64>,
     /// `JᵀWr`.
@@ -41,16 +42,19 @@ impl NormalEquations {
 
 /// An accepted step: the new pose, its cost, and whether it moved at all (by more than 1e-9
 /// in some parameter).
-pub(crate) struct Step {
+pub struct Step {
+    /// The new pose.
     pub pose: Pose,
+    /// Its cost.
     pub cost: f64,
+    /// Whether it moved by more than 1e-9 in some parameter.
     pub moved: bool,
 }
 
 /// Solves the damped normal equations from `pose` (of cost `cost`) up to `tries` times,
 /// raising the damping `lambda` until a step, once `project`ed, lowers `cost_of`; lowers the
 /// damping again after a success. `None` when no try lowered the cost.
-pub(crate) fn damped_step(
+pub fn damped_step(
     normal: &NormalEquations,
     pose: &Pose,
     cost: f64,
@@ -87,7 +91,7 @@ pub(crate) fn damped_step(
 
 /// Moves `pose` and `cost` to an accepted `step`; whether the iteration goes on (a step was
 /// accepted and it moved).
-pub(crate) fn take(step: Option<Step>, pose: &mut Pose, cost: &mut f64) -> bool {
+pub fn take(step: Option<Step>, pose: &mut Pose, cost: &mut f64) -> bool {
     match step {
         Some(step) => {
             *pose = step.pose;

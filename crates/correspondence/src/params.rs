@@ -1,5 +1,6 @@
 //! The five pose parameters as a vector, and the derivatives of a posed point with respect to
-//! them.
+//! them: the parameters the alignment fit ([`crate::PoseAlignment`]) and the physics optimizer
+//! of `scenethesis-physics-opt` both move.
 
 use nalgebra::{Point3, Vector3, Vector5};
 use scenethesis_scene_graph::Pose;
@@ -59,18 +60,6 @@ pub fn world_point_jacobian(pose: &Pose, local: &Point3<f64>) -> [Vector3<f64>; 
     // d/dyaw of (c·x + s·z, y, −s·x + c·z) = (−s·x + c·z, 0, −c·x − s·z).
     let d_yaw = Vector3::new(-s * p.x + c * p.z, 0.0, -c * p.x - s * p.z) * pose.scale;
     [d_scale, d_yaw, Vector3::x(), Vector3::y(), Vector3::z()]
-}
-
-/// A child's pose moved rigidly with its parent from `before` to `after` (position and yaw
-/// follow the parent; the child's own scale is kept).
-pub(crate) fn carry(before: &Pose, after: &Pose, child: &Pose) -> Pose {
-    let local = unrotate_y(before.yaw, &(child.translation - before.translation)) / before.scale;
-    let translation = after.translation + rotate_y(after.yaw, &(local * after.scale));
-    Pose::new(
-        child.scale,
-        child.yaw + (after.yaw - before.yaw),
-        translation,
-    )
 }
 
 #[cfg(test)]

@@ -1,8 +1,8 @@
 //! Pose alignment: 2D pixel and 3D point distances of correspondences between an object's
 //! asset and the guidance image, under the guide's pinhole camera.
 
+use crate::pair::{Correspondence, PairKind};
 use nalgebra::Vector3;
-use scenethesis_correspondence::{Correspondence, PairKind};
 use scenethesis_imagery::Camera;
 use scenethesis_scene_graph::Pose;
 use serde::{Deserialize, Serialize};

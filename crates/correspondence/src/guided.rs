@@ -6,15 +6,16 @@ use std::cell::Cell;
 use std::time::Instant;
 
 use nalgebra::Point3;
-use scenethesis_correspondence::shape::{pick_yaw, search_yaw, search_yaw_coarse, shape_score};
-use scenethesis_correspondence::{
-    lift, projected_bbox, rasterize, Matcher, ShapeMatcher, ShapeScore, TargetRegion, Window,
-};
 use scenethesis_scene_graph::{Mesh, Pose};
 use serde::{Deserialize, Serialize};
 
 use crate::alignment::{FitOptions, PoseAlignment, ScalePrior};
 use crate::deadline::{deadline_after, past};
+use crate::matcher::{lift, Matcher, TargetRegion};
+use crate::raster::{projected_bbox, rasterize, Window};
+use crate::shape::{
+    pick_yaw, search_yaw, search_yaw_coarse, shape_score, ShapeMatcher, ShapeScore,
+};
 
 /// Settings of [`align_to_guidance`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

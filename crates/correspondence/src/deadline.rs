@@ -1,12 +1,13 @@
-//! Wall-clock deadlines of the optimizer's budgets. The clock is only compared with a deadline
-//! (to stop work early), never used in a computation, so a budget that is not reached leaves
-//! every result unchanged.
+//! Wall-clock deadlines of the time budgets of the alignment ([`crate::GuidedSettings`]) and of
+//! the physics optimizer of `scenethesis-physics-opt`, which imports them from here. The clock
+//! is only compared with a deadline (to stop work early), never used in a computation, so a
+//! budget that is not reached leaves every result unchanged.
 
 use std::time::{Duration, Instant};
 
 /// `now + seconds`, `None` for an infinite or unrepresentable budget (a non-positive or NaN
 /// budget is spent at once).
-pub(crate) fn deadline_after(seconds: f64) -> Option<Instant> {
+pub fn deadline_after(seconds: f64) -> Option<Instant> {
     let seconds = if seconds.is_nan() {
         0.0
     } else {
@@ -18,6 +19,6 @@ pub(crate) fn deadline_after(seconds: f64) -> Option<Instant> {
 }
 
 /// Whether `deadline` has passed.
-pub(crate) fn past(deadline: Option<Instant>) -> bool {
+pub fn past(deadline: Option<Instant>) -> bool {
     deadline.is_some_and(|d| Instant::now() >= d)
 }
