@@ -212,6 +212,28 @@ pub fn generate(category: &Category, seed: u64) -> Asset {
     asset
 }
 
+/// The generator seed of object `id` at `variant`: the one rule for which seed an object's
+/// built-in asset is generated with, read by everyone who generates or sizes it — the
+/// guide's catalog metadata (`scenethesis_agents::CatalogAssets`, variant = the scene seed) and
+/// retrieval's sources (variant = the run's seed plus the re-plan variant) — so the asset a
+/// layout is planned with is the asset retrieval delivers. The project's FNV-1a of the id,
+/// mixed with the variant by the SplitMix64 output function so neighbouring variants give
+/// unrelated seeds. The category is not part of it: [`generate`] mixes that in itself.
+///
+/// ```
+/// use scenethesis_procedural::catalog::{category, generate, object_seed};
+///
+/// assert_eq!(object_seed("mug_0", 3), object_seed("mug_0", 3));
+/// assert_ne!(object_seed("mug_0", 3), object_seed("mug_0", 4));
+/// assert_ne!(object_seed("mug_0", 3), object_seed("mug_1", 3));
+/// let mug = generate(category("mug").unwrap(), object_seed("mug_0", 3));
+/// assert_eq!(mug.info.source.to_string(), format!("mug#{}", object_seed("mug_0", 3)));
+/// ```
+pub fn object_seed(id: &str, variant: u64) -> u64 {
+    use scenethesis_scene_graph::{fnv1a64, mix64, GOLDEN_GAMMA};
+    mix64(fnv1a64(id.as_bytes()) ^ variant.wrapping_mul(GOLDEN_GAMMA))
+}
+
 /// A stable hash of a name (the project's FNV-1a), so categories sharing a seed still differ.
 fn name_hash(name: &str) -> u64 {
     scenethesis_scene_graph::fnv1a64(name.as_bytes())

@@ -194,7 +194,8 @@ impl AssetIndex {
     }
 
     /// The best `limit` candidates for `query`, best first. Equal scores are ordered by `seed`,
-    /// and built-in candidates carry a procedural seed derived from it. If an attached
+    /// and built-in candidates carry it as their procedural seed (so a search seeded with
+    /// [`scenethesis_procedural::catalog::object_seed`] yields the object's own asset). If an attached
     /// embedder fails on the query, the lexical ranking is returned (and a warning logged).
     pub fn search(&self, query: &str, limit: usize, seed: u64) -> Vec<Candidate> {
         match self.try_search(query, limit, seed) {
@@ -273,20 +274,19 @@ impl AssetIndex {
         let mut candidates: Vec<(Candidate, (bool, u64))> = Vec::new();
         for (score, reason, i) in scored {
             let entry = &self.entries[i];
-            let category_seed = mix(seed ^ fnv(&entry.category));
             if entry.builtin {
                 candidates.push((
                     Candidate {
                         asset: AssetRef::Procedural {
                             generator: entry.category.clone(),
-                            seed: category_seed,
+                            seed,
                         },
                         category: entry.category.clone(),
                         placement: entry.placement,
                         score,
                         reason: reason.clone(),
                     },
-                    (true, category_seed),
+                    (true, mix(seed ^ fnv(&entry.category))),
                 ));
             }
             for asset in &entry.imported {

@@ -13,8 +13,8 @@
 //!    lexical stages missed (`"somewhere to sleep"` → bed).
 //!
 //! Every query is normalised first (case, `_`/`-`, plurals). Candidates that score the same are
-//! ordered by the search seed, and a built-in category's candidate carries a procedural seed
-//! derived from the search seed, so different seeds give varied but reproducible scenes.
+//! ordered by the search seed, and a built-in category's candidate carries the search seed as
+//! its procedural seed, so different seeds give varied but reproducible scenes.
 //!
 //! ```
 //! use scenethesis_retrieval::{AssetIndex, AssetQuery, AssetSource, MatchReason, RetrievalSource};
@@ -43,6 +43,7 @@ pub mod text;
 pub use index::{AssetIndex, Candidate, EmbedError, MatchReason};
 /// The embedding seam retrieval ranks by meaning with: the one trait of `scenethesis-models`.
 pub use scenethesis_models::TextEmbedder;
-pub use source::{
-    object_seed, AssetError, AssetQuery, AssetSource, CatalogSource, RetrievalSource,
-};
+/// The generator seed of an object at a variant: the one rule, owned by the procedural
+/// catalog, that the sources here and the guide's catalog metadata share.
+pub use scenethesis_procedural::catalog::object_seed;
+pub use source::{AssetError, AssetQuery, AssetSource, CatalogSource, RetrievalSource};

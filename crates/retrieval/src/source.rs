@@ -99,7 +99,8 @@ pub trait AssetSource: Send + Sync {
 }
 
 /// The built-in procedural library (`scenethesis_procedural::catalog`): every category the registry
-/// lists, each object's asset generated with a seed derived from its id and the variant. It
+/// lists, each object's asset generated with the seed [`catalog::object_seed`] gives its id and
+/// the variant (the seed the guide's catalog metadata sizes it with). It
 /// never retrieves imported assets, but [`AssetSource::mesh`] re-imports those a saved scene
 /// references from their file's directory.
 #[derive(Debug, Clone, Copy, Default)]
@@ -120,7 +121,10 @@ impl AssetSource for CatalogSource {
             category: object.category.to_owned(),
             source_name: self.name().to_owned(),
         })?;
-        Ok(catalog::generate(category, object_seed(object.id, variant)))
+        Ok(catalog::generate(
+            category,
+            catalog::object_seed(object.id, variant),
+        ))
     }
 
     fn mesh(&self, asset: &AssetRef) -> Result<Mesh, AssetError> {
@@ -140,7 +144,8 @@ impl AssetSource for CatalogSource {
 
 /// Retrieval through an [`AssetIndex`]: each planned object's category is
 /// the query and the best candidate is used. Built-in candidates are generated with a
-/// procedural seed drawn from the object's id and the variant; imported (bring-your-own)
+/// procedural seed [`catalog::object_seed`] gives the object's id and the variant (the same
+/// asset [`CatalogSource`] generates); imported (bring-your-own)
 /// assets — see [`RetrievalSource::with_imported`] — rank above the built-in generator of the
 /// same category and are used as loaded. Where several imported assets share the best score,
 /// the variant picks among them.
@@ -256,7 +261,7 @@ impl AssetSource for RetrievalSource {
             category: object.category.to_owned(),
             source_name: self.name().to_owned(),
         };
-        let seed = object_seed(object.id, variant);
+        let seed = catalog::object_seed(object.id, variant);
         let hit = self
             .index
             .search(object.category, 1, seed)
@@ -296,11 +301,4 @@ fn unresolvable(asset: &AssetRef, e: ResolveError) -> AssetError {
             other => other.to_string(),
         },
     }
-}
-
-/// A stable per-object seed: the project's FNV-1a of the object id, mixed with the variant.
-pub fn object_seed(id: &str, variant: u64) -> u64 {
-    use scenethesis_scene_graph::{fnv1a64, mix64, GOLDEN_GAMMA};
-    // The SplitMix64 output function so neighbouring variants give unrelated seeds.
-    mix64(fnv1a64(id.as_bytes()) ^ variant.wrapping_mul(GOLDEN_GAMMA))
 }

@@ -89,7 +89,9 @@ pub use io::{read_bounded, write_file_atomic, SceneIoError};
 pub use mesh::{Material, Mesh, MeshPart};
 pub use object::{AssetRef, ParentRef, Relation, RelationKind, SceneObject, GROUND_ID};
 pub use pose::{wrap_yaw, yaw_distance, yaw_distance_modulo, Pose};
-pub use relations::{floor_centre, floor_gap, front_dir, relation_holds, right_dir};
+pub use relations::{
+    aabb_floor_gap, floor_centre, floor_gap, front_dir, relation_holds, right_dir,
+};
 pub use scene::{Scene, FORMAT_VERSION};
 pub use validate::{is_printable_id, printable, OutOfBounds, ValidationError};
 pub use walkway::ROBOT_RADIUS;

@@ -1,6 +1,6 @@
 //! Geometric checks of scene relations, for tests, the judge and reports.
 
-use crate::{Relation, RelationKind, Scene, SceneObject, GROUND_ID, LOW_SHELF_SHARE};
+use crate::{Aabb, Relation, RelationKind, Scene, SceneObject, GROUND_ID, LOW_SHELF_SHARE};
 use nalgebra::Vector2;
 
 /// Tolerance for resting contact, in metres.
@@ -33,7 +33,13 @@ fn within_xz(o: &SceneObject, t: &SceneObject) -> bool {
 /// The gap between the world boxes of `a` and `b` on the floor plane (x, z), in metres: 0 when
 /// their footprints touch or overlap. *Beside* and *around* are bounds on it.
 pub fn floor_gap(a: &SceneObject, b: &SceneObject) -> f64 {
-    let (a, b) = (a.world_aabb(), b.world_aabb());
+    aabb_floor_gap(&a.world_aabb(), &b.world_aabb())
+}
+
+/// The gap between two world boxes on the floor plane (x, z), in metres: 0 when they touch or
+/// overlap there. [`floor_gap`] of two objects is this of their world boxes; a layout step that
+/// has only boxes measures with it what the relation checks will measure.
+pub fn aabb_floor_gap(a: &Aabb, b: &Aabb) -> f64 {
     let dx = (b.min.x - a.max.x).max(a.min.x - b.max.x).max(0.0);
     let dz = (b.min.z - a.max.z).max(a.min.z - b.max.z).max(0.0);
     (dx * dx + dz * dz).sqrt()

@@ -4,11 +4,12 @@
 
 use std::f64::consts::{FRAC_PI_2, PI};
 
+use nalgebra::Point3;
 use rand::seq::SliceRandom;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
-use scenethesis_scene_graph::AssetInfo;
 use scenethesis_scene_graph::RelationKind;
+use scenethesis_scene_graph::{aabb_floor_gap, Aabb, AssetInfo};
 
 use super::geometry::Footprint;
 use super::room::Side;
@@ -255,16 +256,21 @@ fn strands_a_seat(state: &FloorState<'_>, fp: &Footprint, served: &[(&[String], 
 }
 
 /// Whether an object at `fp` would have one of `serves`' targets within reach and face none of
-/// them (the judge's `faces` rule, on footprints: front within 50° of the target's centre, or
-/// squarely before its front).
+/// them (the judge's `faces` rule, on footprints: within reach by the gap of the world boxes,
+/// as the judge measures it, so facing a table the judge deems out of reach does not count;
+/// facing: front within 50° of the target's centre, or squarely before its front).
 fn breaks_faces(state: &FloorState<'_>, fp: &Footprint, serves: &[(&[String], f64)]) -> bool {
+    let boxed = |f: &Footprint| {
+        let [x0, z0, x1, z1] = f.bounds(0.0);
+        Aabb::new(Point3::new(x0, 0.0, z0), Point3::new(x1, 0.0, z1))
+    };
     serves.iter().any(|(targets, within)| {
         let mut near = state
             .placed
             .iter()
             .filter(|p| !p.mounted)
             .filter(|p| targets.contains(&state.plan.objects[p.plan_index].category))
-            .filter(|p| p.fp.overlaps(fp, 2.0 * within))
+            .filter(|p| aabb_floor_gap(&boxed(&p.fp), &boxed(fp)) <= *within)
             .peekable();
         near.peek().is_some() && !near.any(|t| faces_footprint(fp, &t.fp))
     })

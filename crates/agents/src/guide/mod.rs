@@ -3,6 +3,7 @@
 mod assemble;
 mod candidates;
 mod geometry;
+mod grow;
 mod lookup;
 mod place_floor;
 mod procedural;

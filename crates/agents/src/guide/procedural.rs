@@ -3,9 +3,10 @@
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use scenethesis_scene_graph::ParentRef;
+use scenethesis_scene_graph::{AssetInfo, ParentRef};
 
 use super::assemble::{build_scene, ground_poses};
+use super::grow::{layout_scales, scaled};
 use super::place_floor::{place_floor_objects, placement_order};
 use super::room::{asset_infos, Room};
 use super::runs::place_runs;
@@ -19,8 +20,10 @@ use crate::plan::Plan;
 /// tables, then every floor object accepted only while one connected walkway (at least the
 /// plan's aisle width, ≥ 0.6 m) still reaches the door and the access side of every floor
 /// object, and the robot-radius free floor stays one region. Children are packed onto their
-/// parents' support surfaces (several per shelf when they fit, never overlapping). What does
-/// not fit is dropped and reported.
+/// parents' support surfaces (several per shelf when they fit, never overlapping); a floor
+/// object too small for a child the prompt puts on, in or under it is first grown within its
+/// scale range until that child fits at its smallest scale. What does not fit is dropped and
+/// reported.
 #[derive(Debug, Clone)]
 pub struct ProceduralGuide {
     cell: f64,
@@ -90,8 +93,16 @@ impl ProceduralGuide {
         let room = Room::of(plan)?;
         let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x9e37_79b9_7f4a_7c15);
         let infos = asset_infos(plan, assets)?;
+        // Everything is placed at its layout scale; the scene keeps the assets' own metadata
+        // and carries the scale in the poses.
+        let scales = layout_scales(plan, &infos);
+        let laid: Vec<AssetInfo> = infos
+            .iter()
+            .zip(&scales)
+            .map(|(i, &k)| scaled(i, k))
+            .collect();
         let mut state = FloorState::new(plan, &room, self.cell);
-        let runs = place_runs(&mut state, &infos, &room.sides, seed);
+        let runs = place_runs(&mut state, &laid, &room.sides, seed);
         let order: Vec<usize> = placement_order(plan)
             .into_iter()
             .filter(|&i| state.placed_of(i).is_none())
@@ -99,7 +110,7 @@ impl ProceduralGuide {
         let mut dropped = place_floor_objects(
             &mut state,
             order,
-            &infos,
+            &laid,
             &room.sides,
             runs.as_ref(),
             &mut rng,
@@ -110,7 +121,10 @@ impl ProceduralGuide {
         }
         drop_pocket_closers(&mut state, &mut dropped);
         let (mut poses, walls) = ground_poses(&state);
-        dropped.extend(place_children(plan, &infos, &mut poses, &mut rng));
+        dropped.extend(place_children(plan, &laid, &mut poses, &mut rng));
+        for (i, pose) in poses.iter_mut() {
+            pose.scale *= scales[*i];
+        }
         let (_, ratio, door_ok, unreachable) = state.evaluate(None);
         let scene = build_scene(plan, seed, room, &infos, &poses, &walls);
         Ok(GuidedLayout {

@@ -16,6 +16,12 @@ use crate::plan::Plan;
 /// Gap between neighbours on one surface, in metres.
 const GAP: f64 = 0.015;
 
+/// The share of a surface's extent a child may span.
+pub(super) const FIT_SHARE: f64 = 0.98;
+
+/// Free height kept between a child's top and the underside of what is above it, in metres.
+pub(super) const HEADROOM: f64 = 0.01;
+
 /// An axis-aligned rectangle in the parent's asset frame (x0, z0, x1, z1).
 type Rect = [f64; 4];
 
@@ -44,7 +50,7 @@ fn surface_bounds(surface: &SupportSurface) -> Rect {
 }
 
 /// The surface kinds a support relation may use, best first.
-fn kinds_for(support: RelationKind) -> &'static [SurfaceKind] {
+pub(super) fn kinds_for(support: RelationKind) -> &'static [SurfaceKind] {
     match support {
         RelationKind::On => &[SurfaceKind::Top, SurfaceKind::Shelf, SurfaceKind::Interior],
         RelationKind::Inside => &[SurfaceKind::Shelf, SurfaceKind::Interior],
@@ -141,18 +147,21 @@ pub(crate) fn place_children(
 /// on a shared surface.
 fn fill_order(plan: &Plan, infos: &[AssetInfo]) -> Vec<usize> {
     let area = |i: usize| -(infos[i].size[0] as f64 * infos[i].size[2] as f64);
-    let asked = |i: usize| {
-        let o = &plan.objects[i];
-        o.hard || plan.requested.iter().any(|r| r.ids.contains(&o.id))
-    };
     let mut order: Vec<usize> = (0..plan.objects.len()).collect();
     order.sort_by(|&a, &b| {
-        asked(b)
-            .cmp(&asked(a))
+        asked(plan, b)
+            .cmp(&asked(plan, a))
             .then(area(a).total_cmp(&area(b)))
             .then(a.cmp(&b))
     });
     order
+}
+
+/// Whether the prompt asked for object `i` of `plan` (its support or relations were stated,
+/// or it is one of the objects a request named).
+pub(super) fn asked(plan: &Plan, i: usize) -> bool {
+    let o = &plan.objects[i];
+    o.hard || plan.requested.iter().any(|r| r.ids.contains(&o.id))
 }
 
 /// What the children placed so far take up on their parents' surfaces.
@@ -239,12 +248,12 @@ impl Packer {
             );
             let mut scale = 1.0f64;
             if let Some(clear) = surface.clearance {
-                scale = scale.min((clear as f64 - 0.01) / ch);
+                scale = scale.min((clear as f64 - HEADROOM) / ch);
             }
             let b = surface_bounds(surface);
             for rel_yaw in [0.0, FRAC_PI_2] {
                 let (w, d) = if rel_yaw == 0.0 { (cw, cd) } else { (cd, cw) };
-                let fit = ((b[2] - b[0]) * 0.98 / w).min((b[3] - b[1]) * 0.98 / d);
+                let fit = ((b[2] - b[0]) * FIT_SHARE / w).min((b[3] - b[1]) * FIT_SHARE / d);
                 let largest = scale.min(fit).min(1.0);
                 let smallest = child.scale_range[0] as f64;
                 // The natural size first, then a little smaller within the scale range.
