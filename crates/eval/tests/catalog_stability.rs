@@ -15,11 +15,10 @@ use support::{at, place};
 /// Seeds tried per category (each gives other proportions).
 const SEEDS: u64 = 4;
 
-/// Categories that still move when simulated alone. A rocking horse rocks on its curved
-/// rockers until its centre of mass is over the contact point (≈ 3 cm, 0.07 rad): a known issue
-/// of its generator, which the judge catches in scenes. The test fails if it becomes stable, so
-/// the list cannot go stale.
-const KNOWN_UNSTABLE: [&str; 1] = ["rocking_horse"];
+/// Categories that still move when simulated alone (none today: the rocking horse, which rocked
+/// off the edge between two rocker segments, now rests on a flat middle one). The test fails if
+/// a listed category becomes stable, so the list cannot go stale.
+const KNOWN_UNSTABLE: [&str; 0] = [];
 
 #[test]
 fn every_standing_asset_is_stable_alone_on_flat_ground() {

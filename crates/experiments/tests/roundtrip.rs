@@ -23,7 +23,7 @@ fn generated(prompt: &str) -> (GeneratedScene, Renderer) {
 fn unperturbed_round_trip_recovers_the_scene() {
     let (generated, renderer) = generated("a bedroom with a bed, two nightstands and a wardrobe");
     let opts = RoundtripOptions {
-        size: [320, 240],
+        size: [400, 300],
         ..RoundtripOptions::default()
     };
     let report = roundtrip(&renderer, &generated.scene, &generated.meshes, &opts).unwrap();

@@ -640,7 +640,9 @@ pub(super) fn easel(rng: &mut ChaCha8Rng) -> Asset {
 }
 
 /// Rocking horse: width 0.3–0.4, height 0.6–0.85, length 0.85–1.15; curved rockers of straight
-/// segments, four legs, a body, neck and head.
+/// segments, four legs, a body, neck and head. The rockers have an odd number of segments, so
+/// the lowest one is flat and centred: the horse rests on it instead of on the edge between
+/// two segments, from which it would rock off under its forward-leaning head.
 pub(super) fn rocking_horse(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let wood = mat_either(&mut b, 0.5, Palette::Wood, Palette::PaintedWood, rng);
@@ -649,7 +651,7 @@ pub(super) fn rocking_horse(rng: &mut ChaCha8Rng) -> Asset {
     let hl = 0.5 * l;
     let w = uniform(rng, 0.3, 0.4);
     let r = 1.2 * l;
-    let n = 6;
+    let n = 7;
     let arc = (hl / r).asin();
     for (k, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
         let x = sx * 0.5 * (w - 0.03);
