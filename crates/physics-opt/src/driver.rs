@@ -9,7 +9,6 @@ use std::time::Instant;
 
 use nalgebra::{Point3, Vector3};
 use scenethesis_correspondence::deadline::{deadline_after, past};
-use scenethesis_correspondence::params::{rotate_y, unrotate_y};
 use scenethesis_correspondence::PoseAlignment;
 use scenethesis_scene_graph::{
     Architecture, ParentRef, Pose, RelationKind, Scene, SceneObject, SupportSurface,
@@ -17,6 +16,7 @@ use scenethesis_scene_graph::{
 use scenethesis_sdf::{BoxSdf, SignedDistance};
 use serde::{Deserialize, Serialize};
 
+use crate::carry::carry;
 use crate::finish::{finish, FinishInput};
 use crate::objective::{LossSettings, ObjectProblem, RoomBounds, Stage};
 use crate::obstacles::Obstacles;
@@ -511,37 +511,9 @@ pub fn architecture_fields(
     out
 }
 
-/// A child's pose moved rigidly with its parent from `before` to `after` (position and yaw
-/// follow the parent; the child's own scale is kept).
-pub(crate) fn carry(before: &Pose, after: &Pose, child: &Pose) -> Pose {
-    let local = unrotate_y(before.yaw, &(child.translation - before.translation)) / before.scale;
-    let translation = after.translation + rotate_y(after.yaw, &(local * after.scale));
-    Pose::new(
-        child.scale,
-        child.yaw + (after.yaw - before.yaw),
-        translation,
-    )
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn carried_child_keeps_its_place_relative_to_the_parent() {
-        let before = Pose::new(1.0, 0.0, Vector3::new(0.0, 0.0, 0.0));
-        let after = Pose::new(
-            1.0,
-            std::f64::consts::FRAC_PI_2,
-            Vector3::new(1.0, 0.0, 0.0),
-        );
-        let child = Pose::new(0.8, 0.1, Vector3::new(0.0, 0.75, 0.3));
-        let moved = carry(&before, &after, &child);
-        // +Z turns toward +X under a quarter-turn yaw.
-        assert!((moved.translation - Vector3::new(1.3, 0.75, 0.0)).norm() < 1e-12);
-        assert!((moved.yaw - (0.1 + std::f64::consts::FRAC_PI_2)).abs() < 1e-12);
-        assert_eq!(moved.scale, 0.8);
-    }
 
     #[test]
     fn wall_boxes_cover_the_walls() {

@@ -141,7 +141,7 @@ pub(crate) fn finish(
             // Children move with it, and rest on its surfaces where they now are.
             let carried: Vec<usize> = (0..n).filter(|&d| d != i && is_ancestor(i, d)).collect();
             for &d in &carried {
-                poses[d] = crate::driver::carry(&before, &after, &poses[d]);
+                poses[d] = crate::carry::carry(&before, &after, &poses[d]);
             }
             for &d in &carried {
                 supports[d] = resolve(d, &poses[d], poses);

@@ -30,6 +30,7 @@
 
 #![warn(missing_docs)]
 
+mod carry;
 mod contact;
 mod driver;
 mod finish;
