@@ -388,16 +388,7 @@ mod tests {
         ];
         let correspondences = points
             .iter()
-            .map(|p| {
-                let x = world_point(&truth, p);
-                Correspondence {
-                    asset_point: *p,
-                    target_pixel: camera.project(&x).unwrap().pixel,
-                    target_point: Some(x),
-                    confidence: 0.9,
-                    kind: Default::default(),
-                }
-            })
+            .map(|p| Correspondence::exact(&camera, *p, world_point(&truth, p), 0.9).unwrap())
             .collect();
         (PoseAlignment::new(camera, correspondences), truth)
     }

@@ -1,6 +1,7 @@
 //! One matched pair between an asset and the guidance image.
 
 use nalgebra::{Point2, Point3};
+use scenethesis_imagery::Camera;
 use serde::{Deserialize, Serialize};
 
 /// Which residuals a [`Correspondence`] contributes to the pose-alignment loss.
@@ -34,4 +35,45 @@ pub struct Correspondence {
     /// Which residuals the pair contributes ([`PairKind::Point`] unless stated).
     #[serde(default)]
     pub kind: PairKind,
+}
+
+impl Correspondence {
+    /// The pair an exact guidance gives for `asset_point` when it is seen at `world_point`: the
+    /// pixel where `camera` projects the world point, and the world point itself, as a
+    /// [`PairKind::Point`] pair with `confidence`. `None` when the point is behind the camera.
+    /// Synthetic pairs like these test an alignment against a known truth.
+    ///
+    /// ```
+    /// use nalgebra::{Point3, Vector3};
+    /// use scenethesis_correspondence::Correspondence;
+    /// use scenethesis_imagery::{Camera, Intrinsics};
+    ///
+    /// let camera = Camera::look_at(
+    ///     Intrinsics::from_vertical_fov(640, 480, 1.0),
+    ///     Point3::new(0.0, 1.5, 3.0),
+    ///     Point3::origin(),
+    ///     Vector3::y(),
+    /// );
+    /// let seen = Point3::new(0.0, 0.0, 0.0);
+    /// let pair = Correspondence::exact(&camera, Point3::new(0.1, 0.4, 0.0), seen, 0.9).unwrap();
+    /// assert_eq!(pair.target_point, Some(seen));
+    /// // The point the camera looks at is seen in the middle of the image.
+    /// assert!((pair.target_pixel.x - 320.0).abs() < 1e-6);
+    /// // Behind the camera, nothing is seen.
+    /// assert!(Correspondence::exact(&camera, seen, Point3::new(0.0, 2.0, 6.0), 0.9).is_none());
+    /// ```
+    pub fn exact(
+        camera: &Camera,
+        asset_point: Point3<f64>,
+        world_point: Point3<f64>,
+        confidence: f64,
+    ) -> Option<Self> {
+        Some(Self {
+            asset_point,
+            target_pixel: camera.project(&world_point)?.pixel,
+            target_point: Some(world_point),
+            confidence,
+            kind: PairKind::Point,
+        })
+    }
 }

@@ -344,16 +344,7 @@ fn alignment_recovers_a_pose_from_synthetic_correspondences() {
         .surface_points()
         .iter()
         .step_by(8)
-        .map(|p| {
-            let x = truth.transform_point(p);
-            Correspondence {
-                asset_point: *p,
-                target_pixel: camera.project(&x).unwrap().pixel,
-                target_point: Some(x),
-                confidence: 0.9,
-                kind: Default::default(),
-            }
-        })
+        .map(|p| Correspondence::exact(&camera, *p, truth.transform_point(p), 0.9).unwrap())
         .collect();
     // Start 8 cm off, 0.25 rad turned and 10 % too small.
     let start = Pose::new(1.0, 0.1, Vector3::new(0.36, 0.0, -0.14));
