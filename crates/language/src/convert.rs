@@ -243,16 +243,14 @@ pub(crate) fn convert(
     let mut issues = Vec::new();
     let indoor = answer.environment != "outdoor";
     let (kept, id_map) = kept_objects(answer, available, &mut notes, &mut issues);
+    let place = Placing {
+        id_map: &id_map,
+        indoor,
+        detailed: answer.detailed,
+    };
     let mut objects: Vec<PlannedObject> = kept
         .iter()
-        .map(|(o, id, category)| {
-            let place = Placing {
-                id_map: &id_map,
-                indoor,
-                detailed: answer.detailed,
-            };
-            planned_object(o, id, category, &place, &mut notes)
-        })
+        .map(|(o, id, category)| planned_object(o, id, category, &place, &mut notes))
         .collect();
     break_cycles(&mut objects, &mut notes);
     let anchor = anchor_of(answer, &id_map, &objects);

@@ -264,13 +264,14 @@ fn breaks_faces(state: &FloorState<'_>, fp: &Footprint, serves: &[(&[String], f6
         let [x0, z0, x1, z1] = f.bounds(0.0);
         Aabb::new(Point3::new(x0, 0.0, z0), Point3::new(x1, 0.0, z1))
     };
+    let here = boxed(fp);
     serves.iter().any(|(targets, within)| {
         let mut near = state
             .placed
             .iter()
             .filter(|p| !p.mounted)
             .filter(|p| targets.contains(&state.plan.objects[p.plan_index].category))
-            .filter(|p| aabb_floor_gap(&boxed(&p.fp), &boxed(fp)) <= *within)
+            .filter(|p| aabb_floor_gap(&boxed(&p.fp), &here) <= *within)
             .peekable();
         near.peek().is_some() && !near.any(|t| faces_footprint(fp, &t.fp))
     })
