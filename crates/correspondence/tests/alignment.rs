@@ -33,6 +33,7 @@ fn sofa() -> Mesh {
             material: 0,
             positions,
             triangles,
+            joint: None,
         }],
         materials: Vec::new(),
     }

@@ -150,6 +150,7 @@ fn convert(file: &GltfFile, node: &GltfNode) -> GlbNode {
             material: mesh.materials.len() - 1,
             positions,
             triangles,
+            joint: None,
         });
     }
     GlbNode {
@@ -201,6 +202,7 @@ mod tests {
             material: 0,
             positions: positions.clone(),
             triangles: triangles.clone(),
+            joint: None,
         };
         assert!(
             crate::stability::round_solid(&split).is_some(),
@@ -214,6 +216,7 @@ mod tests {
             material: 0,
             positions,
             triangles,
+            joint: None,
         };
         assert!(crate::stability::round_solid(&part).is_none());
         assert!(crate::stability::is_convex(&part));

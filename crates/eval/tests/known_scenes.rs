@@ -328,6 +328,8 @@ fn output_folder_takes_meshes_from_scene_glb_nodes_by_id() {
             local_bounds: mesh
                 .bounds()
                 .unwrap_or(Aabb::new(Point3::origin(), Point3::origin())),
+            joints: Vec::new(),
+            parent_link: None,
         };
     let mut scene = Scene::new(scenethesis_scene_graph::Architecture::rectangular_room(
         6.0, 4.0, 2.8, 0.9,

@@ -129,6 +129,8 @@ fn object(
         local_bounds: mesh
             .bounds()
             .unwrap_or(Aabb::new(Point3::origin(), Point3::origin())),
+        joints: Vec::new(),
+        parent_link: None,
     }
 }
 

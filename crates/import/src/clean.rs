@@ -141,6 +141,7 @@ mod tests {
                 material: 0,
                 positions,
                 triangles,
+                joint: None,
             }],
             materials: vec![Material::new("grey", [0.5; 3], 0.8)],
         }

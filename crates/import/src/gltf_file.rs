@@ -675,6 +675,7 @@ pub(super) fn load(path: &Path, root: &Path) -> Result<Mesh, MeshLoadError> {
                 material,
                 positions: p.positions.clone(),
                 triangles,
+                joint: None,
             };
             scenethesis_primitives::compact(&mut part);
             mesh.parts.push(part);

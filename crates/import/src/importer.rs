@@ -300,6 +300,7 @@ impl Importer {
                 front: [0.0, 0.0, 1.0],
                 support_surfaces,
                 scale_range: entry.scale_range.unwrap_or([0.9, 1.1]),
+                joints: Vec::new(),
             },
             mesh,
         })

@@ -207,6 +207,7 @@ impl Parts {
             material: m,
             positions,
             triangles,
+            joint: None,
         };
         mesh.parts.push(part);
     }

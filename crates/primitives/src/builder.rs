@@ -160,6 +160,7 @@ impl AssetBuilder {
                 front: [0.0, 0.0, 1.0],
                 support_surfaces: self.surfaces,
                 scale_range,
+                joints: Vec::new(),
             },
             mesh: self.mesh,
         }

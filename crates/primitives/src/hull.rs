@@ -85,6 +85,7 @@ pub fn convex_hull(name: &str, material: usize, points: &[[f32; 3]]) -> Option<M
         material,
         positions: points.to_vec(),
         triangles: faces,
+        joint: None,
     };
     compact(&mut part);
     Some(part)

@@ -59,6 +59,7 @@ pub fn frustum(
         material,
         positions,
         triangles,
+        joint: None,
     };
     if r0 == 0.0 {
         weld_ring(&mut part, 0, n, bottom);
@@ -144,6 +145,7 @@ pub fn ellipsoid(
         material,
         positions,
         triangles,
+        joint: None,
     }
 }
 

@@ -42,6 +42,7 @@ pub fn loft(name: &str, material: usize, ring0: &[[f32; 3]], ring1: &[[f32; 3]])
         material,
         positions,
         triangles,
+        joint: None,
     };
     orient_outward(&mut part);
     part

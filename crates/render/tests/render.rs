@@ -40,6 +40,7 @@ fn cylinder(name: &str, material: usize, radius: f32, height: f32, segments: u32
         material,
         positions,
         triangles,
+        joint: None,
     }
 }
 
@@ -433,6 +434,8 @@ fn room_scene_graph() -> (
         support: RelationKind::OnFloor,
         relations: Vec::new(),
         local_bounds: mesh.bounds().unwrap(),
+        joints: Vec::new(),
+        parent_link: None,
     };
     for instance in &rs.instances {
         scene

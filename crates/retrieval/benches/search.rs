@@ -44,6 +44,7 @@ fn index_with_imports(imported: usize) -> AssetIndex {
             front: [0.0, 0.0, 1.0],
             support_surfaces: Vec::new(),
             scale_range: [0.9, 1.1],
+            joints: Vec::new(),
         });
     }
     index

@@ -1,4 +1,4 @@
-use crate::{AssetRef, Mesh};
+use crate::{AssetRef, Joint, Mesh};
 use serde::{Deserialize, Serialize};
 
 /// Where an asset is normally placed.
@@ -115,6 +115,10 @@ pub struct AssetInfo {
     pub support_surfaces: Vec<SupportSurface>,
     /// The range of uniform scale the optimizer may apply and still look plausible.
     pub scale_range: [f32; 2],
+    /// The moving parts' joints (doors, drawers, lids), parents before children; empty for a
+    /// rigid asset.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub joints: Vec<Joint>,
 }
 
 /// An asset: its mesh and its metadata.

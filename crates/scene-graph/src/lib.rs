@@ -35,6 +35,8 @@
 //!     support: RelationKind::OnFloor,
 //!     relations: Vec::new(),
 //!     local_bounds: Aabb::new(Point3::new(-0.6, 0.0, -0.4), Point3::new(0.6, 0.75, 0.4)),
+//!     joints: Vec::new(),
+//!     parent_link: None,
 //! };
 //! let mug = SceneObject {
 //!     id: "mug_0".into(),
@@ -45,6 +47,8 @@
 //!     support: RelationKind::On,
 //!     relations: Vec::new(),
 //!     local_bounds: Aabb::new(Point3::new(-0.05, 0.0, -0.05), Point3::new(0.05, 0.1, 0.05)),
+//!     joints: Vec::new(),
+//!     parent_link: None,
 //! };
 //! scene.anchor = Some("table_0".into());
 //! scene.objects = vec![mug, table]; // stored order is free; the hierarchy orders the walk
@@ -67,6 +71,7 @@ mod asset;
 mod floor_raster;
 mod hash;
 mod io;
+mod joint;
 pub mod limits;
 mod mesh;
 mod object;
@@ -86,6 +91,7 @@ pub use asset::{Asset, AssetInfo, Placement, SupportSurface, SurfaceKind, LOW_SH
 pub use floor_raster::{Components, FloorRaster, BLOCKED_CELL};
 pub use hash::{fnv1a64, fnv1a64_from, mix64, FNV_OFFSET_BASIS, GOLDEN_GAMMA};
 pub use io::{read_bounded, write_file_atomic, SceneIoError};
+pub use joint::{Joint, JointError, JointKind, JointState, OpensTo};
 pub use mesh::{Material, Mesh, MeshPart};
 pub use object::{AssetRef, ParentRef, Relation, RelationKind, SceneObject, GROUND_ID};
 pub use pose::{wrap_yaw, yaw_distance, yaw_distance_modulo, Pose};
@@ -118,6 +124,8 @@ pub(crate) mod test_support {
             support,
             relations: Vec::new(),
             local_bounds: Aabb::new(Point3::new(-0.5, 0.0, -0.5), Point3::new(0.5, 1.0, 0.5)),
+            joints: Vec::new(),
+            parent_link: None,
         }
     }
 

@@ -44,6 +44,10 @@ pub struct MeshPart {
     pub positions: Vec<[f32; 3]>,
     /// Triangles as vertex indices, counter-clockwise seen from outside.
     pub triangles: Vec<[u32; 3]>,
+    /// The joint whose moving link carries this part (a door leaf, a drawer box, its handle),
+    /// as drawn closed; `None` for the asset's fixed body. See [`Joint`](crate::Joint).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub joint: Option<String>,
 }
 
 impl MeshPart {
@@ -79,6 +83,7 @@ impl MeshPart {
             material,
             positions: corners.to_vec(),
             triangles: Self::BOX_TRIANGLES.to_vec(),
+            joint: None,
         }
     }
 

@@ -2,7 +2,7 @@ use std::fmt;
 
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use crate::{Aabb, Pose};
+use crate::{Aabb, JointState, Pose};
 
 /// The reserved id of the ground, the root of every scene graph.
 pub const GROUND_ID: &str = "ground";
@@ -30,6 +30,13 @@ pub struct SceneObject {
     pub relations: Vec<Relation>,
     /// Bounding box of the asset in its own frame, before the pose (scale 1).
     pub local_bounds: Aabb,
+    /// The asset's joints and the state each is in (empty for a rigid object).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub joints: Vec<JointState>,
+    /// The parent's moving link this object rests in or on (a drawer, the shelf behind a
+    /// door), so it moves with that part; `None` for the parent's fixed body.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub parent_link: Option<String>,
 }
 
 impl SceneObject {

@@ -103,6 +103,36 @@ pub enum ValidationError {
         /// What kind of element uses it again.
         second: &'static str,
     },
+    /// A joint of an object is malformed (zero axis, reversed limits, …).
+    #[error("object `{id}`: joints: {error}")]
+    BadJoint {
+        /// The object id.
+        id: String,
+        /// What is wrong with the joint.
+        error: crate::JointError,
+    },
+    /// A joint's state lies outside its limits.
+    #[error("object `{id}`: joint `{joint}` has state {state}, outside its limits {limits:?}")]
+    JointStateOutOfRange {
+        /// The object id.
+        id: String,
+        /// The joint's name.
+        joint: String,
+        /// The state found.
+        state: f32,
+        /// The joint's limits.
+        limits: [f32; 2],
+    },
+    /// `parent_link` names no joint of the parent object.
+    #[error("object `{id}`: parent_link `{link}` is not a joint of its parent `{parent}`")]
+    UnknownParentLink {
+        /// The object id.
+        id: String,
+        /// The link named.
+        link: String,
+        /// The parent's id.
+        parent: String,
+    },
     /// A number is NaN or infinite.
     #[error("{owner}: field `{field}` is not a finite number")]
     NonFinite {
@@ -336,6 +366,27 @@ impl Scene {
             check_local_bounds(object, id, errors);
             self.check_parent(object, id, errors);
             self.check_relation_targets(object, id, errors);
+            check_joints(object, id, errors);
+            self.check_parent_link(object, id, errors);
+        }
+    }
+
+    /// A `parent_link` names a joint of the object's parent.
+    fn check_parent_link(&self, object: &SceneObject, id: &str, errors: &mut Vec<ValidationError>) {
+        let Some(link) = &object.parent_link else {
+            return;
+        };
+        let parent = match &object.parent {
+            ParentRef::Object(p) => self.object(p),
+            _ => None,
+        };
+        let known = parent.is_some_and(|p| p.joints.iter().any(|j| &j.joint.name == link));
+        if !known {
+            errors.push(ValidationError::UnknownParentLink {
+                id: id.to_owned(),
+                link: shorten(link),
+                parent: shorten(&object.parent.to_string()),
+            });
         }
     }
 
@@ -607,6 +658,28 @@ fn check_pose(pose: &Pose, id: &str, errors: &mut Vec<ValidationError>) {
 
 /// The local bounds are finite, ordered, within ±[`MAX_OBJECT_SIZE`] of the origin and, scaled
 /// by the pose, at most that large.
+/// Every joint is well formed and in a state within its limits.
+fn check_joints(object: &SceneObject, id: &str, errors: &mut Vec<ValidationError>) {
+    for placed in &object.joints {
+        if let Err(error) = placed.joint.check() {
+            errors.push(ValidationError::BadJoint {
+                id: id.to_owned(),
+                error,
+            });
+        } else {
+            let [lo, hi] = placed.joint.limits;
+            if !(lo..=hi).contains(&placed.state) {
+                errors.push(ValidationError::JointStateOutOfRange {
+                    id: id.to_owned(),
+                    joint: shorten(&placed.joint.name),
+                    state: placed.state,
+                    limits: placed.joint.limits,
+                });
+            }
+        }
+    }
+}
+
 fn check_local_bounds(object: &SceneObject, id: &str, errors: &mut Vec<ValidationError>) {
     let pose = &object.pose;
     if !bounds_finite(&object.local_bounds) {
@@ -751,6 +824,43 @@ fn out_of_range(
 mod tests {
     use super::*;
     use crate::test_support::{object, scene_with};
+
+    #[test]
+    fn joints_are_checked_and_parent_links_must_name_one() {
+        use crate::{Joint, JointKind, JointState, OpensTo};
+        let drawer = |state: f32, limits: [f32; 2]| JointState {
+            joint: Joint {
+                name: "drawer_0".into(),
+                kind: JointKind::Prismatic,
+                axis: [0.0, 0.0, 1.0],
+                anchor: [0.0, 0.3, 0.3],
+                limits,
+                opens_to: OpensTo::Out,
+                parent: None,
+            },
+            state,
+        };
+        let mut dresser = object("dresser", ParentRef::Ground, RelationKind::OnFloor);
+        dresser.joints = vec![drawer(0.1, [0.0, 0.4])];
+        let mut sock = object(
+            "sock",
+            ParentRef::Object("dresser".into()),
+            RelationKind::Inside,
+        );
+        sock.parent_link = Some("drawer_0".into());
+        assert!(scene_with(vec![dresser.clone(), sock.clone()])
+            .validate()
+            .is_ok());
+
+        sock.parent_link = Some("drawer_9".into());
+        dresser.joints = vec![drawer(0.5, [0.0, 0.4])];
+        let text = problems(&scene_with(vec![dresser.clone(), sock])).join("\n");
+        assert!(text.contains("parent_link `drawer_9`"), "{text}");
+        assert!(text.contains("joint `drawer_0` has state 0.5"), "{text}");
+        dresser.joints = vec![drawer(0.0, [0.4, 0.0])];
+        let text = problems(&scene_with(vec![dresser])).join("\n");
+        assert!(text.contains("field `limits`"), "{text}");
+    }
 
     fn problems(scene: &Scene) -> Vec<String> {
         scene

@@ -92,6 +92,8 @@ fn forest_scene() -> impl Strategy<Value = Scene> {
                             Point3::new(-0.5, 0.0, -0.25),
                             Point3::new(0.5, x.abs().min(3.0), 0.25),
                         ),
+                        joints: Vec::new(),
+                        parent_link: None,
                     });
                 }
                 let mut scene = Scene::new(Architecture::rectangular_room(8.0, 6.0, 3.0, 1.0));

@@ -159,6 +159,7 @@ mod tests {
                 material: 0,
                 positions,
                 triangles,
+                joint: None,
             }],
             materials: vec![Material::new("m", [0.5; 3], 0.5)],
         }

@@ -191,6 +191,7 @@ fn penetrating_surface_points_cluster_per_contact() {
             material: 0,
             positions: p,
             triangles: t,
+            joint: None,
         }],
         materials: vec![],
     };
@@ -223,6 +224,7 @@ fn table_mesh() -> scenethesis_sdf::Mesh {
             material: 0,
             positions: p.iter().map(|v| (Vector3::from(*v) + at).into()).collect(),
             triangles: t,
+            joint: None,
         }
     };
     let mut parts = vec![part(

@@ -23,6 +23,7 @@ fn part(
             .map(|p| (Vector3::from(*p) + offset).into())
             .collect(),
         triangles,
+        joint: None,
     }
 }
 

@@ -263,6 +263,8 @@ fn scene_object(
             Point3::new(-sx / 2.0, 0.0, -sz / 2.0),
             Point3::new(sx / 2.0, sy, sz / 2.0),
         ),
+        joints: Vec::new(),
+        parent_link: None,
     }
 }
 

@@ -122,6 +122,8 @@ pub(super) fn build_scene(
                 nalgebra::Point3::new(-sx / 2.0, 0.0, -sz / 2.0),
                 nalgebra::Point3::new(sx / 2.0, sy, sz / 2.0),
             ),
+            joints: Vec::new(),
+            parent_link: None,
         });
     }
     scene.anchor = if present.contains_key(plan.anchor.as_str()) {

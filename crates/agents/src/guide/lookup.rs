@@ -122,6 +122,7 @@ impl<'k> NominalAssets<'k> {
             } else {
                 [0.8, 1.2]
             },
+            joints: Vec::new(),
         })
     }
 }

@@ -233,6 +233,8 @@ pub fn object(
         support,
         relations: Vec::new(),
         local_bounds: Aabb::new(asset.bounds().min, asset.bounds().max),
+        joints: Vec::new(),
+        parent_link: None,
     }
 }
 

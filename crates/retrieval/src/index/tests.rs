@@ -40,6 +40,7 @@ fn info(category: &str, synonyms: &[&str], placement: Placement, id: &str) -> As
         front: [0.0, 0.0, 1.0],
         support_surfaces: Vec::new(),
         scale_range: [0.9, 1.1],
+        joints: Vec::new(),
     }
 }
 

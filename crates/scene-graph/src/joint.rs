@@ -1,0 +1,253 @@
+//! Moving parts: the joints of an articulated asset (a cabinet door, a drawer, a lid) and the
+//! state each one is in inside a scene.
+//!
+//! A joint joins a moving *link* (the mesh parts whose [`MeshPart::joint`](crate::MeshPart)
+//! names it) to its parent link: the asset's body, or another joint's link. Every joint is
+//! closed at state 0 and opens toward its upper limit.
+
+use serde::{Deserialize, Serialize};
+
+/// How a moving part moves relative to its parent link.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum JointKind {
+    /// Turns about an axis (a hinged door or lid); state and limits in radians.
+    Revolute,
+    /// Slides along an axis (a drawer); state and limits in metres.
+    Prismatic,
+}
+
+/// Which way a part opens, seen from in front of its asset (the asset's +Z looking back at it).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum OpensTo {
+    /// Swings to the viewer's left (a door hinged on its left edge).
+    Left,
+    /// Swings to the viewer's right (a door hinged on its right edge).
+    Right,
+    /// Swings up (a lid, a laptop screen, a toilet seat).
+    Up,
+    /// Swings down (an oven or dishwasher door hinged at its bottom).
+    Down,
+    /// Slides out toward the viewer (a drawer).
+    Out,
+}
+
+/// One joint of an asset, in the asset's own frame (scale 1).
+///
+/// ```
+/// use scenethesis_scene_graph::{Joint, JointKind, OpensTo};
+///
+/// // A 0.4 m wide door hinged on its left edge (x = -0.2, at the front z = 0.25).
+/// let door = Joint {
+///     name: "door_0".into(),
+///     kind: JointKind::Revolute,
+///     axis: [0.0, -1.0, 0.0],
+///     anchor: [-0.2, 0.0, 0.25],
+///     limits: [0.0, 1.9],
+///     opens_to: OpensTo::Left,
+///     parent: None,
+/// };
+/// assert!(door.check().is_ok());
+/// assert_eq!(door.range(), 1.9);
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Joint {
+    /// Name unique within the asset, e.g. `door_0`, `drawer_1`, `lid`: also the name of the
+    /// moving link, which the mesh parts that move with it name.
+    pub name: String,
+    /// Revolute or prismatic.
+    pub kind: JointKind,
+    /// Unit axis in the asset frame. A revolute part turns about it by the right-hand rule and
+    /// a prismatic part slides along it; a positive state opens the part either way.
+    pub axis: [f32; 3],
+    /// A point on the axis in the asset frame: the hinge line of a revolute joint, the closed
+    /// position of a prismatic part's front centre.
+    pub anchor: [f32; 3],
+    /// `[lower, upper]` state range, radians or metres, with `lower ≤ 0 ≤ upper`: closed is 0.
+    pub limits: [f32; 2],
+    /// The side the part opens to.
+    pub opens_to: OpensTo,
+    /// The joint whose link carries this one (a toilet lid on its seat), or `None` for the
+    /// asset's body.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub parent: Option<String>,
+}
+
+/// What is wrong with a joint description.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum JointError {
+    /// The axis is zero or not finite.
+    #[error("joint `{joint}`: field `axis` must be a finite, non-zero vector, got {axis:?}")]
+    ZeroAxis {
+        /// The joint's name.
+        joint: String,
+        /// The axis given.
+        axis: [f32; 3],
+    },
+    /// The limits do not bracket the closed state 0, are reversed, or are not finite.
+    #[error(
+        "joint `{joint}`: field `limits` must be [lower, upper] with lower <= 0 <= upper and \
+         lower < upper, got {limits:?}"
+    )]
+    BadLimits {
+        /// The joint's name.
+        joint: String,
+        /// The limits given.
+        limits: [f32; 2],
+    },
+    /// The anchor is not finite.
+    #[error("joint `{joint}`: field `anchor` must be finite, got {anchor:?}")]
+    BadAnchor {
+        /// The joint's name.
+        joint: String,
+        /// The anchor given.
+        anchor: [f32; 3],
+    },
+}
+
+impl Joint {
+    /// The length of the open range, `upper − lower`.
+    pub fn range(&self) -> f32 {
+        self.limits[1] - self.limits[0]
+    }
+
+    /// The state this joint is in when fully open: its upper limit.
+    pub fn open_state(&self) -> f32 {
+        self.limits[1]
+    }
+
+    /// Checks the axis (finite, non-zero), anchor (finite) and limits (finite, ordered, closed
+    /// state inside).
+    pub fn check(&self) -> Result<(), JointError> {
+        let norm2: f32 = self.axis.iter().map(|a| a * a).sum();
+        if !norm2.is_finite() || norm2 < 1e-12 {
+            return Err(JointError::ZeroAxis {
+                joint: self.name.clone(),
+                axis: self.axis,
+            });
+        }
+        if !self.anchor.iter().all(|a| a.is_finite()) {
+            return Err(JointError::BadAnchor {
+                joint: self.name.clone(),
+                anchor: self.anchor,
+            });
+        }
+        let [lo, hi] = self.limits;
+        if !(lo.is_finite() && hi.is_finite() && lo <= 0.0 && 0.0 <= hi && lo < hi) {
+            return Err(JointError::BadLimits {
+                joint: self.name.clone(),
+                limits: self.limits,
+            });
+        }
+        Ok(())
+    }
+
+    /// The asset-frame transform of the moving link at `state` (clamped to the limits), as a
+    /// map of asset-frame points: a rotation about the hinge line, or a slide along the axis.
+    /// Only this joint's own motion: a nested joint's link moves by its parent's too.
+    pub fn moved_point(&self, state: f32, p: [f32; 3]) -> [f32; 3] {
+        let s = state.clamp(self.limits[0], self.limits[1]);
+        let n: f32 = self.axis.iter().map(|a| a * a).sum::<f32>().sqrt();
+        let u = self.axis.map(|a| a / n);
+        match self.kind {
+            JointKind::Prismatic => [p[0] + u[0] * s, p[1] + u[1] * s, p[2] + u[2] * s],
+            JointKind::Revolute => {
+                let v = [
+                    p[0] - self.anchor[0],
+                    p[1] - self.anchor[1],
+                    p[2] - self.anchor[2],
+                ];
+                let (sin, cos) = s.sin_cos();
+                let dot = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+                let cross = [
+                    u[1] * v[2] - u[2] * v[1],
+                    u[2] * v[0] - u[0] * v[2],
+                    u[0] * v[1] - u[1] * v[0],
+                ];
+                std::array::from_fn(|k| {
+                    self.anchor[k] + v[k] * cos + cross[k] * sin + u[k] * dot * (1.0 - cos)
+                })
+            }
+        }
+    }
+}
+
+/// A joint of a placed object and the state it is in (`scene.json`'s `joints`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct JointState {
+    /// The asset's joint.
+    #[serde(flatten)]
+    pub joint: Joint,
+    /// The current state: 0 closed, up to the upper limit open.
+    pub state: f32,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn door() -> Joint {
+        Joint {
+            name: "door".into(),
+            kind: JointKind::Revolute,
+            axis: [0.0, 1.0, 0.0],
+            anchor: [1.0, 0.0, 0.0],
+            limits: [0.0, std::f32::consts::FRAC_PI_2],
+            opens_to: OpensTo::Right,
+            parent: None,
+        }
+    }
+
+    #[test]
+    fn revolute_turns_about_its_hinge_and_prismatic_slides() {
+        let d = door();
+        let p = d.moved_point(std::f32::consts::FRAC_PI_2, [0.0, 0.5, 0.0]);
+        // (−1, 0, 0) from the hinge turned +90° about +Y is (0, 0, 1).
+        assert!(
+            (p[0] - 1.0).abs() < 1e-6 && (p[1] - 0.5).abs() < 1e-6 && (p[2] - 1.0).abs() < 1e-6
+        );
+        assert_eq!(
+            d.moved_point(5.0, [0.0; 3]),
+            d.moved_point(d.limits[1], [0.0; 3])
+        );
+        let drawer = Joint {
+            kind: JointKind::Prismatic,
+            axis: [0.0, 0.0, 2.0],
+            limits: [0.0, 0.4],
+            ..door()
+        };
+        assert_eq!(drawer.moved_point(0.3, [1.0, 1.0, 1.0]), [1.0, 1.0, 1.3]);
+    }
+
+    #[test]
+    fn bad_descriptions_name_the_field() {
+        let zero = Joint {
+            axis: [0.0; 3],
+            ..door()
+        };
+        assert!(zero.check().unwrap_err().to_string().contains("`axis`"));
+        let reversed = Joint {
+            limits: [1.0, 0.0],
+            ..door()
+        };
+        assert!(reversed
+            .check()
+            .unwrap_err()
+            .to_string()
+            .contains("`limits`"));
+        assert!(door().check().is_ok());
+    }
+
+    #[test]
+    fn scene_state_flattens_the_joint() {
+        let s = JointState {
+            joint: door(),
+            state: 0.25,
+        };
+        let json = serde_json::to_string(&s).unwrap();
+        assert!(json.contains("\"name\":\"door\"") && json.contains("\"state\":0.25"));
+        let back: JointState = serde_json::from_str(&json).unwrap();
+        assert_eq!(back, s);
+    }
+}
