@@ -219,6 +219,52 @@ impl Mesh {
         out
     }
 
+    /// A copy with every moving part posed at its joint's state: a part whose
+    /// [`MeshPart::joint`] names one of `joints` moves by that joint's motion and then by each
+    /// parent joint's in turn (the mesh is drawn closed, state 0). Parts of joints not listed
+    /// stay as drawn.
+    ///
+    /// ```
+    /// use scenethesis_scene_graph::{Joint, JointKind, JointState, Material, Mesh, OpensTo};
+    ///
+    /// let mut drawer = Mesh::cuboid("box", Material::new("oak", [0.6, 0.4, 0.2], 0.5),
+    ///     [-0.2, 0.1, -0.2], [0.2, 0.3, 0.2]);
+    /// drawer.parts[0].joint = Some("drawer_0".into());
+    /// let open = JointState {
+    ///     joint: Joint {
+    ///         name: "drawer_0".into(),
+    ///         kind: JointKind::Prismatic,
+    ///         axis: [0.0, 0.0, 1.0],
+    ///         anchor: [0.0, 0.2, 0.2],
+    ///         limits: [0.0, 0.3],
+    ///         opens_to: OpensTo::Out,
+    ///         parent: None,
+    ///     },
+    ///     state: 0.3,
+    /// };
+    /// let moved = drawer.with_joint_states(&[open]).bounds().unwrap();
+    /// assert!((moved.max.z - 0.5).abs() < 1e-6);
+    /// ```
+    pub fn with_joint_states(&self, joints: &[crate::JointState]) -> Mesh {
+        let mut out = self.clone();
+        if joints.is_empty() {
+            return out;
+        }
+        let find = |name: &str| joints.iter().find(|j| j.joint.name == name);
+        for part in &mut out.parts {
+            let mut next = part.joint.as_deref().and_then(find);
+            // Own motion first, then each parent's; a depth bound stops a malformed cycle.
+            for _ in 0..joints.len() {
+                let Some(js) = next else { break };
+                for p in &mut part.positions {
+                    *p = js.joint.moved_point(js.state, *p);
+                }
+                next = js.joint.parent.as_deref().and_then(find);
+            }
+        }
+        out
+    }
+
     /// Appends another mesh's parts and materials (material indices rebased).
     pub fn append(&mut self, other: &Mesh) {
         let base = self.materials.len();
