@@ -31,11 +31,19 @@ pub struct EvalObject {
 }
 
 impl EvalObject {
-    /// An object from a scene-graph object and its asset-frame mesh (posed here). It is welded
+    /// An object from a scene-graph object and its asset-frame mesh (posed here, its moving
+    /// parts at their joints' states: [`Mesh::with_joint_states`]). It is welded
     /// exactly when the scene says it is fixed to the world
     /// ([`SceneObject::fixed_to_world`]: mounted on a wall).
     pub fn from_scene_object(object: &SceneObject, asset_mesh: &Mesh) -> Self {
-        Self::from_scene_object_world(object, asset_mesh.transformed(&object.pose))
+        let world = if object.joints.is_empty() {
+            asset_mesh.transformed(&object.pose)
+        } else {
+            asset_mesh
+                .with_joint_states(&object.joints)
+                .transformed(&object.pose)
+        };
+        Self::from_scene_object_world(object, world)
     }
 
     /// Like [`EvalObject::from_scene_object`] with a mesh that is already in world coordinates.

@@ -10,7 +10,7 @@ use scenethesis_physics_opt::{
 };
 use scenethesis_render_api::SceneRenderer;
 use scenethesis_retrieval::{AssetSource, RetrievalSource};
-use scenethesis_scene_graph::{Mesh, Scene};
+use scenethesis_scene_graph::{Mesh, OpenState, Scene};
 use serde::{Deserialize, Serialize};
 
 use crate::judge::{GeometricJudge, Judge};
@@ -48,6 +48,10 @@ pub struct GenerateOptions {
     /// not reached changes nothing.
     #[serde(skip)]
     pub time_limit: Option<Duration>,
+    /// The state the scene's doors, drawers and lids are left in (closed by default); random
+    /// states follow from the seed.
+    #[serde(default, skip_serializing_if = "OpenState::is_closed")]
+    pub open_state: OpenState,
 }
 
 /// The default [`GenerateOptions::time_limit`]: ten minutes, several hundred times what an
@@ -94,6 +98,7 @@ impl Default for GenerateOptions {
             optimize: OptimizeSettings::default(),
             prepare: PrepareSettings::default(),
             time_limit: Some(DEFAULT_TIME_LIMIT),
+            open_state: OpenState::Closed,
         }
     }
 }
@@ -444,6 +449,8 @@ impl Pipeline {
                 )
             },
         )?;
+        // The judge sees the doors and drawers in the state the scene is delivered in.
+        options.open_state.apply(&mut scene, seed);
         clock.check(Stage::Judge, round)?;
         let verdict = clock.run(
             Stage::Judge,

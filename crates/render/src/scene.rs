@@ -89,7 +89,8 @@ impl RenderScene {
     }
 
     /// The render scene of a scene graph: every object whose id `meshes` holds, with that
-    /// asset-frame mesh at the object's pose, in the scene's architecture (in scene order;
+    /// asset-frame mesh at the object's pose and its moving parts at their joints' states
+    /// ([`Mesh::with_joint_states`]), in the scene's architecture (in scene order;
     /// objects without a mesh are left out). The one conversion from a [`Scene`]: meshes held
     /// by value are shared into the scene, meshes already shared (`Arc<Mesh>`) are not copied.
     ///
@@ -110,7 +111,10 @@ impl RenderScene {
             .objects
             .iter()
             .filter_map(|o| {
-                let mesh = meshes.get(&o.id)?.clone().into();
+                let mut mesh: Arc<Mesh> = meshes.get(&o.id)?.clone().into();
+                if o.joints.iter().any(|j| j.state != 0.0) {
+                    mesh = Arc::new(mesh.with_joint_states(&o.joints));
+                }
                 Some(Instance::new(o.id.clone(), mesh, o.pose))
             })
             .collect();

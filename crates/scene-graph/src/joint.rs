@@ -7,6 +7,13 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::{fnv1a64_from, mix64, Scene};
+
+/// The share of a joint's range that must open freely in a generated scene, and the state
+/// [`OpenState::Open`] sets: every door, drawer and lid opens at least this far without hitting
+/// another object or the architecture (the judge's opening clearance check).
+pub const OPEN_SHARE: f32 = 0.9;
+
 /// How a moving part moves relative to its parent link.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -181,6 +188,78 @@ pub struct JointState {
     pub joint: Joint,
     /// The current state: 0 closed, up to the upper limit open.
     pub state: f32,
+}
+
+/// The initial states a generated scene gives its joints (`--open-state`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum OpenState {
+    /// Every joint closed (state 0).
+    #[default]
+    Closed,
+    /// Each joint at a state drawn uniformly from closed to [`OPEN_SHARE`] of its upper limit,
+    /// fixed by the scene's seed, the object's id and the joint's name.
+    Random,
+    /// Every joint open to [`OPEN_SHARE`] of its upper limit.
+    Open,
+}
+
+impl OpenState {
+    /// Whether this is the default, [`OpenState::Closed`].
+    pub fn is_closed(&self) -> bool {
+        *self == OpenState::Closed
+    }
+
+    /// Sets the state of every joint of every object of `scene` (`seed` fixes the random ones).
+    ///
+    /// ```
+    /// use scenethesis_scene_graph::{OpenState, Scene, Architecture};
+    /// let mut scene = Scene::new(Architecture::rectangular_room(4.0, 3.0, 2.5, 0.9));
+    /// OpenState::Random.apply(&mut scene, 7); // a scene without joints is unchanged
+    /// assert!(scene.objects.is_empty());
+    /// ```
+    pub fn apply(self, scene: &mut Scene, seed: u64) {
+        for object in &mut scene.objects {
+            for placed in &mut object.joints {
+                let open = OPEN_SHARE * placed.joint.limits[1];
+                placed.state = match self {
+                    OpenState::Closed => 0.0,
+                    OpenState::Open => open,
+                    OpenState::Random => {
+                        let h = fnv1a64_from(mix64(seed), object.id.as_bytes());
+                        let h = mix64(fnv1a64_from(h, placed.joint.name.as_bytes()));
+                        open * ((h >> 40) as f32 / (1u64 << 24) as f32)
+                    }
+                };
+            }
+        }
+    }
+}
+
+impl std::str::FromStr for OpenState {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "closed" => Ok(OpenState::Closed),
+            "random" => Ok(OpenState::Random),
+            "open" => Ok(OpenState::Open),
+            _ => Err(format!("expected closed, random or open, found `{s}`")),
+        }
+    }
+}
+
+impl JointState {
+    /// Every joint of an asset, closed (state 0): how a newly placed object starts.
+    pub fn all_closed(joints: &[Joint]) -> Vec<JointState> {
+        joints
+            .iter()
+            .map(|joint| JointState {
+                joint: joint.clone(),
+                state: 0.0,
+            })
+            .collect()
+    }
 }
 
 #[cfg(test)]

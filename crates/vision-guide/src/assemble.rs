@@ -263,7 +263,7 @@ fn scene_object(
             Point3::new(-sx / 2.0, 0.0, -sz / 2.0),
             Point3::new(sx / 2.0, sy, sz / 2.0),
         ),
-        joints: Vec::new(),
+        joints: scenethesis_scene_graph::JointState::all_closed(&info.joints),
         parent_link: None,
     }
 }

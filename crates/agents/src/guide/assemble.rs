@@ -122,7 +122,7 @@ pub(super) fn build_scene(
                 nalgebra::Point3::new(-sx / 2.0, 0.0, -sz / 2.0),
                 nalgebra::Point3::new(sx / 2.0, sy, sz / 2.0),
             ),
-            joints: Vec::new(),
+            joints: scenethesis_scene_graph::JointState::all_closed(&info.joints),
             parent_link: None,
         });
     }

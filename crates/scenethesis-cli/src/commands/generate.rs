@@ -11,6 +11,7 @@ use scenethesis_pipeline::{
     export_folder, time_limit_from_secs, FixedPlanner, Format, GenerateOptions, OutputDir,
     Pipeline, Progress, Stage, DEFAULT_TIME_LIMIT,
 };
+use scenethesis_scene_graph::OpenState;
 use scenethesis_setup::PipelineSettings;
 
 /// Arguments of `scenethesis generate`.
@@ -64,6 +65,11 @@ pub struct PipelineArgs {
     /// Do not render preview images.
     #[arg(long)]
     pub no_preview: bool,
+    /// The state doors, drawers and lids are left in: closed, random (fixed by the seed) or
+    /// open (90 % of each joint's range, the share the judge keeps free).
+    #[arg(long, value_name = "STATE", default_value = "closed",
+          value_parser = |s: &str| s.parse::<OpenState>())]
+    pub open_state: OpenState,
     /// Bring your own assets: a folder of GLB/glTF/OBJ files (described by an optional
     /// `assets.json`); they are preferred over the built-in generators of their category.
     #[arg(long, value_name = "DIR")]
@@ -80,6 +86,7 @@ impl PipelineArgs {
             max_replans: self.max_replans,
             previews: !self.no_preview,
             time_limit: time_limit_from_secs(self.time_limit).expect("checked by clap"),
+            open_state: self.open_state,
             ..GenerateOptions::default()
         }
     }

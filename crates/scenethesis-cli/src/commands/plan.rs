@@ -37,6 +37,7 @@ pub fn run(args: PlanArgs) -> Result<()> {
         max_replans: 0,
         no_preview: true,
         time_limit: 0.0,
+        open_state: Default::default(),
         assets: args.assets.clone(),
         providers: args.providers.clone(),
     }
