@@ -53,7 +53,7 @@ pub struct CollisionReport {
 }
 
 /// One part of an object with its exact signed distance field.
-struct PartField {
+pub(crate) struct PartField {
     bounds: Aabb,
     sdf: MeshSdf,
 }
@@ -116,7 +116,7 @@ pub fn test_points(mesh: &Mesh, seed: u64) -> Vec<Point3<f32>> {
     points
 }
 
-fn part_fields(mesh: &Mesh) -> Vec<PartField> {
+pub(crate) fn part_fields(mesh: &Mesh) -> Vec<PartField> {
     mesh.parts
         .iter()
         .filter(|p| !p.triangles.is_empty())
@@ -142,7 +142,7 @@ fn boxes_touch(a: &Aabb, b: &Aabb) -> bool {
 
 /// The deepest penetration (m, ≥ 0) of any of `points` inside the parts of another object,
 /// whose whole box is `bounds` (a point outside it is outside every part: skipped at once).
-fn penetration(points: &[Point3<f32>], bounds: &Aabb, fields: &[PartField]) -> f64 {
+pub(crate) fn penetration(points: &[Point3<f32>], bounds: &Aabb, fields: &[PartField]) -> f64 {
     let mut near: Vec<(Point3<f32>, Point3<f64>)> = points
         .iter()
         .map(|p| (*p, p.cast::<f64>()))
@@ -301,7 +301,7 @@ fn architecture_penetrations(scene: &EvalScene, prepared: &[Prepared]) -> Vec<Ar
 }
 
 /// How deep the deepest of `points` lies inside the wall piece's box (0 when none is inside).
-fn piece_depth(piece: &WallPiece, points: &[Point3<f32>]) -> f64 {
+pub(crate) fn piece_depth(piece: &WallPiece, points: &[Point3<f32>]) -> f64 {
     let (rect, height) = (&piece.rect, piece.height);
     let mut deepest = 0.0f64;
     for p in points {

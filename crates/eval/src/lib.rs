@@ -24,6 +24,7 @@ pub mod glb;
 pub mod limits;
 mod load;
 mod metrics;
+pub mod opening;
 pub mod raster;
 mod report;
 mod scene;

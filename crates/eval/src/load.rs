@@ -133,6 +133,8 @@ fn load_glb_unchecked(path: &Path) -> Result<EvalScene, EvalError> {
                     parent: None,
                     support: None,
                     relations: Vec::new(),
+                    joints: Vec::new(),
+                    parent_link: None,
                 });
             }
         }
@@ -380,6 +382,8 @@ mod tests {
             parent: None,
             support: None,
             relations: Vec::new(),
+            joints: Vec::new(),
+            parent_link: None,
         };
         let mut objects = vec![
             object("close", -1.5, 0.0, 1.2),

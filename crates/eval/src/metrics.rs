@@ -6,6 +6,7 @@ use scenethesis_scene_graph::RelationKind;
 use serde::{Deserialize, Serialize};
 
 use crate::collision::{collisions, ArchPenetration, CollidingPair};
+use crate::opening::{opening_clearances, OpeningClearance};
 use crate::raster::walk_and_reach;
 use crate::scene::EvalScene;
 use crate::stability::{simulate, DecompositionCache, UnstableObject};
@@ -59,6 +60,17 @@ pub struct SceneMetrics {
     pub walkable_area: f64,
     /// Floor-standing objects no walkable component touches.
     pub unreachable_floor_objects: Vec<String>,
+    /// Opening clearance of every door, drawer and lid (empty when nothing opens).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub openings: Vec<OpeningClearance>,
+}
+
+impl SceneMetrics {
+    /// The joints that cannot open to [`OPEN_SHARE`](scenethesis_scene_graph::OPEN_SHARE) of
+    /// their range.
+    pub fn blocked_openings(&self) -> impl Iterator<Item = &OpeningClearance> {
+        self.openings.iter().filter(|o| !o.held)
+    }
 }
 
 /// Evaluates one scene with a fresh decomposition cache.
@@ -68,9 +80,9 @@ pub fn evaluate(scene: &EvalScene) -> SceneMetrics {
 
 /// Evaluates one scene, reusing (and filling) `cache` for convex decompositions.
 pub fn evaluate_with_cache(scene: &EvalScene, cache: &DecompositionCache) -> SceneMetrics {
-    let ((collision, stability), walk) = rayon::join(
+    let ((collision, stability), (walk, openings)) = rayon::join(
         || rayon::join(|| collisions(scene), || simulate(scene, cache)),
-        || walk_and_reach(scene),
+        || rayon::join(|| walk_and_reach(scene), || opening_clearances(scene)),
     );
     let n = scene.objects.len();
     let rate = |k: usize, d: usize| if d == 0 { 0.0 } else { k as f64 / d as f64 };
@@ -120,6 +132,7 @@ pub fn evaluate_with_cache(scene: &EvalScene, cache: &DecompositionCache) -> Sce
         reach_all: walk.reach_all,
         walkable_area: walk.walkable_area,
         unreachable_floor_objects: walk.unreachable_floor_objects,
+        openings,
     }
 }
 
@@ -153,6 +166,19 @@ pub struct MetricsSummary {
     pub mean_categories: f64,
     /// Mean distinct relation kinds per scene.
     pub mean_relation_kinds: f64,
+    /// Objects with at least one joint (doors, drawers, lids), over all scenes.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub openable_objects: usize,
+    /// Joints over all scenes.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub joints: usize,
+    /// Joints that open to 90 % of their range unobstructed / joints (`None` without joints).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub opening_clearance: Option<f64>,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 impl MetricsSummary {
@@ -181,6 +207,12 @@ impl MetricsSummary {
             .sum();
         let tested: usize = scenes.iter().map(|m| m.stability_tested).sum();
         let unstable: usize = scenes.iter().map(|m| m.unstable.len()).sum();
+        let joints: usize = scenes.iter().map(|m| m.openings.len()).sum();
+        let held = joints
+            - scenes
+                .iter()
+                .map(|m| m.blocked_openings().count())
+                .sum::<usize>();
         Self {
             scenes: s,
             objects,
@@ -197,6 +229,18 @@ impl MetricsSummary {
                 .unwrap_or(0.0),
             mean_relation_kinds: mean(scenes.iter().map(|m| m.relation_kinds as f64).collect())
                 .unwrap_or(0.0),
+            openable_objects: scenes
+                .iter()
+                .map(|m| {
+                    m.openings
+                        .iter()
+                        .map(|o| o.object.as_str())
+                        .collect::<BTreeSet<_>>()
+                        .len()
+                })
+                .sum(),
+            joints,
+            opening_clearance: (joints > 0).then(|| rate(held, joints)),
         }
     }
 }

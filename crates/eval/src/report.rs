@@ -55,6 +55,22 @@ fn physical_rows(out: &mut String, v: &PhysicalRows) {
     );
 }
 
+/// The rows of the joints: openable objects, joints and the share that opens freely (none
+/// when nothing opens).
+fn opening_rows(out: &mut String, openable: usize, joints: usize, held: Option<f64>) {
+    if joints == 0 {
+        return;
+    }
+    row(out, "openable objects", &openable.to_string(), "(reported)");
+    row(out, "joints", &joints.to_string(), "(reported)");
+    row(
+        out,
+        "opening clearance",
+        &held.map_or("n/a".into(), percent),
+        "100 %",
+    );
+}
+
 impl SceneMetrics {
     /// A readable table: metric, value and goal, then the details (colliding pairs, unstable
     /// objects, penetrated architecture, unreachable objects).
@@ -86,6 +102,15 @@ impl SceneMetrics {
                 reach_floor: self.reach_floor,
                 reach_all: self.reach_all,
             },
+        );
+        let openable: std::collections::BTreeSet<&str> =
+            self.openings.iter().map(|o| o.object.as_str()).collect();
+        let held = self.openings.len() - self.blocked_openings().count();
+        opening_rows(
+            &mut out,
+            openable.len(),
+            self.openings.len(),
+            Some(held as f64 / self.openings.len().max(1) as f64),
         );
         for p in &self.colliding_pairs {
             let _ = writeln!(
@@ -123,6 +148,16 @@ impl SceneMetrics {
                 out,
                 "unreachable floor objects: {}",
                 self.unreachable_floor_objects.join(", ")
+            );
+        }
+        for o in self.blocked_openings() {
+            let _ = writeln!(
+                out,
+                "opening: {} joint {} opens {:.0} % of its range, stopped by {}",
+                o.object,
+                o.joint,
+                o.free_share * 100.0,
+                o.blocked_by.as_deref().unwrap_or("?")
             );
         }
         if !self.welded.is_empty() {
@@ -173,6 +208,12 @@ impl MetricsSummary {
                 reach_all: self.reach_all,
             },
         );
+        opening_rows(
+            &mut out,
+            self.openable_objects,
+            self.joints,
+            self.opening_clearance,
+        );
         out
     }
 }
@@ -197,6 +238,9 @@ mod tests {
             mean_objects: 20.0,
             mean_categories: 11.333,
             mean_relation_kinds: 4.5,
+            openable_objects: 0,
+            joints: 0,
+            opening_clearance: None,
         };
         let expected = [
             "metric                        value   goal",

@@ -2,7 +2,7 @@
 
 use scenethesis_import::{AssetResolver, ResolveError};
 use scenethesis_scene_graph::{
-    Aabb, Architecture, Mesh, Relation, RelationKind, Scene, SceneObject,
+    Aabb, Architecture, JointState, Mesh, Relation, RelationKind, Scene, SceneObject,
 };
 
 use crate::EvalError;
@@ -28,6 +28,11 @@ pub struct EvalObject {
     pub support: Option<RelationKind>,
     /// Further spatial relations the scene states for it.
     pub relations: Vec<Relation>,
+    /// Its joints and their states in world coordinates ([`JointState::posed`]); `mesh` shows
+    /// the moving parts at these states. Empty for a rigid or foreign object.
+    pub joints: Vec<JointState>,
+    /// The parent's joint whose moving part carries it (a drawer it lies in), if any.
+    pub parent_link: Option<String>,
 }
 
 impl EvalObject {
@@ -57,6 +62,12 @@ impl EvalObject {
             parent,
             support: Some(object.support),
             relations: object.relations.clone(),
+            joints: object
+                .joints
+                .iter()
+                .map(|j| j.posed(&object.pose))
+                .collect(),
+            parent_link: object.parent_link.clone(),
         }
     }
 

@@ -585,6 +585,8 @@ mod tests {
             parent: parent.map(str::to_owned),
             support: Some(RelationKind::On),
             relations: Vec::new(),
+            joints: Vec::new(),
+            parent_link: None,
         };
         let scene = EvalScene {
             objects: vec![

@@ -408,3 +408,81 @@ fn thirty_object_scene_is_clean_and_deterministic() {
     assert!(m.walk > 0.99, "{}", m.walk);
     assert_eq!(evaluate(&scene), m, "same scene, same metrics");
 }
+
+/// A 0.6 m wide cabinet whose door (hinged on its left edge, opening toward +Z) is part of
+/// the mesh, with a box of side 0.3 m standing `gap` metres in front of it.
+fn cabinet_and_box(gap: f64, box_parent_link: Option<&str>) -> SceneMetrics {
+    use scenethesis_scene_graph::{Joint, JointKind, JointState, Material, MeshPart, OpensTo};
+    let mut cabinet = scenethesis_scene_graph::Mesh::cuboid(
+        "body",
+        Material::new("oak", [0.6, 0.4, 0.2], 0.6),
+        [-0.3, 0.0, -0.25],
+        [0.3, 0.8, 0.23],
+    );
+    let mut door = MeshPart::cuboid("door", 0, [-0.3, 0.0, 0.23], [0.3, 0.8, 0.25]);
+    door.joint = Some("door".into());
+    cabinet.parts.push(door);
+    let object = |id: &str, mesh: &scenethesis_scene_graph::Mesh, x: f64, z: f64| SceneObject {
+        id: id.into(),
+        category: id.into(),
+        asset: AssetRef::Procedural {
+            generator: id.into(),
+            seed: 0,
+        },
+        pose: Pose::new(1.0, 0.3, Vector3::new(x, 0.0, z)),
+        parent: ParentRef::Ground,
+        support: RelationKind::OnFloor,
+        relations: Vec::new(),
+        local_bounds: mesh.bounds().unwrap(),
+        joints: Vec::new(),
+        parent_link: None,
+    };
+    let mut cab = object("cabinet", &cabinet, 0.0, 0.0);
+    cab.joints = vec![JointState {
+        joint: Joint {
+            name: "door".into(),
+            kind: JointKind::Revolute,
+            axis: [0.0, -1.0, 0.0],
+            anchor: [-0.3, 0.0, 0.25],
+            limits: [0.0, 1.9],
+            opens_to: OpensTo::Left,
+            parent: None,
+        },
+        state: 0.0,
+    }];
+    let b = block(0.3, 0.3, 0.3);
+    let front = cab.pose.front();
+    let mut item = object("box", &b, front.x * (0.25 + gap), front.z * (0.25 + gap));
+    if let Some(link) = box_parent_link {
+        item.parent = ParentRef::Object("cabinet".into());
+        item.parent_link = Some(link.into());
+    }
+    let objects = vec![
+        scenethesis_eval::EvalObject::from_scene_object(&cab, &cabinet),
+        scenethesis_eval::EvalObject::from_scene_object(&item, &b),
+    ];
+    evaluate(&room(objects))
+}
+
+#[test]
+fn a_door_opens_freely_only_when_nothing_stands_in_its_swing() {
+    let blocked = cabinet_and_box(0.25, None);
+    assert_eq!(blocked.openings.len(), 1, "{:?}", blocked.openings);
+    let o = &blocked.openings[0];
+    assert!(!o.held, "{o:?}");
+    assert_eq!(o.blocked_by.as_deref(), Some("box"));
+    assert!(o.free_share < 0.9);
+    assert!(blocked.to_table().contains("opening: cabinet joint door"));
+
+    let free = cabinet_and_box(0.9, None);
+    assert!(free.openings[0].held, "{:?}", free.openings);
+    assert_eq!(free.openings[0].free_share, 0.9f32 as f64);
+
+    // What the door carries rides with it and never blocks it.
+    let carried = cabinet_and_box(0.25, Some("door"));
+    assert!(carried.openings[0].held, "{:?}", carried.openings);
+
+    let summary = MetricsSummary::from_scenes(&[blocked, free]);
+    assert_eq!((summary.openable_objects, summary.joints), (2, 2));
+    assert_eq!(summary.opening_clearance, Some(0.5));
+}

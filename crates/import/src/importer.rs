@@ -301,6 +301,7 @@ impl Importer {
                 support_surfaces,
                 scale_range: entry.scale_range.unwrap_or([0.9, 1.1]),
                 joints: Vec::new(),
+                opening_bounds: None,
             },
             mesh,
         })

@@ -65,6 +65,9 @@ pub enum FailureKind {
     /// A functional-arrangement rule (`knowledge/arrangement.toml`: seating faces what it
     /// serves, kitchen counters form runs along walls, …) does not hold.
     Arrangement,
+    /// A door, drawer or lid cannot open to 90 % of its range without hitting another object
+    /// or the architecture.
+    OpeningClearance,
 }
 
 /// One reason a scene was rejected.
@@ -326,6 +329,7 @@ impl Judge for GeometricJudge {
                 ),
             });
         }
+        failures.extend(opening_failures(&metrics, &order, anchor));
         let arrangement = check_arrangement(scene);
         failures.extend(arrangement_failures(&arrangement));
         Ok(Verdict {
@@ -373,6 +377,40 @@ fn plan_relation_failures(plan: &Plan, scene: &Scene, failures: &mut Vec<Failure
         }
     }
     relations_checked
+}
+
+/// One failure per door, drawer or lid that cannot open far enough. The object in the way is
+/// blamed first when it was placed after the one that opens (moving it frees the opening);
+/// otherwise the opening object is, and a wall or the floor blames only it.
+fn opening_failures(
+    metrics: &scenethesis_eval::SceneMetrics,
+    order: &BTreeMap<String, usize>,
+    anchor: Option<&str>,
+) -> Vec<Failure> {
+    metrics
+        .blocked_openings()
+        .map(|o| {
+            let blocker = o.blocked_by.as_deref().filter(|b| order.contains_key(*b));
+            let objects = match blocker {
+                Some(b) if rank(order, b, anchor) >= rank(order, &o.object, anchor) => {
+                    vec![b.to_owned(), o.object.clone()]
+                }
+                Some(b) => vec![o.object.clone(), b.to_owned()],
+                None => vec![o.object.clone()],
+            };
+            Failure {
+                kind: FailureKind::OpeningClearance,
+                objects,
+                detail: format!(
+                    "`{}` joint `{}` opens only {:.0} % of its range: `{}` is in the way",
+                    o.object,
+                    o.joint,
+                    o.free_share * 100.0,
+                    o.blocked_by.as_deref().unwrap_or("?")
+                ),
+            }
+        })
+        .collect()
 }
 
 /// One failure per broken arrangement rule instance the judge rejects for, blaming its subject and naming the rule.

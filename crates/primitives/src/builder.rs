@@ -161,6 +161,7 @@ impl AssetBuilder {
                 support_surfaces: self.surfaces,
                 scale_range,
                 joints: Vec::new(),
+                opening_bounds: None,
             },
             mesh: self.mesh,
         }

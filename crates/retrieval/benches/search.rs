@@ -45,6 +45,7 @@ fn index_with_imports(imported: usize) -> AssetIndex {
             support_surfaces: Vec::new(),
             scale_range: [0.9, 1.1],
             joints: Vec::new(),
+            opening_bounds: None,
         });
     }
     index

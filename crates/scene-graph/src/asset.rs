@@ -1,4 +1,4 @@
-use crate::{AssetRef, Joint, Mesh};
+use crate::{Aabb, AssetRef, Joint, Mesh};
 use serde::{Deserialize, Serialize};
 
 /// Where an asset is normally placed.
@@ -119,6 +119,11 @@ pub struct AssetInfo {
     /// rigid asset.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub joints: Vec<Joint>,
+    /// The box the moving parts sweep while opening ([`opening_sweep`](crate::opening_sweep)),
+    /// in the asset frame: space a layout keeps free of other objects. `None` when nothing
+    /// moves.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub opening_bounds: Option<Aabb>,
 }
 
 /// An asset: its mesh and its metadata.

@@ -7,7 +7,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::{fnv1a64_from, mix64, Scene};
+use crate::{fnv1a64_from, mix64, Aabb, Mesh, Pose, Scene};
 
 /// The share of a joint's range that must open freely in a generated scene, and the state
 /// [`OpenState::Open`] sets: every door, drawer and lid opens at least this far without hitting
@@ -190,6 +190,71 @@ pub struct JointState {
     pub state: f32,
 }
 
+/// The largest turn (radians) or slide (metres) between two sampled states of a sweep.
+const SWEEP_STEP: f32 = 0.1;
+
+/// The box, in the asset frame, that the moving parts of `mesh` pass through while each joint
+/// opens on its own from closed to [`OPEN_SHARE`] of its upper limit (the others closed), or
+/// `None` when nothing moves. The floor space in front of a cabinet that its doors and drawers
+/// need: layouts keep other objects out of it.
+///
+/// ```
+/// use scenethesis_scene_graph::{opening_sweep, Joint, JointKind, Material, Mesh, OpensTo};
+///
+/// let mut m = Mesh::cuboid("drawer", Material::new("oak", [0.6, 0.4, 0.2], 0.5),
+///     [-0.2, 0.1, -0.2], [0.2, 0.3, 0.2]);
+/// m.parts[0].joint = Some("drawer".into());
+/// let slide = Joint { name: "drawer".into(), kind: JointKind::Prismatic, axis: [0.0, 0.0, 1.0],
+///     anchor: [0.0, 0.2, 0.2], limits: [0.0, 0.3], opens_to: OpensTo::Out, parent: None };
+/// let swept = opening_sweep(&m, &[slide]).unwrap();
+/// assert!((swept.max.z - (0.2 + 0.9 * 0.3)).abs() < 1e-6);
+/// ```
+pub fn opening_sweep(mesh: &Mesh, joints: &[Joint]) -> Option<Aabb> {
+    let mut swept: Option<Aabb> = None;
+    for joint in joints {
+        let target = OPEN_SHARE * joint.limits[1];
+        let steps = (target / SWEEP_STEP).ceil().max(1.0) as usize;
+        let states: Vec<JointState> = (0..=steps)
+            .map(|k| JointState {
+                joint: joint.clone(),
+                state: target * k as f32 / steps as f32,
+            })
+            .collect();
+        for part in &mesh.parts {
+            if !carried_by(part.joint.as_deref(), &joint.name, joints) {
+                continue;
+            }
+            for state in &states {
+                for &p in &part.positions {
+                    let q = state.joint.moved_point(state.state, p).map(f64::from);
+                    let q = nalgebra::Point3::new(q[0], q[1], q[2]);
+                    swept = Some(swept.map_or(Aabb::new(q, q), |b| b.including(&q)));
+                }
+            }
+        }
+    }
+    swept
+}
+
+/// Whether a part on link `link` moves with joint `name`: it is that joint's link or nested
+/// under it.
+fn carried_by(link: Option<&str>, name: &str, joints: &[Joint]) -> bool {
+    let mut next = link;
+    for _ in 0..=joints.len() {
+        match next {
+            Some(n) if n == name => return true,
+            Some(n) => {
+                next = joints
+                    .iter()
+                    .find(|j| j.name == n)
+                    .and_then(|j| j.parent.as_deref())
+            }
+            None => return false,
+        }
+    }
+    false
+}
+
 /// The initial states a generated scene gives its joints (`--open-state`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -250,6 +315,28 @@ impl std::str::FromStr for OpenState {
 }
 
 impl JointState {
+    /// The same joint and state mapped through `pose` (asset frame → world): the anchor moves,
+    /// the axis turns, and a prismatic joint's limits and state scale with the object.
+    pub fn posed(&self, pose: &Pose) -> JointState {
+        let a = self.joint.anchor.map(f64::from);
+        let anchor = pose.transform_point(&nalgebra::Point3::new(a[0], a[1], a[2]));
+        let v = self.joint.axis.map(f64::from);
+        let axis = pose.rotation() * nalgebra::Vector3::new(v[0], v[1], v[2]);
+        let k = match self.joint.kind {
+            JointKind::Prismatic => pose.scale as f32,
+            JointKind::Revolute => 1.0,
+        };
+        JointState {
+            joint: Joint {
+                anchor: [anchor.x as f32, anchor.y as f32, anchor.z as f32],
+                axis: [axis.x as f32, axis.y as f32, axis.z as f32],
+                limits: self.joint.limits.map(|l| l * k),
+                ..self.joint.clone()
+            },
+            state: self.state * k,
+        }
+    }
+
     /// Every joint of an asset, closed (state 0): how a newly placed object starts.
     pub fn all_closed(joints: &[Joint]) -> Vec<JointState> {
         joints

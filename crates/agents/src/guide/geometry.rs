@@ -12,6 +12,25 @@ pub(crate) struct Footprint {
 }
 
 impl Footprint {
+    /// The floor rectangle in front of this footprint that `info`'s moving parts sweep while
+    /// opening ([`AssetInfo::opening_bounds`]), across the object's width; `None` when nothing
+    /// opens past its front (lids, or no joints). The footprint's centre is the asset's origin.
+    pub fn opening(&self, info: &scenethesis_scene_graph::AssetInfo) -> Option<Footprint> {
+        let swept = info.opening_bounds.as_ref()?;
+        let reach = swept.max.z.min(2.5) - self.hz;
+        if reach <= 0.02 {
+            return None;
+        }
+        let centre = self.to_world(0.0, self.hz + reach / 2.0);
+        Some(Footprint {
+            cx: centre[0],
+            cz: centre[1],
+            yaw: self.yaw,
+            hx: (swept.max.x.max(-swept.min.x)).clamp(0.05, self.hx),
+            hz: reach / 2.0,
+        })
+    }
+
     /// The object's local +X (right-hand side axis) and +Z (front) in world (x, z).
     pub fn axes(&self) -> ([f64; 2], [f64; 2]) {
         let (s, c) = self.yaw.sin_cos();

@@ -123,6 +123,7 @@ impl<'k> NominalAssets<'k> {
                 [0.8, 1.2]
             },
             joints: Vec::new(),
+            opening_bounds: None,
         })
     }
 }

@@ -85,20 +85,20 @@ pub(super) fn place_floor_objects(
             let mut accepted = None;
             let mut tried = 0;
             for c in candidates {
-                if !mounted {
-                    if !state.inside_floor(&c.fp, 0.0) || state.collides(&c.fp, 0.02) {
-                        continue;
-                    }
-                } else if !mount_ok(state, &c.fp) {
-                    continue;
-                }
                 let p = Placed {
                     front_access: c.wall.is_some()
                         || matches!(o.zone, Zone::Wall { .. } | Zone::Corner | Zone::WallMounted),
                     wall: c.wall.clone(),
                     mounted,
-                    ..Placed::standing(i, c.fp, infos[i].size[1] as f64)
+                    ..Placed::standing(i, c.fp, &infos[i])
                 };
+                if !mounted {
+                    if !state.fits(&p, 0.02) {
+                        continue;
+                    }
+                } else if !mount_ok(state, &c.fp) {
+                    continue;
+                }
                 tried += 1;
                 if tried > 160 {
                     break;
@@ -131,10 +131,10 @@ pub(super) fn place_floor_objects(
                 let candidates = free_candidates(state, &infos[i], rng, None);
                 let mut ok = false;
                 for c in candidates.into_iter().take(200) {
-                    if !state.inside_floor(&c.fp, 0.0) || state.collides(&c.fp, 0.02) {
+                    let p = Placed::standing(i, c.fp, &infos[i]);
+                    if !state.fits(&p, 0.02) {
                         continue;
                     }
-                    let p = Placed::standing(i, c.fp, infos[i].size[1] as f64);
                     if state.evaluate(Some(&p)).0 {
                         state.commit(p);
                         ok = true;
@@ -189,7 +189,8 @@ fn hang_above_run(
             wall: Some(wall),
             mounted: true,
             bottom: Some(ABOVE_RUN_BOTTOM),
-            ..Placed::standing(i, fp, size[1])
+            opening: None,
+            ..Placed::standing(i, fp, info)
         };
         if state.evaluate(Some(&p)).0 {
             state.commit(p);

@@ -240,12 +240,8 @@ fn commit_all(
 ) -> bool {
     let before = state.placed.len();
     for (i, fp, side) in spots {
-        let p = Placed::standing(*i, *fp, infos[*i].size[1] as f64)
-            .against_wall(format!("wall_{side}"));
-        if !state.inside_floor(fp, 0.0)
-            || state.collides(fp, RUN_GAP * 0.5)
-            || !state.evaluate(Some(&p)).0
-        {
+        let p = Placed::standing(*i, *fp, &infos[*i]).against_wall(format!("wall_{side}"));
+        if !state.fits(&p, RUN_GAP * 0.5) || !state.evaluate(Some(&p)).0 {
             state.placed.truncate(before);
             state.rebuild();
             return false;
@@ -537,10 +533,10 @@ fn place_islands(
                     hx,
                     hz,
                 };
-                if !state.inside_floor(&fp, 0.0) || state.collides(&fp, 0.02) {
+                let p = Placed::standing(i, fp, &infos[i]);
+                if !state.fits(&p, 0.02) {
                     continue;
                 }
-                let p = Placed::standing(i, fp, infos[i].size[1] as f64);
                 if state.evaluate(Some(&p)).0 {
                     state.commit(p);
                     placed = true;

@@ -2,7 +2,7 @@
 //! floor object once placed and the target a relative placement is made against (yaws are
 //! wrapped by `scenethesis_scene_graph::wrap_yaw`).
 
-use scenethesis_scene_graph::RelationKind;
+use scenethesis_scene_graph::{AssetInfo, RelationKind};
 
 use super::geometry::Footprint;
 use crate::plan::{PlannedObject, Zone};
@@ -25,15 +25,20 @@ pub(super) struct Placed {
     /// The height of a mounted object's bottom when it hangs somewhere other than the usual
     /// wall-mount height (above a run of counters).
     pub(super) bottom: Option<f64>,
+    /// The floor in front of it that its doors and drawers sweep while opening
+    /// ([`Footprint::opening`]): kept free of other objects' bodies.
+    pub(super) opening: Option<Footprint>,
 }
 
 impl Placed {
-    /// A free-standing floor object: reached from any side, backed onto no wall, not mounted.
-    pub(super) fn standing(plan_index: usize, fp: Footprint, height: f64) -> Self {
+    /// A free-standing floor object of asset `info`: reached from any side, backed onto no
+    /// wall, not mounted.
+    pub(super) fn standing(plan_index: usize, fp: Footprint, info: &AssetInfo) -> Self {
         Self {
             plan_index,
             fp,
-            height,
+            height: info.size[1] as f64,
+            opening: fp.opening(info),
             front_access: false,
             wall: None,
             mounted: false,

@@ -104,12 +104,30 @@ impl FloorState<'_> {
         })
     }
 
+    /// Whether a body at `fp` would overlap (within `gap`) a placed floor object, the floor
+    /// a placed object's doors and drawers open into, or the room door's zone.
     pub(super) fn collides(&self, fp: &Footprint, gap: f64) -> bool {
         self.placed
             .iter()
             .filter(|p| !p.mounted)
-            .any(|p| p.fp.overlaps(fp, gap))
+            .any(|p| p.fp.overlaps(fp, gap) || p.opening.is_some_and(|o| o.overlaps(fp, 0.0)))
             || self.door_zone.is_some_and(|d| d.overlaps(fp, 0.0))
+    }
+
+    /// Whether `p` fits: its footprint inside the floor and clear of the others (within
+    /// `gap`), and the floor its doors and drawers open into inside the room and clear of
+    /// every placed body (other openings may share it: one opens at a time).
+    pub(super) fn fits(&self, p: &Placed, gap: f64) -> bool {
+        self.inside_floor(&p.fp, 0.0)
+            && !self.collides(&p.fp, gap)
+            && p.opening.is_none_or(|o| {
+                self.inside_floor(&o, 0.0)
+                    && !self
+                        .placed
+                        .iter()
+                        .filter(|q| !q.mounted)
+                        .any(|q| q.fp.overlaps(&o, 0.0))
+            })
     }
 
     /// Walkway evaluation with an optional extra object: (accepted, walk ratio, door reachable,

@@ -101,6 +101,8 @@ pub fn place(
         parent: parent.map(str::to_owned),
         support: Some(support),
         relations: Vec::new(),
+        joints: Vec::new(),
+        parent_link: None,
     }
 }
 

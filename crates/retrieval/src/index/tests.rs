@@ -41,6 +41,7 @@ fn info(category: &str, synonyms: &[&str], placement: Placement, id: &str) -> As
         support_surfaces: Vec::new(),
         scale_range: [0.9, 1.1],
         joints: Vec::new(),
+        opening_bounds: None,
     }
 }
 

@@ -1,0 +1,228 @@
+//! Opening clearance: whether every door, drawer and lid of a scene opens to
+//! [`OPEN_SHARE`] of its range without running into another object, the floor or a wall.
+//!
+//! Each joint's moving part (with the parts nested under it) is swept from closed to
+//! [`OPEN_SHARE`] of its upper limit in small steps; at every step its surface points are
+//! tested against the exact distance fields of the objects whose boxes it reaches and against
+//! the walls and floor. The object's own parts never block it, and neither does an object the
+//! part carries (`parent_link`): a sock in a drawer rides out with it.
+
+use nalgebra::Point3;
+use rayon::prelude::*;
+use scenethesis_scene_graph::{Aabb, JointKind, JointState, Mesh, MeshPart, OPEN_SHARE};
+use serde::{Deserialize, Serialize};
+
+use crate::collision::{part_fields, penetration, piece_depth, test_points, PENETRATION_TOLERANCE};
+use crate::raster::{wall_pieces, WallPiece};
+use crate::scene::{EvalObject, EvalScene};
+
+/// The largest turn (radians) between two tested states of a revolute joint.
+pub const MAX_TURN_STEP: f32 = 0.15;
+/// The largest slide (metres) between two tested states of a prismatic joint.
+pub const MAX_SLIDE_STEP: f32 = 0.04;
+
+/// How far one joint opens before it hits something.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct OpeningClearance {
+    /// The object the joint belongs to.
+    pub object: String,
+    /// The joint's name.
+    pub joint: String,
+    /// Whether it opens to at least [`OPEN_SHARE`] of its range unobstructed.
+    pub held: bool,
+    /// The largest share of its range tested free, from closed (1 × [`OPEN_SHARE`] when
+    /// held).
+    pub free_share: f64,
+    /// What stopped it first: an object id, a wall id or the floor's id.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub blocked_by: Option<String>,
+}
+
+/// Every joint of the scene, in scene order and joint order.
+pub fn opening_clearances(scene: &EvalScene) -> Vec<OpeningClearance> {
+    let jobs: Vec<(usize, usize)> = scene
+        .objects
+        .iter()
+        .enumerate()
+        .flat_map(|(i, o)| (0..o.joints.len()).map(move |j| (i, j)))
+        .collect();
+    if jobs.is_empty() {
+        return Vec::new();
+    }
+    let walls = wall_pieces(scene);
+    jobs.par_iter()
+        .map(|&(i, j)| sweep(scene, &walls, i, j))
+        .collect()
+}
+
+/// The parts of `object`'s mesh that move when joint `j` does: its own link and every link
+/// nested under it.
+fn moving_parts<'a>(object: &'a EvalObject, j: usize) -> Vec<&'a MeshPart> {
+    let name = &object.joints[j].joint.name;
+    let carried = |part: &MeshPart| {
+        let mut next = part.joint.as_deref();
+        for _ in 0..=object.joints.len() {
+            match next {
+                Some(n) if n == name => return true,
+                Some(n) => {
+                    next = object
+                        .joints
+                        .iter()
+                        .find(|k| k.joint.name == n)
+                        .and_then(|k| k.joint.parent.as_deref())
+                }
+                None => return false,
+            }
+        }
+        false
+    };
+    object.mesh.parts.iter().filter(|p| carried(p)).collect()
+}
+
+/// The joint's axis line where it is now: its world anchor and axis moved by the current
+/// states of the joints it hangs from.
+fn current_axis(object: &EvalObject, j: usize) -> JointState {
+    let mut placed = object.joints[j].clone();
+    let mut parent = placed.joint.parent.clone();
+    for _ in 0..object.joints.len() {
+        let Some(p) = parent.and_then(|n| object.joints.iter().find(|k| k.joint.name == n)) else {
+            break;
+        };
+        let a = placed.joint.anchor;
+        let tip = std::array::from_fn(|k| a[k] + placed.joint.axis[k]);
+        let (a2, tip2) = (
+            p.joint.moved_point(p.state, a),
+            p.joint.moved_point(p.state, tip),
+        );
+        placed.joint.anchor = a2;
+        placed.joint.axis = std::array::from_fn(|k| tip2[k] - a2[k]);
+        parent = p.joint.parent.clone();
+    }
+    placed
+}
+
+/// The states from closed to [`OPEN_SHARE`] of the upper limit, at most one step apart.
+fn sweep_states(placed: &JointState) -> Vec<f32> {
+    let target = OPEN_SHARE * placed.joint.limits[1];
+    let step = match placed.joint.kind {
+        JointKind::Revolute => MAX_TURN_STEP,
+        JointKind::Prismatic => MAX_SLIDE_STEP,
+    };
+    let n = (target / step).ceil().max(1.0) as usize;
+    (1..=n).map(|k| target * k as f32 / n as f32).collect()
+}
+
+/// Sweeps joint `j` of object `i` and reports how far it opens.
+fn sweep(scene: &EvalScene, walls: &[WallPiece], i: usize, j: usize) -> OpeningClearance {
+    let object = &scene.objects[i];
+    let axis = current_axis(object, j);
+    let link = Mesh {
+        parts: moving_parts(object, j).into_iter().cloned().collect(),
+        materials: Vec::new(),
+    };
+    let points = test_points(&link, 0x0be7_0000 + (i * 64 + j) as u64);
+    let states = sweep_states(&axis);
+    // Each state's points, moved from where the part is now (`axis.state`).
+    let posed: Vec<Vec<Point3<f32>>> = states
+        .iter()
+        .map(|&s| {
+            let delta = JointState {
+                state: s - axis.state,
+                joint: scenethesis_scene_graph::Joint {
+                    limits: [f32::MIN, f32::MAX],
+                    ..axis.joint.clone()
+                },
+            };
+            points
+                .iter()
+                .map(|p| Point3::from(delta.joint.moved_point(delta.state, [p.x, p.y, p.z])))
+                .collect()
+        })
+        .collect();
+    let swept = posed
+        .iter()
+        .flatten()
+        .map(|p| p.cast::<f64>())
+        .collect::<Vec<_>>();
+    let obstacles = obstacles(scene, i, &axis.joint.name, Aabb::from_points(swept.iter()));
+    let floor = scene.architecture.floor.id.clone();
+    let share = |k: usize| OPEN_SHARE as f64 * k as f64 / states.len() as f64;
+    for (k, pts) in posed.iter().enumerate() {
+        if let Some(blocker) = first_blocker(pts, &obstacles, walls, &floor) {
+            return OpeningClearance {
+                object: object.id.clone(),
+                joint: axis.joint.name.clone(),
+                held: false,
+                free_share: share(k),
+                blocked_by: Some(blocker),
+            };
+        }
+    }
+    OpeningClearance {
+        object: object.id.clone(),
+        joint: axis.joint.name.clone(),
+        held: true,
+        free_share: share(states.len()),
+        blocked_by: None,
+    }
+}
+
+/// An object a sweep may hit, with its box and exact part fields.
+struct Obstacle {
+    id: String,
+    bounds: Aabb,
+    fields: Vec<crate::collision::PartField>,
+}
+
+/// The objects other than object `i` and what joint `joint` carries whose boxes meet the
+/// swept box.
+fn obstacles(scene: &EvalScene, i: usize, joint: &str, swept: Option<Aabb>) -> Vec<Obstacle> {
+    let Some(swept) = swept else {
+        return Vec::new();
+    };
+    let owner = &scene.objects[i].id;
+    scene
+        .objects
+        .iter()
+        .enumerate()
+        .filter(|&(k, o)| {
+            k != i
+                && !(o.parent.as_deref() == Some(owner.as_str())
+                    && o.parent_link.as_deref() == Some(joint))
+        })
+        .filter_map(|(_, o)| {
+            let bounds = o.mesh.bounds()?;
+            touches(&bounds, &swept).then(|| Obstacle {
+                id: o.id.clone(),
+                bounds,
+                fields: part_fields(&o.mesh),
+            })
+        })
+        .collect()
+}
+
+fn touches(a: &Aabb, b: &Aabb) -> bool {
+    (0..3).all(|k| a.min[k] <= b.max[k] && b.min[k] <= a.max[k])
+}
+
+/// The first thing `points` penetrate deeper than [`PENETRATION_TOLERANCE`]: an obstacle,
+/// a wall or the floor.
+fn first_blocker(
+    points: &[Point3<f32>],
+    obstacles: &[Obstacle],
+    walls: &[WallPiece],
+    floor: &str,
+) -> Option<String> {
+    if points.iter().any(|p| -(p.y as f64) > PENETRATION_TOLERANCE) {
+        return Some(floor.to_owned());
+    }
+    for o in obstacles {
+        if penetration(points, &o.bounds, &o.fields) > PENETRATION_TOLERANCE {
+            return Some(o.id.clone());
+        }
+    }
+    walls
+        .iter()
+        .find(|w| piece_depth(w, points) > PENETRATION_TOLERANCE)
+        .map(|w| w.wall.clone())
+}
