@@ -272,13 +272,22 @@ fn add_links(
             translation: Some([t.x, t.y, t.z]),
             rotation: Some([q.i, q.j, q.k, q.w]),
             scale: None,
-            extras: json!({ "joint": joint }),
+            extras: json!({ "joint": as_written(&joint) }),
         });
         let index = nodes.len() - 1;
         let parent = link.parent.map_or(object_node, |p| indices[p]);
         nodes[parent].children.push(index);
         indices.push(index);
     }
+}
+
+/// A joint as `scene.json` writes it: through text, so that `f32` values keep their shortest
+/// form (1.9, not 1.899999976158142).
+fn as_written(joint: &JointState) -> Value {
+    serde_json::to_string(joint)
+        .ok()
+        .and_then(|text| serde_json::from_str(&text).ok())
+        .unwrap_or(Value::Null)
 }
 
 /// The scene as a glTF 2.0 binary file.

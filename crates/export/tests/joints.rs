@@ -84,6 +84,38 @@ fn joints() -> Vec<JointState> {
     ]
 }
 
+/// A 0.5 m box on a plinth, open at the front, with a door hinged along its bottom edge that
+/// drops open (an oven): gravity pulls it open, so the joint must hold it closed.
+fn oven() -> Mesh {
+    let door = Some("door");
+    Mesh {
+        parts: vec![
+            part("plinth", None, [-0.25, 0.0, -0.25], [0.25, 0.1, 0.28]),
+            part("top", None, [-0.25, 0.58, -0.25], [0.25, 0.6, 0.25]),
+            part("left", None, [-0.25, 0.1, -0.25], [-0.23, 0.58, 0.25]),
+            part("right", None, [0.23, 0.1, -0.25], [0.25, 0.58, 0.25]),
+            part("back", None, [-0.23, 0.1, -0.25], [0.23, 0.58, -0.23]),
+            part("door_panel", door, [-0.25, 0.1, 0.25], [0.25, 0.6, 0.28]),
+        ],
+        materials: vec![Material::new("enamel", [0.9, 0.9, 0.9], 0.3)],
+    }
+}
+
+fn oven_door() -> JointState {
+    JointState {
+        joint: Joint {
+            name: "door".into(),
+            kind: JointKind::Revolute,
+            axis: [1.0, 0.0, 0.0],
+            anchor: [0.0, 0.1, 0.25],
+            limits: [0.0, 1.5],
+            opens_to: OpensTo::Down,
+            parent: None,
+        },
+        state: 0.0,
+    }
+}
+
 fn single(name: &str, min: [f32; 3], max: [f32; 3], color: [f32; 3]) -> Mesh {
     Mesh {
         parts: vec![MeshPart::cuboid(name, 0, min, max)],
@@ -133,7 +165,7 @@ fn object(
 }
 
 /// The cabinet against the back wall of a 4 × 4 m room, the soap in its drawer, a vase on top
-/// and a stool beside it.
+/// and a stool beside it; an oven (turned to face +X) by the left wall.
 fn scene() -> (Scene, BTreeMap<String, Mesh>) {
     let mut scene = Scene::new(Architecture::rectangular_room(4.0, 4.0, 2.5, 0.9));
     scene.prompt = "a cabinet with a door and a drawer".into();
@@ -157,6 +189,7 @@ fn scene() -> (Scene, BTreeMap<String, Mesh>) {
                 [0.2, 0.4, 0.8],
             ),
         ),
+        ("oven".to_owned(), oven()),
         (
             "stool".to_owned(),
             single(
@@ -198,7 +231,19 @@ fn scene() -> (Scene, BTreeMap<String, Mesh>) {
         ParentRef::Ground,
         RelationKind::OnFloor,
     );
-    scene.objects = vec![cabinet, soap, vase, stool];
+    let mut oven = object(
+        "oven",
+        &meshes["oven"],
+        Pose::new(
+            1.0,
+            std::f64::consts::FRAC_PI_2,
+            Vector3::new(-1.5, 0.0, 0.0),
+        ),
+        ParentRef::Ground,
+        RelationKind::OnFloor,
+    );
+    oven.joints = vec![oven_door()];
+    scene.objects = vec![cabinet, soap, vase, stool, oven];
     scene.validate().unwrap();
     (scene, meshes)
 }
@@ -235,7 +280,10 @@ fn glb_nests_a_node_per_link_pivoting_at_its_joint() {
         .collect();
     assert_eq!(
         roots,
-        ["floor", "wall_0", "wall_1", "wall_2", "wall_3", "cabinet", "soap", "vase", "stool"]
+        [
+            "floor", "wall_0", "wall_1", "wall_2", "wall_3", "cabinet", "soap", "vase", "stool",
+            "oven"
+        ]
     );
     let cabinet = gltf.nodes().find(|n| n.name() == Some("cabinet")).unwrap();
     let children: Vec<&str> = cabinet.children().map(|n| n.name().unwrap()).collect();
@@ -301,12 +349,22 @@ fn mjcf_nests_hinge_and_slide_bodies_in_the_scene_state() {
     let soap = xml.find("<body name=\"soap\"").unwrap();
     assert!(cabinet < drawer && drawer < soap);
     assert_eq!(xml[cabinet..soap].matches("</body>").count(), 3);
-    assert_eq!(xml.matches("<freejoint ").count(), 4);
+    assert_eq!(xml.matches("<freejoint ").count(), 5);
     assert!(xml.contains("<exclude body1=\"cabinet\" body2=\"cabinet_door\"/>"));
     assert!(xml.contains("<exclude body1=\"cabinet\" body2=\"cabinet_drawer\"/>"));
     // Link geoms are in the joint frame: the drawer's front starts 2 cm behind its anchor.
     assert!(xml.contains("<mesh name=\"cabinet_drawer_drawer_front\" scale=\"1 1 1\" vertex=\"-0.375 -0.13499999 -0.019999996 "));
-    assert!(xml.contains("frictionloss=\""));
+    // The oven door (gravity pulls it open) is held by more than the least friction; the
+    // cabinet's upright door needs only that.
+    assert!(
+        xml.contains("<joint name=\"cabinet_door\" type=\"hinge\"")
+            && xml.contains("frictionloss=\"0.05\"/>")
+    );
+    let oven = xml.find("<joint name=\"oven_door\"").unwrap();
+    let friction = &xml[oven..][xml[oven..].find("frictionloss=\"").unwrap() + 14..];
+    let friction: f64 = friction[..friction.find('"').unwrap()].parse().unwrap();
+    // 0.5 × 0.5 × 0.03 m at 1000 kg/m³ = 7.5 kg, its far edge 0.5 m from the hinge.
+    assert!((70.0..80.0).contains(&friction), "{friction}");
 }
 
 #[test]
@@ -367,7 +425,7 @@ fn urdf_adds_revolute_and_prismatic_links() {
     ), "{xml}");
     assert!(xml.contains("<joint name=\"cabinet_drawer_joint\" type=\"prismatic\">"));
     assert!(xml.contains("<limit lower=\"0\" upper=\"0.3499999940395355\""));
-    assert_eq!(xml.matches("<inertial>").count(), 4 + 2);
+    assert_eq!(xml.matches("<inertial>").count(), 5 + 3);
     // The link's OBJ is in its joint frame.
     let obj = &package.meshes["cabinet_drawer_drawer_handle.obj"];
     assert!(obj.contains("\nv -0.08 -0.00999999 0\n"), "{obj}");
@@ -377,8 +435,8 @@ fn urdf_adds_revolute_and_prismatic_links() {
 fn usd_makes_each_articulated_object_an_articulation_with_limited_joints() {
     let (scene, meshes) = scene();
     let text = usd::to_usda(&export_of(&scene, &meshes));
-    assert_eq!(text.matches("PhysicsArticulationRootAPI").count(), 1);
-    assert_eq!(text.matches("\"PhysicsRigidBodyAPI\"").count(), 3);
+    assert_eq!(text.matches("PhysicsArticulationRootAPI").count(), 2);
+    assert_eq!(text.matches("\"PhysicsRigidBodyAPI\"").count(), 3 + 2);
     assert!(text.contains("def PhysicsRevoluteJoint \"door_joint\""));
     assert!(text.contains("def PhysicsPrismaticJoint \"drawer_joint\""));
     // The door turns about −Y: physics:axis Y turned half a turn about Z; degrees.
@@ -390,8 +448,8 @@ fn usd_makes_each_articulated_object_an_articulation_with_limited_joints() {
     assert!(text.contains("custom double scenethesis:state = 17.188"));
     assert!(text.contains("def PhysicsScene \"PhysicsScene\""));
     assert_eq!(text.matches('{').count(), text.matches('}').count());
-    // Only the cabinet's meshes collide.
-    assert_eq!(text.matches("\"PhysicsCollisionAPI\"").count(), 14);
+    // Only the articulated objects' meshes collide.
+    assert_eq!(text.matches("\"PhysicsCollisionAPI\"").count(), 14 + 6);
 }
 
 #[test]
@@ -399,10 +457,13 @@ fn without_joints_an_object_is_written_as_a_rigid_one() {
     let (mut scene, meshes) = scene();
     scene.objects[0].joints.clear();
     scene.objects[1].parent_link = None;
+    scene.objects[4].joints.clear();
     // The same mesh with no part naming a joint.
     let mut plain = meshes.clone();
-    for part in &mut plain.get_mut("cabinet").unwrap().parts {
-        part.joint = None;
+    for mesh in plain.values_mut() {
+        for part in &mut mesh.parts {
+            part.joint = None;
+        }
     }
     let tagged = export_of(&scene, &meshes);
     let untagged = export_of(&scene, &plain);
