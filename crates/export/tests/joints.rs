@@ -10,9 +10,12 @@ use std::collections::BTreeMap;
 
 use nalgebra::{Matrix4, Point3, Vector3, Vector4};
 use scenethesis_export::{glb, mjcf, urdf, usd, ExportScene, Format};
+
+mod common;
+use common::object;
 use scenethesis_scene_graph::{
-    Aabb, Architecture, AssetRef, Joint, JointKind, JointState, Material, Mesh, MeshPart, OpensTo,
-    ParentRef, Pose, RelationKind, Scene, SceneObject,
+    Aabb, Architecture, Joint, JointKind, JointState, Material, Mesh, MeshPart, OpensTo, ParentRef,
+    Pose, RelationKind, Scene,
 };
 
 const DOOR_STATE: f32 = 0.3;
@@ -55,32 +58,51 @@ fn cabinet() -> Mesh {
     }
 }
 
+/// A joint on the body, closed, opening from 0 to `upper`.
+fn closed(
+    name: &str,
+    kind: JointKind,
+    axis: [f32; 3],
+    anchor: [f32; 3],
+    upper: f32,
+    opens_to: OpensTo,
+) -> JointState {
+    JointState {
+        joint: Joint {
+            name: name.into(),
+            kind,
+            axis,
+            anchor,
+            limits: [0.0, upper],
+            opens_to,
+            parent: None,
+        },
+        state: 0.0,
+    }
+}
+
 fn joints() -> Vec<JointState> {
+    let door = closed(
+        "door",
+        JointKind::Revolute,
+        [0.0, -1.0, 0.0],
+        [-0.4, 0.3, 0.27],
+        1.9,
+        OpensTo::Left,
+    );
     vec![
         JointState {
-            joint: Joint {
-                name: "door".into(),
-                kind: JointKind::Revolute,
-                axis: [0.0, -1.0, 0.0],
-                anchor: [-0.4, 0.3, 0.27],
-                limits: [0.0, 1.9],
-                opens_to: OpensTo::Left,
-                parent: None,
-            },
             state: DOOR_STATE,
+            ..door
         },
-        JointState {
-            joint: Joint {
-                name: "drawer".into(),
-                kind: JointKind::Prismatic,
-                axis: [0.0, 0.0, 1.0],
-                anchor: [0.0, 0.74, 0.25],
-                limits: [0.0, 0.35],
-                opens_to: OpensTo::Out,
-                parent: None,
-            },
-            state: 0.0,
-        },
+        closed(
+            "drawer",
+            JointKind::Prismatic,
+            [0.0, 0.0, 1.0],
+            [0.0, 0.74, 0.25],
+            0.35,
+            OpensTo::Out,
+        ),
     ]
 }
 
@@ -102,18 +124,14 @@ fn oven() -> Mesh {
 }
 
 fn oven_door() -> JointState {
-    JointState {
-        joint: Joint {
-            name: "door".into(),
-            kind: JointKind::Revolute,
-            axis: [1.0, 0.0, 0.0],
-            anchor: [0.0, 0.1, 0.25],
-            limits: [0.0, 1.5],
-            opens_to: OpensTo::Down,
-            parent: None,
-        },
-        state: 0.0,
-    }
+    closed(
+        "door",
+        JointKind::Revolute,
+        [1.0, 0.0, 0.0],
+        [0.0, 0.1, 0.25],
+        1.5,
+        OpensTo::Down,
+    )
 }
 
 fn single(name: &str, min: [f32; 3], max: [f32; 3], color: [f32; 3]) -> Mesh {
@@ -138,30 +156,6 @@ fn posed_bounds(mesh: &Mesh, joints: &[JointState]) -> Aabb {
     points.fold(Aabb::new(first, first), |b, q| {
         b.including(&Point3::from(q).cast())
     })
-}
-
-fn object(
-    id: &str,
-    mesh: &Mesh,
-    pose: Pose,
-    parent: ParentRef,
-    support: RelationKind,
-) -> SceneObject {
-    SceneObject {
-        id: id.into(),
-        category: id.into(),
-        asset: AssetRef::Procedural {
-            generator: id.into(),
-            seed: 1,
-        },
-        pose,
-        parent,
-        support,
-        relations: Vec::new(),
-        local_bounds: mesh.bounds().unwrap(),
-        joints: Vec::new(),
-        parent_link: None,
-    }
 }
 
 /// The cabinet against the back wall of a 4 × 4 m room, the soap in its drawer, a vase on top
@@ -202,6 +196,7 @@ fn scene() -> (Scene, BTreeMap<String, Mesh>) {
     ]);
     let mut cabinet = object(
         "cabinet",
+        "cabinet",
         &meshes["cabinet"],
         Pose::new(1.0, 0.0, Vector3::new(0.0, 0.0, -1.7)),
         ParentRef::Ground,
@@ -211,6 +206,7 @@ fn scene() -> (Scene, BTreeMap<String, Mesh>) {
     cabinet.local_bounds = posed_bounds(&meshes["cabinet"], &cabinet.joints);
     let mut soap = object(
         "soap",
+        "soap",
         &meshes["soap"],
         Pose::new(1.0, 0.0, Vector3::new(0.0, 0.62, -1.7)),
         ParentRef::Object("cabinet".into()),
@@ -219,6 +215,7 @@ fn scene() -> (Scene, BTreeMap<String, Mesh>) {
     soap.parent_link = Some("drawer".into());
     let vase = object(
         "vase",
+        "vase",
         &meshes["vase"],
         Pose::new(1.0, 0.0, Vector3::new(0.2, 0.9, -1.75)),
         ParentRef::Object("cabinet".into()),
@@ -226,12 +223,14 @@ fn scene() -> (Scene, BTreeMap<String, Mesh>) {
     );
     let stool = object(
         "stool",
+        "stool",
         &meshes["stool"],
         Pose::new(1.0, 0.0, Vector3::new(0.8, 0.0, -1.6)),
         ParentRef::Ground,
         RelationKind::OnFloor,
     );
     let mut oven = object(
+        "oven",
         "oven",
         &meshes["oven"],
         Pose::new(
@@ -371,18 +370,15 @@ fn mjcf_nests_hinge_and_slide_bodies_in_the_scene_state() {
 fn a_nested_joint_hangs_inside_its_parent_link_in_every_format() {
     let (mut scene, mut meshes) = scene();
     // The drawer's handle becomes a flap hinged on the drawer's front.
-    let flap = JointState {
-        joint: Joint {
-            name: "flap".into(),
-            kind: JointKind::Revolute,
-            axis: [1.0, 0.0, 0.0],
-            anchor: [0.0, 0.75, 0.25],
-            limits: [0.0, 1.2],
-            opens_to: OpensTo::Up,
-            parent: Some("drawer".into()),
-        },
-        state: 0.0,
-    };
+    let mut flap = closed(
+        "flap",
+        JointKind::Revolute,
+        [1.0, 0.0, 0.0],
+        [0.0, 0.75, 0.25],
+        1.2,
+        OpensTo::Up,
+    );
+    flap.joint.parent = Some("drawer".into());
     scene.objects[0].joints.push(flap);
     let cabinet = meshes.get_mut("cabinet").unwrap();
     cabinet.parts[11].joint = Some("flap".into());
