@@ -6,6 +6,15 @@
 //! coordinates, identity transform), then one node per object in scene order, named by its id,
 //! with translation, a rotation about +Y and a uniform scale from its pose. Node `extras` carry
 //! the object's category, parent, support and asset; primitive `extras` the part name.
+//!
+//! An articulated object's node holds its body's mesh and has one child node per joint (a
+//! nested joint's node under its parent's), appended after the root nodes and named
+//! `<object>_<joint>`: its translation at the joint's anchor in the parent node's frame,
+//! rotated or slid by the joint's state, its mesh in that frame, and `extras`
+//! `{"joint": {name, kind, axis, anchor, limits, opens_to, parent?, state}}` as `scene.json`
+//! writes the joint (radians or metres, asset units). Turning a node about `axis` (a revolute
+//! joint) or moving it along `axis` (a prismatic one) animates the part in Blender or
+//! three.js.
 
 use std::collections::BTreeMap;
 
@@ -13,9 +22,10 @@ use serde::Serialize;
 use serde_json::{json, Value};
 
 use crate::architecture::{pieces, PieceKind};
+use crate::articulation::Articulation;
 use crate::geometry::shade;
 use crate::ExportScene;
-use scenethesis_scene_graph::{Material, Mesh};
+use scenethesis_scene_graph::{JointState, Material, Mesh, SceneObject};
 
 const GLB_MAGIC: u32 = 0x4654_6C67;
 const CHUNK_JSON: u32 = 0x4E4F_534A;
@@ -54,7 +64,10 @@ struct SceneDef {
 #[derive(Serialize)]
 struct Node {
     name: String,
-    mesh: usize,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    mesh: Option<usize>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    children: Vec<usize>,
     #[serde(skip_serializing_if = "Option::is_none")]
     translation: Option<[f64; 3]>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -230,6 +243,53 @@ impl Builder {
     }
 }
 
+/// The link nodes of an articulated object, appended after every root node: one per joint,
+/// a child of its parent link's node (or of the object's node, `object_node`), at the joint's
+/// anchor and moved by its state, holding the link's mesh in its own frame, its `extras`
+/// `{"joint": …}` the joint as `scene.json` writes it (radians or metres, asset units).
+fn add_links(
+    b: &mut Builder,
+    nodes: &mut Vec<Node>,
+    object_node: usize,
+    object: &SceneObject,
+    articulation: &Articulation<'_>,
+) {
+    let mut indices = Vec::with_capacity(articulation.links.len());
+    for (i, link) in articulation.links.iter().enumerate() {
+        let name = format!("{}_{}", object.id, link.joint.name);
+        let mesh = link.has_geometry().then(|| b.mesh(&name, &link.mesh));
+        let local = articulation.local_pose(i);
+        let t = local.translation.vector;
+        let q = local.rotation;
+        let joint = JointState {
+            joint: link.joint.clone(),
+            state: link.state as f32,
+        };
+        nodes.push(Node {
+            name,
+            mesh,
+            children: Vec::new(),
+            translation: Some([t.x, t.y, t.z]),
+            rotation: Some([q.i, q.j, q.k, q.w]),
+            scale: None,
+            extras: json!({ "joint": as_written(&joint) }),
+        });
+        let index = nodes.len() - 1;
+        let parent = link.parent.map_or(object_node, |p| indices[p]);
+        nodes[parent].children.push(index);
+        indices.push(index);
+    }
+}
+
+/// A joint as `scene.json` writes it: through text, so that `f32` values keep their shortest
+/// form (1.9, not 1.899999976158142).
+fn as_written(joint: &JointState) -> Value {
+    serde_json::to_string(joint)
+        .ok()
+        .and_then(|text| serde_json::from_str(&text).ok())
+        .unwrap_or(Value::Null)
+}
+
 /// The scene as a glTF 2.0 binary file.
 pub fn to_glb(export: &ExportScene<'_>) -> Vec<u8> {
     let scene = export.scene();
@@ -250,21 +310,32 @@ pub fn to_glb(export: &ExportScene<'_>) -> Vec<u8> {
         };
         nodes.push(Node {
             name: piece.id.clone(),
-            mesh,
+            mesh: Some(mesh),
+            children: Vec::new(),
             translation: None,
             rotation: None,
             scale: None,
             extras: json!({ "architecture": kind }),
         });
     }
-    for object in &scene.objects {
-        let mesh = b.mesh(&object.id, export.mesh(object));
+    let articulations: Vec<Option<Articulation<'_>>> = scene
+        .objects
+        .iter()
+        .map(|o| Articulation::of(o, export.mesh(o)))
+        .collect();
+    for (object, articulation) in scene.objects.iter().zip(&articulations) {
+        let body = articulation
+            .as_ref()
+            .map_or(export.mesh(object), |a| &a.body);
+        let drawn = body.parts.iter().any(|p| !p.triangles.is_empty());
+        let mesh = drawn.then(|| b.mesh(&object.id, body));
         let pose = &object.pose;
         let t = pose.translation;
         let half = pose.yaw / 2.0;
         nodes.push(Node {
             name: object.id.clone(),
             mesh,
+            children: Vec::new(),
             translation: Some([t.x, t.y, t.z]),
             rotation: Some([0.0, half.sin(), 0.0, half.cos()]),
             scale: Some([pose.scale; 3]),
@@ -275,6 +346,13 @@ pub fn to_glb(export: &ExportScene<'_>) -> Vec<u8> {
                 "asset": object.asset.to_string(),
             }),
         });
+    }
+    let roots = nodes.len();
+    let first_object = roots - scene.objects.len();
+    for (k, (object, articulation)) in scene.objects.iter().zip(&articulations).enumerate() {
+        if let Some(articulation) = articulation {
+            add_links(&mut b, &mut nodes, first_object + k, object, articulation);
+        }
     }
     while b.bin.len() % 4 != 0 {
         b.bin.push(0);
@@ -287,7 +365,7 @@ pub fn to_glb(export: &ExportScene<'_>) -> Vec<u8> {
         scene: 0,
         scenes: vec![SceneDef {
             name: "scene",
-            nodes: (0..nodes.len()).collect(),
+            nodes: (0..roots).collect(),
         }],
         nodes,
         meshes: b.meshes,

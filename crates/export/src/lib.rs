@@ -16,6 +16,14 @@
 //!   with visual and collision meshes per part (OBJ files beside the URDF), mass and inertia
 //!   from the closed part meshes, floating or fixed joints.
 //!
+//!
+//! An object with joints ([`SceneObject::joints`], its mesh's parts naming them in
+//! [`scenethesis_scene_graph::MeshPart::joint`]) is articulated in every format: its fixed body
+//! plus one moving link per joint, nested as the joints are (MJCF child bodies with hinge and
+//! slide joints, URDF revolute and prismatic joints, UsdPhysics joints under an articulation
+//! root, GLB child nodes pivoting at the joint with the joint in `extras`). Objects without
+//! joints are written exactly as before.
+//!
 //! Every writer is deterministic: the same input gives byte-identical output.
 //!
 //! A one-box scene written as MJCF and GLB:
@@ -61,6 +69,7 @@
 #![warn(missing_docs)]
 
 pub mod architecture;
+mod articulation;
 mod file;
 mod geometry;
 pub mod glb;
@@ -75,6 +84,7 @@ use std::str::FromStr;
 
 use scenethesis_scene_graph::{limits, printable, write_file_atomic, Mesh, Scene, SceneObject};
 
+pub use articulation::{JOINT_DAMPING, MIN_JOINT_FRICTION};
 pub use file::write_formats;
 pub use geometry::MassProperties;
 

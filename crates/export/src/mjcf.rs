@@ -8,18 +8,32 @@
 //! procedural parts are convex, so shelf compartments and crate interiors stay open. Density is
 //! [`crate::DENSITY`], sliding friction [`crate::FRICTION`], time step 1 ms. The floor is a
 //! plane and walls are static boxes, split around door openings.
+//!
+//! An articulated object's body holds its fixed parts and one nested child body per joint
+//! (`<object>_<joint>`, a nested joint's inside its parent's) at the joint's anchor, with a
+//! `hinge` or `slide` joint (`range` in radians or metres, the pose's scale applied, 0 closed)
+//! whose `ref` is the scene's state: the body is written posed in that state, so the model's
+//! initial `qpos` is the scene. Every such joint has damping [`crate::JOINT_DAMPING`],
+//! armature [`ARMATURE`] and a dry `frictionloss` that holds the part against gravity (a
+//! closed oven door stays closed); a `<contact><exclude>` keeps each link from colliding with
+//! its parent and its object's body.
 
 use std::fmt::Write;
 
 use nalgebra::{UnitQuaternion, Vector3};
 
 use crate::architecture::{pieces, OrientedBox, Piece, PieceKind};
+use crate::articulation::{Articulation, JOINT_DAMPING};
 use crate::geometry::{num, num32, to_z_up, y_up_to_z_up, Identifiers};
 use crate::{Dynamics, ExportScene, DENSITY, FRICTION};
-use scenethesis_scene_graph::{Material, SceneObject};
+use scenethesis_scene_graph::{JointKind, Material, Mesh, SceneObject};
 
 /// The simulation time step written into the file, in seconds.
 pub const TIMESTEP: f64 = 0.001;
+
+/// Rotor inertia added to every hinge and slide joint (kg·m² or kg): keeps a light part (a thin
+/// door, a handle) stable at the time step.
+pub const ARMATURE: f64 = 0.01;
 
 /// The scene as an MJCF document (meshes inline, no other files needed).
 pub fn to_mjcf(export: &ExportScene<'_>) -> String {
@@ -29,6 +43,7 @@ pub fn to_mjcf(export: &ExportScene<'_>) -> String {
         materials: Vec::new(),
         meshes: String::new(),
         world: String::new(),
+        excludes: Vec::new(),
     };
     for piece in &pieces(&scene.architecture) {
         doc.add_architecture(piece);
@@ -46,6 +61,8 @@ struct MjcfParts {
     materials: Vec<(String, Material)>,
     meshes: String,
     world: String,
+    /// Pairs of bodies that never collide: each link with its parent and its object's body.
+    excludes: Vec<(String, String)>,
 }
 
 impl MjcfParts {
@@ -111,8 +128,22 @@ impl MjcfParts {
             let _ = writeln!(self.world, "      <freejoint name=\"{}\"/>", attr(&body));
         }
         let mesh = export.mesh(object);
+        match Articulation::of(object, mesh) {
+            None => self.add_geoms(&object.id, mesh, pose.scale, "      "),
+            Some(articulation) => {
+                self.add_geoms(&object.id, &articulation.body, pose.scale, "      ");
+                let mut bodies = vec![body];
+                self.add_links(object, &articulation, &mut bodies, None, "      ");
+            }
+        }
+        self.world.push_str("    </body>\n");
+    }
+
+    /// One mesh geom (and inline mesh asset) per part with triangles, in the frame of the body
+    /// being written, scaled by `scale`.
+    fn add_geoms(&mut self, id: &str, mesh: &Mesh, scale: f64, indent: &str) {
         for part in mesh.parts.iter().filter(|p| !p.triangles.is_empty()) {
-            let name = self.names.make(&format!("{}_{}", object.id, part.name));
+            let name = self.names.make(&format!("{id}_{}", part.name));
             let vertices: Vec<String> = part
                 .positions
                 .iter()
@@ -123,7 +154,7 @@ impl MjcfParts {
                 .iter()
                 .map(|t| format!("{} {} {}", t[0], t[1], t[2]))
                 .collect();
-            let s = num(pose.scale);
+            let s = num(scale);
             let _ = writeln!(
                 self.meshes,
                 "    <mesh name=\"{}\" scale=\"{s} {s} {s}\" vertex=\"{}\" face=\"{}\"/>",
@@ -134,11 +165,90 @@ impl MjcfParts {
             let mat = self.material_name(&mesh.materials[part.material]);
             let _ = writeln!(
                 self.world,
-                "      <geom name=\"{n}\" type=\"mesh\" mesh=\"{n}\" material=\"{mat}\"/>",
+                "{indent}<geom name=\"{n}\" type=\"mesh\" mesh=\"{n}\" material=\"{mat}\"/>",
                 n = attr(&name),
             );
         }
-        self.world.push_str("    </body>\n");
+    }
+
+    /// The links whose parent is `parent` (`None`: the body), each a child body at its joint's
+    /// anchor posed in the scene's state, with a hinge or slide joint whose `ref` is that
+    /// state (so the model's initial `qpos` is the scene and 0 is closed), its geoms, its own
+    /// children, and contact exclusions against its parent and the object's body. `bodies`
+    /// holds the body names written so far: the object's body first, then one per link.
+    fn add_links(
+        &mut self,
+        object: &SceneObject,
+        articulation: &Articulation<'_>,
+        bodies: &mut Vec<String>,
+        parent: Option<usize>,
+        indent: &str,
+    ) {
+        let scale = object.pose.scale;
+        for (i, link) in articulation.links.iter().enumerate() {
+            if link.parent != parent {
+                continue;
+            }
+            let joint = link.joint;
+            let name = self.names.make(&format!("{}_{}", object.id, joint.name));
+            let local = articulation.local_pose(i);
+            let pos = local.translation.vector * scale;
+            let _ = writeln!(
+                self.world,
+                "{indent}<body name=\"{n}\" pos=\"{} {} {}\" quat=\"{}\">",
+                num(pos.x),
+                num(pos.y),
+                num(pos.z),
+                quat(&local.rotation),
+                n = attr(&name),
+            );
+            let (kind, unit) = match joint.kind {
+                JointKind::Revolute => ("hinge", 1.0),
+                JointKind::Prismatic => ("slide", scale),
+            };
+            let [lo, hi] = link.limits();
+            let axis = link.axis();
+            let _ = writeln!(
+                self.world,
+                "{indent}  <joint name=\"{n}\" type=\"{kind}\" axis=\"{} {} {}\" range=\"{} {}\" limited=\"true\" ref=\"{}\" damping=\"{}\" armature=\"{}\" frictionloss=\"{}\"/>",
+                num(axis.x),
+                num(axis.y),
+                num(axis.z),
+                num(lo * unit),
+                num(hi * unit),
+                num(link.state * unit),
+                num(JOINT_DAMPING),
+                num(ARMATURE),
+                num(articulation.holding_friction(i, scale)),
+                n = attr(&name),
+            );
+            if link.has_geometry() {
+                let id = format!("{}_{}", object.id, joint.name);
+                self.add_geoms(&id, &link.mesh, scale, &format!("{indent}  "));
+            } else {
+                // A joint needs a body with mass: a link drawn with no triangles gets a token one.
+                let _ = writeln!(
+                    self.world,
+                    "{indent}  <inertial pos=\"0 0 0\" mass=\"0.001\" diaginertia=\"1e-06 1e-06 1e-06\"/>"
+                );
+            }
+            let parent_body = link.parent.map_or(0, |p| p + 1);
+            let root = bodies[0].clone();
+            let parent_name = bodies[parent_body].clone();
+            bodies.push(name.clone());
+            self.excludes.push((parent_name.clone(), name.clone()));
+            if parent_name != root {
+                self.excludes.push((root, name.clone()));
+            }
+            self.add_links(
+                object,
+                articulation,
+                bodies,
+                Some(i),
+                &format!("{indent}  "),
+            );
+            let _ = writeln!(self.world, "{indent}</body>");
+        }
     }
 
     /// The whole document: header and defaults, the materials and meshes, the world.
@@ -169,7 +279,20 @@ impl MjcfParts {
         out.push_str(&self.meshes);
         out.push_str("  </asset>\n  <worldbody>\n    <light name=\"sun\" directional=\"true\" pos=\"0 0 10\" dir=\"0.3 0.2 -1\"/>\n");
         out.push_str(&self.world);
-        out.push_str("  </worldbody>\n</mujoco>\n");
+        out.push_str("  </worldbody>\n");
+        if !self.excludes.is_empty() {
+            out.push_str("  <contact>\n");
+            for (a, b) in &self.excludes {
+                let _ = writeln!(
+                    out,
+                    "    <exclude body1=\"{}\" body2=\"{}\"/>",
+                    attr(a),
+                    attr(b)
+                );
+            }
+            out.push_str("  </contact>\n");
+        }
+        out.push_str("</mujoco>\n");
         out
     }
 }

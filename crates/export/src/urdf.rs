@@ -8,6 +8,12 @@
 //! Each part of an object's mesh is a visual and a collision referring to its own OBJ file,
 //! written in the asset's frame (+Y up) and turned up by the element's `rpy` of π/2 about X,
 //! scaled by the pose. Masses and inertias come from the closed parts at [`crate::DENSITY`].
+//!
+//! An articulated object's link holds its fixed body; each joint adds a link (named
+//! `<object>_<joint>`, its parts' OBJ files in the joint's frame, origin at the anchor) and a
+//! `revolute` or `prismatic` joint from the parent link, with the axis in the parent's frame,
+//! `<limit>` in radians or metres (scaled by the pose) and `<dynamics>` damping and friction as
+//! in MJCF. The zero configuration is closed.
 
 use std::collections::BTreeMap;
 use std::fmt::Write;
@@ -15,10 +21,17 @@ use std::fmt::Write;
 use nalgebra::{Matrix3, Vector3};
 
 use crate::architecture::{pieces, OrientedBox};
+use crate::articulation::{Articulation, JOINT_DAMPING};
 use crate::geometry::{num, num32, to_z_up, y_up_to_z_up, Identifiers, MassProperties};
 use crate::mjcf::{attr, comment};
 use crate::{Dynamics, ExportScene, DENSITY};
-use scenethesis_scene_graph::{Material, MeshPart};
+use scenethesis_scene_graph::{JointKind, Material, Mesh, MeshPart, SceneObject};
+
+/// The effort limit of every revolute and prismatic joint (N·m or N).
+pub const JOINT_EFFORT: f64 = 100.0;
+
+/// The velocity limit of every revolute and prismatic joint (rad/s or m/s).
+pub const JOINT_VELOCITY: f64 = 2.0;
 
 /// The folder, relative to the URDF file, that [`crate::Format::Urdf`] writes meshes into.
 pub const MESH_DIR: &str = "meshes";
@@ -35,54 +48,120 @@ pub struct UrdfPackage {
 /// The scene as a URDF robot description whose mesh references are `mesh_dir/<file>.obj`.
 pub fn to_urdf(export: &ExportScene<'_>, mesh_dir: &str) -> UrdfPackage {
     let scene = export.scene();
-    let mut links = Identifiers::new(true);
-    links.reserve("world");
-    let mut files = Identifiers::file_names();
-    let mut meshes = BTreeMap::new();
-    let mut materials: Vec<(String, Material)> = Vec::new();
-    let mut material_names = Identifiers::new(true);
-    let mut material = |m: &Material| -> String {
-        if let Some((name, _)) = materials.iter().find(|(_, known)| known == m) {
-            return name.clone();
-        }
-        let name = material_names.make(&m.name);
-        materials.push((name.clone(), m.clone()));
-        name
+    let mut w = Writer {
+        links: Identifiers::new(true),
+        files: Identifiers::file_names(),
+        meshes: BTreeMap::new(),
+        materials: Vec::new(),
+        material_names: Identifiers::new(true),
+        body: String::new(),
+        mesh_dir,
     };
-
-    let mut body = String::new();
-    body.push_str("  <link name=\"world\"/>\n");
+    w.links.reserve("world");
+    w.body.push_str("  <link name=\"world\"/>\n");
     for piece in pieces(&scene.architecture) {
-        let name = links.make(&piece.id);
-        let mat = material(&piece.to_mesh().materials[0]);
-        let _ = writeln!(body, "  <link name=\"{}\">", attr(&name));
+        let name = w.links.make(&piece.id);
+        let mat = w.material(&piece.to_mesh().materials[0]);
+        let _ = writeln!(w.body, "  <link name=\"{}\">", attr(&name));
         for b in &piece.boxes {
             let geometry = box_geometry(b);
             let _ = writeln!(
-                body,
+                w.body,
                 "    <visual>\n{geometry}      <material name=\"{}\"/>\n    </visual>\n    <collision>\n{geometry}    </collision>",
                 attr(&mat)
             );
         }
         let _ = writeln!(
-            body,
+            w.body,
             "  </link>\n  <joint name=\"{n}_joint\" type=\"fixed\">\n    <parent link=\"world\"/>\n    <child link=\"{n}\"/>\n  </joint>",
             n = attr(&name)
         );
     }
 
-    let up = y_up_to_z_up().to_rotation_matrix();
     for object in &scene.objects {
-        let name = links.make(&object.id);
+        let name = w.links.make(&object.id);
         let mesh = export.mesh(object);
         let pose = &object.pose;
-        let s = num(pose.scale);
-        let _ = writeln!(body, "  <link name=\"{}\">", attr(&name));
-        if let Some(props) = MassProperties::of_mesh(mesh, pose.scale, DENSITY) {
+        let articulation = Articulation::of(object, mesh);
+        let body = articulation.as_ref().map_or(mesh, |a| &a.body);
+        w.link(&name, &object.id, body, pose.scale);
+        let kind = match export.dynamics(object) {
+            Dynamics::Free => "floating",
+            Dynamics::Fixed => "fixed",
+        };
+        let _ = writeln!(
+            w.body,
+            "  <joint name=\"{n}_joint\" type=\"{kind}\">\n    <parent link=\"world\"/>\n    <child link=\"{n}\"/>\n    <origin xyz=\"{}\" rpy=\"0 0 {}\"/>\n  </joint>",
+            vec3(&to_z_up(&pose.translation)),
+            num(pose.yaw),
+            n = attr(&name),
+        );
+        if let Some(articulation) = &articulation {
+            w.joints(object, articulation, &name);
+        }
+    }
+
+    let mut urdf = String::new();
+    let _ = writeln!(
+        urdf,
+        "<?xml version=\"1.0\"?>\n<!-- {} -->\n<robot name=\"scenethesis_scene\">",
+        comment(&scene.prompt)
+    );
+    for (name, m) in &w.materials {
+        let c = m.base_color;
+        let _ = writeln!(
+            urdf,
+            "  <material name=\"{}\">\n    <color rgba=\"{} {} {} {}\"/>\n  </material>",
+            attr(name),
+            num32(c[0]),
+            num32(c[1]),
+            num32(c[2]),
+            num32(c[3])
+        );
+    }
+    urdf.push_str(&w.body);
+    urdf.push_str("</robot>\n");
+    UrdfPackage {
+        urdf,
+        meshes: w.meshes,
+    }
+}
+
+/// The document being written: unique link and file names, the OBJ files and materials met so
+/// far, and the links and joints.
+struct Writer<'a> {
+    links: Identifiers,
+    files: Identifiers,
+    meshes: BTreeMap<String, String>,
+    materials: Vec<(String, Material)>,
+    material_names: Identifiers,
+    body: String,
+    mesh_dir: &'a str,
+}
+
+impl Writer<'_> {
+    /// The name of material `m`, added on first use.
+    fn material(&mut self, m: &Material) -> String {
+        if let Some((name, _)) = self.materials.iter().find(|(_, known)| known == m) {
+            return name.clone();
+        }
+        let name = self.material_names.make(&m.name);
+        self.materials.push((name.clone(), m.clone()));
+        name
+    }
+
+    /// A `<link>` named `name` holding `mesh` (in the link's +Y-up frame, scaled by `scale`):
+    /// its inertial from the closed parts, and a visual and a collision per part, each part an
+    /// OBJ file named after `id` and the part.
+    fn link(&mut self, name: &str, id: &str, mesh: &Mesh, scale: f64) {
+        let up = y_up_to_z_up().to_rotation_matrix();
+        let s = num(scale);
+        let _ = writeln!(self.body, "  <link name=\"{}\">", attr(name));
+        if let Some(props) = MassProperties::of_mesh(mesh, scale, DENSITY) {
             let com = up * props.center_of_mass;
             let inertia: Matrix3<f64> = up.matrix() * props.inertia * up.matrix().transpose();
             let _ = writeln!(
-                body,
+                self.body,
                 "    <inertial>\n      <origin xyz=\"{}\" rpy=\"0 0 0\"/>\n      <mass value=\"{}\"/>\n      <inertia ixx=\"{}\" ixy=\"{}\" ixz=\"{}\" iyy=\"{}\" iyz=\"{}\" izz=\"{}\"/>\n    </inertial>",
                 vec3(&com),
                 num(props.mass),
@@ -95,59 +174,60 @@ pub fn to_urdf(export: &ExportScene<'_>, mesh_dir: &str) -> UrdfPackage {
             );
         }
         for part in mesh.parts.iter().filter(|p| !p.triangles.is_empty()) {
-            let file = format!(
-                "{}.obj",
-                files.make(&format!("{}_{}", object.id, part.name))
-            );
-            meshes.insert(file.clone(), obj(part));
+            let file = format!("{}.obj", self.files.make(&format!("{id}_{}", part.name)));
+            self.meshes.insert(file.clone(), obj(part));
             let geometry = format!(
                 "      <origin xyz=\"0 0 0\" rpy=\"{} 0 0\"/>\n      <geometry>\n        <mesh filename=\"{}/{}\" scale=\"{s} {s} {s}\"/>\n      </geometry>\n",
                 num(std::f64::consts::FRAC_PI_2),
-                attr(mesh_dir),
+                attr(self.mesh_dir),
                 attr(&file),
             );
-            let mat = material(&mesh.materials[part.material]);
+            let mat = self.material(&mesh.materials[part.material]);
             let _ = writeln!(
-                body,
+                self.body,
                 "    <visual name=\"{p}\">\n{geometry}      <material name=\"{}\"/>\n    </visual>\n    <collision name=\"{p}\">\n{geometry}    </collision>",
                 attr(&mat),
                 p = attr(&part.name),
             );
         }
-        let kind = match export.dynamics(object) {
-            Dynamics::Free => "floating",
-            Dynamics::Fixed => "fixed",
-        };
-        let _ = writeln!(
-            body,
-            "  </link>\n  <joint name=\"{n}_joint\" type=\"{kind}\">\n    <parent link=\"world\"/>\n    <child link=\"{n}\"/>\n    <origin xyz=\"{}\" rpy=\"0 0 {}\"/>\n  </joint>",
-            vec3(&to_z_up(&pose.translation)),
-            num(pose.yaw),
-            n = attr(&name),
-        );
+        self.body.push_str("  </link>\n");
     }
 
-    let mut urdf = String::new();
-    let _ = writeln!(
-        urdf,
-        "<?xml version=\"1.0\"?>\n<!-- {} -->\n<robot name=\"scenethesis_scene\">",
-        comment(&scene.prompt)
-    );
-    for (name, m) in &materials {
-        let c = m.base_color;
-        let _ = writeln!(
-            urdf,
-            "  <material name=\"{}\">\n    <color rgba=\"{} {} {} {}\"/>\n  </material>",
-            attr(name),
-            num32(c[0]),
-            num32(c[1]),
-            num32(c[2]),
-            num32(c[3])
-        );
+    /// A link per joint of an articulated object and its `revolute` or `prismatic` joint to
+    /// its parent link (`root`, the object's link, or another joint's), origin at the anchor in
+    /// the parent's frame. URDF's zero configuration is closed: the scene's state is not
+    /// written (it is in `scene.json`).
+    fn joints(&mut self, object: &SceneObject, articulation: &Articulation<'_>, root: &str) {
+        let scale = object.pose.scale;
+        let mut names: Vec<String> = Vec::with_capacity(articulation.links.len());
+        for (i, link) in articulation.links.iter().enumerate() {
+            let joint = link.joint;
+            let id = format!("{}_{}", object.id, joint.name);
+            let name = self.links.make(&id);
+            self.link(&name, &id, &link.mesh, scale);
+            let parent = link.parent.map_or(root, |p| names[p].as_str());
+            let (kind, unit) = match joint.kind {
+                JointKind::Revolute => ("revolute", 1.0),
+                JointKind::Prismatic => ("prismatic", scale),
+            };
+            let [lo, hi] = link.limits();
+            let _ = writeln!(
+                self.body,
+                "  <joint name=\"{n}_joint\" type=\"{kind}\">\n    <parent link=\"{}\"/>\n    <child link=\"{n}\"/>\n    <origin xyz=\"{}\" rpy=\"0 0 0\"/>\n    <axis xyz=\"{}\"/>\n    <limit lower=\"{}\" upper=\"{}\" effort=\"{}\" velocity=\"{}\"/>\n    <dynamics damping=\"{}\" friction=\"{}\"/>\n  </joint>",
+                attr(parent),
+                vec3(&to_z_up(&(articulation.offset(i) * scale))),
+                vec3(&to_z_up(&link.axis())),
+                num(lo * unit),
+                num(hi * unit),
+                num(JOINT_EFFORT),
+                num(JOINT_VELOCITY),
+                num(JOINT_DAMPING),
+                num(articulation.holding_friction(i, scale)),
+                n = attr(&name),
+            );
+            names.push(name);
+        }
     }
-    urdf.push_str(&body);
-    urdf.push_str("</robot>\n");
-    UrdfPackage { urdf, meshes }
 }
 
 fn box_geometry(b: &OrientedBox) -> String {

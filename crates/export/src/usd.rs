@@ -6,14 +6,26 @@
 //! `/World/Looks`. Stage metadata: `upAxis = "Y"`, `metersPerUnit = 1`. Prim names are the ids
 //! when they are valid USD identifiers, otherwise sanitised; the original id is kept in the
 //! custom attribute `scenethesis:id`.
+//!
+//! An articulated object (one with joints) is a UsdPhysics articulation: its `Xform` carries
+//! `PhysicsArticulationRootAPI`; a `body` Xform and one Xform per link (named by the joint,
+//! posed at its anchor in the scene's state) are rigid bodies (density [`crate::DENSITY`])
+//! whose meshes collide as convex hulls; a `PhysicsRevoluteJoint` (limits in degrees) or
+//! `PhysicsPrismaticJoint` (limits in metres, the pose's scale applied) joins each link to its
+//! parent, with `scenethesis:state` and `scenethesis:opensTo` beside; the stage then has a
+//! `PhysicsScene` with gravity −Y. Objects without joints are written as before, without
+//! physics schemas.
 
 use std::collections::BTreeMap;
 use std::fmt::Write;
 
+use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+
 use crate::architecture::pieces;
+use crate::articulation::Articulation;
 use crate::geometry::{num, num32, shade, Identifiers};
-use crate::ExportScene;
-use scenethesis_scene_graph::{Material, Mesh};
+use crate::{Dynamics, ExportScene, DENSITY};
+use scenethesis_scene_graph::{JointKind, Material, Mesh, OpensTo, SceneObject};
 
 /// The scene as a USD text layer.
 pub fn to_usda(export: &ExportScene<'_>) -> String {
@@ -54,6 +66,10 @@ pub fn to_usda(export: &ExportScene<'_>) -> String {
 
     let mut prims = Identifiers::new(false);
     prims.reserve("Looks");
+    let has_joints = scene.objects.iter().any(|o| !o.joints.is_empty());
+    if has_joints {
+        prims.reserve("PhysicsScene");
+    }
     for (id, mesh) in &arch {
         let name = prims.make(id);
         let _ = write!(
@@ -62,7 +78,7 @@ pub fn to_usda(export: &ExportScene<'_>) -> String {
             quote(&name),
             quote(id)
         );
-        write_meshes(&mut out, mesh, &looks);
+        write_meshes(&mut out, mesh, &looks, false);
         out.push_str("    }\n");
     }
     for object in &scene.objects {
@@ -71,8 +87,13 @@ pub fn to_usda(export: &ExportScene<'_>) -> String {
         let t = pose.translation;
         let _ = write!(
             out,
-            "\n    def Xform {}\n    {{\n        custom string scenethesis:id = {}\n        custom string scenethesis:category = {}\n        custom string scenethesis:parent = {}\n        custom string scenethesis:support = {}\n        double3 xformOp:translate = ({}, {}, {})\n        double xformOp:rotateY = {}\n        double3 xformOp:scale = ({s}, {s}, {s})\n        uniform token[] xformOpOrder = [\"xformOp:translate\", \"xformOp:rotateY\", \"xformOp:scale\"]\n",
+            "\n    def Xform {}{}\n    {{\n        custom string scenethesis:id = {}\n        custom string scenethesis:category = {}\n        custom string scenethesis:parent = {}\n        custom string scenethesis:support = {}\n        double3 xformOp:translate = ({}, {}, {})\n        double xformOp:rotateY = {}\n        double3 xformOp:scale = ({s}, {s}, {s})\n        uniform token[] xformOpOrder = [\"xformOp:translate\", \"xformOp:rotateY\", \"xformOp:scale\"]\n",
             quote(&name),
+            if object.joints.is_empty() {
+                ""
+            } else {
+                " (\n        prepend apiSchemas = [\"PhysicsArticulationRootAPI\"]\n    )"
+            },
             quote(&object.id),
             quote(&object.category),
             quote(&object.parent.to_string()),
@@ -83,11 +104,157 @@ pub fn to_usda(export: &ExportScene<'_>) -> String {
             num(pose.yaw.to_degrees()),
             s = num(pose.scale),
         );
-        write_meshes(&mut out, export.mesh(object), &looks);
+        match Articulation::of(object, export.mesh(object)) {
+            None => write_meshes(&mut out, export.mesh(object), &looks, false),
+            Some(articulation) => write_articulation(
+                &mut out,
+                &format!("/World/{name}"),
+                object,
+                &articulation,
+                export.dynamics(object),
+                &looks,
+            ),
+        }
         out.push_str("    }\n");
+    }
+    if has_joints {
+        out.push_str("\n    def PhysicsScene \"PhysicsScene\"\n    {\n        vector3f physics:gravityDirection = (0, -1, 0)\n        float physics:gravityMagnitude = 9.81\n    }\n");
     }
     out.push_str("}\n");
     out
+}
+
+/// An articulated object's prims inside its `Xform` (which carries the
+/// `PhysicsArticulationRootAPI`): the body and one `Xform` per link, posed at the joint's
+/// anchor in the scene's state, each a rigid body whose meshes collide as convex hulls, and a
+/// `PhysicsRevoluteJoint` or `PhysicsPrismaticJoint` per joint. The joint frame maps
+/// `physics:axis` (the asset axis nearest the joint's) onto the joint's axis through
+/// `localRot0` / `localRot1`, so the joint position is the state: 0 closed. A mounted object's
+/// body is held by a `PhysicsFixedJoint` to the world.
+fn write_articulation(
+    out: &mut String,
+    path: &str,
+    object: &SceneObject,
+    articulation: &Articulation<'_>,
+    dynamics: Dynamics,
+    looks: &Looks,
+) {
+    let mut names = Identifiers::new(false);
+    let body = names.make("body");
+    let rigid = "prepend apiSchemas = [\"PhysicsRigidBodyAPI\", \"PhysicsMassAPI\"]";
+    let _ = write!(
+        out,
+        "\n        def Xform \"{body}\" (\n            {rigid}\n        )\n        {{\n            float physics:density = {}\n",
+        num(DENSITY)
+    );
+    out.push_str(&indented(&meshes_text(&articulation.body, looks, true)));
+    out.push_str("        }\n");
+    let mut links: Vec<String> = Vec::with_capacity(articulation.links.len());
+    for (i, link) in articulation.links.iter().enumerate() {
+        let name = names.make(&link.joint.name);
+        let pose = articulation.pose(i);
+        let t = pose.translation.vector;
+        let q = pose.rotation;
+        let _ = write!(
+            out,
+            "\n        def Xform {} (\n            {rigid}\n        )\n        {{\n            custom string scenethesis:joint = {}\n            float physics:density = {}\n            double3 xformOp:translate = ({}, {}, {})\n            quatd xformOp:orient = ({}, {}, {}, {})\n            uniform token[] xformOpOrder = [\"xformOp:translate\", \"xformOp:orient\"]\n",
+            quote(&name),
+            quote(&link.joint.name),
+            num(DENSITY),
+            num(t.x),
+            num(t.y),
+            num(t.z),
+            num(q.w),
+            num(q.i),
+            num(q.j),
+            num(q.k),
+        );
+        out.push_str(&indented(&meshes_text(&link.mesh, looks, true)));
+        out.push_str("        }\n");
+        links.push(name);
+    }
+    for (i, link) in articulation.links.iter().enumerate() {
+        let joint = link.joint;
+        let parent = link.parent.map_or(&body, |p| &links[p]);
+        let (kind, unit) = match joint.kind {
+            JointKind::Revolute => ("PhysicsRevoluteJoint", 180.0 / std::f64::consts::PI),
+            JointKind::Prismatic => ("PhysicsPrismaticJoint", object.pose.scale),
+        };
+        let (token, frame) = joint_frame(&link.axis());
+        let rot = format!(
+            "({}, {}, {}, {})",
+            num(frame.w),
+            num(frame.i),
+            num(frame.j),
+            num(frame.k)
+        );
+        let at = articulation.offset(i);
+        let [lo, hi] = link.limits();
+        let _ = write!(
+            out,
+            "\n        def {kind} {}\n        {{\n            custom string scenethesis:opensTo = {}\n            custom double scenethesis:state = {}\n            uniform token physics:axis = \"{token}\"\n            rel physics:body0 = <{path}/{parent}>\n            rel physics:body1 = <{path}/{}>\n            point3f physics:localPos0 = ({}, {}, {})\n            point3f physics:localPos1 = (0, 0, 0)\n            quatf physics:localRot0 = {rot}\n            quatf physics:localRot1 = {rot}\n            float physics:lowerLimit = {}\n            float physics:upperLimit = {}\n        }}\n",
+            quote(&names.make(&format!("{}_joint", joint.name))),
+            quote(&opens_to(joint.opens_to)),
+            num(link.state * unit),
+            links[i],
+            num(at.x),
+            num(at.y),
+            num(at.z),
+            num(lo * unit),
+            num(hi * unit),
+        );
+    }
+    if dynamics == Dynamics::Fixed {
+        let pose = &object.pose;
+        let t = pose.translation;
+        let half = pose.yaw / 2.0;
+        let _ = write!(
+            out,
+            "\n        def PhysicsFixedJoint {}\n        {{\n            rel physics:body1 = <{path}/{body}>\n            point3f physics:localPos0 = ({}, {}, {})\n            point3f physics:localPos1 = (0, 0, 0)\n            quatf physics:localRot0 = ({}, 0, {}, 0)\n            quatf physics:localRot1 = (1, 0, 0, 0)\n        }}\n",
+            quote(&names.make("world_joint")),
+            num(t.x),
+            num(t.y),
+            num(t.z),
+            num(half.cos()),
+            num(half.sin()),
+        );
+    }
+}
+
+/// The `physics:axis` token nearest a unit joint axis, and the rotation taking that token's
+/// axis onto the joint's (identity when they agree).
+fn joint_frame(axis: &Vector3<f64>) -> (&'static str, UnitQuaternion<f64>) {
+    let k = axis.iamax();
+    let token = ["X", "Y", "Z"][k];
+    let e = Vector3::ith(k, 1.0);
+    let rotation = if axis.dot(&e) < -1.0 + 1e-12 {
+        // Opposite: half a turn about the next axis, written exactly.
+        UnitQuaternion::new_unchecked(Quaternion::from_parts(0.0, Vector3::ith((k + 1) % 3, 1.0)))
+    } else {
+        UnitQuaternion::rotation_between(&e, axis).unwrap_or_else(UnitQuaternion::identity)
+    };
+    (token, rotation)
+}
+
+/// The `opens_to` word of `scene.json`.
+fn opens_to(o: OpensTo) -> String {
+    match serde_json::to_value(o) {
+        Ok(serde_json::Value::String(word)) => word,
+        _ => String::new(),
+    }
+}
+
+/// Text indented by one more level (four spaces).
+fn indented(text: &str) -> String {
+    text.lines()
+        .map(|l| {
+            if l.is_empty() {
+                "\n".to_owned()
+            } else {
+                format!("    {l}\n")
+            }
+        })
+        .collect()
 }
 
 /// Materials under `/World/Looks`, shared when name and factors agree.
@@ -149,7 +316,9 @@ fn write_material(out: &mut String, name: &str, m: &Material) {
     );
 }
 
-fn write_meshes(out: &mut String, mesh: &Mesh, looks: &Looks) {
+/// One `Mesh` prim per part with triangles. With `collision`, each also collides
+/// (`PhysicsCollisionAPI`, as its convex hull).
+fn write_meshes(out: &mut String, mesh: &Mesh, looks: &Looks, collision: bool) {
     let mut names = Identifiers::new(false);
     for part in mesh.parts.iter().filter(|p| !p.triangles.is_empty()) {
         let shaded = shade(part);
@@ -164,11 +333,19 @@ fn write_meshes(out: &mut String, mesh: &Mesh, looks: &Looks) {
         }
         let _ = write!(
             out,
-            "\n        def Mesh {} (\n            prepend apiSchemas = [\"MaterialBindingAPI\"]\n        )\n        {{\n            uniform bool doubleSided = 0\n            float3[] extent = [{}, {}]\n",
+            "\n        def Mesh {} (\n            prepend apiSchemas = [\"MaterialBindingAPI\"{}]\n        )\n        {{\n            uniform bool doubleSided = 0\n            float3[] extent = [{}, {}]\n",
             quote(&names.make(&part.name)),
+            if collision {
+                ", \"PhysicsCollisionAPI\", \"PhysicsMeshCollisionAPI\""
+            } else {
+                ""
+            },
             tuple(&min),
             tuple(&max),
         );
+        if collision {
+            out.push_str("            uniform token physics:approximation = \"convexHull\"\n");
+        }
         let counts = vec!["3"; shaded.indices.len() / 3].join(", ");
         let _ = writeln!(out, "            int[] faceVertexCounts = [{counts}]");
         let indices: Vec<String> = shaded.indices.iter().map(|i| i.to_string()).collect();
@@ -204,6 +381,13 @@ fn write_meshes(out: &mut String, mesh: &Mesh, looks: &Looks) {
         );
         out.push_str("            uniform token subdivisionScheme = \"none\"\n        }\n");
     }
+}
+
+/// [`write_meshes`] into a string of its own.
+fn meshes_text(mesh: &Mesh, looks: &Looks, collision: bool) -> String {
+    let mut text = String::new();
+    write_meshes(&mut text, mesh, looks, collision);
+    text
 }
 
 fn tuple(v: &[f32; 3]) -> String {

@@ -7,12 +7,14 @@
 use std::collections::BTreeMap;
 use std::f64::consts::FRAC_PI_2;
 
-use nalgebra::{Point3, Vector3};
+use nalgebra::Vector3;
 use scenethesis_export::{Dynamics, ExportError, ExportScene, Format};
 use scenethesis_primitives::{cuboid, cylinder, sphere};
+
+mod common;
+use common::object;
 use scenethesis_scene_graph::{
-    Aabb, Architecture, AssetRef, Material, Mesh, MeshPart, ParentRef, Pose, RelationKind, Scene,
-    SceneObject,
+    Architecture, Material, Mesh, MeshPart, ParentRef, Pose, RelationKind, Scene,
 };
 
 fn mesh(parts: Vec<MeshPart>, materials: Vec<Material>) -> Mesh {
@@ -105,33 +107,6 @@ fn painting() -> Mesh {
             Material::new("canvas_blue", [0.2, 0.3, 0.7], 0.95),
         ],
     )
-}
-
-fn object(
-    id: &str,
-    category: &str,
-    mesh: &Mesh,
-    pose: Pose,
-    parent: ParentRef,
-    support: RelationKind,
-) -> SceneObject {
-    SceneObject {
-        id: id.into(),
-        category: category.into(),
-        asset: AssetRef::Procedural {
-            generator: category.into(),
-            seed: 7,
-        },
-        pose,
-        parent,
-        support,
-        relations: Vec::new(),
-        local_bounds: mesh
-            .bounds()
-            .unwrap_or(Aabb::new(Point3::origin(), Point3::origin())),
-        joints: Vec::new(),
-        parent_link: None,
-    }
 }
 
 /// The hand-built scene and its meshes.

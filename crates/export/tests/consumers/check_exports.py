@@ -5,8 +5,8 @@ Usage: check_exports.py DIR [--seconds S] [--tolerance M]
 
 DIR must hold scene.json and the exports (scene.glb, scene.usda, scene.mjcf.xml, scene.urdf +
 meshes/). Checks:
-  * glTF: the GLB header and JSON chunk are well formed and there is one node per object and
-    per architecture piece, named by its id.
+  * glTF: the GLB header and JSON chunk are well formed and the scene's root nodes are one per
+    object and per architecture piece, named by its id.
   * OpenUSD (pip: usd-core): Usd.Stage.Open succeeds, upAxis is Y, metersPerUnit is 1, every
     object is an Xform whose world bounding box matches scene.json's world_aabb.
   * MuJoCo (pip: mujoco): MjModel.from_xml_path loads the MJCF, every body starts where
@@ -16,6 +16,9 @@ meshes/). Checks:
     became NaN.
   * URDF: the XML parses, every link named by an object id exists, every mesh file exists,
     mounted objects hang from `world` on a fixed joint and the others on floating ones.
+  * Joints (check_joints.py, for objects with `joints`): each format has them with their limits;
+    MuJoCo drives each open and what rides in a drawer comes out with it; yourdfpy (pip:
+    yourdfpy) loads the URDF.
 Exits 1 with one line per failure when anything is wrong.
 """
 
@@ -26,6 +29,8 @@ import struct
 import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
+
+import check_joints
 
 failures = []
 
@@ -55,12 +60,14 @@ def check_glb(path, scene):
         fail(f"{path}: first chunk is not JSON")
         return
     gltf = json.loads(data[20 : 20 + json_len])
-    names = [n.get("name") for n in gltf["nodes"]]
+    roots = gltf["scenes"][gltf.get("scene", 0)]["nodes"]
+    names = [gltf["nodes"][i].get("name") for i in roots]
     expected = architecture_ids(scene) + list(scene["objects"].keys())
     if names != expected:
         fail(f"{path}: node names {names} != ids {expected}")
     else:
-        ok(f"glb: {len(names)} nodes named by id, {len(gltf['materials'])} materials")
+        ok(f"glb: {len(names)} root nodes named by id, {len(gltf['materials'])} materials")
+    check_joints.check_glb_joints(gltf, scene, fail, ok)
 
 
 def check_usd(path, scene, tolerance):
@@ -98,6 +105,7 @@ def check_usd(path, scene, tolerance):
         if err > tolerance:
             fail(f"{path}: {oid} bounds {list(lo)}..{list(hi)} differ from scene.json {want} by {err:.4f} m")
     ok(f"usd: stage opened, Y up, {len(by_id)} prims with ids, {meshes} meshes, worst bounds error {worst * 1000:.2f} mm")
+    check_joints.check_usd_joints(stage, by_id, scene, fail, ok)
 
 
 def z_up(p):
@@ -166,6 +174,7 @@ def check_mjcf(path, scene, seconds, tolerance):
         f"mounted), {model.ngeom} geoms; "
         f"after {seconds} s largest moves: {top}"
     )
+    check_joints.check_mjcf_joints(path, scene, fail, ok)
 
 
 def check_urdf(path, scene):
@@ -189,6 +198,7 @@ def check_urdf(path, scene):
         if kinds.get(oid) != want:
             fail(f"{path}: joint of {oid} is {kinds.get(oid)}, expected {want}")
     ok(f"urdf: {len(links)} links, {len(joints)} joints, all mesh files present")
+    check_joints.check_urdf_joints(path, scene, fail, ok)
 
 
 def main():

@@ -1,0 +1,33 @@
+//! Helpers shared by the export tests.
+
+use nalgebra::Point3;
+use scenethesis_scene_graph::{Aabb, AssetRef, Mesh, ParentRef, Pose, RelationKind, SceneObject};
+
+/// A rigid object of a procedural asset (generator `category`, seed 7) whose local bounds are
+/// its mesh's.
+pub fn object(
+    id: &str,
+    category: &str,
+    mesh: &Mesh,
+    pose: Pose,
+    parent: ParentRef,
+    support: RelationKind,
+) -> SceneObject {
+    SceneObject {
+        id: id.into(),
+        category: category.into(),
+        asset: AssetRef::Procedural {
+            generator: category.into(),
+            seed: 7,
+        },
+        pose,
+        parent,
+        support,
+        relations: Vec::new(),
+        local_bounds: mesh
+            .bounds()
+            .unwrap_or(Aabb::new(Point3::origin(), Point3::origin())),
+        joints: Vec::new(),
+        parent_link: None,
+    }
+}
