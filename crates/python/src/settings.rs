@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use scenethesis_pipeline::{time_limit_from_secs, GenerateOptions};
+use scenethesis_scene_graph::OpenState;
 use scenethesis_setup::{JudgeChoice, PipelineSettings, PlannerChoice, ProviderSettings};
 
 /// The settings `generate` and `plan` run with: how the pipeline is built (planner, judge,
@@ -29,7 +30,8 @@ impl Settings {
     #[pyo3(signature = (
         *, planner="knowledge", judge="geometric", assets=None, preview=true, max_replans=3,
         llm_model=None, vlm_model=None, image_model=None, base_url=None, api_key_env=None,
-        llm_config=None, llm_timeout=None, llm_cache=None, llm_replay=false, time_limit=600.0
+        llm_config=None, llm_timeout=None, llm_cache=None, llm_replay=false, time_limit=600.0,
+        open_state="closed"
     ))]
     #[allow(clippy::too_many_arguments)]
     fn new(
@@ -48,7 +50,11 @@ impl Settings {
         llm_cache: Option<PathBuf>,
         llm_replay: bool,
         time_limit: Option<f64>,
+        open_state: &str,
     ) -> PyResult<Self> {
+        let open_state: OpenState = open_state
+            .parse()
+            .map_err(|e| value_error("open_state", e))?;
         let time_limit = time_limit_from_secs(time_limit.unwrap_or(0.0))
             .map_err(|e| value_error("time_limit", e))?;
         let planner: PlannerChoice = planner.parse().map_err(|e| value_error("planner", e))?;
@@ -96,6 +102,7 @@ impl Settings {
                 max_replans,
                 previews: preview,
                 time_limit,
+                open_state,
                 ..GenerateOptions::default()
             },
         })

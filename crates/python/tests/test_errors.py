@@ -28,6 +28,7 @@ import scenethesis
         (dict(prompt="a kitchen", max_replans=-2), ValueError, "max_replans must be in"),
         (dict(prompt="a kitchen", llm_timeout=0), ValueError, "llm_timeout must be in"),
         (dict(prompt="a kitchen", llm_replay=True), ValueError, "needs llm_cache"),
+        (dict(prompt="a kitchen", open_state="ajar"), ValueError, "open_state must be one of"),
         (dict(prompt="a kitchen", time_limit="1"), TypeError, "time_limit must be a number"),
         (dict(prompt="a kitchen", time_limit=-1.0), ValueError, "time_limit: expected seconds"),
         (dict(prompt="a kitchen", time_limit=float("nan")), ValueError, "time_limit: expected"),

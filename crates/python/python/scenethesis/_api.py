@@ -15,6 +15,7 @@ from ._native import SceneRejectedError
 PathLike = Union[str, "os.PathLike[str]"]
 
 _PLANNERS = ("knowledge", "llm")
+_OPEN_STATES = ("closed", "random", "open")
 _JUDGES = ("geometric", "vlm")
 
 
@@ -107,6 +108,7 @@ def _settings(
     llm_cache: Optional[PathLike],
     llm_replay: bool,
     time_limit: Optional[float] = None,
+    open_state: str = "closed",
 ) -> "_native.Settings":
     _check_type("planner", planner, str, "a str")
     if planner not in _PLANNERS:
@@ -127,6 +129,11 @@ def _settings(
         raise ValueError("llm_replay=True needs llm_cache, the folder to replay from")
     if time_limit is not None:
         _check_type("time_limit", time_limit, (int, float), "a number of seconds")
+    _check_type("open_state", open_state, str, "a str")
+    if open_state not in _OPEN_STATES:
+        raise ValueError(
+            f"open_state must be one of {', '.join(_OPEN_STATES)}, not {open_state!r}"
+        )
     return _native.Settings(
         planner=planner,
         judge=judge,
@@ -143,6 +150,7 @@ def _settings(
         llm_cache=_optional_path("llm_cache", llm_cache),
         llm_replay=llm_replay,
         time_limit=None if time_limit is None else float(time_limit),
+        open_state=open_state,
     )
 
 
@@ -303,6 +311,7 @@ def generate(
     llm_replay: bool = False,
     time_limit: Optional[float] = 600.0,
     progress: Optional[Callable[[ProgressEvent], None]] = None,
+    open_state: str = "closed",
 ) -> Scene:
     """Generates a simulation-ready scene: plan → retrieve → guide → optimize → judge, re-planning
     while the judge rejects it (``scenethesis generate``).
@@ -315,6 +324,9 @@ def generate(
     :class:`ProgressEvent` as each stage starts and finishes. ``time_limit`` is the run's
     budget in seconds (``None`` or 0 for none), checked before every stage: once spent, the best
     scene so far is returned (its report's notes say so), or the run raises if it has none.
+    ``open_state`` leaves doors, drawers and lids ``"closed"``, at ``"random"`` states fixed by
+    the seed, or ``"open"`` (90 % of each joint's range, which the judge keeps free), as
+    ``--open-state`` does.
 
     A scene the judge rejects is returned (``scene.accepted`` is False, with a warning)
     unless ``strict=True``, which raises :class:`SceneRejectedError` carrying it as ``.scene``.
@@ -336,6 +348,7 @@ def generate(
     settings = _settings(
         planner, judge, assets, preview, max_replans, llm_model, vlm_model, image_model,
         base_url, api_key_env, llm_config, llm_timeout, llm_cache, llm_replay, time_limit,
+        open_state,
     )
     callback = None
     if progress is not None:

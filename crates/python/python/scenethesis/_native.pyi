@@ -35,6 +35,7 @@ class Settings:
         llm_cache: Optional[str] = ...,
         llm_replay: bool = ...,
         time_limit: Optional[float] = ...,
+        open_state: str = ...,
     ) -> None: ...
 
 class NativeScene:
