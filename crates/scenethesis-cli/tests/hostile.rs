@@ -207,6 +207,29 @@ fn errors_are_printed_once() {
 }
 
 #[test]
+fn an_unknown_open_state_is_refused_naming_the_flag_and_the_choices() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_dir = dir.path().join("o");
+    let out = scenethesis(
+        &[
+            "generate",
+            "a kitchen",
+            "--open-state",
+            "ajar",
+            "--out",
+            out_dir.to_str().unwrap(),
+        ],
+        None,
+    );
+    let err = stderr(&out);
+    assert!(!out.status.success() && !err.contains("panicked"), "{err}");
+    for needle in ["--open-state", "closed, random or open", "ajar"] {
+        assert!(err.contains(needle), "missing `{needle}` in: {err}");
+    }
+    assert!(!out_dir.exists(), "nothing is written");
+}
+
+#[test]
 fn a_hostile_asset_pack_cannot_pull_files_in_and_bad_assets_only_warn() {
     let outer = tempfile::tempdir().unwrap();
     let pack = outer.path().join("pack");
