@@ -275,7 +275,9 @@ impl OpenState {
         *self == OpenState::Closed
     }
 
-    /// Sets the state of every joint of every object of `scene` (`seed` fixes the random ones).
+    /// Sets the state of every joint of every object of `scene` (`seed` fixes the random ones)
+    /// and moves what the moving parts carry with them (a sock in a drawer slides out with it:
+    /// [`SceneObject::parent_link`](crate::SceneObject::parent_link)).
     ///
     /// ```
     /// use scenethesis_scene_graph::{OpenState, Scene, Architecture};
@@ -284,6 +286,7 @@ impl OpenState {
     /// assert!(scene.objects.is_empty());
     /// ```
     pub fn apply(self, scene: &mut Scene, seed: u64) {
+        let before = crate::carry::joint_states(scene);
         for object in &mut scene.objects {
             for placed in &mut object.joints {
                 let open = OPEN_SHARE * placed.joint.limits[1];
@@ -298,6 +301,7 @@ impl OpenState {
                 };
             }
         }
+        crate::carry::move_contents(scene, &before);
     }
 }
 

@@ -68,6 +68,7 @@
 mod aabb;
 mod architecture;
 mod asset;
+mod carry;
 mod floor_raster;
 mod hash;
 mod io;
