@@ -7,12 +7,16 @@
 //! the walls and floor. The object's own parts never block it, and neither does an object the
 //! part carries (`parent_link`): a sock in a drawer rides out with it.
 
+use std::sync::OnceLock;
+
 use nalgebra::Point3;
 use rayon::prelude::*;
 use scenethesis_scene_graph::{Aabb, JointKind, JointState, Mesh, MeshPart, OPEN_SHARE};
 use serde::{Deserialize, Serialize};
 
-use crate::collision::{part_fields, penetration, piece_depth, test_points, PENETRATION_TOLERANCE};
+use crate::collision::{
+    part_fields, penetration, piece_depth, test_points, PartField, PENETRATION_TOLERANCE,
+};
 use crate::raster::{wall_pieces, WallPiece};
 use crate::scene::{EvalObject, EvalScene};
 
@@ -50,8 +54,10 @@ pub fn opening_clearances(scene: &EvalScene) -> Vec<OpeningClearance> {
         return Vec::new();
     }
     let walls = wall_pieces(scene);
+    let fields: Vec<OnceLock<Vec<PartField>>> =
+        scene.objects.iter().map(|_| OnceLock::new()).collect();
     jobs.par_iter()
-        .map(|&(i, j)| sweep(scene, &walls, i, j))
+        .map(|&(i, j)| sweep(scene, &walls, &fields, i, j))
         .collect()
 }
 
@@ -113,7 +119,13 @@ fn sweep_states(placed: &JointState) -> Vec<f32> {
 }
 
 /// Sweeps joint `j` of object `i` and reports how far it opens.
-fn sweep(scene: &EvalScene, walls: &[WallPiece], i: usize, j: usize) -> OpeningClearance {
+fn sweep(
+    scene: &EvalScene,
+    walls: &[WallPiece],
+    fields: &[OnceLock<Vec<PartField>>],
+    i: usize,
+    j: usize,
+) -> OpeningClearance {
     let object = &scene.objects[i];
     let axis = current_axis(object, j);
     let link = Mesh {
@@ -144,7 +156,8 @@ fn sweep(scene: &EvalScene, walls: &[WallPiece], i: usize, j: usize) -> OpeningC
         .flatten()
         .map(|p| p.cast::<f64>())
         .collect::<Vec<_>>();
-    let obstacles = obstacles(scene, i, &axis.joint.name, Aabb::from_points(swept.iter()));
+    let swept = Aabb::from_points(swept.iter());
+    let obstacles = obstacles(scene, fields, i, &axis.joint.name, swept);
     let floor = scene.architecture.floor.id.clone();
     let share = |k: usize| OPEN_SHARE as f64 * k as f64 / states.len() as f64;
     for (k, pts) in posed.iter().enumerate() {
@@ -168,15 +181,21 @@ fn sweep(scene: &EvalScene, walls: &[WallPiece], i: usize, j: usize) -> OpeningC
 }
 
 /// An object a sweep may hit, with its box and exact part fields.
-struct Obstacle {
-    id: String,
+struct Obstacle<'a> {
+    id: &'a str,
     bounds: Aabb,
-    fields: Vec<crate::collision::PartField>,
+    fields: &'a [PartField],
 }
 
 /// The objects other than object `i` and what joint `joint` carries whose boxes meet the
-/// swept box.
-fn obstacles(scene: &EvalScene, i: usize, joint: &str, swept: Option<Aabb>) -> Vec<Obstacle> {
+/// swept box, with their part fields (built once per object for all sweeps).
+fn obstacles<'a>(
+    scene: &'a EvalScene,
+    fields: &'a [OnceLock<Vec<PartField>>],
+    i: usize,
+    joint: &str,
+    swept: Option<Aabb>,
+) -> Vec<Obstacle<'a>> {
     let Some(swept) = swept else {
         return Vec::new();
     };
@@ -190,12 +209,12 @@ fn obstacles(scene: &EvalScene, i: usize, joint: &str, swept: Option<Aabb>) -> V
                 && !(o.parent.as_deref() == Some(owner.as_str())
                     && o.parent_link.as_deref() == Some(joint))
         })
-        .filter_map(|(_, o)| {
+        .filter_map(|(k, o)| {
             let bounds = o.mesh.bounds()?;
             touches(&bounds, &swept).then(|| Obstacle {
-                id: o.id.clone(),
+                id: &o.id,
                 bounds,
-                fields: part_fields(&o.mesh),
+                fields: fields[k].get_or_init(|| part_fields(&o.mesh)),
             })
         })
         .collect()
@@ -217,8 +236,8 @@ fn first_blocker(
         return Some(floor.to_owned());
     }
     for o in obstacles {
-        if penetration(points, &o.bounds, &o.fields) > PENETRATION_TOLERANCE {
-            return Some(o.id.clone());
+        if penetration(points, &o.bounds, o.fields) > PENETRATION_TOLERANCE {
+            return Some(o.id.to_owned());
         }
     }
     walls
