@@ -449,7 +449,9 @@ impl Pipeline {
                 )
             },
         )?;
-        // The judge sees the doors and drawers in the state the scene is delivered in.
+        // What rests in a drawer rides with it; the judge sees the doors and drawers in the
+        // state the scene is delivered in.
+        scene.assign_parent_links(&meshes);
         options.open_state.apply(&mut scene, seed);
         clock.check(Stage::Judge, round)?;
         let verdict = clock.run(

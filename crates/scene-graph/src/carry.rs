@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 
 use nalgebra::{Point3, Rotation3, Vector3};
 
-use crate::{JointKind, JointState, Scene};
+use crate::{Aabb, JointKind, JointState, Mesh, Scene, SceneObject};
 
 /// A rigid motion a 5-DoF pose can follow: a turn about +Y by `yaw`, then a shift.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -62,6 +62,55 @@ impl Motion {
             JointKind::Revolute => None,
         }
     }
+}
+
+impl Scene {
+    /// Sets each object's [`parent_link`](crate::SceneObject::parent_link) from where it
+    /// rests: an object whose footprint centre lies inside a drawer of its parent (the parts of
+    /// a prismatic joint, as `meshes` draws them closed) rests in that drawer and slides out
+    /// with it; every other object rests on its parent's body. Objects behind a hinged door
+    /// stand on the body's shelf, not on the door. Parents' joints must be closed.
+    pub fn assign_parent_links(&mut self, meshes: &BTreeMap<String, Mesh>) {
+        let links: Vec<Option<String>> = self
+            .objects
+            .iter()
+            .map(|o| {
+                let parent = self.object(o.parent.object_id()?)?;
+                let mesh = meshes.get(&parent.id)?;
+                let local = parent
+                    .pose
+                    .inverse_transform_point(&Point3::from(o.pose.translation));
+                drawer_holding(parent, mesh, &local)
+            })
+            .collect();
+        for (object, link) in self.objects.iter_mut().zip(links) {
+            object.parent_link = link;
+        }
+    }
+}
+
+/// The prismatic joint of `parent` whose closed parts' box holds `local` (a point of the
+/// parent's asset frame): within its footprint, from 1 cm below its bottom to its top.
+fn drawer_holding(parent: &SceneObject, mesh: &Mesh, local: &Point3<f64>) -> Option<String> {
+    parent
+        .joints
+        .iter()
+        .filter(|j| j.joint.kind == JointKind::Prismatic)
+        .find(|j| {
+            let points = mesh
+                .parts
+                .iter()
+                .filter(|p| p.joint.as_deref() == Some(j.joint.name.as_str()))
+                .flat_map(|p| p.positions.iter())
+                .map(|v| Point3::from(v.map(f64::from)))
+                .collect::<Vec<_>>();
+            Aabb::from_points(points.iter()).is_some_and(|b| {
+                (b.min.x..=b.max.x).contains(&local.x)
+                    && (b.min.z..=b.max.z).contains(&local.z)
+                    && (b.min.y - 0.01..=b.max.y).contains(&local.y)
+            })
+        })
+        .map(|j| j.joint.name.clone())
 }
 
 /// Every object's joint states, keyed by object id and joint name.
@@ -160,5 +209,54 @@ mod tests {
         // Closing again brings them back.
         OpenState::Closed.apply(&mut scene, 0);
         assert!(x(&scene, "tray").abs() < 1e-6 && x(&scene, "pen").abs() < 1e-6);
+    }
+
+    #[test]
+    fn objects_in_a_drawer_get_it_as_parent_link_and_others_do_not() {
+        use crate::{Material, Mesh, MeshPart};
+        let mut mesh = Mesh::cuboid(
+            "body",
+            Material::new("oak", [0.5, 0.4, 0.3], 0.6),
+            [-0.5, 0.0, -0.5],
+            [0.5, 1.0, 0.5],
+        );
+        let mut drawer = MeshPart::cuboid("drawer", 0, [-0.4, 0.1, -0.4], [0.4, 0.4, 0.5]);
+        drawer.joint = Some("drawer".into());
+        mesh.parts.push(drawer);
+        let mut dresser = object("dresser", ParentRef::Ground, RelationKind::OnFloor);
+        dresser.joints = vec![JointState {
+            joint: Joint {
+                name: "drawer".into(),
+                kind: JointKind::Prismatic,
+                axis: [0.0, 0.0, 1.0],
+                anchor: [0.0, 0.25, 0.5],
+                limits: [0.0, 0.4],
+                opens_to: OpensTo::Out,
+                parent: None,
+            },
+            state: 0.0,
+        }];
+        dresser.pose.translation = nalgebra::Vector3::new(1.0, 0.0, 0.0);
+        let mut sock = object(
+            "sock",
+            ParentRef::Object("dresser".into()),
+            RelationKind::Inside,
+        );
+        sock.pose.translation = nalgebra::Vector3::new(1.1, 0.12, 0.0);
+        let mut lamp = object(
+            "lamp",
+            ParentRef::Object("dresser".into()),
+            RelationKind::On,
+        );
+        lamp.pose.translation = nalgebra::Vector3::new(1.0, 1.0, 0.0);
+        let mut scene = scene_with(vec![dresser, sock, lamp]);
+        let meshes = [("dresser".to_owned(), mesh)].into_iter().collect();
+        scene.assign_parent_links(&meshes);
+        assert_eq!(
+            scene.object("sock").unwrap().parent_link.as_deref(),
+            Some("drawer")
+        );
+        assert_eq!(scene.object("lamp").unwrap().parent_link, None);
+        assert!(scene.validate().is_ok());
     }
 }
