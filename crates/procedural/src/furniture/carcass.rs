@@ -67,6 +67,14 @@ impl CarcassMaterials {
             handle,
         }
     }
+
+    /// The materials of the doors and drawers: the front and the handles.
+    pub fn link(&self) -> LinkMaterials {
+        LinkMaterials {
+            panel: self.front,
+            handle: self.handle,
+        }
+    }
 }
 
 /// The parameters of a carcass.
@@ -436,10 +444,7 @@ impl<'a> Frame<'a> {
         articulation::drawer(
             b,
             &format!("{}drawer_{col}_{row}", self.prefix),
-            LinkMaterials {
-                panel: self.m.front,
-                handle: self.m.handle,
-            },
+            self.m.link(),
             DrawerBox {
                 x: [x0 + gap, x1 - gap],
                 y: [span[0] + gap, span[1] - gap],
@@ -509,10 +514,7 @@ impl<'a> Frame<'a> {
             ),
         };
         let (t, n) = (self.t, self.c.columns);
-        let m = LinkMaterials {
-            panel: self.m.front,
-            handle: self.m.handle,
-        };
+        let m = self.m.link();
         let mut door = 0;
         for col in (0..n).filter(|c| !self.c.open_columns.contains(c)) {
             let x0 = if col == 0 {

@@ -9,7 +9,7 @@ use rand_chacha::ChaCha8Rng;
 
 use super::carcass::{self, Carcass, CarcassMaterials, Feet, Front, CORNERS};
 use super::{mat, mat_either, SCALE};
-use crate::articulation::{self, DrawerBox, LinkMaterials};
+use crate::articulation::{self, DrawerBox};
 use crate::materials::{fixed_material, Palette};
 use crate::random::{coin, int, uniform, uniform3};
 use scenethesis_primitives::{
@@ -482,10 +482,7 @@ pub(super) fn desk(rng: &mut ChaCha8Rng) -> Asset {
         articulation::drawer(
             &mut b,
             "drawer",
-            LinkMaterials {
-                panel: body,
-                handle,
-            },
+            CarcassMaterials::uniform(body, handle).link(),
             DrawerBox {
                 x: [mx - half, mx + half],
                 y: [under_top - 0.09, under_top - 0.002],
@@ -668,10 +665,7 @@ pub(super) fn nightstand(rng: &mut ChaCha8Rng) -> Asset {
     articulation::drawer(
         &mut b,
         "drawer",
-        LinkMaterials {
-            panel: body,
-            handle,
-        },
+        CarcassMaterials::uniform(body, handle).link(),
         DrawerBox {
             x: [-hw + 0.003, hw - 0.003],
             y: [shelf_top + 0.003, c.height - c.board - 0.003],
