@@ -13,7 +13,7 @@ use scenethesis_scene_graph::{aabb_floor_gap, Aabb, AssetInfo};
 
 use super::geometry::Footprint;
 use super::room::Side;
-use super::shared::positional_target;
+use super::shared::{positional_target, WALL_MOUNT_HEIGHT};
 use super::walkway::FloorState;
 use crate::arrangement::ArrangementRules;
 use crate::knowledge::{Knowledge, NominalShape};
@@ -53,6 +53,7 @@ pub(super) fn mount_ok(state: &FloorState<'_>, fp: &Footprint) -> bool {
         .iter()
         .filter(|p| p.mounted)
         .any(|p| p.fp.overlaps(fp, 0.1))
+        || state.in_a_swing(fp, WALL_MOUNT_HEIGHT - 0.5)
     {
         return false;
     }

@@ -181,6 +181,7 @@ fn hang_above_run(
             .iter()
             .filter(|p| p.mounted)
             .any(|p| p.fp.overlaps(&fp, 0.05))
+            || state.in_a_swing(&fp, ABOVE_RUN_BOTTOM)
         {
             continue;
         }

@@ -46,6 +46,12 @@ impl Placed {
         }
     }
 
+    /// The height of a mounted object's bottom: where it was hung, or centred at
+    /// [`WALL_MOUNT_HEIGHT`].
+    pub(super) fn mounted_bottom(&self) -> f64 {
+        self.bottom.unwrap_or(WALL_MOUNT_HEIGHT - self.height / 2.0)
+    }
+
     /// The same object backed onto `wall`, so reached from its front.
     pub(super) fn against_wall(self, wall: String) -> Self {
         Self {

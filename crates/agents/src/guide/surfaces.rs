@@ -263,6 +263,9 @@ impl Packer {
                     let round = (w - d).abs() <= 0.15 * w.max(d);
                     if let Some((x, z)) = find_spot(surface, &b, occ, hw, hd, round, rng) {
                         occ.push([x - hw, z - hd, x + hw, z + hd]);
+                        if let Some(zone) = opening_zone(child, s, [x, z], [hw, hd], rel_yaw) {
+                            occ.push(zone);
+                        }
                         let local = Point3::new(x, surface.height as f64, z);
                         let world = parent_pose.transform_point(&local);
                         let yaw = parent_pose.yaw + rel_yaw;
@@ -286,6 +289,31 @@ impl Packer {
         }
         None
     }
+}
+
+/// The part of a surface in front of a child placed at `centre` (half extents `half` on the
+/// surface, turned by `rel_yaw` 0 or π/2 from its parent) that its doors sweep while opening
+/// ([`AssetInfo::opening_bounds`] at scale `s`), kept free of later children: a mug never
+/// stands where the microwave's door opens.
+fn opening_zone(
+    child: &AssetInfo,
+    s: f64,
+    [x, z]: [f64; 2],
+    [hw, hd]: [f64; 2],
+    rel_yaw: f64,
+) -> Option<Rect> {
+    let swept = child.opening_bounds.as_ref()?;
+    let front = child.size[2] as f64 * s / 2.0;
+    let reach = swept.max.z * s - front;
+    if reach <= 0.01 {
+        return None;
+    }
+    // The child's front is +z on the surface, or +x once turned by π/2.
+    Some(if rel_yaw == 0.0 {
+        [x - hw, z + hd, x + hw, z + hd + reach]
+    } else {
+        [x + hw, z - hd, x + hw + reach, z + hd]
+    })
 }
 
 /// A free centre for a `2hw × 2hd` rectangle on the surface: packed left to right on shelves

@@ -116,7 +116,8 @@ impl FloorState<'_> {
 
     /// Whether `p` fits: its footprint inside the floor and clear of the others (within
     /// `gap`), and the floor its doors and drawers open into inside the room and clear of
-    /// every placed body (other openings may share it: one opens at a time).
+    /// every placed body, hung ones lower than its top included (other openings may share
+    /// it: one opens at a time).
     pub(super) fn fits(&self, p: &Placed, gap: f64) -> bool {
         self.inside_floor(&p.fp, 0.0)
             && !self.collides(&p.fp, gap)
@@ -125,9 +126,18 @@ impl FloorState<'_> {
                     && !self
                         .placed
                         .iter()
-                        .filter(|q| !q.mounted)
+                        .filter(|q| !q.mounted || q.mounted_bottom() < p.height)
                         .any(|q| q.fp.overlaps(&o, 0.0))
             })
+    }
+
+    /// Whether an object hung at `fp` with its bottom at `bottom` would hang where the doors
+    /// of a placed floor object taller than that bottom open.
+    pub(super) fn in_a_swing(&self, fp: &Footprint, bottom: f64) -> bool {
+        self.placed
+            .iter()
+            .filter(|p| !p.mounted && p.height > bottom)
+            .any(|p| p.opening.is_some_and(|o| o.overlaps(fp, 0.0)))
     }
 
     /// Walkway evaluation with an optional extra object: (accepted, walk ratio, door reachable,
