@@ -357,7 +357,7 @@ fn mjcf_nests_hinge_and_slide_bodies_in_the_scene_state() {
     // cabinet's upright door needs only that.
     assert!(
         xml.contains("<joint name=\"cabinet_door\" type=\"hinge\"")
-            && xml.contains("frictionloss=\"0.05\"/>")
+            && xml.contains("frictionloss=\"0.05\" solreffriction=\"0.002 1\"/>")
     );
     let oven = xml.find("<joint name=\"oven_door\"").unwrap();
     let friction = &xml[oven..][xml[oven..].find("frictionloss=\"").unwrap() + 14..];

@@ -63,21 +63,23 @@ def riders(scene, oid, joint_name):
     return out
 
 
-def drive(model, data, mujoco, jid, open_value, seconds=3.0):
-    """Drives joint `jid` from where it is to 0 (0.5 s) then to `open_value` (1.5 s), then holds."""
+def drive(model, data, mujoco, jid, open_value):
+    """Drives joint `jid` from where it is to 0 (0.5 s, skipped when it starts closed), then to
+    `open_value` (1 s), then holds it there for 0.3 s."""
     dof = model.jnt_dofadr[jid]
     adr = model.jnt_qposadr[jid]
     inertia = 1.0 / max(model.dof_invweight0[dof], 1e-9)
     friction = model.dof_frictionloss[dof]
     start = data.qpos[adr]
     omega = 20.0
-    steps = int(round(seconds / model.opt.timestep))
+    closing = 0.5 if abs(start) > 1e-9 else 0.0
+    steps = int(round((closing + 1.3) / model.opt.timestep))
     for _ in range(steps):
         t = data.time
-        if t < 0.5:
-            target = start * (1 - t / 0.5)
+        if t < closing:
+            target = start * (1 - t / closing)
         else:
-            target = open_value * min(1.0, (t - 0.5) / 1.5)
+            target = open_value * min(1.0, (t - closing) / 1.0)
         err = target - data.qpos[adr]
         data.qfrc_applied[dof] = (
             inertia * (omega * omega * err - 2 * omega * data.qvel[dof])
