@@ -9,13 +9,13 @@
 
 use std::sync::OnceLock;
 
-use nalgebra::Point3;
+use nalgebra::{Isometry3, Point3, Translation3, Unit, UnitQuaternion, Vector3};
 use rayon::prelude::*;
-use scenethesis_scene_graph::{Aabb, JointKind, JointState, Mesh, MeshPart, OPEN_SHARE};
+use scenethesis_scene_graph::{Aabb, Joint, JointKind, JointState, Mesh, MeshPart, OPEN_SHARE};
 use serde::{Deserialize, Serialize};
 
 use crate::collision::{
-    part_fields, penetration, piece_depth, test_points, PartField, PENETRATION_TOLERANCE,
+    part_fields, penetration, piece_depth, surface_area, PartField, PENETRATION_TOLERANCE,
 };
 use crate::raster::{wall_pieces, WallPiece};
 use crate::scene::{EvalObject, EvalScene};
@@ -132,31 +132,24 @@ fn sweep(
         parts: moving_parts(object, j).into_iter().cloned().collect(),
         materials: Vec::new(),
     };
-    let points = test_points(&link, 0x0be7_0000 + (i * 64 + j) as u64);
+    let points = sweep_points(&link, 0x0be7_0000 + (i * 64 + j) as u64);
     let states = sweep_states(&axis);
     // Each state's points, moved from where the part is now (`axis.state`).
     let posed: Vec<Vec<Point3<f32>>> = states
         .iter()
         .map(|&s| {
-            let delta = JointState {
-                state: s - axis.state,
-                joint: scenethesis_scene_graph::Joint {
-                    limits: [f32::MIN, f32::MAX],
-                    ..axis.joint.clone()
-                },
-            };
-            points
-                .iter()
-                .map(|p| Point3::from(delta.joint.moved_point(delta.state, [p.x, p.y, p.z])))
-                .collect()
+            let motion = motion(&axis.joint, s - axis.state);
+            points.iter().map(|p| motion * p).collect()
         })
         .collect();
-    let swept = posed
-        .iter()
-        .flatten()
-        .map(|p| p.cast::<f64>())
-        .collect::<Vec<_>>();
-    let swept = Aabb::from_points(swept.iter());
+    let swept = Aabb::from_points(
+        posed
+            .iter()
+            .flatten()
+            .map(|p| p.cast::<f64>())
+            .collect::<Vec<_>>()
+            .iter(),
+    );
     let obstacles = obstacles(scene, fields, i, &axis.joint.name, swept);
     let floor = scene.architecture.floor.id.clone();
     let share = |k: usize| OPEN_SHARE as f64 * k as f64 / states.len() as f64;
@@ -177,6 +170,49 @@ fn sweep(
         held: true,
         free_share: share(states.len()),
         blocked_by: None,
+    }
+}
+
+/// Surface samples per square metre of a moving part (one per 4 cm², a quarter of the
+/// collision check's density: a part sweeping into another is caught long before it is
+/// 1 cm deep).
+const SWEEP_SAMPLES_PER_M2: f64 = 2_500.0;
+
+/// The points a moving part is tested by: its vertices and area-uniform surface samples.
+fn sweep_points(link: &Mesh, seed: u64) -> Vec<Point3<f32>> {
+    let mut points: Vec<Point3<f32>> = link
+        .parts
+        .iter()
+        .flat_map(|p| p.positions.iter().map(|&v| Point3::from(v)))
+        .collect();
+    if link.triangle_count() > 0 {
+        let count = (surface_area(link) * SWEEP_SAMPLES_PER_M2).ceil() as usize;
+        points.extend(scenethesis_sdf::sampling::surface_points(
+            link,
+            count.max(200),
+            seed,
+        ));
+    }
+    points
+}
+
+/// The rigid motion of a joint's part by `delta` (radians about the axis through the anchor,
+/// or metres along the axis).
+fn motion(joint: &Joint, delta: f32) -> Isometry3<f32> {
+    let axis = Vector3::from(joint.axis);
+    let Some(unit) = Unit::try_new(axis, 1e-9) else {
+        return Isometry3::identity();
+    };
+    match joint.kind {
+        JointKind::Prismatic => {
+            Isometry3::translation(0.0, 0.0, 0.0) * Translation3::from(unit.into_inner() * delta)
+        }
+        JointKind::Revolute => {
+            let anchor = Vector3::from(joint.anchor);
+            Translation3::from(anchor)
+                * UnitQuaternion::from_axis_angle(&unit, delta)
+                * Translation3::from(-anchor)
+        }
     }
 }
 
