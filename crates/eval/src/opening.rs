@@ -63,7 +63,7 @@ pub fn opening_clearances(scene: &EvalScene) -> Vec<OpeningClearance> {
 
 /// The parts of `object`'s mesh that move when joint `j` does: its own link and every link
 /// nested under it.
-fn moving_parts<'a>(object: &'a EvalObject, j: usize) -> Vec<&'a MeshPart> {
+fn moving_parts(object: &EvalObject, j: usize) -> Vec<&MeshPart> {
     let name = &object.joints[j].joint.name;
     let carried = |part: &MeshPart| {
         let mut next = part.joint.as_deref();
