@@ -241,7 +241,12 @@ fn commit_all(
     let before = state.placed.len();
     for (i, fp, side) in spots {
         let p = Placed::standing(*i, *fp, &infos[*i]).against_wall(format!("wall_{side}"));
-        if !state.fits(&p, RUN_GAP * 0.5) || !state.evaluate(Some(&p)).0 {
+        // Pieces of one run stand side by side and around its corners: each may stand in the
+        // swing of another's doors (a corner's blind door), which the judge still measures.
+        if !state.inside_floor(fp, 0.0)
+            || state.collides(fp, RUN_GAP * 0.5)
+            || !state.evaluate(Some(&p)).0
+        {
             state.placed.truncate(before);
             state.rebuild();
             return false;

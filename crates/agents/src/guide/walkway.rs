@@ -8,7 +8,7 @@ use scenethesis_scene_graph::{Components, Floor, ROBOT_RADIUS};
 
 use super::geometry::{Footprint, Raster, RasterExt};
 use super::room::Room;
-use super::shared::{Placed, DOOR_WIDTH};
+use super::shared::{positional_target, Placed, DOOR_WIDTH};
 use super::DroppedObject;
 use crate::plan::Plan;
 
@@ -104,31 +104,48 @@ impl FloorState<'_> {
         })
     }
 
-    /// Whether a body at `fp` would overlap (within `gap`) a placed floor object, the floor
-    /// a placed object's doors and drawers open into, or the room door's zone.
+    /// Whether a body at `fp` would overlap (within `gap`) a placed floor object or the room
+    /// door's zone.
     pub(super) fn collides(&self, fp: &Footprint, gap: f64) -> bool {
         self.placed
             .iter()
             .filter(|p| !p.mounted)
-            .any(|p| p.fp.overlaps(fp, gap) || p.opening.is_some_and(|o| o.overlaps(fp, 0.0)))
+            .any(|p| p.fp.overlaps(fp, gap))
             || self.door_zone.is_some_and(|d| d.overlaps(fp, 0.0))
     }
 
     /// Whether `p` fits: its footprint inside the floor and clear of the others (within
-    /// `gap`), and the floor its doors and drawers open into inside the room and clear of
-    /// every placed body, hung ones lower than its top included (other openings may share
-    /// it: one opens at a time).
+    /// `gap`) and of the floor their doors and drawers open into, and the floor its own open
+    /// into inside the room and clear of every placed body, hung ones lower than its top
+    /// included (other openings may share it: one opens at a time). An object placed against
+    /// another (a chair at its desk, a piece of a counter run beside the last) may stand in
+    /// that one's opening: it is moved aside to open it.
     pub(super) fn fits(&self, p: &Placed, gap: f64) -> bool {
         self.inside_floor(&p.fp, 0.0)
             && !self.collides(&p.fp, gap)
+            && !self
+                .placed
+                .iter()
+                .filter(|q| !q.mounted && !self.related(p, q))
+                .any(|q| q.opening.is_some_and(|o| o.overlaps(&p.fp, 0.0)))
             && p.opening.is_none_or(|o| {
                 self.inside_floor(&o, 0.0)
                     && !self
                         .placed
                         .iter()
                         .filter(|q| !q.mounted || q.mounted_bottom() < p.height)
+                        .filter(|q| !self.related(p, q))
                         .any(|q| q.fp.overlaps(&o, 0.0))
             })
+    }
+
+    /// Whether one of `a` and `b` is placed against the other (its positional target).
+    fn related(&self, a: &Placed, b: &Placed) -> bool {
+        let objects = &self.plan.objects;
+        let target = |x: &Placed, y: &Placed| {
+            positional_target(&objects[x.plan_index]) == Some(objects[y.plan_index].id.as_str())
+        };
+        target(a, b) || target(b, a)
     }
 
     /// Whether an object hung at `fp` with its bottom at `bottom` would hang where the doors
