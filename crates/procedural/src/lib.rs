@@ -31,7 +31,6 @@
 
 #![warn(missing_docs)]
 
-mod articulation;
 pub mod catalog;
 mod category;
 mod furniture;
