@@ -11,7 +11,9 @@ use std::sync::OnceLock;
 
 use nalgebra::{Isometry3, Point3, Translation3, Unit, UnitQuaternion, Vector3};
 use rayon::prelude::*;
-use scenethesis_scene_graph::{Aabb, Joint, JointKind, JointState, Mesh, MeshPart, OPEN_SHARE};
+use scenethesis_scene_graph::{
+    carried_by, Aabb, Joint, JointKind, JointState, Mesh, MeshPart, OPEN_SHARE,
+};
 use serde::{Deserialize, Serialize};
 
 use crate::collision::{
@@ -65,23 +67,8 @@ pub fn opening_clearances(scene: &EvalScene) -> Vec<OpeningClearance> {
 /// nested under it.
 fn moving_parts(object: &EvalObject, j: usize) -> Vec<&MeshPart> {
     let name = &object.joints[j].joint.name;
-    let carried = |part: &MeshPart| {
-        let mut next = part.joint.as_deref();
-        for _ in 0..=object.joints.len() {
-            match next {
-                Some(n) if n == name => return true,
-                Some(n) => {
-                    next = object
-                        .joints
-                        .iter()
-                        .find(|k| k.joint.name == n)
-                        .and_then(|k| k.joint.parent.as_deref())
-                }
-                None => return false,
-            }
-        }
-        false
-    };
+    let joints = object.joints.iter().map(|k| &k.joint);
+    let carried = |part: &MeshPart| carried_by(part.joint.as_deref(), name, joints.clone());
     object.mesh.parts.iter().filter(|p| carried(p)).collect()
 }
 

@@ -236,16 +236,20 @@ pub fn opening_sweep(mesh: &Mesh, joints: &[Joint]) -> Option<Aabb> {
     swept
 }
 
-/// Whether a part on link `link` moves with joint `name`: it is that joint's link or nested
-/// under it.
-fn carried_by(link: Option<&str>, name: &str, joints: &[Joint]) -> bool {
+/// Whether a part on link `link` (a [`MeshPart::joint`](crate::MeshPart)) moves with joint
+/// `name` of `joints`: it is that joint's link or nested under it (a cycle is cut off).
+pub fn carried_by<'a, I>(link: Option<&str>, name: &str, joints: I) -> bool
+where
+    I: IntoIterator<Item = &'a Joint> + Clone,
+{
     let mut next = link;
-    for _ in 0..=joints.len() {
+    for _ in 0..=joints.clone().into_iter().count() {
         match next {
             Some(n) if n == name => return true,
             Some(n) => {
                 next = joints
-                    .iter()
+                    .clone()
+                    .into_iter()
                     .find(|j| j.name == n)
                     .and_then(|j| j.parent.as_deref())
             }

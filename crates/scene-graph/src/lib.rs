@@ -93,7 +93,8 @@ pub use floor_raster::{Components, FloorRaster, BLOCKED_CELL};
 pub use hash::{fnv1a64, fnv1a64_from, mix64, FNV_OFFSET_BASIS, GOLDEN_GAMMA};
 pub use io::{read_bounded, write_file_atomic, SceneIoError};
 pub use joint::{
-    opening_sweep, Joint, JointError, JointKind, JointState, OpenState, OpensTo, OPEN_SHARE,
+    carried_by, opening_sweep, Joint, JointError, JointKind, JointState, OpenState, OpensTo,
+    OPEN_SHARE,
 };
 pub use mesh::{Material, Mesh, MeshPart};
 pub use object::{AssetRef, ParentRef, Relation, RelationKind, SceneObject, GROUND_ID};
