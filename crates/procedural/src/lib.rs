@@ -31,6 +31,7 @@
 
 #![warn(missing_docs)]
 
+mod articulation;
 pub mod catalog;
 mod category;
 mod furniture;

@@ -1,7 +1,7 @@
 //! Byte-level regression guard for the procedural generators: every category's assets for seeds
 //! 0..4 are folded into a 64-bit FNV-1a digest (vertex positions as f32 bits, triangle indices,
-//! part names and materials, material names and colours, size, scale range and support
-//! surfaces) and compared with the digests stored in `catalog_digest.txt`. A refactoring of the
+//! part names, materials and joints, material names and colours, size, scale range, support
+//! surfaces and joints) and compared with the digests stored in `catalog_digest.txt`. A refactoring of the
 //! generators must leave every digest unchanged. After an intended change to the generated
 //! geometry, rewrite the file with `SCENETHESIS_BLESS=1 cargo test -p scenethesis-procedural --test
 //! catalog_digest` and review the diff.
@@ -64,6 +64,10 @@ fn digest(asset: &Asset) -> u64 {
         part.positions.iter().flatten().for_each(|&v| h.f32(v));
         h.u32(part.triangles.len() as u32);
         part.triangles.iter().flatten().for_each(|&i| h.u32(i));
+        // Folded only when set, so that the digests of assets without joints stay as they were.
+        if let Some(joint) = &part.joint {
+            h.str(joint);
+        }
     }
     let info = &asset.info;
     info.size.iter().for_each(|&v| h.f32(v));
@@ -87,6 +91,18 @@ fn digest(asset: &Asset) -> u64 {
             }
             None => h.u32(0),
         }
+    }
+    if !info.joints.is_empty() {
+        h.u32(info.joints.len() as u32);
+    }
+    for j in &info.joints {
+        h.str(&j.name);
+        h.str(&format!("{:?} {:?} {:?}", j.kind, j.opens_to, j.parent));
+        j.axis
+            .iter()
+            .chain(&j.anchor)
+            .chain(&j.limits)
+            .for_each(|&v| h.f32(v));
     }
     h.0
 }

@@ -4,6 +4,7 @@
 
 use rand_chacha::ChaCha8Rng;
 
+use crate::articulation;
 use crate::items::builder::Builder;
 use crate::materials::Palette;
 use crate::random::{coin, int, uniform};
@@ -61,8 +62,8 @@ fn oval(center: [f32; 2], axes: [f32; 2], n: usize) -> Vec<[f32; 2]> {
 }
 
 /// Toilet (close-coupled): width 0.36–0.42, height 0.72–0.84 (lid up reaches ≈ 0.9), depth
-/// 0.6–0.72; a hollow oval bowl on a pedestal, a seat ring, a lid up or closed, a cistern at the
-/// back with a flush button and a usable top.
+/// 0.6–0.72; a hollow oval bowl on a pedestal, a seat ring and a lid drawn closed (both hinged
+/// at the back, opening up), a cistern at the back with a flush button and a usable top.
 pub(super) fn toilet(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = Builder::new();
     let china = b.fixed("vitreous_china", [0xF5, 0xF5, 0xF2], 0.12, 0.0);
@@ -112,7 +113,10 @@ pub(super) fn toilet(rng: &mut ChaCha8Rng) -> Asset {
         0.2,
         0.25,
     ));
-    // Seat ring.
+    // Seat ring and lid, drawn closed, both hinged at the cistern's front above the seat.
+    let hinge_z = z0 + cd - 0.005;
+    b.joint(articulation::back_hinge("seat", seat_h, hinge_z, 1.5));
+    b.link(Some("seat"));
     oval_wall(
         &mut b,
         "seat",
@@ -124,23 +128,16 @@ pub(super) fn toilet(rng: &mut ChaCha8Rng) -> Asset {
         0.06,
         16,
     );
-    let lid_up = coin(rng, 0.6);
-    if lid_up {
-        b.cuboid(
-            "lid",
-            seat_m,
-            [-ax + 0.01, seat_h, z0 + cd + 0.005],
-            [ax - 0.01, seat_h + 1.8 * az, z0 + cd + 0.025],
-        );
-    } else {
-        b.add(scenethesis_primitives::prism_y(
-            "lid",
-            seat_m,
-            &oval([0.0, zc + 0.01], [ax, az], 16),
-            seat_h,
-            seat_h + 0.02,
-        ));
-    }
+    b.joint(articulation::back_hinge("lid", seat_h + 0.02, hinge_z, 1.5));
+    b.link(Some("lid"));
+    b.add(scenethesis_primitives::prism_y(
+        "lid",
+        seat_m,
+        &oval([0.0, zc + 0.01], [ax, az], 16),
+        seat_h,
+        seat_h + 0.02,
+    ));
+    b.link(None);
     // Cistern.
     b.cuboid("cistern", china, [-hw, rim, z0], [hw, tank_top, z0 + cd]);
     b.add(cylinder(
@@ -588,7 +585,8 @@ pub(super) fn laundry_hamper(rng: &mut ChaCha8Rng) -> Asset {
 }
 
 /// Washing machine: width 0.595–0.6, height 0.82–0.86, depth 0.55–0.62; a front loader with a
-/// round glass door and a control panel, or a top loader with a lid and a rear console.
+/// round glass door hinged on its left and a control panel, or a top loader with a lid hinged
+/// at its back and a rear console.
 pub(super) fn washing_machine(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = Builder::new();
     let body = match int(rng, 0, 3) {
@@ -608,6 +606,9 @@ pub(super) fn washing_machine(rng: &mut ChaCha8Rng) -> Asset {
     if coin(rng, 0.75) {
         let r = uniform(rng, 0.15, 0.17);
         let cy = 0.45 * h;
+        // The round door, hinged on its left edge, with a grip on its right.
+        b.joint(articulation::side_hinge("door", -r, cy, hd + 0.05, true));
+        b.link(Some("door"));
         b.add(rod(
             "door_ring",
             trim,
@@ -626,6 +627,13 @@ pub(super) fn washing_machine(rng: &mut ChaCha8Rng) -> Asset {
             0.75 * r,
             24,
         ));
+        b.cuboid(
+            "door_grip",
+            trim,
+            [r - 0.03, cy - 0.05, hd + 0.039],
+            [r - 0.005, cy + 0.05, hd + 0.06],
+        );
+        b.link(None);
         b.cuboid(
             "panel",
             trim,
@@ -649,12 +657,15 @@ pub(super) fn washing_machine(rng: &mut ChaCha8Rng) -> Asset {
         ));
         b.top("top", rect(-hw + 0.03, -hd + 0.03, hw - 0.03, hd - 0.03), h);
     } else {
+        b.joint(articulation::back_hinge("lid", h + 0.01, -hd + 0.16, 1.5));
+        b.link(Some("lid"));
         b.cuboid(
             "lid",
             trim,
             [-hw + 0.04, h - 0.002, -hd + 0.16],
             [hw - 0.04, h + 0.01, hd - 0.04],
         );
+        b.link(None);
         b.cuboid(
             "console",
             body,

@@ -1,18 +1,15 @@
 //! The carcass family: a box of boards split into columns and rows of open compartments, with
-//! optional drawers, glass front, doors left open, lips, and feet. Bookshelves, cabinets,
+//! optional drawers, glass doors, doors, lips, and feet. Bookshelves, cabinets,
 //! lockers, wardrobes, fridges, counters and stands are all carcasses with different numbers.
 //!
-//! The open side faces +Z. Every open compartment becomes a [`SurfaceKind::Shelf`] support
-//! surface whose clearance reaches the underside of the board above it.
+//! The open side faces +Z. Every compartment that is not a drawer becomes a
+//! [`SurfaceKind::Shelf`] support surface whose clearance reaches the underside of the board
+//! above it. Doors and drawers are moving links drawn closed: doors on vertical hinges at
+//! their outer edge, drawers as hollow boxes sliding out along +Z (see
+//! [`crate::articulation`]).
 
-use std::f32::consts::PI;
-
-use rand_chacha::ChaCha8Rng;
-
-use crate::random::{coin, uniform};
-use scenethesis_primitives::{
-    box_yaw, cylinder, ellipsoid, rect_surface, square_post, AssetBuilder,
-};
+use crate::articulation::{self, DrawerBox, Leaf, LinkMaterials};
+use scenethesis_primitives::{cylinder, ellipsoid, rect_surface, square_post, AssetBuilder};
 use scenethesis_scene_graph::SurfaceKind;
 
 /// What the carcass body stands on.
@@ -41,29 +38,10 @@ impl Feet {
 pub(super) enum Front {
     /// Open compartments.
     Open,
-    /// A glass pane over the whole front (display cases, drinks fridges).
+    /// Hinged glass doors over the whole front (display cases, drinks fridges).
     Glass,
-    /// Hinged doors swung open by this angle in radians (π/2 is square to the front).
-    Doors { angle: f32 },
-}
-
-impl Front {
-    /// Doors left open just past square (1.6–1.75 rad).
-    pub fn doors_left_open(rng: &mut ChaCha8Rng) -> Self {
-        Front::Doors {
-            angle: uniform(rng, 1.6, 1.75),
-        }
-    }
-
-    /// Doors left open (as [`Front::doors_left_open`]) with probability `p`, otherwise an open
-    /// front.
-    pub fn doors_or_open(rng: &mut ChaCha8Rng, p: f64) -> Self {
-        if coin(rng, p) {
-            Self::doors_left_open(rng)
-        } else {
-            Front::Open
-        }
-    }
+    /// Hinged doors above the drawer rows, drawn closed.
+    Doors,
 }
 
 /// The materials of a carcass.
@@ -89,6 +67,14 @@ impl CarcassMaterials {
             handle,
         }
     }
+
+    /// The materials of the doors and drawers: the front and the handles.
+    pub fn link(&self) -> LinkMaterials {
+        LinkMaterials {
+            panel: self.front,
+            handle: self.handle,
+        }
+    }
 }
 
 /// The parameters of a carcass.
@@ -102,7 +88,7 @@ pub(super) struct Carcass {
     pub columns: usize,
     /// Shelf board positions as ascending fractions in (0, 1) of the interior height.
     pub shelves: Vec<f32>,
-    /// The lowest rows are closed by drawers (solid drawer boxes with handles).
+    /// The lowest rows are closed by drawers (hollow drawer boxes with handles, sliding out).
     pub drawer_rows: usize,
     pub back: bool,
     /// Corner posts of this section instead of side boards and dividers.
@@ -111,6 +97,8 @@ pub(super) struct Carcass {
     pub front: Front,
     /// A retaining lip of this height at the front of every open compartment (0 for none).
     pub lip: f32,
+    /// Columns left open when the front has doors (a TV stand's middle bays).
+    pub open_columns: Vec<usize>,
 }
 
 impl Carcass {
@@ -134,6 +122,7 @@ impl Carcass {
         top_board: true,
         front: Front::Open,
         lip: 0.0,
+        open_columns: Vec::new(),
     };
 
     /// Evenly spaced shelves giving `rows` rows.
@@ -229,10 +218,7 @@ impl<'a> Frame<'a> {
         let h = c.height;
         let back_t = if c.back { (0.6 * t).max(0.008) } else { 0.0 };
         let zb = cz - hd + back_t;
-        let mut zf = cz + hd;
-        if c.front == Front::Glass {
-            zf -= GLASS_T;
-        }
+        let zf = cz + hd;
         let (xi0, xi1) = match c.posts {
             Some(p) => (cx - hw + p, cx + hw - p),
             None => (cx - hw + t, cx + hw - t),
@@ -450,27 +436,21 @@ impl<'a> Frame<'a> {
         floors
     }
 
-    /// The drawer closing compartment (`col`, `row`) between `span` (floor, ceiling), with its
-    /// handle.
+    /// The hollow drawer closing compartment (`col`, `row`) between `span` (floor, ceiling),
+    /// its front slightly proud of the body.
     fn add_drawer(&self, b: &mut AssetBuilder, col: usize, row: usize, span: [f32; 2]) {
-        let (prefix, m) = (self.prefix, self.m);
         let (x0, x1) = (self.column_x0(col), self.column_x0(col) + self.column_w);
-        let (floor, ceiling) = (span[0], span[1]);
-        let (cz, hd) = (self.cz, self.hd);
         let gap = 0.003;
-        b.cuboid(
-            &format!("{prefix}drawer_{col}_{row}"),
-            m.front,
-            [x0 + gap, floor + gap, self.zb + 0.02],
-            [x1 - gap, ceiling - gap, cz + hd + 0.006],
-        );
-        let (mx, my) = (0.5 * (x0 + x1), 0.5 * (floor + ceiling));
-        let hl = (0.25 * (x1 - x0)).min(0.08);
-        b.cuboid(
-            &format!("{prefix}drawer_handle_{col}_{row}"),
-            m.handle,
-            [mx - hl, my - 0.008, cz + hd + 0.005],
-            [mx + hl, my + 0.008, cz + hd + 0.025],
+        articulation::drawer(
+            b,
+            &format!("{}drawer_{col}_{row}", self.prefix),
+            self.m.link(),
+            DrawerBox {
+                x: [x0 + gap, x1 - gap],
+                y: [span[0] + gap, span[1] - gap],
+                z: [self.zb + 0.02, self.cz + self.hd + 0.006],
+                headroom: gap,
+            },
         );
     }
 
@@ -519,85 +499,56 @@ impl<'a> Frame<'a> {
         ));
     }
 
-    /// Front: nothing, a glass pane, or doors left open at their angle above the drawer rows
-    /// (`floors` are the rows' floors).
+    /// Front: nothing, or closed glass or board doors over the body's front face (above the
+    /// drawer rows; `floors` are the rows' floors): one door per column, or a pair when the
+    /// column is wide, hinged on the outer edges.
     fn add_front(&self, b: &mut AssetBuilder, floors: &[f32]) {
-        let (cx, cz, hw, hd) = (self.cx, self.cz, self.hw, self.hd);
-        match self.c.front {
-            Front::Open => {}
-            Front::Glass => b.cuboid(
-                &format!("{}glass_front", self.prefix),
-                self.m.front,
-                [cx - hw, self.y0, cz + hd - GLASS_T],
-                [cx + hw, self.h, cz + hd],
-            ),
-            Front::Doors { angle } => {
-                let door_y0 = floors
+        let (y0, thickness) = match self.c.front {
+            Front::Open => return,
+            Front::Glass => (self.y0, GLASS_T),
+            Front::Doors => (
+                floors
                     .get(self.c.drawer_rows)
-                    .map_or(self.y0, |f| f - self.t);
-                let mut door = 0;
-                for col in 0..self.c.columns {
-                    let t = self.t;
-                    let (x0, x1) = (
-                        self.column_x0(col) - t,
-                        self.column_x0(col) + self.column_w + t,
-                    );
-                    let pair = x1 - x0 > 0.65;
-                    let leaves: Vec<(f32, f32, bool)> = if pair {
-                        let mid = 0.5 * (x0 + x1);
-                        vec![(x0, mid, true), (mid, x1, false)]
-                    } else {
-                        vec![(x0, x1, col % 2 == 0)]
-                    };
-                    for leaf in leaves {
-                        self.add_door(b, door, leaf, door_y0, angle);
-                        door += 1;
-                    }
-                }
+                    .map_or(self.y0, |f| f - self.t),
+                self.t.max(0.015),
+            ),
+        };
+        let (t, n) = (self.t, self.c.columns);
+        let m = self.m.link();
+        let mut door = 0;
+        for col in (0..n).filter(|c| !self.c.open_columns.contains(c)) {
+            let x0 = if col == 0 {
+                self.cx - self.hw
+            } else {
+                self.column_x0(col) - 0.5 * t
+            };
+            let x1 = if col + 1 == n {
+                self.cx + self.hw
+            } else {
+                self.column_x0(col) + self.column_w + 0.5 * t
+            };
+            let leaves: Vec<(f32, f32, bool)> = if x1 - x0 > 0.65 {
+                let mid = 0.5 * (x0 + x1);
+                vec![(x0, mid, true), (mid, x1, false)]
+            } else {
+                vec![(x0, x1, 2 * col < n)]
+            };
+            for (a, c, hinge_left) in leaves {
+                articulation::door(
+                    b,
+                    &format!("{}door_{door}", self.prefix),
+                    m,
+                    Leaf {
+                        x: [a + 0.002, c - 0.002],
+                        y: [y0 + 0.002, self.h],
+                        z: self.cz + self.hd,
+                        thickness,
+                        hinge_left,
+                    },
+                );
+                door += 1;
             }
         }
-    }
-
-    /// Door number `door`, the leaf (left edge, right edge, hinged on the left) above
-    /// `door_y0`, open by `angle`.
-    fn add_door(
-        &self,
-        b: &mut AssetBuilder,
-        door: usize,
-        leaf: (f32, f32, bool),
-        door_y0: f32,
-        angle: f32,
-    ) {
-        let (a, bx, hinge_left) = leaf;
-        let door_t = self.t.max(0.015);
-        let width = bx - a - 0.004;
-        let (hinge_x, dir_x, yaw) = if hinge_left {
-            (a, angle.cos(), -angle)
-        } else {
-            (bx, -angle.cos(), angle + PI)
-        };
-        let dir_z = angle.sin();
-        // The door's inner face stays at the hinge line, so it never enters a bay.
-        let along = 0.5 * width;
-        let out = 0.5 * door_t;
-        let normal = if hinge_left {
-            [dir_z, -dir_x]
-        } else {
-            [-dir_z, dir_x]
-        };
-        let centre = [
-            hinge_x + dir_x * along + normal[0] * out,
-            self.cz + self.hd + dir_z * along + normal[1] * out,
-        ];
-        b.part(box_yaw(
-            &format!("{}door_{door}", self.prefix),
-            self.m.front,
-            centre,
-            [0.5 * width, 0.5 * door_t],
-            door_y0,
-            self.h,
-            yaw,
-        ));
     }
 }
 

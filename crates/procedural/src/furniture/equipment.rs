@@ -7,6 +7,7 @@ use rand_chacha::ChaCha8Rng;
 
 use super::carcass::{self, Carcass, CarcassMaterials, Feet, CORNERS};
 use super::{mat, mat_either, SCALE};
+use crate::articulation;
 use crate::materials::{fixed_material, Palette};
 use crate::random::{coin, int, uniform, uniform3};
 use scenethesis_primitives::{
@@ -715,7 +716,7 @@ pub(super) fn rocking_horse(rng: &mut ChaCha8Rng) -> Asset {
 }
 
 /// Stove (range): width 0.6–0.9, height 0.9–1.1 (with backguard), depth 0.6–0.7; an oven with
-/// a closed door, a cooktop with four burners and control knobs.
+/// a closed door hinged at its bottom, a cooktop with four burners and control knobs.
 pub(super) fn stove(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let body = mat_either(&mut b, 0.6, Palette::Metal, Palette::Plastic, rng);
@@ -735,6 +736,14 @@ pub(super) fn stove(rng: &mut ChaCha8Rng) -> Asset {
         [-hw + 0.01, h - 0.011, -hd + 0.01],
         [hw - 0.01, h, hd - 0.01],
     );
+    // The oven door, hinged at its bottom edge, and its handle bar on two posts.
+    b.joint(articulation::bottom_hinge(
+        "oven_door",
+        0.12,
+        hd + 0.02,
+        1.5,
+    ));
+    b.link(Some("oven_door"));
     b.cuboid(
         "oven_door",
         dark,
@@ -750,6 +759,15 @@ pub(super) fn stove(rng: &mut ChaCha8Rng) -> Asset {
         0.012,
         8,
     ));
+    for (i, x) in [-hw + 0.1, hw - 0.1].into_iter().enumerate() {
+        b.cuboid(
+            &format!("oven_handle_post_{i}"),
+            body,
+            [x - 0.006, h - 0.246, hd + 0.019],
+            [x + 0.006, h - 0.234, hd + 0.045],
+        );
+    }
+    b.link(None);
     let bg = uniform(rng, 0.08, 0.18);
     b.cuboid(
         "backguard",

@@ -5,14 +5,15 @@ use rand_chacha::ChaCha8Rng;
 
 use super::carcass::{self, Carcass, CarcassMaterials, Feet, Front};
 use super::{mat, mat_either, SCALE};
+use crate::articulation;
 use crate::items::builder::Builder;
 use crate::materials::Palette;
 use crate::random::{coin, int, uniform};
 use scenethesis_primitives::{prism_x, rect, rect_surface, rod, AssetBuilder};
 use scenethesis_scene_graph::{Asset, Placement, SurfaceKind};
 
-/// Kitchen island: width 1.2–2.2, height 0.9–0.95, depth 0.85–1.2; a cabinet run with open
-/// compartments toward +Z under a stone or wood worktop that overhangs the back by 0.22–0.32 m
+/// Kitchen island: width 1.2–2.2, height 0.9–0.95, depth 0.85–1.2; a cabinet run with hinged
+/// doors (over a row of drawers, one of two) toward +Z under a stone or wood worktop that overhangs the back by 0.22–0.32 m
 /// so stools fit under it.
 pub(super) fn kitchen_island(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
@@ -40,7 +41,7 @@ pub(super) fn kitchen_island(rng: &mut ChaCha8Rng) -> Asset {
         shelves: vec![0.5],
         top_board: false,
         drawer_rows: usize::from(coin(rng, 0.5)),
-        front: Front::Open,
+        front: Front::Doors,
         ..Carcass::PLAIN
     };
     let cz = hd - 0.5 * cd;
@@ -54,7 +55,9 @@ pub(super) fn kitchen_island(rng: &mut ChaCha8Rng) -> Asset {
     // The top row is closed by the worktop: its clearance ends under it.
     for s in b.surfaces_mut() {
         let cap = h - t - 0.01 - s.height;
-        s.kind = SurfaceKind::Shelf;
+        if s.kind != SurfaceKind::Interior {
+            s.kind = SurfaceKind::Shelf;
+        }
         s.clearance = Some(s.clearance.map_or(cap, |cl| cl.min(cap)));
     }
     b.cuboid("worktop", top_m, [-hw, h - t, -hd], [hw, h, hd]);
@@ -72,7 +75,7 @@ pub(super) fn kitchen_island(rng: &mut ChaCha8Rng) -> Asset {
 }
 
 /// Wall cabinet (kitchen or bathroom): width 0.4–1.2, height 0.5–0.9, depth 0.28–0.36 with its
-/// doors closed; 1–2 columns of 2–3 shelf rows, open fronts (doors would swing into the room at head height).
+/// doors closed; 1–2 columns of 2–3 shelf rows behind closed hinged doors.
 pub(super) fn wall_cabinet(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let body = mat_either(&mut b, 0.6, Palette::PaintedWood, Palette::Wood, rng);
@@ -91,7 +94,7 @@ pub(super) fn wall_cabinet(rng: &mut ChaCha8Rng) -> Asset {
         },
         columns: if w > 0.8 { 2 } else { 1 },
         shelves: Carcass::even_shelves(rows),
-        front: Front::Open,
+        front: Front::Doors,
         ..Carcass::PLAIN
     };
     carcass::build(
@@ -163,7 +166,7 @@ pub(super) fn range_hood(rng: &mut ChaCha8Rng) -> Asset {
 }
 
 /// Dishwasher: width 0.445–0.45 (slimline) or 0.595–0.6, height 0.82–0.87 (under a worktop),
-/// depth 0.55–0.6; a closed front door with a handle and a control strip over a recessed
+/// depth 0.55–0.6; a closed front door hinged at its bottom, with a handle and a control strip over a recessed
 /// plinth, and behind it a real hollow tub (floor, back, sides and top as separate slabs) with
 /// two thin wire racks; usable top.
 pub(super) fn dishwasher(rng: &mut ChaCha8Rng) -> Asset {
@@ -225,15 +228,18 @@ pub(super) fn dishwasher(rng: &mut ChaCha8Rng) -> Asset {
             [hw - wall - 0.015, y + 0.008, back - 0.02],
         );
     }
-    // The door, its control strip along the top and a bar handle.
+    // The door hinged at its bottom edge with a bar handle, under a fixed control strip.
+    b.joint(articulation::bottom_hinge("door", plinth, hd, 1.5));
+    b.link(Some("door"));
     b.cuboid("door", body, [-hw, plinth, back], [hw, h - 0.07, hd]);
-    b.cuboid("control_strip", dark, [-hw, h - 0.07, back], [hw, h, hd]);
     b.cuboid(
         "handle",
         trim,
         [-0.3 * w, h - 0.12, hd - 0.001],
         [0.3 * w, h - 0.1, hd + 0.025],
     );
+    b.link(None);
+    b.cuboid("control_strip", dark, [-hw, h - 0.07, back], [hw, h, hd]);
     b.top("top", rect(-hw + 0.02, -hd + 0.02, hw - 0.02, hd - 0.02), h);
     b.finish(Placement::Floor, [0.98, 1.02])
 }

@@ -6,9 +6,10 @@ use rand_chacha::ChaCha8Rng;
 
 use super::carcass::{self, Carcass, CarcassMaterials, Feet, Front, CORNERS};
 use super::{mat, mat_either, SCALE};
+use crate::articulation;
 use crate::materials::{fixed_material, Palette};
 use crate::random::{coin, int, uniform, uniform3};
-use scenethesis_primitives::{beam, hexahedron, rect_surface, rod, square_post, AssetBuilder};
+use scenethesis_primitives::{beam, rect_surface, rod, square_post, AssetBuilder};
 use scenethesis_scene_graph::{Asset, Placement, SurfaceKind};
 
 /// Picks shelf fractions for `rows` rows (at least one row) of a carcass with compartments
@@ -128,8 +129,8 @@ pub(super) fn store_shelf(rng: &mut ChaCha8Rng) -> Asset {
     finish(b)
 }
 
-/// Cabinet: width 0.6–1.2, height 0.8–1.9, depth 0.4–0.6; 1–2 columns, 2–5 rows, doors left
-/// open or an open front.
+/// Cabinet: width 0.6–1.2, height 0.8–1.9, depth 0.4–0.6; 1–2 columns, 2–5 rows behind
+/// closed hinged doors.
 pub(super) fn cabinet(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let m = wood_materials(rng, &mut b);
@@ -152,7 +153,7 @@ pub(super) fn cabinet(rng: &mut ChaCha8Rng) -> Asset {
         },
         columns: if width > 0.9 { 2 } else { 1 },
         shelves: vec![],
-        front: Front::doors_or_open(rng, 0.6),
+        front: Front::Doors,
         ..Carcass::PLAIN
     };
     c.shelves = rows_for(rng, &c, 0.26, 0.45);
@@ -183,8 +184,8 @@ pub(super) fn tool_cabinet(rng: &mut ChaCha8Rng) -> Asset {
     finish(b)
 }
 
-/// Chemical (safety) cabinet: width 0.6–1.2, height 0.9–1.8, depth 0.45–0.6; coated steel, doors
-/// open, shelves with spill lips.
+/// Chemical (safety) cabinet: width 0.6–1.2, height 0.9–1.8, depth 0.45–0.6; coated steel,
+/// closed hinged doors, shelves with spill lips.
 pub(super) fn chemical_cabinet(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let body = b.material(if coin(rng, 0.5) {
@@ -205,7 +206,7 @@ pub(super) fn chemical_cabinet(rng: &mut ChaCha8Rng) -> Asset {
         },
         columns: 1,
         shelves: vec![],
-        front: Front::doors_left_open(rng),
+        front: Front::Doors,
         lip: 0.03,
         ..Carcass::PLAIN
     };
@@ -215,7 +216,7 @@ pub(super) fn chemical_cabinet(rng: &mut ChaCha8Rng) -> Asset {
 }
 
 /// Locker bank: width 0.3–1.6 (1–4 lockers of 0.3–0.4), height 1.7–1.95, depth 0.42–0.52; each
-/// locker a tall bay with a hat shelf, doors left open.
+/// locker a tall bay with a hat shelf behind its closed hinged door.
 pub(super) fn locker(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let m = metal_materials(rng, &mut b);
@@ -231,7 +232,7 @@ pub(super) fn locker(rng: &mut ChaCha8Rng) -> Asset {
         },
         columns,
         shelves: vec![uniform(rng, 0.78, 0.84)],
-        front: Front::doors_or_open(rng, 0.7),
+        front: Front::Doors,
         ..Carcass::PLAIN
     };
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
@@ -239,7 +240,7 @@ pub(super) fn locker(rng: &mut ChaCha8Rng) -> Asset {
 }
 
 /// Wardrobe: width 0.9–1.6, height 1.9–2.2, depth 0.55–0.65; a hat shelf over a hanging space
-/// with a rail, doors left open or an open front.
+/// with a rail behind closed hinged doors.
 pub(super) fn wardrobe(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let m = wood_materials(rng, &mut b);
@@ -255,7 +256,7 @@ pub(super) fn wardrobe(rng: &mut ChaCha8Rng) -> Asset {
         },
         columns: if width > 1.2 { 2 } else { 1 },
         shelves: vec![uniform(rng, 0.8, 0.86)],
-        front: Front::doors_or_open(rng, 0.6),
+        front: Front::Doors,
         ..Carcass::PLAIN
     };
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
@@ -305,14 +306,14 @@ pub(super) fn dresser(rng: &mut ChaCha8Rng) -> Asset {
     finish(b)
 }
 
-/// TV stand: width 1.2–2.0, height 0.4–0.6, depth 0.35–0.5; 2–4 open bays in one or two rows,
-/// on legs or a plinth.
+/// TV stand: width 1.2–2.0, height 0.4–0.6, depth 0.35–0.5; 2–4 bays, the outer ones behind
+/// hinged doors and the middle ones open (one of two open), on legs or a plinth.
 pub(super) fn tv_stand(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let m = wood_materials(rng, &mut b);
     let height = uniform(rng, 0.4, 0.6);
     let legs = coin(rng, 0.5);
-    let c = Carcass {
+    let mut c = Carcass {
         width: uniform(rng, 1.2, 2.0),
         height,
         depth: uniform(rng, 0.35, 0.5),
@@ -331,7 +332,13 @@ pub(super) fn tv_stand(rng: &mut ChaCha8Rng) -> Asset {
         columns: int(rng, 2, 4),
         shelves: vec![],
         back: coin(rng, 0.5),
+        front: Front::Doors,
         ..Carcass::PLAIN
+    };
+    c.open_columns = if c.columns == 2 {
+        vec![1]
+    } else {
+        (1..c.columns - 1).collect()
     };
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");
     finish(b)
@@ -381,8 +388,8 @@ pub(super) fn display_case(rng: &mut ChaCha8Rng) -> Asset {
     finish(b)
 }
 
-/// An open-top box with walls of `wall` thickness: bottom, four walls, and an `Interior`
-/// surface on the inside floor.
+/// A box with walls of `wall` thickness whose top a lid closes: bottom, four walls, and an
+/// `Interior` surface on the inside floor reaching up to the walls' top.
 #[allow(clippy::too_many_arguments)]
 fn open_box(
     b: &mut AssetBuilder,
@@ -426,30 +433,29 @@ fn open_box(
         [-hw + wall, -hd + wall],
         [hw - wall, hd - wall],
         y0 + wall,
-        None,
+        Some(h - wall - 0.005),
         0.01,
     ));
 }
 
-/// A lid hinged at the back top edge, swung open past vertical by `lean` radians.
-fn open_lid(b: &mut AssetBuilder, material: usize, w: f32, d: f32, top: f32, t: f32, lean: f32) {
+/// A lid `t` thick closed on the box of width `w` and depth `d` whose walls end at `top`, hinged
+/// along its back top edge and opening up by as much as `open` radians.
+fn hinged_lid(b: &mut AssetBuilder, material: usize, w: f32, d: f32, top: f32, t: f32, open: f32) {
     let (hw, hd) = (0.5 * w, 0.5 * d);
-    let (s, c) = lean.sin_cos();
-    // Lid rises from the hinge line (z = −hd, y = top) leaning back (−Z) by `lean`.
-    let corners = std::array::from_fn(|i| {
-        let x = if i & 1 == 0 { -hw } else { hw };
-        let along = if i & 2 == 0 { 0.0 } else { d };
-        let across = if i & 4 == 0 { 0.0 } else { t };
-        // Direction up the lid: (−sin, cos) in (z, y); thickness toward the back: (−cos, −sin).
-        let z = -hd - s * along - c * across;
-        let y = top + c * along - s * across + 0.002;
-        [x, y, z]
-    });
-    b.part(hexahedron("lid", material, corners));
+    b.joint(articulation::back_hinge("lid", top + t, -hd, open));
+    b.link(Some("lid"));
+    b.cuboid("lid", material, [-hw, top, -hd], [hw, top + t, hd]);
+    b.cuboid(
+        "lid_grip",
+        material,
+        [-0.06, top - 0.015, hd],
+        [0.06, top + t, hd + 0.02],
+    );
+    b.link(None);
 }
 
-/// Toy box: width 0.6–1.0, height 0.4–0.55 (0.85–1.4 with the lid open), depth 0.35–0.5; open
-/// on top with the lid swung back.
+/// Toy box: width 0.6–1.0, height 0.42–0.58 with its lid, depth 0.35–0.5; a box closed by a lid
+/// hinged at its back.
 pub(super) fn toy_box(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let body = mat_either(
@@ -462,19 +468,19 @@ pub(super) fn toy_box(rng: &mut ChaCha8Rng) -> Asset {
     let (w, h, d) = uniform3(rng, [0.6, 1.0], [0.4, 0.55], [0.35, 0.5]);
     let wall = uniform(rng, 0.015, 0.025);
     open_box(&mut b, body, w, h, d, wall, 0.0, "inside");
-    open_lid(&mut b, body, w, d, h, wall, uniform(rng, 0.1, 0.3));
+    hinged_lid(&mut b, body, w, d, h, wall, 1.75);
     finish(b)
 }
 
-/// Chest freezer: width 0.9–1.6, height 0.84–0.9 (1.5–1.8 with the lid open), depth
-/// 0.6–0.75; insulated walls, open on top with the lid swung back.
+/// Chest freezer: width 0.9–1.6, height 0.9–0.96 with its lid, depth 0.6–0.75; insulated walls
+/// closed by a lid hinged at its back.
 pub(super) fn chest_freezer(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let body = mat(&mut b, Palette::Plastic, rng);
     let (w, h, d) = uniform3(rng, [0.9, 1.6], [0.84, 0.9], [0.6, 0.75]);
     let wall = uniform(rng, 0.06, 0.08);
     open_box(&mut b, body, w, h, d, wall, 0.0, "inside");
-    open_lid(&mut b, body, w, d, h, 0.06, uniform(rng, 0.05, 0.2));
+    hinged_lid(&mut b, body, w, d, h, 0.06, 1.45);
     finish(b)
 }
 
@@ -644,7 +650,7 @@ pub(super) fn medical_cart(rng: &mut ChaCha8Rng) -> Asset {
 }
 
 /// Refrigerator: width 0.6–0.8, height 1.7–1.95, depth 0.65–0.75; an open fresh-food section
-/// with 3–5 shelves above a closed freezer drawer, door left open.
+/// with 3–5 shelves above a freezer drawer, behind a closed hinged door (a pair when wide).
 pub(super) fn refrigerator(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let body = mat_either(&mut b, 0.5, Palette::Metal, Palette::Plastic, rng);
@@ -675,7 +681,7 @@ pub(super) fn refrigerator(rng: &mut ChaCha8Rng) -> Asset {
         columns: 1,
         shelves,
         drawer_rows: 1,
-        front: Front::doors_or_open(rng, 0.75),
+        front: Front::Doors,
         ..Carcass::PLAIN
     };
     carcass::build(&mut b, &c, m, [0.0, 0.0], "");

@@ -9,6 +9,7 @@ use rand_chacha::ChaCha8Rng;
 
 use super::carcass::{self, Carcass, CarcassMaterials, Feet, Front, CORNERS};
 use super::{mat, mat_either, SCALE};
+use crate::articulation::{self, DrawerBox};
 use crate::materials::{fixed_material, Palette};
 use crate::random::{coin, int, uniform, uniform3};
 use scenethesis_primitives::{
@@ -393,8 +394,9 @@ pub(super) fn dining_table(rng: &mut ChaCha8Rng) -> Asset {
     b.finish(Placement::Floor, SCALE)
 }
 
-/// Desk: width 1.1–1.7, height 0.72–0.77, depth 0.6–0.8; a knee hole between a drawer
-/// pedestal and a leg panel (or two panels), modesty panel at the back.
+/// Desk: width 1.1–1.7, height 0.72–0.77, depth 0.6–0.8; a knee hole between a pedestal of
+/// sliding drawers and a leg panel (or two panels and a shallow drawer under the top), modesty
+/// panel at the back.
 pub(super) fn desk(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let body = mat_either(&mut b, 0.6, Palette::Wood, Palette::PaintedWood, rng);
@@ -436,7 +438,7 @@ pub(super) fn desk(rng: &mut ChaCha8Rng) -> Asset {
             "pedestal_",
         );
         b.surfaces_mut()
-            .retain(|s| !s.name.starts_with("pedestal_"));
+            .retain(|s| !s.name.starts_with("pedestal_") || s.name.ends_with("_interior"));
         let x_other = -side * (hw - 0.5 * panel);
         b.cuboid(
             "leg_panel",
@@ -471,13 +473,32 @@ pub(super) fn desk(rng: &mut ChaCha8Rng) -> Asset {
         [knee_x0 - 0.001, modesty_bottom, -hd + 0.02],
         [knee_x1 + 0.001, under_top + 0.001, -hd + 0.04],
     );
+    // Without a pedestal, a shallow drawer hangs under the top in the middle of the knee hole.
+    let knee_top = if pedestal {
+        under_top
+    } else {
+        let half = (0.3 * (knee_x1 - knee_x0)).min(0.3);
+        let mx = 0.5 * (knee_x0 + knee_x1);
+        articulation::drawer(
+            &mut b,
+            "drawer",
+            CarcassMaterials::uniform(body, handle).link(),
+            DrawerBox {
+                x: [mx - half, mx + half],
+                y: [under_top - 0.09, under_top - 0.002],
+                z: [-hd + 0.06, hd - 0.01],
+                headroom: 0.002,
+            },
+        );
+        under_top - 0.09
+    };
     b.surface(rect_surface(
         "under",
         SurfaceKind::Under,
         [knee_x0, -hd + 0.04],
         [knee_x1, hd],
         0.0,
-        Some(under_top - 0.02),
+        Some(knee_top - 0.02),
         0.03,
     ));
     b.finish(Placement::Floor, SCALE)
@@ -610,7 +631,8 @@ pub(super) fn workbench(rng: &mut ChaCha8Rng) -> Asset {
     b.finish(Placement::Floor, SCALE)
 }
 
-/// Nightstand: width 0.4–0.56, height 0.5–0.68, depth 0.35–0.45; a drawer over an open cubby.
+/// Nightstand: width 0.4–0.56, height 0.5–0.68, depth 0.35–0.45; a sliding drawer over an open
+/// cubby.
 pub(super) fn nightstand(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let body = mat_either(&mut b, 0.6, Palette::Wood, Palette::PaintedWood, rng);
@@ -639,20 +661,18 @@ pub(super) fn nightstand(rng: &mut ChaCha8Rng) -> Asset {
     // The upper row is a drawer: close it and drop its compartment.
     let shelf_top = c.body_bottom() + c.board + drawer_on_top * c.interior_height() + 0.5 * c.board;
     let (hw, hd) = (0.5 * c.width - c.board, 0.5 * c.depth);
-    b.cuboid(
-        "drawer",
-        body,
-        [-hw + 0.003, shelf_top + 0.003, -hd + 0.03],
-        [hw - 0.003, c.height - c.board - 0.003, hd + 0.005],
-    );
-    let my = 0.5 * (shelf_top + c.height - c.board);
-    b.cuboid(
-        "drawer_handle",
-        handle,
-        [-0.05, my - 0.008, hd + 0.004],
-        [0.05, my + 0.008, hd + 0.022],
-    );
     b.surfaces_mut().retain(|s| s.name != "shelf_1");
+    articulation::drawer(
+        &mut b,
+        "drawer",
+        CarcassMaterials::uniform(body, handle).link(),
+        DrawerBox {
+            x: [-hw + 0.003, hw - 0.003],
+            y: [shelf_top + 0.003, c.height - c.board - 0.003],
+            z: [-hd + 0.03, hd + 0.005],
+            headroom: 0.003,
+        },
+    );
     b.finish(Placement::Floor, SCALE)
 }
 
@@ -922,8 +942,9 @@ pub(super) fn pool_table(rng: &mut ChaCha8Rng) -> Asset {
     b.finish(Placement::Floor, SCALE)
 }
 
-/// A counter: a carcass of open bays under an overhanging top. `customer_side` closes the
-/// front and turns the bays to face −Z (the staff side), with the top overhanging +Z.
+/// A counter: a carcass under an overhanging top, its bays behind hinged doors (over a row of
+/// drawers, one time in two). `customer_side` closes the front instead and turns open bays to
+/// face −Z (the staff side), with the top overhanging +Z.
 fn counter(
     rng: &mut ChaCha8Rng,
     width: (f32, f32),
@@ -957,10 +978,12 @@ fn counter(
         },
         columns,
         shelves: vec![uniform(rng, 0.45, 0.55)],
-        front: if customer_side || coin(rng, 0.5) {
+        // A kitchen run: doors, over a row of drawers one time in two.
+        drawer_rows: usize::from(!customer_side && coin(rng, 0.5)),
+        front: if customer_side {
             Front::Open
         } else {
-            Front::doors_left_open(rng)
+            Front::Doors
         },
         ..Carcass::PLAIN
     };
@@ -1020,8 +1043,8 @@ pub(super) fn bar_counter(rng: &mut ChaCha8Rng) -> Asset {
     counter(rng, (1.8, 3.0), (1.05, 1.15), (0.55, 0.75), true, true)
 }
 
-/// Kitchen counter: width 1.2–2.4, height 0.88–0.92, depth 0.6–0.66; base cabinets (open or
-/// with doors left open) under a worktop.
+/// Kitchen counter: width 1.2–2.4, height 0.88–0.92, depth 0.6–0.66; base cabinets with
+/// hinged doors (and a row of drawers, one time in two) under a worktop.
 pub(super) fn kitchen_counter(rng: &mut ChaCha8Rng) -> Asset {
     counter(rng, (1.2, 2.4), (0.88, 0.92), (0.6, 0.66), false, false)
 }

@@ -2,7 +2,7 @@
 //! the materials and part families small items are made of.
 
 use rand_chacha::ChaCha8Rng;
-use scenethesis_scene_graph::{Material, MeshPart};
+use scenethesis_scene_graph::{Joint, Material, MeshPart};
 
 use crate::materials::{fixed_material, pick_material, Palette};
 use scenethesis_primitives::{ellipsoid, frustum, polyline, ring_slab, tube, AssetBuilder};
@@ -61,6 +61,17 @@ impl Builder {
     /// [`AssetBuilder::flatten_base`]).
     pub(crate) fn flatten_base(&mut self, depth: f32) {
         self.inner.flatten_base(depth);
+    }
+
+    /// Adds a joint (see [`AssetBuilder::joint`]).
+    pub(crate) fn joint(&mut self, joint: Joint) {
+        self.inner.joint(joint);
+    }
+
+    /// Opens the link of the joint named `joint`, so that the parts added next move with it,
+    /// or closes it with `None` (see [`AssetBuilder::link`]).
+    pub(crate) fn link(&mut self, joint: Option<&str>) {
+        self.inner.link(joint);
     }
 
     /// Adds a finished part.

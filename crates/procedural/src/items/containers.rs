@@ -4,6 +4,7 @@
 use rand_chacha::ChaCha8Rng;
 
 use super::builder::Builder;
+use crate::articulation;
 use crate::random::{color, uniform, uniform3};
 use scenethesis_primitives::{arc, disc, rect, square_post};
 use scenethesis_scene_graph::{Asset, Placement};
@@ -388,7 +389,7 @@ pub(crate) fn toolbox(rng: &mut ChaCha8Rng) -> Asset {
     b.finish(Placement::Floor, [0.85, 1.2])
 }
 
-/// Picnic cooler with a closed lid and side grips: 0.48–0.72 × 0.34–0.46 (h) × 0.32–0.44 m.
+/// Picnic cooler with a closed lid hinged at its back and side grips: 0.48–0.72 × 0.34–0.46 (h) × 0.32–0.44 m.
 pub(crate) fn cooler(rng: &mut ChaCha8Rng) -> Asset {
     let (w, h, d) = uniform3(rng, [0.48, 0.72], [0.34, 0.46], [0.32, 0.44]);
     let mut b = Builder::new();
@@ -414,12 +415,22 @@ pub(crate) fn cooler(rng: &mut ChaCha8Rng) -> Asset {
     let (x, z) = (w / 2.0, d / 2.0);
     let lid_y = h - uniform(rng, 0.05, 0.08);
     b.cuboid("body", body, [-x, 0.0, -z], [x, lid_y, z]);
+    // The lid, hinged along its back edge, with a grip lip at the front.
+    b.joint(articulation::back_hinge("lid", h, -z - 0.005, 1.75));
+    b.link(Some("lid"));
     b.cuboid(
         "lid",
         lid,
         [-x - 0.005, lid_y, -z - 0.005],
         [x + 0.005, h, z + 0.005],
     );
+    b.cuboid(
+        "lid_lip",
+        lid,
+        [-0.08, lid_y + 0.005, z + 0.004],
+        [0.08, lid_y + 0.02, z + 0.02],
+    );
+    b.link(None);
     for (i, sx) in [-1.0f32, 1.0].iter().enumerate() {
         b.cuboid(
             &format!("grip_{i}"),

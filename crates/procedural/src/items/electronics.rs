@@ -3,6 +3,7 @@
 use rand_chacha::ChaCha8Rng;
 
 use super::builder::Builder;
+use crate::articulation;
 use crate::random::{color, uniform, uniform3};
 use scenethesis_primitives::{convex_hull, rotated_box, rotation};
 use scenethesis_scene_graph::{Asset, Placement};
@@ -14,7 +15,7 @@ const CASES: &[[f32; 3]] = &[
     [0.25, 0.26, 0.3],
 ];
 
-/// Open laptop, lid at 100–120°: 0.30–0.38 wide × 0.21–0.26 deep, base 0.015–0.02 thick.
+/// Open laptop, lid at 100–120° on a hinge (state 0 as drawn, folding shut at its lower limit): 0.30–0.38 wide × 0.21–0.26 deep, base 0.015–0.02 thick.
 pub(crate) fn laptop(rng: &mut ChaCha8Rng) -> Asset {
     let (w, d, t) = uniform3(rng, [0.3, 0.38], [0.21, 0.26], [0.015, 0.02]);
     let open = uniform(rng, 1.75, 2.1);
@@ -40,6 +41,13 @@ pub(crate) fn laptop(rng: &mut ChaCha8Rng) -> Asset {
     let lt = 0.006;
     let rot = rotation([1.0, 0.0, 0.0], -(open - std::f32::consts::FRAC_PI_2));
     let hinge = nalgebra::Vector3::new(0.0, t, -z);
+    // State 0 is the pose drawn; the screen folds shut by `open` (less a little) and leans
+    // back a little further.
+    b.joint(scenethesis_scene_graph::Joint {
+        limits: [-(open - 0.03), 0.35],
+        ..articulation::back_hinge("screen", t, -z, 0.35)
+    });
+    b.link(Some("screen"));
     let lid_center = hinge + rot * nalgebra::Vector3::new(0.0, d / 2.0, -lt / 2.0);
     b.add(rotated_box(
         "lid",
@@ -56,6 +64,7 @@ pub(crate) fn laptop(rng: &mut ChaCha8Rng) -> Asset {
         [x - 0.012, d / 2.0 - 0.015, 0.0008],
         &rot,
     ));
+    b.link(None);
     b.finish(Placement::Surface, [0.9, 1.1])
 }
 

@@ -5,6 +5,7 @@
 use rand_chacha::ChaCha8Rng;
 
 use super::builder::Builder;
+use crate::articulation;
 use crate::materials::Palette;
 use crate::random::{coin, color, int, uniform};
 use scenethesis_primitives::{disc, prism_x, rect, rounded_box};
@@ -27,8 +28,9 @@ fn appliance_body(b: &mut Builder, rng: &mut ChaCha8Rng) -> usize {
     }
 }
 
-/// Microwave oven: width 0.44–0.56, height 0.26–0.34, depth 0.33–0.43; a box with a door whose
-/// dark window takes the left two thirds, a keypad panel and a handle; usable top.
+/// Microwave oven: width 0.44–0.56, height 0.26–0.34, depth 0.33–0.43; a box with a door hinged
+/// on its left edge over the left two thirds (a dark window, a handle at its free edge), a
+/// keypad panel; usable top.
 pub(crate) fn microwave(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = Builder::new();
     let body = appliance_body(&mut b, rng);
@@ -57,18 +59,35 @@ pub(crate) fn microwave(rng: &mut ChaCha8Rng) -> Asset {
     }
     b.cuboid("body", body, [-hw, foot, -hd], [hw, foot + h, hd]);
     let split = hw - 0.3 * w;
+    // The door, hinged on its left edge: a panel with the window and a handle at its free edge.
+    let door_z = hd + 0.012;
+    b.joint(articulation::side_hinge(
+        "door",
+        -hw + 0.004,
+        foot,
+        door_z,
+        true,
+    ));
+    b.link(Some("door"));
+    b.cuboid(
+        "door",
+        body,
+        [-hw + 0.004, foot + 0.004, hd - 0.001],
+        [split - 0.004, foot + h - 0.004, door_z],
+    );
     b.cuboid(
         "door_window",
         dark,
-        [-hw + 0.03, foot + 0.04, hd - 0.001],
-        [split - 0.04, foot + h - 0.04, hd + 0.006],
+        [-hw + 0.03, foot + 0.04, door_z - 0.001],
+        [split - 0.04, foot + h - 0.04, door_z + 0.003],
     );
     b.cuboid(
         "handle",
         body,
-        [split - 0.03, foot + 0.05, hd],
-        [split - 0.015, foot + h - 0.05, hd + 0.03],
+        [split - 0.03, foot + 0.05, door_z - 0.001],
+        [split - 0.015, foot + h - 0.05, door_z + 0.025],
     );
+    b.link(None);
     b.cuboid(
         "keypad",
         dark,
