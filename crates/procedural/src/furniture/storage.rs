@@ -468,7 +468,7 @@ pub(super) fn toy_box(rng: &mut ChaCha8Rng) -> Asset {
     let (w, h, d) = uniform3(rng, [0.6, 1.0], [0.4, 0.55], [0.35, 0.5]);
     let wall = uniform(rng, 0.015, 0.025);
     open_box(&mut b, body, w, h, d, wall, 0.0, "inside");
-    hinged_lid(&mut b, body, w, d, h, wall, 1.75);
+    hinged_lid(&mut b, body, w, d, h, wall, articulation::DOOR_OPEN);
     finish(b)
 }
 

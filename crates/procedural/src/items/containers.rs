@@ -416,7 +416,12 @@ pub(crate) fn cooler(rng: &mut ChaCha8Rng) -> Asset {
     let lid_y = h - uniform(rng, 0.05, 0.08);
     b.cuboid("body", body, [-x, 0.0, -z], [x, lid_y, z]);
     // The lid, hinged along its back edge, with a grip lip at the front.
-    b.joint(articulation::back_hinge("lid", h, -z - 0.005, 1.75));
+    b.joint(articulation::back_hinge(
+        "lid",
+        h,
+        -z - 0.005,
+        articulation::DOOR_OPEN,
+    ));
     b.link(Some("lid"));
     b.cuboid(
         "lid",
