@@ -1,9 +1,9 @@
 //! The static architecture as solid boxes: a floor slab under y = 0 and wall boxes split around
-//! their door openings. Every exporter builds floor and walls from these pieces so that the
-//! formats agree.
+//! their door openings, and the leaves hung in those openings. Every exporter builds floor,
+//! walls and leaves from these pieces so that the formats agree.
 
 use nalgebra::{Point3, Rotation3, Vector3};
-use scenethesis_scene_graph::{Architecture, Material, Mesh, MeshPart};
+use scenethesis_scene_graph::{Architecture, LeafGeometry, Material, Mesh, MeshPart};
 
 /// Thickness of the floor slab below y = 0, in metres.
 pub const FLOOR_THICKNESS: f64 = 0.05;
@@ -160,6 +160,32 @@ pub fn pieces(architecture: &Architecture) -> Vec<Piece> {
         });
     }
     out
+}
+
+/// A room door's leaf: a moving link fixed to the world by its hinge (the articulation of
+/// [`crate::articulation::Articulation::of_leaf`]).
+pub(crate) struct Leaf {
+    /// The door's id: writers name the leaf's link `<door>_leaf`, as an object's links.
+    pub door: String,
+    /// The id of the wall the door is cut into.
+    pub wall: String,
+    /// The leaf's joint and closed box in world coordinates.
+    pub geometry: LeafGeometry,
+}
+
+/// The leaf of every door that has one, in the order of the doors.
+pub(crate) fn leaves(architecture: &Architecture) -> Vec<Leaf> {
+    architecture
+        .doors
+        .iter()
+        .filter_map(|door| {
+            Some(Leaf {
+                door: door.id.clone(),
+                wall: door.wall.clone(),
+                geometry: architecture.door_leaf(door)?,
+            })
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -12,7 +12,9 @@
 //! Parts naming a joint the object does not carry stay with the body, as drawn (closed).
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
-use scenethesis_scene_graph::{Joint, JointKind, Mesh, MeshPart, SceneObject};
+use scenethesis_scene_graph::{
+    Joint, JointKind, JointState, LeafGeometry, Mesh, MeshPart, SceneObject,
+};
 
 use crate::{MassProperties, DENSITY};
 
@@ -92,17 +94,29 @@ pub(crate) struct Articulation<'a> {
 impl<'a> Articulation<'a> {
     /// The split of `object`'s `mesh`, or `None` when the object has no joints.
     pub fn of(object: &'a SceneObject, mesh: &Mesh) -> Option<Self> {
-        if object.joints.is_empty() {
+        Self::of_joints(&object.joints, mesh)
+    }
+
+    /// The split of a room door's leaf: no body, one link in world coordinates (the world is
+    /// its asset frame, scale 1).
+    pub fn of_leaf(leaf: &'a LeafGeometry) -> Self {
+        Self::of_joints(std::slice::from_ref(&leaf.joint), &leaf.mesh)
+            .expect("a leaf has its joint")
+    }
+
+    /// The split of `mesh` by `joints`, or `None` when there are none.
+    fn of_joints(joints: &'a [JointState], mesh: &Mesh) -> Option<Self> {
+        if joints.is_empty() {
             return None;
         }
         // Parents before children; a joint whose parent is unknown (or in a cycle) hangs on
         // the body.
-        let mut order: Vec<usize> = Vec::with_capacity(object.joints.len());
-        let mut placed = vec![false; object.joints.len()];
-        let position = |name: &str| object.joints.iter().position(|j| j.joint.name == name);
+        let mut order: Vec<usize> = Vec::with_capacity(joints.len());
+        let mut placed = vec![false; joints.len()];
+        let position = |name: &str| joints.iter().position(|j| j.joint.name == name);
         loop {
             let before = order.len();
-            for (i, js) in object.joints.iter().enumerate() {
+            for (i, js) in joints.iter().enumerate() {
                 let ready = match js.joint.parent.as_deref().and_then(position) {
                     Some(p) => placed[p] || p == i,
                     None => true,
@@ -116,10 +130,10 @@ impl<'a> Articulation<'a> {
                 break;
             }
         }
-        order.extend((0..object.joints.len()).filter(|&i| !placed[i]));
+        order.extend((0..joints.len()).filter(|&i| !placed[i]));
         let mut links: Vec<Link<'a>> = Vec::with_capacity(order.len());
         for &i in &order {
-            let js = &object.joints[i];
+            let js = &joints[i];
             let parent = js.joint.parent.as_deref().and_then(|p| {
                 links
                     .iter()

@@ -14,18 +14,19 @@
 //! `{"joint": {name, kind, axis, anchor, limits, opens_to, parent?, state}}` as `scene.json`
 //! writes the joint (radians or metres, asset units). Turning a node about `axis` (a revolute
 //! joint) or moving it along `axis` (a prismatic one) animates the part in Blender or
-//! three.js.
+//! three.js. A room door's leaf is such a link node, `<door>_leaf`, a child of the node of
+//! the wall it is cut into (whose frame is the world's), pivoting at its hinge.
 
 use std::collections::BTreeMap;
 
 use serde::Serialize;
 use serde_json::{json, Value};
 
-use crate::architecture::{pieces, PieceKind};
+use crate::architecture::{leaves, pieces, PieceKind};
 use crate::articulation::Articulation;
 use crate::geometry::shade;
 use crate::ExportScene;
-use scenethesis_scene_graph::{JointState, Material, Mesh, SceneObject};
+use scenethesis_scene_graph::{JointState, Material, Mesh};
 
 const GLB_MAGIC: u32 = 0x4654_6C67;
 const CHUNK_JSON: u32 = 0x4E4F_534A;
@@ -243,20 +244,21 @@ impl Builder {
     }
 }
 
-/// The link nodes of an articulated object, appended after every root node: one per joint,
-/// a child of its parent link's node (or of the object's node, `object_node`), at the joint's
+/// The link nodes of an articulated object (or a door, `owner` its id), appended after every
+/// root node: one per joint, a child of its parent link's node (or of the object's node, or the
+/// door's wall's, `object_node`), at the joint's
 /// anchor and moved by its state, holding the link's mesh in its own frame, its `extras`
 /// `{"joint": …}` the joint as `scene.json` writes it (radians or metres, asset units).
 fn add_links(
     b: &mut Builder,
     nodes: &mut Vec<Node>,
     object_node: usize,
-    object: &SceneObject,
+    owner: &str,
     articulation: &Articulation<'_>,
 ) {
     let mut indices = Vec::with_capacity(articulation.links.len());
     for (i, link) in articulation.links.iter().enumerate() {
-        let name = format!("{}_{}", object.id, link.joint.name);
+        let name = format!("{owner}_{}", link.joint.name);
         let mesh = link.has_geometry().then(|| b.mesh(&name, &link.mesh));
         let local = articulation.local_pose(i);
         let t = local.translation.vector;
@@ -351,7 +353,22 @@ pub fn to_glb(export: &ExportScene<'_>) -> Vec<u8> {
     let first_object = roots - scene.objects.len();
     for (k, (object, articulation)) in scene.objects.iter().zip(&articulations).enumerate() {
         if let Some(articulation) = articulation {
-            add_links(&mut b, &mut nodes, first_object + k, object, articulation);
+            add_links(
+                &mut b,
+                &mut nodes,
+                first_object + k,
+                &object.id,
+                articulation,
+            );
+        }
+    }
+    for leaf in &leaves(&scene.architecture) {
+        if let Some(wall) = nodes[..first_object]
+            .iter()
+            .position(|n| n.name == leaf.wall)
+        {
+            let articulation = Articulation::of_leaf(&leaf.geometry);
+            add_links(&mut b, &mut nodes, wall, &leaf.door, &articulation);
         }
     }
     while b.bin.len() % 4 != 0 {

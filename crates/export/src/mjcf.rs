@@ -17,12 +17,16 @@
 //! armature [`ARMATURE`] and a dry `frictionloss` that holds the part against gravity (a
 //! closed oven door stays closed), made stiff by [`FRICTION_TIME_CONSTANT`]; a
 //! `<contact><exclude>` keeps each link from colliding with its parent and its object's body.
+//!
+//! A room door's leaf is written the same way: a static body `<door>` (no free joint: it is
+//! fixed to the world) holding the leaf's body `<door>_leaf` on its hinge, excluded from
+//! contact with the world body's floor and walls (the frame it sits in).
 
 use std::fmt::Write;
 
 use nalgebra::{UnitQuaternion, Vector3};
 
-use crate::architecture::{pieces, OrientedBox, Piece, PieceKind};
+use crate::architecture::{leaves, pieces, Leaf, OrientedBox, Piece, PieceKind};
 use crate::articulation::{Articulation, JOINT_DAMPING};
 use crate::geometry::{num, num32, to_z_up, y_up_to_z_up, Identifiers};
 use crate::{Dynamics, ExportScene, DENSITY, FRICTION};
@@ -55,6 +59,9 @@ pub fn to_mjcf(export: &ExportScene<'_>) -> String {
     }
     for object in &scene.objects {
         doc.add_object(export, object);
+    }
+    for leaf in &leaves(&scene.architecture) {
+        doc.add_leaf(leaf);
     }
     doc.into_document(&scene.prompt)
 }
@@ -138,7 +145,8 @@ impl MjcfParts {
             Some(articulation) => {
                 self.add_geoms(&object.id, &articulation.body, pose.scale, "      ");
                 let mut bodies = vec![body];
-                self.add_links(object, &articulation, &mut bodies, None, "      ");
+                let owner = (object.id.as_str(), pose.scale);
+                self.add_links(owner, &articulation, &mut bodies, None, "      ");
             }
         }
         self.world.push_str("    </body>\n");
@@ -181,21 +189,22 @@ impl MjcfParts {
     /// state (so the model's initial `qpos` is the scene and 0 is closed), its geoms, its own
     /// children, and contact exclusions against its parent and the object's body. `bodies`
     /// holds the body names written so far: the object's body first, then one per link.
+    /// `owner` is the object's (or door's) id and scale.
     fn add_links(
         &mut self,
-        object: &SceneObject,
+        owner: (&str, f64),
         articulation: &Articulation<'_>,
         bodies: &mut Vec<String>,
         parent: Option<usize>,
         indent: &str,
     ) {
-        let scale = object.pose.scale;
+        let (id, scale) = owner;
         for (i, link) in articulation.links.iter().enumerate() {
             if link.parent != parent {
                 continue;
             }
             let joint = link.joint;
-            let name = self.names.make(&format!("{}_{}", object.id, joint.name));
+            let name = self.names.make(&format!("{id}_{}", joint.name));
             let local = articulation.local_pose(i);
             let pos = local.translation.vector * scale;
             let _ = writeln!(
@@ -229,8 +238,8 @@ impl MjcfParts {
                 n = attr(&name),
             );
             if link.has_geometry() {
-                let id = format!("{}_{}", object.id, joint.name);
-                self.add_geoms(&id, &link.mesh, scale, &format!("{indent}  "));
+                let link_id = format!("{id}_{}", joint.name);
+                self.add_geoms(&link_id, &link.mesh, scale, &format!("{indent}  "));
             } else {
                 // A joint needs a body with mass: a link drawn with no triangles gets a token one.
                 let _ = writeln!(
@@ -246,14 +255,34 @@ impl MjcfParts {
             if parent_name != root {
                 self.excludes.push((root, name.clone()));
             }
-            self.add_links(
-                object,
-                articulation,
-                bodies,
-                Some(i),
-                &format!("{indent}  "),
-            );
+            self.add_links(owner, articulation, bodies, Some(i), &format!("{indent}  "));
             let _ = writeln!(self.world, "{indent}</body>");
+        }
+    }
+
+    /// A room door's leaf: a static body `<door>` at the world's origin (turned Z-up, so the
+    /// leaf is written as an object's link) holding the leaf's body `<door>_leaf` on its
+    /// hinge, which never collides with the walls and floor (the world body).
+    fn add_leaf(&mut self, leaf: &Leaf) {
+        let articulation = Articulation::of_leaf(&leaf.geometry);
+        let body = self.names.make(&leaf.door);
+        let _ = writeln!(
+            self.world,
+            "    <body name=\"{}\" pos=\"0 0 0\" quat=\"{}\">",
+            attr(&body),
+            quat(&y_up_to_z_up()),
+        );
+        let mut bodies = vec![body];
+        self.add_links(
+            (&leaf.door, 1.0),
+            &articulation,
+            &mut bodies,
+            None,
+            "      ",
+        );
+        self.world.push_str("    </body>\n");
+        for link in &bodies[1..] {
+            self.excludes.push(("world".to_owned(), link.clone()));
         }
     }
 

@@ -13,19 +13,20 @@
 //! `<object>_<joint>`, its parts' OBJ files in the joint's frame, origin at the anchor) and a
 //! `revolute` or `prismatic` joint from the parent link, with the axis in the parent's frame,
 //! `<limit>` in radians or metres (scaled by the pose) and `<dynamics>` damping and friction as
-//! in MJCF. The zero configuration is closed.
+//! in MJCF. The zero configuration is closed. A room door's leaf is such a link
+//! (`<door>_leaf`) on a `revolute` joint from `world`, its origin the hinge.
 
 use std::collections::BTreeMap;
 use std::fmt::Write;
 
 use nalgebra::{Matrix3, Vector3};
 
-use crate::architecture::{pieces, OrientedBox};
+use crate::architecture::{leaves, pieces, OrientedBox};
 use crate::articulation::{Articulation, JOINT_DAMPING};
 use crate::geometry::{num, num32, to_z_up, y_up_to_z_up, Identifiers, MassProperties};
 use crate::mjcf::{attr, comment};
 use crate::{Dynamics, ExportScene, DENSITY};
-use scenethesis_scene_graph::{JointKind, Material, Mesh, MeshPart, SceneObject};
+use scenethesis_scene_graph::{JointKind, Material, Mesh, MeshPart};
 
 /// The effort limit of every revolute and prismatic joint (N·m or N).
 pub const JOINT_EFFORT: f64 = 100.0;
@@ -97,8 +98,15 @@ pub fn to_urdf(export: &ExportScene<'_>, mesh_dir: &str) -> UrdfPackage {
             n = attr(&name),
         );
         if let Some(articulation) = &articulation {
-            w.joints(object, articulation, &name);
+            w.joints((&object.id, pose.scale), articulation, &name);
         }
+    }
+    for leaf in &leaves(&scene.architecture) {
+        w.joints(
+            (&leaf.door, 1.0),
+            &Articulation::of_leaf(&leaf.geometry),
+            "world",
+        );
     }
 
     let mut urdf = String::new();
@@ -197,12 +205,13 @@ impl Writer<'_> {
     /// its parent link (`root`, the object's link, or another joint's), origin at the anchor in
     /// the parent's frame. URDF's zero configuration is closed: the scene's state is not
     /// written (it is in `scene.json`).
-    fn joints(&mut self, object: &SceneObject, articulation: &Articulation<'_>, root: &str) {
-        let scale = object.pose.scale;
+    /// `owner` is the object's (or door's) id and scale; a door's leaf hangs on `world`.
+    fn joints(&mut self, owner: (&str, f64), articulation: &Articulation<'_>, root: &str) {
+        let (owner, scale) = owner;
         let mut names: Vec<String> = Vec::with_capacity(articulation.links.len());
         for (i, link) in articulation.links.iter().enumerate() {
             let joint = link.joint;
-            let id = format!("{}_{}", object.id, joint.name);
+            let id = format!("{owner}_{}", joint.name);
             let name = self.links.make(&id);
             self.link(&name, &id, &link.mesh, scale);
             let parent = link.parent.map_or(root, |p| names[p].as_str());

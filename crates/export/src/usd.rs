@@ -15,13 +15,18 @@
 //! parent, with `scenethesis:state` and `scenethesis:opensTo` beside; the stage then has a
 //! `PhysicsScene` with gravity −Y. Objects without joints are written as before, without
 //! physics schemas.
+//!
+//! A room door's leaf is an `Xform` named by the door after the architecture pieces, an
+//! articulation root holding the leaf's rigid body (`leaf`, posed at the hinge in the scene's
+//! state, in world coordinates) and its `PhysicsRevoluteJoint` with no `physics:body0`: it is
+//! joined to the world.
 
 use std::collections::BTreeMap;
 use std::fmt::Write;
 
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
-use crate::architecture::pieces;
+use crate::architecture::{leaves, pieces, Leaf};
 use crate::articulation::Articulation;
 use crate::geometry::{num, num32, shade, Identifiers};
 use crate::{Dynamics, ExportScene, DENSITY};
@@ -58,6 +63,10 @@ pub fn to_usda(export: &ExportScene<'_>) -> String {
     for object in &scene.objects {
         looks.register(export.mesh(object));
     }
+    let leaves = leaves(&scene.architecture);
+    for leaf in &leaves {
+        looks.register(&leaf.geometry.mesh);
+    }
     out.push_str("    def Scope \"Looks\"\n    {\n");
     for (name, m) in &looks.materials {
         write_material(&mut out, name, m);
@@ -66,7 +75,7 @@ pub fn to_usda(export: &ExportScene<'_>) -> String {
 
     let mut prims = Identifiers::new(false);
     prims.reserve("Looks");
-    let has_joints = scene.objects.iter().any(|o| !o.joints.is_empty());
+    let has_joints = !leaves.is_empty() || scene.objects.iter().any(|o| !o.joints.is_empty());
     if has_joints {
         prims.reserve("PhysicsScene");
     }
@@ -80,6 +89,10 @@ pub fn to_usda(export: &ExportScene<'_>) -> String {
         );
         write_meshes(&mut out, mesh, &looks, false);
         out.push_str("    }\n");
+    }
+    for leaf in &leaves {
+        let name = prims.make(&leaf.door);
+        write_leaf(&mut out, &name, leaf, &looks);
     }
     for object in &scene.objects {
         let name = prims.make(&object.id);
@@ -141,14 +154,60 @@ fn write_articulation(
 ) {
     let mut names = Identifiers::new(false);
     let body = names.make("body");
-    let rigid = "prepend apiSchemas = [\"PhysicsRigidBodyAPI\", \"PhysicsMassAPI\"]";
     let _ = write!(
         out,
-        "\n        def Xform \"{body}\" (\n            {rigid}\n        )\n        {{\n            float physics:density = {}\n",
+        "\n        def Xform \"{body}\" (\n            {RIGID}\n        )\n        {{\n            float physics:density = {}\n",
         num(DENSITY)
     );
     out.push_str(&indented(&meshes_text(&articulation.body, looks, true)));
     out.push_str("        }\n");
+    let owner = Owner {
+        path,
+        body: Some(&body),
+        scale: object.pose.scale,
+    };
+    write_links(out, &owner, &mut names, articulation, looks);
+    if dynamics == Dynamics::Fixed {
+        let pose = &object.pose;
+        let t = pose.translation;
+        let half = pose.yaw / 2.0;
+        let _ = write!(
+            out,
+            "\n        def PhysicsFixedJoint {}\n        {{\n            rel physics:body1 = <{path}/{body}>\n            point3f physics:localPos0 = ({}, {}, {})\n            point3f physics:localPos1 = (0, 0, 0)\n            quatf physics:localRot0 = ({}, 0, {}, 0)\n            quatf physics:localRot1 = (1, 0, 0, 0)\n        }}\n",
+            quote(&names.make("world_joint")),
+            num(t.x),
+            num(t.y),
+            num(t.z),
+            num(half.cos()),
+            num(half.sin()),
+        );
+    }
+}
+
+/// The API schemas of a rigid body.
+const RIGID: &str = "prepend apiSchemas = [\"PhysicsRigidBodyAPI\", \"PhysicsMassAPI\"]";
+
+/// Whose links [`write_links`] writes: the prim path they are written under, the rigid body
+/// their root links hang on (`None`: the world), and the scale of prismatic limits.
+struct Owner<'a> {
+    path: &'a str,
+    body: Option<&'a str>,
+    scale: f64,
+}
+
+/// One rigid-body `Xform` per link, posed at its joint's anchor in the scene's state, and a
+/// `PhysicsRevoluteJoint` or `PhysicsPrismaticJoint` per joint joining it to its parent link,
+/// or to `owner.body` (no `physics:body0`, the world, when there is none: a door's leaf). The
+/// joint frame maps `physics:axis` (the asset axis nearest the joint's) onto the joint's axis
+/// through `localRot0` / `localRot1`, so the joint position is the state: 0 closed.
+fn write_links(
+    out: &mut String,
+    owner: &Owner<'_>,
+    names: &mut Identifiers,
+    articulation: &Articulation<'_>,
+    looks: &Looks,
+) {
+    let path = owner.path;
     let mut links: Vec<String> = Vec::with_capacity(articulation.links.len());
     for (i, link) in articulation.links.iter().enumerate() {
         let name = names.make(&link.joint.name);
@@ -157,7 +216,7 @@ fn write_articulation(
         let q = pose.rotation;
         let _ = write!(
             out,
-            "\n        def Xform {} (\n            {rigid}\n        )\n        {{\n            custom string scenethesis:joint = {}\n            float physics:density = {}\n            double3 xformOp:translate = ({}, {}, {})\n            quatd xformOp:orient = ({}, {}, {}, {})\n            uniform token[] xformOpOrder = [\"xformOp:translate\", \"xformOp:orient\"]\n",
+            "\n        def Xform {} (\n            {RIGID}\n        )\n        {{\n            custom string scenethesis:joint = {}\n            float physics:density = {}\n            double3 xformOp:translate = ({}, {}, {})\n            quatd xformOp:orient = ({}, {}, {}, {})\n            uniform token[] xformOpOrder = [\"xformOp:translate\", \"xformOp:orient\"]\n",
             quote(&name),
             quote(&link.joint.name),
             num(DENSITY),
@@ -175,10 +234,13 @@ fn write_articulation(
     }
     for (i, link) in articulation.links.iter().enumerate() {
         let joint = link.joint;
-        let parent = link.parent.map_or(&body, |p| &links[p]);
+        let body0 = match link.parent.map(|p| links[p].as_str()).or(owner.body) {
+            Some(parent) => format!("            rel physics:body0 = <{path}/{parent}>\n"),
+            None => String::new(),
+        };
         let (kind, unit) = match joint.kind {
             JointKind::Revolute => ("PhysicsRevoluteJoint", 180.0 / std::f64::consts::PI),
-            JointKind::Prismatic => ("PhysicsPrismaticJoint", object.pose.scale),
+            JointKind::Prismatic => ("PhysicsPrismaticJoint", owner.scale),
         };
         let (token, frame) = joint_frame(&link.axis());
         let rot = format!(
@@ -192,7 +254,7 @@ fn write_articulation(
         let [lo, hi] = link.limits();
         let _ = write!(
             out,
-            "\n        def {kind} {}\n        {{\n            custom string scenethesis:opensTo = {}\n            custom double scenethesis:state = {}\n            uniform token physics:axis = \"{token}\"\n            rel physics:body0 = <{path}/{parent}>\n            rel physics:body1 = <{path}/{}>\n            point3f physics:localPos0 = ({}, {}, {})\n            point3f physics:localPos1 = (0, 0, 0)\n            quatf physics:localRot0 = {rot}\n            quatf physics:localRot1 = {rot}\n            float physics:lowerLimit = {}\n            float physics:upperLimit = {}\n        }}\n",
+            "\n        def {kind} {}\n        {{\n            custom string scenethesis:opensTo = {}\n            custom double scenethesis:state = {}\n            uniform token physics:axis = \"{token}\"\n{body0}            rel physics:body1 = <{path}/{}>\n            point3f physics:localPos0 = ({}, {}, {})\n            point3f physics:localPos1 = (0, 0, 0)\n            quatf physics:localRot0 = {rot}\n            quatf physics:localRot1 = {rot}\n            float physics:lowerLimit = {}\n            float physics:upperLimit = {}\n        }}\n",
             quote(&names.make(&format!("{}_joint", joint.name))),
             quote(&opens_to(joint.opens_to)),
             num(link.state * unit),
@@ -204,21 +266,32 @@ fn write_articulation(
             num(hi * unit),
         );
     }
-    if dynamics == Dynamics::Fixed {
-        let pose = &object.pose;
-        let t = pose.translation;
-        let half = pose.yaw / 2.0;
-        let _ = write!(
-            out,
-            "\n        def PhysicsFixedJoint {}\n        {{\n            rel physics:body1 = <{path}/{body}>\n            point3f physics:localPos0 = ({}, {}, {})\n            point3f physics:localPos1 = (0, 0, 0)\n            quatf physics:localRot0 = ({}, 0, {}, 0)\n            quatf physics:localRot1 = (1, 0, 0, 0)\n        }}\n",
-            quote(&names.make("world_joint")),
-            num(t.x),
-            num(t.y),
-            num(t.z),
-            num(half.cos()),
-            num(half.sin()),
-        );
-    }
+}
+
+/// A room door's leaf: an `Xform` named by the door (`scenethesis:kind` `door_leaf`) that is
+/// an articulation root holding the leaf's rigid body and its revolute joint to the world.
+fn write_leaf(out: &mut String, name: &str, leaf: &Leaf, looks: &Looks) {
+    let _ = write!(
+        out,
+        "\n    def Xform {} (\n        prepend apiSchemas = [\"PhysicsArticulationRootAPI\"]\n    )\n    {{\n        custom string scenethesis:id = {}\n        custom string scenethesis:kind = \"door_leaf\"\n        custom string scenethesis:wall = {}\n",
+        quote(name),
+        quote(&leaf.door),
+        quote(&leaf.wall),
+    );
+    let owner = Owner {
+        path: &format!("/World/{name}"),
+        body: None,
+        scale: 1.0,
+    };
+    let articulation = Articulation::of_leaf(&leaf.geometry);
+    write_links(
+        out,
+        &owner,
+        &mut Identifiers::new(false),
+        &articulation,
+        looks,
+    );
+    out.push_str("    }\n");
 }
 
 /// The `physics:axis` token nearest a unit joint axis, and the rotation taking that token's

@@ -192,8 +192,18 @@ fn glb_parses_back_with_names_materials_and_transforms() {
     assert_eq!(
         names,
         [
-            "floor", "wall_0", "wall_1", "wall_2", "wall_3", "table", "mug", "crate", "ball",
-            "stool", "painting"
+            "floor",
+            "wall_0",
+            "wall_1",
+            "wall_2",
+            "wall_3",
+            "table",
+            "mug",
+            "crate",
+            "ball",
+            "stool",
+            "painting",
+            "door_0_leaf"
         ]
     );
     let root: Vec<usize> = gltf
@@ -202,7 +212,11 @@ fn glb_parses_back_with_names_materials_and_transforms() {
         .nodes()
         .map(|n| n.index())
         .collect();
-    assert_eq!(root.len(), names.len());
+    assert_eq!(
+        root.len(),
+        names.len() - 1,
+        "the door leaf hangs under its wall"
+    );
 
     // Materials: shared `oak`, plus every other distinct one and floor/wall.
     let mut material_names: Vec<&str> = gltf.materials().map(|m| m.name().unwrap()).collect();
@@ -213,6 +227,7 @@ fn glb_parses_back_with_names_materials_and_transforms() {
             "canvas_blue",
             "ceramic",
             "chrome",
+            "door_leaf",
             "floor",
             "frame_black",
             "oak",
@@ -266,7 +281,8 @@ fn glb_parses_back_with_names_materials_and_transforms() {
             let extras: serde_json::Value = serde_json::from_str(extras.get()).unwrap();
             assert_eq!(extras["category"], object.category);
             assert_eq!(extras["parent"], object.parent.to_string());
-        } else {
+        } else if name != "door_0_leaf" {
+            // Architecture is in world coordinates; the leaf pivots at its hinge (joints.rs).
             assert_eq!(node.transform().decomposed().0, [0.0; 3], "{name}");
         }
     }
@@ -332,7 +348,8 @@ fn usda_has_stage_metadata_xforms_and_bound_materials() {
     assert!(text.contains("double xformOp:rotateY = 90\n"));
     let mesh_prims = text.matches("def Mesh ").count();
     let parts: usize = meshes.values().map(|m| m.parts.len()).sum();
-    assert_eq!(mesh_prims, parts + 1 + 3 + 3); // floor, 3 plain walls, door wall in 3 boxes
+    // Floor, 3 plain walls, door wall in 3 boxes, door leaf.
+    assert_eq!(mesh_prims, parts + 1 + 3 + 3 + 1);
     assert_eq!(
         text.matches("rel material:binding = </World/Looks/")
             .count(),
@@ -358,13 +375,15 @@ fn mjcf_has_free_bodies_mesh_geoms_and_static_architecture() {
     let xml = scenethesis_export::mjcf::to_mjcf(&export);
     assert!(xml.contains("<option timestep=\"0.001\" gravity=\"0 0 -9.81\"/>"));
     assert!(xml.contains("density=\"1000\" friction=\"0.5 0.005 0.0001\""));
-    assert_eq!(xml.matches("<body ").count(), 6);
+    // Six objects, the door and its leaf.
+    assert_eq!(xml.matches("<body ").count(), 8);
     assert_eq!(xml.matches("<freejoint ").count(), 5, "painting is welded");
     assert!(!xml.contains("<freejoint name=\"painting\""));
     assert!(xml.contains("<freejoint name=\"table\""));
     let parts: usize = meshes.values().map(|m| m.parts.len()).sum();
-    assert_eq!(xml.matches("type=\"mesh\"").count(), parts);
-    assert_eq!(xml.matches("<mesh name=").count(), parts);
+    // Every part and the door leaf.
+    assert_eq!(xml.matches("type=\"mesh\"").count(), parts + 1);
+    assert_eq!(xml.matches("<mesh name=").count(), parts + 1);
     assert_eq!(xml.matches("type=\"plane\"").count(), 1);
     assert_eq!(xml.matches("type=\"box\"").count(), 3 + 3);
     // The table stands at scene (0, 0, −1.5): MuJoCo (0, 1.5, 0).
@@ -420,9 +439,13 @@ fn urdf_links_joints_meshes_and_inertia() {
     // Floor and four walls plus the painting are fixed.
     assert_eq!(xml.matches("type=\"fixed\"").count(), 6);
     let parts: usize = meshes.values().map(|m| m.parts.len()).sum();
-    assert_eq!(package.meshes.len(), parts);
-    assert_eq!(xml.matches("<mesh filename=\"meshes/").count(), 2 * parts);
-    assert_eq!(xml.matches("<inertial>").count(), 6);
+    // Every part and the door leaf.
+    assert_eq!(package.meshes.len(), parts + 1);
+    assert_eq!(
+        xml.matches("<mesh filename=\"meshes/").count(),
+        2 * (parts + 1)
+    );
+    assert_eq!(xml.matches("<inertial>").count(), 6 + 1);
     let obj = &package.meshes["mug_body.obj"];
     let vertices = obj.lines().filter(|l| l.starts_with("v ")).count();
     let faces = obj.lines().filter(|l| l.starts_with("f ")).count();

@@ -421,7 +421,11 @@ fn urdf_adds_revolute_and_prismatic_links() {
     ), "{xml}");
     assert!(xml.contains("<joint name=\"cabinet_drawer_joint\" type=\"prismatic\">"));
     assert!(xml.contains("<limit lower=\"0\" upper=\"0.3499999940395355\""));
-    assert_eq!(xml.matches("<inertial>").count(), 5 + 3);
+    assert_eq!(
+        xml.matches("<inertial>").count(),
+        5 + 3 + 1,
+        "objects, links, door leaf"
+    );
     // The link's OBJ is in its joint frame.
     let obj = &package.meshes["cabinet_drawer_drawer_handle.obj"];
     assert!(obj.contains("\nv -0.08 -0.00999999 0\n"), "{obj}");
@@ -431,8 +435,9 @@ fn urdf_adds_revolute_and_prismatic_links() {
 fn usd_makes_each_articulated_object_an_articulation_with_limited_joints() {
     let (scene, meshes) = scene();
     let text = usd::to_usda(&export_of(&scene, &meshes));
-    assert_eq!(text.matches("PhysicsArticulationRootAPI").count(), 2);
-    assert_eq!(text.matches("\"PhysicsRigidBodyAPI\"").count(), 3 + 2);
+    // Two objects and the room's door leaf.
+    assert_eq!(text.matches("PhysicsArticulationRootAPI").count(), 3);
+    assert_eq!(text.matches("\"PhysicsRigidBodyAPI\"").count(), 3 + 2 + 1);
     assert!(text.contains("def PhysicsRevoluteJoint \"door_joint\""));
     assert!(text.contains("def PhysicsPrismaticJoint \"drawer_joint\""));
     // The door turns about −Y: physics:axis Y turned half a turn about Z; degrees.
@@ -444,8 +449,8 @@ fn usd_makes_each_articulated_object_an_articulation_with_limited_joints() {
     assert!(text.contains("custom double scenethesis:state = 17.188"));
     assert!(text.contains("def PhysicsScene \"PhysicsScene\""));
     assert_eq!(text.matches('{').count(), text.matches('}').count());
-    // Only the articulated objects' meshes collide.
-    assert_eq!(text.matches("\"PhysicsCollisionAPI\"").count(), 14 + 6);
+    // Only the articulated objects' meshes and the door leaf collide.
+    assert_eq!(text.matches("\"PhysicsCollisionAPI\"").count(), 14 + 6 + 1);
 }
 
 #[test]
@@ -454,6 +459,7 @@ fn without_joints_an_object_is_written_as_a_rigid_one() {
     scene.objects[0].joints.clear();
     scene.objects[1].parent_link = None;
     scene.objects[4].joints.clear();
+    scene.architecture.doors[0].leaf = None;
     // The same mesh with no part naming a joint.
     let mut plain = meshes.clone();
     for mesh in plain.values_mut() {
@@ -471,4 +477,68 @@ fn without_joints_an_object_is_written_as_a_rigid_one() {
     assert!(!usda.contains("Physics"));
     let xml = mjcf::to_mjcf(&tagged);
     assert!(!xml.contains("<contact>") && !xml.contains("hinge"));
+}
+
+/// The room's door leaf: hinged on the left edge seen from the room (x = 0.445 of the front
+/// wall's room face z = 2.0), turning about −Y into the room, half open in the scene.
+#[test]
+fn a_room_doors_leaf_hangs_on_its_hinge_in_every_format() {
+    let (mut scene, meshes) = scene();
+    scene.architecture.doors[0].leaf.as_mut().unwrap().state = 0.5;
+    let export = export_of(&scene, &meshes);
+
+    let xml = mjcf::to_mjcf(&export);
+    let door = xml.find("<body name=\"door_0\" pos=\"0 0 0\"").unwrap();
+    let leaf = xml.find("<body name=\"door_0_leaf\"").unwrap();
+    assert!(door < leaf && !xml[door..leaf].contains("freejoint"));
+    assert!(xml.contains("<joint name=\"door_0_leaf\" type=\"hinge\" axis=\"0 -1 0\" range=\"0 1.75\" limited=\"true\" ref=\"0.5\" damping=\"1\""), "{xml}");
+    assert!(xml.contains("<exclude body1=\"world\" body2=\"door_0_leaf\"/>"));
+    assert!(xml.contains("<exclude body1=\"door_0\" body2=\"door_0_leaf\"/>"));
+
+    let urdf = urdf::to_urdf(&export, "m").urdf;
+    assert!(urdf.contains("<joint name=\"door_0_leaf_joint\" type=\"revolute\">\n    <parent link=\"world\"/>\n    <child link=\"door_0_leaf\"/>\n    <origin xyz=\"0.44"), "{urdf}");
+    assert!(urdf.contains("<axis xyz=\"0 0 -1\"/>\n    <limit lower=\"0\" upper=\"1.75\""));
+
+    let usda = usd::to_usda(&export);
+    let prim = usda
+        .find(
+            "def Xform \"door_0\" (\n        prepend apiSchemas = [\"PhysicsArticulationRootAPI\"]",
+        )
+        .unwrap();
+    let joint = usda[prim..]
+        .find("def PhysicsRevoluteJoint \"leaf_joint\"")
+        .unwrap()
+        + prim;
+    let end = joint + usda[joint..].find("}").unwrap();
+    let joint = &usda[joint..end];
+    assert!(
+        !joint.contains("physics:body0"),
+        "joined to the world: {joint}"
+    );
+    assert!(joint.contains("rel physics:body1 = </World/door_0/leaf>"));
+    assert!(
+        joint.contains("float physics:upperLimit = 100.26761"),
+        "{joint}"
+    );
+
+    let bytes = glb::to_glb(&export);
+    let gltf = gltf::Gltf::from_slice(&bytes).unwrap();
+    let wall = gltf.nodes().find(|n| n.name() == Some("wall_2")).unwrap();
+    let leaf = wall.children().next().expect("the leaf under its wall");
+    assert_eq!(leaf.name(), Some("door_0_leaf"));
+    let (t, r, _) = leaf.transform().decomposed();
+    assert!(
+        (t[0] - 0.445).abs() < 1e-6 && t[1] == 0.0 && (t[2] - 2.0).abs() < 1e-6,
+        "{t:?}"
+    );
+    // Turned 0.5 rad about −Y.
+    assert!((r[1] + (0.25f32).sin()).abs() < 1e-6, "{r:?}");
+    let extras: serde_json::Value =
+        serde_json::from_str(leaf.extras().as_ref().unwrap().get()).unwrap();
+    let joint: JointState = serde_json::from_value(extras["joint"].clone()).unwrap();
+    let want = scene
+        .architecture
+        .door_leaf(&scene.architecture.doors[0])
+        .unwrap();
+    assert_eq!(joint, want.joint);
 }

@@ -6,7 +6,9 @@ use std::ops::Range;
 
 use bytemuck::{Pod, Zeroable};
 use nalgebra::{Point2, Point3, Vector2, Vector3};
-use scenethesis_scene_graph::{Architecture, Environment, MeshPart, Wall, GROUND_ID};
+use scenethesis_scene_graph::{
+    leaf_material, Architecture, Environment, MeshPart, Wall, GROUND_ID,
+};
 
 use crate::{Backdrop, RenderError, RenderScene};
 
@@ -165,6 +167,7 @@ impl SceneGeometry {
                 for (center, half) in wall_boxes(arch, wall) {
                     geo.push_box(wall, center, half, index);
                 }
+                geo.push_leaves(arch, wall);
                 geo.walls.push(WallRange {
                     vertices: start..geo.vertices.len() as u32,
                     start: wall.start,
@@ -207,6 +210,25 @@ impl SceneGeometry {
         // Counter-clockwise seen from above (+Y): a → d → c, a → c → b.
         self.push_triangle([a, d, c], albedo, id);
         self.push_triangle([a, c, b], albedo, id);
+    }
+
+    /// The leaves hung in `wall`'s doors, at their states: drawn, and cut away, with the wall,
+    /// each under its door's id.
+    fn push_leaves(&mut self, arch: &Architecture, wall: &Wall) {
+        for door in arch.doors.iter().filter(|d| d.wall == wall.id) {
+            let Some(leaf) = arch.door_leaf(door) else {
+                continue;
+            };
+            let index = self.push_id(&door.id);
+            let albedo = leaf_material().base_color;
+            let albedo = [albedo[0], albedo[1], albedo[2]];
+            for part in &leaf.posed_mesh().parts {
+                for t in &part.triangles {
+                    let corner = |k: usize| Point3::from(part.positions[t[k] as usize]).cast();
+                    self.push_triangle([corner(0), corner(1), corner(2)], albedo, index);
+                }
+            }
+        }
     }
 
     /// A box aligned with `wall`, centred at `center` (x, y, z) with half extents along the

@@ -273,10 +273,17 @@ fn near_walls_are_cut_away_and_far_walls_and_door_gap_stay() {
     scene.cut_away_walls = false;
     let closed = renderer().render(&scene, &camera).unwrap();
     assert!(closed.pixel_count("wall_2") > 2000);
-    // The door opening lets the camera see the floor through the front wall.
+    // The door's closed leaf fills the opening, drawn under the door's id (and cut away with
+    // its wall above).
     let door_centre = Point3::new(0.0, 1.0, 1.85);
     let p = camera.project(&door_centre).unwrap().pixel;
-    assert_ne!(closed.id_at(p.x as u32, p.y as u32), Some("wall_2"));
+    assert_eq!(closed.id_at(p.x as u32, p.y as u32), Some("door_0"));
+    assert_eq!(frame.pixel_count("door_0"), 0);
+    // Without its leaf, the opening lets the camera see through the front wall.
+    scene.architecture.as_mut().unwrap().doors[0].leaf = None;
+    let open = renderer().render(&scene, &camera).unwrap();
+    let seen = open.id_at(p.x as u32, p.y as u32);
+    assert!(seen != Some("wall_2") && seen != Some("door_0"), "{seen:?}");
 }
 
 #[test]

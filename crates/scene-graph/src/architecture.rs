@@ -1,7 +1,7 @@
 use nalgebra::{Point2, Point3, Vector2};
 use serde::{Deserialize, Serialize};
 
-use crate::Aabb;
+use crate::{Aabb, DoorLeaf};
 
 /// Whether the scene is a closed room or open ground.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
@@ -150,12 +150,17 @@ pub struct DoorOpening {
     pub width: f64,
     /// Opening height in metres.
     pub height: f64,
+    /// The leaf hung in the opening, or `None` for an empty opening (scenes written before
+    /// leaves existed read as such).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub leaf: Option<DoorLeaf>,
 }
 
 impl Architecture {
     /// A closed rectangular room of the given size centred on the origin, with four walls
     /// (`wall_0` … `wall_3`, counter-clockwise from the back wall at −z) and one door opening
-    /// `door_0` of the given width in the middle of the front wall (+z).
+    /// `door_0` of the given width in the middle of the front wall (+z), its leaf
+    /// ([`DoorLeaf::default`]) closed, hinged on the left seen from the room.
     pub fn rectangular_room(width_x: f64, depth_z: f64, wall_height: f64, door_width: f64) -> Self {
         let (hx, hz) = (width_x / 2.0, depth_z / 2.0);
         let t = 0.1;
@@ -183,6 +188,7 @@ impl Architecture {
             offset: front.length() / 2.0,
             width: door_width,
             height: 2.1_f64.min(wall_height),
+            leaf: Some(DoorLeaf::default()),
         }];
         Self {
             environment: Environment::Indoor,

@@ -281,31 +281,52 @@ impl OpenState {
 
     /// Sets the state of every joint of every object of `scene` (`seed` fixes the random ones)
     /// and moves what the moving parts carry with them (a sock in a drawer slides out with it:
-    /// [`SceneObject::parent_link`](crate::SceneObject::parent_link)).
+    /// [`SceneObject::parent_link`](crate::SceneObject::parent_link)). The room's door leaves
+    /// are set too, by their door's id and [`crate::LEAF_JOINT`].
     ///
     /// ```
     /// use scenethesis_scene_graph::{OpenState, Scene, Architecture};
     /// let mut scene = Scene::new(Architecture::rectangular_room(4.0, 3.0, 2.5, 0.9));
-    /// OpenState::Random.apply(&mut scene, 7); // a scene without joints is unchanged
+    /// OpenState::Open.apply(&mut scene, 7); // the room's door leaf opens
     /// assert!(scene.objects.is_empty());
+    /// assert!(scene.architecture.doors[0].leaf.as_ref().unwrap().state > 1.5);
     /// ```
     pub fn apply(self, scene: &mut Scene, seed: u64) {
         let before = crate::carry::joint_states(scene);
         for object in &mut scene.objects {
             for placed in &mut object.joints {
-                let open = OPEN_SHARE * placed.joint.limits[1];
-                placed.state = match self {
-                    OpenState::Closed => 0.0,
-                    OpenState::Open => open,
-                    OpenState::Random => {
-                        let h = fnv1a64_from(mix64(seed), object.id.as_bytes());
-                        let h = mix64(fnv1a64_from(h, placed.joint.name.as_bytes()));
-                        open * ((h >> 40) as f32 / (1u64 << 24) as f32)
-                    }
-                };
+                placed.state = self.state(seed, &object.id, &placed.joint);
+            }
+        }
+        let arch = &scene.architecture;
+        let states: Vec<Option<f32>> = arch
+            .doors
+            .iter()
+            .map(|door| {
+                let leaf = arch.door_leaf(door)?;
+                Some(self.state(seed, &door.id, &leaf.joint.joint))
+            })
+            .collect();
+        for (door, state) in scene.architecture.doors.iter_mut().zip(states) {
+            if let (Some(leaf), Some(state)) = (door.leaf.as_mut(), state) {
+                leaf.state = state;
             }
         }
         crate::carry::move_contents(scene, &before);
+    }
+
+    /// The state this setting gives joint `joint` of the element `owner`.
+    fn state(self, seed: u64, owner: &str, joint: &Joint) -> f32 {
+        let open = OPEN_SHARE * joint.limits[1];
+        match self {
+            OpenState::Closed => 0.0,
+            OpenState::Open => open,
+            OpenState::Random => {
+                let h = fnv1a64_from(mix64(seed), owner.as_bytes());
+                let h = mix64(fnv1a64_from(h, joint.name.as_bytes()));
+                open * ((h >> 40) as f32 / (1u64 << 24) as f32)
+            }
+        }
     }
 }
 

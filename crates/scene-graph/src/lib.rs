@@ -69,6 +69,7 @@ mod aabb;
 mod architecture;
 mod asset;
 mod carry;
+mod door;
 mod floor_raster;
 mod hash;
 mod io;
@@ -89,6 +90,10 @@ pub use architecture::{
     MOUNT_WALL_REACH,
 };
 pub use asset::{Asset, AssetInfo, Placement, SupportSurface, SurfaceKind, LOW_SHELF_SHARE};
+pub use door::{
+    leaf_material, DoorLeaf, LeafGeometry, LEAF_FLOOR_GAP, LEAF_GAP, LEAF_JOINT, LEAF_OPEN_LIMIT,
+    LEAF_THICKNESS,
+};
 pub use floor_raster::{Components, FloorRaster, BLOCKED_CELL};
 pub use hash::{fnv1a64, fnv1a64_from, mix64, FNV_OFFSET_BASIS, GOLDEN_GAMMA};
 pub use io::{read_bounded, write_file_atomic, SceneIoError};

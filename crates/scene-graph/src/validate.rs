@@ -6,8 +6,9 @@ use crate::limits::{
     MAX_SCALE, MAX_WALLS, MAX_WALL_HEIGHT, MAX_WALL_THICKNESS, MAX_YAW, MIN_SCALE,
 };
 use crate::{
-    Aabb, Architecture, AssetRef, DoorOpening, Floor, ParentRef, Pose, RelationKind, Scene,
-    SceneObject, Wall, FORMAT_VERSION, GROUND_ID,
+    Aabb, Architecture, AssetRef, DoorLeaf, DoorOpening, Floor, OpensTo, ParentRef, Pose,
+    RelationKind, Scene, SceneObject, Wall, FORMAT_VERSION, GROUND_ID, LEAF_FLOOR_GAP, LEAF_GAP,
+    LEAF_OPEN_LIMIT,
 };
 
 /// `text` safe to print on a terminal or write into a log line: control characters (escape
@@ -132,6 +133,14 @@ pub enum ValidationError {
         link: String,
         /// The parent's id.
         parent: String,
+    },
+    /// A door leaf is hinged on neither side (`opens_to` up, down or out).
+    #[error("door `{door}`: field `leaf.opens_to` is {opens_to:?}, expected left or right")]
+    BadLeafHinge {
+        /// The door id.
+        door: String,
+        /// The side found.
+        opens_to: OpensTo,
     },
     /// A number is NaN or infinite.
     #[error("{owner}: field `{field}` is not a finite number")]
@@ -585,7 +594,50 @@ fn check_door(arch: &Architecture, door: &DoorOpening, errors: &mut Vec<Validati
                     "an opening that lies within its wall's length",
                 ));
             }
+            if let Some(leaf) = &door.leaf {
+                check_leaf(door, leaf, wall.thickness, errors);
+            }
         }
+    }
+}
+
+/// A door's leaf: hinged left or right, thicker than nothing and no thicker than its wall,
+/// wider and taller than its gaps, its state within its limits.
+fn check_leaf(
+    door: &DoorOpening,
+    leaf: &DoorLeaf,
+    wall_thickness: f64,
+    errors: &mut Vec<ValidationError>,
+) {
+    if !matches!(leaf.opens_to, OpensTo::Left | OpensTo::Right) {
+        errors.push(ValidationError::BadLeafHinge {
+            door: printable(&door.id).into_owned(),
+            opens_to: leaf.opens_to,
+        });
+    }
+    if !(leaf.thickness > 0.0 && leaf.thickness <= wall_thickness) {
+        errors.push(out_of_range(
+            &door.id,
+            "leaf.thickness",
+            leaf.thickness,
+            "more than 0 and at most its wall's thickness",
+        ));
+    }
+    if door.width <= 2.0 * LEAF_GAP || door.height <= LEAF_GAP + LEAF_FLOOR_GAP {
+        errors.push(out_of_range(
+            &door.id,
+            "width",
+            door.width.min(door.height),
+            "an opening wider than 1 cm and taller than 1.5 cm, to hang its leaf in",
+        ));
+    }
+    if !(0.0..=LEAF_OPEN_LIMIT).contains(&leaf.state) {
+        errors.push(out_of_range(
+            &door.id,
+            "leaf.state",
+            f64::from(leaf.state),
+            "0 (closed) to 1.75 rad (open)",
+        ));
     }
 }
 

@@ -2,9 +2,11 @@
 //! every object's access side and one connected free floor, checked on the guide's raster and,
 //! at the end, by the Walk metric's own raster rules.
 
-use nalgebra::Point2;
+use nalgebra::{Point2, Point3};
 use scenethesis_eval::raster::{walk_components, FloorRect, WALK_HEIGHT_LIMIT};
-use scenethesis_scene_graph::{Components, Floor, ROBOT_RADIUS};
+#[cfg(test)]
+use scenethesis_scene_graph::OpensTo;
+use scenethesis_scene_graph::{Aabb, Components, Floor, ROBOT_RADIUS};
 
 use super::geometry::{Footprint, Raster, RasterExt};
 use super::room::Room;
@@ -57,13 +59,16 @@ impl<'a> FloorState<'a> {
         let mut walk_base = raster.floor_mask(walk_grow(cell));
         let door_zone = indoor.then(|| {
             let clear = plan.door_clearance.max(0.6);
-            Footprint {
+            let zone = Footprint {
                 cx: 0.0,
                 cz: hd - clear / 2.0,
                 yaw: 0.0,
                 hx: DOOR_WIDTH / 2.0 + 0.2,
                 hz: clear / 2.0,
-            }
+            };
+            let arch = &room.architecture;
+            let swing = arch.doors.first().and_then(|d| arch.door_swing(d));
+            swing.map_or(zone, |swing| covering(zone, &swing, [-hw, -hd, hw, hd]))
         });
         let door_cell = |r: f64| {
             if indoor {
@@ -269,6 +274,28 @@ impl FloorState<'_> {
 }
 
 /// An obstacle's footprint as the Walk metric's floor rectangle.
+/// The axis-aligned `zone` grown to cover the part of the box `swing` (a door leaf's) over
+/// the `floor` [min x, min z, max x, max z], unchanged when it already does.
+fn covering(zone: Footprint, swing: &Aabb, floor: [f64; 4]) -> Footprint {
+    let (x0, x1) = (zone.cx - zone.hx, zone.cx + zone.hx);
+    let (z0, z1) = (zone.cz - zone.hz, zone.cz + zone.hz);
+    let lo = Point3::new(swing.min.x.max(floor[0]), 0.0, swing.min.z.max(floor[1]));
+    let hi = Point3::new(swing.max.x.min(floor[2]), 0.0, swing.max.z.min(floor[3]));
+    let swing = Aabb::new(lo, hi);
+    if swing.min.x >= x0 && swing.max.x <= x1 && swing.min.z >= z0 && swing.max.z <= z1 {
+        return zone;
+    }
+    let (x0, x1) = (x0.min(swing.min.x), x1.max(swing.max.x));
+    let (z0, z1) = (z0.min(swing.min.z), z1.max(swing.max.z));
+    Footprint {
+        cx: (x0 + x1) / 2.0,
+        cz: (z0 + z1) / 2.0,
+        yaw: 0.0,
+        hx: (x1 - x0) / 2.0,
+        hz: (z1 - z0) / 2.0,
+    }
+}
+
 fn metric_rect(fp: &Footprint) -> FloorRect {
     FloorRect {
         center: [fp.cx, fp.cz],
@@ -323,5 +350,49 @@ pub(super) fn drop_pocket_closers(state: &mut FloorState<'_>, dropped: &mut Vec<
             reason: "it closed off a pocket of floor from the walkway".into(),
         });
         state.rebuild();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{KnowledgePlanner, PlanRequest, Planner};
+
+    /// The door zone keeps the leaf's whole swing free: the quarter disc of radius the door's
+    /// width about the hinge on the room side, whichever side the hinge is on, even when the
+    /// plan asks for the shallowest clearance.
+    #[test]
+    fn door_zone_covers_the_leafs_swing() {
+        let available: Vec<String> = scenethesis_procedural::catalog::categories()
+            .map(|c| c.name.to_owned())
+            .collect();
+        let mut plan = KnowledgePlanner::new()
+            .plan(&PlanRequest::new("a bedroom", available, 0))
+            .unwrap();
+        plan.door_clearance = 0.6;
+        for side in [OpensTo::Left, OpensTo::Right] {
+            let mut room = Room::of(&plan).unwrap();
+            room.architecture.doors[0].leaf.as_mut().unwrap().opens_to = side;
+            let state = FloorState::new(&plan, &room, 0.05);
+            let zone = state.door_zone.unwrap();
+            let arch = &room.architecture;
+            let door = &arch.doors[0];
+            let joint = arch.door_leaf(door).unwrap().joint.joint;
+            let (hinge, inward) = (joint.anchor, arch.door_position(door).unwrap().1);
+            let (free, _) = arch.door_position(door).unwrap();
+            let out = (free.x - f64::from(hinge[0])).signum();
+            for i in 0..=20 {
+                let a = std::f64::consts::FRAC_PI_2 * f64::from(i) / 20.0;
+                for r in [0.3, 0.6, door.width] {
+                    // From the hinge toward the free edge, turning into the room.
+                    let x = f64::from(hinge[0]) + r * (a.cos() * out + a.sin() * inward.x);
+                    let z = f64::from(hinge[2]) + r * a.sin() * inward.y;
+                    assert!(
+                        zone.contains(x, z, 1e-6),
+                        "{side:?}: ({x:.3}, {z:.3}) of the swing lies outside {zone:?}"
+                    );
+                }
+            }
+        }
     }
 }

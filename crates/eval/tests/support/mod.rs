@@ -137,6 +137,7 @@ pub fn two_rooms(objects: Vec<EvalObject>) -> EvalScene {
         offset: 2.0,
         width: 0.9,
         height: 2.1,
+        leaf: None,
     });
     EvalScene {
         objects,

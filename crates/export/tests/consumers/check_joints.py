@@ -1,6 +1,7 @@
 """The joint checks of check_exports.py: what each consumer makes of an articulated object.
 
-For every object of scene.json with `joints`:
+For every object of scene.json with `joints`, and every door with a `leaf` (its one revolute
+joint `leaf`, joined to the world, its glTF node under its wall's):
   * glTF: the object's node has a descendant node per joint whose extras carry the joint.
   * MuJoCo: a hinge (revolute) or slide (prismatic) joint `<object>_<joint>` with the joint's
     range (metres scaled by the pose) and initial qpos at the scene's state; left alone for 2 s
@@ -21,8 +22,29 @@ TILT_DEGREES = 10.0
 RIDE_FRACTION = 0.7
 
 
+# A room door's leaf (docs/scene-json.md): one revolute joint named `leaf`, closed at 0 and
+# opening to LEAF_OPEN_LIMIT rad into the room; its link is `<door>_leaf`, under the node of
+# its wall in glTF.
+LEAF_OPEN_LIMIT = 1.75
+
+
 def articulated(scene):
-    return {oid: obj for oid, obj in scene["objects"].items() if obj.get("joints")}
+    """Everything with joints, by id: objects with `joints`, and doors with a `leaf` (as an
+    object-like dict whose one joint is the leaf's and whose glTF node is its wall's)."""
+    out = {oid: obj for oid, obj in scene["objects"].items() if obj.get("joints")}
+    for door in scene["architecture"].get("doors", []):
+        leaf = door.get("leaf")
+        if leaf is None:
+            continue
+        joint = {
+            "name": "leaf",
+            "kind": "revolute",
+            "limits": [0.0, LEAF_OPEN_LIMIT],
+            "opens_to": leaf["opens_to"],
+            "state": leaf.get("state", 0.0),
+        }
+        out[door["id"]] = {"joints": [joint], "node": door["wall"], "door": True}
+    return out
 
 
 def model_units(obj, joint):
@@ -36,7 +58,7 @@ def check_glb_joints(gltf, scene, fail, ok):
     count = 0
     for oid, obj in articulated(scene).items():
         found = {}
-        stack = list(by_name.get(oid, {}).get("children", []))
+        stack = list(by_name.get(obj.get("node", oid), {}).get("children", []))
         while stack:
             node = nodes[stack.pop()]
             joint = node.get("extras", {}).get("joint")
@@ -63,9 +85,10 @@ def riders(scene, oid, joint_name):
     return out
 
 
-def drive(model, data, mujoco, jid, open_value):
+def drive(model, data, mujoco, jid, open_value, touched=None):
     """Drives joint `jid` from where it is to 0 (0.5 s, skipped when it starts closed), then to
-    `open_value` (1 s), then holds it there for 0.3 s."""
+    `open_value` (1 s), then holds it there for 0.3 s. With a set `touched`, adds every body the
+    joint's own body touches on the way."""
     dof = model.jnt_dofadr[jid]
     adr = model.jnt_qposadr[jid]
     inertia = 1.0 / max(model.dof_invweight0[dof], 1e-9)
@@ -87,6 +110,12 @@ def drive(model, data, mujoco, jid, open_value):
             + friction * max(-1.0, min(1.0, err / 0.005))
         )
         mujoco.mj_step(model, data)
+        if touched is not None:
+            link = model.jnt_bodyid[jid]
+            for c in data.contact[: data.ncon]:
+                pair = (model.geom_bodyid[c.geom1], model.geom_bodyid[c.geom2])
+                if link in pair:
+                    touched.add(pair[1] if pair[0] == link else pair[0])
     data.qfrc_applied[dof] = 0.0
     return data.qpos[adr]
 
@@ -144,7 +173,9 @@ def check_mjcf_joints(path, scene, fail, ok):
         start = {b: data.xpos[b].copy() for b in free + [link]}
         tilt0 = {b: up_tilt(data, b) for b in free}
         lo, hi = model.jnt_range[jid]
-        q = drive(model, data, mujoco, jid, hi)
+        door = objects[oid].get("door", False)
+        touched = set()
+        q = drive(model, data, mujoco, jid, hi, touched=touched)
         if not np.all(np.isfinite(data.qpos)):
             fail(f"{path}: driving {oid}_{j['name']} diverged")
             continue
@@ -152,8 +183,14 @@ def check_mjcf_joints(path, scene, fail, ok):
         reached.append(f"{j['name']} {frac * 100:.0f}%")
         if frac < 0.9:
             fail(f"{path}: joint {oid}_{j['name']} reached {q:.4f} of its open limit {hi:.4f} ({frac * 100:.0f} %)")
+        if door:
+            # A room door swings into free floor: its leaf touches no object.
+            for b in sorted(touched & set(free)):
+                name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, b)
+                fail(f"{path}: opening {oid}_{j['name']} hit {name}")
         for b in free:
-            if b in ride:
+            # What a door leaf never touched (a ball rolling in its crate) is not its doing.
+            if b in ride or (door and b not in touched):
                 continue
             tilt = abs(up_tilt(data, b) - tilt0[b])
             if tilt > TILT_DEGREES:
@@ -189,8 +226,10 @@ def check_usd_joints(stage, by_id, scene, fail, ok):
                 joint = schema(child)
                 targets = joint.GetBody1Rel().GetTargets() + joint.GetBody0Rel().GetTargets()
                 bodies = [stage.GetPrimAtPath(t) for t in targets]
-                if len(bodies) != 2 or not all(b and b.HasAPI(UsdPhysics.RigidBodyAPI) for b in bodies):
-                    fail(f"usd: {child.GetPath()} does not join two rigid bodies ({targets})")
+                # A door's leaf hangs on the world: no body0.
+                want = 1 if obj.get("door") else 2
+                if len(bodies) != want or not all(b and b.HasAPI(UsdPhysics.RigidBodyAPI) for b in bodies):
+                    fail(f"usd: {child.GetPath()} does not join {want} rigid bodies ({targets})")
                     continue
                 name = bodies[0].GetAttribute("scenethesis:joint").Get()
                 found[name] = (kind, joint.GetLowerLimitAttr().Get(), joint.GetUpperLimitAttr().Get(), joint.GetAxisAttr().Get())
