@@ -13,7 +13,7 @@ use scenethesis_scene_graph::{aabb_floor_gap, Aabb, AssetInfo};
 
 use super::geometry::Footprint;
 use super::room::Side;
-use super::shared::{positional_target, WALL_MOUNT_HEIGHT};
+use super::shared::{positional_target, Placed, WALL_MOUNT_HEIGHT};
 use super::walkway::FloorState;
 use crate::arrangement::ArrangementRules;
 use crate::knowledge::{Knowledge, NominalShape};
@@ -46,14 +46,17 @@ fn yaw_toward(from: [f64; 2], to: [f64; 2]) -> f64 {
     (to[0] - from[0]).atan2(to[1] - from[1])
 }
 
-pub(super) fn mount_ok(state: &FloorState<'_>, fp: &Footprint) -> bool {
-    // Not over another mounted object, and free floor in front.
+/// Whether mounted object `p` may hang where it is: over no other mounted object, clear of
+/// the doors of the floor and hung objects around it (and theirs of it), free floor in front.
+pub(super) fn mount_ok(state: &FloorState<'_>, p: &Placed) -> bool {
+    let fp = &p.fp;
     if state
         .placed
         .iter()
         .filter(|p| p.mounted)
         .any(|p| p.fp.overlaps(fp, 0.1))
         || state.in_a_swing(fp, WALL_MOUNT_HEIGHT - 0.5)
+        || state.in_a_hung_swing(p)
     {
         return false;
     }

@@ -96,7 +96,7 @@ pub(super) fn place_floor_objects(
                     if !state.fits(&p, 0.02) {
                         continue;
                     }
-                } else if !mount_ok(state, &c.fp) {
+                } else if !mount_ok(state, &p) {
                     continue;
                 }
                 tried += 1;
@@ -190,10 +190,9 @@ fn hang_above_run(
             wall: Some(wall),
             mounted: true,
             bottom: Some(ABOVE_RUN_BOTTOM),
-            opening: None,
             ..Placed::standing(i, fp, info)
         };
-        if state.evaluate(Some(&p)).0 {
+        if !state.in_a_hung_swing(&p) && state.evaluate(Some(&p)).0 {
             state.commit(p);
             return true;
         }

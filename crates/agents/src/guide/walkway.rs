@@ -123,16 +123,20 @@ impl FloorState<'_> {
     /// `gap`) and of the floor their doors and drawers open into, and the floor its own open
     /// into inside the room and clear of every placed body, hung ones lower than its top
     /// included (other openings may share it: one opens at a time). An object placed against
-    /// another (a chair at its desk, a piece of a counter run beside the last) may stand in
-    /// that one's opening: it is moved aside to open it.
+    /// another (a chair at its desk) may stand in that one's opening: it is moved aside to
+    /// open it.
     pub(super) fn fits(&self, p: &Placed, gap: f64) -> bool {
-        self.inside_floor(&p.fp, 0.0)
-            && !self.collides(&p.fp, gap)
-            && !self
-                .placed
-                .iter()
-                .filter(|q| !q.mounted && !self.related(p, q))
-                .any(|q| q.opening.is_some_and(|o| o.overlaps(&p.fp, 0.0)))
+        self.inside_floor(&p.fp, 0.0) && !self.collides(&p.fp, gap) && self.clear_of_openings(p)
+    }
+
+    /// Whether `p` stands in no placed floor object's opening and its own opening lies inside
+    /// the room, clear of every placed body (see [`Self::fits`]).
+    pub(super) fn clear_of_openings(&self, p: &Placed) -> bool {
+        !self
+            .placed
+            .iter()
+            .filter(|q| !q.mounted && !self.related(p, q))
+            .any(|q| q.opening.is_some_and(|o| o.overlaps(&p.fp, 0.0)))
             && p.opening.is_none_or(|o| {
                 self.inside_floor(&o, 0.0)
                     && !self
@@ -160,6 +164,16 @@ impl FloorState<'_> {
             .iter()
             .filter(|p| !p.mounted && p.height > bottom)
             .any(|p| p.opening.is_some_and(|o| o.overlaps(fp, 0.0)))
+    }
+
+    /// Whether hung object `p` would hang where the doors of another hung object open, or its
+    /// own doors would open into one (a wall cabinet beside a wall shelf). Hung objects share
+    /// the height band above the counters, so their heights are not compared.
+    pub(super) fn in_a_hung_swing(&self, p: &Placed) -> bool {
+        self.placed.iter().filter(|q| q.mounted).any(|q| {
+            q.opening.is_some_and(|o| o.overlaps(&p.fp, 0.0))
+                || p.opening.is_some_and(|o| o.overlaps(&q.fp, 0.0))
+        })
     }
 
     /// Walkway evaluation with an optional extra object: (accepted, walk ratio, door reachable,
