@@ -65,7 +65,11 @@ fn kitchen_runs_hold_vary_and_stay_walkable() {
             }
             let cats: BTreeSet<&str> = scene.objects.iter().map(|o| o.category.as_str()).collect();
             for c in ["sink", "stove", "refrigerator", "kitchen_counter"] {
-                assert!(cats.contains(c), "{prompt} #{seed}: no {c}");
+                assert!(
+                    cats.contains(c),
+                    "{prompt} #{seed}: no {c} (dropped: {:?})",
+                    laid.dropped
+                );
             }
             let (walk, reach) = walk_and_reach(scene);
             let eval = scenethesis_eval::EvalScene::from_scene_procedural(scene).unwrap();

@@ -6,12 +6,13 @@
 //!
 //! The main run always stands on the back wall (`wall_0`, where the planner puts a wall anchor);
 //! legs run from its corners along the side walls; a galley's second run stands on the door wall
-//! beside the door. At a corner neither run takes the corner square: the main run starts just
-//! past the leg's depth and the leg just past the main run's, so their end pieces meet
-//! corner to corner and neither stands in front of the other's doors (a piece reaching into
-//! the corner would be a blind corner whose doors cannot open). Neighbours keep [`RUN_GAP`]
-//! apart, so their boxes touch within the rule's gap and never interpenetrate; no piece
-//! stands in another's opening.
+//! beside the door. At a corner one piece owns the corner: either the main run's end piece
+//! reaches into it and the leg starts in front of that piece, or the leg's first piece stands in
+//! the corner and the main run starts beside it. The piece in the corner is then blind (the other
+//! stands in front of its end), so a layout is kept only when the blind piece has nothing that
+//! opens there (a sink's open bay) and no piece stands in another's opening: with doors and
+//! drawers on most pieces, most kitchens get one wall or a galley. Neighbours keep [`RUN_GAP`]
+//! apart, so their boxes touch within the rule's gap and never interpenetrate.
 
 use std::f64::consts::PI;
 
@@ -30,9 +31,6 @@ use crate::plan::Zone;
 
 /// Gap between neighbouring pieces of a run, in metres.
 pub(super) const RUN_GAP: f64 = 0.02;
-/// How far past the leg's depth the main run may start at a corner: its end piece and the
-/// leg's stay within the rule's touching gap diagonally (√(0.03² + 0.02²) < 0.05 m).
-const CORNER_SLACK: f64 = 0.03;
 /// Bottom height of cabinets hung above a run (a worktop at ≈ 0.9 m plus 0.55 m).
 pub(super) const ABOVE_RUN_BOTTOM: f64 = 1.45;
 /// Clearance kept between a piece under a hung cabinet and the cabinet (items on the worktop).
@@ -246,6 +244,8 @@ fn commit_all(
     let before = state.placed.len();
     for (i, fp, side) in spots {
         let p = Placed::standing(*i, *fp, &infos[*i]).against_wall(format!("wall_{side}"));
+        // At a corner one piece stands in front of the other's end (a blind corner): that
+        // one must have nothing opening there (a sink's open bay), or the layout is refused.
         if !state.inside_floor(fp, 0.0)
             || state.collides(fp, RUN_GAP * 0.5)
             || !state.clear_of_openings(&p)
@@ -327,7 +327,7 @@ fn lay_split(
     let main = &order[a..a + m];
     let right = &order[a + m..];
     let galley = shape == RunShape::Galley;
-    let (lo, hi) = main_start_range(hw, left, main, right, galley)?;
+    let (own_l, own_r, lo, hi) = main_start_range(hw, left, main, right, galley)?;
     // Flush against a corner when there is a leg; anywhere (by the seed) otherwise.
     let x0 = if a > 0 {
         lo
@@ -346,16 +346,23 @@ fn lay_split(
         ));
         x += p.w + RUN_GAP;
     }
-    // A leg starts just past the main run's depth, leaving the corner square empty.
     let back = -hd + WALL_GAP;
     if a > 0 {
-        let start = back + main[0].d + RUN_GAP;
+        let start = if own_l {
+            back + main[0].d + RUN_GAP
+        } else {
+            back
+        };
         if !lay_leg(&mut left.iter().rev(), sides, 1, start, &mut out) {
             return None;
         }
     }
     if b > 0 && !galley {
-        let start = back + main.last().expect("main").d + RUN_GAP;
+        let start = if own_r {
+            back + main.last().expect("main").d + RUN_GAP
+        } else {
+            back
+        };
         if !lay_leg(&mut right.iter(), sides, 3, start, &mut out) {
             return None;
         }
@@ -375,28 +382,59 @@ fn lay_split(
 }
 
 /// The interval of the main run's start x0 (the run spans [x0, x0 + its length]) along a
-/// back wall of half length `hw`: at a corner with a leg the run starts just past the leg's
-/// depth (the corner square stays empty, see the module docs).
+/// back wall of half length `hw`, with which corners the main run's end pieces own (whether
+/// they reach into the legs' depth), the first ownership that fits: (owns left, owns right,
+/// lowest x0, highest x0).
 fn main_start_range(
     hw: f64,
     left: &[Piece],
     main: &[Piece],
     right: &[Piece],
     galley: bool,
-) -> Option<(f64, f64)> {
+) -> Option<(bool, bool, f64, f64)> {
+    let (a, b) = (left.len(), right.len());
     let lm = run_length(main);
-    let (mut lo, mut hi) = (-hw + WALL_GAP, hw - WALL_GAP - lm);
-    if let Some(leg) = left.last() {
-        let corner = -hw + WALL_GAP;
-        lo = lo.max(corner + leg.d + RUN_GAP);
-        hi = hi.min(corner + leg.d + CORNER_SLACK);
+    let (lo, hi) = (-hw + WALL_GAP, hw - WALL_GAP - lm);
+    if hi < lo {
+        return None;
     }
-    if let Some(leg) = right.first().filter(|_| !galley) {
-        let corner = hw - WALL_GAP;
-        hi = hi.min(corner - leg.d - RUN_GAP - lm);
-        lo = lo.max(corner - leg.d - CORNER_SLACK - lm);
+    // Corner ownership: per leg, whether the main run's end piece takes the corner.
+    let owners: Vec<(bool, bool)> = match (a > 0, b > 0 && !galley) {
+        (false, false) => vec![(true, true)],
+        (true, false) => vec![(true, true), (false, true)],
+        (false, true) => vec![(true, true), (true, false)],
+        (true, true) => vec![(true, true), (true, false), (false, true), (false, false)],
+    };
+    for (main_owns_left, main_owns_right) in owners {
+        let (mut l, mut h) = (lo, hi);
+        if a > 0 {
+            let d_leg = left.last().expect("leg").d;
+            let corner = -hw + WALL_GAP;
+            if main_owns_left {
+                // The main run's first piece reaches into the leg's depth.
+                h = h.min(corner + d_leg - 0.05);
+                l = l.max(corner);
+            } else {
+                l = l.max(corner + d_leg + RUN_GAP);
+                h = h.min(corner + d_leg + 0.045);
+            }
+        }
+        if b > 0 && !galley {
+            let d_leg = right[0].d;
+            let corner = hw - WALL_GAP;
+            if main_owns_right {
+                l = l.max(corner - d_leg + 0.05 - lm);
+                h = h.min(corner - lm);
+            } else {
+                h = h.min(corner - d_leg - RUN_GAP - lm);
+                l = l.max(corner - d_leg - 0.045 - lm);
+            }
+        }
+        if l <= h + 1e-9 {
+            return Some((main_owns_left, main_owns_right, l, h));
+        }
     }
-    (lo <= hi + 1e-9).then_some((lo, hi))
+    None
 }
 
 /// Lays a leg along `sides[side]`: legs run along +z from the back corner, from `start`, the

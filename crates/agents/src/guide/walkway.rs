@@ -6,11 +6,11 @@ use nalgebra::{Point2, Point3};
 use scenethesis_eval::raster::{walk_components, FloorRect, WALK_HEIGHT_LIMIT};
 #[cfg(test)]
 use scenethesis_scene_graph::OpensTo;
-use scenethesis_scene_graph::{Aabb, Components, Floor, ROBOT_RADIUS};
+use scenethesis_scene_graph::{Aabb, Components, Floor, RelationKind, ROBOT_RADIUS};
 
 use super::geometry::{Footprint, Raster, RasterExt};
 use super::room::Room;
-use super::shared::{positional_target, Placed, DOOR_WIDTH};
+use super::shared::{Placed, DOOR_WIDTH};
 use super::DroppedObject;
 use crate::plan::Plan;
 
@@ -148,11 +148,20 @@ impl FloorState<'_> {
             })
     }
 
-    /// Whether one of `a` and `b` is placed against the other (its positional target).
+    /// Whether one of `a` and `b` is placed in front of the other, facing it or around it (a
+    /// chair at its desk): such a pair may stand in each other's openings. Pieces beside each
+    /// other (a stove next to a counter) may not.
     fn related(&self, a: &Placed, b: &Placed) -> bool {
         let objects = &self.plan.objects;
         let target = |x: &Placed, y: &Placed| {
-            positional_target(&objects[x.plan_index]) == Some(objects[y.plan_index].id.as_str())
+            let (x, y) = (&objects[x.plan_index], &objects[y.plan_index]);
+            x.relations.iter().any(|r| {
+                r.target == y.id
+                    && matches!(
+                        r.kind,
+                        RelationKind::InFrontOf | RelationKind::Facing | RelationKind::Around
+                    )
+            })
         };
         target(a, b) || target(b, a)
     }
