@@ -274,18 +274,7 @@ fn a_hostile_asset_pack_cannot_pull_files_in_and_bad_assets_only_warn() {
     )
     .unwrap();
     let out_dir = outer.path().join("out");
-    let out = scenethesis(
-        &[
-            "generate",
-            "a living room with a sofa",
-            "--no-preview",
-            "--assets",
-            pack.to_str().unwrap(),
-            "--out",
-            out_dir.to_str().unwrap(),
-        ],
-        None,
-    );
+    let out = generate_with("a living room with a sofa", &pack, &out_dir);
     let err = stderr(&out);
     assert!(out.status.success(), "{err}");
     for needle in [
@@ -376,29 +365,15 @@ fn wardrobe_pack(dir: &Path, joint: serde_json::Value) -> PathBuf {
         ("body", [-0.5, 0.0, -0.3], [0.5, 2.0, 0.28]),
         ("door", [-0.5, 0.0, 0.28], [0.5, 2.0, 0.3]),
     ];
-    for (k, (name, lo, hi)) in boxes.iter().enumerate() {
+    for (k, (name, lo, hi)) in boxes.into_iter().enumerate() {
+        let part = scenethesis_scene_graph::MeshPart::cuboid(name, 0, lo, hi);
         obj.push_str(&format!("g {name}\n"));
-        for c in 0..8 {
-            let pick = |axis: usize| {
-                if c >> axis & 1 == 0 {
-                    lo[axis]
-                } else {
-                    hi[axis]
-                }
-            };
-            obj.push_str(&format!("v {} {} {}\n", pick(0), pick(1), pick(2)));
+        for [x, y, z] in &part.positions {
+            obj.push_str(&format!("v {x} {y} {z}\n"));
         }
-        let o = 8 * k;
-        for f in [
-            [1, 3, 4, 2],
-            [5, 6, 8, 7],
-            [1, 2, 6, 5],
-            [3, 7, 8, 4],
-            [1, 5, 7, 3],
-            [2, 4, 8, 6],
-        ] {
-            let [a, b, c, d] = f.map(|i| i + o);
-            obj.push_str(&format!("f {a} {b} {c} {d}\n"));
+        for t in &part.triangles {
+            let [a, b, c] = t.map(|i| i as usize + 1 + 8 * k);
+            obj.push_str(&format!("f {a} {b} {c}\n"));
         }
     }
     std::fs::write(pack.join("wardrobe.obj"), obj).unwrap();
@@ -414,12 +389,12 @@ fn wardrobe_door() -> serde_json::Value {
                        "anchor": [-0.5, 0, 0.3], "limits": [0, 1.7], "opens_to": "left"})
 }
 
-/// `generate "a bedroom with a wardrobe"` with the asset folder `pack`, into `out`.
-fn generate_with(pack: &Path, out: &Path) -> Output {
+/// `generate PROMPT --no-preview` with the asset folder `pack`, into `out`.
+fn generate_with(prompt: &str, pack: &Path, out: &Path) -> Output {
     scenethesis(
         &[
             "generate",
-            "a bedroom with a wardrobe",
+            prompt,
             "--no-preview",
             "--assets",
             pack.to_str().unwrap(),
@@ -437,7 +412,7 @@ fn a_malformed_joint_in_assets_json_is_one_error_and_writes_nothing() {
     joint["axis"] = serde_json::json!([0, 0, 0]);
     let pack = wardrobe_pack(dir.path(), joint);
     let out_dir = dir.path().join("out");
-    let out = generate_with(&pack, &out_dir);
+    let out = generate_with("a bedroom with a wardrobe", &pack, &out_dir);
     let field = "entry #0 (file `wardrobe.obj`): joints[0].axis is [0, 0, 0]; expected a finite, \
                  non-zero direction";
     assert_clean_failure(&out, &["assets.json", field]);
@@ -453,7 +428,7 @@ fn a_declared_joint_reaches_the_scene_object() {
     let dir = tempfile::tempdir().unwrap();
     let pack = wardrobe_pack(dir.path(), wardrobe_door());
     let out_dir = dir.path().join("out");
-    let out = generate_with(&pack, &out_dir);
+    let out = generate_with("a bedroom with a wardrobe", &pack, &out_dir);
     assert!(out.status.success(), "{}", stderr(&out));
     let scene: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out_dir.join("scene.json")).unwrap()).unwrap();
