@@ -65,7 +65,8 @@ const OBJ_SEED: &str = "# a unit box\no box\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\
 
 fn manifest_seed() -> String {
     r#"[{"file": "box.obj", "id": "crate", "category": "storage_box", "synonyms": ["box"], "up_axis": "z", "unit_scale": 0.5, "front": "-x", "placement": "floor", "scale_range": [0.9, 1.1]},
-{"file": "box.obj", "category": "side_table", "support_surfaces": [{"name": "top", "kind": "top", "polygon": [[-0.2, -0.2], [0.2, -0.2], [0.2, 0.2]], "height": 0.5, "clearance": 0.3}]}]"#
+{"file": "box.obj", "category": "side_table", "support_surfaces": [{"name": "top", "kind": "top", "polygon": [[-0.2, -0.2], [0.2, -0.2], [0.2, 0.2]], "height": 0.5, "clearance": 0.3}],
+ "joints": [{"part": "top_wood", "name": "lid", "kind": "revolute", "axis": [1, 0, 0], "anchor": [0, 1, 0], "limits": [0, 1.5], "opens_to": "up"}]}]"#
         .to_owned()
 }
 
@@ -107,6 +108,11 @@ fn every_seed_is_a_valid_input() {
     std::fs::write(tmp.path().join(MANIFEST_FILE), manifest_seed()).unwrap();
     let report = import_directory(tmp.path()).unwrap();
     assert_eq!(report.assets.len(), 2, "{:?}", report.warnings);
+    assert_eq!(
+        report.assets[1].info.joints.len(),
+        1,
+        "the seed's lid is imported"
+    );
     serde_json::from_slice::<scenethesis_agents::Plan>(plan_seed()).unwrap();
 }
 

@@ -7,8 +7,11 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 use nalgebra::{Matrix3, Rotation3, Vector3};
-use scenethesis_scene_graph::{Asset, AssetInfo, AssetRef, Mesh, Placement};
+use scenethesis_scene_graph::{
+    opening_sweep, Asset, AssetInfo, AssetRef, Joint, JointKind, Mesh, Placement,
+};
 
+use crate::joints::{check_joints, link_joints, Fault};
 use crate::limits::{MAX_ASSET_SIZE, MAX_MANIFEST_ENTRIES};
 use crate::manifest::{check_entry, read_manifest, Front, ManifestEntry, UpAxis, MANIFEST_FILE};
 use crate::{
@@ -112,7 +115,7 @@ impl Importer {
         };
         let mut ids = BTreeSet::new();
         for (label, entry) in entries {
-            self.import_listed(&root, &manifest_path, label, entry, &mut ids, &mut report);
+            self.import_listed(&root, &manifest_path, label, entry, &mut ids, &mut report)?;
         }
         Ok(report)
     }
@@ -158,6 +161,7 @@ impl Importer {
                     placement: None,
                     support_surfaces: None,
                     scale_range: None,
+                    joints: Vec::new(),
                 };
                 (label, Ok(entry))
             })
@@ -165,7 +169,7 @@ impl Importer {
     }
 
     /// Imports one listed entry into `report` (with an id not yet in `ids`), or adds the
-    /// warning that says why it was skipped.
+    /// warning that says why it was skipped; a malformed joint is an error.
     fn import_listed(
         &self,
         root: &Path,
@@ -174,7 +178,7 @@ impl Importer {
         entry: Result<ManifestEntry, String>,
         ids: &mut BTreeSet<String>,
         report: &mut ImportReport,
-    ) {
+    ) -> Result<(), ImportError> {
         let entry = match entry.and_then(|e| check_entry(&e).map(|()| e)) {
             Ok(e) => e,
             Err(reason) => {
@@ -183,7 +187,7 @@ impl Importer {
                     path: manifest_path.to_owned(),
                     reason: format!("{label}: {reason}"),
                 });
-                return;
+                return Ok(());
             }
         };
         let path = match resolve_inside(root, root, &entry.file.to_string_lossy()) {
@@ -194,7 +198,7 @@ impl Importer {
                     path: manifest_path.to_owned(),
                     reason: format!("{label}: field `file` {reason}"),
                 });
-                return;
+                return Ok(());
             }
         };
         match self.import_entry_in(&path, root, &entry) {
@@ -212,6 +216,10 @@ impl Importer {
                 };
                 report.assets.push(asset);
             }
+            Err(MeshLoadError::Joint { field, problem }) => {
+                let fault = Fault { field, problem };
+                return Err(ImportError::joint(manifest_path, label, fault));
+            }
             Err(e) => {
                 tracing::debug!("skipping asset {label}: {e}");
                 report.warnings.push(ImportWarning {
@@ -220,6 +228,7 @@ impl Importer {
                 });
             }
         }
+        Ok(())
     }
 
     /// Loads one mesh file and normalises it as `entry` says. Buffers and material libraries
@@ -252,6 +261,7 @@ impl Importer {
         root: &Path,
         entry: &ManifestEntry,
     ) -> Result<Asset, MeshLoadError> {
+        check_joints(&entry.joints).map_err(Fault::into_error)?;
         let mut mesh = self.load_mesh_in(path, root)?;
         if mesh.triangle_count() == 0 {
             return Err(MeshLoadError::Empty);
@@ -263,7 +273,9 @@ impl Importer {
                 cleaned.degenerate_triangles, cleaned.duplicate_triangles
             )));
         }
-        normalise(&mut mesh, entry.up_axis, entry.front, entry.unit_scale);
+        let frame = normalise_frame(&mut mesh, entry.up_axis, entry.front, entry.unit_scale);
+        let joints =
+            link_joints(&mut mesh, &entry.joints, |j| frame.joint(j)).map_err(Fault::into_error)?;
         let bounds = mesh.bounds().ok_or(MeshLoadError::Empty)?;
         let extent = bounds.max - bounds.min;
         if !extent.iter().all(|v| v.is_finite()) || extent.max() > MAX_ASSET_SIZE {
@@ -300,8 +312,8 @@ impl Importer {
                 front: [0.0, 0.0, 1.0],
                 support_surfaces,
                 scale_range: entry.scale_range.unwrap_or([0.9, 1.1]),
-                joints: Vec::new(),
-                opening_bounds: None,
+                opening_bounds: opening_sweep(&mesh, &joints),
+                joints,
             },
             mesh,
         })
@@ -363,6 +375,42 @@ fn file_stem(path: &Path) -> String {
 /// Scales to metres, turns `up` to +Y and `front` to +Z, then moves the origin to the centre of
 /// the footprint at the lowest point.
 pub fn normalise(mesh: &mut Mesh, up: UpAxis, front: Front, unit_scale: f32) {
+    normalise_frame(mesh, up, front, unit_scale);
+}
+
+/// The map [`normalise`] applies: file frame and units to the asset frame, `p ↦ linear·p +
+/// shift`.
+struct Frame {
+    linear: Matrix3<f32>,
+    shift: [f32; 3],
+    unit_scale: f32,
+}
+
+impl Frame {
+    /// `joint` (file frame and units) in the asset frame: the anchor mapped as a vertex, the
+    /// axis turned (unit length), prismatic limits scaled to metres.
+    fn joint(&self, joint: &Joint) -> Joint {
+        let a = self.linear * Vector3::from(joint.anchor);
+        let axis = (self.linear * Vector3::from(joint.axis)).normalize();
+        let k = match joint.kind {
+            JointKind::Revolute => 1.0,
+            JointKind::Prismatic => self.unit_scale,
+        };
+        Joint {
+            anchor: [
+                a.x + self.shift[0],
+                a.y + self.shift[1],
+                a.z + self.shift[2],
+            ],
+            axis: [axis.x, axis.y, axis.z],
+            limits: joint.limits.map(|l| l * k),
+            ..joint.clone()
+        }
+    }
+}
+
+/// [`normalise`], returning the map it applied.
+fn normalise_frame(mesh: &mut Mesh, up: UpAxis, front: Front, unit_scale: f32) -> Frame {
     let to_y_up = match up {
         UpAxis::Y => Rotation3::identity(),
         // z → y, y → −z: a rotation of −90° about +X.
@@ -381,16 +429,21 @@ pub fn normalise(mesh: &mut Mesh, up: UpAxis, front: Front, unit_scale: f32) {
         let v = r * Vector3::from(*p);
         *p = [v.x, v.y, v.z];
     }
-    if let Some(b) = mesh.bounds() {
-        let shift = [
+    let shift = mesh.bounds().map_or([0.0; 3], |b| {
+        [
             -(b.min.x + b.max.x) as f32 * 0.5,
             -b.min.y as f32,
             -(b.min.z + b.max.z) as f32 * 0.5,
-        ];
-        for p in mesh.parts.iter_mut().flat_map(|p| p.positions.iter_mut()) {
-            for k in 0..3 {
-                p[k] += shift[k];
-            }
+        ]
+    });
+    for p in mesh.parts.iter_mut().flat_map(|p| p.positions.iter_mut()) {
+        for k in 0..3 {
+            p[k] += shift[k];
         }
+    }
+    Frame {
+        linear: r,
+        shift,
+        unit_scale,
     }
 }

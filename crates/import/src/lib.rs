@@ -19,13 +19,47 @@
 //! the asset's front in the file's frame after the up axis has been turned to +Y; default
 //! `"+z"`), `placement` (`floor`, `wall`, `surface` or `ceiling`; defaults to the built-in
 //! category's, else `floor`), `support_surfaces` (in the normalised asset frame, metres; found
-//! automatically when absent) and `scale_range` (default `[0.9, 1.1]`).
+//! automatically when absent), `scale_range` (default `[0.9, 1.1]`) and `joints` (the moving
+//! parts, below).
 //!
 //! Normalisation scales to metres, turns the up axis to +Y and the front to +Z, then moves the
 //! origin to the footprint centre at the lowest point. A file that is missing, unreadable, not
 //! readable by its loader or without triangles is skipped with an [`ImportWarning`] naming it;
 //! the rest of the directory is still imported. Without a manifest, every mesh file in the directory
 //! is imported with the defaults and its file stem as category.
+//!
+//! ## Moving parts
+//!
+//! `joints` lists an asset's doors, drawers and lids as a procedural asset carries them
+//! ([`Joint`](scenethesis_scene_graph::Joint); the fields are described with `scene.json`'s
+//! joints, `docs/scene-json.md`), each with the `part` it moves ([`ManifestJoint`]):
+//!
+//! ```json
+//! { "file": "cabinet.glb", "category": "cabinet", "up_axis": "z", "unit_scale": 0.01,
+//!   "joints": [
+//!     { "part": "door", "name": "door", "kind": "revolute", "axis": [0, 0, -1],
+//!       "anchor": [-20, -27, 0], "limits": [0, 1.7], "opens_to": "left" },
+//!     { "part": "drawer", "name": "drawer", "kind": "prismatic", "axis": [0, -1, 0],
+//!       "anchor": [0, -27, 10], "limits": [0, 30], "opens_to": "out" }
+//!   ] }
+//! ```
+//!
+//! `part` is the name of a glTF node (all its triangle primitives move; a node without a name
+//! goes by its mesh's name), or for an OBJ file the group (`g door`; `door_oak` when the group
+//! uses material `oak`). `axis` and `anchor` are in the file's frame and units like its
+//! vertices, and so are prismatic `limits` (revolute ones are radians): the import turns and
+//! scales them with the mesh. Every joint is closed at state 0 (`lower <= 0 <= upper`) and
+//! the mesh is drawn closed; `parent` names a joint listed before it (a lid on a seat). The
+//! asset gets the joints, its parts the joint that moves them, and the box their opening
+//! sweeps ([`AssetInfo::opening_bounds`](scenethesis_scene_graph::AssetInfo)), exactly as a
+//! generated one.
+//!
+//! A malformed joint is not skipped like a bad mesh: a zero or non-finite axis, reversed
+//! limits or limits without 0, a part the file does not hold, a part two joints move, a
+//! repeated name or a parent not listed before fails the whole import with one
+//! [`ImportError::Joint`] naming the manifest, the entry and the field, e.g.
+//! ``assets.json: entry #0 (file `cabinet.glb`): joints[0].axis is [0, 0, 0]; expected a
+//! finite, non-zero direction``.
 //!
 //! ## Loaders
 //!
@@ -82,6 +116,7 @@
 mod clean;
 mod gltf_file;
 mod importer;
+mod joints;
 pub mod limits;
 mod loader;
 mod manifest;
@@ -97,6 +132,7 @@ use scenethesis_scene_graph::Asset;
 pub use clean::{clean_mesh, Cleaned};
 pub use gltf_file::{resolve_inside, GltfError, GltfFile, GltfMaterial, GltfNode, GltfPrimitive};
 pub use importer::{import_directory, import_entry, load_mesh, normalise, Importer};
+pub use joints::ManifestJoint;
 pub use loader::{parse_obj, AssetLoader, GltfLoader, ObjLoader};
 pub use manifest::{Front, ManifestEntry, UpAxis, MANIFEST_FILE};
 pub use resolver::{AssetResolver, ResolveError};
@@ -162,6 +198,33 @@ pub enum ImportError {
         /// The parse error, with line and column.
         source: serde_json::Error,
     },
+    /// A manifest entry declares a malformed joint (a zero axis, reversed limits, a part the
+    /// file does not hold, ...): unlike a bad mesh, this fails the whole import, so that no
+    /// scene is made with the asset silently rigid.
+    #[error("{}: {entry}: {field} {problem}", path.display())]
+    Joint {
+        /// The manifest path.
+        path: PathBuf,
+        /// The entry, e.g. ``entry #0 (file `cabinet.glb`)``.
+        entry: String,
+        /// The field at fault, e.g. `joints[1].axis`.
+        field: String,
+        /// What it is and what was expected, e.g. `is [0, 0, 0]; expected a finite, non-zero
+        /// direction`.
+        problem: String,
+    },
+}
+
+impl ImportError {
+    /// The [`ImportError::Joint`] for `fault` in entry `entry` of the manifest at `path`.
+    pub(crate) fn joint(path: &std::path::Path, entry: String, fault: joints::Fault) -> Self {
+        ImportError::Joint {
+            path: path.to_owned(),
+            entry,
+            field: fault.field,
+            problem: fault.problem,
+        }
+    }
 }
 
 /// Why one mesh file could not be loaded.
@@ -190,6 +253,15 @@ pub enum MeshLoadError {
     /// The manifest entry itself is unusable.
     #[error("invalid manifest entry: {0}")]
     Entry(String),
+    /// A joint of the manifest entry is malformed (see [`ImportError::Joint`], which
+    /// [`Importer::import_directory`] turns this into).
+    #[error("{field} {problem}")]
+    Joint {
+        /// The field at fault, e.g. `joints[0].part`.
+        field: String,
+        /// What it is and what was expected.
+        problem: String,
+    },
     /// No loader of the importer reads the file's extension.
     #[error("unsupported file type (expected {expected})")]
     Unsupported {

@@ -30,3 +30,5 @@ pub const MAX_ASSET_SIZE: f64 = 50.0;
 pub const MAX_ASSET_SCALE: f32 = 10.0;
 /// Most synonyms of one manifest entry.
 pub const MAX_SYNONYMS: usize = 64;
+/// Most joints of one manifest entry.
+pub const MAX_JOINTS: usize = 64;

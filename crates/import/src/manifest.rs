@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use scenethesis_scene_graph::{Placement, SupportSurface};
 use serde::Deserialize;
 
+use crate::joints::{check_joints, parse_joints, ManifestJoint};
 use crate::limits::{
     MAX_ASSET_SCALE, MAX_ASSET_SIZE, MAX_MANIFEST_BYTES, MAX_MANIFEST_ENTRIES, MAX_SYNONYMS,
 };
@@ -76,13 +77,17 @@ pub struct ManifestEntry {
     /// Allowed uniform scale range.
     #[serde(default)]
     pub scale_range: Option<[f32; 2]>,
+    /// The moving parts, in the file's frame and units (empty for a rigid asset).
+    #[serde(default)]
+    pub joints: Vec<ManifestJoint>,
 }
 
 fn one() -> f32 {
     1.0
 }
 
-/// Reads `assets.json` into one (label, entry or error naming the field) per entry.
+/// Reads `assets.json` into one (label, entry or error naming the field) per entry. A
+/// malformed `joints` field is an [`ImportError::Joint`], not an unusable entry.
 #[allow(clippy::type_complexity)]
 pub(crate) fn read_manifest(
     path: &Path,
@@ -126,8 +131,7 @@ pub(crate) fn read_manifest(
             list.len()
         )));
     }
-    Ok(list
-        .into_iter()
+    list.into_iter()
         .enumerate()
         .map(|(k, value)| {
             let file = value
@@ -136,9 +140,15 @@ pub(crate) fn read_manifest(
                 .map(|f| format!(" (file `{}`)", printable(f)))
                 .unwrap_or_default();
             let label = format!("entry #{k}{file}");
-            (label, parse_entry(value))
+            if let Some(joints) = value.get("joints") {
+                let checked = parse_joints(joints).and_then(|j| check_joints(&j));
+                if let Err(fault) = checked {
+                    return Err(ImportError::joint(path, label, fault));
+                }
+            }
+            Ok((label, parse_entry(value)))
         })
-        .collect())
+        .collect()
 }
 
 /// One manifest entry, or why it is unusable, naming the field.
@@ -160,9 +170,10 @@ fn parse_entry(value: serde_json::Value) -> Result<ManifestEntry, String> {
             "placement" => de::<Option<Placement>>(v).map(drop),
             "support_surfaces" => de::<Option<Vec<SupportSurface>>>(v).map(drop),
             "scale_range" => de::<Option<[f32; 2]>>(v).map(drop),
+            "joints" => de::<Vec<ManifestJoint>>(v).map(drop),
             other => {
                 return Err(format!(
-                    "unknown field `{}` (expected file, id, category, synonyms, up_axis, unit_scale, front, placement, support_surfaces or scale_range)",
+                    "unknown field `{}` (expected file, id, category, synonyms, up_axis, unit_scale, front, placement, support_surfaces, scale_range or joints)",
                     printable(other)
                 ))
             }

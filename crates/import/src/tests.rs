@@ -664,3 +664,5 @@ fn repeated_and_degenerate_triangles_are_dropped_before_the_distance_field() {
         "{w}"
     );
 }
+
+mod joints;

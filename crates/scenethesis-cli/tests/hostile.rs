@@ -274,18 +274,7 @@ fn a_hostile_asset_pack_cannot_pull_files_in_and_bad_assets_only_warn() {
     )
     .unwrap();
     let out_dir = outer.path().join("out");
-    let out = scenethesis(
-        &[
-            "generate",
-            "a living room with a sofa",
-            "--no-preview",
-            "--assets",
-            pack.to_str().unwrap(),
-            "--out",
-            out_dir.to_str().unwrap(),
-        ],
-        None,
-    );
+    let out = generate_with("a living room with a sofa", &pack, &out_dir);
     let err = stderr(&out);
     assert!(out.status.success(), "{err}");
     for needle in [
@@ -364,4 +353,93 @@ fn node_names_with_escape_sequences_are_printed_escaped_by_eval() {
         String::from_utf8_lossy(&all)
     );
     assert!(!stderr(&out).contains("panicked"));
+}
+
+/// An asset folder holding a 1 × 2 × 0.6 m wardrobe as OBJ (a `body` group and a 2 cm `door`
+/// group in front of it) and a manifest giving the door the hinge `joint`.
+fn wardrobe_pack(dir: &Path, joint: serde_json::Value) -> PathBuf {
+    let pack = dir.join("pack");
+    std::fs::create_dir(&pack).unwrap();
+    let mut obj = String::new();
+    let boxes = [
+        ("body", [-0.5, 0.0, -0.3], [0.5, 2.0, 0.28]),
+        ("door", [-0.5, 0.0, 0.28], [0.5, 2.0, 0.3]),
+    ];
+    for (k, (name, lo, hi)) in boxes.into_iter().enumerate() {
+        let part = scenethesis_scene_graph::MeshPart::cuboid(name, 0, lo, hi);
+        obj.push_str(&format!("g {name}\n"));
+        for [x, y, z] in &part.positions {
+            obj.push_str(&format!("v {x} {y} {z}\n"));
+        }
+        for t in &part.triangles {
+            let [a, b, c] = t.map(|i| i as usize + 1 + 8 * k);
+            obj.push_str(&format!("f {a} {b} {c}\n"));
+        }
+    }
+    std::fs::write(pack.join("wardrobe.obj"), obj).unwrap();
+    let manifest = serde_json::json!([{"file": "wardrobe.obj", "id": "my_wardrobe",
+                                       "category": "wardrobe", "joints": [joint]}]);
+    std::fs::write(pack.join("assets.json"), manifest.to_string()).unwrap();
+    pack
+}
+
+/// The wardrobe door's hinge: its left edge seen from the front, turning out about −Y.
+fn wardrobe_door() -> serde_json::Value {
+    serde_json::json!({"part": "door", "name": "door", "kind": "revolute", "axis": [0, -1, 0],
+                       "anchor": [-0.5, 0, 0.3], "limits": [0, 1.7], "opens_to": "left"})
+}
+
+/// `generate PROMPT --no-preview` with the asset folder `pack`, into `out`.
+fn generate_with(prompt: &str, pack: &Path, out: &Path) -> Output {
+    scenethesis(
+        &[
+            "generate",
+            prompt,
+            "--no-preview",
+            "--assets",
+            pack.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        None,
+    )
+}
+
+#[test]
+fn a_malformed_joint_in_assets_json_is_one_error_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut joint = wardrobe_door();
+    joint["axis"] = serde_json::json!([0, 0, 0]);
+    let pack = wardrobe_pack(dir.path(), joint);
+    let out_dir = dir.path().join("out");
+    let out = generate_with("a bedroom with a wardrobe", &pack, &out_dir);
+    let field = "entry #0 (file `wardrobe.obj`): joints[0].axis is [0, 0, 0]; expected a finite, \
+                 non-zero direction";
+    assert_clean_failure(&out, &["assets.json", field]);
+    let err = stderr(&out);
+    assert_eq!(err.matches("joints[0]").count(), 1, "printed once: {err}");
+    assert!(!out_dir.exists(), "nothing is written");
+    let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+    assert_eq!(left.len(), 1, "only the pack is left: {left:?}");
+}
+
+#[test]
+fn a_declared_joint_reaches_the_scene_object() {
+    let dir = tempfile::tempdir().unwrap();
+    let pack = wardrobe_pack(dir.path(), wardrobe_door());
+    let out_dir = dir.path().join("out");
+    let out = generate_with("a bedroom with a wardrobe", &pack, &out_dir);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let scene: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out_dir.join("scene.json")).unwrap()).unwrap();
+    let wardrobe = scene["objects"]
+        .as_object()
+        .unwrap()
+        .values()
+        .find(|o| o["asset"]["id"] == "my_wardrobe")
+        .expect("the imported wardrobe is placed");
+    let joint = &wardrobe["joints"][0];
+    assert_eq!(joint["name"], "door", "{wardrobe}");
+    assert_eq!(joint["kind"], "revolute", "{wardrobe}");
+    assert_eq!(joint["state"], 0.0, "{wardrobe}");
 }
