@@ -189,7 +189,7 @@ impl Packer {
                 .support_surfaces
                 .iter()
                 .enumerate()
-                .filter(|(_, s)| s.kind == *kind)
+                .filter(|(_, s)| s.kind == *kind && !on_a_lid(parent, s))
                 .map(|(k, _)| k)
                 .collect();
             if support == RelationKind::Under && *kind == SurfaceKind::Under {
@@ -289,6 +289,26 @@ impl Packer {
         }
         None
     }
+}
+
+/// Whether `surface` of `parent` is the top of a part that swings up when it opens (a
+/// cooler's or a toy box's lid): its centre lies inside the box the moving parts sweep
+/// ([`AssetInfo::opening_bounds`]) at a height that box spans. A thing left there would stop
+/// the lid opening, so nothing is placed on it; a cabinet's top, beside its doors' sweep, stays
+/// usable.
+fn on_a_lid(parent: &AssetInfo, surface: &SupportSurface) -> bool {
+    let Some(swept) = parent.opening_bounds.as_ref() else {
+        return false;
+    };
+    let b = surface_bounds(surface);
+    let (x, z, y) = (
+        (b[0] + b[2]) / 2.0,
+        (b[1] + b[3]) / 2.0,
+        surface.height as f64,
+    );
+    (swept.min.x..=swept.max.x).contains(&x)
+        && (swept.min.z..=swept.max.z).contains(&z)
+        && (swept.min.y..=swept.max.y).contains(&y)
 }
 
 /// The part of a surface in front of a child placed at `centre` (half extents `half` on the
