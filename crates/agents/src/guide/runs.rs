@@ -246,11 +246,7 @@ fn commit_all(
         let p = Placed::standing(*i, *fp, &infos[*i]).against_wall(format!("wall_{side}"));
         // At a corner one piece stands in front of the other's end (a blind corner): that
         // one must have nothing opening there (a sink's open bay), or the layout is refused.
-        if !state.inside_floor(fp, 0.0)
-            || state.collides(fp, RUN_GAP * 0.5)
-            || !state.clear_of_openings(&p)
-            || !state.evaluate(Some(&p)).0
-        {
+        if !state.fits(&p, RUN_GAP * 0.5) || !state.evaluate(Some(&p)).0 {
             state.placed.truncate(before);
             state.rebuild();
             return false;

@@ -131,7 +131,7 @@ impl FloorState<'_> {
 
     /// Whether `p` stands in no placed floor object's opening and its own opening lies inside
     /// the room, clear of every placed body (see [`Self::fits`]).
-    pub(super) fn clear_of_openings(&self, p: &Placed) -> bool {
+    fn clear_of_openings(&self, p: &Placed) -> bool {
         !self
             .placed
             .iter()
@@ -296,7 +296,6 @@ impl FloorState<'_> {
     }
 }
 
-/// An obstacle's footprint as the Walk metric's floor rectangle.
 /// The axis-aligned `zone` grown to cover the part of the box `swing` (a door leaf's) over
 /// the `floor` [min x, min z, max x, max z], unchanged when it already does.
 fn covering(zone: Footprint, swing: &Aabb, floor: [f64; 4]) -> Footprint {
@@ -319,6 +318,7 @@ fn covering(zone: Footprint, swing: &Aabb, floor: [f64; 4]) -> Footprint {
     }
 }
 
+/// An obstacle's footprint as the Walk metric's floor rectangle.
 fn metric_rect(fp: &Footprint) -> FloorRect {
     FloorRect {
         center: [fp.cx, fp.cz],
