@@ -107,21 +107,19 @@ impl Support {
     }
 }
 
-/// The kinds of support surface that fit a support relation, best first.
-pub fn surface_kinds_for(relation: RelationKind) -> &'static [SurfaceKind] {
-    match relation {
-        RelationKind::Inside => &[SurfaceKind::Shelf, SurfaceKind::Interior],
-        RelationKind::Under => &[SurfaceKind::Under],
-        _ => &[SurfaceKind::Top, SurfaceKind::Interior, SurfaceKind::Shelf],
-    }
-}
+/// How much closer in height (metres) a surface of a less preferred kind must be to a child's
+/// foot, per place down the relation's order ([`SurfaceKind::for_support`]), to hold it
+/// instead: a mug *on* a cabinet stands on its top unless it stands at the height of one of
+/// its shelves (where the layout put it because the top was full).
+const KIND_RANK_COST: f64 = 0.05;
 
 /// Picks the parent's support surface for a child standing at `foot` (world position of its
 /// asset origin, i.e. the centre of its footprint at its lowest point) with relation `relation`:
-/// among the surfaces of a fitting kind, the one under the foot whose height is closest to the
-/// foot's height, else the nearest by horizontal plus vertical distance. For `under`, the low
-/// shelves beneath a top ([`is_low_shelf`]) fit as well as the floor beneath it. `None` when the
-/// parent has no surfaces of a fitting kind.
+/// among the surfaces of the kinds the relation allows ([`SurfaceKind::for_support`]), a
+/// surface under the foot before one beside it, then the nearest in height, a less preferred
+/// kind counting [`KIND_RANK_COST`] farther per rank. For `under`, the low shelves beneath a
+/// top ([`is_low_shelf`]) fit as well as the floor beneath it. `None` when the parent has no
+/// surfaces of a fitting kind.
 pub fn choose_surface(
     parent_id: &str,
     parent_pose: &Pose,
@@ -129,9 +127,8 @@ pub fn choose_surface(
     relation: RelationKind,
     foot: &Point3<f64>,
 ) -> Option<SupportPlane> {
-    let kinds = surface_kinds_for(relation);
     let mut best: Option<(f64, SupportPlane)> = None;
-    for kind in kinds {
+    for (rank, kind) in SurfaceKind::for_support(relation).iter().enumerate() {
         let fits = |s: &&SupportSurface| {
             s.kind == *kind || (*kind == SurfaceKind::Under && is_low_shelf(s, surfaces))
         };
@@ -139,14 +136,11 @@ pub fn choose_surface(
             let plane = SupportPlane::placed(parent_id, s, parent_pose);
             let horizontal = plane.horizontal_distance(foot.x, foot.z);
             let vertical = (plane.height - foot.y).abs();
-            // Containing surfaces win over non-containing ones; then the nearest.
-            let cost = vertical + horizontal * 4.0 + if horizontal > 0.0 { 100.0 } else { 0.0 };
+            let beside = if horizontal > 0.0 { 100.0 } else { 0.0 };
+            let cost = beside + vertical + horizontal * 4.0 + rank as f64 * KIND_RANK_COST;
             if best.as_ref().is_none_or(|(c, _)| cost < *c) {
                 best = Some((cost, plane));
             }
-        }
-        if best.is_some() {
-            break;
         }
     }
     best.map(|(_, p)| p)
@@ -282,5 +276,35 @@ mod tests {
             surface("shelf_3", SurfaceKind::Shelf, 1.2),
         ];
         assert!(choose_surface("b", &pose, &tall, RelationKind::Under, &on_shelf).is_none());
+    }
+
+    #[test]
+    fn on_a_cabinet_is_its_top_unless_the_foot_stands_at_a_shelf() {
+        // A bathroom cabinet: a top at 1 m and a bay floor behind its doors at 0.1 m. The
+        // layout puts a bottle "on" it on the bay floor once the top is full; the optimizer
+        // must keep it there, not lift it onto the top into the towels.
+        let mut cabinet = shelf_surfaces();
+        cabinet.truncate(1);
+        cabinet.push(SupportSurface {
+            name: "top".into(),
+            kind: SurfaceKind::Top,
+            polygon: vec![[-0.4, -0.15], [-0.4, 0.15], [0.4, 0.15], [0.4, -0.15]],
+            height: 1.0,
+            clearance: None,
+        });
+        let pose = Pose::new(1.0, 0.0, Vector3::zeros());
+        let pick = |y: f64| {
+            let foot = Point3::new(0.1, y, 0.0);
+            choose_surface("c", &pose, &cabinet, RelationKind::On, &foot)
+                .unwrap()
+                .surface
+        };
+        assert_eq!(pick(0.05), "shelf_0");
+        assert_eq!(pick(1.0), "top");
+        // A foot lifted from an image a few centimetres off the top is still on the top;
+        // between the two, the top is preferred until the shelf is clearly nearer.
+        assert_eq!(pick(0.97), "top");
+        assert_eq!(pick(0.55), "top");
+        assert_eq!(pick(0.45), "shelf_0");
     }
 }

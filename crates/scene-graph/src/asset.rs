@@ -1,4 +1,4 @@
-use crate::{Aabb, AssetRef, Joint, Mesh};
+use crate::{Aabb, AssetRef, Joint, Mesh, RelationKind};
 use serde::{Deserialize, Serialize};
 
 /// Where an asset is normally placed.
@@ -27,6 +27,30 @@ pub enum SurfaceKind {
     Interior,
     /// Floor space beneath the asset: under a table, a desk's knee hole, under a bench.
     Under,
+}
+
+impl SurfaceKind {
+    /// The kinds of surface a child held by `support` may rest on, best first: *on* a top,
+    /// else a shelf or an interior; *inside* a shelf bay or an interior; *under* the floor
+    /// space beneath. Empty for the relations that do not rest on a parent's surface (the
+    /// floor, a wall and the spatial relations). The layout fills surfaces in this order and
+    /// the optimizer chooses among the same kinds, so a mug the layout puts on a cabinet's
+    /// shelf because its top is full stays on that shelf.
+    ///
+    /// ```
+    /// use scenethesis_scene_graph::{RelationKind, SurfaceKind};
+    /// assert_eq!(SurfaceKind::for_support(RelationKind::On)[0], SurfaceKind::Top);
+    /// assert!(SurfaceKind::for_support(RelationKind::On).contains(&SurfaceKind::Shelf));
+    /// assert!(SurfaceKind::for_support(RelationKind::Beside).is_empty());
+    /// ```
+    pub fn for_support(support: RelationKind) -> &'static [SurfaceKind] {
+        match support {
+            RelationKind::On => &[SurfaceKind::Top, SurfaceKind::Shelf, SurfaceKind::Interior],
+            RelationKind::Inside => &[SurfaceKind::Shelf, SurfaceKind::Interior],
+            RelationKind::Under => &[SurfaceKind::Under],
+            _ => &[],
+        }
+    }
 }
 
 /// How low is low, as a share of a height: a shelf at most this share of a top's height

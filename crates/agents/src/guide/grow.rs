@@ -2,9 +2,9 @@
 //! fit: a stated vase taller than every compartment of a bookshelf at its smallest plausible
 //! size is not dropped while a slightly larger bookshelf would hold it.
 
-use scenethesis_scene_graph::{AssetInfo, ParentRef};
+use scenethesis_scene_graph::{AssetInfo, ParentRef, SurfaceKind};
 
-use super::surfaces::{asked, kinds_for, FIT_SHARE, HEADROOM};
+use super::surfaces::{asked, FIT_SHARE, HEADROOM};
 use crate::plan::Plan;
 
 /// The uniform scale each planned object is laid out at, by plan index: 1 except for a floor
@@ -43,7 +43,7 @@ fn needed_scale(
 ) -> f64 {
     let smallest = child.scale_range[0] as f64;
     let [w, h, d] = child.size.map(|v| v as f64 * smallest);
-    let kinds = kinds_for(support);
+    let kinds = SurfaceKind::for_support(support);
     parent
         .support_surfaces
         .iter()

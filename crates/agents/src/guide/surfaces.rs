@@ -49,16 +49,6 @@ fn surface_bounds(surface: &SupportSurface) -> Rect {
         })
 }
 
-/// The surface kinds a support relation may use, best first.
-pub(super) fn kinds_for(support: RelationKind) -> &'static [SurfaceKind] {
-    match support {
-        RelationKind::On => &[SurfaceKind::Top, SurfaceKind::Shelf, SurfaceKind::Interior],
-        RelationKind::Inside => &[SurfaceKind::Shelf, SurfaceKind::Interior],
-        RelationKind::Under => &[SurfaceKind::Under],
-        _ => &[],
-    }
-}
-
 /// Places every supported object of `plan` whose parent has a pose, adding its pose to
 /// `poses`; returns the objects that found no room.
 pub(crate) fn place_children(
@@ -107,7 +97,7 @@ pub(crate) fn place_children(
                 });
                 continue;
             };
-            let kinds = kinds_for(o.support);
+            let kinds = SurfaceKind::for_support(o.support);
             let surfaces = packer.surfaces(o.support, &infos[p], p, rng);
             match packer.place(&infos[p], &infos[i], p, parent_pose, surfaces, rng) {
                 Some(pose) => {
@@ -184,7 +174,7 @@ impl Packer {
         rng: &mut ChaCha8Rng,
     ) -> Vec<usize> {
         let mut surfaces: Vec<usize> = Vec::new();
-        for kind in kinds_for(support) {
+        for kind in SurfaceKind::for_support(support) {
             let mut of_kind: Vec<usize> = parent
                 .support_surfaces
                 .iter()
