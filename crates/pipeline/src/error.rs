@@ -84,4 +84,16 @@ pub enum PipelineError {
         /// The limit, in seconds.
         limit_seconds: f64,
     },
+    /// The caller's [`Progress`](crate::Progress) asked the run to stop
+    /// ([`Progress::stop_requested`](crate::Progress::stop_requested)).
+    #[error(
+        "stopped by the caller before the {stage} stage{}",
+        if *.round > 0 { format!(" of re-plan round {}", .round) } else { String::new() }
+    )]
+    Stopped {
+        /// The stage that was about to start.
+        stage: crate::Stage,
+        /// The attempt (0 = first) it belonged to.
+        round: usize,
+    },
 }

@@ -335,6 +335,7 @@ impl Pipeline {
                 );
                 (Vec::new(), vec![note])
             }
+            Err(e @ PipelineError::Stopped { .. }) => return Err(e),
             Err(_) => (Vec::new(), Vec::new()),
         };
         notes.extend(preview_notes);

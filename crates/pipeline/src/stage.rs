@@ -80,6 +80,14 @@ pub trait Progress {
         let _ = (stage, round);
         None
     }
+    /// Whether the caller wants the run to end now (a callback that failed, an interrupt).
+    /// Asked before every stage; `true` ends the run with [`PipelineError::Stopped`] and
+    /// nothing is written. The default never stops.
+    ///
+    /// [`PipelineError::Stopped`]: crate::PipelineError::Stopped
+    fn stop_requested(&mut self) -> bool {
+        false
+    }
 }
 
 /// The null progress: ignores every event.

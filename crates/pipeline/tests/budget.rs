@@ -1,5 +1,6 @@
 //! The optimize stage's time budget inside a run: the run's time limit bounds the stage from
-//! inside (not only between stages), and a budget that is not reached changes nothing.
+//! inside (not only between stages), and a budget that is not reached changes nothing. A
+//! progress that asks to stop ends the run before its next stage.
 
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
@@ -145,4 +146,43 @@ fn the_run_time_limit_bounds_the_optimize_stage_from_inside() {
         return;
     }
     panic!("the stages before the optimizer overran every limit tried");
+}
+
+/// Asks the run to stop once the plan stage has started (as a failed callback does).
+#[derive(Default)]
+struct StopAfterPlan {
+    started: Vec<Stage>,
+}
+
+impl Progress for StopAfterPlan {
+    fn stage_started(&mut self, stage: Stage, _: usize) {
+        self.started.push(stage);
+    }
+
+    fn stop_requested(&mut self) -> bool {
+        self.started.contains(&Stage::Plan)
+    }
+}
+
+#[test]
+fn a_progress_that_asks_to_stop_ends_the_run_before_the_next_stage() {
+    let mut progress = StopAfterPlan::default();
+    let err = Pipeline::offline()
+        .generate(PROMPT, 0, &options(None), &mut progress)
+        .unwrap_err();
+    assert!(
+        matches!(
+            err,
+            PipelineError::Stopped {
+                stage: Stage::Retrieve,
+                round: 0
+            }
+        ),
+        "{err}"
+    );
+    assert_eq!(progress.started, vec![Stage::Plan]);
+    assert_eq!(
+        err.to_string(),
+        "stopped by the caller before the retrieve stage"
+    );
 }

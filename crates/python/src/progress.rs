@@ -7,7 +7,8 @@ use scenethesis_pipeline::{Progress, Stage};
 
 /// Calls `callback(stage, event, round, seconds, note)` as each stage starts (`event`
 /// "started", 0 seconds) and finishes ("finished"), re-acquiring the GIL only for the call.
-/// The first exception the callback raises is kept and raised when the run ends.
+/// The first exception the callback raises is kept, ends the run before its next stage and is
+/// raised then; so does an interrupt (Ctrl-C) that Python's signal handlers turn into one.
 pub struct PyProgress {
     callback: Option<Py<PyAny>>,
     error: Option<PyErr>,
@@ -55,5 +56,15 @@ impl Progress for PyProgress {
 
     fn stage_finished(&mut self, stage: Stage, round: usize, elapsed: Duration, note: &str) {
         self.call(stage, "finished", round, elapsed.as_secs_f64(), note);
+    }
+
+    fn stop_requested(&mut self) -> bool {
+        if self.error.is_none() {
+            // Runs the signal handlers (on the main thread only; elsewhere this is a no-op).
+            if let Err(e) = Python::attach(|py| py.check_signals()) {
+                self.error = Some(e);
+            }
+        }
+        self.error.is_some()
     }
 }

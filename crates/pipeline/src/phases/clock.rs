@@ -27,8 +27,12 @@ impl<'p> StageClock<'p> {
         }
     }
 
-    /// `Ok` while the run's time limit is not spent; checked before `stage` of `round` starts.
-    pub(crate) fn check(&self, stage: Stage, round: usize) -> Result<(), PipelineError> {
+    /// `Ok` while the run's time limit is not spent and the progress has not asked to stop;
+    /// checked before `stage` of `round` starts.
+    pub(crate) fn check(&mut self, stage: Stage, round: usize) -> Result<(), PipelineError> {
+        if self.progress.stop_requested() {
+            return Err(PipelineError::Stopped { stage, round });
+        }
         match self.limit {
             Some(limit) if self.started.elapsed() >= limit => Err(PipelineError::OutOfTime {
                 stage,

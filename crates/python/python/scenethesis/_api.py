@@ -321,7 +321,9 @@ def generate(
     ``llm_model``, ``vlm_model``, the key from ``$OPENAI_API_KEY`` or ``api_key_env``;
     ``llm_cache`` records answers and ``llm_replay=True`` replays them offline). ``assets``
     is a folder of your own GLB/glTF/OBJ files. ``progress`` is called with a
-    :class:`ProgressEvent` as each stage starts and finishes. ``time_limit`` is the run's
+    :class:`ProgressEvent` as each stage starts and finishes; an exception it raises ends the
+    run before the next stage and is raised from here, as is ``KeyboardInterrupt`` when Ctrl-C
+    is pressed during a run on the main thread. ``time_limit`` is the run's
     budget in seconds (``None`` or 0 for none), checked before every stage: once spent, the best
     scene so far is returned (its report's notes say so), or the run raises if it has none.
     ``open_state`` leaves doors, drawers and lids ``"closed"``, at ``"random"`` states fixed by
