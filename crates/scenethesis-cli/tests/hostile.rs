@@ -411,14 +411,15 @@ fn a_malformed_joint_in_assets_json_is_one_error_and_writes_nothing() {
     let mut joint = wardrobe_door();
     joint["axis"] = serde_json::json!([0, 0, 0]);
     let pack = wardrobe_pack(dir.path(), joint);
-    let out_dir = dir.path().join("out");
+    // --out inside a folder that does not exist yet: not even that folder is made.
+    let out_dir = dir.path().join("scenes").join("out");
     let out = generate_with("a bedroom with a wardrobe", &pack, &out_dir);
     let field = "entry #0 (file `wardrobe.obj`): joints[0].axis is [0, 0, 0]; expected a finite, \
                  non-zero direction";
     assert_clean_failure(&out, &["assets.json", field]);
     let err = stderr(&out);
     assert_eq!(err.matches("joints[0]").count(), 1, "printed once: {err}");
-    assert!(!out_dir.exists(), "nothing is written");
+    assert!(!out_dir.parent().unwrap().exists(), "nothing is written");
     let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
     assert_eq!(left.len(), 1, "only the pack is left: {left:?}");
 }

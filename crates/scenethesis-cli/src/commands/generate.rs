@@ -247,8 +247,9 @@ impl Progress for StageProgress {
 
 /// Runs `scenethesis generate`.
 pub fn run(args: GenerateArgs) -> Result<()> {
-    // The output path is checked before any work.
-    let out = OutputDir::prepare(&args.out, args.force)?;
+    // Every input is read and checked first (an --assets folder's manifest included), so a
+    // malformed one leaves nothing behind, not even --out's missing parent folders; then the
+    // output path, before the long work.
     let mut pipeline = args.pipeline.pipeline()?;
     pipeline = args.guide.apply(pipeline, &args.pipeline.providers)?;
     let prompt = match &args.plan {
@@ -260,6 +261,7 @@ pub fn run(args: GenerateArgs) -> Result<()> {
         }
         None => args.prompt.clone().unwrap_or_default(),
     };
+    let out = OutputDir::prepare(&args.out, args.force)?;
     let options = args.pipeline.options();
     let mut progress = StageProgress::on_stderr();
     let guard = watchdog(options.time_limit);
