@@ -251,7 +251,9 @@ impl Packer {
                 for s in tries.into_iter().filter(|s| *s >= smallest && *s > 0.0) {
                     let (hw, hd) = (w * s / 2.0, d * s / 2.0);
                     let round = (w - d).abs() <= 0.15 * w.max(d);
-                    if let Some((x, z)) = find_spot(surface, &b, occ, hw, hd, round, rng) {
+                    let margins = swept_margins(child, s, rel_yaw);
+                    let spot = find_spot(surface, &b, occ, [hw, hd], margins, round, rng);
+                    if let Some((x, z)) = spot {
                         occ.push([x - hw, z - hd, x + hw, z + hd]);
                         if let Some(zone) = opening_zone(child, s, [x, z], [hw, hd], rel_yaw) {
                             occ.push(zone);
@@ -326,14 +328,42 @@ fn opening_zone(
     })
 }
 
-/// A free centre for a `2hw × 2hd` rectangle on the surface: packed left to right on shelves
-/// and in containers, spread out on tops, centred underneath.
+/// How far past a child's body (half extents `w·s/2 × d·s/2` about its origin) its moving
+/// parts sweep behind it and to its sides while opening ([`AssetInfo::opening_bounds`] at
+/// scale `s`), on the surface's axes once the child is turned by `rel_yaw` (0 or π/2): the
+/// margins [−x, −z, +x, +z] that must stay on the surface too, so a laptop's screen leaning
+/// back never meets the wall or the sofa behind its table. The front is left out: a door
+/// swinging out past a counter's edge opens into the room, and [`opening_zone`] keeps that
+/// part clear of the surface's other children. Zero for a child with no moving parts.
+fn swept_margins(child: &AssetInfo, s: f64, rel_yaw: f64) -> [f64; 4] {
+    let Some(swept) = child.opening_bounds.as_ref() else {
+        return [0.0; 4];
+    };
+    let (hw, hd) = (
+        child.size[0] as f64 * s / 2.0,
+        child.size[2] as f64 * s / 2.0,
+    );
+    let side = (swept.max.x.max(-swept.min.x) * s - hw).max(0.0);
+    let back = (-swept.min.z * s - hd).max(0.0);
+    // The child's front is +z on the surface, or +x once turned by π/2.
+    if rel_yaw == 0.0 {
+        [side, back, side, 0.0]
+    } else {
+        [back, side, 0.0, side]
+    }
+}
+
+/// A free centre for a rectangle of half extents `half` on the surface, whose margins
+/// `margins` ([`swept_margins`]) also stay on it: packed left to right on shelves and in
+/// containers, spread out on tops, centred underneath. The spots tried (and the random draws
+/// made) do not depend on the margins, which only rule spots out, so a child with moving parts
+/// changes where nothing else goes but on its own surface.
 fn find_spot(
     surface: &SupportSurface,
     b: &Rect,
     occ: &[Rect],
-    hw: f64,
-    hd: f64,
+    [hw, hd]: [f64; 2],
+    margins: [f64; 4],
     round: bool,
     rng: &mut ChaCha8Rng,
 ) -> Option<(f64, f64)> {
@@ -346,12 +376,14 @@ fn find_spot(
             surface.contains((x + radius * a.cos()) as f32, (z + radius * a.sin()) as f32)
         })
     };
+    let [ml, mn, mr, mf] = margins;
     let ok = |x: f64, z: f64| {
         let r = [x - hw, z - hd, x + hw, z + hd];
+        let reach = [r[0] - ml, r[1] - mn, r[2] + mr, r[3] + mf];
         let inside = if round && surface.kind == SurfaceKind::Interior {
-            circle_inside(x, z)
+            circle_inside(x, z) && (margins == [0.0; 4] || rect_inside(surface, &reach))
         } else {
-            rect_inside(surface, &r)
+            rect_inside(surface, &reach)
         };
         inside && !occ.iter().any(|o| rects_overlap(o, &r))
     };
