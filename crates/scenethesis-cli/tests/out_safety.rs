@@ -1,6 +1,6 @@
 //! `--out` never loses a user's data: it refuses folders scenethesis did not write (unless
-//! `--force`), never replaces a file, checks the path before the pipeline starts, and resolves relative
-//! paths once (so `--out ../b` from inside `b` works).
+//! `--force`), never replaces a file, checks the path before the pipeline starts, and resolves
+//! relative paths once (so `--out ../b` from inside `b` works).
 
 use std::path::Path;
 use std::process::{Command, Output};
