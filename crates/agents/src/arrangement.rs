@@ -115,6 +115,37 @@ struct OrientedRule {
     subject: Vec<String>,
 }
 
+/// The subject is of use only with one of its targets: a dining chair with a table it serves,
+/// a monitor on a desk, a television with seating before it. Unlike the other rules it also
+/// applies to supported objects; the planner adds a missing target to a plan
+/// (`crate::planner`), and the judge rejects a scene where a subject has none.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct NeedsRule {
+    pub(crate) rule: String,
+    /// `reject` (default): a broken instance fails the judge; `report`: only reported.
+    #[serde(default)]
+    judge: Severity,
+    /// The categories that need a target.
+    pub(crate) subject: Vec<String>,
+    /// The categories that serve them, the planner's choice first.
+    pub(crate) target: Vec<String>,
+    /// Largest box gap on the floor between the subject (or the floor object carrying it) and
+    /// a target, in metres; a target carrying the subject always serves it.
+    pub(crate) within: f64,
+    /// The rule does not apply to scenes holding one of these (a shop, where a television is
+    /// goods for sale).
+    #[serde(default)]
+    pub(crate) except_with: Vec<String>,
+}
+
+impl NeedsRule {
+    /// Whether the rule applies to a scene (or plan) holding `categories`.
+    pub(crate) fn applies<'a>(&self, mut categories: impl Iterator<Item = &'a str>) -> bool {
+        !categories.any(|c| self.except_with.iter().any(|e| e == c))
+    }
+}
+
 /// What a broken instance of a rule means for the judge.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -140,6 +171,8 @@ pub struct ArrangementRules {
     pub(crate) runs: Vec<RunsRule>,
     #[serde(default)]
     oriented: Vec<OrientedRule>,
+    #[serde(default)]
+    pub(crate) needs: Vec<NeedsRule>,
 }
 
 impl ArrangementRules {
@@ -200,6 +233,15 @@ impl ArrangementRules {
         }
         for r in &self.oriented {
             names.extend(r.subject.iter().map(String::as_str));
+        }
+        for r in &self.needs {
+            names.extend(
+                r.subject
+                    .iter()
+                    .chain(&r.target)
+                    .chain(&r.except_with)
+                    .map(String::as_str),
+            );
         }
         names.sort_unstable();
         names.dedup();
@@ -300,8 +342,9 @@ pub fn check_arrangement(scene: &Scene) -> ArrangementCheck {
     check_arrangement_with(ArrangementRules::builtin(), scene)
 }
 
-/// Checks `rules` on a scene. Only floor objects (parent: the ground) take part; a rule with
-/// no subject in the scene adds nothing.
+/// Checks `rules` on a scene. Only floor objects (parent: the ground) take part, but for
+/// `needs` rules, whose subjects may stand on others; a rule with no subject in the scene adds
+/// nothing.
 pub fn check_arrangement_with(rules: &ArrangementRules, scene: &Scene) -> ArrangementCheck {
     let floor: Vec<&SceneObject> = scene
         .objects
@@ -412,8 +455,60 @@ pub fn check_arrangement_with(rules: &ArrangementRules, scene: &Scene) -> Arrang
             check.record(&r.rule, r.judge, &s.id, failure);
         }
     }
+    check_needs(rules, scene, &mut check);
     check.layout = run_layout(scene);
     check
+}
+
+/// Checks the `needs` rules: every subject, on the floor or carried, has a target carrying it
+/// or on the floor within the rule's reach of the floor object it stands on.
+fn check_needs(rules: &ArrangementRules, scene: &Scene, check: &mut ArrangementCheck) {
+    let categories = || scene.objects.iter().map(|o| o.category.as_str());
+    for r in rules.needs.iter().filter(|r| r.applies(categories())) {
+        let targets: Vec<&SceneObject> = scene
+            .objects
+            .iter()
+            .filter(|o| o.parent == ParentRef::Ground && r.target.contains(&o.category))
+            .collect();
+        for s in scene
+            .objects
+            .iter()
+            .filter(|o| r.subject.contains(&o.category))
+        {
+            let chain = support_chain(scene, s);
+            let carried = chain.iter().any(|o| r.target.contains(&o.category));
+            let root = chain.last().copied().unwrap_or(s);
+            let near = targets
+                .iter()
+                .any(|t| t.id != root.id && floor_gap(root, t) <= r.within);
+            let failure = (!carried && !near).then(|| {
+                if targets.is_empty() {
+                    format!("the scene has none of {}", r.target.join(", "))
+                } else {
+                    format!("no {} within {} m", r.target.join(" or "), r.within)
+                }
+            });
+            check.record(&r.rule, r.judge, &s.id, failure);
+        }
+    }
+}
+
+/// The objects carrying `o`, nearest first, up to the floor object (empty for a floor
+/// object).
+fn support_chain<'s>(scene: &'s Scene, o: &SceneObject) -> Vec<&'s SceneObject> {
+    let mut chain = Vec::new();
+    let mut parent = o.parent.object_id();
+    while let Some(id) = parent {
+        let Some(p) = scene.objects.iter().find(|x| x.id == id) else {
+            break;
+        };
+        if chain.iter().any(|c: &&SceneObject| c.id == p.id) {
+            break;
+        }
+        chain.push(p);
+        parent = p.parent.object_id();
+    }
+    chain
 }
 
 /// `s` is turned within 50° of straight at `t`'s front face (its front opposite `t`'s).

@@ -246,6 +246,10 @@ pub struct Vocabulary {
     pub default_archetype: String,
     /// Spatial phrases (as word stems) and what they state.
     pub relations: Vec<(Vec<String>, RelationPhrase)>,
+    /// Words that end a prompt's place phrase ("a kitchen *with* a table").
+    pub phrase_ends: BTreeSet<String>,
+    /// Head nouns that name no kind of place by themselves ("a music *room*").
+    pub generic_heads: BTreeSet<String>,
 }
 
 /// What a spatial phrase states.
@@ -359,7 +363,15 @@ struct VocabularyFile {
     generic: BTreeMap<String, Vec<String>>,
     filler: WordList,
     scene_words: SceneWords,
+    place_phrase: PlacePhraseWords,
     relations: BTreeMap<String, String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PlacePhraseWords {
+    ends: Vec<String>,
+    generic_heads: Vec<String>,
 }
 
 #[derive(Deserialize)]
@@ -452,6 +464,18 @@ impl Knowledge {
                     .collect(),
                 default_archetype: voc.scene_words.default_archetype,
                 relations,
+                phrase_ends: voc
+                    .place_phrase
+                    .ends
+                    .iter()
+                    .flat_map(|w| phrase_stems(w))
+                    .collect(),
+                generic_heads: voc
+                    .place_phrase
+                    .generic_heads
+                    .iter()
+                    .flat_map(|w| phrase_stems(w))
+                    .collect(),
             },
         })
     }

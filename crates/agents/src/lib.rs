@@ -42,10 +42,11 @@ pub use guide::{
 pub use knowledge::{Knowledge, KnowledgeError};
 pub use places::{Family, PlaceKind, Thesaurus};
 pub use plan::{
-    cut_prompt, ConstraintTarget, Layer, Plan, PlanConstraint, PlanError, PlanRequest,
-    PlannedObject, Planner, RequestedObject, Zone, BACK_WALL, FRONT_WALL, LEFT_WALL, MAX_AISLE,
-    MAX_COUNT_PER_OBJECT, MAX_DOOR_CLEARANCE, MAX_PLANNED_OBJECTS, MAX_PLAN_CONSTRAINTS,
-    MAX_PROMPT_CHARS, MAX_ROOM_SIDE, MIN_ROOM_SIDE, RIGHT_WALL,
+    cut_prompt, ConstraintTarget, Layer, PlaceReading, Plan, PlanConstraint, PlanError,
+    PlanRequest, PlannedObject, Planner, ReadingSource, RequestedObject, Zone, BACK_WALL,
+    FRONT_WALL, LEFT_WALL, LOW_CONFIDENCE, MAX_AISLE, MAX_COUNT_PER_OBJECT, MAX_DOOR_CLEARANCE,
+    MAX_PLANNED_OBJECTS, MAX_PLAN_CONSTRAINTS, MAX_PROMPT_CHARS, MAX_ROOM_SIDE, MIN_ROOM_SIDE,
+    RIGHT_WALL,
 };
 pub use planner::KnowledgePlanner;
 /// Relation semantics live in the shared model (`scenethesis-scene-graph`); re-exported here.

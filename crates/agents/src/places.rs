@@ -350,38 +350,6 @@ impl Thesaurus {
         }
         Some(a)
     }
-
-    /// The place whose phrase occurs in `stems` (longest phrase first, then file order), with
-    /// the phrase's word count.
-    pub(crate) fn find_place(&self, stems: &[Option<&str>]) -> Option<(&PlaceKind, usize)> {
-        let mut best: Option<(&PlaceKind, usize)> = None;
-        for place in &self.places {
-            for phrase in &place.phrases {
-                let hit = (0..stems.len()).any(|i| {
-                    phrase.len() <= stems.len() - i
-                        && phrase
-                            .iter()
-                            .enumerate()
-                            .all(|(k, w)| stems[i + k] == Some(w.as_str()))
-                });
-                if hit && best.is_none_or(|(_, len)| phrase.len() > len) {
-                    best = Some((place, phrase.len()));
-                }
-            }
-        }
-        best
-    }
-
-    /// The family of the last family word of `stems` (the head noun of "a haunted castle"),
-    /// with that word.
-    pub(crate) fn find_family<'a>(&self, stems: &[Option<&'a str>]) -> Option<(&Family, &'a str)> {
-        stems.iter().rev().flatten().find_map(|w| {
-            self.families
-                .iter()
-                .find(|f| f.words.contains(*w))
-                .map(|f| (f, *w))
-        })
-    }
 }
 
 /// Reads and checks `nouns.toml`.

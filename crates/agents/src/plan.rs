@@ -212,6 +212,10 @@ pub struct Plan {
     /// scene type).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub assumptions: Vec<String>,
+    /// The place the planner read the prompt as, how sure it is and why (`None` in plans
+    /// written before readings were recorded, or by hand).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reading: Option<PlaceReading>,
     /// Limits that cut the request: prompt length, instances per object, objects per plan.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub limits: Vec<String>,
@@ -219,6 +223,52 @@ pub struct Plan {
     /// none could be planned).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub requested: Vec<RequestedObject>,
+}
+
+/// Below this confidence a reading of the place is reported as a guess (in `report.json`
+/// and the summary line).
+pub const LOW_CONFIDENCE: f64 = 0.6;
+
+/// Who read the place of a prompt.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ReadingSource {
+    /// The offline planner's knowledge.
+    #[default]
+    Knowledge,
+    /// A language model (its scene type, completed from the same knowledge).
+    Model,
+}
+
+/// The place a prompt was read as, how sure the reading is and what it rests on.
+///
+/// ```
+/// use scenethesis_agents::{KnowledgePlanner, PlanRequest, Planner};
+///
+/// let planner = KnowledgePlanner::new();
+/// let request = PlanRequest::new("a kitchen", planner.known_categories(), 0);
+/// let reading = planner.plan(&request).unwrap().reading.unwrap();
+/// assert_eq!(reading.place, "kitchen");
+/// assert!(!reading.is_low());
+/// ```
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct PlaceReading {
+    /// The place read: an archetype or a place of the thesaurus (the primary one of a blend).
+    pub place: String,
+    /// From 0 (a guess) to 1 (the prompt names the place outright).
+    pub confidence: f64,
+    /// What the reading rests on, in words ("\"home cinema\" names the place `home_cinema`").
+    pub basis: String,
+    /// Who read it.
+    #[serde(default)]
+    pub source: ReadingSource,
+}
+
+impl PlaceReading {
+    /// Whether the reading is a guess ([`LOW_CONFIDENCE`]).
+    pub fn is_low(&self) -> bool {
+        self.confidence < LOW_CONFIDENCE
+    }
 }
 
 /// An object the prompt names, as planned.

@@ -96,12 +96,15 @@ enum Item {
     Break,
 }
 
-/// Reads `prompt`. `available` restricts how generic nouns resolve.
+/// Reads `prompt`. `available` restricts how generic nouns resolve. `naming` marks the tokens
+/// that name the place (they are not read as objects); without it, the phrases of the
+/// best-matching archetype are taken to.
 pub(crate) fn analyze(
     prompt: &str,
     knowledge: &Knowledge,
     nouns: &[NounAlias],
     available: &BTreeSet<String>,
+    naming: Option<&[bool]>,
 ) -> Analysis {
     let tokens = tokenize(prompt);
     let stems: Vec<Option<&str>> = tokens.iter().map(Token::stem).collect();
@@ -115,7 +118,8 @@ pub(crate) fn analyze(
     out.scene_words = stems.iter().flatten().any(|w| voc.scene_words.contains(*w));
 
     // 1. Scene type: whole phrases, then shared words.
-    let consumed = match_scenes(&stems, knowledge, &mut out);
+    let best_phrases = match_scenes(&stems, knowledge, &mut out);
+    let consumed = naming.map_or(best_phrases, <[bool]>::to_vec);
     let scene_categories = scene_categories(&out, knowledge);
 
     // 2. Items: mentions, relation phrases, pronouns and joints.

@@ -221,3 +221,109 @@ fn conflicting_and_unplannable_relations_are_reported() {
         p.notes
     );
 }
+
+#[test]
+fn a_place_is_read_from_its_head_noun_with_a_confidence() {
+    // Named outright: sure.
+    for (prompt, place) in [
+        ("a kitchen", "kitchen"),
+        ("a cozy bedroom with a desk and a piano", "bedroom"),
+        ("three chairs and a table in a kitchen", "kitchen"),
+        ("a pharmacy", "pharmacy"),
+    ] {
+        let reading = plan(prompt)
+            .reading
+            .expect("the knowledge planner records its reading");
+        assert_eq!(reading.place, place, "{prompt}: {reading:?}");
+        assert!(!reading.is_low(), "{prompt}: {reading:?}");
+    }
+    // A word that only modifies the head never decides the place on its own, and a guess
+    // says so.
+    for (prompt, wrong) in [
+        ("a music practice room", "office"),
+        ("a practice room", "office"),
+        ("a tattoo practice space", "office"),
+    ] {
+        let plan = plan(prompt);
+        let reading = plan.reading.clone().unwrap();
+        assert_ne!(reading.place, wrong, "{prompt}: {reading:?}");
+        assert!(
+            !plan.archetypes.iter().any(|a| a == wrong),
+            "{prompt}: {:?}",
+            plan.archetypes
+        );
+        assert!(reading.is_low(), "{prompt}: {reading:?}");
+        assert!(!reading.basis.is_empty());
+    }
+    // The head decides over a modifier naming another place; a modifier naming another
+    // archetype blends in second.
+    let plan_ = plan("a wizard's alchemy workshop");
+    assert_eq!(plan_.archetypes[0], "workshop", "{:?}", plan_.archetypes);
+    assert!(plan_.archetypes.contains(&"laboratory".to_owned()));
+    // Nothing known: the default room, read as a guess.
+    let unknown = plan("xqzt vbnm plorf").reading.unwrap();
+    assert!(unknown.is_low() && unknown.confidence < 0.2, "{unknown:?}");
+}
+
+#[test]
+fn plans_are_completed_so_that_what_needs_a_partner_has_one() {
+    // Dining chairs serve a table: a bedroom with dining chairs gets a table for them.
+    let chairs = plan("a bedroom with four dining chairs");
+    let table = chairs
+        .objects
+        .iter()
+        .find(|o| o.category == "dining_table")
+        .unwrap_or_else(|| panic!("{:?}", chairs.categories()));
+    assert!(
+        chairs
+            .notes
+            .iter()
+            .any(|n| n.starts_with("added a dining_table")),
+        "{:?}",
+        chairs.notes
+    );
+    let around = chairs
+        .objects
+        .iter()
+        .filter(|o| o.category == "dining_chair")
+        .filter(|o| o.relations.iter().any(|r| r.target == table.id))
+        .count();
+    assert_eq!(around, 4, "{:?}", chairs.objects);
+    // A monitor stands on a desk or table.
+    let monitor = plan("a bedroom with a monitor");
+    let m = monitor
+        .objects
+        .iter()
+        .find(|o| o.category == "monitor")
+        .unwrap();
+    let parent = m
+        .parent
+        .object_id()
+        .and_then(|p| monitor.object(p))
+        .unwrap();
+    assert!(
+        [
+            "desk",
+            "dining_table",
+            "side_table",
+            "nightstand",
+            "dresser"
+        ]
+        .contains(&parent.category.as_str())
+            || monitor.notes.iter().any(|n| n.starts_with("added a")),
+        "{parent:?}"
+    );
+    // A target the prompt rules out is not added: what only served it goes too.
+    let bare = plan("a classroom without any chairs or desks");
+    assert!(!bare.categories().contains("desk"));
+    assert!(
+        !bare.categories().contains("office_chair"),
+        "{:?}",
+        bare.notes
+    );
+    assert!(
+        bare.notes.iter().any(|n| n.starts_with("left out")),
+        "{:?}",
+        bare.notes
+    );
+}

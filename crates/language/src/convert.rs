@@ -5,8 +5,8 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use scenethesis_agents::{
-    ConstraintTarget, Layer, Plan, PlanConstraint, PlannedObject, Zone, BACK_WALL, FRONT_WALL,
-    LEFT_WALL, MAX_ROOM_SIDE, MIN_ROOM_SIDE, RIGHT_WALL,
+    ConstraintTarget, Layer, PlaceReading, Plan, PlanConstraint, PlannedObject, ReadingSource,
+    Zone, BACK_WALL, FRONT_WALL, LEFT_WALL, MAX_ROOM_SIDE, MIN_ROOM_SIDE, RIGHT_WALL,
 };
 use scenethesis_scene_graph::limits::{MAX_ID_BYTES, MAX_RELATIONS};
 use scenethesis_scene_graph::{
@@ -467,9 +467,17 @@ fn assemble_plan(
     };
     let anchor_id = anchor.clone().unwrap_or_default();
     let objects = order(objects, &anchor_id);
+    let scene_type = answer.scene_type.trim().to_lowercase().replace(' ', "_");
+    // The model's reading is taken as given: it read every word of the prompt.
+    let reading = PlaceReading {
+        place: scene_type.clone(),
+        confidence: 1.0,
+        basis: format!("the model read the prompt as `{}`", printable(&scene_type)),
+        source: ReadingSource::Model,
+    };
     Plan {
         prompt: prompt.trim().to_string(),
-        scene_type: answer.scene_type.trim().to_lowercase().replace(' ', "_"),
+        scene_type,
         archetypes: Vec::new(),
         environment: if indoor {
             Environment::Indoor
@@ -485,6 +493,7 @@ fn assemble_plan(
         constraints,
         description,
         assumptions: Vec::new(),
+        reading: Some(reading),
         limits: Vec::new(),
         requested: Vec::new(),
         notes: {

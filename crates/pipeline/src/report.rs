@@ -108,6 +108,10 @@ pub struct Report {
     /// a generic room).
     #[serde(default)]
     pub assumptions: Vec<String>,
+    /// The place the planner read the prompt as, how sure it is and why (absent for a plan
+    /// given by file).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reading: Option<scenethesis_agents::PlaceReading>,
     /// Limits that cut the request (prompt length, instances per object, objects per plan).
     #[serde(default)]
     pub limits: Vec<String>,
@@ -154,6 +158,12 @@ impl Report {
         );
         if !p.unavailable.is_empty() {
             line.push_str(&format!("; unavailable: {}", p.unavailable.join(", ")));
+        }
+        if let Some(r) = self.reading.as_ref().filter(|r| r.is_low()) {
+            line.push_str(&format!(
+                "; low-confidence reading: `{}` ({:.2}: {})",
+                r.place, r.confidence, r.basis
+            ));
         }
         for a in &self.assumptions {
             line.push_str(&format!("; assumed: {a}"));

@@ -35,6 +35,15 @@ fn unknown_places_are_accepted(offset: usize, parts: usize) {
         assert!(!report.assumptions.is_empty(), "{prompt}");
         let line = report.summary_line();
         assert!(line.contains("assumed: "), "{line}");
+        let reading = report
+            .reading
+            .as_ref()
+            .expect("the offline planner records its reading");
+        assert_eq!(
+            reading.is_low(),
+            line.contains("; low-confidence reading: "),
+            "{line}"
+        );
         if !report.accepted || !report.prompt_check.complete() {
             rejected.push(format!("{prompt}: {line}"));
         }

@@ -1,20 +1,26 @@
 //! Phase 1, interpret: read the prompt and choose the archetypes the scene draws on.
 //!
-//! No non-empty prompt is refused. The scene type comes, in order, from: an archetype the
-//! prompt names; a place of the thesaurus (`knowledge/places.toml`: "a pharmacy" is a shop
-//! selling medicine) when its phrase is longer than any archetype phrase found; archetypes
-//! sharing the prompt's words; the archetypes holding the objects the prompt names; the
-//! generic room of a place family ("a haunted castle" → fantasy); the default archetype.
-//! Everything but the first is recorded as an assumption of the plan.
+//! No non-empty prompt is refused. The place is read from the prompt's place phrase and its
+//! head noun ([`super::head`]), in order, from: an archetype or a place of the thesaurus
+//! (`knowledge/places.toml`: "a pharmacy" is a shop selling medicine) whose phrase is on the
+//! head (then the longest; an archetype named as the head's modifier blends in: "an alchemy
+//! workshop"), or elsewhere in the place phrase when the head is a noun we do not know, or
+//! after the contents ("chairs and a table in a kitchen"); the generic room of the head
+//! noun's place family ("a haunted castle" → fantasy); archetypes sharing the head's words;
+//! the archetypes holding the objects the prompt names; the default archetype. A word that
+//! only modifies a known head never decides ("a music *practice* room" is not an office).
+//! Every reading carries a confidence ([`PlaceReading`]); everything but a named archetype
+//! is also recorded as an assumption of the plan.
 
 use std::collections::BTreeSet;
 
 use crate::knowledge::Archetype;
-use crate::places::{Family, PlaceKind};
-use crate::plan::{cut_prompt, PlanError, PlanRequest};
+use crate::places::Family;
+use crate::plan::{cut_prompt, PlaceReading, PlanError, PlanRequest, ReadingSource};
 use crate::prompt::{analyze, Analysis};
 use crate::text::tokenize;
 
+use super::head::{phrase_hits, Named, PhraseHit, PlacePhrase};
 use super::KnowledgePlanner;
 
 /// What the planner made of a prompt before drafting any object.
@@ -32,6 +38,28 @@ pub(super) struct Reading {
     pub assumptions: Vec<String>,
     /// Limits applied to the prompt (its length).
     pub limits: Vec<String>,
+    /// The place read, how sure the reading is and why.
+    pub place: PlaceReading,
+    /// Whether the second archetype is named by a modifier of the head ("an *alchemy*
+    /// workshop"): its anchor then belongs in the scene too.
+    pub modifier_blend: bool,
+}
+
+/// Which tokens of `prompt` name its place (not read as objects: "a *fire station*" holds no
+/// campfire), as [`interpret`] reads them.
+pub(super) fn naming_tokens(planner: &KnowledgePlanner, prompt: &str) -> Vec<bool> {
+    let tokens = tokenize(prompt);
+    let stems: Vec<Option<&str>> = tokens.iter().map(|t| t.stem()).collect();
+    let phrase = PlacePhrase::read(&stems, &planner.knowledge.vocabulary);
+    let hits = phrase_hits(&stems, &planner.knowledge, &planner.thesaurus);
+    let no_analysis = Analysis::default();
+    let namer = Chooser {
+        planner,
+        analysis: &no_analysis,
+        stems: &stems,
+        phrase: phrase.as_ref(),
+    };
+    namer.naming_tokens(&hits)
 }
 
 /// Reads `request.prompt` and chooses its archetypes.
@@ -46,13 +74,30 @@ pub(super) fn interpret(
     }
     let (prompt, cut) = cut_prompt(prompt);
     let limits: Vec<String> = cut.into_iter().collect();
+    let tokens = tokenize(prompt);
+    let stems: Vec<Option<&str>> = tokens.iter().map(|t| t.stem()).collect();
+    let phrase = PlacePhrase::read(&stems, &knowledge.vocabulary);
+    let hits = phrase_hits(&stems, knowledge, &planner.thesaurus);
+    let no_analysis = Analysis::default();
+    let namer = Chooser {
+        planner,
+        analysis: &no_analysis,
+        stems: &stems,
+        phrase: phrase.as_ref(),
+    };
+    let naming = namer.naming_tokens(&hits);
     let analysis = analyze(
         prompt,
         knowledge,
         &planner.thesaurus.nouns,
         &request.available_categories,
+        Some(&naming),
     );
-    let choice = choose_archetypes(planner, &analysis, prompt);
+    let chooser = Chooser {
+        analysis: &analysis,
+        ..namer
+    };
+    let choice = choose_archetypes(&chooser, &hits);
     if choice.archetypes.is_empty() {
         // Only knowledge without archetypes gets here.
         return Err(PlanError::Unintelligible {
@@ -64,6 +109,12 @@ pub(super) fn interpret(
     } else {
         choice.archetypes[0].name.clone()
     };
+    let place = PlaceReading {
+        place: choice.archetypes[0].name.clone(),
+        confidence: (choice.confidence * 100.0).round() / 100.0,
+        basis: choice.basis,
+        source: ReadingSource::Knowledge,
+    };
     Ok(Reading {
         prompt: prompt.to_owned(),
         analysis,
@@ -71,71 +122,96 @@ pub(super) fn interpret(
         scene_type,
         assumptions: choice.assumption.into_iter().collect(),
         limits,
+        place,
+        modifier_blend: choice.modifier_blend,
     })
 }
 
-/// The archetypes chosen for a prompt.
+/// The archetypes chosen for a prompt, how sure the choice is and why.
 struct Choice {
     archetypes: Vec<Archetype>,
     blended: bool,
     assumption: Option<String>,
+    /// From 0 (a guess) to 1 (the prompt names the place).
+    confidence: f64,
+    /// What the choice rests on, in words.
+    basis: String,
+    /// Whether a modifier of the head names the second archetype.
+    modifier_blend: bool,
 }
+
+/// How sure a reading is when the prompt's head names the place outright.
+const NAMED: f64 = 0.95;
+/// … when a generic head's modifier names it ("a *music* practice room").
+const NAMED_BY_MODIFIER: f64 = 0.75;
+/// … when the head modifies a place the prompt also names ("an *alchemy* workshop").
+const NAMED_AND_BLENDED: f64 = 0.8;
+/// … when a word of the place phrase names it but the head is a noun we do not know.
+const NAMED_BESIDE_HEAD: f64 = 0.65;
+/// … when the prompt names the place after its contents ("chairs and a table in a kitchen").
+const NAMED_LATER: f64 = 0.7;
+/// … when only the head noun's family is known ("a haunted castle" → fantasy).
+const FAMILY_HEAD: f64 = 0.45;
+/// … when only a word after the head's "of" has a family ("the keep of the *goblin* king").
+const FAMILY_CONTEXT: f64 = 0.35;
+/// … when archetypes share the words of the head but none is named.
+const SHARED_HEAD_WORDS: f64 = 0.5;
+/// … when nothing names a place (plus up to 0.3 for the share of objects held).
+const HOLDING_MENTIONS: f64 = 0.3;
+/// … for the default room.
+const DEFAULT_ROOM: f64 = 0.1;
 
 /// The archetypes best matching the analysis (best first), whether they blend, and what was
 /// assumed: the sources of the module's list, tried in order.
-fn choose_archetypes(planner: &KnowledgePlanner, analysis: &Analysis, prompt: &str) -> Choice {
-    let tokens = tokenize(prompt);
-    let stems: Vec<Option<&str>> = tokens.iter().map(|t| t.stem()).collect();
-    let chooser = Chooser { planner, analysis };
-    // A place of the thesaurus that derives, with its phrase length.
-    let place = planner.thesaurus.find_place(&stems).and_then(|(p, len)| {
-        planner
-            .thesaurus
-            .archetype(&p.name, &planner.knowledge)
-            .map(|a| (p, a, len))
-    });
-    if let Some(choice) = chooser.named(place.as_ref().map(|(_, _, len)| *len)) {
+fn choose_archetypes(chooser: &Chooser<'_>, hits: &[PhraseHit]) -> Choice {
+    if let Some(choice) = chooser.named(hits) {
         return choice;
     }
-    if let Some((place, archetype, _)) = place {
-        return read_as_place(place, archetype);
-    }
-    let family = planner.thesaurus.find_family(&stems).and_then(|(f, word)| {
-        planner
-            .thesaurus
-            .archetype(&f.room, &planner.knowledge)
-            .map(|a| (f, word, a))
-    });
+    let family = chooser.head_family();
     // A family's head noun ("a city bus") tells more than a word shared with an archetype
     // phrase ("city park"), unless the prompt names objects.
-    if analysis.mentions.is_empty() {
-        if let Some(f) = family.clone() {
+    if chooser.analysis.mentions.is_empty() {
+        if let Some(f) = family.clone().filter(|f| f.on_head) {
             return chooser.family_room(f);
         }
     }
     chooser
-        .sharing_words()
+        .sharing_head_words()
         .or_else(|| chooser.holding_mentions())
         .or_else(|| family.map(|f| chooser.family_room(f)))
         .unwrap_or_else(|| chooser.default_room())
 }
 
-/// The choice read from a place of the thesaurus.
-fn read_as_place(place: &PlaceKind, archetype: Archetype) -> Choice {
-    let name = place.name.replace('_', " ");
-    let article = if name.starts_with(['a', 'e', 'i', 'o', 'u']) {
+/// "a" or "an" before `word`.
+fn article(word: &str) -> &'static str {
+    if word.starts_with(['a', 'e', 'i', 'o', 'u']) {
         "an"
     } else {
         "a"
-    };
-    Choice {
-        assumption: Some(format!(
-            "read as {article} {name}: {} (like `{}`, family {})",
-            place.gloss, place.like, place.family
-        )),
-        archetypes: vec![archetype],
-        blended: false,
     }
+}
+
+/// A place family found through a word of the place phrase.
+#[derive(Clone)]
+struct FamilyHit<'a> {
+    family: &'a Family,
+    /// The word, as a stem.
+    word: String,
+    /// The family's generic room.
+    room: Archetype,
+    /// Whether the word is the head noun (else it is in the head's complement).
+    on_head: bool,
+}
+
+/// How a whole phrase of the knowledge stands to the prompt's place phrase.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+enum Standing {
+    /// After the place phrase, among the contents.
+    Later,
+    /// In the place phrase, beside a head noun we do not know.
+    BesideHead,
+    /// On the head.
+    Head,
 }
 
 /// The planner's knowledge and the prompt's analysis, asked in turn by each source of a
@@ -143,6 +219,8 @@ fn read_as_place(place: &PlaceKind, archetype: Archetype) -> Choice {
 struct Chooser<'a> {
     planner: &'a KnowledgePlanner,
     analysis: &'a Analysis,
+    stems: &'a [Option<&'a str>],
+    phrase: Option<&'a PlacePhrase>,
 }
 
 impl Chooser<'_> {
@@ -163,61 +241,248 @@ impl Chooser<'_> {
             .join(" and ")
     }
 
-    /// An archetype the prompt names by a phrase at least as long as the place phrase found
-    /// (`place_len`, when one was); two named equally strongly blend.
-    fn named(&self, place_len: Option<usize>) -> Option<Choice> {
-        let scenes = &self.analysis.scenes;
-        let best = scenes
-            .first()
-            .filter(|best| best.phrase)
-            .filter(|best| place_len.is_none_or(|len| len <= best.phrase_len))?;
-        let ties = scenes
+    /// The prompt's words in `range`, joined.
+    fn words(&self, range: std::ops::Range<usize>) -> String {
+        self.stems[range]
             .iter()
-            .take_while(|m| (m.score - best.score).abs() < 1e-9)
-            .count();
-        // Two archetypes named equally strongly ("an alchemy workshop") blend.
-        let rival = scenes
-            .get(1)
-            .is_some_and(|m| m.phrase && m.phrase_len == best.phrase_len);
-        if ties == 1 && !rival {
-            return Some(Choice {
-                archetypes: self.by_index(&[best.archetype]),
-                blended: false,
-                assumption: None,
-            });
+            .flatten()
+            .copied()
+            .collect::<Vec<_>>()
+            .join(" ")
+    }
+
+    /// Where `hit` stands, or `None` when it cannot name the place: a word of the contents
+    /// that names an object ("a room with a *piano*") names no place.
+    fn standing(&self, hit: &PhraseHit) -> Option<Standing> {
+        let phrase = self.phrase?;
+        if phrase.covers_head(hit.start, hit.len) {
+            return Some(Standing::Head);
         }
-        let mut chosen: Vec<usize> = scenes.iter().take(2).map(|m| m.archetype).collect();
-        chosen.dedup();
+        if phrase.holds(hit.start, hit.len) {
+            return Some(Standing::BesideHead);
+        }
+        let words = self.words(hit.start..hit.start + hit.len);
+        let object = self.planner.knowledge.category_of_phrase(&words).is_some();
+        (hit.start >= phrase.span.end && !object).then_some(Standing::Later)
+    }
+
+    /// The place a whole phrase of the prompt names: the phrase on the head first, then the
+    /// longest, an archetype before a place of equal length. A second archetype named as a
+    /// modifier of the head ("an *alchemy* workshop") blends in.
+    fn named(&self, hits: &[PhraseHit]) -> Option<Choice> {
+        let (standing, best) = self.best_hit(hits)?;
+        let words = self.words(best.start..best.start + best.len);
+        let mut confidence = match standing {
+            Standing::Head => {
+                let phrase = self.phrase?;
+                let on_head_word =
+                    best.start <= phrase.head_word && phrase.head_word < best.start + best.len;
+                if on_head_word {
+                    NAMED
+                } else {
+                    NAMED_BY_MODIFIER
+                }
+            }
+            Standing::BesideHead => NAMED_BESIDE_HEAD,
+            Standing::Later => NAMED_LATER,
+        };
+        let (archetypes, blended, name) = match best.named {
+            Named::Place(i) => {
+                let place = &self.planner.thesaurus.places[i];
+                let archetype = self
+                    .planner
+                    .thesaurus
+                    .archetype(&place.name, &self.planner.knowledge)?;
+                let name = place.name.replace('_', " ");
+                let assumption = format!(
+                    "read as {} {name}: {} (like `{}`, family {})",
+                    article(&name),
+                    place.gloss,
+                    place.like,
+                    place.family
+                );
+                return Some(Choice {
+                    archetypes: vec![archetype],
+                    blended: false,
+                    assumption: Some(assumption),
+                    confidence,
+                    basis: format!("\"{words}\" names the place `{}`", place.name),
+                    modifier_blend: false,
+                });
+            }
+            Named::Archetype(i) => {
+                let mut chosen = vec![i];
+                if standing == Standing::Head {
+                    if let Some(other) = self.modifier_archetype(hits, &best) {
+                        chosen.push(other);
+                        confidence = NAMED_AND_BLENDED;
+                    }
+                }
+                let name = self.names(&chosen);
+                (chosen, false, name)
+            }
+        };
+        let blend = archetypes.len() > 1;
         Some(Choice {
-            assumption: Some(format!(
-                "the prompt names {} equally; blended them",
-                self.names(&chosen)
-            )),
-            archetypes: self.by_index(&chosen),
-            blended: true,
+            assumption: blend.then(|| format!("the prompt names {name} together; blended them")),
+            archetypes: self.by_index(&archetypes),
+            blended: blended || blend,
+            confidence,
+            basis: format!("\"{words}\" names {}", self.names(&archetypes[..1])),
+            modifier_blend: blend,
         })
     }
 
-    /// The generic room of the family whose head noun is `word`.
-    fn family_room(&self, (family, word, archetype): (&Family, &str, Archetype)) -> Choice {
+    /// The whole phrase that names the place, with where it stands: the phrase on the head
+    /// first, then the longest, an archetype before a place of equal length.
+    fn best_hit(&self, hits: &[PhraseHit]) -> Option<(Standing, PhraseHit)> {
+        // A phrase beside the head counts only when the head is a noun we do not know.
+        let head_known = hits
+            .iter()
+            .any(|o| self.standing(o) == Some(Standing::Head));
+        hits.iter()
+            .filter_map(|h| {
+                let standing = self.standing(h)?;
+                if standing == Standing::BesideHead && head_known {
+                    return None;
+                }
+                let archetype = matches!(h.named, Named::Archetype(_));
+                Some(((standing, h.len, archetype, std::cmp::Reverse(h.start)), *h))
+            })
+            .max_by_key(|(k, _)| *k)
+            .map(|(k, h)| (k.0, h))
+    }
+
+    /// Which tokens name the place (the best phrase and a blended modifier's): they are not
+    /// read as objects ("a *fire station*" holds no campfire). All `false` when no phrase
+    /// names the place.
+    fn naming_tokens(&self, hits: &[PhraseHit]) -> Vec<bool> {
+        let mut naming = vec![false; self.stems.len()];
+        if let Some((standing, best)) = self.best_hit(hits) {
+            let modifier = (standing == Standing::Head
+                && matches!(best.named, Named::Archetype(_)))
+            .then(|| self.modifier_hit(hits, &best))
+            .flatten();
+            for h in std::iter::once(best).chain(modifier) {
+                naming[h.start..h.start + h.len].fill(true);
+            }
+        }
+        naming
+    }
+
+    /// Another archetype whose phrase sits in the place phrase apart from `best`'s.
+    fn modifier_archetype(&self, hits: &[PhraseHit], best: &PhraseHit) -> Option<usize> {
+        match self.modifier_hit(hits, best)?.named {
+            Named::Archetype(i) => Some(i),
+            Named::Place(_) => None,
+        }
+    }
+
+    /// The longest phrase of another archetype in the place phrase apart from `best`'s.
+    fn modifier_hit(&self, hits: &[PhraseHit], best: &PhraseHit) -> Option<PhraseHit> {
+        let phrase = self.phrase?;
+        hits.iter()
+            .filter(|h| phrase.holds(h.start, h.len))
+            .filter(|h| h.start + h.len <= best.start || h.start >= best.start + best.len)
+            .filter(|h| matches!(h.named, Named::Archetype(_)) && h.named != best.named)
+            .max_by_key(|h| (h.len, std::cmp::Reverse(h.named)))
+            .copied()
+    }
+
+    /// The family whose word is the head noun ("a haunted *castle*"), else the last word of
+    /// the head's complement ("the keep of the *goblin* king"), with that word, the family's
+    /// generic room and whether the word was the head. A word that only modifies the head
+    /// ("a music *practice* room") never counts.
+    fn head_family(&self) -> Option<FamilyHit<'_>> {
+        let phrase = self.phrase?;
+        let thesaurus = &self.planner.thesaurus;
+        let words = std::iter::once(phrase.head_word).chain(phrase.complement.clone().rev());
+        let (i, word, family) =
+            words
+                .filter_map(|i| Some((i, self.stems[i]?)))
+                .find_map(|(i, w)| {
+                    let f = thesaurus.families.iter().find(|f| f.words.contains(w))?;
+                    Some((i, w, f))
+                })?;
+        let room = thesaurus.archetype(&family.room, &self.planner.knowledge)?;
+        Some(FamilyHit {
+            family,
+            word: word.to_owned(),
+            room,
+            on_head: i == phrase.head_word,
+        })
+    }
+
+    /// The generic room of the family of `hit`'s word.
+    fn family_room(&self, hit: FamilyHit<'_>) -> Choice {
+        let FamilyHit {
+            family,
+            word,
+            room,
+            on_head,
+        } = hit;
+        let held = !self.analysis.mentions.is_empty();
+        let (confidence, role) = if on_head {
+            (FAMILY_HEAD, "the head noun")
+        } else {
+            (FAMILY_CONTEXT, "a word after the head's \"of\"")
+        };
         Choice {
             assumption: Some(format!(
                 "\"{word}\" is a {} place; assumed the family's generic room (`{}`)",
                 family.name, family.room
             )),
-            archetypes: vec![archetype],
-            blended: !self.analysis.mentions.is_empty(),
+            archetypes: vec![room],
+            blended: held,
+            confidence,
+            basis: format!(
+                "no place is named; only {role} \"{word}\" is known, as a {} place",
+                family.name
+            ),
+            modifier_blend: false,
         }
     }
 
-    /// The two archetypes sharing most of the prompt's words, blended.
-    fn sharing_words(&self) -> Option<Choice> {
-        let scenes = &self.analysis.scenes;
-        if scenes.is_empty() {
-            return None;
-        }
-        let mut chosen: Vec<usize> = scenes.iter().take(2).map(|m| m.archetype).collect();
-        chosen.dedup();
+    /// The two archetypes sharing most of the head's words, blended ("a *music* practice
+    /// room"); words that only modify a known head never count.
+    fn sharing_head_words(&self) -> Option<Choice> {
+        let phrase = self.phrase?;
+        let voc = &self.planner.knowledge.vocabulary;
+        let head: Vec<&str> = self.stems[phrase.head.clone()]
+            .iter()
+            .flatten()
+            .copied()
+            .filter(|w| !voc.filler.contains(*w) && !voc.generic_heads.contains(*w))
+            .collect();
+        let mut ranked: Vec<(usize, usize)> = self
+            .planner
+            .knowledge
+            .archetypes
+            .iter()
+            .enumerate()
+            .map(|(i, a)| {
+                let shared = head
+                    .iter()
+                    .filter(|w| a.phrases.iter().flatten().any(|p| p == *w))
+                    .count();
+                (shared, i)
+            })
+            .filter(|(n, _)| *n > 0)
+            .collect();
+        ranked.sort_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
+        let chosen: Vec<usize> = ranked.iter().take(2).map(|r| r.1).collect();
+        let first = *chosen.first()?;
+        let shared: Vec<&str> = head
+            .iter()
+            .copied()
+            .filter(|w| {
+                self.planner.knowledge.archetypes[first]
+                    .phrases
+                    .iter()
+                    .flatten()
+                    .any(|p| p == w)
+            })
+            .collect();
         Some(Choice {
             assumption: Some(format!(
                 "no known scene type is named; blended {}, which share the prompt's words",
@@ -225,6 +490,13 @@ impl Chooser<'_> {
             )),
             archetypes: self.by_index(&chosen),
             blended: true,
+            confidence: SHARED_HEAD_WORDS,
+            basis: format!(
+                "no place is named; \"{}\" is a word of {}",
+                shared.join(" "),
+                self.names(&chosen[..1])
+            ),
+            modifier_blend: false,
         })
     }
 
@@ -266,6 +538,13 @@ impl Chooser<'_> {
             return None;
         }
         let chosen: Vec<usize> = ranked.iter().take(2).map(|r| r.1).collect();
+        let held = self.planner.knowledge.archetypes[chosen[0]]
+            .objects
+            .iter()
+            .filter(|g| mentioned.contains(g.category.as_str()))
+            .map(|g| g.category.as_str())
+            .collect::<BTreeSet<_>>();
+        let share = held.len() as f64 / mentioned.len() as f64;
         Some(Choice {
             assumption: Some(format!(
                 "no scene type is named; chose {}, which hold the objects the prompt names",
@@ -273,6 +552,14 @@ impl Chooser<'_> {
             )),
             archetypes: self.by_index(&chosen),
             blended: true,
+            confidence: HOLDING_MENTIONS * (1.0 + share),
+            basis: format!(
+                "no place is named; {} holds {} of the {} objects named",
+                self.names(&chosen[..1]),
+                held.len(),
+                mentioned.len()
+            ),
+            modifier_blend: false,
         })
     }
 
@@ -294,6 +581,9 @@ impl Chooser<'_> {
             )),
             archetypes: default.cloned().into_iter().collect(),
             blended: !self.analysis.mentions.is_empty(),
+            confidence: DEFAULT_ROOM,
+            basis: why.to_owned(),
+            modifier_blend: false,
         }
     }
 }

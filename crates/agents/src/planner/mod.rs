@@ -8,6 +8,7 @@
 
 mod constrain;
 mod describe;
+mod head;
 mod hierarchy;
 mod interpret;
 mod requested;
@@ -129,6 +130,7 @@ impl Planner for KnowledgePlanner {
             description,
             notes: drafting.notes,
             assumptions: reading.assumptions,
+            reading: Some(reading.place),
             limits: reading.limits.into_iter().chain(limits).collect(),
             requested,
         })
@@ -213,5 +215,63 @@ impl Drafting {
             .or_default()
             .push(idx);
         Some(idx)
+    }
+
+    /// Removes the drafts at `gone` and every draft they carry, renumbering the rest (only
+    /// before the prompt's stated relations are applied: those name drafts by index).
+    fn remove(&mut self, gone: &[usize]) {
+        let n = self.drafts.len();
+        let mut dropped = vec![false; n];
+        for &d in gone {
+            dropped[d] = true;
+        }
+        // Carried drafts go with their carrier (parents may come after children).
+        let mut changed = true;
+        while changed {
+            changed = false;
+            for d in 0..n {
+                if let DraftPlace::Support(_, p) = self.drafts[d].place {
+                    if dropped[p] && !dropped[d] {
+                        dropped[d] = true;
+                        changed = true;
+                    }
+                }
+            }
+        }
+        let mut new_index = vec![None; n];
+        let mut next = 0;
+        for d in 0..n {
+            if !dropped[d] {
+                new_index[d] = Some(next);
+                next += 1;
+            }
+        }
+        let drafts = std::mem::take(&mut self.drafts);
+        for (d, mut draft) in drafts.into_iter().enumerate() {
+            if dropped[d] {
+                continue;
+            }
+            draft.place = match draft.place {
+                DraftPlace::Relative(k, t) => new_index[t]
+                    .map_or(DraftPlace::Zone(Zone::Free), |t| DraftPlace::Relative(k, t)),
+                DraftPlace::Opposite(t) => {
+                    new_index[t].map_or(DraftPlace::Zone(Zone::Free), DraftPlace::Opposite)
+                }
+                DraftPlace::Support(k, p) => DraftPlace::Support(k, new_index[p].unwrap_or(p)),
+                other => other,
+            };
+            draft.extra = draft
+                .extra
+                .iter()
+                .filter_map(|&(k, t)| new_index[t].map(|t| (k, t)))
+                .collect();
+            self.drafts.push(draft);
+        }
+        let renumber = |list: &mut Vec<usize>| {
+            *list = list.iter().filter_map(|&d| new_index[d]).collect();
+        };
+        self.by_category.values_mut().for_each(renumber);
+        self.by_category.retain(|_, v| !v.is_empty());
+        self.mention_drafts.iter_mut().for_each(renumber);
     }
 }

@@ -72,11 +72,13 @@ impl super::KnowledgePlanner {
     /// for it under `available`), then of its kinds (`office_chair` for "chair", the members of
     /// a generic noun such as "lamp"); fewer than asked for is reported in the mention's note.
     pub fn requested_in(&self, plan: &Plan, available: &BTreeSet<String>) -> Vec<RequestedObject> {
+        let naming = super::interpret::naming_tokens(self, &plan.prompt);
         let analysis = analyze(
             &plan.prompt,
             &self.knowledge,
             &self.thesaurus.nouns,
             available,
+            Some(&naming),
         );
         let mut taken: BTreeSet<String> = BTreeSet::new();
         let mut out = Vec::new();

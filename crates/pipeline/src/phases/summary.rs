@@ -65,6 +65,7 @@ pub(crate) fn report(best: &Attempt, run: RunRecord<'_>) -> Report {
         optimizer_issues,
         plan_notes: best.plan.notes.clone(),
         assumptions: run.original_plan.assumptions.clone(),
+        reading: run.original_plan.reading.clone(),
         limits: run.original_plan.limits.clone(),
         prompt_check: scenethesis_agents::check_prompt(run.original_plan, &best.scene),
         notes: best.guide_notes.iter().cloned().chain(run.notes).collect(),
