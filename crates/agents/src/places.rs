@@ -1,7 +1,8 @@
 //! The place thesaurus: kinds of places the archetypes do not name (a pharmacy, an airport
 //! gate, a throne room), each read as a kind of a known archetype, and the families places
 //! belong to (home, shop, office, public space, workshop, outdoor, vehicle interior, fantasy),
-//! read from `knowledge/places.toml`.
+//! read from `knowledge/places.toml`. Every place documents its `core` (what any real room of
+//! its type holds, checked at load against the groups it derives) and the `source` of it.
 
 use std::collections::BTreeSet;
 use std::sync::OnceLock;
@@ -54,6 +55,12 @@ pub struct PlaceKind {
     pub add: Vec<ObjectGroup>,
     /// A new anchor category and where it stands.
     pub anchor: Option<(String, AnchorPlace)>,
+    /// What any real room of this type holds: categories every plan of the place contains
+    /// (each is the derived anchor or has a derived group with a minimum count of at least 1).
+    pub core: Vec<String>,
+    /// Where the core comes from (for most places our summary of common practice, not a
+    /// measured survey).
+    pub source: String,
 }
 
 /// A noun the library has no category for: its nearest category, or none.
@@ -127,6 +134,8 @@ struct RawPlace {
     add: Vec<(String, u32, u32, String)>,
     #[serde(default)]
     anchor: Option<(String, AnchorPlace)>,
+    core: Vec<String>,
+    source: String,
 }
 
 fn invalid(entry: &str, message: String) -> KnowledgeError {
@@ -153,7 +162,9 @@ impl Thesaurus {
 
     /// Reads the thesaurus from the text of `places.toml` and `nouns.toml` and checks it
     /// against `knowledge`: unique names, known families, `like` reaching an archetype, known
-    /// categories, places and zones.
+    /// categories, places and zones, phrases no archetype or earlier place uses, a `source`,
+    /// and a `core` every category of which the derived place plans (as its anchor or in a
+    /// group with a minimum count of at least 1).
     pub fn from_toml(
         text: &str,
         nouns: &str,
@@ -239,6 +250,42 @@ impl Thesaurus {
             if raw.gloss.trim().is_empty() {
                 return Err(invalid(&entry, "`gloss` must say what the place is".into()));
             }
+            if raw.source.trim().is_empty() {
+                return Err(invalid(
+                    &entry,
+                    "`source` must say where the place's contents come from".into(),
+                ));
+            }
+            if raw.core.is_empty() {
+                return Err(invalid(
+                    &entry,
+                    "`core` must list what every room of the place holds".into(),
+                ));
+            }
+            for c in &raw.core {
+                if !known(c) {
+                    return Err(invalid(&entry, format!("core: unknown category `{c}`")));
+                }
+            }
+            for phrase in &phrases {
+                let words = phrase.join(" ");
+                if let Some(a) = knowledge
+                    .archetypes
+                    .iter()
+                    .find(|a| a.phrases.contains(phrase))
+                {
+                    return Err(invalid(
+                        &entry,
+                        format!("words: `{words}` already names the archetype `{}`", a.name),
+                    ));
+                }
+                if let Some(p) = places.iter().find(|p| p.phrases.contains(phrase)) {
+                    return Err(invalid(
+                        &entry,
+                        format!("words: `{words}` already names the place `{}`", p.name),
+                    ));
+                }
+            }
             places.push(PlaceKind {
                 name: raw.name,
                 phrases,
@@ -248,6 +295,8 @@ impl Thesaurus {
                 without: raw.without,
                 add,
                 anchor: raw.anchor,
+                core: raw.core,
+                source: raw.source,
             });
         }
         let nouns = read_nouns(nouns, knowledge)?;
@@ -257,12 +306,29 @@ impl Thesaurus {
             nouns,
         };
         for p in &thesaurus.places {
-            if thesaurus.archetype(&p.name, knowledge).is_none() {
+            let Some(derived) = thesaurus.archetype(&p.name, knowledge) else {
                 return Err(invalid(
                     &p.name,
                     "the place has no anchor group once `without` applies; give it an `anchor`"
                         .into(),
                 ));
+            };
+            for c in &p.core {
+                let held = *c == derived.anchor
+                    || derived
+                        .objects
+                        .iter()
+                        .any(|g| g.category == *c && g.min >= 1);
+                if !held {
+                    return Err(invalid(
+                        &p.name,
+                        format!(
+                            "core category `{c}` is neither the anchor nor in an object group \
+                             with a minimum count of at least 1 (inherited from `{}` or added)",
+                            p.like
+                        ),
+                    ));
+                }
             }
         }
         for f in &thesaurus.families {
@@ -300,6 +366,8 @@ impl Thesaurus {
         let mut a = self.derive(&place.like, knowledge, depth + 1)?;
         a.name = place.name.clone();
         a.phrases = place.phrases.clone();
+        a.core = place.core.clone();
+        a.source = Some(place.source.clone());
         a.objects.retain(|g| !place.without.contains(&g.category));
         if let Some((category, anchor_place)) = &place.anchor {
             for g in &mut a.objects {

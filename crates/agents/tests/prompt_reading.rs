@@ -51,7 +51,8 @@ fn the_place_thesaurus_loads_and_every_place_derives() {
     // A broken entry is named in the error.
     let bad = "[[family]]\nname = \"shop\"\nroom = \"convenience_store\"\nwords = [\"shop\"]\n\
                [[place]]\nname = \"kiosk\"\nwords = [\"kiosk\"]\nfamily = \"shop\"\n\
-               gloss = \"a small shop\"\nlike = \"nowhere\"\n";
+               gloss = \"a small shop\"\nlike = \"nowhere\"\ncore = [\"store_shelf\"]\n\
+               source = \"ours\"\n";
     let err = Thesaurus::from_toml(bad, "[[noun]]\nwords = [\"x\"]\n", k)
         .unwrap_err()
         .to_string();
