@@ -27,6 +27,10 @@ pub(super) struct PlacePhrase {
     /// Token range of the head's complement after "of" ("the keep *of the goblin king*"),
     /// empty when there is none.
     pub complement: Range<usize>,
+    /// Token range of the setting after the phrase ("a bar *in a hotel*", "a classroom *for
+    /// toddlers*"): the words up to the next clause break or phrase end, empty when there is
+    /// none.
+    pub setting: Range<usize>,
 }
 
 impl PlacePhrase {
@@ -58,6 +62,7 @@ impl PlacePhrase {
             head_word,
             generic,
             complement: of.map_or(end..end, |o| o + 1..end),
+            setting: setting_after(stems, end, voc),
         })
     }
 
@@ -70,6 +75,53 @@ impl PlacePhrase {
     pub(super) fn holds(&self, start: usize, len: usize) -> bool {
         start >= self.span.start && start + len <= self.span.end
     }
+}
+
+/// The words that set a phrase ending at `end` in a larger place: after "in", "at", "for",
+/// "inside" or "of", up to the next clause break or phrase end.
+fn setting_after(stems: &[Option<&str>], end: usize, voc: &Vocabulary) -> Range<usize> {
+    const SETTING: [&str; 5] = ["in", "at", "for", "inside", "of"];
+    if !stems
+        .get(end)
+        .copied()
+        .flatten()
+        .is_some_and(|w| SETTING.contains(&w))
+    {
+        return end..end;
+    }
+    let start = end + 1;
+    let mut stop = start;
+    while let Some(Some(w)) = stems.get(stop) {
+        if stop > start && voc.phrase_ends.contains(*w) {
+            break;
+        }
+        stop += 1;
+    }
+    start..stop
+}
+
+/// The words of a compound read from a setting: the setting's meaningful words, then the
+/// head's ("a bar in a hotel" → "hotel bar", "a classroom for toddlers" → "toddler
+/// classroom"), with the index of the head's first word; `None` without a setting.
+pub(super) fn setting_compound<'a>(
+    stems: &[Option<&'a str>],
+    phrase: &PlacePhrase,
+    voc: &Vocabulary,
+) -> Option<(Vec<Option<&'a str>>, usize)> {
+    let content = |w: &&&str| !voc.filler.contains(**w) && !voc.counts.contains_key(**w);
+    let setting: Vec<Option<&str>> = stems[phrase.setting.clone()]
+        .iter()
+        .flatten()
+        .filter(content)
+        .map(|w| Some(*w))
+        .collect();
+    if setting.is_empty() {
+        return None;
+    }
+    let junction = setting.len();
+    let head = stems[phrase.head.clone()].iter().flatten().filter(content);
+    let words = setting.into_iter().chain(head.map(|w| Some(*w))).collect();
+    Some((words, junction))
 }
 
 /// What a whole phrase of the knowledge names.
@@ -181,6 +233,14 @@ mod tests {
                 "keep".into(),
                 false
             ))
+        );
+        let voc = &Knowledge::builtin().vocabulary;
+        let tokens = tokenize("a bar in a small hotel, warm light");
+        let stems: Vec<Option<&str>> = tokens.iter().map(|t| t.stem()).collect();
+        let p = PlacePhrase::read(&stems, voc).unwrap();
+        assert_eq!(
+            setting_compound(&stems, &p, voc),
+            Some((vec![Some("small"), Some("hotel"), Some("bar")], 2))
         );
         assert_eq!(
             phrase("with a sofa"),

@@ -20,7 +20,7 @@ use crate::plan::{cut_prompt, PlaceReading, PlanError, PlanRequest, ReadingSourc
 use crate::prompt::{analyze, Analysis};
 use crate::text::tokenize;
 
-use super::head::{phrase_hits, Named, PhraseHit, PlacePhrase};
+use super::head::{phrase_hits, setting_compound, Named, PhraseHit, PlacePhrase};
 use super::KnowledgePlanner;
 
 /// What the planner made of a prompt before drafting any object.
@@ -142,6 +142,8 @@ struct Choice {
 
 /// How sure a reading is when the prompt's head names the place outright.
 const NAMED: f64 = 0.95;
+/// … when a compound of the setting and the head names it ("a bar in a hotel": a hotel bar).
+const NAMED_IN_SETTING: f64 = 0.9;
 /// … when a generic head's modifier names it ("a *music* practice room").
 const NAMED_BY_MODIFIER: f64 = 0.75;
 /// … when the head modifies a place the prompt also names ("an *alchemy* workshop").
@@ -270,9 +272,16 @@ impl Chooser<'_> {
     /// longest, an archetype before a place of equal length. A second archetype named as a
     /// modifier of the head ("an *alchemy* workshop") blends in.
     fn named(&self, hits: &[PhraseHit]) -> Option<Choice> {
+        if let Some((hit, words)) = self.setting_hit() {
+            return self.named_choice(hit.named, words, NAMED_IN_SETTING, None);
+        }
         let (standing, best) = self.best_hit(hits)?;
+        if let Some(special) = self.specialized(hits, standing, &best) {
+            let words = self.words(special.start..special.start + special.len);
+            return self.named_choice(special.named, words, NAMED, None);
+        }
         let words = self.words(best.start..best.start + best.len);
-        let mut confidence = match standing {
+        let confidence = match standing {
             Standing::Head => {
                 let phrase = self.phrase?;
                 let on_head_word =
@@ -286,51 +295,124 @@ impl Chooser<'_> {
             Standing::BesideHead => NAMED_BESIDE_HEAD,
             Standing::Later => NAMED_LATER,
         };
-        let (archetypes, blended, name) = match best.named {
-            Named::Place(i) => {
-                let place = &self.planner.thesaurus.places[i];
-                let archetype = self
-                    .planner
-                    .thesaurus
-                    .archetype(&place.name, &self.planner.knowledge)?;
-                let name = place.name.replace('_', " ");
-                let assumption = format!(
-                    "read as {} {name}: {} (like `{}`, family {})",
-                    article(&name),
-                    place.gloss,
-                    place.like,
-                    place.family
-                );
-                return Some(Choice {
-                    archetypes: vec![archetype],
-                    blended: false,
-                    assumption: Some(assumption),
-                    confidence,
-                    basis: format!("\"{words}\" names the place `{}`", place.name),
-                    modifier_blend: false,
-                });
-            }
-            Named::Archetype(i) => {
-                let mut chosen = vec![i];
-                if standing == Standing::Head {
-                    if let Some(other) = self.modifier_archetype(hits, &best) {
-                        chosen.push(other);
-                        confidence = NAMED_AND_BLENDED;
-                    }
-                }
-                let name = self.names(&chosen);
-                (chosen, false, name)
-            }
+        let modifier = (standing == Standing::Head)
+            .then(|| self.modifier_archetype(hits, &best))
+            .flatten();
+        self.named_choice(best.named, words, confidence, modifier)
+    }
+
+    /// The choice of the place `named` names (by the prompt's `words`), sure to `confidence`,
+    /// blended with the archetype `modifier` names.
+    fn named_choice(
+        &self,
+        named: Named,
+        words: String,
+        confidence: f64,
+        modifier: Option<usize>,
+    ) -> Option<Choice> {
+        let i = match named {
+            Named::Archetype(i) => i,
+            Named::Place(p) => return self.place_choice(p, words, confidence),
         };
-        let blend = archetypes.len() > 1;
+        let chosen: Vec<usize> = std::iter::once(i).chain(modifier).collect();
+        let blend = chosen.len() > 1;
         Some(Choice {
-            assumption: blend.then(|| format!("the prompt names {name} together; blended them")),
-            archetypes: self.by_index(&archetypes),
-            blended: blended || blend,
-            confidence,
-            basis: format!("\"{words}\" names {}", self.names(&archetypes[..1])),
+            assumption: blend.then(|| {
+                format!(
+                    "the prompt names {} together; blended them",
+                    self.names(&chosen)
+                )
+            }),
+            archetypes: self.by_index(&chosen),
+            blended: blend,
+            confidence: if blend { NAMED_AND_BLENDED } else { confidence },
+            basis: format!("\"{words}\" names {}", self.names(&chosen[..1])),
             modifier_blend: blend,
         })
+    }
+
+    /// The choice of place `p` of the thesaurus.
+    fn place_choice(&self, p: usize, words: String, confidence: f64) -> Option<Choice> {
+        let place = &self.planner.thesaurus.places[p];
+        let archetype = self
+            .planner
+            .thesaurus
+            .archetype(&place.name, &self.planner.knowledge)?;
+        let name = place.name.replace('_', " ");
+        let assumption = format!(
+            "read as {} {name}: {} (like `{}`, family {})",
+            article(&name),
+            place.gloss,
+            place.like,
+            place.family
+        );
+        Some(Choice {
+            archetypes: vec![archetype],
+            blended: false,
+            assumption: Some(assumption),
+            confidence,
+            basis: format!("\"{words}\" names the place `{}`", place.name),
+            modifier_blend: false,
+        })
+    }
+
+    /// The place a compound of the setting and the head names ("a bar in a hotel" → "hotel
+    /// bar"), with the compound's words: a phrase across the setting's last word and the
+    /// head's first.
+    fn setting_hit(&self) -> Option<(PhraseHit, String)> {
+        let phrase = self.phrase?;
+        let knowledge = &self.planner.knowledge;
+        let (compound, junction) = setting_compound(self.stems, phrase, &knowledge.vocabulary)?;
+        let hit = phrase_hits(&compound, knowledge, &self.planner.thesaurus)
+            .into_iter()
+            .filter(|h| h.start < junction && junction < h.start + h.len)
+            .max_by_key(|h| (h.len, matches!(h.named, Named::Archetype(_))))?;
+        let words = compound[hit.start..hit.start + hit.len]
+            .iter()
+            .flatten()
+            .copied()
+            .collect::<Vec<_>>()
+            .join(" ");
+        Some((hit, words))
+    }
+
+    /// A place of the thesaurus named beside the head that is a kind of what the head names
+    /// ("a *ski lodge* lounge": a ski lodge is a kind of living room, which "lounge" names).
+    fn specialized(
+        &self,
+        hits: &[PhraseHit],
+        standing: Standing,
+        best: &PhraseHit,
+    ) -> Option<PhraseHit> {
+        let phrase = self.phrase?;
+        let thesaurus = &self.planner.thesaurus;
+        let base = match best.named {
+            Named::Archetype(i) => &self.planner.knowledge.archetypes[i].name,
+            Named::Place(p) => &thesaurus.places[p].name,
+        };
+        let kind_of_base = |p: usize| {
+            let mut like = &thesaurus.places[p].like;
+            for _ in 0..8 {
+                if like == base {
+                    return true;
+                }
+                match thesaurus.place(like) {
+                    Some(next) => like = &next.like,
+                    None => return false,
+                }
+            }
+            false
+        };
+        (standing == Standing::Head)
+            .then(|| {
+                hits.iter()
+                    .filter(|h| phrase.holds(h.start, h.len))
+                    .filter(|h| h.start + h.len <= best.start || h.start >= best.start + best.len)
+                    .filter(|h| matches!(h.named, Named::Place(p) if kind_of_base(p)))
+                    .max_by_key(|h| h.len)
+                    .copied()
+            })
+            .flatten()
     }
 
     /// The whole phrase that names the place, with where it stands: the phrase on the head
@@ -358,6 +440,11 @@ impl Chooser<'_> {
     /// names the place.
     fn naming_tokens(&self, hits: &[PhraseHit]) -> Vec<bool> {
         let mut naming = vec![false; self.stems.len()];
+        if let (Some(phrase), Some(_)) = (self.phrase, self.setting_hit()) {
+            naming[phrase.head.clone()].fill(true);
+            naming[phrase.setting.clone()].fill(true);
+            return naming;
+        }
         if let Some((standing, best)) = self.best_hit(hits) {
             let modifier = (standing == Standing::Head
                 && matches!(best.named, Named::Archetype(_)))
