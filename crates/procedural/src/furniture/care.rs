@@ -1013,34 +1013,7 @@ pub(super) fn barber_chair(rng: &mut ChaCha8Rng) -> Asset {
         [hw - 0.01, 0.05, hd],
         0.3,
     ));
-    let lean = -uniform(rng, 0.14, 0.26);
-    let back_h = uniform(rng, 0.45, 0.55);
-    let start = [0.0, seat - 0.05, -hd + 0.04];
-    b.part(slanted_box(
-        "back",
-        uph,
-        start,
-        lean,
-        [hw - 0.02, 0.5 * back_h, 0.055],
-    ));
-    let rot = rotation([1.0, 0.0, 0.0], lean);
-    let top = nalgebra::Vector3::from(start) + rot * nalgebra::Vector3::new(0.0, back_h, -0.02);
-    let stem = uniform(rng, 0.06, 0.16);
-    b.part(slanted_box(
-        "headrest_stem",
-        chrome,
-        (top - rot * nalgebra::Vector3::new(0.0, 0.05, 0.0)).into(),
-        lean,
-        [0.02, 0.5 * stem + 0.05, 0.012],
-    ));
-    let head = top + rot * nalgebra::Vector3::new(0.0, stem, 0.0);
-    b.part(slanted_box(
-        "headrest",
-        uph,
-        head.into(),
-        lean,
-        [0.13, 0.07, 0.045],
-    ));
+    barber_back(&mut b, [uph, chrome], [hw, hd, seat], rng);
     for (i, sx) in [-1.0f32, 1.0].into_iter().enumerate() {
         let x = sx * (hw + 0.04);
         b.cuboid(
@@ -1076,6 +1049,40 @@ pub(super) fn barber_chair(rng: &mut ChaCha8Rng) -> Asset {
         0.03,
     );
     b.finish(Placement::Floor, [0.95, 1.05])
+}
+
+/// A barber chair's back over the seat `s` = (half width, half depth, height): an upholstered
+/// back leaning 8–15° toward −Z, and a headrest on a chrome stem above it.
+fn barber_back(b: &mut AssetBuilder, m: [usize; 2], s: [f32; 3], rng: &mut ChaCha8Rng) {
+    let ([uph, chrome], [hw, hd, seat]) = (m, s);
+    let lean = -uniform(rng, 0.14, 0.26);
+    let back_h = uniform(rng, 0.45, 0.55);
+    let start = [0.0, seat - 0.05, -hd + 0.04];
+    b.part(slanted_box(
+        "back",
+        uph,
+        start,
+        lean,
+        [hw - 0.02, 0.5 * back_h, 0.055],
+    ));
+    let rot = rotation([1.0, 0.0, 0.0], lean);
+    let top = nalgebra::Vector3::from(start) + rot * nalgebra::Vector3::new(0.0, back_h, -0.02);
+    let stem = uniform(rng, 0.06, 0.16);
+    b.part(slanted_box(
+        "headrest_stem",
+        chrome,
+        (top - rot * nalgebra::Vector3::new(0.0, 0.05, 0.0)).into(),
+        lean,
+        [0.02, 0.5 * stem + 0.05, 0.012],
+    ));
+    let head = top + rot * nalgebra::Vector3::new(0.0, stem, 0.0);
+    b.part(slanted_box(
+        "headrest",
+        uph,
+        head.into(),
+        lean,
+        [0.13, 0.07, 0.045],
+    ));
 }
 
 /// A barber chair's footrest under the seat front at `s` = (seat half depth, seat height): two

@@ -56,38 +56,7 @@ pub(crate) fn sewing_machine(rng: &mut ChaCha8Rng) -> Asset {
         [-hw + 0.005, h - 0.17, -hd + 0.03],
         [-hw + 0.095, h - 0.04, hd - 0.02],
     );
-    b.cuboid(
-        "needle_plate",
-        steel,
-        [hx - 0.05, bed - 0.001, -0.03],
-        [hx + 0.06, bed + 0.002, hd - 0.01],
-    );
-    b.frustum(
-        "needle_bar",
-        steel,
-        [hx, 0.03],
-        0.004,
-        0.004,
-        bed + 0.018,
-        h - 0.165,
-        8,
-    );
-    b.cuboid(
-        "presser_foot",
-        steel,
-        [hx - 0.012, bed + 0.002, 0.012],
-        [hx + 0.012, bed + 0.012, 0.055],
-    );
-    b.frustum(
-        "presser_bar",
-        steel,
-        [hx, 0.005],
-        0.003,
-        0.003,
-        bed + 0.01,
-        h - 0.165,
-        8,
-    );
+    needle_area(&mut b, steel, [hx, bed, h], hd);
     let dial_z = hd - 0.03;
     b.tube(
         "stitch_dial",
@@ -131,6 +100,45 @@ pub(crate) fn sewing_machine(rng: &mut ChaCha8Rng) -> Asset {
         14,
     );
     b.finish(Placement::Surface, [0.9, 1.1])
+}
+
+/// A sewing machine's stitching area under the head at `at` = (needle x, bed top, machine
+/// height), the bed `hd` deep on each side: the needle plate, the needle bar and the presser
+/// foot on its bar.
+fn needle_area(b: &mut Builder, steel: usize, at: [f32; 3], hd: f32) {
+    let [hx, bed, h] = at;
+    b.cuboid(
+        "needle_plate",
+        steel,
+        [hx - 0.05, bed - 0.001, -0.03],
+        [hx + 0.06, bed + 0.002, hd - 0.01],
+    );
+    b.frustum(
+        "needle_bar",
+        steel,
+        [hx, 0.03],
+        0.004,
+        0.004,
+        bed + 0.018,
+        h - 0.165,
+        8,
+    );
+    b.cuboid(
+        "presser_foot",
+        steel,
+        [hx - 0.012, bed + 0.002, 0.012],
+        [hx + 0.012, bed + 0.012, 0.055],
+    );
+    b.frustum(
+        "presser_bar",
+        steel,
+        [hx, 0.005],
+        0.003,
+        0.003,
+        bed + 0.01,
+        h - 0.165,
+        8,
+    );
 }
 
 /// Pottery wheel: width 0.56–0.67, height 0.44–0.59, depth 0.75–0.88 (with the pedal); a motor body
