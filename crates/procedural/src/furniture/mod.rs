@@ -1,5 +1,6 @@
 //! Built-in furniture generators: seating, tables, storage, beds and care, equipment, wall and
-//! ceiling assets (the furniture rows of `docs/asset-categories.md`).
+//! ceiling assets, and nursery, salon and clothing pieces (the furniture rows of
+//! `docs/asset-categories.md`).
 //!
 //! Generators are written as parametric families — a seat family, a table family and a carcass
 //! family of boards with compartments — plus special cases. Every part is a convex primitive;
@@ -12,6 +13,7 @@
 mod bathroom;
 mod beds;
 mod carcass;
+mod care;
 mod equipment;
 mod kitchen;
 mod living;
@@ -166,4 +168,16 @@ pub(crate) const GENERATORS: &[(&str, Generator)] = &[
     ("mirror", wall::mirror),
     // Ceiling.
     ("pendant_lamp", wall::pendant_lamp),
+    // Care, nursery, salon and clothing.
+    ("crib", care::crib),
+    ("changing_table", care::changing_table),
+    ("rocking_chair", care::rocking_chair),
+    ("high_chair", care::high_chair),
+    ("clothes_rack", care::clothes_rack),
+    ("mannequin", care::mannequin),
+    ("exam_table", care::exam_table),
+    ("dental_chair", care::dental_chair),
+    ("massage_table", care::massage_table),
+    ("barber_chair", care::barber_chair),
+    ("ironing_board", care::ironing_board),
 ];

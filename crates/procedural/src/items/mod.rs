@@ -4,6 +4,7 @@
 mod bathroom;
 pub(crate) mod builder;
 pub(crate) mod containers;
+mod craft;
 mod electronics;
 mod home;
 mod household;
@@ -85,6 +86,10 @@ pub(crate) const GENERATORS: &[(&str, Generator)] = &[
     ("keys", household::keys),
     ("alarm_clock", household::alarm_clock),
     ("printer", household::printer),
+    // Craft machines.
+    ("sewing_machine", craft::sewing_machine),
+    ("pottery_wheel", craft::pottery_wheel),
+    ("kiln", craft::kiln),
 ];
 
 #[cfg(test)]
