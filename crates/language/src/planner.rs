@@ -4,8 +4,8 @@
 use std::collections::BTreeSet;
 
 use scenethesis_agents::{
-    KnowledgePlanner, Plan, PlanError, PlanRequest, PlannedObject, Planner, Zone,
-    MAX_PLANNED_OBJECTS,
+    KnowledgePlanner, PlaceReading, Plan, PlanError, PlanRequest, PlannedObject, Planner,
+    ReadingSource, Zone, MAX_PLANNED_OBJECTS,
 };
 use scenethesis_models::{ChatModel, ChatRequest, Message};
 use scenethesis_scene_graph::ParentRef;
@@ -266,20 +266,118 @@ impl<M: ChatModel> Planner for LlmPlanner<M> {
 
     /// The model's plan (re-asked once, completed from offline knowledge when weak), with the
     /// objects its prompt names read by the offline planner (`requested`), so a requested
-    /// object the model left out is reported, and judged, as missing.
+    /// object the model left out is reported, and judged, as missing; the model's reading of
+    /// the place is kept and completed from the same knowledge (its place's core contents).
     fn plan(&self, request: &PlanRequest) -> Result<Plan, PlanError> {
-        let mut plan = self.model_plan(request)?;
+        let (mut plan, detailed) = self.model_plan(request)?;
         if plan.requested.is_empty() {
             plan.requested = self
                 .fallback
                 .requested_in(&plan, &request.available_categories);
             self.add_left_out(&mut plan, request);
+            // A detailed prompt is kept as the user stated it.
+            if !detailed {
+                self.complete_reading(&mut plan, request);
+            }
         }
         Ok(plan)
     }
 }
 
+/// Adds a copy of `source`, an object of the offline plan `offline`, to `plan` under a fresh
+/// id: on the floor or wall it stands on, or on an object of `plan` of its parent's category
+/// (`None`, and nothing added, when `plan` has none); relations to objects are dropped.
+fn adopt(
+    plan: &mut Plan,
+    source: &PlannedObject,
+    offline: &Plan,
+    taken: &mut BTreeSet<String>,
+) -> Option<String> {
+    let parent = match &source.parent {
+        ParentRef::Ground => ParentRef::Ground,
+        ParentRef::Wall(w) => ParentRef::Wall(w.clone()),
+        ParentRef::Object(p) => {
+            let p = offline.object(p)?;
+            let host = plan.objects.iter().find(|o| o.category == p.category)?;
+            ParentRef::Object(host.id.clone())
+        }
+    };
+    let id = fresh_id(&source.category, taken);
+    let mut copy = source.clone();
+    copy.id = id.clone();
+    copy.parent = parent;
+    copy.relations.retain(|r| r.target.starts_with("wall_"));
+    if copy.zone == Zone::Relative && copy.relations.is_empty() {
+        copy.zone = Zone::Free;
+    }
+    plan.objects.push(copy);
+    Some(id)
+}
+
 impl<M: ChatModel> LlmPlanner<M> {
+    /// Completes the model's reading from the offline knowledge: the offline planner reads
+    /// the model's scene type ("home_cinema" as "home cinema"), and every category of that
+    /// place's `core` (what any real room of the kind holds) the model left out, and the
+    /// prompt does not rule out, is added as the offline planner plans it, with a note. The
+    /// plan's `reading` names the model's place, and how sure the knowledge is of it.
+    fn complete_reading(&self, plan: &mut Plan, request: &PlanRequest) {
+        let words = plan.scene_type.replace('_', " ");
+        let typed = PlanRequest {
+            prompt: words.clone(),
+            ..request.clone()
+        };
+        let Ok(offline) = self.fallback.plan(&typed) else {
+            return;
+        };
+        let Some(known) = offline.reading.clone() else {
+            return;
+        };
+        plan.reading = Some(PlaceReading {
+            place: plan.scene_type.clone(),
+            confidence: known.confidence,
+            basis: format!(
+                "the model read the prompt as `{}`; the knowledge reads that as `{}` ({})",
+                plan.scene_type, known.place, known.basis
+            ),
+            source: ReadingSource::Model,
+        });
+        if known.is_low() {
+            return;
+        }
+        let ruled_out = |c: &str| {
+            plan.requested
+                .iter()
+                .any(|r| r.count == 0 && r.category.as_deref() == Some(c))
+        };
+        let missing: Vec<String> = self
+            .fallback
+            .core_of(&known.place)
+            .into_iter()
+            .filter(|c| request.available_categories.contains(c) && !ruled_out(c))
+            .filter(|c| !plan.objects.iter().any(|o| &o.category == c))
+            .collect();
+        let mut taken: BTreeSet<String> = plan.objects.iter().map(|o| o.id.clone()).collect();
+        let mut added = Vec::new();
+        for c in &missing {
+            let Some(source) = offline.objects.iter().find(|o| &o.category == c) else {
+                continue;
+            };
+            if plan.objects.len() >= MAX_PLANNED_OBJECTS {
+                break;
+            }
+            added.extend(adopt(plan, source, &offline, &mut taken));
+        }
+        if !added.is_empty() {
+            plan.objects = order(std::mem::take(&mut plan.objects), &plan.anchor.clone());
+            plan.notes.push(format!(
+                "completed the model's `{}` from the offline knowledge of `{}`, whose core the model left out: {}",
+                plan.scene_type,
+                known.place,
+                added.join(", ")
+            ));
+        }
+    }
+
     /// Adds the instances of requested objects the model left out, as the offline planner
     /// plans them for the same prompt (on a parent of the same category when they stand on
     /// one; one the model's plan lacks leaves them out), and notes what was added.
@@ -310,29 +408,12 @@ impl<M: ChatModel> LlmPlanner<M> {
                 .filter_map(|id| offline.object(id))
                 .take(missing)
             {
-                let parent = match &source.parent {
-                    ParentRef::Ground => Some(ParentRef::Ground),
-                    ParentRef::Wall(w) => Some(ParentRef::Wall(w.clone())),
-                    ParentRef::Object(p) => offline.object(p).and_then(|p| {
-                        plan.objects
-                            .iter()
-                            .find(|o| o.category == p.category)
-                            .map(|o| ParentRef::Object(o.id.clone()))
-                    }),
-                };
-                let Some(parent) = parent else { continue };
                 if plan.objects.len() >= MAX_PLANNED_OBJECTS {
                     break;
                 }
-                let id = fresh_id(&source.category, &mut taken);
-                let mut copy = source.clone();
-                copy.id = id.clone();
-                copy.parent = parent;
-                copy.relations.retain(|r| r.target.starts_with("wall_"));
-                if copy.zone == Zone::Relative && copy.relations.is_empty() {
-                    copy.zone = Zone::Free;
-                }
-                plan.objects.push(copy);
+                let Some(id) = adopt(plan, source, &offline, &mut taken) else {
+                    continue;
+                };
                 plan.requested[i].ids.push(id.clone());
                 added.push(id);
             }
@@ -359,7 +440,7 @@ impl<M: ChatModel> LlmPlanner<M> {
 }
 
 impl<M: ChatModel> LlmPlanner<M> {
-    fn model_plan(&self, request: &PlanRequest) -> Result<Plan, PlanError> {
+    fn model_plan(&self, request: &PlanRequest) -> Result<(Plan, bool), PlanError> {
         if !request.prompt.chars().any(char::is_alphanumeric) {
             return Err(PlanError::EmptyPrompt);
         }
@@ -375,9 +456,12 @@ impl<M: ChatModel> LlmPlanner<M> {
         ];
         let first = self.round(messages.clone(), request)?;
         let critique = match first {
-            Round::Plan(c, _, _) if c.issues.is_empty() => return Ok(c.plan),
+            Round::Plan(c, _, _) if c.issues.is_empty() => return Ok((c.plan, c.detailed)),
             // The client has re-asked once already; another round would end the same way.
-            Round::Plan(c, _, true) => return self.complete(*c, request),
+            Round::Plan(c, _, true) => {
+                let detailed = c.detailed;
+                return self.complete(*c, request).map(|p| (p, detailed));
+            }
             Round::Plan(ref c, _, false) => c.issues.join("; "),
             Round::Unusable(ref why) => why.clone(),
         };
@@ -395,7 +479,7 @@ impl<M: ChatModel> LlmPlanner<M> {
             (Round::Plan(c, _, _), _) if c.issues.is_empty() => {
                 let mut plan = c.plan;
                 plan.notes.push(format!("re-asked once: {critique}"));
-                return Ok(plan);
+                return Ok((plan, c.detailed));
             }
             (Round::Plan(c, _, _), _) | (Round::Unusable(_), Round::Plan(c, _, _)) => Some(c),
             (Round::Unusable(_), Round::Unusable(_)) => None,
@@ -403,7 +487,8 @@ impl<M: ChatModel> LlmPlanner<M> {
         match best {
             Some(mut c) => {
                 c.plan.notes.push(format!("re-asked once: {critique}"));
-                self.complete(*c, request)
+                let detailed = c.detailed;
+                self.complete(*c, request).map(|p| (p, detailed))
             }
             None => {
                 let mut plan = self
@@ -418,7 +503,7 @@ impl<M: ChatModel> LlmPlanner<M> {
                 plan.notes.push(format!(
                     "the model's answers were unusable twice ({critique}); planned from offline knowledge"
                 ));
-                Ok(plan)
+                Ok((plan, false))
             }
         }
     }

@@ -126,7 +126,16 @@ fn plans_a_pharmacy_from_an_openai_shaped_answer() {
     assert_eq!(plan.scene_type, "pharmacy");
     assert_eq!(plan.anchor, "checkout_counter_0");
     assert_eq!(plan.objects[0].id, "checkout_counter_0");
-    assert_eq!(plan.objects.len(), 18, "the x-ray machine is left out");
+    let completed = plan
+        .notes
+        .iter()
+        .find_map(|n| n.split_once("whose core the model left out: "))
+        .map_or(0, |(_, ids)| ids.split(", ").count());
+    assert_eq!(
+        plan.objects.len() - completed,
+        18,
+        "the x-ray machine is left out"
+    );
     assert!(plan.objects.iter().all(|o| o.category != "x-ray machine"));
     // Nearest categories.
     assert_eq!(
@@ -850,4 +859,46 @@ fn a_streamed_plan_shows_progress_and_one_that_stalls_is_salvaged() {
         "{notes}"
     );
     assert!(generated.plan.objects.len() >= scenethesis_language::MIN_OBJECTS);
+}
+
+#[test]
+fn the_models_reading_is_used_and_completed_from_the_same_knowledge() {
+    // The model reads the prompt as a home cinema but plans only a sofa: its reading stays,
+    // and what any home cinema holds (the knowledge's core for it) is added with a note.
+    let answer = json!({
+        "interpretation": "a small home cinema", "detailed": false, "scene_type": "home cinema",
+        "environment": "indoor", "room_width": 5.0, "room_depth": 4.5, "anchor": "sofa_0",
+        "objects": [obj("sofa_0", "sofa", "middle", ["against-wall", "ground", "wall", "wall_0"], json!([]))],
+        "unavailable": [], "description": "A sofa."
+    });
+    // A plan this small is weak: re-asked once, the same answer comes back.
+    let reply = || Reply::json(200, &openai_completion("gpt-4o", &answer.to_string()));
+    let server = TestServer::scripted(vec![reply(), reply()]);
+    let plan = LlmPlanner::new(chat(&server))
+        .plan(&request("a home cinema with a sofa"))
+        .unwrap();
+    assert_eq!(plan.scene_type, "home_cinema");
+    let reading = plan
+        .reading
+        .clone()
+        .expect("the model's reading is recorded");
+    assert_eq!(reading.source, scenethesis_agents::ReadingSource::Model);
+    assert!(!reading.is_low(), "{reading:?}");
+    let core = KnowledgePlanner::new().core_of("home_cinema");
+    assert!(!core.is_empty());
+    let categories = plan.categories();
+    for c in &core {
+        assert!(
+            categories.contains(c.as_str()),
+            "core `{c}` missing: {categories:?}"
+        );
+    }
+    assert!(
+        plan.notes
+            .iter()
+            .any(|n| n.starts_with("completed the model's `home_cinema`")),
+        "{:?}",
+        plan.notes
+    );
+    assert!(plan.object("sofa_0").is_some(), "the model's objects stay");
 }

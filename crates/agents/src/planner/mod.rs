@@ -72,6 +72,21 @@ impl KnowledgePlanner {
         &self.knowledge
     }
 
+    /// The core contents of a place (an archetype or a place of the thesaurus, by name):
+    /// what any real room of the kind holds; empty for an unknown name.
+    ///
+    /// ```
+    /// let planner = scenethesis_agents::KnowledgePlanner::new();
+    /// assert!(planner.core_of("bathroom").contains(&"toilet".to_owned()));
+    /// assert!(planner.core_of("no such place").is_empty());
+    /// ```
+    pub fn core_of(&self, place: &str) -> Vec<String> {
+        self.thesaurus
+            .archetype(place, &self.knowledge)
+            .map(|a| a.core)
+            .unwrap_or_default()
+    }
+
     /// Every category the knowledge files name (the built-in library's categories).
     pub fn known_categories(&self) -> BTreeSet<String> {
         self.knowledge.category_names().map(str::to_owned).collect()
