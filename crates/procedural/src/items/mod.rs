@@ -9,6 +9,7 @@ mod home;
 mod household;
 mod kitchen;
 mod lab;
+mod media;
 mod tableware;
 
 use crate::category::Generator;
@@ -85,6 +86,9 @@ pub(crate) const GENERATORS: &[(&str, Generator)] = &[
     ("keys", household::keys),
     ("alarm_clock", household::alarm_clock),
     ("printer", household::printer),
+    // Media items.
+    ("projector", media::projector),
+    ("headphones", media::headphones),
 ];
 
 #[cfg(test)]
