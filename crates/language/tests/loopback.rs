@@ -215,7 +215,7 @@ fn weak_answer() -> Value {
         "anchor": "hologram_0",
         "objects": [
             obj("sofa_0", "sofa", "middle", ["on-floor", "ground", "center", "any"], json!([])),
-            obj("hologram_0", "hologram projector", "middle", ["on-floor", "ground", "center", "any"], json!([])),
+            obj("hologram_0", "hologram emitter", "middle", ["on-floor", "ground", "center", "any"], json!([])),
             obj("lamp_0", "floor lamp", "background", ["on-floor", "ground", "corner", "any"], json!([]))
         ],
         "unavailable": [],
@@ -243,7 +243,7 @@ fn a_weak_plan_is_reasked_once_then_completed_from_offline_knowledge() {
         .unwrap()
         .to_string();
     assert!(
-        critique.contains("hologram projector") && critique.contains("at least 15"),
+        critique.contains("hologram emitter") && critique.contains("at least 15"),
         "{critique}"
     );
     assert!(plan.objects.len() >= 15, "{}", plan.objects.len());

@@ -1,6 +1,6 @@
-//! Built-in furniture generators: seating, tables, storage, beds and care, equipment, wall and
-//! ceiling assets, and nursery, salon and clothing pieces (the furniture rows of
-//! `docs/asset-categories.md`).
+//! Built-in furniture generators: seating, tables, storage, beds and care, equipment, music,
+//! media and games, wall and ceiling assets, and nursery, salon and clothing pieces (the
+//! furniture rows of `docs/asset-categories.md`).
 //!
 //! Generators are written as parametric families — a seat family, a table family and a carcass
 //! family of boards with compartments — plus special cases. Every part is a convex primitive;
@@ -17,6 +17,7 @@ mod care;
 mod equipment;
 mod kitchen;
 mod living;
+mod media;
 mod seating;
 mod storage;
 mod tables;
@@ -161,6 +162,19 @@ pub(crate) const GENERATORS: &[(&str, Generator)] = &[
     ("shoe_rack", living::shoe_rack),
     ("suitcase", living::suitcase),
     ("filing_cabinet", living::filing_cabinet),
+    // Music, media and games.
+    ("guitar", media::guitar),
+    ("drum_kit", media::drum_kit),
+    ("amplifier", media::amplifier),
+    ("speaker", media::speaker),
+    ("microphone_stand", media::microphone_stand),
+    ("mixing_console", media::mixing_console),
+    ("recliner", media::recliner),
+    ("arcade_cabinet", media::arcade_cabinet),
+    ("foosball_table", media::foosball_table),
+    ("ping_pong_table", media::ping_pong_table),
+    ("projector_screen", media::projector_screen),
+    ("dartboard", media::dartboard),
     // Wall.
     ("painting", wall::painting),
     ("whiteboard", wall::whiteboard),

@@ -10,6 +10,7 @@ mod home;
 mod household;
 mod kitchen;
 mod lab;
+mod media;
 mod tableware;
 
 use crate::category::Generator;
@@ -90,6 +91,9 @@ pub(crate) const GENERATORS: &[(&str, Generator)] = &[
     ("sewing_machine", craft::sewing_machine),
     ("pottery_wheel", craft::pottery_wheel),
     ("kiln", craft::kiln),
+    // Media items.
+    ("projector", media::projector),
+    ("headphones", media::headphones),
 ];
 
 #[cfg(test)]
