@@ -517,7 +517,11 @@ fn complete_needs(
         let t = match existing {
             Some(t) => t,
             None => {
-                let Some(t) = out.add(target, DraftPlace::Zone(Zone::Free), false, false) else {
+                let zone = match planner.knowledge.prior(target).map(|p| p.mount) {
+                    Some(Mount::Wall) => Zone::WallMounted,
+                    _ => Zone::Free,
+                };
+                let Some(t) = out.add(target, DraftPlace::Zone(zone), false, false) else {
                     continue;
                 };
                 out.notes.push(format!(
@@ -581,7 +585,10 @@ fn draw_up(planner: &KnowledgePlanner, subjects: &[usize], t: usize, out: &mut D
             for &s in &carried {
                 out.drafts[s].place = DraftPlace::Support(RelationKind::On, t);
             }
-        } else if !matches!(out.drafts[t].place, DraftPlace::Anchor) {
+        } else if !matches!(out.drafts[t].place, DraftPlace::Anchor)
+            && planner.knowledge.prior(&out.drafts[t].category).map(|p| p.mount)
+                == Some(Mount::Floor)
+        {
             let mut root = s;
             while let DraftPlace::Support(_, p) = out.drafts[root].place {
                 root = p;
