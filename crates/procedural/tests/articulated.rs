@@ -8,7 +8,7 @@ use scenethesis_procedural::catalog;
 use scenethesis_scene_graph::{Asset, Joint, JointKind, MeshPart, SurfaceKind};
 
 /// Categories whose generators build moving parts.
-const ARTICULATED: [&str; 26] = [
+const ARTICULATED: [&str; 31] = [
     "cabinet",
     "wall_cabinet",
     "kitchen_counter",
@@ -35,6 +35,11 @@ const ARTICULATED: [&str; 26] = [
     "toy_box",
     "cooler",
     "laptop",
+    "vending_machine",
+    "server_rack",
+    "photocopier",
+    "safe",
+    "treasure_chest",
 ];
 
 /// Seeds every check runs over.

@@ -1,5 +1,6 @@
 //! Built-in furniture generators: seating, tables, storage, beds and care, equipment, wall and
-//! ceiling assets (the furniture rows of `docs/asset-categories.md`).
+//! ceiling assets, and work, worship and service pieces (the furniture rows of
+//! `docs/asset-categories.md`).
 //!
 //! Generators are written as parametric families — a seat family, a table family and a carcass
 //! family of boards with compartments — plus special cases. Every part is a convex primitive;
@@ -16,6 +17,7 @@ mod equipment;
 mod kitchen;
 mod living;
 mod seating;
+mod service;
 mod storage;
 mod tables;
 mod wall;
@@ -166,4 +168,17 @@ pub(crate) const GENERATORS: &[(&str, Generator)] = &[
     ("mirror", wall::mirror),
     // Ceiling.
     ("pendant_lamp", wall::pendant_lamp),
+    // Work, worship and service.
+    ("vending_machine", service::vending_machine),
+    ("wine_rack", service::wine_rack),
+    ("server_rack", service::server_rack),
+    ("pew", service::pew),
+    ("altar", service::altar),
+    ("lectern", service::lectern),
+    ("water_cooler", service::water_cooler),
+    ("photocopier", service::photocopier),
+    ("safe", service::safe),
+    ("treasure_chest", service::treasure_chest),
+    ("punching_bag", service::punching_bag),
+    ("bunk_bed", service::bunk_bed),
 ];

@@ -9,6 +9,7 @@ mod home;
 mod household;
 mod kitchen;
 mod lab;
+mod service;
 mod tableware;
 
 use crate::category::Generator;
@@ -85,6 +86,9 @@ pub(crate) const GENERATORS: &[(&str, Generator)] = &[
     ("keys", household::keys),
     ("alarm_clock", household::alarm_clock),
     ("printer", household::printer),
+    // Work, worship and service items.
+    ("candle", service::candle),
+    ("globe", service::globe),
 ];
 
 #[cfg(test)]
