@@ -8,7 +8,7 @@ use scenethesis_procedural::catalog;
 use scenethesis_scene_graph::{Asset, Joint, JointKind, MeshPart, SurfaceKind};
 
 /// Categories whose generators build moving parts.
-const ARTICULATED: [&str; 30] = [
+const ARTICULATED: [&str; 36] = [
     "cabinet",
     "wall_cabinet",
     "kitchen_counter",
@@ -39,6 +39,11 @@ const ARTICULATED: [&str; 30] = [
     "exam_table",
     "kiln",
     "recliner",
+    "vending_machine",
+    "server_rack",
+    "photocopier",
+    "safe",
+    "treasure_chest",
 ];
 
 /// Categories only some of whose assets have moving parts (a dartboard hangs bare or in a

@@ -1,6 +1,6 @@
 //! Built-in furniture generators: seating, tables, storage, beds and care, equipment, music,
-//! media and games, wall and ceiling assets, and nursery, salon and clothing pieces (the
-//! furniture rows of `docs/asset-categories.md`).
+//! media and games, wall and ceiling assets, nursery, salon and clothing pieces, and work,
+//! worship and service pieces (the furniture rows of `docs/asset-categories.md`).
 //!
 //! Generators are written as parametric families — a seat family, a table family and a carcass
 //! family of boards with compartments — plus special cases. Every part is a convex primitive;
@@ -19,6 +19,7 @@ mod kitchen;
 mod living;
 mod media;
 mod seating;
+mod service;
 mod storage;
 mod tables;
 mod wall;
@@ -194,4 +195,17 @@ pub(crate) const GENERATORS: &[(&str, Generator)] = &[
     ("massage_table", care::massage_table),
     ("barber_chair", care::barber_chair),
     ("ironing_board", care::ironing_board),
+    // Work, worship and service.
+    ("vending_machine", service::vending_machine),
+    ("wine_rack", service::wine_rack),
+    ("server_rack", service::server_rack),
+    ("pew", service::pew),
+    ("altar", service::altar),
+    ("lectern", service::lectern),
+    ("water_cooler", service::water_cooler),
+    ("photocopier", service::photocopier),
+    ("safe", service::safe),
+    ("treasure_chest", service::treasure_chest),
+    ("punching_bag", service::punching_bag),
+    ("bunk_bed", service::bunk_bed),
 ];

@@ -391,7 +391,7 @@ pub(super) fn display_case(rng: &mut ChaCha8Rng) -> Asset {
 /// A box with walls of `wall` thickness whose top a lid closes: bottom, four walls, and an
 /// `Interior` surface on the inside floor reaching up to the walls' top.
 #[allow(clippy::too_many_arguments)]
-fn open_box(
+pub(super) fn open_box(
     b: &mut AssetBuilder,
     material: usize,
     w: f32,

@@ -11,6 +11,7 @@ mod household;
 mod kitchen;
 mod lab;
 mod media;
+mod service;
 mod tableware;
 
 use crate::category::Generator;
@@ -94,6 +95,9 @@ pub(crate) const GENERATORS: &[(&str, Generator)] = &[
     // Media items.
     ("projector", media::projector),
     ("headphones", media::headphones),
+    // Work, worship and service items.
+    ("candle", service::candle),
+    ("globe", service::globe),
 ];
 
 #[cfg(test)]
