@@ -460,15 +460,16 @@ pub fn check_arrangement_with(rules: &ArrangementRules, scene: &Scene) -> Arrang
     check
 }
 
-/// Checks the `needs` rules: every subject, on the floor or carried, has a target carrying it
-/// or on the floor within the rule's reach of the floor object it stands on.
+/// Checks the `needs` rules: every subject, on the floor or carried, has a target carrying it,
+/// or on the floor or a wall within the rule's reach of the floor object it stands on.
 fn check_needs(rules: &ArrangementRules, scene: &Scene, check: &mut ArrangementCheck) {
     let categories = || scene.objects.iter().map(|o| o.category.as_str());
     for r in rules.needs.iter().filter(|r| r.applies(categories())) {
         let targets: Vec<&SceneObject> = scene
             .objects
             .iter()
-            .filter(|o| o.parent == ParentRef::Ground && r.target.contains(&o.category))
+            .filter(|o| matches!(o.parent, ParentRef::Ground | ParentRef::Wall(_)))
+            .filter(|o| r.target.contains(&o.category))
             .collect();
         for s in scene
             .objects

@@ -8,7 +8,7 @@ use scenethesis_procedural::catalog;
 use scenethesis_scene_graph::{Asset, Joint, JointKind, MeshPart, SurfaceKind};
 
 /// Categories whose generators build moving parts.
-const ARTICULATED: [&str; 36] = [
+const ARTICULATED: [&str; 35] = [
     "cabinet",
     "wall_cabinet",
     "kitchen_counter",

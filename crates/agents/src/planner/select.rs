@@ -586,7 +586,10 @@ fn draw_up(planner: &KnowledgePlanner, subjects: &[usize], t: usize, out: &mut D
                 out.drafts[s].place = DraftPlace::Support(RelationKind::On, t);
             }
         } else if !matches!(out.drafts[t].place, DraftPlace::Anchor)
-            && planner.knowledge.prior(&out.drafts[t].category).map(|p| p.mount)
+            && planner
+                .knowledge
+                .prior(&out.drafts[t].category)
+                .map(|p| p.mount)
                 == Some(Mount::Floor)
         {
             let mut root = s;
