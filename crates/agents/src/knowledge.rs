@@ -250,6 +250,9 @@ pub struct Vocabulary {
     pub phrase_ends: BTreeSet<String>,
     /// Head nouns that name no kind of place by themselves ("a music *room*").
     pub generic_heads: BTreeSet<String>,
+    /// Category words that are also adjectives ("a *safe* room"): read as the object only after
+    /// an article, a count or "the", and not before another meaningful word.
+    pub adjective_nouns: BTreeSet<String>,
 }
 
 /// What a spatial phrase states.
@@ -372,6 +375,7 @@ struct VocabularyFile {
 struct PlacePhraseWords {
     ends: Vec<String>,
     generic_heads: Vec<String>,
+    adjective_nouns: Vec<String>,
 }
 
 #[derive(Deserialize)]
@@ -473,6 +477,12 @@ impl Knowledge {
                 generic_heads: voc
                     .place_phrase
                     .generic_heads
+                    .iter()
+                    .flat_map(|w| phrase_stems(w))
+                    .collect(),
+                adjective_nouns: voc
+                    .place_phrase
+                    .adjective_nouns
                     .iter()
                     .flat_map(|w| phrase_stems(w))
                     .collect(),

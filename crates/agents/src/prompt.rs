@@ -373,6 +373,30 @@ impl ItemReader<'_> {
         Some(alias.phrase.len())
     }
 
+    /// Whether the word at `i`, one that is also an adjective (`knowledge/vocabulary.toml`
+    /// `[adjective_nouns]`: "a *safe* room"), names the object here: after an article, a count
+    /// or "the", and not before another meaningful word ("a safe and cozy nursery" is an
+    /// adjective, "a safe and a desk" a noun). Any other word always does.
+    fn names_the_object(&self, i: usize, pending: &Pending) -> bool {
+        let voc = &self.knowledge.vocabulary;
+        let Some(word) = self.stems[i] else {
+            return false;
+        };
+        if !voc.adjective_nouns.contains(word) {
+            return true;
+        }
+        let determined = pending.count.is_some() || pending.definite;
+        let content = |w: &str| !voc.filler.contains(w) && !voc.counts.contains_key(w);
+        let next = self.stems.get(i + 1).copied().flatten();
+        let after = self.stems.get(i + 2).copied().flatten();
+        let adjective = match next {
+            Some("and" | "or") => after.is_some_and(content),
+            Some(w) => content(w),
+            None => false,
+        };
+        determined && !adjective
+    }
+
     /// A category's phrase at token `i`: its mention. Returns how many tokens it read.
     fn read_category(
         &self,
@@ -386,6 +410,9 @@ impl ItemReader<'_> {
             .category_phrases()
             .iter()
             .find(|(p, _)| self.matches_at(i, p))?;
+        if phrase.len() == 1 && !self.names_the_object(i, pending) {
+            return None;
+        }
         let plural = self.plural_at(i + phrase.len() - 1);
         let words = phrase.join(" ");
         push_mention(

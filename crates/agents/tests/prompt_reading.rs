@@ -328,3 +328,21 @@ fn plans_are_completed_so_that_what_needs_a_partner_has_one() {
         bare.notes
     );
 }
+
+#[test]
+fn a_word_that_is_also_an_adjective_names_the_object_only_as_a_noun() {
+    for prompt in [
+        "a safe playroom for kids",
+        "a safe and cozy nursery",
+        "a safe room",
+    ] {
+        assert_eq!(count(&plan(prompt), "safe"), 0, "{prompt}");
+    }
+    for prompt in [
+        "an office with a safe",
+        "a bank office with a safe in the corner",
+        "a study with a safe and a desk",
+    ] {
+        assert!(count(&plan(prompt), "safe") >= 1, "{prompt}");
+    }
+}

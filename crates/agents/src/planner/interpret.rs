@@ -226,6 +226,22 @@ struct Chooser<'a> {
 }
 
 impl Chooser<'_> {
+    /// The (at most) two archetypes of highest positive `score`, best first (ties in file
+    /// order).
+    fn best_two(&self, score: impl Fn(&Archetype) -> usize) -> Vec<usize> {
+        let mut ranked: Vec<(usize, usize)> = self
+            .planner
+            .knowledge
+            .archetypes
+            .iter()
+            .enumerate()
+            .map(|(i, a)| (score(a), i))
+            .filter(|(n, _)| *n > 0)
+            .collect();
+        ranked.sort_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
+        ranked.iter().take(2).map(|r| r.1).collect()
+    }
+
     /// The archetypes at `chosen` indices.
     fn by_index(&self, chosen: &[usize]) -> Vec<Archetype> {
         chosen
@@ -541,23 +557,11 @@ impl Chooser<'_> {
             .copied()
             .filter(|w| !voc.filler.contains(*w) && !voc.generic_heads.contains(*w))
             .collect();
-        let mut ranked: Vec<(usize, usize)> = self
-            .planner
-            .knowledge
-            .archetypes
-            .iter()
-            .enumerate()
-            .map(|(i, a)| {
-                let shared = head
-                    .iter()
-                    .filter(|w| a.phrases.iter().flatten().any(|p| p == *w))
-                    .count();
-                (shared, i)
-            })
-            .filter(|(n, _)| *n > 0)
-            .collect();
-        ranked.sort_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
-        let chosen: Vec<usize> = ranked.iter().take(2).map(|r| r.1).collect();
+        let chosen = self.best_two(|a| {
+            head.iter()
+                .filter(|w| a.phrases.iter().flatten().any(|p| p == *w))
+                .count()
+        });
         let first = *chosen.first()?;
         let shared: Vec<&str> = head
             .iter()
@@ -600,31 +604,21 @@ impl Chooser<'_> {
         if mentioned.is_empty() {
             return None;
         }
-        let mut ranked: Vec<(usize, usize)> = self
-            .planner
-            .knowledge
-            .archetypes
-            .iter()
-            .enumerate()
-            .map(|(i, a)| {
-                let held = a
-                    .objects
-                    .iter()
-                    .filter(|g| mentioned.contains(g.category.as_str()))
-                    .map(|g| &g.category)
-                    .collect::<BTreeSet<_>>()
-                    .len();
-                // An archetype anchored on a mentioned object fits best.
-                let anchored = held > 0 && mentioned.contains(a.anchor.as_str());
-                (2 * held + usize::from(anchored), i)
-            })
-            .filter(|(n, _)| *n > 0)
-            .collect();
-        ranked.sort_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
-        if ranked.is_empty() {
+        let chosen = self.best_two(|a| {
+            let held = a
+                .objects
+                .iter()
+                .filter(|g| mentioned.contains(g.category.as_str()))
+                .map(|g| &g.category)
+                .collect::<BTreeSet<_>>()
+                .len();
+            // An archetype anchored on a mentioned object fits best.
+            let anchored = held > 0 && mentioned.contains(a.anchor.as_str());
+            2 * held + usize::from(anchored)
+        });
+        if chosen.is_empty() {
             return None;
         }
-        let chosen: Vec<usize> = ranked.iter().take(2).map(|r| r.1).collect();
         let held = self.planner.knowledge.archetypes[chosen[0]]
             .objects
             .iter()
