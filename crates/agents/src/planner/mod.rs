@@ -1,8 +1,9 @@
 //! The offline planner: archetype knowledge plus prompt reading, no model and no network.
 //!
 //! [`KnowledgePlanner::plan`] runs one function per phase, each in its own file: `interpret`
-//! (read the prompt, choose archetypes), `select` (which objects, how many, roughly where),
-//! `constrain` (the prompt's stated relations become hard constraints), `hierarchy` (anchor,
+//! (read the prompt's place from its head noun, with `head`; choose archetypes), `select`
+//! (which objects, how many, roughly where), `needs` (what serves what: a table for dining
+//! chairs), `constrain` (the prompt's stated relations become hard constraints), `hierarchy` (anchor,
 //! support tree, ids, layers) and `room` (room size and walkways), then `describe` words the
 //! plan's layers.
 
@@ -11,6 +12,7 @@ mod describe;
 mod head;
 mod hierarchy;
 mod interpret;
+mod needs;
 mod requested;
 mod room;
 mod select;
