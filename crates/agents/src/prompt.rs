@@ -97,14 +97,13 @@ enum Item {
 }
 
 /// Reads `prompt`. `available` restricts how generic nouns resolve. `naming` marks the tokens
-/// that name the place (they are not read as objects); without it, the phrases of the
-/// best-matching archetype are taken to.
+/// that name the place (one per token; they are not read as objects).
 pub(crate) fn analyze(
     prompt: &str,
     knowledge: &Knowledge,
     nouns: &[NounAlias],
     available: &BTreeSet<String>,
-    naming: Option<&[bool]>,
+    naming: &[bool],
 ) -> Analysis {
     let tokens = tokenize(prompt);
     let stems: Vec<Option<&str>> = tokens.iter().map(Token::stem).collect();
@@ -118,8 +117,7 @@ pub(crate) fn analyze(
     out.scene_words = stems.iter().flatten().any(|w| voc.scene_words.contains(*w));
 
     // 1. Scene type: whole phrases, then shared words.
-    let best_phrases = match_scenes(&stems, knowledge, &mut out);
-    let consumed = naming.map_or(best_phrases, <[bool]>::to_vec);
+    match_scenes(&stems, knowledge, &mut out);
     let scene_categories = scene_categories(&out, knowledge);
 
     // 2. Items: mentions, relation phrases, pronouns and joints.
@@ -130,7 +128,7 @@ pub(crate) fn analyze(
         nouns,
         available,
         scene_categories: &scene_categories,
-        consumed: &consumed,
+        consumed: naming,
     };
     let items = reader.read(&mut out);
 
@@ -149,12 +147,10 @@ fn matches_at(stems: &[Option<&str>], i: usize, phrase: &[String]) -> bool {
 }
 
 /// Phase 1, the scene type: scores every archetype by its whole phrases, then by the words it
-/// shares with the prompt, into `out.scenes` (best first), and returns which tokens the best
-/// archetype's phrases cover (they name the scene, not objects).
-fn match_scenes(stems: &[Option<&str>], knowledge: &Knowledge, out: &mut Analysis) -> Vec<bool> {
+/// shares with the prompt, into `out.scenes` (best first); generic nouns prefer the best
+/// archetypes' categories.
+fn match_scenes(stems: &[Option<&str>], knowledge: &Knowledge, out: &mut Analysis) {
     let voc = &knowledge.vocabulary;
-    let mut consumed = vec![false; stems.len()];
-    let mut phrase_spans: Vec<(usize, usize, usize)> = Vec::new(); // (archetype, start, len)
     for (ai, arch) in knowledge.archetypes.iter().enumerate() {
         let mut score = 0.0;
         let mut phrase_hit = false;
@@ -164,7 +160,6 @@ fn match_scenes(stems: &[Option<&str>], knowledge: &Knowledge, out: &mut Analysi
                 if matches_at(stems, i, phrase) {
                     phrase_hit = true;
                     best_len = best_len.max(phrase.len());
-                    phrase_spans.push((ai, i, phrase.len()));
                 }
             }
         }
@@ -192,16 +187,6 @@ fn match_scenes(stems: &[Option<&str>], knowledge: &Knowledge, out: &mut Analysi
             .total_cmp(&a.score)
             .then(a.archetype.cmp(&b.archetype))
     });
-    if let Some(best) = out.scenes.first() {
-        for &(ai, start, len) in &phrase_spans {
-            if ai == best.archetype {
-                consumed[start..start + len]
-                    .iter_mut()
-                    .for_each(|c| *c = true);
-            }
-        }
-    }
-    consumed
 }
 
 /// The categories of the two best-matching archetypes (generic nouns prefer them).

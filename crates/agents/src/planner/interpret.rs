@@ -91,7 +91,7 @@ pub(super) fn interpret(
         knowledge,
         &planner.thesaurus.nouns,
         &request.available_categories,
-        Some(&naming),
+        &naming,
     );
     let chooser = Chooser {
         analysis: &analysis,

@@ -78,7 +78,7 @@ impl super::KnowledgePlanner {
             &self.knowledge,
             &self.thesaurus.nouns,
             available,
-            Some(&naming),
+            &naming,
         );
         let mut taken: BTreeSet<String> = BTreeSet::new();
         let mut out = Vec::new();
