@@ -173,7 +173,16 @@ impl Placer<'_, '_> {
                 .rules
                 .knowledge
                 .join_kind(self.room_type(&p), self.room_type(&q));
-            if self.add(&wall, [p.clone(), q.clone()], kind, &q).is_none() {
+            // Doors open into rooms, not into corridors.
+            let into = if self.room_type(&q) == HALLWAY {
+                p.clone()
+            } else {
+                q.clone()
+            };
+            if self
+                .add(&wall, [p.clone(), q.clone()], kind, &into)
+                .is_none()
+            {
                 return;
             }
             reached.insert(q);

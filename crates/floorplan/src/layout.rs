@@ -445,7 +445,8 @@ fn sketch(
         }
     }
     // Rows of very different areas cannot share a length: one row instead.
-    if an.min(asouth) * 2.2 < an.max(asouth) || rng.random_bool(0.1) {
+    let few = north.len() + south.len() <= 3;
+    if an.min(asouth) * 2.2 < an.max(asouth) || (few && rng.random_bool(0.2)) {
         north.append(&mut south);
     }
     for row in [&mut north, &mut south] {
