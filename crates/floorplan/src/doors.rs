@@ -26,6 +26,23 @@ pub const PASSAGE_MAX: f64 = 2.4;
 /// Double door widths, m.
 pub const DOUBLE_WIDTHS: [f64; 3] = [1.4, 1.5, 1.6];
 
+/// Public rooms a private room is entered from only when no hallway or living space is next
+/// to it (a bathroom off a kitchen is a last resort).
+pub const SERVICE_ROOMS: &[&str] = &["kitchen", "kitchenette", "dining_room"];
+
+/// Private rooms entered from a service room ([`SERVICE_ROOMS`]): a cost for layout scoring.
+pub(crate) fn service_entries(knowledge: &Knowledge, plan: &FloorPlan) -> usize {
+    let ty = |id: &str| plan.room(id).map_or("", |r| r.room_type.as_str());
+    plan.doors
+        .iter()
+        .filter(|d| {
+            let [a, b] = [ty(&d.rooms[0]), ty(&d.rooms[1])];
+            (SERVICE_ROOMS.contains(&a) && knowledge.is_private(b))
+                || (SERVICE_ROOMS.contains(&b) && knowledge.is_private(a))
+        })
+        .count()
+}
+
 /// What door placement needs to know.
 pub(crate) struct DoorRules<'a> {
     pub knowledge: &'a Knowledge,
@@ -216,7 +233,7 @@ impl Placer<'_, '_> {
     fn join_private(&mut self, room: &str, reached: &BTreeSet<String>) -> Option<()> {
         let rank = |ty: &str| match ty {
             HALLWAY => 0,
-            "kitchen" | "kitchenette" | "dining_room" => 2,
+            ty if SERVICE_ROOMS.contains(&ty) => 2,
             _ => 1,
         };
         let need = self.width(DoorKind::Single, room, 0.0) + 2.0 * CORNER_CLEARANCE;

@@ -11,7 +11,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
-use crate::doors::{place_doors, DoorRules};
+use crate::doors::{place_doors, service_entries, DoorRules};
 use crate::geometry::{union_outline, Rect};
 use crate::knowledge::{DwellingKind, Knowledge, HALLWAY};
 use crate::plan::{FloorPlan, Room};
@@ -23,8 +23,11 @@ use crate::windows::place_windows;
 /// How far (as a fraction) a generated room's area may leave its knowledge range.
 pub const AREA_TOLERANCE: f64 = 0.2;
 
-/// Layout attempts per plan (the best valid one is kept).
+/// Layout attempts per plan at most.
 const ATTEMPTS: usize = 48;
+
+/// Valid attempts compared before the best is kept (few, so that seeds vary the plan).
+const CANDIDATES: usize = 8;
 
 /// A generated floor plan with its walls and how its areas compare with the knowledge.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -118,14 +121,18 @@ pub fn generate(
     let wants_hallway = program.count(HALLWAY) > 0 || private_units(&specs) > 2;
     let mut best: Option<(bool, f64, Generated)> = None;
     let mut failures: std::collections::BTreeMap<&str, usize> = Default::default();
+    let mut valid = 0;
     for attempt in 0..ATTEMPTS {
         // Without a required hallway, the first half of the attempts try without one.
         let corridor = wants_hallway || attempt >= ATTEMPTS / 2;
-        if corridor && best.as_ref().is_some_and(|(c, _, _)| !c) {
+        if valid >= CANDIDATES || (corridor && best.as_ref().is_some_and(|(c, _, _)| !c)) {
             break;
         }
         let (score, plan) = match attempt_plan(knowledge, dwelling, &specs, corridor, &mut rng) {
-            Ok(found) => found,
+            Ok(found) => {
+                valid += 1;
+                found
+            }
             Err(why) => {
                 *failures.entry(why).or_default() += 1;
                 continue;
@@ -228,6 +235,9 @@ fn units(knowledge: &Knowledge, specs: &[Spec], rng: &mut ChaCha8Rng) -> Vec<Vec
             out.push(pair);
         }
     }
+    // Mostly, rooms joined by a passage or double door stand side by side; sometimes not
+    // (they may still meet across the rows).
+    let chains = rng.random_bool(0.7);
     for start in 0..specs.len() {
         if used[start] || specs[start].private {
             continue;
@@ -236,7 +246,8 @@ fn units(knowledge: &Knowledge, specs: &[Spec], rng: &mut ChaCha8Rng) -> Vec<Vec
         let mut chain = vec![start];
         while let Some(next) = (0..specs.len()).find(|&j| {
             let last = &specs[*chain.last().unwrap_or(&start)];
-            !used[j]
+            chains
+                && !used[j]
                 && !specs[j].private
                 && knowledge.join_kind(&last.room_type, &specs[j].room_type)
                     != crate::plan::DoorKind::Single
@@ -446,7 +457,7 @@ fn sketch(
     }
     // Rows of very different areas cannot share a length: one row instead.
     let few = north.len() + south.len() <= 3;
-    if an.min(asouth) * 2.2 < an.max(asouth) || (few && rng.random_bool(0.2)) {
+    if an.min(asouth) * 3.0 < an.max(asouth) || (few && rng.random_bool(0.2)) {
         north.append(&mut south);
     }
     for row in [&mut north, &mut south] {
@@ -535,7 +546,7 @@ fn attempt_plan(
     let areas = area_notes(specs, &plan).ok_or("areas")?;
     plan.doors = place_doors(&rules, &plan, &bare, rng).ok_or("doors")?;
     plan.windows = place_windows(knowledge, &plan, &bare);
-    let score = score(specs, &plan);
+    let score = score(specs, &plan) + 0.5 * service_entries(knowledge, &plan) as f64;
     let walls = validate(&plan, knowledge).map_err(|_| "validation")?;
     check_privacy(&plan, knowledge).map_err(|_| "privacy")?;
     let hallway = plan.rooms.iter().any(|r| r.room_type == HALLWAY);
@@ -627,7 +638,8 @@ fn area_notes(specs: &[Spec], plan: &FloorPlan) -> Option<Vec<AreaNote>> {
     Some(notes)
 }
 
-/// How far an attempt is from the targets: relative area misses plus stretched shapes.
+/// How far an attempt is from the targets: relative area misses plus stretched shapes (the
+/// caller adds half a point per private room entered from a kitchen or dining room).
 fn score(specs: &[Spec], plan: &FloorPlan) -> f64 {
     specs
         .iter()

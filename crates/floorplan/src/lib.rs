@@ -33,6 +33,7 @@ mod windows;
 
 pub use doors::{
     CORNER_CLEARANCE, DOOR_HEIGHT, DOUBLE_WIDTHS, ENTRANCE_WIDTH, PASSAGE_MAX, PASSAGE_MIN,
+    SERVICE_ROOMS,
 };
 pub use knowledge::{
     DwellingKind, Knowledge, KnowledgeError, Privacy, RoomKind, WindowSpec, HALLWAY,
