@@ -9,6 +9,7 @@ use nalgebra::{Point2, Vector2};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
+use crate::geometry::Rect;
 use crate::knowledge::{DwellingKind, Knowledge, HALLWAY};
 use crate::plan::{Door, DoorKind, FloorPlan, Hinge, Swing, EXTERIOR};
 use crate::walls::Wall;
@@ -363,4 +364,54 @@ fn swing(
         into: into.to_owned(),
         hinge,
     })
+}
+
+/// The floor square each door leaf sweeps as it opens, `(door id, square)`: a leaf of width
+/// `w` hinged at one end of the opening sweeps a quarter disc inside the w × w square beside
+/// it, on the side of the room it opens into; a double door's two leaves sweep the opening's
+/// width by half of it. Passages and doors without a swing or off every wall sweep nothing.
+pub fn leaf_squares(plan: &FloorPlan, walls: &[Wall]) -> Vec<(String, Rect)> {
+    let mut out = Vec::new();
+    for door in &plan.doors {
+        let Some(swing) = &door.swing else { continue };
+        let Some(wall) = walls.iter().find(|w| w.openings.contains(&door.id)) else {
+            continue;
+        };
+        let n = if wall.rooms[0] == swing.into {
+            wall.inward_normal()
+        } else {
+            -wall.inward_normal()
+        };
+        let along = (wall.end - wall.start).normalize() * (door.width / 2.0);
+        let (a, b) = (door.centre - along, door.centre + along);
+        let reach = if swing.hinge == Hinge::Both {
+            door.width / 2.0
+        } else {
+            door.width
+        };
+        let (c, d) = (a + n * reach, b + n * reach);
+        let xs = [a.x, b.x, c.x, d.x];
+        let zs = [a.y, b.y, c.y, d.y];
+        let min = |v: [f64; 4]| v.into_iter().fold(f64::MAX, f64::min);
+        let max = |v: [f64; 4]| v.into_iter().fold(f64::MIN, f64::max);
+        out.push((
+            door.id.clone(),
+            Rect::new(min(xs), min(zs), max(xs), max(zs)),
+        ));
+    }
+    out
+}
+
+/// The first two doors whose leaves would sweep the same floor (their [`leaf_squares`]
+/// overlap by more than 1 cm²).
+pub fn leaf_clash(plan: &FloorPlan, walls: &[Wall]) -> Option<(String, String)> {
+    let squares = leaf_squares(plan, walls);
+    for (i, (a, ra)) in squares.iter().enumerate() {
+        for (b, rb) in &squares[i + 1..] {
+            if ra.overlap_area(rb) > 1e-4 {
+                return Some((a.clone(), b.clone()));
+            }
+        }
+    }
+    None
 }

@@ -11,7 +11,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
-use crate::doors::{place_doors, service_entries, DoorRules};
+use crate::doors::{leaf_clash, place_doors, service_entries, DoorRules};
 use crate::geometry::{union_outline, Rect};
 use crate::knowledge::{DwellingKind, Knowledge, HALLWAY};
 use crate::plan::{FloorPlan, Room};
@@ -548,6 +548,9 @@ fn attempt_plan(
     plan.windows = place_windows(knowledge, &plan, &bare);
     let score = score(specs, &plan) + 0.5 * service_entries(knowledge, &plan) as f64;
     let walls = validate(&plan, knowledge).map_err(|_| "validation")?;
+    if leaf_clash(&plan, &walls).is_some() {
+        return Err("door leaves clash");
+    }
     check_privacy(&plan, knowledge).map_err(|_| "privacy")?;
     let hallway = plan.rooms.iter().any(|r| r.room_type == HALLWAY);
     Ok((

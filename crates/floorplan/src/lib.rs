@@ -32,8 +32,8 @@ pub mod walls;
 mod windows;
 
 pub use doors::{
-    CORNER_CLEARANCE, DOOR_HEIGHT, DOUBLE_WIDTHS, ENTRANCE_WIDTH, PASSAGE_MAX, PASSAGE_MIN,
-    SERVICE_ROOMS,
+    leaf_clash, leaf_squares, CORNER_CLEARANCE, DOOR_HEIGHT, DOUBLE_WIDTHS, ENTRANCE_WIDTH,
+    PASSAGE_MAX, PASSAGE_MIN, SERVICE_ROOMS,
 };
 pub use knowledge::{
     DwellingKind, Knowledge, KnowledgeError, Privacy, RoomKind, WindowSpec, HALLWAY,

@@ -95,6 +95,11 @@ fn assert_invariants(k: &Knowledge, program: &Program, g: &Generated) {
     let walls = validate(plan, k).unwrap_or_else(|e| panic!("{e}\n{plan:#?}"));
     assert_eq!(walls, g.walls);
     check_privacy(plan, k).unwrap();
+    assert_eq!(
+        scenethesis_floorplan::leaf_clash(plan, &walls),
+        None,
+        "door leaves clash"
+    );
     let interior: Vec<_> = walls.iter().filter(|w| !w.is_exterior()).collect();
     for (i, a) in interior.iter().enumerate() {
         for b in &interior[i + 1..] {

@@ -258,3 +258,29 @@ fn plan_json_rejects_unknown_fields_and_round_trips() {
     let again: FloorPlan = serde_json::from_str(&serde_json::to_string(&plan).unwrap()).unwrap();
     assert_eq!(plan, again);
 }
+
+#[test]
+fn door_leaves_that_would_hit_each_other() {
+    let k = Knowledge::builtin();
+    let walls = validate(&good(), k).unwrap();
+    assert_eq!(scenethesis_floorplan::leaf_clash(&good(), &walls), None);
+    let squares = scenethesis_floorplan::leaf_squares(&good(), &walls);
+    let (_, bed) = squares.iter().find(|(id, _)| id == "door_bed").unwrap();
+    // The bedroom door swings into the bedroom (east of x = 2) over a 0.9 m square.
+    assert!(
+        (bed.min.x - 2.0).abs() < 1e-9 && (bed.max.x - 2.9).abs() < 1e-9,
+        "{bed:?}"
+    );
+    let mut plan = good();
+    // The entrance in the hall's north wall, the living-room door opening into the hall
+    // next to it: both leaves sweep the hall's corner.
+    plan.doors[0].centre = nalgebra::Point2::new(1.0, 0.0);
+    plan.doors[1].centre = nalgebra::Point2::new(2.0, 0.6);
+    plan.doors[1].swing = Some(scenethesis_floorplan::Swing {
+        into: "hall".into(),
+        hinge: scenethesis_floorplan::Hinge::Right,
+    });
+    let walls = validate(&plan, k).unwrap();
+    let clash = scenethesis_floorplan::leaf_clash(&plan, &walls);
+    assert_eq!(clash, Some(("door_in".into(), "door_living".into())));
+}
