@@ -88,7 +88,7 @@ pub enum LookScope {
     /// The cover: fabric and leather parts (a sofa's cushions, a bed's mattress); the main
     /// body when the asset has none.
     Upholstery,
-    /// The main body: every material of the asset covering a tenth of its surface or more,
+    /// The main body: every material of the asset covering a twentieth of its surface or more,
     /// upholstery aside (a table's top and legs, a shelf's boards).
     Body,
     /// The largest material only (a table's top, a counter's worktop).

@@ -13,8 +13,8 @@ use scenethesis_scene_graph::{Asset, AssetLook, LookAttribute, LookScope, Materi
 use super::palette::{named_material, Palette};
 
 /// The smallest share of an asset's surface a material must cover to count as part of its
-/// body (handles, knobs and feet stay as they are).
-const BODY_SHARE: f32 = 0.1;
+/// body (handles and knobs stay as they are).
+const BODY_SHARE: f32 = 0.05;
 
 /// Part names of a table's or counter's top, for [`LookScope::Top`].
 const TOP_PARTS: [&str; 5] = ["top", "worktop", "countertop", "tabletop", "table_top"];
