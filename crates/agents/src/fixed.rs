@@ -90,7 +90,73 @@ pub fn check_plan(plan: &Plan, categories: Option<&BTreeSet<String>>) -> Result<
     }
     check_relations(plan, &index, indoor)?;
     check_anchor(plan)?;
-    check_constraints(plan, &index, indoor)
+    check_constraints(plan, &index, indoor)?;
+    check_looks(plan)
+}
+
+/// The looks: every material an attribute names is a palette entry or a fabric token of
+/// `knowledge/looks.toml`, every family choice an entry of its family, every surface base an
+/// entry.
+fn check_looks(plan: &Plan) -> Result<(), PlanIssue> {
+    use scenethesis_procedural::looks::{named_material, Palette};
+    let looks = crate::looks::Looks::builtin();
+    let known_material = |m: &str| {
+        named_material(m).is_some()
+            || looks
+                .materials
+                .iter()
+                .any(|(_, w)| w.token.as_deref() == Some(m))
+    };
+    let check_attributes = |field: String, attributes: &[crate::plan::Attribute]| {
+        for (k, a) in attributes.iter().enumerate() {
+            if let Some(m) = a.look.material.as_deref().filter(|m| !known_material(m)) {
+                return Err(PlanIssue::new(
+                    format!("{field}.attributes[{k}].material"),
+                    format!(
+                        "unknown material `{}`: expected a palette entry (`oak`, `brown_leather`, \
+                         `clear_glass`, …) or a fabric token of knowledge/looks.toml (`velvet`, …)",
+                        shown(m)
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    };
+    for (i, object) in plan.objects.iter().enumerate() {
+        check_attributes(format!("objects[{i}]"), &object.attributes)?;
+    }
+    let Some(look) = &plan.look else {
+        return Ok(());
+    };
+    for (family, entry) in &look.families {
+        let field = format!("look.families.{}", shown(family));
+        let Some(palette) = Palette::from_name(family) else {
+            return Err(PlanIssue::new(
+                field,
+                "unknown palette family (`wood`, `fabric`, …)",
+            ));
+        };
+        if named_material(entry).map(|(p, _)| p) != Some(palette) {
+            return Err(PlanIssue::new(
+                field,
+                format!("`{}` is no `{family}` entry", shown(entry)),
+            ));
+        }
+    }
+    for (name, surface) in &look.surfaces {
+        let field = format!("look.surfaces.{}", shown(name));
+        if !crate::looks::SURFACES.contains(&name.as_str()) {
+            return Err(PlanIssue::new(field, "expected floor, walls or ceiling"));
+        }
+        if named_material(&surface.base).is_none() {
+            return Err(PlanIssue::new(
+                format!("{field}.base"),
+                format!("`{}` is no palette entry", shown(&surface.base)),
+            ));
+        }
+        check_attributes(field, &surface.attributes)?;
+    }
+    Ok(())
 }
 
 /// `text` escaped for a message and cut to 80 characters.

@@ -26,6 +26,7 @@ mod fidelity;
 mod fixed;
 mod guide;
 pub mod knowledge;
+pub mod looks;
 pub mod places;
 mod plan;
 mod planner;
@@ -33,7 +34,9 @@ mod prompt;
 mod text;
 
 pub use arrangement::{check_arrangement, run_layout, ArrangementCheck, BrokenRule};
-pub use fidelity::{check_prompt, constraint_holds, BrokenRelation, MissingObject, PromptCheck};
+pub use fidelity::{
+    check_prompt, constraint_holds, BrokenRelation, MissedAttribute, MissingObject, PromptCheck,
+};
 pub use fixed::{check_plan, FixedPlanner, PlanFileError, PlanIssue};
 pub use guide::{
     room_architecture, AssetLookup, CatalogAssets, DroppedObject, Guide, GuideError, GuidedLayout,
@@ -42,9 +45,10 @@ pub use guide::{
 pub use knowledge::{Knowledge, KnowledgeError};
 pub use places::{Family, PlaceKind, Thesaurus};
 pub use plan::{
-    cut_prompt, ConstraintTarget, Layer, PlaceReading, Plan, PlanConstraint, PlanError,
-    PlanRequest, PlannedObject, Planner, ReadingSource, RequestedObject, Zone, BACK_WALL,
-    FRONT_WALL, LEFT_WALL, LOW_CONFIDENCE, MAX_AISLE, MAX_COUNT_PER_OBJECT, MAX_DOOR_CLEARANCE,
+    cut_prompt, Attribute, AttributeKind, ConstraintTarget, Layer, PlaceReading, Plan,
+    PlanConstraint, PlanError, PlanRequest, PlannedObject, Planner, ReadingSource, RequestedObject,
+    RoomLook, StyleSource, SurfaceLook, UnavailableAttribute, Zone, BACK_WALL, FRONT_WALL,
+    LEFT_WALL, LOW_CONFIDENCE, MAX_AISLE, MAX_COUNT_PER_OBJECT, MAX_DOOR_CLEARANCE,
     MAX_PLANNED_OBJECTS, MAX_PLAN_CONSTRAINTS, MAX_PROMPT_CHARS, MAX_ROOM_SIDE, MIN_ROOM_SIDE,
     RIGHT_WALL,
 };

@@ -1,8 +1,10 @@
 //! The plan: what a [`Planner`] makes of a prompt, and what a [`crate::Guide`] lays out.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 
-use scenethesis_scene_graph::{Environment, ParentRef, Relation, RelationKind};
+use scenethesis_scene_graph::{
+    AssetLook, Environment, LookAttribute, ParentRef, Relation, RelationKind,
+};
 use serde::{Deserialize, Serialize};
 
 /// Id of the back wall of a planned room (−z); the anchor's wall by default.
@@ -148,6 +150,96 @@ pub struct PlannedObject {
     pub relations: Vec<Relation>,
     /// Whether the prompt stated this object's support or relations (hard constraints).
     pub hard: bool,
+    /// The colours and materials the prompt asks this object to have; its asset wears them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub attributes: Vec<Attribute>,
+}
+
+/// Whether an attribute is a colour or a material.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum AttributeKind {
+    /// A colour ("red", "dark grey").
+    Color,
+    /// A material ("leather", "oak", "glass").
+    Material,
+}
+
+/// A colour or material the prompt asks an object or a room surface to have, and what it does.
+#[derive(Debug, Clone, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub struct Attribute {
+    /// The prompt's words for it (stems): `red`, `dark grey`, `leather`.
+    pub words: String,
+    /// Colour or material.
+    pub kind: AttributeKind,
+    /// What it does to the asset or surface: the parts it qualifies, the named material
+    /// they become, the colour they take.
+    #[serde(flatten)]
+    pub look: LookAttribute,
+}
+
+/// Where the room's style came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum StyleSource {
+    /// A style word of the prompt.
+    Prompt,
+    /// Drawn with the seed (the prompt names none).
+    #[default]
+    Seed,
+}
+
+/// One room surface's look: the palette entry it is made of and the prompt's attributes.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct SurfaceLook {
+    /// The palette entry the surface is made of before its attributes (`oak`, `white_paint`).
+    pub base: String,
+    /// The colours and materials the prompt asks the surface to have.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub attributes: Vec<Attribute>,
+}
+
+/// A look word of the prompt the library cannot do.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct UnavailableAttribute {
+    /// The prompt's words for it (`plaid`, `mauve coloured`).
+    pub words: String,
+    /// What it qualifies: the object's words or the surface (`sofa`, `walls`).
+    pub target: String,
+}
+
+/// The room's look: a coherent style (one entry per material family), its surfaces and the
+/// look words the library cannot do.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct RoomLook {
+    /// The style's name (`scandinavian`, …; see `knowledge/looks.toml`).
+    pub style: String,
+    /// Whether the prompt named the style or the seed drew it.
+    #[serde(default)]
+    pub style_source: StyleSource,
+    /// The prompt's words for the style, when it named one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub style_words: Option<String>,
+    /// Per palette family, the entry every object's material of that family becomes.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub families: BTreeMap<String, String>,
+    /// The room surfaces (`floor`, `walls`, `ceiling`).
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub surfaces: BTreeMap<String, SurfaceLook>,
+    /// Look words the library cannot do, reported, never silently dropped.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub unavailable: Vec<UnavailableAttribute>,
+}
+
+impl RoomLook {
+    /// The look object `object`'s asset is generated with: the room's families and the
+    /// object's own attributes.
+    pub fn asset_look(&self, object: &PlannedObject) -> AssetLook {
+        AssetLook {
+            families: self.families.clone(),
+            attributes: object.attributes.iter().map(|a| a.look.clone()).collect(),
+        }
+    }
 }
 
 /// What a hard constraint refers to.
@@ -223,6 +315,10 @@ pub struct Plan {
     /// none could be planned).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub requested: Vec<RequestedObject>,
+    /// The room's style, surfaces and unavailable look words (`None`: every asset wears its
+    /// generator's own materials).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub look: Option<RoomLook>,
 }
 
 /// Below this confidence a reading of the place is reported as a guess (in `report.json`

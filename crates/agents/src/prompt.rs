@@ -4,6 +4,7 @@
 use std::collections::BTreeSet;
 
 use crate::knowledge::{Knowledge, RelationPhrase};
+use crate::looks::{read_looks, Looks, ReadLooks};
 use crate::places::NounAlias;
 use crate::plan::{Zone, MAX_COUNT_PER_OBJECT};
 use crate::text::{tokenize, Token};
@@ -84,6 +85,11 @@ pub(crate) struct Analysis {
     pub any_word: bool,
     /// Nouns the prompt names that the library has nothing close to (prompt words).
     pub unavailable: Vec<String>,
+    /// Where each mention's noun stands: (first token, tokens, mention), once per time the
+    /// prompt names it ("the sofa is red" names an earlier sofa again).
+    pub noun_spans: Vec<(usize, usize, usize)>,
+    /// The colours, materials and style the prompt asks for.
+    pub looks: ReadLooks,
 }
 
 #[derive(Debug, Clone)]
@@ -134,6 +140,9 @@ pub(crate) fn analyze(
 
     // 3. Relations from the item stream.
     read_relations(&mut out, &items, knowledge);
+
+    // 4. Colours, materials and the style, on the nouns they qualify.
+    out.looks = read_looks(Looks::builtin(), &stems, &out.noun_spans);
     out
 }
 
@@ -286,16 +295,28 @@ impl ItemReader<'_> {
                 .find(|(p, _)| self.matches_at(i, p))
                 .map(|(p, _)| p.len())
                 .or(voc.generic.contains_key(word).then_some(1));
+            if noun_len.is_none_or(|n| n == 1) && self.qualifies_next(i) {
+                // A look word before a noun ("a *glass* coffee table", "a *light* blue rug")
+                // is no object of its own.
+                i += 1;
+                continue;
+            }
             if let (true, Some(len)) = (pending.possessive, noun_len) {
                 pending.possessive = false;
                 i += len;
                 continue;
             }
+            let before = items.len();
             let read = self
                 .read_alias(i, noun_len, &pending, out, &mut items)
                 .or_else(|| self.read_category(i, &pending, out, &mut items))
                 .or_else(|| self.read_generic(i, word, &pending, out, &mut items));
             if let Some(len) = read {
+                for item in &items[before..] {
+                    if let Item::Mention(m) = item {
+                        out.noun_spans.push((i, len, *m));
+                    }
+                }
                 pending.used();
                 i += len;
                 continue;
@@ -308,6 +329,36 @@ impl ItemReader<'_> {
 
     fn matches_at(&self, i: usize, phrase: &[String]) -> bool {
         matches_at(self.stems, i, phrase)
+    }
+
+    /// Whether the word at `i` is a look word (colour, material, modifier) that qualifies
+    /// what follows it: another look word, a surface or a noun.
+    fn qualifies_next(&self, i: usize) -> bool {
+        let looks = Looks::builtin();
+        let is_look = |k: usize| {
+            self.stems
+                .get(k)
+                .copied()
+                .flatten()
+                .is_some_and(|w| looks.is_look_word(w))
+        };
+        if !is_look(i) {
+            return false;
+        }
+        let mut k = i + 1;
+        while is_look(k) {
+            k += 1;
+        }
+        let Some(next) = self.stems.get(k).copied().flatten() else {
+            return false;
+        };
+        looks.surfaces.contains_key(next)
+            || self.knowledge.vocabulary.generic.contains_key(next)
+            || self
+                .knowledge
+                .category_phrases()
+                .iter()
+                .any(|(p, _)| self.matches_at(k, p))
     }
 
     /// Whether the phrase ending at token `last` was written in the plural.

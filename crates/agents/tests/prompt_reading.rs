@@ -2,6 +2,8 @@
 
 mod common;
 
+use std::collections::BTreeSet;
+
 use common::available;
 use scenethesis_agents::{
     Knowledge, KnowledgePlanner, Plan, PlanRequest, Planner, Thesaurus, Zone, MAX_COUNT_PER_OBJECT,
@@ -345,4 +347,151 @@ fn a_word_that_is_also_an_adjective_names_the_object_only_as_a_noun() {
     ] {
         assert!(count(&plan(prompt), "safe") >= 1, "{prompt}");
     }
+}
+
+/// The attributes of the first planned object of `category`, as (words, material, colour).
+fn attributes(plan: &Plan, category: &str) -> Vec<(String, Option<String>, Option<String>)> {
+    let object = plan
+        .objects
+        .iter()
+        .find(|o| o.category == category)
+        .unwrap_or_else(|| panic!("no {category} in {:?}", plan.categories()));
+    object
+        .attributes
+        .iter()
+        .map(|a| {
+            (
+                a.words.clone(),
+                a.look.material.clone(),
+                a.look.color.map(|c| c.to_string()),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn a_red_leather_sofa_asks_for_leather_upholstery_in_red() {
+    use scenethesis_scene_graph::LookScope;
+    let plan = plan("a living room with a red leather sofa");
+    let sofa = plan.objects.iter().find(|o| o.category == "sofa").unwrap();
+    assert_eq!(sofa.attributes.len(), 2, "{:?}", sofa.attributes);
+    assert!(sofa
+        .attributes
+        .iter()
+        .all(|a| a.look.scope == LookScope::Upholstery));
+    let got = attributes(&plan, "sofa");
+    assert!(got
+        .iter()
+        .any(|(w, m, _)| w == "leather" && m.as_deref().is_some_and(|m| m.ends_with("leather"))));
+    assert!(got
+        .iter()
+        .any(|(w, _, c)| w == "red" && c.as_deref() == Some("#b22222")));
+    // The same words after the noun: "the sofa is red".
+    let plan = self::plan("a living room with a sofa. the sofa is red");
+    assert!(attributes(&plan, "sofa").iter().any(|(w, _, _)| w == "red"));
+}
+
+#[test]
+fn white_walls_and_an_oak_floor_are_the_room_surfaces() {
+    let plan = plan("a living room with white walls and an oak floor");
+    let look = plan.look.as_ref().unwrap();
+    let walls = &look.surfaces["walls"];
+    assert_eq!(walls.attributes.len(), 1);
+    assert_eq!(walls.attributes[0].words, "white");
+    let floor = &look.surfaces["floor"];
+    assert_eq!(floor.attributes[0].look.material.as_deref(), Some("oak"));
+    // No object is planned for the look words or the surfaces.
+    assert!(!plan.categories().contains("whiteboard"));
+    let plan = self::plan("a bedroom with walls painted sage green");
+    let walls = &plan.look.as_ref().unwrap().surfaces["walls"];
+    assert!(
+        walls.attributes.iter().any(|a| a.words == "sage"),
+        "{walls:?}"
+    );
+}
+
+#[test]
+fn a_glass_coffee_table_has_a_glass_top_and_no_drinking_glass() {
+    use scenethesis_scene_graph::LookScope;
+    let plan = plan("a living room with a glass coffee table");
+    let table = plan
+        .objects
+        .iter()
+        .find(|o| o.category == "coffee_table")
+        .unwrap();
+    assert_eq!(table.attributes.len(), 1);
+    assert_eq!(
+        table.attributes[0].look.material.as_deref(),
+        Some("clear_glass")
+    );
+    assert_eq!(table.attributes[0].look.scope, LookScope::Top);
+    let cups = plan
+        .requested
+        .iter()
+        .filter(|r| r.category.as_deref() == Some("cup"))
+        .count();
+    assert_eq!(cups, 0, "{:?}", plan.requested);
+    // A modifier is no lamp: "a light blue rug".
+    let plan = self::plan("a bedroom with a light blue rug");
+    assert!(attributes(&plan, "rug")
+        .iter()
+        .any(|(w, _, _)| w == "light blue"));
+    assert!(!plan.requested.iter().any(|r| r.words == "light"));
+}
+
+#[test]
+fn a_style_word_sets_the_room_palette_and_seeds_vary_it_without_one() {
+    use scenethesis_agents::StyleSource;
+    let looks = scenethesis_agents::looks::Looks::builtin();
+    let scandinavian = looks.style_named("scandinavian").unwrap();
+    for seed in 0..3 {
+        let plan = KnowledgePlanner::new()
+            .plan(&PlanRequest::new(
+                "a scandinavian living room",
+                available(),
+                seed,
+            ))
+            .unwrap();
+        let look = plan.look.unwrap();
+        assert_eq!(look.style, "scandinavian");
+        assert_eq!(look.style_source, StyleSource::Prompt);
+        assert!(scandinavian.families["wood"].contains(&look.families["wood"]));
+        assert!(scandinavian.surfaces["floor"].contains(&look.surfaces["floor"].base));
+    }
+    let styles: BTreeSet<String> = (0..12)
+        .map(|seed| {
+            KnowledgePlanner::new()
+                .plan(&PlanRequest::new("a living room", available(), seed))
+                .unwrap()
+                .look
+                .unwrap()
+                .style
+        })
+        .collect();
+    assert!(styles.len() >= 3, "{styles:?}");
+    // The style has its own generator: the objects are those of the plan without looks.
+    let a = plan("a scandinavian living room");
+    let b = plan("a rustic living room");
+    assert_eq!(a.categories(), b.categories());
+}
+
+#[test]
+fn an_unknown_look_word_is_reported_never_dropped() {
+    let plan = plan("a living room with a plaid sofa and a bamboo-coloured rug");
+    let look = plan.look.as_ref().unwrap();
+    let words: Vec<(&str, &str)> = look
+        .unavailable
+        .iter()
+        .map(|u| (u.words.as_str(), u.target.as_str()))
+        .collect();
+    assert!(words.contains(&("plaid", "sofa")), "{words:?}");
+    assert!(words.contains(&("bamboo coloured", "rug")), "{words:?}");
+    assert!(plan.objects.iter().any(|o| o.category == "sofa"));
+    let plan = self::plan("a dining room with a table made of bamboo");
+    let look = plan.look.as_ref().unwrap();
+    assert!(
+        look.unavailable.iter().any(|u| u.words == "bamboo"),
+        "{:?}",
+        look.unavailable
+    );
 }

@@ -428,6 +428,7 @@ fn cabinet_and_box(gap: f64, box_parent_link: Option<&str>) -> SceneMetrics {
         asset: AssetRef::Procedural {
             generator: id.into(),
             seed: 0,
+            look: None,
         },
         pose: Pose::new(1.0, 0.3, Vector3::new(x, 0.0, z)),
         parent: ParentRef::Ground,

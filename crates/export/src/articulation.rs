@@ -300,6 +300,7 @@ mod tests {
             asset: AssetRef::Procedural {
                 generator: "toilet".into(),
                 seed: 0,
+                look: None,
             },
             pose: Pose::new(1.0, 0.0, Vector3::zeros()),
             parent: ParentRef::Ground,

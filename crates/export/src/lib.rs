@@ -41,7 +41,7 @@
 //! scene.objects.push(SceneObject {
 //!     id: "crate_0".into(),
 //!     category: "crate".into(),
-//!     asset: AssetRef::Procedural { generator: "crate".into(), seed: 0 },
+//!     asset: AssetRef::Procedural { generator: "crate".into(), seed: 0, look: None },
 //!     pose: Pose::new(1.0, 0.3, Vector3::new(0.5, 0.0, 0.0)),
 //!     parent: ParentRef::Ground,
 //!     support: RelationKind::OnFloor,

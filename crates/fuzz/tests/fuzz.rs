@@ -33,8 +33,16 @@ fn meshes(scene: &Scene) -> BTreeMap<String, Mesh> {
         .objects
         .iter()
         .filter_map(|o| match &o.asset {
-            AssetRef::Procedural { generator, seed } => catalog::category(generator)
-                .map(|c| (o.id.clone(), catalog::generate(c, *seed).mesh)),
+            AssetRef::Procedural {
+                generator,
+                seed,
+                look,
+            } => catalog::category(generator).map(|c| {
+                (
+                    o.id.clone(),
+                    catalog::generate_with_look(c, *seed, look.as_ref()).mesh,
+                )
+            }),
             AssetRef::Imported { .. } => None,
         })
         .collect()

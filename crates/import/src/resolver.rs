@@ -61,12 +61,16 @@ impl AssetResolver {
     /// The asset a reference names.
     pub fn asset(&mut self, asset: &AssetRef) -> Result<Asset, ResolveError> {
         match asset {
-            AssetRef::Procedural { generator, seed } => {
+            AssetRef::Procedural {
+                generator,
+                seed,
+                look,
+            } => {
                 let category =
                     catalog::category(generator).ok_or_else(|| ResolveError::UnknownGenerator {
                         generator: printable(generator).into_owned(),
                     })?;
-                Ok(catalog::generate(category, *seed))
+                Ok(catalog::generate_with_look(category, *seed, look.as_ref()))
             }
             AssetRef::Imported { id, path } => self.imported(id, path),
         }

@@ -612,6 +612,7 @@ fn the_resolver_finds_imported_assets_from_any_working_directory() {
     let unknown = scenethesis_scene_graph::AssetRef::Procedural {
         generator: "warp_drive".into(),
         seed: 1,
+        look: None,
     };
     assert!(resolver.mesh(&unknown).is_err());
 }

@@ -184,6 +184,7 @@ fn the_resolver_re_imports_with_the_loaders_it_was_given() {
     let desk = AssetRef::Procedural {
         generator: "desk".into(),
         seed: 3,
+        look: None,
     };
     assert_eq!(resolver.asset(&desk).unwrap().info.category, "desk");
 }

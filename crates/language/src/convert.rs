@@ -429,6 +429,7 @@ fn planned_object(
         zone,
         relations,
         hard: o.stated && place.detailed,
+        attributes: Vec::new(),
     }
 }
 
@@ -496,6 +497,7 @@ fn assemble_plan(
         reading: Some(reading),
         limits: Vec::new(),
         requested: Vec::new(),
+        look: None,
         notes: {
             let mut n = vec![format!(
                 "model interpretation: {}",

@@ -453,6 +453,7 @@ impl Pipeline {
         // What rests in a drawer rides with it; the judge sees the doors and drawers in the
         // state the scene is delivered in.
         scene.assign_parent_links(&meshes);
+        crate::phases::looks::record_looks(&mut scene, plan, &meshes);
         options.open_state.apply(&mut scene, seed);
         clock.check(Stage::Judge, round)?;
         let verdict = clock.run(

@@ -156,8 +156,20 @@ impl Report {
             self.attempts,
             self.total_seconds,
         );
+        if p.attributes_requested > 0 {
+            line.push_str(&format!(
+                "; attributes {}/{} honoured",
+                p.attributes_honoured, p.attributes_requested
+            ));
+        }
         if !p.unavailable.is_empty() {
             line.push_str(&format!("; unavailable: {}", p.unavailable.join(", ")));
+        }
+        if !p.attributes_unavailable.is_empty() {
+            line.push_str(&format!(
+                "; unavailable looks: {}",
+                p.attributes_unavailable.join(", ")
+            ));
         }
         if let Some(r) = self.reading.as_ref().filter(|r| r.is_low()) {
             line.push_str(&format!(

@@ -198,6 +198,7 @@ impl AssetBuilder {
                 source: AssetRef::Procedural {
                     generator: String::new(),
                     seed: 0,
+                    look: None,
                 },
                 category: String::new(),
                 synonyms: Vec::new(),

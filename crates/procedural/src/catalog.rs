@@ -206,9 +206,30 @@ pub fn generate(category: &Category, seed: u64) -> Asset {
     asset.info.source = AssetRef::Procedural {
         generator: category.name.to_owned(),
         seed,
+        look: None,
     };
     asset.info.category = category.name.to_owned();
     asset.info.synonyms = category.synonyms.iter().map(|s| s.to_string()).collect();
+    asset
+}
+
+/// Generates the asset of `category` for `seed` wearing `look` (see [`crate::looks`]): the
+/// geometry of [`generate`] with the look's materials, and the look recorded in its source so
+/// the reference regenerates the same asset. A plain look is no look.
+pub fn generate_with_look(
+    category: &Category,
+    seed: u64,
+    look: Option<&scenethesis_scene_graph::AssetLook>,
+) -> Asset {
+    let mut asset = generate(category, seed);
+    if let Some(look) = look.filter(|l| !l.is_plain()) {
+        crate::materials::apply_look(&mut asset, look);
+        asset.info.source = AssetRef::Procedural {
+            generator: category.name.to_owned(),
+            seed,
+            look: Some(look.clone()),
+        };
+    }
     asset
 }
 

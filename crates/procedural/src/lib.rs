@@ -39,3 +39,10 @@ mod items;
 mod materials;
 mod outdoor;
 mod random;
+
+/// Looks: the palette families, their named materials, and applying a room style and an
+/// object's requested colours and materials to a generated asset
+/// ([`catalog::generate_with_look`] generates with one).
+pub mod looks {
+    pub use crate::materials::{apply_look, family_of, named_material, surface_material, Palette};
+}

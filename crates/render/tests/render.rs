@@ -435,6 +435,7 @@ fn room_scene_graph() -> (
         asset: AssetRef::Procedural {
             generator: "thing".into(),
             seed: 0,
+            look: None,
         },
         pose,
         parent: ParentRef::Ground,

@@ -280,6 +280,7 @@ impl AssetIndex {
                         asset: AssetRef::Procedural {
                             generator: entry.category.clone(),
                             seed,
+                            look: None,
                         },
                         category: entry.category.clone(),
                         placement: entry.placement,

@@ -13,7 +13,7 @@ use scenethesis_import::{
 };
 use scenethesis_procedural::catalog;
 use scenethesis_scene_graph::Asset;
-use scenethesis_scene_graph::{AssetRef, Mesh};
+use scenethesis_scene_graph::{AssetLook, AssetRef, Mesh};
 
 /// Why an asset could not be retrieved or regenerated.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -48,19 +48,36 @@ pub enum AssetError {
     },
 }
 
-/// What an asset source is asked for: one planned object, by id and category.
+/// What an asset source is asked for: one planned object, by id and category, and the look
+/// (room style, requested colours and materials) a generated asset should wear.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct AssetQuery<'a> {
     /// The planned object's id (it seeds the choice among equal candidates).
     pub id: &'a str,
     /// The category the object must be.
     pub category: &'a str,
+    /// The look a procedural asset is generated with (recorded in its
+    /// [`AssetRef`](scenethesis_scene_graph::AssetRef)); imported assets keep their own
+    /// materials.
+    pub look: Option<&'a AssetLook>,
 }
 
 impl<'a> AssetQuery<'a> {
-    /// A query for object `id` of `category`.
+    /// A query for object `id` of `category`, with the generator's own materials.
     pub fn new(id: &'a str, category: &'a str) -> Self {
-        Self { id, category }
+        Self {
+            id,
+            category,
+            look: None,
+        }
+    }
+
+    /// The same query for an asset wearing `look`.
+    pub fn with_look(self, look: &'a AssetLook) -> Self {
+        Self {
+            look: Some(look),
+            ..self
+        }
     }
 }
 
@@ -121,21 +138,26 @@ impl AssetSource for CatalogSource {
             category: object.category.to_owned(),
             source_name: self.name().to_owned(),
         })?;
-        Ok(catalog::generate(
+        Ok(catalog::generate_with_look(
             category,
             catalog::object_seed(object.id, variant),
+            object.look,
         ))
     }
 
     fn mesh(&self, asset: &AssetRef) -> Result<Mesh, AssetError> {
         match asset {
-            AssetRef::Procedural { generator, seed } => {
+            AssetRef::Procedural {
+                generator,
+                seed,
+                look,
+            } => {
                 let category =
                     catalog::category(generator).ok_or_else(|| AssetError::Unresolvable {
                         asset: asset.to_string(),
                         reason: format!("no built-in generator named `{generator}`"),
                     })?;
-                Ok(catalog::generate(category, *seed).mesh)
+                Ok(catalog::generate_with_look(category, *seed, look.as_ref()).mesh)
             }
             AssetRef::Imported { id, path } => Ok(load_imported(asset, id, path)?.mesh),
         }
@@ -269,9 +291,11 @@ impl AssetSource for RetrievalSource {
             .next()
             .ok_or_else(no_asset)?;
         match &hit.asset {
-            AssetRef::Procedural { generator, seed } => {
+            AssetRef::Procedural {
+                generator, seed, ..
+            } => {
                 let category = catalog::category(generator).ok_or_else(no_asset)?;
-                Ok(catalog::generate(category, *seed))
+                Ok(catalog::generate_with_look(category, *seed, object.look))
             }
             AssetRef::Imported { id, path } => self.imported_asset(&hit.asset, id, path),
         }

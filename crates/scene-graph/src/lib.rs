@@ -29,7 +29,7 @@
 //! let table = SceneObject {
 //!     id: "table_0".into(),
 //!     category: "dining_table".into(),
-//!     asset: AssetRef::Procedural { generator: "dining_table".into(), seed: 1 },
+//!     asset: AssetRef::Procedural { generator: "dining_table".into(), seed: 1, look: None },
 //!     pose: Pose::new(1.0, 0.0, Vector3::new(0.0, 0.0, -0.5)),
 //!     parent: ParentRef::Ground,
 //!     support: RelationKind::OnFloor,
@@ -41,7 +41,7 @@
 //! let mug = SceneObject {
 //!     id: "mug_0".into(),
 //!     category: "mug".into(),
-//!     asset: AssetRef::Procedural { generator: "mug".into(), seed: 2 },
+//!     asset: AssetRef::Procedural { generator: "mug".into(), seed: 2, look: None },
 //!     pose: Pose::new(1.0, 0.0, Vector3::new(0.1, 0.75, -0.5)),
 //!     parent: ParentRef::Object("table_0".into()),
 //!     support: RelationKind::On,
@@ -75,6 +75,7 @@ mod hash;
 mod io;
 mod joint;
 pub mod limits;
+mod look;
 mod mesh;
 mod object;
 mod pose;
@@ -101,6 +102,7 @@ pub use joint::{
     carried_by, opening_sweep, Joint, JointError, JointKind, JointState, OpenState, OpensTo,
     OPEN_SHARE,
 };
+pub use look::{AssetLook, LookAttribute, LookScope, SceneLook, Srgb, WornMaterial};
 pub use mesh::{Material, Mesh, MeshPart};
 pub use object::{AssetRef, ParentRef, Relation, RelationKind, SceneObject, GROUND_ID};
 pub use pose::{wrap_yaw, yaw_distance, yaw_distance_modulo, Pose};
@@ -127,6 +129,7 @@ pub(crate) mod test_support {
             asset: AssetRef::Procedural {
                 generator: "box".into(),
                 seed: 1,
+                look: None,
             },
             pose: Pose::new(1.0, 0.0, Vector3::zeros()),
             parent,

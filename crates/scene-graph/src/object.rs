@@ -2,7 +2,7 @@ use std::fmt;
 
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use crate::{Aabb, JointState, Pose};
+use crate::{Aabb, AssetLook, JointState, Pose};
 
 /// The reserved id of the ground, the root of every scene graph.
 pub const GROUND_ID: &str = "ground";
@@ -67,6 +67,10 @@ pub enum AssetRef {
         generator: String,
         /// Seed that fixes dimensions and materials.
         seed: u64,
+        /// The look the asset was generated with (room style, requested colours and
+        /// materials); `None` for the generator's own materials.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        look: Option<AssetLook>,
     },
     /// A user-supplied asset imported from a directory.
     Imported {
@@ -80,7 +84,16 @@ pub enum AssetRef {
 impl fmt::Display for AssetRef {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            AssetRef::Procedural { generator, seed } => write!(f, "{generator}#{seed}"),
+            AssetRef::Procedural {
+                generator,
+                seed,
+                look: None,
+            } => write!(f, "{generator}#{seed}"),
+            AssetRef::Procedural {
+                generator,
+                seed,
+                look: Some(look),
+            } => write!(f, "{generator}#{seed}~{}", &look.digest()[..8]),
             AssetRef::Imported { id, path } => write!(f, "{id} ({path})"),
         }
     }

@@ -4,7 +4,7 @@ use serde::de::{MapAccess, Visitor};
 use serde::ser::SerializeMap;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use crate::{Aabb, Architecture, ParentRef, SceneObject};
+use crate::{Aabb, Architecture, ParentRef, SceneLook, SceneObject};
 
 /// The `scene.json` format version this build reads and writes.
 pub const FORMAT_VERSION: u32 = 1;
@@ -34,6 +34,10 @@ pub struct Scene {
     /// object id, in this order; every entry also carries its derived `world_aabb`.
     #[serde(with = "object_map")]
     pub objects: Vec<SceneObject>,
+    /// The room's style, its surfaces' materials and every object's worn materials (empty
+    /// for scenes made without looks).
+    #[serde(default, skip_serializing_if = "SceneLook::is_empty")]
+    pub look: SceneLook,
 }
 
 impl Scene {
@@ -46,6 +50,7 @@ impl Scene {
             architecture,
             anchor: None,
             objects: Vec::new(),
+            look: SceneLook::default(),
         }
     }
 
@@ -94,6 +99,8 @@ struct SceneFile {
     anchor: Option<String>,
     #[serde(with = "object_map")]
     objects: Vec<SceneObject>,
+    #[serde(default)]
+    look: SceneLook,
 }
 
 impl From<SceneFile> for Scene {
@@ -105,6 +112,7 @@ impl From<SceneFile> for Scene {
             architecture,
             anchor,
             mut objects,
+            look,
         } = file;
         for object in &mut objects {
             if let ParentRef::Object(id) = &object.parent {
@@ -120,6 +128,7 @@ impl From<SceneFile> for Scene {
             architecture,
             anchor,
             objects,
+            look,
         }
     }
 }

@@ -14,6 +14,7 @@ fn object(id: &str, parent: ParentRef, support: RelationKind, at: Vector3<f64>) 
         asset: AssetRef::Procedural {
             generator: "painting".into(),
             seed: 3,
+            look: None,
         },
         pose: Pose::new(1.0, 0.0, at),
         parent,

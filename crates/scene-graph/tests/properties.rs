@@ -77,6 +77,7 @@ fn forest_scene() -> impl Strategy<Value = Scene> {
                             AssetRef::Procedural {
                                 generator: "crate".into(),
                                 seed: asset_seed,
+                                look: None,
                             }
                         } else {
                             AssetRef::Imported {

@@ -110,6 +110,7 @@ impl<'k> NominalAssets<'k> {
             source: AssetRef::Procedural {
                 generator: category.to_owned(),
                 seed,
+                look: None,
             },
             category: category.to_owned(),
             synonyms: prior.words.clone(),

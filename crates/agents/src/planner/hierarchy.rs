@@ -90,6 +90,7 @@ pub(super) fn build(
             zone,
             relations,
             hard: draft.hard,
+            attributes: Vec::new(),
         });
     }
     Ok(Tree {

@@ -12,6 +12,7 @@ mod describe;
 mod head;
 mod hierarchy;
 mod interpret;
+mod looks;
 mod needs;
 mod requested;
 mod room;
@@ -123,8 +124,17 @@ impl Planner for KnowledgePlanner {
         let mut drafting = select::select(self, &reading, &request.available_categories, &mut rng);
         constrain::apply_stated(self, &reading, &request.available_categories, &mut drafting);
         let drafts = std::mem::take(&mut drafting.drafts);
-        let tree = hierarchy::build(self, &reading, request, drafts)?;
+        let mut tree = hierarchy::build(self, &reading, request, drafts)?;
         let (requested, limits) = requested::requested(&reading, &drafting, &tree.ids);
+        let environment = reading.archetypes[0].environment;
+        let look = looks::room_look(
+            &reading,
+            &drafting,
+            &tree.ids,
+            &mut tree.objects,
+            request.seed,
+            environment,
+        );
         let room = room::size_room(
             &self.knowledge,
             &reading.archetypes,
@@ -136,7 +146,7 @@ impl Planner for KnowledgePlanner {
             prompt: reading.prompt,
             scene_type: reading.scene_type,
             archetypes: reading.archetypes.iter().map(|a| a.name.clone()).collect(),
-            environment: reading.archetypes[0].environment,
+            environment,
             room_size: room.size,
             wall_height: room.wall_height,
             aisle: room.aisle,
@@ -150,6 +160,7 @@ impl Planner for KnowledgePlanner {
             reading: Some(reading.place),
             limits: reading.limits.into_iter().chain(limits).collect(),
             requested,
+            look: Some(look),
         })
     }
 }

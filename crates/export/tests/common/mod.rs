@@ -19,6 +19,7 @@ pub fn object(
         asset: AssetRef::Procedural {
             generator: category.into(),
             seed: 7,
+            look: None,
         },
         pose,
         parent,

@@ -227,6 +227,7 @@ pub fn object(
         asset: AssetRef::Procedural {
             generator: id.into(),
             seed: 0,
+            look: None,
         },
         pose,
         parent: parent.map_or(ParentRef::Ground, |p| ParentRef::Object(p.into())),

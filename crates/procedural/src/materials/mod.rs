@@ -1,6 +1,9 @@
-//! Materials of the generated assets. Today the palettes (families of plausible materials an
-//! asset picks from per seed) and fixed materials; a material library belongs here beside them.
+//! Materials of the generated assets: the palettes (families of plausible materials an asset
+//! picks from per seed), fixed materials, and looks (a room style's material per family and an
+//! object's requested colours and materials, applied after generation).
 
+mod look;
 mod palette;
 
-pub use palette::{fixed_material, pick_material, Palette};
+pub use look::{apply_look, family_of, surface_material};
+pub use palette::{fixed_material, named_material, pick_material, Palette};

@@ -36,6 +36,72 @@ pub enum Palette {
     Paper,
 }
 
+impl Palette {
+    /// Every palette, in declaration order.
+    pub const ALL: [Palette; 14] = [
+        Palette::Wood,
+        Palette::PaintedWood,
+        Palette::Metal,
+        Palette::CoatedMetal,
+        Palette::Fabric,
+        Palette::Leather,
+        Palette::Plastic,
+        Palette::BrightPlastic,
+        Palette::Glass,
+        Palette::Stone,
+        Palette::Foliage,
+        Palette::Ceramic,
+        Palette::Rubber,
+        Palette::Paper,
+    ];
+
+    /// The family's name in looks and knowledge files (`wood`, `painted_wood`, …).
+    pub fn name(self) -> &'static str {
+        match self {
+            Palette::Wood => "wood",
+            Palette::PaintedWood => "painted_wood",
+            Palette::Metal => "metal",
+            Palette::CoatedMetal => "coated_metal",
+            Palette::Fabric => "fabric",
+            Palette::Leather => "leather",
+            Palette::Plastic => "plastic",
+            Palette::BrightPlastic => "bright_plastic",
+            Palette::Glass => "glass",
+            Palette::Stone => "stone",
+            Palette::Foliage => "foliage",
+            Palette::Ceramic => "ceramic",
+            Palette::Rubber => "rubber",
+            Palette::Paper => "paper",
+        }
+    }
+
+    /// The palette of this name ([`Palette::name`]).
+    pub fn from_name(name: &str) -> Option<Palette> {
+        Palette::ALL.into_iter().find(|p| p.name() == name)
+    }
+
+    /// The names of the palette's entries, in order.
+    pub fn entry_names(self) -> impl Iterator<Item = &'static str> {
+        palette_entries(self).iter().map(|e| e.0)
+    }
+}
+
+/// The palette and unjittered material of the palette entry named `name` (`oak`,
+/// `white_marble`); glass gets an alpha of 0.3.
+pub fn named_material(name: &str) -> Option<(Palette, Material)> {
+    Palette::ALL.into_iter().find_map(|palette| {
+        palette_entries(palette).iter().find(|e| e.0 == name).map(
+            |&(name, rgb, roughness, metallic)| {
+                let mut m = fixed_material(name, rgb, roughness, metallic);
+                if palette == Palette::Glass {
+                    m.base_color[3] = 0.3;
+                }
+                (palette, m)
+            },
+        )
+    })
+}
+
 /// (name, sRGB colour, roughness, metallic) entries of each palette.
 fn palette_entries(palette: Palette) -> &'static [(&'static str, [u8; 3], f32, f32)] {
     match palette {
@@ -198,5 +264,19 @@ mod tests {
             scenethesis_primitives::regular_polygon([0.0, 0.0], 1.0, 4).len(),
             4
         );
+    }
+
+    #[test]
+    fn entry_names_are_unique_across_palettes_and_resolve_to_their_palette() {
+        let mut seen = std::collections::BTreeSet::new();
+        for palette in Palette::ALL {
+            assert_eq!(Palette::from_name(palette.name()), Some(palette));
+            for name in palette.entry_names() {
+                assert!(seen.insert(name), "`{name}` is in two palettes");
+                assert_eq!(named_material(name).map(|(p, _)| p), Some(palette));
+            }
+        }
+        assert_eq!(named_material("clear_glass").unwrap().1.base_color[3], 0.3);
+        assert!(named_material("plaid").is_none());
     }
 }

@@ -133,7 +133,9 @@ fn builtin_index_gives_procedural_candidates_with_seed_dependent_variants() {
     assert_eq!(c.category, "mug");
     let seeds: std::collections::BTreeSet<u64> = (0..8)
         .map(|s| match &index.search("mug", 1, s)[0].asset {
-            AssetRef::Procedural { generator, seed } => {
+            AssetRef::Procedural {
+                generator, seed, ..
+            } => {
                 assert_eq!(generator, "mug");
                 *seed
             }
