@@ -390,8 +390,17 @@ fn a_sparse_prompt_plans_a_sparse_room_of_the_same_place_and_says_why() {
     for core in ["bed", "nightstand", "wardrobe"] {
         assert!(count(&minimalist, core) >= 1, "no {core}");
     }
-    for extra in ["teddy_bear", "suitcase", "laundry_hamper", "standing_mirror"] {
-        assert_eq!(count(&minimalist, extra), 0, "{extra} in a minimalist bedroom");
+    for extra in [
+        "teddy_bear",
+        "suitcase",
+        "laundry_hamper",
+        "standing_mirror",
+    ] {
+        assert_eq!(
+            count(&minimalist, extra),
+            0,
+            "{extra} in a minimalist bedroom"
+        );
     }
     // An empty room is nearly nothing, but what the prompt names is still planned.
     assert!(plan_at("an empty warehouse", 0).objects.len() <= 3);

@@ -112,7 +112,10 @@ impl Selector<'_> {
         let core = || {
             group.min >= 1
                 && (self.core.is_empty()
-                    || self.core.iter().any(|c| *c == group.category || c == category))
+                    || self
+                        .core
+                        .iter()
+                        .any(|c| *c == group.category || c == category))
         };
         match self.sparsity {
             None => true,
