@@ -8,9 +8,13 @@
 //!   optimizer ablation against ground truth (`roundtrip/ablation`) and the content of the
 //!   benchmark and kitchen scenes over seeds 0–3 (`rooms/…`: acceptance, stated relations held,
 //!   functional-arrangement rules held, run layouts, category-set diversity) and batch
-//!   throughput (`throughput/…`: scenes per hour per core through the CLI batch and Ray).
-//!   Naming only those sections (`roundtrip`, `rooms`, `throughput`) skips the criterion runs.
+//!   throughput (`throughput/…`: scenes per hour per core through the CLI batch and Ray), and
+//!   the density and physics of the benchmark scenes over seeds 0–2 (`density/…`: objects and
+//!   small objects per scene, Col-O, Col-arch, Inst-O, Walk, Reach, acceptance).
+//!   Naming only those sections (`roundtrip`, `rooms`, `throughput`, `density`) skips the
+//!   criterion runs.
 
+mod density;
 mod rooms;
 mod throughput;
 
@@ -96,6 +100,9 @@ fn bench(args: &[String]) -> Result<()> {
     if filter.is_empty() || filter.iter().any(|f| "rooms".contains(f)) {
         rooms::add_rooms(&root, &target, json_out, &mut figures)?;
     }
+    if filter.is_empty() || filter.contains(&"density") {
+        density::add_density(&root, &target, json_out, &mut figures)?;
+    }
     if filter.is_empty() || filter.contains(&"throughput") {
         let exe = release_cli(&root, &target, json_out)?;
         throughput::add_throughput(&root, &target, &exe, &mut figures)?;
@@ -114,7 +121,7 @@ fn bench(args: &[String]) -> Result<()> {
 }
 
 /// The sections `bench` runs itself (not through criterion).
-const SECTIONS: [&str; 3] = ["roundtrip", "rooms", "throughput"];
+const SECTIONS: [&str; 4] = ["roundtrip", "rooms", "throughput", "density"];
 
 /// Runs every crate's criterion benchmarks in release mode (bench targets only), filtered.
 fn run_criterion(root: &Path, filter: &[&str], json_out: bool) -> Result<()> {

@@ -8,6 +8,7 @@ use std::path::Path;
 use anyhow::{Context, Result};
 use serde_json::{json, Value};
 
+use crate::density::Physics;
 use crate::{benchmark_prompts, generate, prompt_lines, release_cli};
 
 /// Seeds over which the benchmark scenes' content is measured (`rooms/…`).
@@ -195,19 +196,16 @@ fn rule_counts(arrangement: &Value) -> (u64, u64) {
 fn seed_row(report: &Value, seed: u64) -> Value {
     let arrangement = &report["verdict"]["arrangement"];
     let (r_held, r_checked) = rule_counts(arrangement);
-    let m = &report["verdict"]["metrics"];
-    json!({
+    let mut row = json!({
         "seed": seed,
         "accepted": report["accepted"],
         "objects": report["objects"],
         "rules_held": r_held,
         "rules_checked": r_checked,
         "layout": arrangement["layout"],
-        "col_o": m["col_o"],
-        "inst_o": m["inst_o"],
-        "walk": m["walk"],
-        "reach_floor": m["reach_floor"],
-    })
+    });
+    Physics::from_report(report).add_to(&mut row);
+    row
 }
 
 /// `held / total`, or null when nothing was counted.

@@ -253,6 +253,28 @@ pub struct Vocabulary {
     /// Category words that are also adjectives ("a *safe* room"): read as the object only after
     /// an article, a count or "the", and not before another meaningful word.
     pub adjective_nouns: BTreeSet<String>,
+    /// Words of a place phrase that ask for a sparse room ("a *minimalist* bedroom", "an
+    /// *empty* warehouse"), as stems, and how sparse.
+    pub sparse: BTreeMap<String, Sparsity>,
+}
+
+/// How sparse a prompt asks its room to be (`[sparse]` of `knowledge/vocabulary.toml`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Sparsity {
+    /// The place's core only, each at its least count, and no optional extras.
+    Core,
+    /// Nearly nothing: the anchor (a fixed item such as a warehouse's rack) alone.
+    Empty,
+}
+
+impl Sparsity {
+    /// What the planner keeps, in words (recorded in the plan's assumptions).
+    pub fn keeps(self) -> &'static str {
+        match self {
+            Sparsity::Core => "only the place's core contents, at their least counts, no extras",
+            Sparsity::Empty => "only the room and its anchor",
+        }
+    }
 }
 
 /// What a spatial phrase states.
@@ -367,7 +389,15 @@ struct VocabularyFile {
     filler: WordList,
     scene_words: SceneWords,
     place_phrase: PlacePhraseWords,
+    sparse: SparseWords,
     relations: BTreeMap<String, String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SparseWords {
+    core: Vec<String>,
+    empty: Vec<String>,
 }
 
 #[derive(Deserialize)]
@@ -486,6 +516,7 @@ impl Knowledge {
                     .iter()
                     .flat_map(|w| phrase_stems(w))
                     .collect(),
+                sparse: sparse_words(&voc.sparse),
             },
         })
     }
@@ -559,6 +590,22 @@ fn check_priors(priors: &BTreeMap<String, CategoryPrior>) -> Result<(), Knowledg
         }
     }
     Ok(())
+}
+
+/// The sparse words as stems with their sparsity (a word listed under both reads as empty).
+fn sparse_words(words: &SparseWords) -> BTreeMap<String, Sparsity> {
+    let levels = [
+        (&words.core, Sparsity::Core),
+        (&words.empty, Sparsity::Empty),
+    ];
+    levels
+        .into_iter()
+        .flat_map(|(list, level)| {
+            list.iter()
+                .flat_map(|w| phrase_stems(w))
+                .map(move |w| (w, level))
+        })
+        .collect()
 }
 
 /// Reads and checks one archetype: its size range, object groups, anchor and core.

@@ -495,3 +495,65 @@ fn an_unknown_look_word_is_reported_never_dropped() {
         look.unavailable
     );
 }
+
+/// Plans `prompt` at `seed`.
+fn plan_at(prompt: &str, seed: u64) -> Plan {
+    KnowledgePlanner::new()
+        .plan(&PlanRequest::new(prompt, available(), seed))
+        .unwrap_or_else(|e| panic!("{prompt}: {e}"))
+}
+
+#[test]
+fn a_sparse_prompt_plans_a_sparse_room_of_the_same_place_and_says_why() {
+    // (sparse prompt, its plain form, a category the sparse room still holds)
+    let cases = [
+        ("a minimalist bedroom", "a bedroom", "bed"),
+        ("a sparse office", "an office", "desk"),
+        ("a bare studio apartment", "a studio apartment", "sofa"),
+        ("a sparsely furnished living room", "a living room", "sofa"),
+        ("an empty warehouse", "a warehouse", "pallet_rack"),
+    ];
+    for seed in 0..3 {
+        for (sparse, plain, kept) in cases {
+            let (s, p) = (plan_at(sparse, seed), plan_at(plain, seed));
+            assert_eq!(s.scene_type, p.scene_type, "{sparse} (seed {seed})");
+            assert!(count(&s, kept) >= 1, "{sparse} (seed {seed}) has no {kept}");
+            // At most 70 % as many objects, and at least eight fewer.
+            assert!(
+                s.objects.len() * 10 <= p.objects.len() * 7
+                    && s.objects.len() + 8 <= p.objects.len(),
+                "{sparse} (seed {seed}): {} objects against {} for {plain}",
+                s.objects.len(),
+                p.objects.len()
+            );
+            assert!(
+                s.assumptions.iter().any(|a| a.contains("sparse room")),
+                "{sparse}: {:?}",
+                s.assumptions
+            );
+            assert!(!p.assumptions.iter().any(|a| a.contains("sparse room")));
+        }
+    }
+    // A minimalist room keeps its core but none of the optional extras.
+    let minimalist = plan_at("a minimalist bedroom", 1);
+    for core in ["bed", "nightstand", "wardrobe"] {
+        assert!(count(&minimalist, core) >= 1, "no {core}");
+    }
+    for extra in [
+        "teddy_bear",
+        "suitcase",
+        "laundry_hamper",
+        "standing_mirror",
+    ] {
+        assert_eq!(
+            count(&minimalist, extra),
+            0,
+            "{extra} in a minimalist bedroom"
+        );
+    }
+    // An empty room is nearly nothing, but what the prompt names is still planned.
+    assert!(plan_at("an empty warehouse", 0).objects.len() <= 3);
+    let with_desk = plan_at("an empty warehouse with a desk", 0);
+    assert_eq!(count(&with_desk, "desk"), 1);
+    assert!(with_desk.objects.len() <= 4);
+}

@@ -207,11 +207,22 @@ fn add_free_candidates(
     let facing = seat.then_some(anchor_toward).flatten();
     let from = out.len();
     out.extend(free_candidates(state, info, rng, facing));
-    if o.zone == Zone::Rows && !seat {
-        // A desk of the rows that finds no row spot still turns like the rows.
+    if o.zone == Zone::Rows {
+        // A desk or seat of the rows that finds no row spot still turns like the rows (a pew
+        // faces the altar squarely, not at an angle toward its centre).
         for c in &mut out[from..] {
-            c.fp.yaw = 0.0;
+            c.fp.yaw = row_yaw(seat);
         }
+    }
+}
+
+/// The yaw of the rows: seats face the back wall, where the anchor stands (the altar, the
+/// screen, the teacher's desk); desks turn their fronts to the seats drawn up behind them.
+fn row_yaw(seat: bool) -> f64 {
+    if seat {
+        PI
+    } else {
+        0.0
     }
 }
 
@@ -426,7 +437,9 @@ fn center_candidates(
 /// the room's front; a seat of the rows faces the front.
 fn row_candidates(state: &FloorState<'_>, hx: f64, hz: f64, seat: bool) -> Vec<Candidate> {
     let [x0, z0, x1, z1] = state.floor;
-    let (sx, sz) = (2.0 * hx + 1.0, 2.0 * hz + 1.5);
+    // Rows of desks leave room for the seats drawn up to them; rows of seats (pews, a
+    // cinema's recliners) only a walkway between one row's back and the next one's front.
+    let (sx, sz) = (2.0 * hx + 1.0, 2.0 * hz + if seat { 1.0 } else { 1.5 });
     let (ax0, ax1) = (x0 + 0.9 + hx, x1 - 0.9 - hx);
     let (az0, az1) = (z0 + 1.9 + hz, z1 - 1.3 - hz);
     let mut out = Vec::new();
@@ -441,7 +454,7 @@ fn row_candidates(state: &FloorState<'_>, hx: f64, hz: f64, seat: bool) -> Vec<C
             let fp = Footprint {
                 cx: ax0 + off_x + c as f64 * sx,
                 cz: az0 + r as f64 * sz,
-                yaw: if seat { PI } else { 0.0 },
+                yaw: row_yaw(seat),
                 hx,
                 hz,
             };

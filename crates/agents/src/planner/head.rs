@@ -37,7 +37,11 @@ impl PlacePhrase {
     /// Reads the place phrase of `stems` (one entry per token, `None` for a clause break), or
     /// `None` when no word before the first clause break carries meaning.
     pub(super) fn read(stems: &[Option<&str>], voc: &Vocabulary) -> Option<PlacePhrase> {
-        let content = |w: &str| !voc.filler.contains(w) && !voc.counts.contains_key(w);
+        // A sparse word ("a *sparsely* furnished office") says how full the place is, not
+        // what it is: it is never the head.
+        let content = |w: &str| {
+            !voc.filler.contains(w) && !voc.counts.contains_key(w) && !voc.sparse.contains_key(w)
+        };
         let mut end = 0;
         let mut head = None;
         let mut of = None;

@@ -14,7 +14,7 @@
 
 use std::collections::BTreeSet;
 
-use crate::knowledge::Archetype;
+use crate::knowledge::{Archetype, Sparsity, Vocabulary};
 use crate::places::Family;
 use crate::plan::{cut_prompt, PlaceReading, PlanError, PlanRequest, ReadingSource};
 use crate::prompt::{analyze, Analysis};
@@ -43,6 +43,9 @@ pub(super) struct Reading {
     /// Whether the second archetype is named by a modifier of the head ("an *alchemy*
     /// workshop"): its anchor then belongs in the scene too.
     pub modifier_blend: bool,
+    /// How sparse the place phrase asks the room to be ("a *minimalist* bedroom"), with the
+    /// word that asks; `None` for a room as full as lived-in rooms.
+    pub sparsity: Option<(Sparsity, String)>,
 }
 
 /// Which tokens of `prompt` name its place (not read as objects: "a *fire station*" holds no
@@ -115,16 +118,36 @@ pub(super) fn interpret(
         basis: choice.basis,
         source: ReadingSource::Knowledge,
     };
+    let sparsity = phrase
+        .as_ref()
+        .and_then(|p| sparsity_of(&stems[p.span.clone()], &knowledge.vocabulary));
+    let mut assumptions: Vec<String> = choice.assumption.into_iter().collect();
+    if let Some((level, word)) = &sparsity {
+        assumptions.push(format!(
+            "\"{word}\" asks for a sparse room: {}",
+            level.keeps()
+        ));
+    }
     Ok(Reading {
         prompt: prompt.to_owned(),
         analysis,
         archetypes: choice.archetypes,
         scene_type,
-        assumptions: choice.assumption.into_iter().collect(),
+        assumptions,
         limits,
         place,
         modifier_blend: choice.modifier_blend,
+        sparsity,
     })
+}
+
+/// The sparsest level a sparse word of the place phrase (`stems`) asks for, with its word.
+fn sparsity_of(stems: &[Option<&str>], voc: &Vocabulary) -> Option<(Sparsity, String)> {
+    stems
+        .iter()
+        .flatten()
+        .filter_map(|w| voc.sparse.get(*w).map(|level| (*level, (*w).to_owned())))
+        .max_by_key(|(level, _)| *level)
 }
 
 /// The archetypes chosen for a prompt, how sure the choice is and why.

@@ -7,7 +7,9 @@ use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use scenethesis_scene_graph::RelationKind;
 
-use crate::knowledge::{Archetype, CategoryPrior, Mount, NominalShape, ObjectGroup, Place};
+use crate::knowledge::{
+    Archetype, CategoryPrior, Mount, NominalShape, ObjectGroup, Place, Sparsity,
+};
 use crate::plan::Zone;
 use crate::prompt::Analysis;
 
@@ -35,6 +37,8 @@ pub(super) fn select(
         analysis,
         available,
         groups: merged_groups(&reading.archetypes, reading.modifier_blend),
+        sparsity: reading.sparsity.as_ref().map(|(level, _)| *level),
+        core: &primary.core,
     };
     let mentions = selector.assign_mentions(&mut out);
     selector.draft_groups(&mentions, &primary.anchor, &mut out, rng);
@@ -93,9 +97,33 @@ struct Selector<'a> {
     analysis: &'a Analysis,
     available: &'a BTreeSet<String>,
     groups: Vec<ObjectGroup>,
+    /// How sparse the prompt asks the room to be.
+    sparsity: Option<Sparsity>,
+    /// The primary place's core categories.
+    core: &'a [String],
 }
 
 impl Selector<'_> {
+    /// Whether the room keeps archetype group `group` (planned as `category`; `anchor`: it is
+    /// the place's anchor group) when no mention takes it over: every group in a full room;
+    /// in a sparse one the anchor and the required groups of the core (every required group
+    /// when the place lists no core); in an empty one the anchor alone.
+    fn keeps(&self, group: &ObjectGroup, category: &str, anchor: bool) -> bool {
+        let core = || {
+            group.min >= 1
+                && (self.core.is_empty()
+                    || self
+                        .core
+                        .iter()
+                        .any(|c| *c == group.category || c == category))
+        };
+        match self.sparsity {
+            None => true,
+            Some(Sparsity::Core) => anchor || core(),
+            Some(Sparsity::Empty) => anchor,
+        }
+    }
+
     fn substitute(&self, category: &str) -> Option<String> {
         self.planner.substitute(category, self.available)
     }
@@ -165,8 +193,11 @@ impl Selector<'_> {
                 continue;
             };
             let mention = mentions.group.iter().position(|g| *g == Some(gi));
+            let anchor_group =
+                group.place == Place::Anchor && Some(&category) == anchor_category.as_ref();
             if mentions.excluded.contains(&category)
                 || (mention.is_none() && mentions.totals.contains(&category))
+                || (mention.is_none() && !self.keeps(group, &category, anchor_group))
             {
                 continue;
             }
@@ -185,6 +216,7 @@ impl Selector<'_> {
                 group,
                 category: &category,
                 mention,
+                least: self.sparsity.is_some(),
             };
             match &group.place {
                 Place::Support(kind, target) => {
@@ -376,18 +408,23 @@ impl Selector<'_> {
     }
 }
 
-/// One archetype group being drafted: the group, the category planned for it and the
-/// mention that took it over.
+/// One archetype group being drafted: the group, the category planned for it, the mention
+/// that took it over and whether the room is sparse (each group at its least count).
 struct GroupDraft<'a> {
     group: &'a ObjectGroup,
     category: &'a str,
     mention: Option<usize>,
+    least: bool,
 }
 
 impl GroupDraft<'_> {
-    /// A count drawn from the group's range.
+    /// A count drawn from the group's range (its least in a sparse room).
     fn count(&self, rng: &mut ChaCha8Rng) -> u32 {
-        rng.random_range(self.group.min..=self.group.max)
+        if self.least {
+            self.group.min
+        } else {
+            rng.random_range(self.group.min..=self.group.max)
+        }
     }
 }
 
