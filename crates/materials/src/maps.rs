@@ -103,8 +103,9 @@ pub fn maps(material: &LibraryMaterial) -> &'static Maps {
 
 /// A stable seed from a material's id (FNV-1a), so that two materials of one pattern differ.
 fn seed_of(id: &str) -> u32 {
-    id.bytes()
-        .fold(0x811C_9DC5u32, |h, b| (h ^ b as u32).wrapping_mul(0x0100_0193))
+    id.bytes().fold(0x811C_9DC5u32, |h, b| {
+        (h ^ b as u32).wrapping_mul(0x0100_0193)
+    })
 }
 
 fn generate(material: &LibraryMaterial) -> Maps {
@@ -200,12 +201,18 @@ mod tests {
         assert!(seam <= inner * 2 + n as i32, "seam {seam} vs inner {inner}");
         let seam_v: i32 = (0..n).map(|x| step(at(x, n - 1), at(x, 0))).sum();
         let inner_v: i32 = (0..n).map(|x| step(at(x, n / 2), at(x, n / 2 + 1))).sum();
-        assert!(seam_v <= inner_v * 2 + n as i32, "seam {seam_v} vs inner {inner_v}");
+        assert!(
+            seam_v <= inner_v * 2 + n as i32,
+            "seam {seam_v} vs inner {inner_v}"
+        );
         assert!(first.mean_albedo.iter().all(|m| (0.3..=1.0).contains(m)));
         // glTF layout: metals have B = 255, dielectrics B = 0; roughness in G.
         let steel = maps(by_id("brushed_steel").unwrap());
         assert!(steel.metallic_roughness.chunks(3).all(|c| c[2] == 255));
-        assert!(first.metallic_roughness.chunks(3).all(|c| c[0] == 255 && c[2] == 0));
+        assert!(first
+            .metallic_roughness
+            .chunks(3)
+            .all(|c| c[0] == 255 && c[2] == 0));
         // Normals point out of the surface.
         assert!(first.normal.chunks(3).all(|c| c[2] > 128));
     }

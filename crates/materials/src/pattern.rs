@@ -113,8 +113,18 @@ pub enum Pattern {
 }
 
 impl Pattern {
-    /// The pattern at tile coordinates `(u, v)` in `[0, 1)`, with `seed` varying the noise.
+    /// The pattern at tile coordinates `(u, v)` in `[0, 1)`, with `seed` varying the noise;
+    /// albedo and roughness clamped to `[0, 1]`.
     pub fn texel(&self, u: f32, v: f32, seed: u32) -> Texel {
+        let t = self.unclamped(u, v, seed);
+        Texel {
+            albedo: t.albedo.map(|c| c.clamp(0.0, 1.0)),
+            height: t.height,
+            roughness: t.roughness.clamp(0.0, 1.0),
+        }
+    }
+
+    fn unclamped(&self, u: f32, v: f32, seed: u32) -> Texel {
         match *self {
             Pattern::Wood {
                 rings,
@@ -126,13 +136,21 @@ impl Pattern {
             Pattern::PaintedWood => {
                 let grain = wood(u, v, 6, 0.6, 1.5, 0.3, seed);
                 let speck = value(u, v, 128, 128, seed ^ 5);
-                Texel::grey(0.96 + 0.03 * speck, grain.height * 0.35, 0.95 + 0.05 * speck)
+                Texel::grey(
+                    0.96 + 0.03 * speck,
+                    grain.height * 0.35,
+                    0.95 + 0.05 * speck,
+                )
             }
             Pattern::Weave { threads, slub } => weave(u, v, threads, slub, seed),
             Pattern::Velvet => {
                 let crush = fbm(u, v, 3, 3, 4, 0.55, seed);
                 let pile = value(u, v, 256, 256, seed ^ 1);
-                Texel::grey(0.72 + 0.25 * crush + 0.03 * pile, pile * 0.3, 0.9 + 0.1 * crush)
+                Texel::grey(
+                    0.72 + 0.25 * crush + 0.03 * pile,
+                    pile * 0.3,
+                    0.9 + 0.1 * crush,
+                )
             }
             Pattern::Felt => {
                 let fibre = fbm(u, v, 32, 32, 3, 0.6, seed);
@@ -143,7 +161,11 @@ impl Pattern {
             Pattern::Brushed => {
                 let streak = fbm(u, v, 2, 128, 3, 0.5, seed);
                 let fine = value(u, v, 8, 256, seed ^ 9);
-                Texel::grey(0.9 + 0.07 * streak + 0.03 * fine, fine * 0.5, 0.8 + 0.2 * streak)
+                Texel::grey(
+                    0.9 + 0.07 * streak + 0.03 * fine,
+                    fine * 0.5,
+                    0.8 + 0.2 * streak,
+                )
             }
             Pattern::Polished => {
                 let wave = fbm(u, v, 4, 4, 3, 0.5, seed);
@@ -168,13 +190,21 @@ impl Pattern {
             Pattern::Slate => {
                 let layer = fbm(u, v, 2, 24, 4, 0.6, seed);
                 let cleft = fbm(u, v, 6, 6, 3, 0.5, seed ^ 4);
-                Texel::grey(0.75 + 0.2 * layer + 0.05 * cleft, 0.6 * layer + 0.4 * cleft, 0.9)
+                Texel::grey(
+                    0.75 + 0.2 * layer + 0.05 * cleft,
+                    0.6 * layer + 0.4 * cleft,
+                    0.9,
+                )
             }
             Pattern::Travertine => {
                 let band = fbm(u, v, 1, 12, 4, 0.6, seed);
                 let (pore, _) = cellular(u, v, 20, seed ^ 6);
                 let hole = smoothstep(0.16, 0.06, pore) * smoothstep(0.5, 0.7, band);
-                Texel::grey(0.82 + 0.18 * band - 0.25 * hole, 0.7 - 0.6 * hole, 0.9 + 0.1 * hole)
+                Texel::grey(
+                    0.82 + 0.18 * band - 0.25 * hole,
+                    0.7 - 0.6 * hole,
+                    0.9 + 0.1 * hole,
+                )
             }
             Pattern::Tiles { tiles } => tile_grid(u, v, tiles, seed),
             Pattern::Terracotta => {
@@ -211,7 +241,11 @@ impl Pattern {
             Pattern::Cardboard => {
                 let flute = 0.5 + 0.5 * triangle(v * 32.0);
                 let fibre = fbm(u, v, 64, 32, 3, 0.6, seed);
-                Texel::grey(0.85 + 0.1 * fibre + 0.05 * flute, 0.5 * flute + 0.3 * fibre, 1.0)
+                Texel::grey(
+                    0.85 + 0.1 * fibre + 0.05 * flute,
+                    0.5 * flute + 0.3 * fibre,
+                    1.0,
+                )
             }
             Pattern::Plaster => {
                 let trowel = fbm(u, v, 3, 3, 5, 0.6, seed);
@@ -235,7 +269,11 @@ impl Pattern {
             Pattern::Leaf => {
                 let vein = smoothstep(0.06, 0.0, triangle(v * 6.0 + 2.0 * u).abs() * 0.5);
                 let cells = fbm(u, v, 16, 16, 3, 0.5, seed);
-                Texel::grey(0.82 + 0.12 * cells + 0.06 * vein, 0.4 * cells + 0.6 * vein, 0.9)
+                Texel::grey(
+                    0.82 + 0.12 * cells + 0.06 * vein,
+                    0.4 * cells + 0.6 * vein,
+                    0.9,
+                )
             }
             Pattern::Soil => {
                 let (clump, h) = cellular(u, v, 32, seed);
@@ -285,8 +323,11 @@ fn planks(u: f32, v: f32, boards: u32, seed: u32) -> Texel {
     let board_seed = seed.wrapping_add(board.wrapping_mul(101));
     let mut t = wood(u, fract(v + offset), 9, 0.35, 1.2, 0.4, board_seed);
     let tone = 0.85 + 0.15 * unit(board, 1, seed ^ 23);
-    let seam = smoothstep(0.012, 0.0, across.min(1.0 - across))
-        .max(smoothstep(0.006, 0.0, along.min(1.0 - along)));
+    let seam = smoothstep(0.012, 0.0, across.min(1.0 - across)).max(smoothstep(
+        0.006,
+        0.0,
+        along.min(1.0 - along),
+    ));
     t.albedo = t.albedo.map(|c| lerp(c * tone, 0.35, seam));
     t.height = lerp(t.height * 0.6 + 0.4, 0.0, seam);
     t.roughness = lerp(t.roughness, 1.0, seam);
@@ -372,7 +413,11 @@ fn concrete(u: f32, v: f32, seed: u32) -> Texel {
     let (pit, _) = cellular(u, v, 40, seed ^ 3);
     let hole = smoothstep(0.1, 0.03, pit);
     let (grain, h) = cellular(u, v, 128, seed ^ 5);
-    let aggregate = if h % 7 == 0 { 0.06 * (1.0 - grain.min(1.0)) } else { 0.0 };
+    let aggregate = if h % 7 == 0 {
+        0.06 * (1.0 - grain.min(1.0))
+    } else {
+        0.0
+    };
     Texel::grey(
         (0.8 + 0.18 * mottle - 0.3 * hole + aggregate).clamp(0.0, 1.0),
         (0.6 + 0.2 * mottle - 0.5 * hole).clamp(0.0, 1.0),
@@ -382,8 +427,6 @@ fn concrete(u: f32, v: f32, seed: u32) -> Texel {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
-
     #[test]
     fn every_pattern_stays_in_range() {
         for pattern in crate::library::library().iter().map(|m| m.pattern) {
