@@ -3,7 +3,7 @@
 //! walls and leaves from these pieces so that the formats agree.
 
 use nalgebra::{Point3, Rotation3, Vector3};
-use scenethesis_scene_graph::{Architecture, LeafGeometry, Material, Mesh, MeshPart};
+use scenethesis_scene_graph::{Architecture, Environment, LeafGeometry, Material, Mesh, MeshPart};
 
 /// Thickness of the floor slab below y = 0, in metres.
 pub const FLOOR_THICKNESS: f64 = 0.05;
@@ -62,15 +62,15 @@ pub struct Piece {
     pub kind: PieceKind,
     /// The solid boxes; a wall with a door has a box on each side and a lintel above it.
     pub boxes: Vec<OrientedBox>,
+    /// Its surface: [`floor_material`] indoors, [`ground_material`] outdoors,
+    /// [`wall_material`] for walls.
+    pub material: Material,
 }
 
 impl Piece {
     /// The piece as a mesh in world coordinates, one part per box, with one material.
     pub fn to_mesh(&self) -> Mesh {
-        let material = match self.kind {
-            PieceKind::Floor => floor_material(),
-            PieceKind::Wall => wall_material(),
-        };
+        let material = self.material.clone();
         let parts = self
             .boxes
             .iter()
@@ -84,14 +84,25 @@ impl Piece {
     }
 }
 
-/// The material of floors.
+/// The material of floors: the library's oak floorboards.
 pub fn floor_material() -> Material {
-    Material::new("floor", [0.45, 0.36, 0.28], 0.7)
+    library_material("oak_floorboards")
 }
 
-/// The material of walls.
+/// The material of open ground (outdoor scenes): the library's soil.
+pub fn ground_material() -> Material {
+    library_material("soil")
+}
+
+/// The material of walls: the library's matte wall paint.
 pub fn wall_material() -> Material {
-    Material::new("wall", [0.82, 0.80, 0.76], 0.9)
+    library_material("wall_paint")
+}
+
+fn library_material(id: &str) -> Material {
+    scenethesis_materials::by_id(id)
+        .expect("the architecture's materials are in the library")
+        .material()
 }
 
 /// The architecture as solid pieces: the floor slab first, then each wall in order, cut around
@@ -103,6 +114,11 @@ pub fn pieces(architecture: &Architecture) -> Vec<Piece> {
     let mut out = vec![Piece {
         id: floor.id.clone(),
         kind: PieceKind::Floor,
+        material: if architecture.environment == Environment::Outdoor {
+            ground_material()
+        } else {
+            floor_material()
+        },
         boxes: vec![OrientedBox {
             center: Point3::new(
                 (floor.min.x + floor.max.x) / 2.0,
@@ -156,6 +172,7 @@ pub fn pieces(architecture: &Architecture) -> Vec<Piece> {
         out.push(Piece {
             id: wall.id.clone(),
             kind: PieceKind::Wall,
+            material: wall_material(),
             boxes,
         });
     }

@@ -2,6 +2,9 @@
 
 use std::path::{Path, PathBuf};
 
+use std::collections::BTreeSet;
+
+use crate::textures::{self, TEXTURE_DIR};
 use crate::{glb, mjcf, urdf, usd, write, ExportError, ExportScene, Format};
 
 impl Format {
@@ -28,8 +31,19 @@ impl Format {
         format!("{stem}_meshes")
     }
 
+    /// The folder beside a text-format file at `path` that [`Format::write_file`] puts its
+    /// textures in: `<stem>_textures`.
+    pub fn texture_dir(path: &Path) -> String {
+        let stem = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "scene".to_owned());
+        format!("{stem}_textures")
+    }
+
     /// Writes the scene in this format into `dir` (which must exist) under its
-    /// [`Format::file_name`] (a URDF's meshes in `meshes/`), all or nothing as
+    /// [`Format::file_name`] (a URDF's meshes in `meshes/`, the text formats' textures in
+    /// `textures/`), all or nothing as
     /// [`write_formats`], and returns the path of the main file.
     pub fn write(&self, export: &ExportScene<'_>, dir: &Path) -> Result<PathBuf, ExportError> {
         let path = dir.join(self.file_name());
@@ -38,8 +52,9 @@ impl Format {
     }
 
     /// Writes the scene in this format to `path` (whose folder must exist) and returns the
-    /// files written: the main file and, for a URDF, its mesh folder `<stem>_meshes/`. All or
-    /// nothing, as [`write_formats`].
+    /// files written: the main file, for a URDF its mesh folder `<stem>_meshes/`, and for the
+    /// text formats (USD, MJCF, URDF) of a textured scene their texture folder
+    /// `<stem>_textures/`. All or nothing, as [`write_formats`].
     pub fn write_file(
         &self,
         export: &ExportScene<'_>,
@@ -53,28 +68,56 @@ impl Format {
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_else(|| self.file_name().to_owned());
-        let output = Encoded::new(*self, export, name, &Format::urdf_mesh_dir(path));
-        let mesh_dir = output.meshes.as_ref().map(|(dir, _)| parent.join(dir));
+        let dirs = Dirs {
+            meshes: Format::urdf_mesh_dir(path),
+            textures: Format::texture_dir(path),
+        };
+        let output = Encoded::new(*self, export, name, &dirs);
+        let folders: Vec<PathBuf> = output.folders.iter().map(|(d, _)| parent.join(d)).collect();
         stage_and_move(parent, vec![output])?;
-        Ok(std::iter::once(path.to_owned()).chain(mesh_dir).collect())
+        Ok(std::iter::once(path.to_owned()).chain(folders).collect())
     }
 
     /// The scene in this format, in memory, as [`Encoded`].
-    fn encode(&self, export: &ExportScene<'_>, mesh_dir: &str) -> (Vec<u8>, Option<MeshFiles>) {
+    fn encode(&self, export: &ExportScene<'_>, dirs: &Dirs) -> (Vec<u8>, Vec<(String, Files)>) {
+        let textures = || {
+            let files = textures::files(export);
+            (!files.is_empty()).then(|| (dirs.textures.clone(), files))
+        };
         match self {
-            Format::Glb => (glb::to_glb(export), None),
-            Format::Usd => (usd::to_usda(export).into_bytes(), None),
-            Format::Mjcf => (mjcf::to_mjcf(export).into_bytes(), None),
+            Format::Glb => (glb::to_glb(export), Vec::new()),
+            Format::Usd => (
+                usd::to_usda_textured(export, &dirs.textures).into_bytes(),
+                textures().into_iter().collect(),
+            ),
+            Format::Mjcf => (
+                mjcf::to_mjcf_textured(export, &dirs.textures).into_bytes(),
+                textures().into_iter().collect(),
+            ),
             Format::Urdf => {
-                let package = urdf::to_urdf(export, mesh_dir);
-                (package.urdf.into_bytes(), Some(package.meshes))
+                let package = urdf::to_urdf_textured(export, &dirs.meshes, &dirs.textures);
+                let meshes: Files = package
+                    .meshes
+                    .into_iter()
+                    .map(|(name, text)| (name, text.into_bytes()))
+                    .collect();
+                let folders = std::iter::once((dirs.meshes.clone(), meshes))
+                    .chain(textures())
+                    .collect();
+                (package.urdf.into_bytes(), folders)
             }
         }
     }
 }
 
-/// OBJ files by file name: a URDF's meshes.
-type MeshFiles = std::collections::BTreeMap<String, String>;
+/// Files of a side folder by file name: a URDF's OBJ meshes, the text formats' textures.
+type Files = std::collections::BTreeMap<String, Vec<u8>>;
+
+/// The side folders' names an output refers to.
+struct Dirs {
+    meshes: String,
+    textures: String,
+}
 
 /// One format's output, built in memory before anything is written.
 struct Encoded {
@@ -82,23 +125,25 @@ struct Encoded {
     name: String,
     /// The main file's bytes.
     bytes: Vec<u8>,
-    /// A URDF's mesh folder name and its files.
-    meshes: Option<(String, MeshFiles)>,
+    /// Side folders (a URDF's meshes, textures) by folder name, with their files. Formats
+    /// written together share a folder of the same name (its files are the same).
+    folders: Vec<(String, Files)>,
 }
 
 impl Encoded {
-    fn new(format: Format, export: &ExportScene<'_>, name: String, mesh_dir: &str) -> Self {
-        let (bytes, meshes) = format.encode(export, mesh_dir);
+    fn new(format: Format, export: &ExportScene<'_>, name: String, dirs: &Dirs) -> Self {
+        let (bytes, folders) = format.encode(export, dirs);
         Self {
             name,
             bytes,
-            meshes: meshes.map(|files| (mesh_dir.to_owned(), files)),
+            folders,
         }
     }
 }
 
 /// Writes `formats` into `dir` (which must exist), each under its [`Format::file_name`] (a
-/// URDF's meshes in `meshes/`), and returns the paths of the main files. All or nothing: every
+/// URDF's meshes in `meshes/`, the textures of USD, MJCF and URDF once in `textures/`), and
+/// returns the paths of the main files. All or nothing: every
 /// format is encoded in memory first, then every file is written into a staging folder inside
 /// `dir`, and only when all are written are they moved into place. A failure leaves `dir` as
 /// it was.
@@ -107,17 +152,26 @@ pub fn write_formats(
     export: &ExportScene<'_>,
     dir: &Path,
 ) -> Result<Vec<PathBuf>, ExportError> {
-    let outputs: Vec<Encoded> = formats
+    let dirs = Dirs {
+        meshes: urdf::MESH_DIR.to_owned(),
+        textures: TEXTURE_DIR.to_owned(),
+    };
+    let mut outputs: Vec<Encoded> = formats
         .iter()
-        .map(|f| Encoded::new(*f, export, f.file_name().to_owned(), urdf::MESH_DIR))
+        .map(|f| Encoded::new(*f, export, f.file_name().to_owned(), &dirs))
         .collect();
+    // A folder shared by several formats (textures) is written by the first only.
+    let mut seen = BTreeSet::new();
+    for output in &mut outputs {
+        output.folders.retain(|(name, _)| seen.insert(name.clone()));
+    }
     let paths = outputs.iter().map(|o| dir.join(&o.name)).collect();
     stage_and_move(dir, outputs)?;
     Ok(paths)
 }
 
-/// Writes `outputs` into a staging folder inside `dir`, then moves each into `dir` (a mesh
-/// folder first replaces the old one, then the main file naming it). The staging folder is
+/// Writes `outputs` into a staging folder inside `dir`, then moves each into `dir` (its side
+/// folders first replace the old ones, then the main file naming them). The staging folder is
 /// removed whatever happens.
 fn stage_and_move(dir: &Path, outputs: Vec<Encoded>) -> Result<(), ExportError> {
     let staging = dir.join(format!(".export-staging-{}", std::process::id()));
@@ -133,7 +187,7 @@ fn stage_and_move(dir: &Path, outputs: Vec<Encoded>) -> Result<(), ExportError> 
 }
 
 /// Refuses, before anything is written, a target the move could not replace: a folder where
-/// a main file goes, or a file where a mesh folder goes.
+/// a main file goes, or a file where a side folder goes.
 fn check_targets(dir: &Path, output: &Encoded) -> Result<(), ExportError> {
     let occupied = |path: &Path, expected: &str| {
         failed(
@@ -148,7 +202,7 @@ fn check_targets(dir: &Path, output: &Encoded) -> Result<(), ExportError> {
     if main.is_dir() {
         return Err(occupied(&main, "a file"));
     }
-    if let Some((name, _)) = &output.meshes {
+    for (name, _) in &output.folders {
         let folder = dir.join(name);
         if folder.exists() && !folder.is_dir() {
             return Err(occupied(&folder, "a folder"));
@@ -159,20 +213,20 @@ fn check_targets(dir: &Path, output: &Encoded) -> Result<(), ExportError> {
 
 /// Writes one output's files into `staging`.
 fn stage(staging: &Path, output: &Encoded) -> Result<(), ExportError> {
-    if let Some((name, files)) = &output.meshes {
+    for (name, files) in &output.folders {
         let folder = staging.join(name);
         create_dir(&folder)?;
-        for (file, text) in files {
-            write(&folder.join(file), text.as_bytes())?;
+        for (file, bytes) in files {
+            write(&folder.join(file), bytes)?;
         }
     }
     write(&staging.join(&output.name), &output.bytes)
 }
 
-/// Moves one staged output into `dir`: its mesh folder (replacing the old one), then its main
-/// file.
+/// Moves one staged output into `dir`: its side folders (replacing the old ones), then its
+/// main file.
 fn move_in(staging: &Path, dir: &Path, output: &Encoded) -> Result<(), ExportError> {
-    if let Some((name, _)) = &output.meshes {
+    for (name, _) in &output.folders {
         let target = dir.join(name);
         if target.is_dir() {
             std::fs::remove_dir_all(&target).map_err(|e| failed(&target, e))?;

@@ -4,21 +4,33 @@
 use std::collections::{BTreeSet, HashMap};
 
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
-use scenethesis_scene_graph::{Mesh, MeshPart};
+use scenethesis_materials::{BoxProjection, LibraryMaterial};
+use scenethesis_scene_graph::{Material, Mesh, MeshPart};
 
 /// Faces meeting at less than this angle share smooth vertex normals (a cylinder's side);
 /// sharper edges (a box's corners) keep one normal per face.
 const CREASE_ANGLE_DEG: f32 = 40.0;
 
 /// A part ready for a renderer: vertices split wherever faces meet at a crease, with one
-/// normal per vertex.
+/// normal per vertex; when the part wears a library material, also split wherever faces are
+/// projected along different axes, with texture coordinates in tiles of that material and
+/// glTF tangents ([`scenethesis_materials::BoxProjection`], in the part's own frame).
 pub(crate) struct ShadedPart {
     pub positions: Vec<[f32; 3]>,
     pub normals: Vec<[f32; 3]>,
     pub indices: Vec<u32>,
+    /// Texture coordinates per vertex (empty without a library material).
+    pub uvs: Vec<[f32; 2]>,
+    /// Tangents per vertex, `w` the bitangent's sign (empty without a library material).
+    pub tangents: Vec<[f32; 4]>,
 }
 
-pub(crate) fn shade(part: &MeshPart) -> ShadedPart {
+/// The library material a scene material wears, found by its name.
+pub(crate) fn library_of(material: &Material) -> Option<&'static LibraryMaterial> {
+    scenethesis_materials::resolve(&material.name)
+}
+
+pub(crate) fn shade(part: &MeshPart, texture: Option<&LibraryMaterial>) -> ShadedPart {
     let face_normals: Vec<Vector3<f32>> = part
         .triangles
         .iter()
@@ -33,30 +45,41 @@ pub(crate) fn shade(part: &MeshPart) -> ShadedPart {
             faces_at[i as usize].push(f);
         }
     }
+    let projection = texture.map(|m| BoxProjection::new(m.tile_size_m, &part.positions));
     let cos_crease = CREASE_ANGLE_DEG.to_radians().cos();
     let unit = |v: &Vector3<f32>| v.try_normalize(1e-20).unwrap_or_else(Vector3::zeros);
     let mut out = ShadedPart {
         positions: Vec::with_capacity(part.positions.len()),
         normals: Vec::with_capacity(part.positions.len()),
         indices: Vec::with_capacity(part.triangles.len() * 3),
+        uvs: Vec::new(),
+        tangents: Vec::new(),
     };
-    // A split vertex is identified by its source vertex and the set of faces it averages;
-    // output order follows the triangles, so the map's iteration order never matters.
-    let mut seen: HashMap<(u32, Vec<usize>), u32> = HashMap::new();
+    // A split vertex is identified by its source vertex, the set of faces it averages and the
+    // axis its face is projected along; output order follows the triangles, so the map's
+    // iteration order never matters.
+    let mut seen: HashMap<(u32, Vec<usize>, usize), u32> = HashMap::new();
     for (f, t) in part.triangles.iter().enumerate() {
         let nf = unit(&face_normals[f]);
+        let face = projection.map(|p| p.face([nf.x, nf.y, nf.z]));
         for &i in t {
             let group: Vec<usize> = faces_at[i as usize]
                 .iter()
                 .copied()
                 .filter(|&g| unit(&face_normals[g]).dot(&nf) >= cos_crease)
                 .collect();
-            let index = *seen.entry((i, group.clone())).or_insert_with(|| {
+            let axis = face.map_or(0, |f| f.axis);
+            let index = *seen.entry((i, group.clone(), axis)).or_insert_with(|| {
                 // Area-weighted average (the raw cross products carry twice the area).
                 let sum: Vector3<f32> = group.iter().map(|&g| face_normals[g]).sum();
                 let n = sum.try_normalize(1e-20).unwrap_or(nf);
-                out.positions.push(part.positions[i as usize]);
+                let p = part.positions[i as usize];
+                out.positions.push(p);
                 out.normals.push([n.x, n.y, n.z]);
+                if let Some(face) = face {
+                    out.uvs.push(face.uv(p));
+                    out.tangents.push(face.tangent([n.x, n.y, n.z]));
+                }
                 out.positions.len() as u32 - 1
             });
             out.indices.push(index);
@@ -235,7 +258,7 @@ mod tests {
 
     #[test]
     fn cube_gets_flat_normals_pointing_out() {
-        let shaded = shade(&cube(1.0));
+        let shaded = shade(&cube(1.0), None);
         // 6 faces × 4 corners: every corner is a crease.
         assert_eq!(shaded.positions.len(), 24);
         assert_eq!(shaded.indices.len(), 36);

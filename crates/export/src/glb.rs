@@ -1,7 +1,12 @@
 //! glTF 2.0 binary (`.glb`) writer.
 //!
-//! Layout: one buffer (the BIN chunk); per primitive three buffer views and accessors
-//! (POSITION with min/max, NORMAL, u32 indices), all 4-byte aligned. Nodes are flat under the
+//! Layout: one buffer (the BIN chunk); per primitive buffer views and accessors for POSITION
+//! (with min/max), NORMAL and u32 indices, plus TEXCOORD_0 (box-projected, in tiles of its
+//! library material) and TANGENT when its material wears a library material; all 4-byte
+//! aligned. Each map of each library material used is one PNG image in the buffer, shared by
+//! every material wearing it: `baseColorTexture` (tinted by `baseColorFactor`),
+//! `metallicRoughnessTexture` and `normalTexture`, one repeating sampler. Glass adds
+//! `KHR_materials_transmission` and `KHR_materials_ior`. Nodes are flat under the
 //! scene root: the architecture pieces first (`floor`, `wall_0`, …; geometry in world
 //! coordinates, identity transform), then one node per object in scene order, named by its id,
 //! with translation, a rotation about +Y and a uniform scale from its pose. Node `extras` carry
@@ -24,8 +29,9 @@ use serde_json::{json, Value};
 
 use crate::architecture::{leaves, pieces, PieceKind};
 use crate::articulation::Articulation;
-use crate::geometry::shade;
+use crate::geometry::{library_of, shade};
 use crate::ExportScene;
+use scenethesis_materials::{maps, LibraryMaterial, MapKind};
 use scenethesis_scene_graph::{JointState, Material, Mesh};
 
 const GLB_MAGIC: u32 = 0x4654_6C67;
@@ -45,9 +51,17 @@ struct Root {
     nodes: Vec<Node>,
     meshes: Vec<MeshDef>,
     materials: Vec<Value>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    textures: Vec<Value>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    images: Vec<Value>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    samplers: Vec<Value>,
     accessors: Vec<Accessor>,
     buffer_views: Vec<BufferView>,
     buffers: Vec<Buffer>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    extensions_used: Vec<&'static str>,
 }
 
 #[derive(Serialize)]
@@ -106,13 +120,21 @@ struct Accessor {
     max: Option<[f32; 3]>,
 }
 
+/// glTF sampler constants: linear filtering with mipmaps, repeating in both directions.
+const LINEAR: u32 = 9729;
+const LINEAR_MIPMAP_LINEAR: u32 = 9987;
+const REPEAT: u32 = 10497;
+const TRANSMISSION: &str = "KHR_materials_transmission";
+const IOR: &str = "KHR_materials_ior";
+
 #[derive(Serialize)]
 #[serde(rename_all = "camelCase")]
 struct BufferView {
     buffer: usize,
     byte_offset: usize,
     byte_length: usize,
-    target: u32,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    target: Option<u32>,
 }
 
 #[derive(Serialize)]
@@ -129,10 +151,31 @@ struct Builder {
     materials: Vec<Value>,
     material_index: BTreeMap<String, usize>,
     meshes: Vec<MeshDef>,
+    /// Textures and images, one per map of each library material used (shared by every
+    /// material that wears it).
+    textures: Vec<Value>,
+    images: Vec<Value>,
+    texture_index: BTreeMap<(usize, MapKind), usize>,
+    uses_transmission: bool,
 }
 
 impl Builder {
-    fn view(&mut self, bytes: &[u8], target: u32) -> usize {
+    fn new() -> Self {
+        Self {
+            bin: Vec::new(),
+            accessors: Vec::new(),
+            views: Vec::new(),
+            materials: Vec::new(),
+            material_index: BTreeMap::new(),
+            meshes: Vec::new(),
+            textures: Vec::new(),
+            images: Vec::new(),
+            texture_index: BTreeMap::new(),
+            uses_transmission: false,
+        }
+    }
+
+    fn view(&mut self, bytes: &[u8], target: Option<u32>) -> usize {
         while self.bin.len() % 4 != 0 {
             self.bin.push(0);
         }
@@ -152,7 +195,7 @@ impl Builder {
             .flatten()
             .flat_map(|v| v.to_le_bytes())
             .collect();
-        let view = self.view(&bytes, ARRAY_BUFFER);
+        let view = self.view(&bytes, Some(ARRAY_BUFFER));
         let (min, max) = if bounds {
             let mut min = [f32::INFINITY; 3];
             let mut max = [f32::NEG_INFINITY; 3];
@@ -179,7 +222,7 @@ impl Builder {
 
     fn index_accessor(&mut self, indices: &[u32]) -> usize {
         let bytes: Vec<u8> = indices.iter().flat_map(|v| v.to_le_bytes()).collect();
-        let view = self.view(&bytes, ELEMENT_ARRAY_BUFFER);
+        let view = self.view(&bytes, Some(ELEMENT_ARRAY_BUFFER));
         self.accessors.push(Accessor {
             buffer_view: view,
             component_type: UNSIGNED_INT,
@@ -191,8 +234,49 @@ impl Builder {
         self.accessors.len() - 1
     }
 
+    /// A float accessor of `N` components per element (`VEC2` texture coordinates, `VEC4`
+    /// tangents).
+    fn float_accessor<const N: usize>(&mut self, data: &[[f32; N]], kind: &'static str) -> usize {
+        let bytes: Vec<u8> = data
+            .iter()
+            .flatten()
+            .flat_map(|v| v.to_le_bytes())
+            .collect();
+        let view = self.view(&bytes, Some(ARRAY_BUFFER));
+        self.accessors.push(Accessor {
+            buffer_view: view,
+            component_type: FLOAT,
+            count: data.len(),
+            kind,
+            min: None,
+            max: None,
+        });
+        self.accessors.len() - 1
+    }
+
+    /// The texture of one map of a library material: its PNG embedded in the buffer once, on
+    /// first use.
+    fn texture(&mut self, library: &LibraryMaterial, kind: MapKind) -> usize {
+        let key = (library.index(), kind);
+        if let Some(&i) = self.texture_index.get(&key) {
+            return i;
+        }
+        let view = self.view(maps(library).png(kind), None);
+        self.images.push(json!({
+            "name": format!("{}_{}", library.id, kind.suffix()),
+            "bufferView": view,
+            "mimeType": "image/png",
+        }));
+        self.textures
+            .push(json!({ "sampler": 0, "source": self.images.len() - 1 }));
+        self.texture_index.insert(key, self.textures.len() - 1);
+        self.textures.len() - 1
+    }
+
     /// The index of a glTF material equal to `m`, added on first use. Materials that agree in
-    /// name and every factor are shared across objects.
+    /// name and every factor are shared across objects. A material wearing a library material
+    /// gets its base-colour, metallic-roughness and normal textures (the factors rescaled so
+    /// the surface keeps its colour and roughness on average), glass its transmission.
     fn material(&mut self, m: &Material) -> usize {
         let key = format!(
             "{}|{:?}|{}|{}",
@@ -216,21 +300,52 @@ impl Builder {
         if m.base_color[3] < 1.0 {
             value["alphaMode"] = json!("BLEND");
         }
+        if let Some(library) = library_of(m) {
+            self.add_textures(&mut value, m, library);
+        }
         self.materials.push(value);
         self.material_index.insert(key, self.materials.len() - 1);
         self.materials.len() - 1
     }
 
+    /// The textures of `library` on the glTF material `value` of scene material `m`.
+    fn add_textures(&mut self, value: &mut Value, m: &Material, library: &LibraryMaterial) {
+        let maps = maps(library);
+        let clamp = |v: f32| v.clamp(0.0, 1.0);
+        let color = self.texture(library, MapKind::BaseColor);
+        let mr = self.texture(library, MapKind::MetallicRoughness);
+        let normal = self.texture(library, MapKind::Normal);
+        let pbr = &mut value["pbrMetallicRoughness"];
+        pbr["baseColorFactor"] = json!(maps.color_factor(m.base_color));
+        pbr["baseColorTexture"] = json!({ "index": color });
+        pbr["metallicRoughnessTexture"] = json!({ "index": mr });
+        pbr["roughnessFactor"] = json!(maps.roughness_factor(clamp(m.roughness)));
+        value["normalTexture"] = json!({ "index": normal });
+        if library.transmissive {
+            self.uses_transmission = true;
+            value["extensions"] = json!({
+                TRANSMISSION: { "transmissionFactor": 1.0 },
+                IOR: { "ior": 1.5 },
+            });
+        }
+    }
+
     fn mesh(&mut self, name: &str, mesh: &Mesh) -> usize {
         let mut primitives = Vec::new();
         for part in mesh.parts.iter().filter(|p| !p.triangles.is_empty()) {
-            let shaded = shade(part);
+            let scene_material = &mesh.materials[part.material];
+            let shaded = shade(part, library_of(scene_material));
             let position = self.vec3_accessor(&shaded.positions, true);
             let normal = self.vec3_accessor(&shaded.normals, false);
+            let mut attributes = BTreeMap::from([("NORMAL", normal), ("POSITION", position)]);
+            if !shaded.uvs.is_empty() {
+                attributes.insert("TEXCOORD_0", self.float_accessor(&shaded.uvs, "VEC2"));
+                attributes.insert("TANGENT", self.float_accessor(&shaded.tangents, "VEC4"));
+            }
             let indices = self.index_accessor(&shaded.indices);
-            let material = self.material(&mesh.materials[part.material]);
+            let material = self.material(scene_material);
             primitives.push(Primitive {
-                attributes: BTreeMap::from([("NORMAL", normal), ("POSITION", position)]),
+                attributes,
                 indices,
                 material,
                 extras: json!({ "part": part.name }),
@@ -295,14 +410,7 @@ fn as_written(joint: &JointState) -> Value {
 /// The scene as a glTF 2.0 binary file.
 pub fn to_glb(export: &ExportScene<'_>) -> Vec<u8> {
     let scene = export.scene();
-    let mut b = Builder {
-        bin: Vec::new(),
-        accessors: Vec::new(),
-        views: Vec::new(),
-        materials: Vec::new(),
-        material_index: BTreeMap::new(),
-        meshes: Vec::new(),
-    };
+    let mut b = Builder::new();
     let mut nodes = Vec::new();
     for piece in pieces(&scene.architecture) {
         let mesh = b.mesh(&piece.id, &piece.to_mesh());
@@ -387,11 +495,28 @@ pub fn to_glb(export: &ExportScene<'_>) -> Vec<u8> {
         nodes,
         meshes: b.meshes,
         materials: b.materials,
+        samplers: if b.textures.is_empty() {
+            Vec::new()
+        } else {
+            vec![json!({
+                "magFilter": LINEAR,
+                "minFilter": LINEAR_MIPMAP_LINEAR,
+                "wrapS": REPEAT,
+                "wrapT": REPEAT,
+            })]
+        },
+        textures: b.textures,
+        images: b.images,
         accessors: b.accessors,
         buffer_views: b.views,
         buffers: vec![Buffer {
             byte_length: b.bin.len(),
         }],
+        extensions_used: if b.uses_transmission {
+            vec![IOR, TRANSMISSION]
+        } else {
+            Vec::new()
+        },
     };
     let mut json = serde_json::to_vec(&root).expect("glTF JSON serialization cannot fail");
     while json.len() % 4 != 0 {

@@ -74,6 +74,7 @@ mod file;
 mod geometry;
 pub mod glb;
 pub mod mjcf;
+mod textures;
 pub mod urdf;
 pub mod usd;
 
@@ -87,6 +88,7 @@ use scenethesis_scene_graph::{limits, printable, write_file_atomic, Mesh, Scene,
 pub use articulation::{JOINT_DAMPING, MIN_JOINT_FRICTION};
 pub use file::write_formats;
 pub use geometry::MassProperties;
+pub use textures::TEXTURE_DIR;
 
 /// Density given to every object in the physics formats, kg/m³ (water; solid wood is 500–900).
 pub const DENSITY: f64 = 1000.0;

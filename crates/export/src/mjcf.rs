@@ -9,6 +9,11 @@
 //! [`crate::DENSITY`], sliding friction [`crate::FRICTION`], time step 1 ms. The floor is a
 //! plane and walls are static boxes, split around door openings.
 //!
+//! A material wearing a library material references its base-colour map as a `<texture>`
+//! (a PNG in the texture folder beside the file), its `rgba` the tint; mesh parts carry
+//! box-projected `texcoord`s, and the floor plane and wall boxes repeat the texture per metre
+//! (`texuniform`).
+//!
 //! An articulated object's body holds its fixed parts and one nested child body per joint
 //! (`<object>_<joint>`, a nested joint's inside its parent's) at the joint's anchor, with a
 //! `hinge` or `slide` joint (`range` in radians or metres, the pose's scale applied, 0 closed)
@@ -22,15 +27,18 @@
 //! fixed to the world) holding the leaf's body `<door>_leaf` on its hinge, excluded from
 //! contact with the world body's floor and walls (the frame it sits in).
 
+use std::collections::BTreeSet;
 use std::fmt::Write;
 
 use nalgebra::{UnitQuaternion, Vector3};
 
 use crate::architecture::{leaves, pieces, Leaf, OrientedBox, Piece, PieceKind};
 use crate::articulation::{Articulation, JOINT_DAMPING};
-use crate::geometry::{num, num32, to_z_up, y_up_to_z_up, Identifiers};
+use crate::geometry::{library_of, num, num32, shade, to_z_up, y_up_to_z_up, Identifiers};
+use crate::textures;
 use crate::{Dynamics, ExportScene, DENSITY, FRICTION};
-use scenethesis_scene_graph::{JointKind, Material, Mesh, SceneObject};
+use scenethesis_materials::{maps, MapKind};
+use scenethesis_scene_graph::{JointKind, Material, Mesh, MeshPart, SceneObject};
 
 /// The time constant (s) of the joints' dry friction (`solreffriction`). MuJoCo's default,
 /// 0.02 s, lets a light part held against gravity creep (a laptop screen 0.04 rad in 2 s); at
@@ -44,11 +52,19 @@ pub const TIMESTEP: f64 = 0.001;
 /// door, a handle) stable at the time step.
 pub const ARMATURE: f64 = 0.01;
 
-/// The scene as an MJCF document (meshes inline, no other files needed).
+/// The scene as an MJCF document (meshes inline) whose textures are in
+/// [`crate::TEXTURE_DIR`] beside it.
 pub fn to_mjcf(export: &ExportScene<'_>) -> String {
+    to_mjcf_textured(export, crate::TEXTURE_DIR)
+}
+
+/// The scene as an MJCF document (meshes inline, with texture coordinates where a part wears
+/// a library material) whose `<texture>` files are in the folder `texture_dir` beside it.
+pub fn to_mjcf_textured(export: &ExportScene<'_>, texture_dir: &str) -> String {
     let scene = export.scene();
     let mut doc = MjcfParts {
         names: Identifiers::new(true),
+        texture_dir: texture_dir.to_owned(),
         materials: Vec::new(),
         meshes: String::new(),
         world: String::new(),
@@ -70,7 +86,10 @@ pub fn to_mjcf(export: &ExportScene<'_>) -> String {
 /// meshes and the `<worldbody>` contents.
 struct MjcfParts {
     names: Identifiers,
-    materials: Vec<(String, Material)>,
+    texture_dir: String,
+    /// Name, material, and whether its texture repeats per metre of a primitive geom (the
+    /// floor plane and wall boxes) rather than by a mesh's texture coordinates.
+    materials: Vec<(String, Material, bool)>,
     meshes: String,
     world: String,
     /// Pairs of bodies that never collide: each link with its parent and its object's body.
@@ -78,20 +97,24 @@ struct MjcfParts {
 }
 
 impl MjcfParts {
-    /// The name of material `m`, added on first use.
-    fn material_name(&mut self, m: &Material) -> String {
-        if let Some((name, _)) = self.materials.iter().find(|(_, known)| known == m) {
+    /// The name of material `m` (on primitive geoms when `uniform`), added on first use.
+    fn material_name(&mut self, m: &Material, uniform: bool) -> String {
+        if let Some((name, ..)) = self
+            .materials
+            .iter()
+            .find(|(_, known, u)| known == m && *u == uniform)
+        {
             return name.clone();
         }
         let name = self.names.make(&format!("mat_{}", m.name));
-        self.materials.push((name.clone(), m.clone()));
+        self.materials.push((name.clone(), m.clone(), uniform));
         name
     }
 
     /// A piece of the architecture: the floor as a plane, a wall as its boxes.
     fn add_architecture(&mut self, piece: &Piece) {
         let mesh = piece.to_mesh();
-        let mat = self.material_name(&mesh.materials[0]);
+        let mat = self.material_name(&mesh.materials[0], true);
         match piece.kind {
             PieceKind::Floor => {
                 let b = &piece.boxes[0];
@@ -157,25 +180,15 @@ impl MjcfParts {
     fn add_geoms(&mut self, id: &str, mesh: &Mesh, scale: f64, indent: &str) {
         for part in mesh.parts.iter().filter(|p| !p.triangles.is_empty()) {
             let name = self.names.make(&format!("{id}_{}", part.name));
-            let vertices: Vec<String> = part
-                .positions
-                .iter()
-                .map(|p| format!("{} {} {}", num32(p[0]), num32(p[1]), num32(p[2])))
-                .collect();
-            let faces: Vec<String> = part
-                .triangles
-                .iter()
-                .map(|t| format!("{} {} {}", t[0], t[1], t[2]))
-                .collect();
+            let material = &mesh.materials[part.material];
             let s = num(scale);
             let _ = writeln!(
                 self.meshes,
-                "    <mesh name=\"{}\" scale=\"{s} {s} {s}\" vertex=\"{}\" face=\"{}\"/>",
+                "    <mesh name=\"{}\" scale=\"{s} {s} {s}\" {}/>",
                 attr(&name),
-                vertices.join("  "),
-                faces.join("  "),
+                mesh_data(part, material),
             );
-            let mat = self.material_name(&mesh.materials[part.material]);
+            let mat = self.material_name(material, false);
             let _ = writeln!(
                 self.world,
                 "{indent}<geom name=\"{n}\" type=\"mesh\" mesh=\"{n}\" material=\"{mat}\"/>",
@@ -297,11 +310,35 @@ impl MjcfParts {
             num(DENSITY),
             num(FRICTION),
         );
-        for (name, m) in &self.materials {
-            let c = m.base_color;
+        let mut textures = BTreeSet::new();
+        for (_, m, _) in &self.materials {
+            if let Some(library) = library_of(m) {
+                if textures.insert(library.id) {
+                    let _ = writeln!(
+                        out,
+                        "    <texture name=\"tex_{}\" type=\"2d\" file=\"{}/{}\"/>",
+                        library.id,
+                        attr(&self.texture_dir),
+                        textures::file_name(library, MapKind::BaseColor),
+                    );
+                }
+            }
+        }
+        for (name, m, uniform) in &self.materials {
+            let library = library_of(m);
+            let c = library.map_or(m.base_color, |l| maps(l).color_factor(m.base_color));
+            let texture = library.map_or(String::new(), |l| {
+                let repeat = if *uniform { 1.0 / l.tile_size_m } else { 1.0 };
+                format!(
+                    " texture=\"tex_{}\" texrepeat=\"{r} {r}\" texuniform=\"{}\"",
+                    l.id,
+                    uniform,
+                    r = num32(repeat),
+                )
+            });
             let _ = writeln!(
                 out,
-                "    <material name=\"{}\" rgba=\"{} {} {} {}\" specular=\"{}\" shininess=\"{}\" reflectance=\"0\"/>",
+                "    <material name=\"{}\" rgba=\"{} {} {} {}\" specular=\"{}\" shininess=\"{}\" reflectance=\"0\"{texture}/>",
                 attr(name),
                 num32(c[0]),
                 num32(c[1]),
@@ -330,6 +367,42 @@ impl MjcfParts {
         out.push_str("</mujoco>\n");
         out
     }
+}
+
+/// A mesh asset's `vertex` and `face` attributes, and `texcoord` (box-projected, v flipped to
+/// MuJoCo's bottom-up convention) when the part wears a library material; the vertices are then
+/// split where the projection changes.
+fn mesh_data(part: &MeshPart, material: &Material) -> String {
+    let shaded = library_of(material).map(|l| shade(part, Some(l)));
+    let (positions, faces): (&[[f32; 3]], Vec<[u32; 3]>) = match &shaded {
+        Some(s) => (
+            &s.positions,
+            s.indices.chunks(3).map(|t| [t[0], t[1], t[2]]).collect(),
+        ),
+        None => (&part.positions, part.triangles.clone()),
+    };
+    let vertices: Vec<String> = positions
+        .iter()
+        .map(|p| format!("{} {} {}", num32(p[0]), num32(p[1]), num32(p[2])))
+        .collect();
+    let faces: Vec<String> = faces
+        .iter()
+        .map(|t| format!("{} {} {}", t[0], t[1], t[2]))
+        .collect();
+    let mut out = format!(
+        "vertex=\"{}\" face=\"{}\"",
+        vertices.join("  "),
+        faces.join("  ")
+    );
+    if let Some(s) = &shaded {
+        let uvs: Vec<String> = s
+            .uvs
+            .iter()
+            .map(|uv| format!("{} {}", num32(uv[0]), num32(-uv[1])))
+            .collect();
+        let _ = write!(out, " texcoord=\"{}\"", uvs.join("  "));
+    }
+    out
 }
 
 /// `pos`, `quat` and `size` of a static box in Z-up: the box's local up (y) becomes z.

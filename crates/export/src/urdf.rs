@@ -23,9 +23,13 @@ use nalgebra::{Matrix3, Vector3};
 
 use crate::architecture::{leaves, pieces, OrientedBox};
 use crate::articulation::{Articulation, JOINT_DAMPING};
-use crate::geometry::{num, num32, to_z_up, y_up_to_z_up, Identifiers, MassProperties};
+use crate::geometry::{
+    library_of, num, num32, shade, to_z_up, y_up_to_z_up, Identifiers, MassProperties,
+};
 use crate::mjcf::{attr, comment};
+use crate::textures;
 use crate::{Dynamics, ExportScene, DENSITY};
+use scenethesis_materials::MapKind;
 use scenethesis_scene_graph::{JointKind, Material, Mesh, MeshPart};
 
 /// The effort limit of every revolute and prismatic joint (N·m or N).
@@ -46,8 +50,20 @@ pub struct UrdfPackage {
     pub meshes: BTreeMap<String, String>,
 }
 
-/// The scene as a URDF robot description whose mesh references are `mesh_dir/<file>.obj`.
+/// The scene as a URDF robot description whose mesh references are `mesh_dir/<file>.obj`
+/// and whose textures are in [`crate::TEXTURE_DIR`].
 pub fn to_urdf(export: &ExportScene<'_>, mesh_dir: &str) -> UrdfPackage {
+    to_urdf_textured(export, mesh_dir, crate::TEXTURE_DIR)
+}
+
+/// The scene as a URDF robot description whose mesh references are `mesh_dir/<file>.obj`
+/// (with texture coordinates where a part wears a library material) and whose materials name
+/// their base-colour texture as `texture_dir/<file>.png` beside their colour.
+pub fn to_urdf_textured(
+    export: &ExportScene<'_>,
+    mesh_dir: &str,
+    texture_dir: &str,
+) -> UrdfPackage {
     let scene = export.scene();
     let mut w = Writer {
         links: Identifiers::new(true),
@@ -117,9 +133,16 @@ pub fn to_urdf(export: &ExportScene<'_>, mesh_dir: &str) -> UrdfPackage {
     );
     for (name, m) in &w.materials {
         let c = m.base_color;
+        let texture = library_of(m).map_or(String::new(), |l| {
+            format!(
+                "\n    <texture filename=\"{}/{}\"/>",
+                attr(texture_dir),
+                textures::file_name(l, MapKind::BaseColor)
+            )
+        });
         let _ = writeln!(
             urdf,
-            "  <material name=\"{}\">\n    <color rgba=\"{} {} {} {}\"/>\n  </material>",
+            "  <material name=\"{}\">\n    <color rgba=\"{} {} {} {}\"/>{texture}\n  </material>",
             attr(name),
             num32(c[0]),
             num32(c[1]),
@@ -183,7 +206,8 @@ impl Writer<'_> {
         }
         for part in mesh.parts.iter().filter(|p| !p.triangles.is_empty()) {
             let file = format!("{}.obj", self.files.make(&format!("{id}_{}", part.name)));
-            self.meshes.insert(file.clone(), obj(part));
+            self.meshes
+                .insert(file.clone(), obj(part, &mesh.materials[part.material]));
             let geometry = format!(
                 "      <origin xyz=\"0 0 0\" rpy=\"{} 0 0\"/>\n      <geometry>\n        <mesh filename=\"{}/{}\" scale=\"{s} {s} {s}\"/>\n      </geometry>\n",
                 num(std::f64::consts::FRAC_PI_2),
@@ -256,14 +280,30 @@ fn vec3(v: &Vector3<f64>) -> String {
     format!("{} {} {}", num(v.x), num(v.y), num(v.z))
 }
 
-/// A part as Wavefront OBJ text (positions and 1-based triangles).
-fn obj(part: &MeshPart) -> String {
+/// A part as Wavefront OBJ text (positions and 1-based triangles); a part wearing a library
+/// material also has box-projected texture coordinates (`vt`, v up as OBJ has it), its
+/// vertices split where the projection changes.
+fn obj(part: &MeshPart, material: &Material) -> String {
     let mut out = format!("# scenethesis part {}\no {}\n", part.name, part.name);
-    for p in &part.positions {
+    let Some(library) = library_of(material) else {
+        for p in &part.positions {
+            let _ = writeln!(out, "v {} {} {}", num32(p[0]), num32(p[1]), num32(p[2]));
+        }
+        for t in &part.triangles {
+            let _ = writeln!(out, "f {} {} {}", t[0] + 1, t[1] + 1, t[2] + 1);
+        }
+        return out;
+    };
+    let shaded = shade(part, Some(library));
+    for p in &shaded.positions {
         let _ = writeln!(out, "v {} {} {}", num32(p[0]), num32(p[1]), num32(p[2]));
     }
-    for t in &part.triangles {
-        let _ = writeln!(out, "f {} {} {}", t[0] + 1, t[1] + 1, t[2] + 1);
+    for uv in &shaded.uvs {
+        let _ = writeln!(out, "vt {} {}", num32(uv[0]), num32(-uv[1]));
+    }
+    for t in shaded.indices.chunks(3) {
+        let [a, b, c] = [t[0] + 1, t[1] + 1, t[2] + 1];
+        let _ = writeln!(out, "f {a}/{a} {b}/{b} {c}/{c}");
     }
     out
 }

@@ -3,7 +3,9 @@
 //! The layer's default prim `/World` holds one `Xform` per architecture piece (geometry in world
 //! coordinates) and per object (translate / rotateY / scale ops from its pose, geometry in the
 //! asset frame), each with one `Mesh` per part bound to a `UsdPreviewSurface` material under
-//! `/World/Looks`. Stage metadata: `upAxis = "Y"`, `metersPerUnit = 1`. Prim names are the ids
+//! `/World/Looks`; a material wearing a library material reads its base-colour,
+//! metallic-roughness and normal maps through `UsdUVTexture` shaders (files in the texture
+//! folder beside the layer, `primvars:st` box-projected in tiles of the material). Stage metadata: `upAxis = "Y"`, `metersPerUnit = 1`. Prim names are the ids
 //! when they are valid USD identifiers, otherwise sanitised; the original id is kept in the
 //! custom attribute `scenethesis:id`.
 //!
@@ -28,12 +30,20 @@ use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
 use crate::architecture::{leaves, pieces, Leaf};
 use crate::articulation::Articulation;
-use crate::geometry::{num, num32, shade, Identifiers};
+use crate::geometry::{library_of, num, num32, shade, Identifiers};
+use crate::textures;
 use crate::{Dynamics, ExportScene, DENSITY};
+use scenethesis_materials::{maps, LibraryMaterial, MapKind};
 use scenethesis_scene_graph::{JointKind, Material, Mesh, OpensTo, SceneObject};
 
-/// The scene as a USD text layer.
+/// The scene as a USD text layer whose textures are in [`crate::TEXTURE_DIR`] beside it.
 pub fn to_usda(export: &ExportScene<'_>) -> String {
+    to_usda_textured(export, crate::TEXTURE_DIR)
+}
+
+/// The scene as a USD text layer whose textures are in the folder `texture_dir` beside it
+/// (the files [`crate::write_formats`] writes there).
+pub fn to_usda_textured(export: &ExportScene<'_>, texture_dir: &str) -> String {
     let scene = export.scene();
     let mut out = String::new();
     let doc = if scene.prompt.is_empty() {
@@ -69,7 +79,7 @@ pub fn to_usda(export: &ExportScene<'_>) -> String {
     }
     out.push_str("    def Scope \"Looks\"\n    {\n");
     for (name, m) in &looks.materials {
-        write_material(&mut out, name, m);
+        write_material(&mut out, name, m, texture_dir);
     }
     out.push_str("    }\n");
 
@@ -373,20 +383,106 @@ impl Looks {
     }
 }
 
-fn write_material(out: &mut String, name: &str, m: &Material) {
+fn write_material(out: &mut String, name: &str, m: &Material, texture_dir: &str) {
     let c = m.base_color;
+    let library = library_of(m);
+    let look = format!("/World/Looks/{name}");
+    let input = |ty: &str, input: &str, value: String, shader: &str, output: &str| match library {
+        Some(_) => format!("{ty} inputs:{input}.connect = <{look}/{shader}.outputs:{output}>"),
+        None => format!("{ty} inputs:{input} = {value}"),
+    };
     let _ = write!(
         out,
-        "        def Material {q}\n        {{\n            custom string scenethesis:name = {n}\n            token outputs:surface.connect = </World/Looks/{name}/PreviewSurface.outputs:surface>\n\n            def Shader \"PreviewSurface\"\n            {{\n                uniform token info:id = \"UsdPreviewSurface\"\n                color3f inputs:diffuseColor = ({}, {}, {})\n                float inputs:metallic = {}\n                float inputs:opacity = {}\n                float inputs:roughness = {}\n                token outputs:surface\n            }}\n        }}\n",
-        num32(c[0]),
-        num32(c[1]),
-        num32(c[2]),
-        num32(m.metallic),
+        "        def Material {q}\n        {{\n            custom string scenethesis:name = {n}\n            token outputs:surface.connect = <{look}/PreviewSurface.outputs:surface>\n\n            def Shader \"PreviewSurface\"\n            {{\n                uniform token info:id = \"UsdPreviewSurface\"\n                {}\n                {}\n{}                float inputs:opacity = {}\n                {}\n                token outputs:surface\n            }}\n",
+        input(
+            "color3f",
+            "diffuseColor",
+            format!("({}, {}, {})", num32(c[0]), num32(c[1]), num32(c[2])),
+            "BaseColor",
+            "rgb"
+        ),
+        input("float", "metallic", num32(m.metallic), "MetallicRoughness", "b"),
+        if library.is_some() {
+            format!("                normal3f inputs:normal.connect = <{look}/Normal.outputs:rgb>\n")
+        } else {
+            String::new()
+        },
         num32(c[3]),
-        num32(m.roughness),
+        input("float", "roughness", num32(m.roughness), "MetallicRoughness", "g"),
         q = quote(name),
         n = quote(&m.name),
     );
+    if let Some(library) = library {
+        write_textures(out, &look, m, library, texture_dir);
+    }
+    out.push_str("        }\n");
+}
+
+/// The texture shaders of a material wearing `library`: a `UsdPrimvarReader_float2` reading
+/// `st`, and a `UsdUVTexture` per map whose `scale` carries the material's own colour,
+/// roughness and metalness (the normal map's scale and bias take it from [0, 1] to [−1, 1]).
+fn write_textures(
+    out: &mut String,
+    look: &str,
+    m: &Material,
+    library: &LibraryMaterial,
+    texture_dir: &str,
+) {
+    let maps = maps(library);
+    let color = maps.color_factor(m.base_color);
+    let roughness = maps.roughness_factor(m.roughness.clamp(0.0, 1.0));
+    let metallic = m.metallic.clamp(0.0, 1.0);
+    let _ = write!(
+        out,
+        "\n            def Shader \"TexCoord\"\n            {{\n                uniform token info:id = \"UsdPrimvarReader_float2\"\n                token inputs:varname = \"st\"\n                float2 outputs:result\n            }}\n"
+    );
+    let maps_written = [
+        (
+            MapKind::BaseColor,
+            "BaseColor",
+            "sRGB",
+            [color[0], color[1], color[2], 1.0],
+            None,
+            "float3 outputs:rgb",
+        ),
+        (
+            MapKind::MetallicRoughness,
+            "MetallicRoughness",
+            "raw",
+            [1.0, roughness, metallic, 1.0],
+            None,
+            "float outputs:b\n                float outputs:g",
+        ),
+        (
+            MapKind::Normal,
+            "Normal",
+            "raw",
+            [2.0, 2.0, 2.0, 1.0],
+            Some([-1.0, -1.0, -1.0, 0.0]),
+            "float3 outputs:rgb",
+        ),
+    ];
+    for (kind, shader, space, scale, bias, outputs) in maps_written {
+        let tuple4 = |v: [f32; 4]| {
+            format!(
+                "({}, {}, {}, {})",
+                num32(v[0]),
+                num32(v[1]),
+                num32(v[2]),
+                num32(v[3])
+            )
+        };
+        let bias = bias.map_or(String::new(), |b| {
+            format!("                float4 inputs:bias = {}\n", tuple4(b))
+        });
+        let _ = write!(
+            out,
+            "\n            def Shader \"{shader}\"\n            {{\n                uniform token info:id = \"UsdUVTexture\"\n{bias}                asset inputs:file = @{}/{}@\n                float4 inputs:scale = {}\n                token inputs:sourceColorSpace = \"{space}\"\n                float2 inputs:st.connect = <{look}/TexCoord.outputs:result>\n                token inputs:wrapS = \"repeat\"\n                token inputs:wrapT = \"repeat\"\n                {outputs}\n            }}\n",
+            texture_dir,
+            textures::file_name(library, kind),
+            tuple4(scale),
+        );
+    }
 }
 
 /// One `Mesh` prim per part with triangles. With `collision`, each also collides
@@ -394,8 +490,8 @@ fn write_material(out: &mut String, name: &str, m: &Material) {
 fn write_meshes(out: &mut String, mesh: &Mesh, looks: &Looks, collision: bool) {
     let mut names = Identifiers::new(false);
     for part in mesh.parts.iter().filter(|p| !p.triangles.is_empty()) {
-        let shaded = shade(part);
         let material = &mesh.materials[part.material];
+        let shaded = shade(part, library_of(material));
         let mut min = [f32::INFINITY; 3];
         let mut max = [f32::NEG_INFINITY; 3];
         for p in &shaded.positions {
@@ -444,6 +540,18 @@ fn write_meshes(out: &mut String, mesh: &Mesh, looks: &Looks, collision: bool) {
             "            point3f[] points = [{}]",
             points.join(", ")
         );
+        if !shaded.uvs.is_empty() {
+            let st: Vec<String> = shaded
+                .uvs
+                .iter()
+                .map(|uv| format!("({}, {})", num32(uv[0]), num32(uv[1])))
+                .collect();
+            let _ = writeln!(
+                out,
+                "            texCoord2f[] primvars:st = [{}] (\n                interpolation = \"vertex\"\n            )",
+                st.join(", ")
+            );
+        }
         let c = material.base_color;
         let _ = writeln!(
             out,

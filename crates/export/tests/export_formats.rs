@@ -218,7 +218,8 @@ fn glb_parses_back_with_names_materials_and_transforms() {
         "the door leaf hangs under its wall"
     );
 
-    // Materials: shared `oak`, plus every other distinct one and floor/wall.
+    // Materials: shared `oak`, plus every other distinct one and the floor's and walls'
+    // library materials.
     let mut material_names: Vec<&str> = gltf.materials().map(|m| m.name().unwrap()).collect();
     material_names.sort();
     assert_eq!(
@@ -228,12 +229,12 @@ fn glb_parses_back_with_names_materials_and_transforms() {
             "ceramic",
             "chrome",
             "door_leaf",
-            "floor",
             "frame_black",
             "oak",
+            "oak_floorboards",
             "rubber_red",
             "steel",
-            "wall"
+            "wall_paint"
         ]
     );
     let steel = gltf
@@ -242,8 +243,47 @@ fn glb_parses_back_with_names_materials_and_transforms() {
         .unwrap();
     let pbr = steel.pbr_metallic_roughness();
     assert_eq!(pbr.metallic_factor(), 1.0);
-    assert_eq!(pbr.roughness_factor(), 0.35);
-    assert_eq!(pbr.base_color_factor(), [0.6, 0.6, 0.62, 1.0]);
+    // The maps multiply the factors: on average the surface keeps its own colour and roughness.
+    let maps = scenethesis_materials::maps(scenethesis_materials::by_id("steel").unwrap());
+    assert!((pbr.roughness_factor() * maps.mean_roughness - 0.35).abs() < 1e-3);
+    let color = pbr.base_color_factor();
+    for (k, want) in [0.6, 0.6, 0.62].into_iter().enumerate() {
+        assert!(
+            (color[k] * maps.mean_albedo[k] - want).abs() < 1e-3,
+            "{color:?}"
+        );
+    }
+    // Every material whose name the library knows wears three textures (one it does not know
+    // stays plain); the images are embedded once per map of each library material, and every
+    // primitive of a textured material has UVs and tangents.
+    let known = |name: Option<&str>| scenethesis_materials::resolve(name.unwrap()).is_some();
+    let textured = |m: &gltf::Material| {
+        m.normal_texture().is_some()
+            && m.pbr_metallic_roughness().base_color_texture().is_some()
+            && m.pbr_metallic_roughness()
+                .metallic_roughness_texture()
+                .is_some()
+    };
+    for m in gltf.materials() {
+        assert_eq!(textured(&m), known(m.name()), "{:?}", m.name());
+    }
+    let image_names: std::collections::BTreeSet<_> = gltf
+        .images()
+        .map(|i| i.name().unwrap().to_owned())
+        .collect();
+    assert_eq!(
+        image_names.len(),
+        gltf.images().count(),
+        "an image is embedded twice"
+    );
+    assert!(image_names.contains("oak_color") && image_names.contains("wall_paint_normal"));
+    for mesh in gltf.meshes() {
+        for p in mesh.primitives() {
+            let plain = !known(p.material().name());
+            assert_eq!(p.get(&gltf::Semantic::TexCoords(0)).is_none(), plain);
+            assert_eq!(p.get(&gltf::Semantic::Tangents).is_none(), plain);
+        }
+    }
 
     for node in gltf.nodes() {
         let name = node.name().unwrap();
@@ -449,7 +489,11 @@ fn urdf_links_joints_meshes_and_inertia() {
     let obj = &package.meshes["mug_body.obj"];
     let vertices = obj.lines().filter(|l| l.starts_with("v ")).count();
     let faces = obj.lines().filter(|l| l.starts_with("f ")).count();
-    assert_eq!(vertices, meshes["mug"].parts[0].positions.len());
+    // The mug's ceramic is textured: its vertices are split where the box projection changes
+    // axis, one texture coordinate each.
+    let uvs = obj.lines().filter(|l| l.starts_with("vt ")).count();
+    assert!(vertices >= meshes["mug"].parts[0].positions.len());
+    assert_eq!(uvs, vertices);
     assert_eq!(faces, meshes["mug"].parts[0].triangles.len());
     // The ball: 1000 kg/m³ × a slightly-less-than-sphere volume.
     let ball_mass = 1000.0 * 4.0 / 3.0 * std::f64::consts::PI * 0.08f64.powi(3);
@@ -493,7 +537,53 @@ fn formats_write_their_files() {
         assert_eq!(format.as_str().parse::<Format>().unwrap(), format);
     }
     assert!(dir.join("meshes/table_top.obj").exists());
+    // The text formats' textures are in one folder beside them, each map once.
+    let usda = std::fs::read_to_string(dir.join("scene.usda")).unwrap();
+    let xml = std::fs::read_to_string(dir.join("scene.mjcf.xml")).unwrap();
+    let urdf = std::fs::read_to_string(dir.join("scene.urdf")).unwrap();
+    for file in [
+        "oak_color.png",
+        "oak_normal.png",
+        "oak_mr.png",
+        "wall_paint_color.png",
+    ] {
+        assert!(dir.join("textures").join(file).is_file(), "{file}");
+    }
+    assert!(usda.contains("asset inputs:file = @textures/oak_normal.png@"));
+    assert!(usda.contains("texCoord2f[] primvars:st = ["));
+    assert!(xml.contains("file=\"textures/oak_color.png\"") && xml.contains("texcoord=\""));
+    assert!(urdf.contains("<texture filename=\"textures/oak_color.png\"/>"));
+    let obj = std::fs::read_to_string(dir.join("meshes/table_top.obj")).unwrap();
+    assert!(
+        obj.contains("\nvt ") && obj.contains("/"),
+        "the OBJ has texture coordinates"
+    );
     scene.write_json_atomic(&dir.join("scene.json")).unwrap();
+}
+
+#[test]
+fn one_file_written_alone_keeps_its_textures_in_a_folder_of_its_own() {
+    let (scene, meshes) = scene();
+    let export = ExportScene::new(&scene, &meshes).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let written = Format::Usd
+        .write_file(&export, &dir.path().join("kitchen.usda"))
+        .unwrap();
+    assert_eq!(
+        written,
+        [
+            dir.path().join("kitchen.usda"),
+            dir.path().join("kitchen_textures")
+        ]
+    );
+    let text = std::fs::read_to_string(&written[0]).unwrap();
+    assert!(text.contains("@kitchen_textures/oak_color.png@"));
+    assert!(dir.path().join("kitchen_textures/oak_color.png").is_file());
+    // A GLB carries its textures inside: nothing beside it.
+    let glb = Format::Glb
+        .write_file(&export, &dir.path().join("k.glb"))
+        .unwrap();
+    assert_eq!(glb, [dir.path().join("k.glb")]);
 }
 
 /// A scene whose table has the longest id the validator allows (256 bytes).

@@ -48,6 +48,7 @@ const KNOWN_FILES: &[&str] = &[
 const KNOWN_FOLDERS: &[(&str, &[&str])] = &[
     ("meshes", &["obj", "stl"]),
     ("guidance", &["png", "npy", "json"]),
+    (scenethesis_export::TEXTURE_DIR, &["png"]),
 ];
 
 /// What an output path holds before the run.

@@ -95,11 +95,19 @@ fn registry_matches_the_documented_category_list() {
     assert!(all().len() >= 80, "only {} categories", all().len());
 }
 
+/// Also checks (sharing the generation) that every material an asset uses wears a material of
+/// the texture library, so that no generated surface is exported untextured.
 #[test]
 fn every_part_is_a_closed_outward_solid() {
+    let mut unmapped = BTreeSet::new();
     for c in all() {
         for seed in SEEDS {
             let asset = catalog::generate(c, seed);
+            for m in &asset.mesh.materials {
+                if scenethesis_materials::resolve(&m.name).is_none() {
+                    unmapped.insert(format!("{} ({})", m.name, c.name));
+                }
+            }
             assert!(!asset.mesh.parts.is_empty(), "{} #{seed}: no parts", c.name);
             let mut names = BTreeSet::new();
             for part in &asset.mesh.parts {
@@ -148,6 +156,11 @@ fn every_part_is_a_closed_outward_solid() {
             }
         }
     }
+    assert!(
+        unmapped.is_empty(),
+        "material names without a texture-library material (add them to scenethesis-materials' \
+         resolve tables): {unmapped:?}"
+    );
 }
 
 #[test]

@@ -16,6 +16,10 @@ meshes/). Checks:
     became NaN.
   * URDF: the XML parses, every link named by an object id exists, every mesh file exists,
     mounted objects hang from `world` on a fixed joint and the others on floating ones.
+  * Textures (every scene's floor and walls wear library materials): the GLB embeds PNG images
+    that its materials use as base-colour, metallic-roughness and normal textures, every
+    textured primitive has TEXCOORD_0; OpenUSD finds UsdUVTexture shaders whose files exist;
+    MuJoCo loads at least one texture (ntex > 0); the URDF's texture files exist.
   * Joints (check_joints.py, for objects with `joints`): each format has them with their limits;
     MuJoCo drives each open and what rides in a drawer comes out with it; yourdfpy (pip:
     yourdfpy) loads the URDF.
@@ -67,7 +71,32 @@ def check_glb(path, scene):
         fail(f"{path}: node names {names} != ids {expected}")
     else:
         ok(f"glb: {len(names)} root nodes named by id, {len(gltf['materials'])} materials")
+    check_glb_textures(path, gltf, data[20 + json_len + 8 :])
     check_joints.check_glb_joints(gltf, scene, fail, ok)
+
+
+def check_glb_textures(path, gltf, bin_chunk):
+    images = gltf.get("images", [])
+    views = gltf["bufferViews"]
+    bad = [i for i, im in enumerate(images)
+           if bin_chunk[views[im["bufferView"]]["byteOffset"]:][:8] != b"\x89PNG\r\n\x1a\n"]
+    if not images or bad:
+        fail(f"{path}: {len(images)} embedded images, not PNG: {bad[:5]}")
+        return
+    textured = [m for m in gltf["materials"] if "baseColorTexture" in m.get("pbrMetallicRoughness", {})]
+    full = [m for m in textured
+            if "metallicRoughnessTexture" in m["pbrMetallicRoughness"] and "normalTexture" in m]
+    if not textured or len(full) != len(textured):
+        fail(f"{path}: {len(textured)} materials with a base-colour texture, {len(full)} with all three maps")
+    textured_ids = {i for i, m in enumerate(gltf["materials"]) if m in textured}
+    missing_uv = [mesh["name"] for mesh in gltf["meshes"] for p in mesh["primitives"]
+                  if p["material"] in textured_ids and "TEXCOORD_0" not in p["attributes"]]
+    if missing_uv:
+        fail(f"{path}: textured primitives without TEXCOORD_0 in {missing_uv[:5]}")
+    names = [im.get("name", "") for im in images]
+    if len(set(names)) != len(names):
+        fail(f"{path}: an image is embedded more than once: {sorted(names)}")
+    ok(f"glb: {len(images)} embedded PNG textures (once each), {len(textured)} textured materials")
 
 
 def check_usd(path, scene, tolerance):
@@ -105,7 +134,27 @@ def check_usd(path, scene, tolerance):
         if err > tolerance:
             fail(f"{path}: {oid} bounds {list(lo)}..{list(hi)} differ from scene.json {want} by {err:.4f} m")
     ok(f"usd: stage opened, Y up, {len(by_id)} prims with ids, {meshes} meshes, worst bounds error {worst * 1000:.2f} mm")
+    check_usd_textures(path, stage)
     check_joints.check_usd_joints(stage, by_id, scene, fail, ok)
+
+
+def check_usd_textures(path, stage):
+    from pxr import UsdShade
+
+    files, missing = set(), []
+    for prim in stage.Traverse():
+        shader = UsdShade.Shader(prim)
+        if not shader or shader.GetIdAttr().Get() != "UsdUVTexture":
+            continue
+        asset = shader.GetInput("file").Get()
+        resolved = asset.resolvedPath if asset is not None else ""
+        if not resolved or not Path(resolved).exists():
+            missing.append(str(asset))
+        files.add(resolved)
+    if not files or missing:
+        fail(f"{path}: {len(files)} UsdUVTexture files, unresolved or missing: {missing[:5]}")
+    else:
+        ok(f"usd: {len(files)} UsdUVTexture files, all present")
 
 
 def z_up(p):
@@ -169,8 +218,10 @@ def check_mjcf(path, scene, seconds, tolerance):
             fail(f"{path}: {name} moved {d * 100:.2f} cm (turned {angle:.1f} deg) in {seconds} s of simulation")
     moves.sort(reverse=True)
     top = ", ".join(f"{n} {d * 1000:.1f} mm" for d, _, n in moves[:3])
+    if model.ntex == 0 or not np.any(model.mat_texid >= 0):
+        fail(f"{path}: {model.ntex} textures, no material uses one")
     ok(
-        f"mjcf: loaded {model.nbody - 1} bodies ({len(free_bodies)} free, {len(mounted)} welded "
+        f"mjcf: {model.ntex} textures, {model.nmat} materials; loaded {model.nbody - 1} bodies ({len(free_bodies)} free, {len(mounted)} welded "
         f"mounted), {model.ngeom} geoms; "
         f"after {seconds} s largest moves: {top}"
     )
@@ -191,13 +242,16 @@ def check_urdf(path, scene):
             missing.append(str(f))
     if missing:
         fail(f"{path}: missing mesh files {missing[:5]}")
+    textures = [path.parent / t.get("filename") for t in root.iter("texture")]
+    if not textures or not all(t.exists() for t in textures):
+        fail(f"{path}: {len(textures)} texture files, missing {[str(t) for t in textures if not t.exists()][:5]}")
     mounted = mounted_ids(scene)
     kinds = {j.find("child").get("link"): j.get("type") for j in joints if j.find("child") is not None}
     for oid in scene["objects"]:
         want = "fixed" if oid in mounted else "floating"
         if kinds.get(oid) != want:
             fail(f"{path}: joint of {oid} is {kinds.get(oid)}, expected {want}")
-    ok(f"urdf: {len(links)} links, {len(joints)} joints, all mesh files present")
+    ok(f"urdf: {len(links)} links, {len(joints)} joints, all mesh files present, {len(textures)} texture references")
     check_joints.check_urdf_joints(path, scene, fail, ok)
 
 

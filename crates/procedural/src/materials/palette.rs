@@ -103,7 +103,7 @@ pub fn named_material(name: &str) -> Option<(Palette, Material)> {
 }
 
 /// (name, sRGB colour, roughness, metallic) entries of each palette.
-fn palette_entries(palette: Palette) -> &'static [(&'static str, [u8; 3], f32, f32)] {
+pub(crate) fn palette_entries(palette: Palette) -> &'static [(&'static str, [u8; 3], f32, f32)] {
     match palette {
         Palette::Wood => &[
             ("oak", [0xB8, 0x8A, 0x5A], 0.6, 0.0),

@@ -1,0 +1,47 @@
+//! The texture files the text formats (USD, MJCF, URDF) reference beside their main file: one
+//! PNG per map of each library material the scene wears, named `<material>_<map>.png`
+//! (`oak_color.png`, `oak_normal.png`, `oak_mr.png`), written once however many objects and
+//! formats share them.
+
+use std::collections::BTreeMap;
+
+use scenethesis_materials::{maps, LibraryMaterial, MapKind};
+
+use crate::architecture::{leaves, pieces};
+use crate::geometry::library_of;
+use crate::ExportScene;
+
+/// The folder beside an output folder's main files that holds their textures.
+pub const TEXTURE_DIR: &str = "textures";
+
+/// The file name of one map of a library material.
+pub(crate) fn file_name(material: &LibraryMaterial, kind: MapKind) -> String {
+    format!("{}_{}.png", material.id, kind.suffix())
+}
+
+/// Every texture file the scene's materials need, by file name.
+pub(crate) fn files(export: &ExportScene<'_>) -> BTreeMap<String, Vec<u8>> {
+    let scene = export.scene();
+    let mut meshes: Vec<scenethesis_scene_graph::Mesh> = pieces(&scene.architecture)
+        .iter()
+        .map(|p| p.to_mesh())
+        .collect();
+    meshes.extend(
+        leaves(&scene.architecture)
+            .into_iter()
+            .map(|l| l.geometry.mesh),
+    );
+    let used = meshes
+        .iter()
+        .chain(scene.objects.iter().map(|o| export.mesh(o)))
+        .flat_map(|m| m.materials.iter())
+        .filter_map(library_of);
+    let mut out = BTreeMap::new();
+    for material in used {
+        for kind in MapKind::ALL {
+            out.entry(file_name(material, kind))
+                .or_insert_with(|| maps(material).png(kind).to_vec());
+        }
+    }
+    out
+}
