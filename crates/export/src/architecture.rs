@@ -3,7 +3,9 @@
 //! walls and leaves from these pieces so that the formats agree.
 
 use nalgebra::{Point3, Rotation3, Vector3};
-use scenethesis_scene_graph::{Architecture, Environment, LeafGeometry, Material, Mesh, MeshPart};
+use scenethesis_scene_graph::{
+    Architecture, Environment, LeafGeometry, Material, Mesh, MeshPart, SceneLook,
+};
 
 /// Thickness of the floor slab below y = 0, in metres.
 pub const FLOOR_THICKNESS: f64 = 0.05;
@@ -105,19 +107,41 @@ fn library_material(id: &str) -> Material {
         .material()
 }
 
+/// The material the scene's look gives a room surface (`floor`, `walls`), else `default`.
+/// The look names palette entries, which dress furniture: on a floor a wood is laid as
+/// floorboards of its tone, and on walls a paint is the library's wall paint of its colour.
+fn surface_or(look: &SceneLook, surface: &str, default: fn() -> Material) -> Material {
+    let Some(mut material) = look.surfaces.get(surface).cloned() else {
+        return default();
+    };
+    let library = scenethesis_materials::resolve(&material.name);
+    let painted = library.is_some_and(|l| l.id == "painted_wood");
+    let wood = library.is_some_and(|l| l.family == scenethesis_materials::Family::Wood);
+    if surface == "floor" && wood && !painted {
+        material.name = format!("{}_floorboards", material.name);
+    } else if surface == "walls" && painted {
+        material.name = "wall_paint".into();
+    }
+    material
+}
+
 /// The architecture as solid pieces: the floor slab first, then each wall in order, cut around
 /// the door openings it holds (a box left and right of each door and a lintel above it when the
-/// door is lower than the wall). Segments shorter than 1 mm are dropped.
-pub fn pieces(architecture: &Architecture) -> Vec<Piece> {
+/// door is lower than the wall). Segments shorter than 1 mm are dropped. Indoors the floor and
+/// walls wear the materials `look` records for the surfaces `floor` and `walls`
+/// ([`SceneLook::surfaces`]), else [`floor_material`] and [`wall_material`].
+pub fn pieces(architecture: &Architecture, look: &SceneLook) -> Vec<Piece> {
     let floor = &architecture.floor;
     let extent = floor.extent();
+    let outdoor = architecture.environment == Environment::Outdoor;
+    let wall_look = surface_or(look, "walls", wall_material);
     let mut out = vec![Piece {
         id: floor.id.clone(),
         kind: PieceKind::Floor,
-        material: if architecture.environment == Environment::Outdoor {
+        material: if outdoor {
             ground_material()
         } else {
-            floor_material()
+            surface_or(look, "floor", floor_material)
         },
         boxes: vec![OrientedBox {
             center: Point3::new(
@@ -172,7 +196,7 @@ pub fn pieces(architecture: &Architecture) -> Vec<Piece> {
         out.push(Piece {
             id: wall.id.clone(),
             kind: PieceKind::Wall,
-            material: wall_material(),
+            material: wall_look.clone(),
             boxes,
         });
     }
@@ -212,7 +236,7 @@ mod tests {
     #[test]
     fn room_has_floor_and_four_walls_with_a_door_gap() {
         let room = Architecture::rectangular_room(6.0, 4.0, 2.8, 0.9);
-        let pieces = pieces(&room);
+        let pieces = pieces(&room, &SceneLook::default());
         let ids: Vec<_> = pieces.iter().map(|p| p.id.as_str()).collect();
         assert_eq!(ids, ["floor", "wall_0", "wall_1", "wall_2", "wall_3"]);
         assert_eq!(pieces[1].boxes.len(), 1);
@@ -253,9 +277,33 @@ mod tests {
     }
 
     #[test]
+    fn floor_and_walls_wear_the_looks_surfaces() {
+        let room = Architecture::rectangular_room(6.0, 4.0, 2.8, 0.9);
+        let mut look = SceneLook::default();
+        let walnut = Material::new("walnut", [0.11, 0.05, 0.025], 0.55);
+        let sage = Material::new("sage_paint", [0.33, 0.43, 0.25], 0.5);
+        look.surfaces.insert("floor".into(), walnut.clone());
+        look.surfaces.insert("walls".into(), sage.clone());
+        let pieces = pieces(&room, &look);
+        let floor = &pieces[0].material;
+        assert_eq!(floor.name, "walnut_floorboards");
+        assert_eq!(floor.base_color, walnut.base_color);
+        let library = |m: &Material| scenethesis_materials::resolve(&m.name).map(|l| l.id);
+        assert_eq!(library(floor), Some("oak_floorboards"));
+        for wall in &pieces[1..] {
+            assert_eq!(library(&wall.material), Some("wall_paint"));
+            assert_eq!(wall.material.base_color, sage.base_color);
+        }
+        // Without a look the defaults stay.
+        let plain = super::pieces(&room, &SceneLook::default());
+        assert_eq!(plain[0].material, floor_material());
+        assert_eq!(plain[1].material, wall_material());
+    }
+
+    #[test]
     fn floor_slab_top_is_at_zero() {
         let room = Architecture::open_ground(10.0, 8.0);
-        let pieces = pieces(&room);
+        let pieces = pieces(&room, &SceneLook::default());
         assert_eq!(pieces.len(), 1);
         let b = pieces[0].to_mesh().bounds().unwrap();
         assert!(b.max.y.abs() < 1e-9 && (b.min.y + FLOOR_THICKNESS).abs() < 1e-6);

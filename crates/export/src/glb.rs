@@ -412,7 +412,7 @@ pub fn to_glb(export: &ExportScene<'_>) -> Vec<u8> {
     let scene = export.scene();
     let mut b = Builder::new();
     let mut nodes = Vec::new();
-    for piece in pieces(&scene.architecture) {
+    for piece in pieces(&scene.architecture, &scene.look) {
         let mesh = b.mesh(&piece.id, &piece.to_mesh());
         let kind = match piece.kind {
             PieceKind::Floor => "floor",

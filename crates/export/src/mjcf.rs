@@ -70,7 +70,7 @@ pub fn to_mjcf_textured(export: &ExportScene<'_>, texture_dir: &str) -> String {
         world: String::new(),
         excludes: Vec::new(),
     };
-    for piece in &pieces(&scene.architecture) {
+    for piece in &pieces(&scene.architecture, &scene.look) {
         doc.add_architecture(piece);
     }
     for object in &scene.objects {

@@ -22,7 +22,7 @@ pub(crate) fn file_name(material: &LibraryMaterial, kind: MapKind) -> String {
 /// Every texture file the scene's materials need, by file name.
 pub(crate) fn files(export: &ExportScene<'_>) -> BTreeMap<String, Vec<u8>> {
     let scene = export.scene();
-    let mut meshes: Vec<scenethesis_scene_graph::Mesh> = pieces(&scene.architecture)
+    let mut meshes: Vec<scenethesis_scene_graph::Mesh> = pieces(&scene.architecture, &scene.look)
         .iter()
         .map(|p| p.to_mesh())
         .collect();

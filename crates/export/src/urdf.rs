@@ -76,7 +76,7 @@ pub fn to_urdf_textured(
     };
     w.links.reserve("world");
     w.body.push_str("  <link name=\"world\"/>\n");
-    for piece in pieces(&scene.architecture) {
+    for piece in pieces(&scene.architecture, &scene.look) {
         let name = w.links.make(&piece.id);
         let mat = w.material(&piece.to_mesh().materials[0]);
         let _ = writeln!(w.body, "  <link name=\"{}\">", attr(&name));

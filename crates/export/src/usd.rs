@@ -60,7 +60,7 @@ pub fn to_usda_textured(export: &ExportScene<'_>, texture_dir: &str) -> String {
     // Materials first, so bindings point at prims defined above them (not required by USD,
     // but easier to read).
     let mut looks = Looks::default();
-    let arch: Vec<(String, Mesh)> = pieces(&scene.architecture)
+    let arch: Vec<(String, Mesh)> = pieces(&scene.architecture, &scene.look)
         .into_iter()
         .map(|p| {
             let mesh = p.to_mesh();

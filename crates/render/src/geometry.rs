@@ -124,7 +124,15 @@ impl SceneGeometry {
                     0.0,
                     [arch.floor.min.x, arch.floor.min.y],
                     [arch.floor.max.x, arch.floor.max.y],
-                    if outdoor { GROUND_ALBEDO } else { FLOOR_ALBEDO },
+                    if outdoor {
+                        GROUND_ALBEDO
+                    } else {
+                        scene
+                            .surface_albedo
+                            .get("floor")
+                            .copied()
+                            .unwrap_or(FLOOR_ALBEDO)
+                    },
                     index,
                 );
             }
@@ -161,11 +169,16 @@ impl SceneGeometry {
         }
         geo.always = 0..geo.vertices.len() as u32;
         if let Some(arch) = arch {
+            let wall_albedo = scene
+                .surface_albedo
+                .get("walls")
+                .copied()
+                .unwrap_or(WALL_ALBEDO);
             for wall in &arch.walls {
                 let start = geo.vertices.len() as u32;
                 let index = geo.push_id(&wall.id);
                 for (center, half) in wall_boxes(arch, wall) {
-                    geo.push_box(wall, center, half, index);
+                    geo.push_box(wall, center, half, wall_albedo, index);
                 }
                 geo.push_leaves(arch, wall);
                 geo.walls.push(WallRange {
@@ -233,7 +246,14 @@ impl SceneGeometry {
 
     /// A box aligned with `wall`, centred at `center` (x, y, z) with half extents along the
     /// wall, up and across.
-    fn push_box(&mut self, wall: &Wall, center: Point3<f64>, half: Vector3<f64>, id: u32) {
+    fn push_box(
+        &mut self,
+        wall: &Wall,
+        center: Point3<f64>,
+        half: Vector3<f64>,
+        albedo: [f32; 3],
+        id: u32,
+    ) {
         let d = wall.direction();
         let along = Vector3::new(d.x, 0.0, d.y) * half.x;
         let up = Vector3::y() * half.y;
@@ -255,7 +275,7 @@ impl SceneGeometry {
                     }
                 }
                 for t in tris {
-                    self.push_triangle(t, WALL_ALBEDO, id);
+                    self.push_triangle(t, albedo, id);
                 }
             }
         }

@@ -60,6 +60,10 @@ pub struct RenderScene {
     /// Hide every wall whose outer side faces the camera, so that a camera outside the room
     /// sees into it like an interior photograph (default `true`).
     pub cut_away_walls: bool,
+    /// Linear albedo of the room's surfaces by name (`floor`, `walls`), from the scene's look
+    /// ([`SceneLook::surfaces`](scenethesis_scene_graph::SceneLook)); a surface not named
+    /// here keeps the renderer's default colour.
+    pub surface_albedo: BTreeMap<String, [f32; 3]>,
 }
 
 impl RenderScene {
@@ -70,6 +74,7 @@ impl RenderScene {
             architecture: None,
             backdrop: Backdrop::Studio,
             cut_away_walls: true,
+            surface_albedo: BTreeMap::new(),
         }
     }
 
@@ -85,6 +90,7 @@ impl RenderScene {
             architecture: Some(architecture),
             backdrop,
             cut_away_walls: true,
+            surface_albedo: BTreeMap::new(),
         }
     }
 
@@ -118,7 +124,19 @@ impl RenderScene {
                 Some(Instance::new(o.id.clone(), mesh, o.pose))
             })
             .collect();
-        Self::with_architecture(instances, scene.architecture.clone())
+        let mut render = Self::with_architecture(instances, scene.architecture.clone());
+        render.surface_albedo = scene
+            .look
+            .surfaces
+            .iter()
+            .map(|(name, m)| {
+                (
+                    name.clone(),
+                    [m.base_color[0], m.base_color[1], m.base_color[2]],
+                )
+            })
+            .collect();
+        render
     }
 
     /// The box around every object, or `None` when no object has geometry.
