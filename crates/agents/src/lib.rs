@@ -36,8 +36,8 @@ pub use arrangement::{check_arrangement, run_layout, ArrangementCheck, BrokenRul
 pub use fidelity::{check_prompt, constraint_holds, BrokenRelation, MissingObject, PromptCheck};
 pub use fixed::{check_plan, FixedPlanner, PlanFileError, PlanIssue};
 pub use guide::{
-    room_architecture, AssetLookup, CatalogAssets, DroppedObject, Guide, GuideError, GuidedLayout,
-    NominalAssets, ProceduralGuide, WalkwayReport,
+    room_architecture, Adoption, AssetLookup, CatalogAssets, DroppedObject, Guide, GuideError,
+    GuidedLayout, NominalAssets, ProceduralGuide, UnmappedLabel, WalkwayReport,
 };
 pub use knowledge::{Knowledge, KnowledgeError};
 pub use places::{Family, PlaceKind, Thesaurus};
