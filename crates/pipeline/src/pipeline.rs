@@ -285,6 +285,9 @@ impl Pipeline {
             clock.run_quietly(Stage::Guide, || self.guide.adopt(&original_plan, seed))?;
         let mut plan = adoption.apply(&original_plan);
         let mut cache = AssetCache::default();
+        clock.run_quietly(Stage::Retrieve, || {
+            cache.fit_variants(self.assets.as_ref(), &plan, seed, &adoption.sizes)
+        })?;
         let mut replans: Vec<Replan> = Vec::new();
         let mut best: Option<Attempt> = None;
         let mut stopped: Option<String> = None;

@@ -79,9 +79,14 @@ fn usable_id(id: &str) -> bool {
         && ![BACK_WALL, LEFT_WALL, FRONT_WALL, RIGHT_WALL].contains(&id)
 }
 
+/// What the lift of every labelled mask gives the adoption: the new objects as planned
+/// objects (parents before children) and the size of every object's box, by id.
+pub type Adopted = (Vec<PlannedObject>, BTreeMap<String, [f64; 3]>);
+
 /// The planned objects of `new`, with the supports the lift of `view` gives them (every mask
 /// of `labels`, the planned objects' under their planned ids, so an adopted cushion can rest on
-/// a planned sofa), parents before children.
+/// a planned sofa), parents before children; and every lifted box's size
+/// (`[long side, height, short side]` of its footprint), by object id.
 pub fn adopted_objects(
     plan: &Plan,
     new: &[NewObject],
@@ -89,7 +94,7 @@ pub fn adopted_objects(
     labels: &Labels,
     architecture: &Architecture,
     options: &LiftOptions,
-) -> Result<Vec<PlannedObject>, String> {
+) -> Result<Adopted, String> {
     let matched = assign_labels(plan, &view.masks, labels);
     let mut masks: BTreeMap<String, Mask> = BTreeMap::new();
     let mut categories: BTreeMap<String, String> = BTreeMap::new();
@@ -132,7 +137,15 @@ pub fn adopted_objects(
             planned(n, guess, wall_asset, &layers)
         })
         .collect();
-    Ok(parents_first(objects))
+    let sizes = lifted
+        .boxes
+        .iter()
+        .map(|b| {
+            let s = b.size();
+            (b.id.clone(), [s.x.max(s.z), s.y, s.x.min(s.z)])
+        })
+        .collect();
+    Ok((parents_first(objects), sizes))
 }
 
 /// The planned object of `n` resting as `guess` says (none: the lift could not place it, and

@@ -391,13 +391,19 @@ impl Guide for VisionGuide {
                 adoption.room_size = Some(size);
             }
         }
-        if new.is_empty() {
+        if masks.is_empty() {
             return Ok(adoption);
         }
         let room = adoption.apply(plan);
         let architecture = room_architecture(&room)?;
-        adoption.objects = adopted_objects(plan, &new, &view, labels, &architecture, &self.lift)
-            .map_err(|e| provider("lift", e))?;
+        let (objects, sizes) =
+            adopted_objects(plan, &new, &view, labels, &architecture, &self.lift)
+                .map_err(|e| provider("lift", e))?;
+        adoption.objects = objects;
+        adoption.sizes = sizes;
+        if new.is_empty() {
+            return Ok(adoption);
+        }
         let listed: Vec<String> = new
             .iter()
             .map(|n| format!("`{}` ({})", n.id, n.category))

@@ -69,6 +69,10 @@ pub struct Adoption {
     pub objects: Vec<PlannedObject>,
     /// Labels whose category the library cannot map.
     pub unmapped: Vec<UnmappedLabel>,
+    /// The size each object the image shows appears to have there, by object id (planned and
+    /// adopted): `[width, height, depth]` in metres of its box, width the longer side of the
+    /// footprint. Retrieval may prefer the asset variant that fits it.
+    pub sizes: BTreeMap<String, [f64; 3]>,
     /// The room's size `[x, z]` in metres as the image shows it (its walls), when it differs
     /// from the plan's.
     pub room_size: Option<[f64; 2]>,
