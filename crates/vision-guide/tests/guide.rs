@@ -654,3 +654,57 @@ fn labelled_objects_the_plan_lacks_are_adopted_and_placed() {
         .iter()
         .all(|o| visible.iter().any(|t| t.category == o.category)));
 }
+
+/// `--keep-plan`: the planned objects the image does not show are placed offline around what
+/// it fixes, and the image's objects stay where the image put them.
+#[test]
+fn keep_plan_places_the_unshown_planned_objects_around_the_image() {
+    let plan = plan("a bedroom with a bed, a nightstand and a wardrobe");
+    let assets = CatalogAssets::new(0);
+    let truth = truth(&plan, &assets);
+    let (mut g, _) = given(&plan, &truth, true, true);
+    // The image shows only the bed.
+    let bed = truth
+        .objects
+        .iter()
+        .find(|o| o.category == "bed")
+        .unwrap()
+        .id
+        .clone();
+    if let Some((masks, labels)) = g.masks.as_mut() {
+        masks.retain(|id, _| *id == bed);
+        labels.retain(|_, l| l.id == bed);
+    }
+    let shown_only = VisionGuide::from_files(g.clone())
+        .layout(&plan, &assets, 0)
+        .unwrap();
+    let kept = VisionGuide::from_files(g)
+        .with_keep_plan(true)
+        .layout(&plan, &assets, 0)
+        .unwrap();
+    kept.scene.validate().unwrap();
+    assert_eq!(shown_only.scene.objects.len(), 1, "only the bed is shown");
+    assert_eq!(
+        kept.scene.object(&bed).unwrap().pose,
+        shown_only.scene.object(&bed).unwrap().pose,
+        "the image's objects never move"
+    );
+    assert!(
+        kept.scene.objects.len() > 1,
+        "the plan's other objects are kept"
+    );
+    for o in &plan.objects {
+        let placed = kept.scene.object(&o.id).is_some();
+        let reported = kept.dropped.iter().any(|d| d.id == o.id);
+        assert!(
+            placed != reported,
+            "{}: placed {placed}, reported {reported}",
+            o.id
+        );
+    }
+    assert!(
+        kept.notes.iter().any(|n| n.contains("--keep-plan")),
+        "{:?}",
+        kept.notes
+    );
+}
