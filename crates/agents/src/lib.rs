@@ -39,8 +39,8 @@ pub use fidelity::{
 };
 pub use fixed::{check_plan, FixedPlanner, PlanFileError, PlanIssue};
 pub use guide::{
-    room_architecture, AssetLookup, CatalogAssets, DroppedObject, Guide, GuideError, GuidedLayout,
-    NominalAssets, ProceduralGuide, WalkwayReport,
+    room_architecture, Adoption, AssetLookup, CatalogAssets, DroppedObject, Guide, GuideError,
+    GuidedLayout, NominalAssets, ProceduralGuide, UnmappedLabel, WalkwayReport,
 };
 pub use knowledge::{Knowledge, KnowledgeError};
 pub use places::{Family, PlaceKind, Thesaurus};

@@ -284,7 +284,7 @@ impl<'a> Sweep<'a> {
         let mut polished = false;
         if !settings.skip_exact_polish && !past(deadline) {
             object_problem.obstacles = &self.exact;
-            if !object_problem.collision(&pose).is_free() {
+            if !object_problem.contacts(&pose).is_free() {
                 let polish = optimizer.optimize(&object_problem, Stage::Physics, pose);
                 pose = polish.pose;
                 physics_iterations += polish.iterations;

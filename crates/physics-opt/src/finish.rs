@@ -276,7 +276,7 @@ impl Resettle<'_> {
         let (mut fixed, mut movable) = (0.0f64, 0.0f64);
         for c in self
             .problem
-            .collision(p)
+            .contacts(p)
             .contacts
             .iter()
             .filter(|c| c.violation > 0.0)
@@ -474,7 +474,7 @@ fn only_movable_contacts(
     movable: &dyn Fn(&str) -> bool,
 ) -> bool {
     problem
-        .collision(pose)
+        .contacts(pose)
         .contacts
         .iter()
         .filter(|c| c.violation > 0.0)

@@ -196,9 +196,17 @@ impl ObjectProblem<'_> {
 
     /// The contacts closer than the collision margin, checked in both directions (the
     /// object's samples against the obstacles, and nearby obstacles' samples against the
-    /// object's own field), clustered. Contacts of the bottom with the support surface are
-    /// left out of the clusters: the stability term, not the scale, answers them.
+    /// object's own field), clustered ([`ObjectProblem::cluster`]).
     pub fn collision(&self, pose: &Pose) -> CollisionState {
+        let mut state = self.contacts(pose);
+        self.cluster(&mut state);
+        state
+    }
+
+    /// [`ObjectProblem::collision`] without the clusters (`clusters` is left empty): for the
+    /// callers that only ask whether and where the object collides. Clustering is the costly
+    /// part of a colliding pose's check, and most checks never look at the clusters.
+    pub fn contacts(&self, pose: &Pose) -> CollisionState {
         let margin = self.settings.collision_margin;
         let mut contacts = Vec::new();
         // Only obstacles near the object's box can matter.
@@ -265,6 +273,18 @@ impl ObjectProblem<'_> {
                 });
             }
         }
+        CollisionState {
+            contacts,
+            clusters: Vec::new(),
+        }
+    }
+
+    /// Groups `state`'s contacts into clusters of nearby points (indices into its contacts).
+    /// Contacts of the bottom with the support surface are left out of the clusters: the
+    /// stability term, not the scale, answers them.
+    pub fn cluster(&self, state: &mut CollisionState) {
+        let margin = self.settings.collision_margin;
+        let contacts = &state.contacts;
         let band = self
             .support
             .plane()
@@ -293,7 +313,7 @@ impl ObjectProblem<'_> {
                 }
             }
         }
-        CollisionState { contacts, clusters }
+        state.clusters = clusters;
     }
 
     /// The direction in which moving the object separates a contact fastest.

@@ -134,7 +134,8 @@ impl ProjectedGaussNewton {
             if self.stability {
                 pose = self.settle_vertically(problem, pose);
             }
-            let state = problem.collision(&pose);
+            // Clustered only when the constraints contradict each other (below).
+            let mut state = problem.contacts(&pose);
             if state.is_free() && !self.stability {
                 break;
             }
@@ -147,7 +148,10 @@ impl ProjectedGaussNewton {
             }
             let (constraints, pressing_down) = self.constraints(problem, &pose, &state, resting);
             let (delta, feasible) = solve_min_norm(&constraints);
-            let contradictory = !feasible && state.clusters.len() > 1;
+            let contradictory = !feasible && {
+                problem.cluster(&mut state);
+                state.clusters.len() > 1
+            };
             if contradictory || (constraints.is_empty() && pressing_down.is_some()) {
                 let factor = if contradictory {
                     paper_scale_factor(problem, &pose, &state)

@@ -278,8 +278,16 @@ impl Pipeline {
             |plan| format!("{} ({} objects)", plan.scene_type, plan.objects.len()),
         )?;
 
-        let mut plan = original_plan.clone();
+        // The image leads: what the guide's image shows beyond the plan joins it before any
+        // asset is retrieved (nothing for guides that read no image).
+        // Timed with the guide stage but not announced: most guides adopt nothing.
+        let adoption =
+            clock.run_quietly(Stage::Guide, || self.guide.adopt(&original_plan, seed))?;
+        let mut plan = adoption.apply(&original_plan);
         let mut cache = AssetCache::default();
+        clock.run_quietly(Stage::Retrieve, || {
+            cache.fit_variants(self.assets.as_ref(), &plan, seed, &adoption.sizes)
+        })?;
         let mut replans: Vec<Replan> = Vec::new();
         let mut best: Option<Attempt> = None;
         let mut stopped: Option<String> = None;
@@ -319,7 +327,7 @@ impl Pipeline {
         }
 
         let best = best.expect("at least one attempt ran");
-        let mut notes = Vec::new();
+        let mut notes = adoption.notes.clone();
         if let Some(why) = stopped {
             notes.push(time_limit_note(&why, best.round));
         }
@@ -351,6 +359,7 @@ impl Pipeline {
                 matcher: self.matcher.as_ref().map(|(m, _)| m.name()),
                 asset_source: self.assets.name(),
                 original_plan: &original_plan,
+                adoption: &adoption,
                 replans,
                 notes,
                 timings: clock.timings(),

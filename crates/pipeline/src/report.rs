@@ -1,6 +1,6 @@
 //! `report.json`: what a run measured and decided.
 
-use scenethesis_agents::{DroppedObject, PromptCheck};
+use scenethesis_agents::{DroppedObject, PromptCheck, UnmappedLabel};
 use serde::{Deserialize, Serialize};
 
 use crate::judge::Verdict;
@@ -92,10 +92,19 @@ pub struct Report {
     pub planned_objects: usize,
     /// Objects in the output scene.
     pub objects: usize,
-    /// Planned objects missing from the output (dropped by the guide or the judge).
+    /// Planned (and adopted) objects missing from the output (dropped by the guide or the
+    /// judge).
     pub not_in_scene: Vec<String>,
     /// Objects the guide could not fit in the chosen attempt, with reasons.
     pub guide_dropped: Vec<DroppedObject>,
+    /// Objects the guide's image shows that the plan did not hold, added to it before retrieval
+    /// (the vision guide's labelled masks); absent when none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub guide_adopted: Vec<String>,
+    /// Labels of the guidance whose category the asset library cannot map, with the nearest
+    /// category it has; absent when none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub guide_unmapped: Vec<UnmappedLabel>,
     /// Every re-plan the judge made.
     pub replans: Vec<Replan>,
     /// The judge's verdict on the output, with every metric.

@@ -21,24 +21,28 @@ pub struct ObjectBox {
     pub bbox: [f32; 4],
 }
 
-/// Assigns labelled masks to planned objects: a label whose id is planned keeps it; otherwise
-/// the first planned object of the label's category not yet taken gets it. Returns the masks by
-/// planned id and, for labels no planned object matches or that have no mask (their value does
-/// not occur in the instance image), `(label id, why)`.
-pub fn match_labels(
-    plan: &Plan,
-    masks: &BTreeMap<String, Mask>,
-    labels: &Labels,
-) -> (BTreeMap<String, Mask>, Vec<(String, String)>) {
-    let mut out = BTreeMap::new();
-    let mut unmatched = Vec::new();
+/// How the labels of an instance image meet the plan ([`assign_labels`]).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct LabelMatch {
+    /// Planned object id by label id.
+    pub assigned: BTreeMap<String, String>,
+    /// Labels the instance image does not show, with why.
+    pub invisible: Vec<(String, String)>,
+    /// Visible labels no planned object is left for: `(label id, category)`, in label order.
+    pub unplanned: Vec<(String, String)>,
+}
+
+/// Assigns labels to planned objects: a label whose id is planned with the label's category
+/// keeps it; otherwise the first planned object of the label's category not yet taken gets it.
+/// Labels whose value does not occur in the instance image (no mask) guide nothing.
+pub fn assign_labels(plan: &Plan, masks: &BTreeMap<String, Mask>, labels: &Labels) -> LabelMatch {
+    let mut out = LabelMatch::default();
     let mut taken: BTreeSet<String> = BTreeSet::new();
     let mut handled: BTreeSet<&str> = BTreeSet::new();
-    // A label the instance image does not show has no mask and guides nothing.
     for (value, label) in labels {
         if !masks.contains_key(&label.id) {
             handled.insert(label.id.as_str());
-            unmatched.push((
+            out.invisible.push((
                 label.id.clone(),
                 format!("labelled but not visible: instance value {value} does not occur in the instance image"),
             ));
@@ -51,7 +55,7 @@ pub fn match_labels(
         }
         if let Some(o) = plan.object(&label.id) {
             if o.category == label.category && taken.insert(o.id.clone()) {
-                out.insert(o.id.clone(), masks[&label.id].clone());
+                out.assigned.insert(label.id.clone(), o.id.clone());
                 handled.insert(label.id.as_str());
             }
         }
@@ -67,17 +71,39 @@ pub fn match_labels(
         match free {
             Some(o) => {
                 taken.insert(o.id.clone());
-                out.insert(o.id.clone(), masks[&label.id].clone());
+                out.assigned.insert(label.id.clone(), o.id.clone());
             }
-            None => unmatched.push((
-                label.id.clone(),
-                format!(
-                    "labelled `{}` in the guidance but the plan has no (further) {} to match it",
-                    label.category, label.category
-                ),
-            )),
+            None => out
+                .unplanned
+                .push((label.id.clone(), label.category.clone())),
         }
     }
+    out
+}
+
+/// The labelled masks by planned id ([`assign_labels`]) and, for labels no planned object
+/// matches or that have no mask, `(label id, why)`. The vision guide adopts every labelled
+/// object into the plan before the layout, so a label is left without an object only when a
+/// re-plan dropped its object or the plan was full.
+pub fn match_labels(
+    plan: &Plan,
+    masks: &BTreeMap<String, Mask>,
+    labels: &Labels,
+) -> (BTreeMap<String, Mask>, Vec<(String, String)>) {
+    let matched = assign_labels(plan, masks, labels);
+    let out = matched
+        .assigned
+        .iter()
+        .map(|(label, id)| (id.clone(), masks[label].clone()))
+        .collect();
+    let mut unmatched = matched.invisible;
+    unmatched.extend(matched.unplanned.into_iter().map(|(id, category)| {
+        let reason = format!(
+            "labelled `{category}` in the guidance, but the plan holds no (further) {category} \
+             for it (a re-plan dropped it, or the plan was full)"
+        );
+        (id, reason)
+    }));
     (out, unmatched)
 }
 

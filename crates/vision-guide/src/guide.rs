@@ -4,7 +4,7 @@ use std::collections::BTreeMap;
 use std::sync::Mutex;
 
 use scenethesis_agents::{
-    room_architecture, AssetLookup, DroppedObject, Guide, GuideError, GuidedLayout, Plan,
+    room_architecture, Adoption, AssetLookup, DroppedObject, Guide, GuideError, GuidedLayout, Plan,
     WalkwayReport,
 };
 use scenethesis_imagery::{
@@ -16,11 +16,14 @@ use scenethesis_models::{
 use scenethesis_scene_graph::{Architecture, AssetInfo, Material, Mesh, Scene};
 use scenethesis_vision::{lift_scene, LiftOptions, LiftedScene};
 
+use crate::adopt::{adopted_objects, new_objects, room_size};
 use crate::assemble::build_scene;
 use crate::camera::estimate_from_floor;
 use crate::detect::{ask_boxes, masks_from_boxes, match_labels};
+use crate::keep::keep_plan;
 use crate::relations::ask_supports;
 use scenethesis_render_api::{render_view, RendererError, SceneRenderer, ViewKind, ViewRequest};
+use scenethesis_vision::files::Labels;
 
 use crate::source::{decode_to_size, GivenGuidance};
 
@@ -63,16 +66,25 @@ struct Edited {
 /// 4. **Lift** ([`scenethesis_vision::lift_scene`]) with the retrieved assets' sizes as priors,
 ///    then the scene graph and 5-DoF poses ([`crate::assemble`]).
 ///
+/// **The image leads** ([`Guide::adopt`], given masks): every labelled object the plan holds no
+/// (further) object of its category for is added to the plan before retrieval
+/// ([`crate::adopt`]), with its support relation from the image; labels whose category the
+/// library cannot map are reported with the nearest category.
+///
 /// **Planned objects the image does not show** (no mask, or too few 3D points) are left out
-/// and reported in [`GuidedLayout::dropped`]; they are never invented. Labelled objects the plan
-/// does not hold are reported there too. A user's photo need not show every planned object;
-/// run the procedural guide for a complete layout.
+/// and reported in [`GuidedLayout::dropped`]; they are never invented, unless
+/// [`VisionGuide::with_keep_plan`] asks to place them offline around what the image fixes.
 pub struct VisionGuide {
     source: ImageSource,
     vlm: Option<Box<dyn ChatModel>>,
     segmenter: Option<Box<dyn Segmenter>>,
     depth: Option<Box<dyn DepthEstimator>>,
     lift: LiftOptions,
+    /// Place the planned objects the image does not show offline around it ([`crate::keep`]).
+    keep_plan: bool,
+    /// The depth model's estimate of a given image, made once (adoption and every layout
+    /// round read the same image).
+    estimate: Mutex<Option<DepthMap>>,
 }
 
 impl std::fmt::Debug for VisionGuide {
@@ -122,6 +134,8 @@ impl VisionGuide {
             segmenter: None,
             depth: None,
             lift: LiftOptions::default(),
+            keep_plan: false,
+            estimate: Mutex::new(None),
         }
     }
 
@@ -142,6 +156,13 @@ impl VisionGuide {
     /// Metric depth from this model when no depth is given.
     pub fn with_depth_estimator(mut self, depth: impl DepthEstimator + 'static) -> Self {
         self.depth = Some(Box::new(depth));
+        self
+    }
+
+    /// With `keep`, the planned objects the image does not show are placed offline around
+    /// what it fixes ([`crate::keep`], `--keep-plan`) instead of being left out.
+    pub fn with_keep_plan(mut self, keep: bool) -> Self {
+        self.keep_plan = keep;
         self
     }
 
@@ -324,6 +345,77 @@ impl Guide for VisionGuide {
         "vision"
     }
 
+    /// Every labelled mask of given guidance that no planned object of its category is left
+    /// for becomes a new planned object ([`crate::adopt`]); the labels the library could not map
+    /// are handed on for the report. Boxes of a vision-language model name planned objects only
+    /// (nothing is adopted from them yet).
+    fn adopt(&self, plan: &Plan, _seed: u64) -> Result<Adoption, GuideError> {
+        let ImageSource::Given(g) = &self.source else {
+            return Ok(Adoption::default());
+        };
+        let mut adoption = Adoption {
+            unmapped: g.unmapped.clone(),
+            notes: g.notes.clone(),
+            ..Adoption::default()
+        };
+        let no_masks = (BTreeMap::new(), Labels::new());
+        let (masks, labels) = g.masks.as_ref().unwrap_or(&no_masks);
+        let (new, notes) = new_objects(plan, masks, labels);
+        adoption.notes.extend(notes);
+        if new.is_empty() && g.depth.is_none() && self.depth.is_none() {
+            return Ok(adoption);
+        }
+        let architecture = room_architecture(plan)?;
+        let (w, h) = (g.image.width(), g.image.height());
+        let image_data = ImageData::from_bytes(g.image_png.clone(), "the guidance image")
+            .map_err(|e| provider("guidance image", e.to_string()))?;
+        let depth = match &g.depth {
+            Some(d) => Some(d.clone()),
+            None => self.estimated_depth(&image_data, g.camera, (w, h))?,
+        };
+        let camera = match g.camera {
+            Some(c) => c,
+            None => camera_from_floor(depth.as_ref(), (w, h), &architecture)?,
+        };
+        let view = Guidance::new(camera, g.image.clone(), depth, masks.clone())
+            .map_err(|e| provider("guidance", e.to_string()))?;
+        // The room as the image shows it, when a camera placed in the room says where its
+        // walls are.
+        if g.camera.is_some() {
+            if let Some(size) = room_size(plan, &view) {
+                adoption.notes.push(format!(
+                    "the room measured from the walls the guidance image shows: {:.2} × {:.2} m \
+                     (the plan had {:.2} × {:.2} m)",
+                    size[0], size[1], plan.room_size[0], plan.room_size[1]
+                ));
+                adoption.room_size = Some(size);
+            }
+        }
+        if masks.is_empty() {
+            return Ok(adoption);
+        }
+        let room = adoption.apply(plan);
+        let architecture = room_architecture(&room)?;
+        let (objects, sizes) =
+            adopted_objects(plan, &new, &view, labels, &architecture, &self.lift)
+                .map_err(|e| provider("lift", e))?;
+        adoption.objects = objects;
+        adoption.sizes = sizes;
+        if new.is_empty() {
+            return Ok(adoption);
+        }
+        let listed: Vec<String> = new
+            .iter()
+            .map(|n| format!("`{}` ({})", n.id, n.category))
+            .collect();
+        adoption.notes.push(format!(
+            "adopted from the guidance image: {} labelled object(s) the plan did not hold: {}",
+            new.len(),
+            listed.join(", ")
+        ));
+        Ok(adoption)
+    }
+
     fn layout(
         &self,
         plan: &Plan,
@@ -366,8 +458,9 @@ impl Guide for VisionGuide {
         let options = self.lift_options(&infos, &guidance, &architecture);
         let mut lifted =
             lift_scene(&guidance, &options).map_err(|e| provider("lift", e.to_string()))?;
-        let notes = self.cross_check_supports(plan, &mut lifted, &options, &image_data, seed)?;
-        dropped.extend(unplaced(plan, &lifted));
+        let mut notes =
+            self.cross_check_supports(plan, &mut lifted, &options, &image_data, seed)?;
+        let mut left_out = unplaced(plan, &lifted);
         if lifted.boxes.is_empty() {
             return Err(provider(
                 "vision guide",
@@ -377,7 +470,7 @@ impl Guide for VisionGuide {
                 ),
             ));
         }
-        let scene = build_scene(
+        let mut scene = build_scene(
             plan,
             seed,
             architecture,
@@ -386,6 +479,19 @@ impl Guide for VisionGuide {
             &lifted.supports,
             camera.position,
         );
+        if self.keep_plan && !left_out.is_empty() {
+            let (kept, unkept) = keep_plan(&mut scene, plan, &infos, seed);
+            if !kept.is_empty() {
+                notes.push(format!(
+                    "--keep-plan: {} planned object(s) the image does not show placed offline \
+                     around it: {}",
+                    kept.len(),
+                    kept.join(", ")
+                ));
+            }
+            left_out = unkept;
+        }
+        dropped.extend(left_out);
         let walkway = walkway(&scene, &infos);
         Ok(GuidedLayout {
             scene,
@@ -420,6 +526,11 @@ impl VisionGuide {
         let Some(model) = &self.depth else {
             return Ok(None);
         };
+        let given = matches!(self.source, ImageSource::Given(_));
+        let mut cached = self.estimate.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(d) = cached.as_ref().filter(|_| given) {
+            return Ok(Some(d.clone()));
+        }
         let d = model
             .estimate(image, camera.map(|c| c.intrinsics))
             .map_err(|e| provider(model.name(), e.to_string()))?
@@ -433,6 +544,9 @@ impl VisionGuide {
                     d.height()
                 ),
             ));
+        }
+        if given {
+            *cached = Some(d.clone());
         }
         Ok(Some(d))
     }

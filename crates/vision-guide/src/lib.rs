@@ -17,15 +17,19 @@
 //! implements with the GPU. This crate has no HTTP, GPU or model runtime.
 //!
 //! Modules, one phase each: [`source`] (where the image comes from, and file checks),
-//! [`camera`] (a camera estimated from the floor), [`detect`] (masks for the planned objects),
-//! [`relations`] (the support relations a vision-language model states, cross-checked with the
+//! [`camera`] (a camera estimated from the floor), [`adopt`] (labelled objects the plan lacks
+//! become planned objects), [`detect`] (masks for the planned objects),
+//! [`keep`] (`--keep-plan`: planned objects the image
+//! does not show, placed offline around it), [`relations`] (the support relations a vision-language model states, cross-checked with the
 //! lift), [`assemble`] (boxes → scene graph), and the guide itself.
 #![warn(missing_docs)]
 
+pub mod adopt;
 pub mod assemble;
 pub mod camera;
 pub mod detect;
 mod guide;
+pub mod keep;
 pub mod relations;
 pub mod source;
 

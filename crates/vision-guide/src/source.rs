@@ -6,6 +6,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
+use scenethesis_agents::{Knowledge, UnmappedLabel};
 use scenethesis_imagery::{Camera, DepthMap, Mask, RgbImage};
 use scenethesis_vision::files::{self, FileError, Labels};
 
@@ -40,18 +41,6 @@ pub enum GuidanceFileError {
         /// What is wrong and what was expected.
         problem: String,
     },
-    /// A label names a category the asset library does not know.
-    #[error("{path}: label {value} (`{id}`) names category `{category}`, which the asset library does not know; expected one of the library's categories (`scenethesis assets` lists them)")]
-    UnknownCategory {
-        /// The labels file.
-        path: PathBuf,
-        /// The instance value.
-        value: u16,
-        /// The label's object id.
-        id: String,
-        /// The unknown category.
-        category: String,
-    },
     /// Masks were given without labels or the other way round.
     #[error("{0}")]
     Incomplete(String),
@@ -74,7 +63,9 @@ pub struct GuidanceFiles {
 }
 
 /// Guidance read from files and checked: sizes agree, depth is finite and non-negative, the
-/// camera looks down at the floor, labels name known categories.
+/// camera looks down at the floor. Every label names a category of the asset library: its own,
+/// or the one its words name (`couch` → `sofa`); a label the library cannot map is taken out
+/// (with its mask) and listed in [`GivenGuidance::unmapped`] with the nearest category.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GivenGuidance {
     /// The files it was read from (named in later errors and notes).
@@ -87,13 +78,19 @@ pub struct GivenGuidance {
     pub depth: Option<DepthMap>,
     /// The camera, when given.
     pub camera: Option<Camera>,
-    /// Masks by label id and the labels, when given.
+    /// Masks by label id and the labels (categories mapped onto the library's), when given.
     pub masks: Option<(BTreeMap<String, Mask>, Labels)>,
+    /// Labels whose category the library cannot map, with the nearest category it has.
+    pub unmapped: Vec<UnmappedLabel>,
+    /// Labels whose category was read as another (`labels.json: label 3 (`couch_0`) names
+    /// `couch`, read as `sofa``).
+    pub notes: Vec<String>,
 }
 
 impl GivenGuidance {
     /// Reads and checks `files`. `categories` are the asset library's categories; a label
-    /// naming another category is refused.
+    /// naming another category is read as the library category its words name, else set aside
+    /// in [`GivenGuidance::unmapped`].
     pub fn read(
         files: &GuidanceFiles,
         categories: &BTreeSet<String>,
@@ -141,6 +138,8 @@ impl GivenGuidance {
             }
             None => None,
         };
+        let mut unmapped = Vec::new();
+        let mut notes = Vec::new();
         let masks = match (&files.masks, &files.labels) {
             (Some(ids), Some(labels_path)) => {
                 let (masks, labels) = files::read_masks(ids, labels_path)?;
@@ -151,16 +150,10 @@ impl GivenGuidance {
                     let (w, h) = files::png_size(ids)?;
                     same(ids, w, h)?;
                 }
-                for (value, label) in &labels {
-                    if !categories.contains(&label.category) {
-                        return Err(GuidanceFileError::UnknownCategory {
-                            path: labels_path.clone(),
-                            value: *value,
-                            id: label.id.clone(),
-                            category: label.category.clone(),
-                        });
-                    }
-                }
+                let (masks, (labels, set_aside, read_as)) =
+                    map_categories(masks, labels, categories, labels_path);
+                unmapped = set_aside;
+                notes = read_as;
                 Some((masks, labels))
             }
             (Some(ids), None) => {
@@ -184,8 +177,104 @@ impl GivenGuidance {
             depth,
             camera,
             masks,
+            unmapped,
+            notes,
         })
     }
+}
+
+/// Labels (with their masks) whose categories are the library's, those the library cannot map,
+/// and a note per category read as another.
+type MappedLabels = (Labels, Vec<UnmappedLabel>, Vec<String>);
+
+/// Reads every label's category as a library category ([`library_category`]); labels the
+/// library cannot map leave with their masks.
+fn map_categories(
+    mut masks: BTreeMap<String, Mask>,
+    labels: Labels,
+    categories: &BTreeSet<String>,
+    path: &Path,
+) -> (BTreeMap<String, Mask>, MappedLabels) {
+    let mut kept = Labels::new();
+    let mut unmapped = Vec::new();
+    let mut notes = Vec::new();
+    for (value, mut label) in labels {
+        match library_category(&label.category, categories) {
+            Ok(category) => {
+                if category != label.category {
+                    notes.push(format!(
+                        "{}: label {value} (`{}`) names `{}`, read as the library's `{category}`",
+                        path.display(),
+                        label.id,
+                        label.category
+                    ));
+                    label.category = category;
+                }
+                kept.insert(value, label);
+            }
+            Err(nearest) => {
+                masks.remove(&label.id);
+                unmapped.push(UnmappedLabel {
+                    id: label.id,
+                    category: label.category,
+                    nearest,
+                });
+            }
+        }
+    }
+    (masks, (kept, unmapped, notes))
+}
+
+/// The library category a label's `category` stands for: itself when the library has it, else
+/// the category its words name by the planner's nouns (`couch` → `sofa`, `Coffee Tables` →
+/// `coffee_table`). `Err` holds the nearest library category: the one whose naming words the
+/// label contains the most of (`pharmacy shelf` → `shelf`), else the closest in spelling.
+pub fn library_category(
+    category: &str,
+    categories: &BTreeSet<String>,
+) -> Result<String, Option<String>> {
+    if categories.contains(category) {
+        return Ok(category.to_owned());
+    }
+    let knowledge = Knowledge::builtin();
+    if let Some(c) = knowledge
+        .category_of_phrase(category)
+        .filter(|c| categories.contains(*c))
+    {
+        return Ok(c.to_owned());
+    }
+    let rows = knowledge
+        .category_phrases()
+        .iter()
+        .filter(|(_, c)| categories.contains(c))
+        .map(|(words, c)| (words.as_slice(), c.as_str()));
+    let words = scenethesis_words::words(category);
+    if let Some(c) = scenethesis_words::nearest_category(&words, rows) {
+        return Err(Some(c.to_owned()));
+    }
+    let spelled = words.join("_");
+    Err(categories
+        .iter()
+        .min_by_key(|c| edit_distance(&spelled, c))
+        .cloned())
+}
+
+/// The Levenshtein distance of two strings, by characters.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let above = row[j + 1];
+            row[j + 1] = (above + 1)
+                .min(row[j] + 1)
+                .min(diagonal + usize::from(ca != *cb));
+            diagonal = above;
+        }
+    }
+    row[b.len()]
 }
 
 /// Depth values closer together than this (metres) count as one constant depth.
@@ -235,6 +324,28 @@ pub fn decode_to_size(bytes: &[u8], size: [u32; 2], what: &str) -> Result<RgbIma
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn label_categories_map_onto_the_library_or_offer_the_nearest() {
+        let library: BTreeSet<String> = ["sofa", "shelf", "coffee_table", "plant"]
+            .map(String::from)
+            .into();
+        assert_eq!(library_category("sofa", &library), Ok("sofa".into()));
+        assert_eq!(library_category("couch", &library), Ok("sofa".into()));
+        assert_eq!(
+            library_category("Coffee Tables", &library),
+            Ok("coffee_table".into())
+        );
+        assert_eq!(
+            library_category("pharmacy shelf", &library),
+            Err(Some("shelf".into()))
+        );
+        assert_eq!(
+            library_category("plamt", &library),
+            Err(Some("plant".into()))
+        );
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+    }
 
     #[test]
     fn constant_or_unknown_depth_is_refused_and_a_millimetre_of_relief_is_enough() {

@@ -150,13 +150,25 @@ fn a_camera_looking_at_the_ceiling_is_refused() {
 }
 
 #[test]
-fn labels_naming_unknown_categories_are_refused() {
+fn a_label_the_library_cannot_map_is_set_aside_with_the_nearest_category() {
     let set = valid();
     labels(set.files.labels.as_ref().unwrap(), "spaceship");
-    let e = error(&set.files);
+    let g = GivenGuidance::read(&set.files, &categories()).unwrap();
+    let (masks, kept) = g.masks.unwrap();
+    assert!(kept.is_empty() && masks.is_empty(), "it guides nothing");
+    assert_eq!(g.unmapped.len(), 1);
+    let u = &g.unmapped[0];
+    assert_eq!((u.id.as_str(), u.category.as_str()), ("bed_0", "spaceship"));
+    assert!(u.nearest.is_some(), "a nearest category is offered");
+    // A word the planner's nouns know is read as its category.
+    labels(set.files.labels.as_ref().unwrap(), "couch");
+    let g = GivenGuidance::read(&set.files, &categories()).unwrap();
+    assert_eq!(g.masks.unwrap().1[&1].category, "sofa");
+    assert!(g.unmapped.is_empty());
     assert!(
-        e.contains("labels.json") && e.contains("`spaceship`") && e.contains("bed_0"),
-        "{e}"
+        g.notes[0].contains("`couch`, read as the library's `sofa`"),
+        "{:?}",
+        g.notes
     );
 }
 

@@ -48,6 +48,51 @@ pub struct DroppedObject {
     pub reason: String,
 }
 
+/// A label of a guidance image whose category the asset library cannot map: it guides
+/// nothing, and the report offers the nearest category the library has.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct UnmappedLabel {
+    /// The label's object id.
+    pub id: String,
+    /// The category the label names.
+    pub category: String,
+    /// The library's category nearest to it (by the words it shares, else by spelling), if any.
+    pub nearest: Option<String>,
+}
+
+/// What a guide adopts from its image before assets are retrieved: objects the image shows
+/// that the plan lacks (appended to the plan, parents before children, so they are retrieved,
+/// laid out, optimized and judged like planned ones), and labels it could not use.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Adoption {
+    /// The objects to add to the plan, each with its support relation from the image.
+    pub objects: Vec<PlannedObject>,
+    /// Labels whose category the library cannot map.
+    pub unmapped: Vec<UnmappedLabel>,
+    /// The size each object the image shows appears to have there, by object id (planned and
+    /// adopted): `[width, height, depth]` in metres of its box, width the longer side of the
+    /// footprint. Retrieval may prefer the asset variant that fits it.
+    pub sizes: BTreeMap<String, [f64; 3]>,
+    /// The room's size `[x, z]` in metres as the image shows it (its walls), when it differs
+    /// from the plan's.
+    pub room_size: Option<[f64; 2]>,
+    /// What the guide wants said in the run's report.
+    pub notes: Vec<String>,
+}
+
+impl Adoption {
+    /// `plan` with the adopted objects appended (parents come first, as a plan orders them)
+    /// and the room the image shows.
+    pub fn apply(&self, plan: &Plan) -> Plan {
+        let mut plan = plan.clone();
+        plan.objects.extend(self.objects.iter().cloned());
+        if let Some(size) = self.room_size {
+            plan.room_size = size;
+        }
+        plan
+    }
+}
+
 /// How walkable the guided floor is, by the raster rules of the metrics.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct WalkwayReport {
@@ -140,4 +185,11 @@ pub trait Guide: Send + Sync {
         assets: &dyn AssetLookup,
         seed: u64,
     ) -> Result<GuidedLayout, GuideError>;
+
+    /// What the guide's image shows beyond `plan`, to add to it before assets are retrieved.
+    /// Guides that read no image adopt nothing (the default).
+    fn adopt(&self, plan: &Plan, seed: u64) -> Result<Adoption, GuideError> {
+        let _ = (plan, seed);
+        Ok(Adoption::default())
+    }
 }

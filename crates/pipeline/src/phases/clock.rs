@@ -68,6 +68,19 @@ impl<'p> StageClock<'p> {
         Ok(value)
     }
 
+    /// Runs `work` as part of `stage`, adding its time to the stage's total without
+    /// announcing it.
+    pub(crate) fn run_quietly<T, E>(
+        &mut self,
+        stage: Stage,
+        work: impl FnOnce() -> Result<T, E>,
+    ) -> Result<T, E> {
+        let started = Instant::now();
+        let result = work();
+        *self.totals.entry(stage).or_default() += started.elapsed().as_secs_f64();
+        result
+    }
+
     /// Runs `work`, which cannot fail, as `stage` of `round`.
     pub(crate) fn run_infallible<T>(
         &mut self,

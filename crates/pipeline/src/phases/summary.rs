@@ -2,7 +2,7 @@
 
 use std::collections::BTreeSet;
 
-use scenethesis_agents::Plan;
+use scenethesis_agents::{Adoption, Plan};
 
 use super::judge::Attempt;
 use crate::report::{ObjectIssue, Replan, Report, StageTiming};
@@ -18,6 +18,7 @@ pub(crate) struct RunRecord<'a> {
     pub(crate) matcher: Option<&'a str>,
     pub(crate) asset_source: &'a str,
     pub(crate) original_plan: &'a Plan,
+    pub(crate) adoption: &'a Adoption,
     pub(crate) replans: Vec<Replan>,
     pub(crate) notes: Vec<String>,
     pub(crate) timings: Vec<StageTiming>,
@@ -39,6 +40,7 @@ pub(crate) fn report(best: &Attempt, run: RunRecord<'_>) -> Report {
         .original_plan
         .objects
         .iter()
+        .chain(&run.adoption.objects)
         .filter(|o| !present.contains(o.id.as_str()))
         .map(|o| o.id.clone())
         .collect();
@@ -60,6 +62,8 @@ pub(crate) fn report(best: &Attempt, run: RunRecord<'_>) -> Report {
         objects: best.scene.objects.len(),
         not_in_scene,
         guide_dropped: best.guide_dropped.clone(),
+        guide_adopted: run.adoption.objects.iter().map(|o| o.id.clone()).collect(),
+        guide_unmapped: run.adoption.unmapped.clone(),
         replans: run.replans,
         verdict: best.verdict.clone(),
         optimizer_issues,

@@ -60,6 +60,10 @@ pub struct GuideArgs {
     /// floor of the depth.
     #[arg(long, value_name = "CAMERA_JSON", requires = "guide_image")]
     pub camera: Option<PathBuf>,
+    /// With the vision guide: also place the planned objects the image does not show, offline
+    /// around what the image fixes (by default they are left out and reported).
+    #[arg(long)]
+    pub keep_plan: bool,
     /// With the vision guide: align each asset to the guidance before optimizing (`shape`,
     /// the default) or not (`none`).
     #[arg(long, value_enum, value_name = "MATCHER", default_value_t = MatcherChoice::Shape)]
@@ -88,6 +92,11 @@ impl GuideArgs {
                 anyhow::bail!(
                     "--guide-image {}: given with --guide procedural, which reads no image; use --guide vision",
                     image.display()
+                );
+            }
+            if self.keep_plan {
+                anyhow::bail!(
+                    "--keep-plan: given with --guide procedural, which places every planned object anyway; it keeps the plan's objects beside what a guidance image (--guide vision) shows"
                 );
             }
             self.onnx.reject_unused()?;
@@ -147,6 +156,7 @@ impl GuideArgs {
                 VisionGuide::edit_render(renderer, images, EDIT_SIZE).with_vlm(vlm)
             }
         };
+        let guide = guide.with_keep_plan(self.keep_plan);
         let (pipeline, dense) = onnx.install(guide, pipeline);
         Ok(match self.matcher {
             _ if dense => pipeline,
