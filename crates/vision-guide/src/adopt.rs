@@ -193,6 +193,7 @@ fn planned(
         zone,
         relations: Vec::new(),
         hard: false,
+        attributes: Vec::new(),
     }
 }
 
