@@ -75,7 +75,10 @@ impl Aabb {
 
     /// Whether `p` lies inside or on the box.
     pub fn contains_point(&self, p: &Point3<f64>) -> bool {
-        (0..3).all(|i| self.min[i] <= p[i] && p[i] <= self.max[i])
+        // Spelled out per axis: the collision metric calls this for every surface sample of
+        // every candidate pair.
+        let (lo, hi) = (&self.min, &self.max);
+        lo.x <= p.x && p.x <= hi.x && lo.y <= p.y && p.y <= hi.y && lo.z <= p.z && p.z <= hi.z
     }
 
     /// Whether both corners are finite and ordered on every axis.

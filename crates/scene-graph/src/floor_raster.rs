@@ -139,8 +139,13 @@ impl FloorRaster {
         self.label(mask, false)
     }
 
+    /// Labels the components by depth-first flood fill from each unlabelled free cell in flat
+    /// index order. The neighbours are visited with plain index arithmetic (no iterator
+    /// chain): this runs twice per candidate pose the guide tries, and the labels and sizes
+    /// do not depend on the order a component's cells are visited in.
     fn label(&self, mask: &[bool], diagonal: bool) -> Components {
         assert_eq!(mask.len(), self.len(), "mask size must match the raster");
+        let (nx, nz) = (self.nx, self.nz);
         let mut labels = vec![BLOCKED_CELL; mask.len()];
         let mut sizes = vec![0usize];
         let mut stack = Vec::new();
@@ -154,10 +159,37 @@ impl FloorRaster {
             stack.push(start);
             while let Some(idx) = stack.pop() {
                 size += 1;
-                for n in self.neighbours(idx, diagonal) {
+                let (i, j) = (idx % nx, idx / nx);
+                let (left, right) = (i > 0, i + 1 < nx);
+                let (down, up) = (j > 0, j + 1 < nz);
+                let mut visit = |n: usize| {
                     if mask[n] && labels[n] == BLOCKED_CELL {
                         labels[n] = label;
                         stack.push(n);
+                    }
+                };
+                if down {
+                    if diagonal && left {
+                        visit(idx - nx - 1);
+                    }
+                    visit(idx - nx);
+                    if diagonal && right {
+                        visit(idx - nx + 1);
+                    }
+                }
+                if left {
+                    visit(idx - 1);
+                }
+                if right {
+                    visit(idx + 1);
+                }
+                if up {
+                    if diagonal && left {
+                        visit(idx + nx - 1);
+                    }
+                    visit(idx + nx);
+                    if diagonal && right {
+                        visit(idx + nx + 1);
                     }
                 }
             }
