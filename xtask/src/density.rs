@@ -9,7 +9,7 @@ use std::path::Path;
 use anyhow::{Context, Result};
 use serde_json::{json, Value};
 
-use crate::{benchmark_prompts, generate, median, prompt_lines, release_cli};
+use crate::{benchmark_prompts, fresh_scratch, generate, median, prompt_lines, release_cli};
 
 /// Seeds over which the benchmark scenes' density is measured (`density/…`).
 const DENSITY_SEEDS: u64 = 3;
@@ -32,9 +32,7 @@ pub fn add_density(
 ) -> Result<()> {
     let exe = release_cli(root, target, json_out)?;
     let prompts_text = benchmark_prompts(root)?;
-    let scratch = target.join("xtask-density");
-    let _ = std::fs::remove_dir_all(&scratch);
-    std::fs::create_dir_all(&scratch)?;
+    let scratch = fresh_scratch(target, "xtask-density")?;
     let mut all = Vec::new();
     for (k, prompt) in prompt_lines(&prompts_text).into_iter().enumerate() {
         let mut rows = Vec::new();

@@ -158,9 +158,7 @@ fn add_roundtrip(
     let exe = release_cli(root, target, json_out)?;
     let prompts_text = benchmark_prompts(root)?;
     let prompts = prompt_lines(&prompts_text);
-    let scratch = target.join("xtask-roundtrip");
-    let _ = std::fs::remove_dir_all(&scratch);
-    std::fs::create_dir_all(&scratch)?;
+    let scratch = fresh_scratch(target, "xtask-roundtrip")?;
     let mut rows: BTreeMap<&str, Vec<Value>> = BTreeMap::new();
     let mut ablations: Vec<Value> = Vec::new();
     for (k, prompt) in prompts.iter().enumerate() {
@@ -265,6 +263,15 @@ fn release_cli(root: &Path, target: &Path, json_out: bool) -> Result<PathBuf> {
         bail!("building scenethesis failed");
     }
     Ok(target.join("release").join("scenethesis"))
+}
+
+/// An empty scratch folder `name` under `target` for one bench section's scenes: whatever an
+/// earlier run left there is removed first.
+fn fresh_scratch(target: &Path, name: &str) -> Result<PathBuf> {
+    let scratch = target.join(name);
+    let _ = std::fs::remove_dir_all(&scratch);
+    std::fs::create_dir_all(&scratch)?;
+    Ok(scratch)
 }
 
 /// The text of `fixtures/prompts/benchmark.txt`.

@@ -9,7 +9,7 @@ use anyhow::{Context, Result};
 use serde_json::{json, Value};
 
 use crate::density::Physics;
-use crate::{benchmark_prompts, generate, prompt_lines, release_cli};
+use crate::{benchmark_prompts, fresh_scratch, generate, prompt_lines, release_cli};
 
 /// Seeds over which the benchmark scenes' content is measured (`rooms/…`).
 const ROOM_SEEDS: u64 = 4;
@@ -33,9 +33,7 @@ pub fn add_rooms(
 ) -> Result<()> {
     let exe = release_cli(root, target, json_out)?;
     let prompts = room_prompts(root)?;
-    let scratch = target.join("xtask-rooms");
-    let _ = std::fs::remove_dir_all(&scratch);
-    std::fs::create_dir_all(&scratch)?;
+    let scratch = fresh_scratch(target, "xtask-rooms")?;
     let mut tally = Tally::default();
     for (key, prompt) in &prompts {
         let mut seeds = Vec::new();
