@@ -179,6 +179,8 @@ fn load_glb_unchecked(path: &Path) -> Result<EvalScene, EvalError> {
             },
             walls,
             doors: Vec::new(),
+            windows: Vec::new(),
+            rooms: Vec::new(),
         },
     })
 }

@@ -330,6 +330,7 @@ fn output_folder_takes_meshes_from_scene_glb_nodes_by_id() {
                 .unwrap_or(Aabb::new(Point3::origin(), Point3::origin())),
             joints: Vec::new(),
             parent_link: None,
+            room: None,
         };
     let mut scene = Scene::new(scenethesis_scene_graph::Architecture::rectangular_room(
         6.0, 4.0, 2.8, 0.9,
@@ -437,6 +438,7 @@ fn cabinet_and_box(gap: f64, box_parent_link: Option<&str>) -> SceneMetrics {
         local_bounds: mesh.bounds().unwrap(),
         joints: Vec::new(),
         parent_link: None,
+        room: None,
     };
     let mut cab = object("cabinet", &cabinet, 0.0, 0.0);
     cab.joints = vec![JointState {

@@ -313,6 +313,7 @@ mod tests {
                 joint("seat", JointKind::Prismatic, [0.0, 1.0, 0.0], None),
             ],
             parent_link: None,
+            room: None,
         };
         let a = Articulation::of(&object, &mesh).unwrap();
         let names: Vec<&str> = a.links.iter().map(|l| l.joint.name.as_str()).collect();

@@ -49,6 +49,7 @@
 //!     local_bounds: Aabb::new(Point3::new(-0.2, 0.0, -0.2), Point3::new(0.2, 0.4, 0.2)),
 //!     joints: Vec::new(),
 //!     parent_link: None,
+//!     room: None,
 //! });
 //! let mesh = Mesh {
 //!     parts: vec![MeshPart::cuboid("body", 0, [-0.2, 0.0, -0.2], [0.2, 0.4, 0.2])],

@@ -444,6 +444,7 @@ fn room_scene_graph() -> (
         local_bounds: mesh.bounds().unwrap(),
         joints: Vec::new(),
         parent_link: None,
+        room: None,
     };
     for instance in &rs.instances {
         scene

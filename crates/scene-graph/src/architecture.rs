@@ -27,6 +27,78 @@ pub struct Architecture {
     /// Openings cut into walls.
     #[serde(default)]
     pub doors: Vec<DoorOpening>,
+    /// Windows cut into walls (none in scenes written before windows existed).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub windows: Vec<WindowOpening>,
+    /// The rooms of a house, each with its floor outline; empty for a single-room scene, whose
+    /// one room is the whole [`Floor`].
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub rooms: Vec<RoomArea>,
+}
+
+/// The name a door's [`DoorOpening::joins`] uses for the outside of the building.
+pub const EXTERIOR: &str = "exterior";
+
+/// One room of a house: its id, its type and its floor outline at y = 0.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RoomArea {
+    /// Stable id, unique in the scene (e.g. `bedroom_1`); the `room` every object in it names.
+    pub id: String,
+    /// The room type (e.g. `bedroom`, `kitchen`), as the dwelling knowledge names it.
+    #[serde(rename = "type")]
+    pub room_type: String,
+    /// The floor outline in (x, z), m: the walls' inner faces, every edge parallel to x or z
+    /// (rectangles and L-shapes), counter-clockwise seen from above.
+    pub polygon: Vec<Point2<f64>>,
+}
+
+impl RoomArea {
+    /// Whether the (x, z) point lies inside the outline (even-odd rule; a point on an edge
+    /// may count either way).
+    pub fn contains_xz(&self, x: f64, z: f64) -> bool {
+        let poly = &self.polygon;
+        let mut inside = false;
+        for i in 0..poly.len() {
+            let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+            if (a.y > z) != (b.y > z) && x < a.x + (z - a.y) / (b.y - a.y) * (b.x - a.x) {
+                inside = !inside;
+            }
+        }
+        inside
+    }
+
+    /// The outline's area in m² (shoelace formula; positive for either winding).
+    pub fn area(&self) -> f64 {
+        let poly = &self.polygon;
+        let twice: f64 = (0..poly.len())
+            .map(|i| {
+                let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+                a.x * b.y - b.x * a.y
+            })
+            .sum();
+        twice.abs() / 2.0
+    }
+}
+
+/// A window cut into a wall: an opening from `sill` to `sill + height` above the floor, glazed
+/// with a pane.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct WindowOpening {
+    /// Stable id (e.g. `window_0`), also the glTF node name of its pane.
+    pub id: String,
+    /// Id of the wall holding the opening.
+    pub wall: String,
+    /// Distance along the wall from its `start` to the opening's centre, in metres.
+    pub offset: f64,
+    /// Opening width along the wall in metres.
+    pub width: f64,
+    /// Opening height in metres.
+    pub height: f64,
+    /// Height of the opening's bottom above the floor in metres.
+    pub sill: f64,
+    /// Id of the room it lights ([`RoomArea::id`]); `None` in a single-room scene.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub room: Option<String>,
 }
 
 /// The floor: an axis-aligned rectangle on the plane y = 0, given in (x, z).
@@ -154,6 +226,11 @@ pub struct DoorOpening {
     /// leaves existed read as such).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub leaf: Option<DoorLeaf>,
+    /// The two rooms it joins ([`RoomArea::id`]s, one may be [`EXTERIOR`]) in a house; `None`
+    /// in a single-room scene, whose doors lead outside. A leaf swings into the room on its
+    /// wall's inward side.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub joins: Option<[String; 2]>,
 }
 
 impl Architecture {
@@ -189,6 +266,7 @@ impl Architecture {
             width: door_width,
             height: 2.1_f64.min(wall_height),
             leaf: Some(DoorLeaf::default()),
+            joins: None,
         }];
         Self {
             environment: Environment::Indoor,
@@ -199,6 +277,8 @@ impl Architecture {
             },
             walls,
             doors,
+            windows: Vec::new(),
+            rooms: Vec::new(),
         }
     }
 
@@ -213,6 +293,8 @@ impl Architecture {
             },
             walls: Vec::new(),
             doors: Vec::new(),
+            windows: Vec::new(),
+            rooms: Vec::new(),
         }
     }
 
@@ -221,11 +303,33 @@ impl Architecture {
         self.walls.iter().find(|w| w.id == id)
     }
 
-    /// Every architecture id: floor, walls and doors.
+    /// Every architecture id: floor, walls, doors, windows and rooms.
     pub fn ids(&self) -> impl Iterator<Item = &str> {
         std::iter::once(self.floor.id.as_str())
             .chain(self.walls.iter().map(|w| w.id.as_str()))
             .chain(self.doors.iter().map(|d| d.id.as_str()))
+            .chain(self.windows.iter().map(|w| w.id.as_str()))
+            .chain(self.rooms.iter().map(|r| r.id.as_str()))
+    }
+
+    /// The room with this id.
+    pub fn room(&self, id: &str) -> Option<&RoomArea> {
+        self.rooms.iter().find(|r| r.id == id)
+    }
+
+    /// The room whose outline holds the (x, z) point, if the scene is a house.
+    pub fn room_at(&self, x: f64, z: f64) -> Option<&RoomArea> {
+        self.rooms.iter().find(|r| r.contains_xz(x, z))
+    }
+
+    /// World (x, z) centre of a window opening on the floor plane, and the unit inward normal
+    /// of its wall; `None` if the window's wall is unknown.
+    pub fn window_position(&self, window: &WindowOpening) -> Option<(Point2<f64>, Vector2<f64>)> {
+        let wall = self.wall(&window.wall)?;
+        Some((
+            wall.start + wall.direction() * window.offset,
+            wall.inward_normal(),
+        ))
     }
 
     /// World (x, z) centre of a door opening on the floor, and the unit inward normal of its
@@ -261,6 +365,33 @@ mod tests {
             "{door:?}"
         );
         assert!((normal.y + 1.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn l_shaped_room_contains_and_measures() {
+        let corners = [
+            (0.0, 0.0),
+            (4.0, 0.0),
+            (4.0, 2.0),
+            (2.0, 2.0),
+            (2.0, 4.0),
+            (0.0, 4.0),
+        ];
+        let room = RoomArea {
+            id: "living_room".into(),
+            room_type: "living room".into(),
+            polygon: corners.iter().map(|&(x, z)| Point2::new(x, z)).collect(),
+        };
+        assert!((room.area() - 12.0).abs() < 1e-9);
+        assert!(room.contains_xz(1.0, 3.0) && room.contains_xz(3.0, 1.0));
+        assert!(!room.contains_xz(3.0, 3.0), "the L's missing corner");
+        let mut arch = Architecture::rectangular_room(4.0, 4.0, 2.8, 0.9);
+        arch.rooms.push(room);
+        assert_eq!(
+            arch.room_at(0.5, 0.5).map(|r| r.id.as_str()),
+            Some("living_room")
+        );
+        assert!(arch.ids().any(|id| id == "living_room"));
     }
 
     #[test]

@@ -37,6 +37,7 @@
 //!     local_bounds: Aabb::new(Point3::new(-0.6, 0.0, -0.4), Point3::new(0.6, 0.75, 0.4)),
 //!     joints: Vec::new(),
 //!     parent_link: None,
+//!     room: None,
 //! };
 //! let mug = SceneObject {
 //!     id: "mug_0".into(),
@@ -49,6 +50,7 @@
 //!     local_bounds: Aabb::new(Point3::new(-0.05, 0.0, -0.05), Point3::new(0.05, 0.1, 0.05)),
 //!     joints: Vec::new(),
 //!     parent_link: None,
+//!     room: None,
 //! };
 //! scene.anchor = Some("table_0".into());
 //! scene.objects = vec![mug, table]; // stored order is free; the hierarchy orders the walk
@@ -87,8 +89,8 @@ mod walkway;
 
 pub use aabb::Aabb;
 pub use architecture::{
-    hangs_on_wall, Architecture, DoorOpening, Environment, Floor, Wall, MOUNT_MIN_BOTTOM,
-    MOUNT_WALL_REACH,
+    hangs_on_wall, Architecture, DoorOpening, Environment, Floor, RoomArea, Wall, WindowOpening,
+    EXTERIOR, MOUNT_MIN_BOTTOM, MOUNT_WALL_REACH,
 };
 pub use asset::{Asset, AssetInfo, Placement, SupportSurface, SurfaceKind, LOW_SHELF_SHARE};
 pub use door::{
@@ -138,6 +140,7 @@ pub(crate) mod test_support {
             local_bounds: Aabb::new(Point3::new(-0.5, 0.0, -0.5), Point3::new(0.5, 1.0, 0.5)),
             joints: Vec::new(),
             parent_link: None,
+            room: None,
         }
     }
 

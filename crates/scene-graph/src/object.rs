@@ -37,6 +37,10 @@ pub struct SceneObject {
     /// door), so it moves with that part; `None` for the parent's fixed body.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub parent_link: Option<String>,
+    /// The house room it stands in ([`RoomArea::id`](crate::RoomArea::id)); `None` in a
+    /// single-room scene.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub room: Option<String>,
 }
 
 impl SceneObject {

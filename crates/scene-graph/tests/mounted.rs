@@ -23,6 +23,7 @@ fn object(id: &str, parent: ParentRef, support: RelationKind, at: Vector3<f64>) 
         local_bounds: Aabb::new(Point3::new(-0.4, 0.0, -0.02), Point3::new(0.4, 0.6, 0.02)),
         joints: Vec::new(),
         parent_link: None,
+        room: None,
     }
 }
 

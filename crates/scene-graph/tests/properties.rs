@@ -95,6 +95,7 @@ fn forest_scene() -> impl Strategy<Value = Scene> {
                         ),
                         joints: Vec::new(),
                         parent_link: None,
+                        room: None,
                     });
                 }
                 let mut scene = Scene::new(Architecture::rectangular_room(8.0, 6.0, 3.0, 1.0));

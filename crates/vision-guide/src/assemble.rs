@@ -265,6 +265,7 @@ fn scene_object(
         ),
         joints: scenethesis_scene_graph::JointState::all_closed(&info.joints),
         parent_link: None,
+        room: None,
     }
 }
 

@@ -124,6 +124,7 @@ pub(super) fn build_scene(
             ),
             joints: scenethesis_scene_graph::JointState::all_closed(&info.joints),
             parent_link: None,
+            room: None,
         });
     }
     scene.anchor = if present.contains_key(plan.anchor.as_str()) {

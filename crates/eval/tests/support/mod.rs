@@ -138,6 +138,7 @@ pub fn two_rooms(objects: Vec<EvalObject>) -> EvalScene {
         width: 0.9,
         height: 2.1,
         leaf: None,
+        joins: None,
     });
     EvalScene {
         objects,

@@ -30,5 +30,6 @@ pub fn object(
             .unwrap_or(Aabb::new(Point3::origin(), Point3::origin())),
         joints: Vec::new(),
         parent_link: None,
+        room: None,
     }
 }

@@ -236,6 +236,7 @@ pub fn object(
         local_bounds: Aabb::new(asset.bounds().min, asset.bounds().max),
         joints: Vec::new(),
         parent_link: None,
+        room: None,
     }
 }
 
