@@ -4,7 +4,8 @@
 //! - the file and every external buffer are read with a size limit ([`super::limits`]);
 //! - buffer URIs must be `data:` URIs or relative paths that, once canonicalised, stay inside
 //!   the containment folder given by the caller (the asset pack, or the file's own folder);
-//!   image URIs are never read (only base colours are used);
+//!   image URIs follow the same rule, and a base-colour texture is read only to tint its
+//!   material by the texture's mean colour (a texture that cannot be used is a warning);
 //! - node hierarchies are walked with an explicit depth limit and a check for cycles (a node
 //!   that is its own ancestor), and the total number of node instances, vertices and triangles
 //!   is bounded, so a graph that shares nodes exponentially cannot blow up;
@@ -19,11 +20,11 @@ use std::path::{Path, PathBuf};
 
 use gltf::mesh::Mode;
 use nalgebra::{Matrix4, Point3};
-use scenethesis_scene_graph::{read_bounded, Material, Mesh, MeshPart};
+use scenethesis_scene_graph::{printable, read_bounded, Material, Mesh, MeshPart};
 
 use super::limits::{
     MAX_BUFFER_BYTES, MAX_FILE_COORDINATE, MAX_GLTF_BYTES, MAX_NODE_DEPTH, MAX_NODE_INSTANCES,
-    MAX_TRIANGLES, MAX_VERTICES,
+    MAX_TEXTURE_BYTES, MAX_TRIANGLES, MAX_VERTICES,
 };
 use super::MeshLoadError;
 
@@ -125,6 +126,10 @@ pub struct GltfFile {
     pub materials: Vec<GltfMaterial>,
     /// Top-level node instances, in file order.
     pub roots: Vec<GltfNode>,
+    /// One line per base-colour texture that could not be used (missing, outside the asset
+    /// folder, over a limit, not a PNG or JPEG), naming the material and the image; its
+    /// material keeps the plain base-colour factor.
+    pub texture_warnings: Vec<String>,
 }
 
 impl GltfFile {
@@ -178,7 +183,9 @@ impl GltfFile {
             }
             buffers.push(data);
         }
-        let materials = gltf.materials().map(|m| read_material(&m)).collect();
+        let mut materials: Vec<GltfMaterial> =
+            gltf.materials().map(|m| read_material(&m)).collect();
+        let texture_warnings = tint_by_textures(&gltf, &buffers, dir, root, &mut materials);
         let mut walker = Walker {
             buffers: &buffers,
             instances: 0,
@@ -203,7 +210,11 @@ impl GltfFile {
             .iter()
             .map(|n| walker.node(n, &Matrix4::identity(), 0))
             .collect::<Result<Vec<_>, _>>()?;
-        Ok(Self { materials, roots })
+        Ok(Self {
+            materials,
+            roots,
+            texture_warnings,
+        })
     }
 
     /// The material of a primitive (`None`: the glTF default material, white, roughness and
@@ -253,6 +264,79 @@ fn unit(v: f32, default: f32) -> f32 {
         v.clamp(0.0, 1.0)
     } else {
         default
+    }
+}
+
+/// Tints every material that has a base-colour texture by the texture's mean colour; returns a
+/// warning for each texture that could not be used (its material keeps the plain factor).
+fn tint_by_textures(
+    gltf: &gltf::Gltf,
+    buffers: &[Vec<u8>],
+    dir: &Path,
+    root: &Path,
+    materials: &mut [GltfMaterial],
+) -> Vec<String> {
+    let mut warnings = Vec::new();
+    for (m, material) in gltf.materials().zip(materials.iter_mut()) {
+        let Some(info) = m.pbr_metallic_roughness().base_color_texture() else {
+            continue;
+        };
+        let image = info.texture().source();
+        let mean = image_bytes(&image, buffers, dir, root)
+            .and_then(|bytes| super::textures::mean_linear_colour(&bytes));
+        match mean {
+            Ok(mean) => material.base_color = super::textures::tinted(material.base_color, mean),
+            Err(reason) => warnings.push(format!(
+                "materials[{}]{}: base-colour texture images[{}]{} cannot be used ({reason}); \
+                 using the plain base colour",
+                m.index().map_or("(default)".into(), |i| i.to_string()),
+                m.name()
+                    .map_or(String::new(), |n| format!(" `{}`", printable(n))),
+                image.index(),
+                image_label(&image),
+            )),
+        }
+    }
+    warnings
+}
+
+/// The encoded bytes of a glTF image: from a buffer view, a data URI, or a file inside `root`.
+fn image_bytes(
+    image: &gltf::image::Image<'_>,
+    buffers: &[Vec<u8>],
+    dir: &Path,
+    root: &Path,
+) -> Result<Vec<u8>, String> {
+    match image.source() {
+        gltf::image::Source::View { view, .. } => {
+            let data = &buffers[view.buffer().index()];
+            let end = view.offset().saturating_add(view.length());
+            data.get(view.offset()..end)
+                .map(<[u8]>::to_vec)
+                .ok_or_else(|| {
+                    format!(
+                        "bufferViews[{}] runs past the end of its buffer",
+                        view.index()
+                    )
+                })
+        }
+        gltf::image::Source::Uri { uri, .. } if uri.starts_with("data:") => {
+            read_uri(dir, root, uri, "image").map_err(|e| e.to_string())
+        }
+        gltf::image::Source::Uri { uri, .. } => {
+            let path = resolve_inside(dir, root, &percent_decode(uri))?;
+            read_bounded(&path, MAX_TEXTURE_BYTES).map_err(|e| e.to_string())
+        }
+    }
+}
+
+/// ` (\`file.png\`)` for an image stored in a file, empty for an embedded one.
+fn image_label(image: &gltf::image::Image<'_>) -> String {
+    match image.source() {
+        gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
+            format!(" (`{}`)", printable(&percent_decode(uri)))
+        }
+        _ => String::new(),
     }
 }
 
@@ -645,7 +729,8 @@ pub(super) fn decode_base64(text: &str) -> Option<Vec<u8>> {
 /// Loads a `.glb` or `.gltf` asset file as one mesh (file frame and units): every triangle
 /// primitive of every node instance becomes one part, degenerate triangles dropped, materials
 /// shared by glTF index. External buffers must lie inside `root`.
-pub(super) fn load(path: &Path, root: &Path) -> Result<Mesh, MeshLoadError> {
+/// Also returns the file's [`GltfFile::texture_warnings`].
+pub(super) fn load(path: &Path, root: &Path) -> Result<(Mesh, Vec<String>), MeshLoadError> {
     let file = GltfFile::read(path, Some(root)).map_err(|e| MeshLoadError::Gltf(e.to_string()))?;
     let mut mesh = Mesh::default();
     let mut materials: std::collections::BTreeMap<Option<usize>, usize> = Default::default();
@@ -685,7 +770,7 @@ pub(super) fn load(path: &Path, root: &Path) -> Result<Mesh, MeshLoadError> {
     if mesh.triangle_count() == 0 {
         return Err(MeshLoadError::Empty);
     }
-    Ok(mesh)
+    Ok((mesh, file.texture_warnings))
 }
 
 #[cfg(test)]

@@ -202,7 +202,13 @@ impl Importer {
             }
         };
         match self.import_entry_in(&path, root, &entry) {
-            Ok(mut asset) => {
+            Ok((mut asset, warnings)) => {
+                report
+                    .warnings
+                    .extend(warnings.into_iter().map(|w| ImportWarning {
+                        path: path.clone(),
+                        reason: format!("{label}: {w}"),
+                    }));
                 let base = entry.id.clone().unwrap_or_else(|| file_stem(&entry.file));
                 let mut id = base.clone();
                 let mut k = 2;
@@ -236,7 +242,11 @@ impl Importer {
     /// a whole pack.
     pub fn import_entry(&self, path: &Path, entry: &ManifestEntry) -> Result<Asset, MeshLoadError> {
         check_entry(entry).map_err(MeshLoadError::Entry)?;
-        self.import_entry_in(path, own_folder(path), entry)
+        let (asset, warnings) = self.import_entry_in(path, own_folder(path), entry)?;
+        for w in warnings {
+            tracing::warn!("{}: {w}", printable(&path.display().to_string()));
+        }
+        Ok(asset)
     }
 
     /// Reads a mesh file with the loader for its extension, in the file's own frame and units.
@@ -246,8 +256,21 @@ impl Importer {
     }
 
     fn load_mesh_in(&self, path: &Path, root: &Path) -> Result<Mesh, MeshLoadError> {
+        let (mesh, warnings) = self.load_mesh_noting(path, root)?;
+        for w in warnings {
+            tracing::warn!("{}: {w}", printable(&path.display().to_string()));
+        }
+        Ok(mesh)
+    }
+
+    /// The mesh of `path` and the loader's warnings about it (a texture it could not use).
+    fn load_mesh_noting(
+        &self,
+        path: &Path,
+        root: &Path,
+    ) -> Result<(Mesh, Vec<String>), MeshLoadError> {
         match self.loader_for(path) {
-            Some(loader) => loader.load(path, root),
+            Some(loader) => loader.load_with_warnings(path, root),
             None => Err(MeshLoadError::Unsupported {
                 expected: expected_list(&self.extensions()),
             }),
@@ -255,14 +278,15 @@ impl Importer {
     }
 
     /// [`Importer::import_entry`] with the folder that external files must stay inside.
+    /// Also returns the loader's warnings about the file (a texture it could not use).
     fn import_entry_in(
         &self,
         path: &Path,
         root: &Path,
         entry: &ManifestEntry,
-    ) -> Result<Asset, MeshLoadError> {
+    ) -> Result<(Asset, Vec<String>), MeshLoadError> {
         check_joints(&entry.joints).map_err(Fault::into_error)?;
-        let mut mesh = self.load_mesh_in(path, root)?;
+        let (mut mesh, warnings) = self.load_mesh_noting(path, root)?;
         if mesh.triangle_count() == 0 {
             return Err(MeshLoadError::Empty);
         }
@@ -299,7 +323,7 @@ impl Importer {
             Some(s) => s.clone(),
             None => find_support_surfaces(&mesh, &SurfaceSearch::default()),
         };
-        Ok(Asset {
+        let asset = Asset {
             info: AssetInfo {
                 source: AssetRef::Imported {
                     id: entry.id.clone().unwrap_or_else(|| file_stem(&entry.file)),
@@ -316,7 +340,8 @@ impl Importer {
                 joints,
             },
             mesh,
-        })
+        };
+        Ok((asset, warnings))
     }
 }
 

@@ -28,6 +28,14 @@
 //! the rest of the directory is still imported. Without a manifest, every mesh file in the directory
 //! is imported with the defaults and its file stem as category.
 //!
+//! Materials keep their base colour, roughness and metalness. A base-colour texture (glTF
+//! `baseColorTexture` from a file, a data URI or the GLB's buffer; OBJ `map_Kd`) tints its
+//! material by the texture's mean colour: a scene's parts carry one material each and no texture
+//! coordinates of their own. A texture that is missing, outside the directory, over
+//! [`limits::MAX_TEXTURE_BYTES`] / [`limits::MAX_TEXTURE_PIXELS`] or not a readable PNG or JPEG
+//! is an [`ImportWarning`] naming the asset, the material and the file; the asset is still
+//! imported with the plain colour.
+//!
 //! ## Moving parts
 //!
 //! `joints` lists an asset's doors, drawers and lids as a procedural asset carries them
@@ -123,6 +131,7 @@ mod manifest;
 mod obj;
 mod resolver;
 mod surfaces;
+mod textures;
 
 use std::fmt;
 use std::path::PathBuf;

@@ -32,3 +32,7 @@ pub const MAX_ASSET_SCALE: f32 = 10.0;
 pub const MAX_SYNONYMS: usize = 64;
 /// Most joints of one manifest entry.
 pub const MAX_JOINTS: usize = 64;
+/// Largest texture image an imported material names, in bytes (64 MiB).
+pub const MAX_TEXTURE_BYTES: u64 = 64 * 1024 * 1024;
+/// Largest texture image, in pixels (8192 × 8192).
+pub const MAX_TEXTURE_PIXELS: u64 = 8192 * 8192;

@@ -20,6 +20,17 @@ pub trait AssetLoader: Send + Sync {
     /// Reads the file at `path` into a mesh in the file's own frame and units. Any file it
     /// names in turn (buffers, material libraries) must lie inside the folder `root`.
     fn load(&self, path: &Path, root: &Path) -> Result<Mesh, MeshLoadError>;
+
+    /// [`AssetLoader::load`], also returning a warning for each thing the file names that could
+    /// not be used but did not stop the load (a missing or broken texture: its part keeps a
+    /// plain material). The default has none.
+    fn load_with_warnings(
+        &self,
+        path: &Path,
+        root: &Path,
+    ) -> Result<(Mesh, Vec<String>), MeshLoadError> {
+        self.load(path, root).map(|mesh| (mesh, Vec::new()))
+    }
 }
 
 /// GLB and glTF files (`.glb`, `.gltf`), read by [`GltfFile`](crate::GltfFile): every triangle
@@ -33,6 +44,14 @@ impl AssetLoader for GltfLoader {
     }
 
     fn load(&self, path: &Path, root: &Path) -> Result<Mesh, MeshLoadError> {
+        gltf_file::load(path, root).map(|(mesh, _)| mesh)
+    }
+
+    fn load_with_warnings(
+        &self,
+        path: &Path,
+        root: &Path,
+    ) -> Result<(Mesh, Vec<String>), MeshLoadError> {
         gltf_file::load(path, root)
     }
 }
@@ -48,6 +67,14 @@ impl AssetLoader for ObjLoader {
     }
 
     fn load(&self, path: &Path, root: &Path) -> Result<Mesh, MeshLoadError> {
+        obj::load(path, root).map(|(mesh, _)| mesh)
+    }
+
+    fn load_with_warnings(
+        &self,
+        path: &Path,
+        root: &Path,
+    ) -> Result<(Mesh, Vec<String>), MeshLoadError> {
         obj::load(path, root)
     }
 }

@@ -1,24 +1,28 @@
 //! Wavefront OBJ loading: `v` and `f` records (polygons fan-triangulated, `v/vt/vn` forms,
 //! negative indices), one part per object/group and material run, and diffuse colours (`Kd`),
-//! shininess (`Ns`) and opacity (`d`) from `mtllib` files when present.
+//! shininess (`Ns`) and opacity (`d`) from `mtllib` files when present; a diffuse texture
+//! (`map_Kd`) tints its material by the texture's mean colour (one that cannot be used is a
+//! warning).
 
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use scenethesis_scene_graph::{Material, Mesh, MeshPart};
+use scenethesis_scene_graph::{printable, Material, Mesh, MeshPart};
 
 use super::limits::{
-    MAX_FILE_COORDINATE, MAX_MTL_BYTES, MAX_OBJ_BYTES, MAX_TRIANGLES, MAX_VERTICES,
+    MAX_FILE_COORDINATE, MAX_MTL_BYTES, MAX_OBJ_BYTES, MAX_TEXTURE_BYTES, MAX_TRIANGLES,
+    MAX_VERTICES,
 };
 use super::MeshLoadError;
 
 /// Loads an `.obj` file (and the `.mtl` files it names, if they can be read and lie inside
-/// `root`; one that does not is ignored with a warning in the log).
-pub(super) fn load(path: &Path, root: &Path) -> Result<Mesh, MeshLoadError> {
+/// `root`; one that does not is ignored with a warning in the log), with one warning per
+/// diffuse texture that could not be used.
+pub(super) fn load(path: &Path, root: &Path) -> Result<(Mesh, Vec<String>), MeshLoadError> {
     let bytes = scenethesis_scene_graph::read_bounded(path, MAX_OBJ_BYTES)?;
     let text = String::from_utf8_lossy(&bytes);
     let base = path.parent().unwrap_or_else(|| Path::new("."));
-    parse(&text, |name| {
+    let (mut mesh, textures) = parse_with_textures(&text, |name| {
         let resolved = match super::gltf_file::resolve_inside(base, root, name) {
             Ok(p) => p,
             Err(reason) => {
@@ -31,16 +35,58 @@ pub(super) fn load(path: &Path, root: &Path) -> Result<Mesh, MeshLoadError> {
         };
         let bytes = scenethesis_scene_graph::read_bounded(&resolved, MAX_MTL_BYTES).ok()?;
         Some(String::from_utf8_lossy(&bytes).into_owned())
-    })
+    })?;
+    let warnings = tint_by_textures(&mut mesh, &textures, |file| {
+        let resolved = super::gltf_file::resolve_inside(base, root, file)?;
+        scenethesis_scene_graph::read_bounded(&resolved, MAX_TEXTURE_BYTES)
+            .map_err(|e| e.to_string())
+    });
+    Ok((mesh, warnings))
+}
+
+/// Tints each material of `mesh` that names a diffuse texture in `textures` (material name →
+/// file) by the texture's mean colour, reading files with `read`; returns a warning for each
+/// texture that could not be used (its material keeps the plain `Kd` colour).
+fn tint_by_textures(
+    mesh: &mut Mesh,
+    textures: &BTreeMap<String, String>,
+    read: impl Fn(&str) -> Result<Vec<u8>, String>,
+) -> Vec<String> {
+    let mut warnings = Vec::new();
+    for material in &mut mesh.materials {
+        let Some(file) = textures.get(&material.name) else {
+            continue;
+        };
+        match read(file).and_then(|bytes| super::textures::mean_linear_colour(&bytes)) {
+            Ok(mean) => material.base_color = super::textures::tinted(material.base_color, mean),
+            Err(reason) => warnings.push(format!(
+                "material `{}`: diffuse texture `{}` (map_Kd) cannot be used ({reason}); using \
+                 the plain Kd colour",
+                printable(&material.name),
+                printable(file)
+            )),
+        }
+    }
+    warnings
 }
 
 /// Parses OBJ text; `read_mtl` returns the text of a material library by its file name.
+/// Diffuse textures are not read.
 pub(super) fn parse(
     text: &str,
     read_mtl: impl Fn(&str) -> Option<String>,
 ) -> Result<Mesh, MeshLoadError> {
+    parse_with_textures(text, read_mtl).map(|(mesh, _)| mesh)
+}
+
+/// [`parse`], also returning the diffuse texture file (`map_Kd`) each material names.
+fn parse_with_textures(
+    text: &str,
+    read_mtl: impl Fn(&str) -> Option<String>,
+) -> Result<(Mesh, BTreeMap<String, String>), MeshLoadError> {
     let mut vertices: Vec<[f32; 3]> = Vec::new();
     let mut library: BTreeMap<String, Material> = BTreeMap::new();
+    let mut textures: BTreeMap<String, String> = BTreeMap::new();
     let mut parts = Parts::default();
     let mut group = String::from("mesh");
     let mut current_material = String::new();
@@ -129,7 +175,7 @@ pub(super) fn parse(
             "mtllib" => {
                 let name = line["mtllib".len()..].trim();
                 if let Some(text) = read_mtl(name) {
-                    parse_mtl(&text, &mut library);
+                    parse_mtl(&text, &mut library, &mut textures);
                 }
             }
             _ => {} // vt, vn, s, l, p and the rest carry nothing we keep.
@@ -139,7 +185,7 @@ pub(super) fn parse(
     if parts.mesh.triangle_count() == 0 {
         return Err(MeshLoadError::Empty);
     }
-    Ok(parts.mesh)
+    Ok((parts.mesh, textures))
 }
 
 /// The mesh being read: finished parts, the triangles of the part being filled and the index of
@@ -214,8 +260,13 @@ impl Parts {
 }
 
 /// Reads `newmtl` blocks: `Kd` (diffuse colour), `Ns` (shininess → roughness), `d`/`Tr`
-/// (opacity) and `Pm` (metalness, PBR extension).
-fn parse_mtl(text: &str, library: &mut BTreeMap<String, Material>) {
+/// (opacity), `Pm` (metalness, PBR extension) and `map_Kd` (the diffuse texture's file, its
+/// last field after any options, into `textures`).
+fn parse_mtl(
+    text: &str,
+    library: &mut BTreeMap<String, Material>,
+    textures: &mut BTreeMap<String, String>,
+) {
     let mut current: Option<String> = None;
     for raw in text.lines() {
         let line = raw.split('#').next().unwrap_or("").trim();
@@ -234,6 +285,12 @@ fn parse_mtl(text: &str, library: &mut BTreeMap<String, Material>) {
         let Some(m) = current.as_ref().and_then(|n| library.get_mut(n)) else {
             continue;
         };
+        if tag == "map_Kd" {
+            if let Some(file) = fields.last() {
+                textures.insert(m.name.clone(), file.to_owned());
+            }
+            continue;
+        }
         match (tag, nums.as_slice()) {
             ("Kd", [r, g, b, ..]) => {
                 m.base_color[..3].copy_from_slice(&[*r, *g, *b].map(|c| c.clamp(0.0, 1.0)))

@@ -667,3 +667,135 @@ fn repeated_and_degenerate_triangles_are_dropped_before_the_distance_field() {
 }
 
 mod joints;
+
+/// PNG bytes of a `w` × `h` image of one sRGB colour.
+fn png_of(w: u32, h: u32, rgb: [u8; 3]) -> Vec<u8> {
+    let image = image::RgbImage::from_pixel(w, h, image::Rgb(rgb));
+    let mut bytes = Vec::new();
+    image
+        .write_to(
+            &mut std::io::Cursor::new(&mut bytes),
+            image::ImageFormat::Png,
+        )
+        .unwrap();
+    bytes
+}
+
+/// The side table with its `oak` material (base colour 0.6, 0.4, 0.2) textured by an image at
+/// `uri`: a file next to it or a data URI.
+fn textured_table(uri: &str) -> Vec<u8> {
+    let (mut doc, bin) = table_in_centimetres();
+    doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = json!({"index": 0});
+    doc["textures"] = json!([{"source": 0}]);
+    doc["images"] = json!([{"uri": uri}]);
+    glb_bytes(&doc, &bin)
+}
+
+fn import_table(dir: &Path, glb: &[u8]) -> ImportReport {
+    import_one(
+        dir,
+        "table.glb",
+        glb,
+        json!({"file": "table.glb", "category": "side_table", "up_axis": "z", "unit_scale": 0.01}),
+    )
+}
+
+#[test]
+fn a_readable_texture_tints_its_material_by_its_mean_colour() {
+    let dir = tempfile::tempdir().unwrap();
+    // sRGB 188 is linear ~0.5: the oak factor is halved.
+    write(dir.path(), "oak.png", &png_of(4, 4, [188, 188, 188]));
+    let report = import_table(dir.path(), &textured_table("oak.png"));
+    assert!(report.warnings.is_empty(), "{:?}", report.warnings);
+    let oak = &report.assets[0].mesh.materials[0];
+    assert_eq!(oak.name, "oak");
+    let expected = [0.6, 0.4, 0.2].map(|c| c * 0.5029);
+    for (got, want) in oak.base_color.iter().zip(expected) {
+        assert!((got - want).abs() < 2e-3, "{oak:?}");
+    }
+}
+
+#[test]
+fn a_missing_or_broken_texture_is_one_warning_naming_the_file_and_a_plain_material() {
+    for (file, bytes, says) in [
+        ("missing.png", None, "missing.png"),
+        (
+            "broken.png",
+            Some(b"\x89PNG not really".to_vec()),
+            "broken.png",
+        ),
+        ("../outside.png", None, "outside the asset folder"),
+    ] {
+        // The pack is a folder inside `root`, where a readable image sits just outside it.
+        let root = tempfile::tempdir().unwrap();
+        write(root.path(), "outside.png", &png_of(2, 2, [0, 0, 0]));
+        let pack = root.path().join("pack");
+        std::fs::create_dir(&pack).unwrap();
+        if let Some(bytes) = bytes {
+            write(&pack, file, &bytes);
+        }
+        let report = import_table(&pack, &textured_table(file));
+        assert_eq!(report.assets.len(), 1, "the asset still imports ({file})");
+        assert_eq!(report.warnings.len(), 1, "{:?}", report.warnings);
+        let warning = report.warnings[0].to_string();
+        assert!(warning.contains("table.glb"), "names the asset: {warning}");
+        assert!(warning.contains(says), "names the texture: {warning}");
+        assert!(warning.contains("`oak`"), "names the material: {warning}");
+        let oak = &report.assets[0].mesh.materials[0];
+        assert_eq!(
+            oak.base_color,
+            [0.6, 0.4, 0.2, 1.0],
+            "plain factor ({file})"
+        );
+    }
+}
+
+#[test]
+fn obj_diffuse_textures_tint_or_warn() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = scenethesis_primitives::cuboid("s", 0, [0.0, 0.0, 0.0], [1.0, 1.0, 1.0]);
+    let mut obj = String::from("mtllib box.mtl\n");
+    for v in &p.positions {
+        obj.push_str(&format!("v {} {} {}\n", v[0], v[1], v[2]));
+    }
+    for (k, t) in p.triangles.iter().enumerate() {
+        let material = if k < 6 { "painted" } else { "lost" };
+        obj.push_str(&format!(
+            "usemtl {material}\nf {} {} {}\n",
+            t[0] + 1,
+            t[1] + 1,
+            t[2] + 1
+        ));
+    }
+    write(dir.path(), "box.obj", obj.as_bytes());
+    write(
+        dir.path(),
+        "box.mtl",
+        b"newmtl painted\nKd 1 1 1\nmap_Kd -s 1 1 1 red.png\nnewmtl lost\nKd 0.5 0.5 0.5\nmap_Kd gone.jpg\n",
+    );
+    write(dir.path(), "red.png", &png_of(2, 2, [255, 0, 0]));
+    let report = import_directory(dir.path()).unwrap();
+    let asset = &report.assets[0];
+    let colour = |name: &str| {
+        asset
+            .mesh
+            .materials
+            .iter()
+            .find(|m| m.name == name)
+            .unwrap()
+            .base_color
+    };
+    assert_eq!(colour("painted"), [1.0, 0.0, 0.0, 1.0]);
+    assert_eq!(colour("lost"), [0.5, 0.5, 0.5, 1.0]);
+    let texture_warnings: Vec<String> = report
+        .warnings
+        .iter()
+        .map(ToString::to_string)
+        .filter(|w| w.contains("texture"))
+        .collect();
+    assert_eq!(texture_warnings.len(), 1, "{:?}", report.warnings);
+    assert!(
+        texture_warnings[0].contains("gone.jpg") && texture_warnings[0].contains("box.obj"),
+        "{texture_warnings:?}"
+    );
+}
