@@ -56,7 +56,8 @@ struct VertexIn {
 };
 
 struct Varying {
-    @builtin(position) clip: vec4<f32>,
+    // Invariant: the depth pre-pass and the scene pass compute the same depths.
+    @builtin(position) @invariant clip: vec4<f32>,
     @location(0) world: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) albedo: vec4<f32>,
@@ -86,6 +87,23 @@ fn vs_scene(v: VertexIn) -> Varying {
     if v.albedo.a < 0.999 {
         out.clip = CULLED;
     }
+    return out;
+}
+
+// The depth pre-pass: the opaque surfaces' depth, so that the scene pass shades each pixel
+// once (its depth test is `LessEqual` against this) however many surfaces overlap there.
+@vertex
+fn vs_prepass(v: VertexIn) -> @builtin(position) @invariant vec4<f32> {
+    if v.albedo.a < 0.999 {
+        return CULLED;
+    }
+    return g.clip_from_world * vec4<f32>(v.position, 1.0);
+}
+
+// The pre-pass writes no colour (its targets' write masks are empty).
+@fragment
+fn fs_prepass() -> Targets {
+    var out: Targets;
     return out;
 }
 

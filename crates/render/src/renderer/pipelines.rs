@@ -1,5 +1,5 @@
-//! What a device renders with, built once: the bind group layouts, the five pipelines
-//! (scene, glass, background, shadow, ambient occlusion) sharing one shader, the shadow map's
+//! What a device renders with, built once: the bind group layouts, the six pipelines
+//! (depth pre-pass, scene, glass, background, shadow, ambient occlusion) sharing one shader, the shadow map's
 //! comparison sampler and the material textures' sampler.
 
 use super::{COLOR_FORMAT, DEPTH_FORMAT, VALUE_FORMAT};
@@ -17,6 +17,8 @@ pub(super) struct Pipelines {
     pub(super) occlusion_layout: wgpu::BindGroupLayout,
     /// Lit, shadowed geometry into the colour, linear-depth and instance targets.
     pub(super) scene: wgpu::RenderPipeline,
+    /// The opaque surfaces' depth only, before the scene pass.
+    pub(super) prepass: wgpu::RenderPipeline,
     /// See-through surfaces blended over the scene pass's colour, after it.
     pub(super) glass: wgpu::RenderPipeline,
     /// The backdrop's gradient, drawn first as one full-screen triangle.
@@ -87,12 +89,37 @@ impl Pipelines {
                 buffers: &vertices,
                 cull_mode: Some(wgpu::Face::Back),
                 depth: Some(depth_state(
-                    true,
-                    wgpu::CompareFunction::Less,
+                    false,
+                    wgpu::CompareFunction::LessEqual,
                     Default::default(),
                 )),
                 fragment_entry: Some("fs_scene"),
                 targets: &targets,
+            },
+        );
+        let untouched = glass_targets().map(|t| {
+            t.map(|t| wgpu::ColorTargetState {
+                blend: None,
+                write_mask: wgpu::ColorWrites::empty(),
+                ..t
+            })
+        });
+        let prepass = pipeline(
+            device,
+            &shader,
+            PipelineSpec {
+                label: "depth pre-pass",
+                layout: &scene_layout,
+                vertex_entry: "vs_prepass",
+                buffers: &vertices,
+                cull_mode: Some(wgpu::Face::Back),
+                depth: Some(depth_state(
+                    true,
+                    wgpu::CompareFunction::Less,
+                    Default::default(),
+                )),
+                fragment_entry: Some("fs_prepass"),
+                targets: &untouched,
             },
         );
         let glass_targets = glass_targets();
@@ -153,6 +180,7 @@ impl Pipelines {
             textures_layout,
             occlusion_layout,
             scene,
+            prepass,
             glass,
             background,
             shadow,

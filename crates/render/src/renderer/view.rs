@@ -144,9 +144,10 @@ impl Renderer {
         }
     }
 
-    /// The scene pass: the backdrop, then the opaque objects and floor, then each wall unless
-    /// the scene cuts away walls the camera stands behind; then the same geometry again for
-    /// its see-through surfaces, blended over the rest.
+    /// The scene pass: the backdrop; the objects and floor, then each wall unless the scene
+    /// cuts away walls the camera stands behind, drawn three times: their opaque surfaces'
+    /// depth, those surfaces shaded (each pixel once), and their see-through surfaces blended
+    /// over the rest.
     fn draw_view(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -188,7 +189,8 @@ impl Renderer {
             pass.set_bind_group(1, &scene.shadow_group, &[]);
             pass.set_bind_group(2, &self.textures.group, &[]);
             pass.set_vertex_buffer(0, buffer.slice(..));
-            for pipeline in [&self.pipelines.scene, &self.pipelines.glass] {
+            let pipelines = &self.pipelines;
+            for pipeline in [&pipelines.prepass, &pipelines.scene, &pipelines.glass] {
                 pass.set_pipeline(pipeline);
                 pass.draw(scene.always.clone(), 0..1);
                 for wall in &scene.walls {
