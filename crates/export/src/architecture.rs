@@ -3,6 +3,7 @@
 //! walls and leaves from these pieces so that the formats agree.
 
 use nalgebra::{Point3, Rotation3, Vector3};
+use scenethesis_materials::surface_or;
 use scenethesis_scene_graph::{
     Architecture, Environment, LeafGeometry, Material, Mesh, MeshPart, SceneLook,
 };
@@ -86,44 +87,7 @@ impl Piece {
     }
 }
 
-/// The material of floors: the library's oak floorboards.
-pub fn floor_material() -> Material {
-    library_material("oak_floorboards")
-}
-
-/// The material of open ground (outdoor scenes): the library's soil.
-pub fn ground_material() -> Material {
-    library_material("soil")
-}
-
-/// The material of walls: the library's matte wall paint.
-pub fn wall_material() -> Material {
-    library_material("wall_paint")
-}
-
-fn library_material(id: &str) -> Material {
-    scenethesis_materials::by_id(id)
-        .expect("the architecture's materials are in the library")
-        .material()
-}
-
-/// The material the scene's look gives a room surface (`floor`, `walls`), else `default`.
-/// The look names palette entries, which dress furniture: on a floor a wood is laid as
-/// floorboards of its tone, and on walls a paint is the library's wall paint of its colour.
-fn surface_or(look: &SceneLook, surface: &str, default: fn() -> Material) -> Material {
-    let Some(mut material) = look.surfaces.get(surface).cloned() else {
-        return default();
-    };
-    let library = scenethesis_materials::resolve(&material.name);
-    let painted = library.is_some_and(|l| l.id == "painted_wood");
-    let wood = library.is_some_and(|l| l.family == scenethesis_materials::Family::Wood);
-    if surface == "floor" && wood && !painted {
-        material.name = format!("{}_floorboards", material.name);
-    } else if surface == "walls" && painted {
-        material.name = "wall_paint".into();
-    }
-    material
-}
+pub use scenethesis_materials::{floor_material, ground_material, wall_material};
 
 /// The architecture as solid pieces: the floor slab first, then each wall in order, cut around
 /// the door openings it holds (a box left and right of each door and a lintel above it when the
@@ -134,14 +98,14 @@ pub fn pieces(architecture: &Architecture, look: &SceneLook) -> Vec<Piece> {
     let floor = &architecture.floor;
     let extent = floor.extent();
     let outdoor = architecture.environment == Environment::Outdoor;
-    let wall_look = surface_or(look, "walls", wall_material);
+    let wall_look = surface_or(&look.surfaces, "walls", wall_material);
     let mut out = vec![Piece {
         id: floor.id.clone(),
         kind: PieceKind::Floor,
         material: if outdoor {
             ground_material()
         } else {
-            surface_or(look, "floor", floor_material)
+            surface_or(&look.surfaces, "floor", floor_material)
         },
         boxes: vec![OrientedBox {
             center: Point3::new(

@@ -37,9 +37,11 @@ pub mod noise;
 mod pattern;
 mod projection;
 mod resolve;
+mod surfaces;
 
 pub use library::{by_id, library, Family, LibraryMaterial};
 pub use maps::{maps, MapKind, Maps, TEXTURE_SIZE};
 pub use pattern::{Pattern, Texel};
 pub use projection::{BoxProjection, FaceProjection};
 pub use resolve::resolve;
+pub use surfaces::{floor_material, ground_material, surface_or, wall_material};

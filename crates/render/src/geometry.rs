@@ -1,25 +1,26 @@
 //! CPU-side geometry: posed meshes, floors, walls with door gaps and ground planes flattened
-//! into one vertex list with per-corner normals, linear albedo and instance index.
+//! into one vertex list with per-corner normals, surface parameters, texture coordinates in
+//! metres with tangents (the library's box projection, as the exporters use it) and instance
+//! index.
 
 use std::collections::BTreeSet;
 use std::ops::Range;
 
 use bytemuck::{Pod, Zeroable};
 use nalgebra::{Point2, Point3, Vector2, Vector3};
+use scenethesis_materials::{
+    floor_material, ground_material, maps, resolve, surface_or, wall_material, BoxProjection,
+};
 use scenethesis_scene_graph::{
-    leaf_material, Architecture, Environment, MeshPart, Wall, GROUND_ID,
+    leaf_material, Architecture, Environment, Material, MeshPart, Wall, GROUND_ID,
 };
 
 use crate::{Backdrop, RenderError, RenderScene};
 
-/// Linear albedo of a room's floor (light oak).
-const FLOOR_ALBEDO: [f32; 3] = [0.50, 0.36, 0.22];
-/// Linear albedo of a room's walls (warm off-white).
-const WALL_ALBEDO: [f32; 3] = [0.72, 0.70, 0.66];
 /// Linear albedo of the studio floor (neutral grey).
 const STUDIO_ALBEDO: [f32; 3] = [0.55, 0.55, 0.55];
-/// Linear albedo of outdoor ground (dry grass).
-const GROUND_ALBEDO: [f32; 3] = [0.30, 0.34, 0.18];
+/// Roughness of the studio floor.
+const STUDIO_ROUGHNESS: f32 = 0.8;
 /// Faces meeting at less than this angle share a smoothed normal (cos 35°).
 const CREASE_COS: f32 = 0.819;
 
@@ -31,10 +32,95 @@ pub(crate) struct Vertex {
     pub position: [f32; 3],
     /// Unit world normal.
     pub normal: [f32; 3],
-    /// Linear RGB albedo.
-    pub albedo: [f32; 3],
+    /// Linear RGB albedo (with a texture, the factor its base-colour map is multiplied by)
+    /// and opacity: below 1 the surface is see-through glass, drawn after the opaque ones.
+    pub albedo: [f32; 4],
     /// Instance index: 1-based index into the id table.
     pub instance: u32,
+    /// Texture coordinates in tiles of the material (0 without a texture).
+    pub uv: [f32; 2],
+    /// World tangent along u; `w` the sign of the bitangent (toward the image's top).
+    pub tangent: [f32; 4],
+    /// Roughness and metalness factors (the metallic-roughness map multiplies them).
+    pub roughness_metallic: [f32; 2],
+    /// Texture layer: 1 + the library index of the material worn, 0 for a plain colour.
+    pub layer: u32,
+}
+
+/// How a surface is shaded: a material's colour, roughness and metalness and, when its name
+/// resolves to a library material, that material's texture layer and tile size.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Surface {
+    albedo: [f32; 4],
+    roughness_metallic: [f32; 2],
+    layer: u32,
+    tile_size_m: Option<f32>,
+}
+
+impl Surface {
+    /// The surface of a scene material: textured with its library material when its name
+    /// resolves to one, the colour and roughness then turned into factors of the maps (so the
+    /// surface averages its own colour), else the plain colour.
+    pub fn of(material: &Material) -> Self {
+        match resolve(&material.name) {
+            Some(library) => {
+                let maps = maps(library);
+                Self {
+                    albedo: maps.color_factor(material.base_color),
+                    roughness_metallic: [
+                        maps.roughness_factor(material.roughness),
+                        material.metallic,
+                    ],
+                    layer: library.index() as u32 + 1,
+                    tile_size_m: Some(library.tile_size_m),
+                }
+            }
+            None => Self {
+                albedo: material.base_color.map(|c| c.clamp(0.0, 1.0)),
+                roughness_metallic: [material.roughness, material.metallic],
+                layer: 0,
+                tile_size_m: None,
+            },
+        }
+    }
+
+    /// An untextured opaque dielectric of linear colour `albedo`.
+    pub fn plain(albedo: [f32; 3], roughness: f32) -> Self {
+        Self {
+            albedo: [albedo[0], albedo[1], albedo[2], 1.0],
+            roughness_metallic: [roughness, 0.0],
+            layer: 0,
+            tile_size_m: None,
+        }
+    }
+
+    /// The box projection of a part with these positions, when the surface is textured.
+    fn projection(&self, positions: &[[f32; 3]]) -> Option<BoxProjection> {
+        self.tile_size_m
+            .map(|tile| BoxProjection::new(tile, positions))
+    }
+
+    /// A vertex of this surface at world `position` with world `normal`; `texture` is the
+    /// texture coordinates and world tangent of the corner, when textured.
+    fn vertex(
+        &self,
+        position: [f32; 3],
+        normal: [f32; 3],
+        texture: Option<([f32; 2], [f32; 4])>,
+        instance: u32,
+    ) -> Vertex {
+        let (uv, tangent) = texture.unwrap_or(([0.0; 2], [1.0, 0.0, 0.0, 1.0]));
+        Vertex {
+            position,
+            normal,
+            albedo: self.albedo,
+            instance,
+            uv,
+            tangent,
+            roughness_metallic: self.roughness_metallic,
+            layer: self.layer,
+        }
+    }
 }
 
 /// The vertex range of one wall, kept apart so walls can be cut away per camera.
@@ -83,13 +169,12 @@ impl SceneGeometry {
             let index = geo.push_id(&inst.id);
             let rotation = pose.rotation();
             for part in &inst.mesh.parts {
-                let albedo = inst
+                let surface = inst
                     .mesh
                     .materials
                     .get(part.material)
-                    .map_or([0.6; 3], |m| {
-                        [m.base_color[0], m.base_color[1], m.base_color[2]]
-                    });
+                    .map_or(Surface::plain([0.6; 3], 0.6), Surface::of);
+                let projection = surface.projection(&part.positions);
                 let world: Vec<[f32; 3]> = part
                     .positions
                     .iter()
@@ -99,15 +184,28 @@ impl SceneGeometry {
                     })
                     .collect();
                 let normals = corner_normals(part);
+                let to_world = |v: [f32; 3]| {
+                    let w = rotation * Vector3::from(v).cast::<f64>();
+                    [w.x as f32, w.y as f32, w.z as f32]
+                };
                 for (t, tri) in part.triangles.iter().enumerate() {
+                    // Texture coordinates and tangents in the asset's frame, as exported.
+                    let [a, b, c] = part.triangle(t);
+                    let face_normal = (b - a).cross(&(c - a));
+                    let face = projection.map(|p| p.face(face_normal.into()));
                     for (k, &v) in tri.iter().enumerate() {
-                        let n = rotation * Vector3::from(normals[3 * t + k]).cast::<f64>();
-                        geo.vertices.push(Vertex {
-                            position: world[v as usize],
-                            normal: [n.x as f32, n.y as f32, n.z as f32],
-                            albedo,
-                            instance: index,
+                        let local_normal = normals[3 * t + k];
+                        let texture = face.map(|f| {
+                            let local = f.tangent(local_normal);
+                            let [x, y, z] = to_world([local[0], local[1], local[2]]);
+                            (f.uv(part.positions[v as usize]), [x, y, z, local[3]])
                         });
+                        geo.vertices.push(surface.vertex(
+                            world[v as usize],
+                            to_world(local_normal),
+                            texture,
+                            index,
+                        ));
                     }
                 }
             }
@@ -120,34 +218,31 @@ impl SceneGeometry {
             let outdoor = arch.environment == Environment::Outdoor;
             if !(ground_plane && outdoor) {
                 let index = geo.push_id(&arch.floor.id);
+                let material = if outdoor {
+                    ground_material()
+                } else {
+                    surface_or(&scene.surfaces, "floor", floor_material)
+                };
                 geo.push_quad_y(
                     0.0,
                     [arch.floor.min.x, arch.floor.min.y],
                     [arch.floor.max.x, arch.floor.max.y],
-                    if outdoor {
-                        GROUND_ALBEDO
-                    } else {
-                        scene
-                            .surface_albedo
-                            .get("floor")
-                            .copied()
-                            .unwrap_or(FLOOR_ALBEDO)
-                    },
+                    &Surface::of(&material),
                     index,
                 );
             }
         }
         if ground_plane {
-            let (id, albedo, half) = match scene.backdrop {
+            let (id, surface, half) = match scene.backdrop {
                 Backdrop::Sky => (
                     arch.filter(|a| a.environment == Environment::Outdoor)
                         .map_or(GROUND_ID, |a| a.floor.id.as_str()),
-                    GROUND_ALBEDO,
+                    Surface::of(&ground_material()),
                     500.0,
                 ),
                 _ => (
                     GROUND_ID,
-                    STUDIO_ALBEDO,
+                    Surface::plain(STUDIO_ALBEDO, STUDIO_ROUGHNESS),
                     (bounds.size().x.max(bounds.size().z) * 10.0).max(20.0),
                 ),
             };
@@ -163,22 +258,18 @@ impl SceneGeometry {
                 y,
                 [c.x - half, c.z - half],
                 [c.x + half, c.z + half],
-                albedo,
+                &surface,
                 index,
             );
         }
         geo.always = 0..geo.vertices.len() as u32;
         if let Some(arch) = arch {
-            let wall_albedo = scene
-                .surface_albedo
-                .get("walls")
-                .copied()
-                .unwrap_or(WALL_ALBEDO);
+            let wall_surface = Surface::of(&surface_or(&scene.surfaces, "walls", wall_material));
             for wall in &arch.walls {
                 let start = geo.vertices.len() as u32;
                 let index = geo.push_id(&wall.id);
                 for (center, half) in wall_boxes(arch, wall) {
-                    geo.push_box(wall, center, half, wall_albedo, index);
+                    geo.push_box(wall, center, half, &wall_surface, index);
                 }
                 geo.push_leaves(arch, wall);
                 geo.walls.push(WallRange {
@@ -197,22 +288,30 @@ impl SceneGeometry {
         self.ids.len() as u32
     }
 
-    fn push_triangle(&mut self, corners: [Point3<f64>; 3], albedo: [f32; 3], instance: u32) {
+    /// A flat-shaded world-space triangle of `surface`, its texture coordinates projected by
+    /// `projection` (the box projection of the piece it belongs to).
+    fn push_triangle(
+        &mut self,
+        corners: [Point3<f64>; 3],
+        surface: &Surface,
+        projection: Option<&BoxProjection>,
+        instance: u32,
+    ) {
         let n = (corners[1] - corners[0])
             .cross(&(corners[2] - corners[0]))
             .normalize();
+        let normal = [n.x as f32, n.y as f32, n.z as f32];
+        let face = projection.map(|p| p.face(normal));
         for c in corners {
-            self.vertices.push(Vertex {
-                position: [c.x as f32, c.y as f32, c.z as f32],
-                normal: [n.x as f32, n.y as f32, n.z as f32],
-                albedo,
-                instance,
-            });
+            let position = [c.x as f32, c.y as f32, c.z as f32];
+            let texture = face.map(|f| (f.uv(position), f.tangent(normal)));
+            self.vertices
+                .push(surface.vertex(position, normal, texture, instance));
         }
     }
 
     /// An upward-facing rectangle at height `y` spanning (x, z) from `min` to `max`.
-    fn push_quad_y(&mut self, y: f64, min: [f64; 2], max: [f64; 2], albedo: [f32; 3], id: u32) {
+    fn push_quad_y(&mut self, y: f64, min: [f64; 2], max: [f64; 2], surface: &Surface, id: u32) {
         let p = |x: f64, z: f64| Point3::new(x, y, z);
         let (a, b, c, d) = (
             p(min[0], min[1]),
@@ -220,9 +319,11 @@ impl SceneGeometry {
             p(max[0], max[1]),
             p(min[0], max[1]),
         );
+        let projection =
+            surface.projection(&[a, b, c, d].map(|p| [p.x as f32, p.y as f32, p.z as f32]));
         // Counter-clockwise seen from above (+Y): a → d → c, a → c → b.
-        self.push_triangle([a, d, c], albedo, id);
-        self.push_triangle([a, c, b], albedo, id);
+        self.push_triangle([a, d, c], surface, projection.as_ref(), id);
+        self.push_triangle([a, c, b], surface, projection.as_ref(), id);
     }
 
     /// The leaves hung in `wall`'s doors, at their states: drawn, and cut away, with the wall,
@@ -233,12 +334,13 @@ impl SceneGeometry {
                 continue;
             };
             let index = self.push_id(&door.id);
-            let albedo = leaf_material().base_color;
-            let albedo = [albedo[0], albedo[1], albedo[2]];
+            let surface = Surface::of(&leaf_material());
             for part in &leaf.posed_mesh().parts {
+                let projection = surface.projection(&part.positions);
                 for t in &part.triangles {
                     let corner = |k: usize| Point3::from(part.positions[t[k] as usize]).cast();
-                    self.push_triangle([corner(0), corner(1), corner(2)], albedo, index);
+                    let corners = [corner(0), corner(1), corner(2)];
+                    self.push_triangle(corners, &surface, projection.as_ref(), index);
                 }
             }
         }
@@ -251,7 +353,7 @@ impl SceneGeometry {
         wall: &Wall,
         center: Point3<f64>,
         half: Vector3<f64>,
-        albedo: [f32; 3],
+        surface: &Surface,
         id: u32,
     ) {
         let d = wall.direction();
@@ -260,6 +362,14 @@ impl SceneGeometry {
         let n = wall.inward_normal();
         let across = Vector3::new(n.x, 0.0, n.y) * half.z;
         let axes = [along, up, across];
+        let corners: Vec<[f32; 3]> = (0..8)
+            .map(|i| {
+                let s = |bit: usize| if (i >> bit) & 1 == 1 { 1.0 } else { -1.0 };
+                let p = center + along * s(0) + up * s(1) + across * s(2);
+                [p.x as f32, p.y as f32, p.z as f32]
+            })
+            .collect();
+        let projection = surface.projection(&corners);
         // Each face: the axis it faces along and its sign.
         for axis in 0..3 {
             for sign in [-1.0, 1.0] {
@@ -275,7 +385,7 @@ impl SceneGeometry {
                     }
                 }
                 for t in tris {
-                    self.push_triangle(t, albedo, id);
+                    self.push_triangle(t, surface, projection.as_ref(), id);
                 }
             }
         }

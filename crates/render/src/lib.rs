@@ -7,8 +7,13 @@
 //! [`Architecture`](scenethesis_scene_graph::Architecture) — its floor, and walls with their
 //! door openings cut out — and a [`Backdrop`]. A [`Renderer`] turns it into a [`Frame`]:
 //!
-//! - `color`: sRGB, Lambert shading under a hemisphere ambient and one sun with soft
-//!   (percentage-closer filtered) shadows cast by the objects;
+//! - `color`: sRGB; every part and room surface whose material resolves to the procedural
+//!   library ([`scenethesis_materials`]) wears its base-colour, normal and metallic-roughness
+//!   maps (texture coordinates in metres by the library's box projection, each material's maps
+//!   uploaded once per renderer), lit by a key light (the sun, or daylight through a room's
+//!   windows) with soft percentage-closer filtered shadows cast by the objects, a hemisphere
+//!   fill (ceiling and floor bounce) with its reflection, and screen-space ambient occlusion;
+//!   behind the scene, a sky gradient (rooms and outdoors) or a studio grey;
 //! - `depth`: metres along the optical axis, exactly what [`Camera::project`] returns;
 //! - `instance`: which object (or floor / wall) each pixel shows, with an id table.
 //!

@@ -4,7 +4,7 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use nalgebra::Point3;
-use scenethesis_scene_graph::{Aabb, Architecture, Environment, Mesh, Pose, Scene};
+use scenethesis_scene_graph::{Aabb, Architecture, Environment, Material, Mesh, Pose, Scene};
 
 /// One posed mesh with the id its pixels carry in the instance image.
 #[derive(Debug, Clone)]
@@ -60,10 +60,11 @@ pub struct RenderScene {
     /// Hide every wall whose outer side faces the camera, so that a camera outside the room
     /// sees into it like an interior photograph (default `true`).
     pub cut_away_walls: bool,
-    /// Linear albedo of the room's surfaces by name (`floor`, `walls`), from the scene's look
-    /// ([`SceneLook::surfaces`](scenethesis_scene_graph::SceneLook)); a surface not named
-    /// here keeps the renderer's default colour.
-    pub surface_albedo: BTreeMap<String, [f32; 3]>,
+    /// The materials of the room's surfaces by name (`floor`, `walls`), from the scene's look
+    /// ([`SceneLook::surfaces`](scenethesis_scene_graph::SceneLook)), laid as the exporters
+    /// lay them ([`scenethesis_materials::surface_or`]); a surface not named here wears the
+    /// library's default (oak floorboards, wall paint).
+    pub surfaces: BTreeMap<String, Material>,
 }
 
 impl RenderScene {
@@ -74,7 +75,7 @@ impl RenderScene {
             architecture: None,
             backdrop: Backdrop::Studio,
             cut_away_walls: true,
-            surface_albedo: BTreeMap::new(),
+            surfaces: BTreeMap::new(),
         }
     }
 
@@ -90,7 +91,7 @@ impl RenderScene {
             architecture: Some(architecture),
             backdrop,
             cut_away_walls: true,
-            surface_albedo: BTreeMap::new(),
+            surfaces: BTreeMap::new(),
         }
     }
 
@@ -125,17 +126,7 @@ impl RenderScene {
             })
             .collect();
         let mut render = Self::with_architecture(instances, scene.architecture.clone());
-        render.surface_albedo = scene
-            .look
-            .surfaces
-            .iter()
-            .map(|(name, m)| {
-                (
-                    name.clone(),
-                    [m.base_color[0], m.base_color[1], m.base_color[2]],
-                )
-            })
-            .collect();
+        render.surfaces = scene.look.surfaces.clone();
         render
     }
 

@@ -1,7 +1,8 @@
-// Scene, shadow and background passes of the scenethesis renderer.
+// Scene, shadow, background and ambient-occlusion passes of the scenethesis renderer.
 //
-// Targets: 0 = sRGB colour, 1 = linear depth along the optical axis (f32 bits in an R32Uint),
-// 2 = instance index (0 = nothing).
+// Scene-pass targets: 0 = sRGB lit colour (alpha: the share of the light that is ambient),
+// 1 = linear depth along the optical axis (f32 bits in an R32Uint), 2 = instance index
+// (0 = nothing). The ambient-occlusion pass reads 0 and 1 and writes the final colour.
 
 struct Globals {
     clip_from_world: mat4x4<f32>,
@@ -23,26 +24,49 @@ struct Globals {
     bg_top: vec4<f32>,
     bg_horizon: vec4<f32>,
     bg_bottom: vec4<f32>,
+    // xyz: the camera's position.
+    eye: vec4<f32>,
+    // x: search radius in metres; y: strength (0 = off); z: widest radius in pixels.
+    occlusion: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> g: Globals;
 @group(1) @binding(0) var shadow_map: texture_depth_2d;
 @group(1) @binding(1) var shadow_sampler: sampler_comparison;
+// One layer per library material: sRGB albedo multiplier, tangent-space normal (+Y toward the
+// image's top), metallic-roughness (G roughness, B metalness).
+@group(2) @binding(0) var base_maps: texture_2d_array<f32>;
+@group(2) @binding(1) var normal_maps: texture_2d_array<f32>;
+@group(2) @binding(2) var mr_maps: texture_2d_array<f32>;
+@group(2) @binding(3) var map_sampler: sampler;
+
+const PI: f32 = 3.14159265;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
     @location(1) normal: vec3<f32>,
-    @location(2) albedo: vec3<f32>,
+    // rgb: linear albedo (the factor of the base-colour map when textured); a: opacity.
+    @location(2) albedo: vec4<f32>,
     @location(3) instance: u32,
+    @location(4) uv: vec2<f32>,
+    @location(5) tangent: vec4<f32>,
+    @location(6) roughness_metallic: vec2<f32>,
+    // 1 + the material's layer in the map arrays; 0 for a plain colour.
+    @location(7) layer: u32,
 };
 
 struct Varying {
-    @builtin(position) clip: vec4<f32>,
+    // Invariant: the depth pre-pass and the scene pass compute the same depths.
+    @builtin(position) @invariant clip: vec4<f32>,
     @location(0) world: vec3<f32>,
     @location(1) normal: vec3<f32>,
-    @location(2) albedo: vec3<f32>,
+    @location(2) albedo: vec4<f32>,
     @location(3) @interpolate(flat) instance: u32,
     @location(4) depth: f32,
+    @location(5) uv: vec2<f32>,
+    @location(6) tangent: vec4<f32>,
+    @location(7) roughness_metallic: vec2<f32>,
+    @location(8) @interpolate(flat) layer: u32,
 };
 
 struct Targets {
@@ -51,8 +75,49 @@ struct Targets {
     @location(2) instance: u32,
 };
 
+// Where a vertex goes when its pass does not draw its surface: outside the clip volume, so
+// its whole triangle (one surface, one opacity) is culled before any fragment is shaded.
+const CULLED: vec4<f32> = vec4<f32>(2.0, 2.0, 2.0, 1.0);
+
+// The opaque pass: see-through surfaces are culled (rather than discarded per fragment, which
+// would cost software rasterizers their early depth test).
 @vertex
 fn vs_scene(v: VertexIn) -> Varying {
+    var out = scene_vertex(v);
+    if v.albedo.a < 0.999 {
+        out.clip = CULLED;
+    }
+    return out;
+}
+
+// The depth pre-pass: the opaque surfaces' depth, so that the scene pass shades each pixel
+// once (its depth test is `LessEqual` against this) however many surfaces overlap there.
+@vertex
+fn vs_prepass(v: VertexIn) -> @builtin(position) @invariant vec4<f32> {
+    if v.albedo.a < 0.999 {
+        return CULLED;
+    }
+    return g.clip_from_world * vec4<f32>(v.position, 1.0);
+}
+
+// The pre-pass writes no colour (its targets' write masks are empty).
+@fragment
+fn fs_prepass() -> Targets {
+    var out: Targets;
+    return out;
+}
+
+// The glass pass: only see-through surfaces.
+@vertex
+fn vs_glass(v: VertexIn) -> Varying {
+    var out = scene_vertex(v);
+    if v.albedo.a >= 0.999 {
+        out.clip = CULLED;
+    }
+    return out;
+}
+
+fn scene_vertex(v: VertexIn) -> Varying {
     var out: Varying;
     let p = vec4<f32>(v.position, 1.0);
     out.clip = g.clip_from_world * p;
@@ -61,6 +126,10 @@ fn vs_scene(v: VertexIn) -> Varying {
     out.albedo = v.albedo;
     out.instance = v.instance;
     out.depth = -dot(g.view_z, p);
+    out.uv = v.uv;
+    out.tangent = v.tangent;
+    out.roughness_metallic = v.roughness_metallic;
+    out.layer = v.layer;
     return out;
 }
 
@@ -91,21 +160,125 @@ fn sunlight(world: vec3<f32>, normal: vec3<f32>) -> f32 {
     return lit / 16.0;
 }
 
-@fragment
-fn fs_scene(in: Varying) -> Targets {
-    let n = normalize(in.normal);
-    let l = g.light_dir.xyz;
-    let direct = max(dot(n, l), 0.0);
-    var shadow = 1.0;
-    if direct > 0.0 {
-        shadow = sunlight(in.world, n);
+// A surface point as the lights see it: albedo, shading normal, roughness, metalness.
+struct SurfacePoint {
+    albedo: vec3<f32>,
+    normal: vec3<f32>,
+    roughness: f32,
+    metallic: f32,
+};
+
+// The surface at a fragment: its maps (when it wears a library material) multiplying its
+// factors, the normal map bent into the world through the interpolated tangent frame. The
+// maps are sampled for every fragment (sampling needs uniform control flow) and ignored for
+// plain colours.
+fn surface_point(in: Varying, front: bool) -> SurfacePoint {
+    var n = normalize(in.normal);
+    if !front {
+        n = -n;
     }
-    let ambient = mix(g.ground_ambient.rgb, g.sky_ambient.rgb, n.y * 0.5 + 0.5);
-    let light = ambient + g.sun.rgb * (direct * shadow);
+    let layer = i32(max(in.layer, 1u)) - 1;
+    let base = textureSample(base_maps, map_sampler, in.uv, layer).rgb;
+    let bump = textureSample(normal_maps, map_sampler, in.uv, layer).xyz * 2.0 - 1.0;
+    let mr = textureSample(mr_maps, map_sampler, in.uv, layer);
+    var p: SurfacePoint;
+    p.albedo = in.albedo.rgb;
+    p.normal = n;
+    p.roughness = in.roughness_metallic.x;
+    p.metallic = in.roughness_metallic.y;
+    if in.layer > 0u {
+        p.albedo = in.albedo.rgb * base;
+        let t = normalize(in.tangent.xyz - n * dot(n, in.tangent.xyz));
+        let b = cross(n, t) * in.tangent.w;
+        p.normal = normalize(t * bump.x + b * bump.y + n * max(bump.z, 0.05));
+        p.roughness = in.roughness_metallic.x * mr.g;
+        p.metallic = in.roughness_metallic.y * mr.b;
+    }
+    p.roughness = clamp(p.roughness, 0.05, 1.0);
+    return p;
+}
+
+// What the surroundings send along `dir`, blurred toward the ambient average for rough
+// reflections: the room's ceiling and floor bounce (or the sky and ground outdoors).
+fn environment(dir: vec3<f32>, roughness: f32) -> vec3<f32> {
+    let sharp = mix(g.ground_ambient.rgb * 0.8, g.sky_ambient.rgb * 1.5, smoothstep(-0.3, 0.4, dir.y));
+    let soft = (g.sky_ambient.rgb + g.ground_ambient.rgb) * 0.5;
+    return mix(sharp, soft, roughness * roughness);
+}
+
+// GGX specular lobe times π (the renderer's lights are irradiances: diffuse = albedo × light),
+// with Smith–Schlick visibility.
+fn specular_lobe(n_h: f32, n_l: f32, n_v: f32, roughness: f32) -> f32 {
+    let a = roughness * roughness;
+    let a2 = a * a;
+    let d = n_h * n_h * (a2 - 1.0) + 1.0;
+    let k = a * 0.5;
+    let vis = 1.0 / ((n_l * (1.0 - k) + k) * (n_v * (1.0 - k) + k) * 4.0);
+    return a2 / (d * d) * vis;
+}
+
+// A lit fragment: its colour, the share of that colour that is ambient light (which the
+// ambient occlusion darkens), and how much of the environment it reflects at its angle.
+struct Lit {
+    color: vec3<f32>,
+    ambient_share: f32,
+    reflectance: f32,
+};
+
+// The key light (sun, with its shadow) and the fill (the hemisphere of ceiling and floor
+// light, or sky and ground, and its reflection) on a fragment.
+fn light(in: Varying, front: bool) -> Lit {
+    let s = surface_point(in, front);
+    let n = s.normal;
+    let v = normalize(g.eye.xyz - in.world);
+    let l = g.light_dir.xyz;
+    let n_l = max(dot(n, l), 0.0);
+    let n_v = max(dot(n, v), 1e-3);
+    var shadow = 1.0;
+    let geometric = normalize(in.normal);
+    if dot(geometric, l) > 0.0 {
+        shadow = sunlight(in.world, geometric);
+    }
+    let f0 = mix(vec3<f32>(0.04), s.albedo, s.metallic);
+    let diffuse_color = s.albedo * (1.0 - s.metallic);
+    let h = normalize(l + v);
+    let fresnel = f0 + (1.0 - f0) * pow(1.0 - max(dot(h, v), 0.0), 5.0);
+    let sun = g.sun.rgb * (n_l * shadow);
+    let lobe = specular_lobe(max(dot(n, h), 0.0), n_l, n_v, s.roughness);
+    let direct = diffuse_color * sun + fresnel * lobe * sun;
+    let ambient_light = mix(g.ground_ambient.rgb, g.sky_ambient.rgb, n.y * 0.5 + 0.5);
+    let gloss = (1.0 - s.roughness) * (1.0 - s.roughness);
+    let f_env = f0 + (max(vec3<f32>(gloss), f0) - f0) * pow(1.0 - n_v, 5.0);
+    let reflected = f_env * environment(reflect(-v, n), s.roughness);
+    let ambient = diffuse_color * ambient_light + reflected;
+    let weights = vec3<f32>(0.3, 0.6, 0.1);
+    var out: Lit;
+    out.color = clamp(direct + ambient, vec3<f32>(0.0), vec3<f32>(1.0));
+    out.ambient_share = clamp(dot(ambient, weights) / max(dot(direct + ambient, weights), 1e-4), 0.0, 1.0);
+    out.reflectance = dot(f_env, weights);
+    return out;
+}
+
+// Opaque surfaces; see-through ones (opacity below 1) are left to `fs_glass`.
+@fragment
+fn fs_scene(in: Varying, @builtin(front_facing) front: bool) -> Targets {
+    let lit = light(in, front);
     var out: Targets;
-    out.color = vec4<f32>(clamp(in.albedo * light, vec3<f32>(0.0), vec3<f32>(1.0)), 1.0);
+    out.color = vec4<f32>(lit.color, lit.ambient_share);
     out.depth = bitcast<u32>(in.depth);
     out.instance = in.instance;
+    return out;
+}
+
+// See-through surfaces (glass), blended over what the opaque pass drew: their opacity plus
+// what they reflect. They leave the depth and instance images to what lies behind them.
+@fragment
+fn fs_glass(in: Varying, @builtin(front_facing) front: bool) -> Targets {
+    let lit = light(in, front);
+    var out: Targets;
+    out.color = vec4<f32>(lit.color, clamp(in.albedo.a + lit.reflectance, 0.0, 1.0));
+    out.depth = 0u;
+    out.instance = 0u;
     return out;
 }
 
@@ -134,8 +307,84 @@ fn fs_background(@builtin(position) frag: vec4<f32>) -> Targets {
         color = mix(g.bg_horizon.rgb, g.bg_bottom.rgb, pow(-dir.y, 0.5));
     }
     var out: Targets;
-    out.color = vec4<f32>(color, 1.0);
+    out.color = vec4<f32>(color, 0.0);
     out.depth = 0u;
     out.instance = 0u;
     return out;
+}
+
+@group(1) @binding(0) var lit_color: texture_2d<f32>;
+@group(1) @binding(1) var lit_depth: texture_2d<u32>;
+
+// Linear depth at a pixel; 0 where nothing was drawn.
+fn depth_at(p: vec2<i32>) -> f32 {
+    return bitcast<f32>(textureLoad(lit_depth, p, 0).r);
+}
+
+// The camera-frame point (x right, y up, −z forward) a pixel shows at linear depth `d`.
+fn camera_point(p: vec2<i32>, d: f32) -> vec3<f32> {
+    let k = g.intrinsics;
+    return vec3<f32>((f32(p.x) + 0.5 - k.z) / k.x * d, -(f32(p.y) + 0.5 - k.w) / k.y * d, -d);
+}
+
+// The neighbour step along `step` that stays on the same surface: of the pixel before and
+// after, the one whose depth differs least (background counts as far away).
+fn surface_step(p: vec2<i32>, here: vec3<f32>, step: vec2<i32>, size: vec2<i32>) -> vec3<f32> {
+    let a = clamp(p + step, vec2<i32>(0), size - 1);
+    let b = clamp(p - step, vec2<i32>(0), size - 1);
+    let da = depth_at(a);
+    let db = depth_at(b);
+    let ea = select(1e9, abs(da + here.z), da > 0.0);
+    let eb = select(1e9, abs(db + here.z), db > 0.0);
+    if ea <= eb {
+        return camera_point(a, da) - here;
+    }
+    return here - camera_point(b, db);
+}
+
+// Screen-space ambient occlusion: 12 depth samples on a spiral over a disc of `occlusion.x`
+// metres around the point, each occluding by how far it rises above the surface's tangent
+// plane, fading out with distance (so depth edges do not halo). The spiral turns by a 2 × 2
+// pixel pattern, which the previews' supersampling averages away.
+fn occlusion_at(p: vec2<i32>, d: f32) -> f32 {
+    let size = vec2<i32>(textureDimensions(lit_depth));
+    let here = camera_point(p, d);
+    var n = normalize(cross(surface_step(p, here, vec2<i32>(1, 0), size), surface_step(p, here, vec2<i32>(0, 1), size)));
+    if dot(n, here) > 0.0 {
+        n = -n;
+    }
+    let radius_m = g.occlusion.x;
+    let radius_px = clamp(radius_m * g.intrinsics.x / d, 2.0, g.occlusion.z);
+    let turn = f32((p.x & 1) + 2 * (p.y & 1)) * (PI * 0.5) + 0.4;
+    var occluded = 0.0;
+    let count = 12;
+    for (var i = 0; i < count; i++) {
+        let t = (f32(i) + 0.5) / f32(count);
+        let angle = f32(i) * 2.39996 + turn;
+        let q = p + vec2<i32>(round(vec2<f32>(cos(angle), sin(angle)) * radius_px * sqrt(t)));
+        if any(q < vec2<i32>(0)) || any(q >= size) {
+            continue;
+        }
+        let dq = depth_at(q);
+        if dq <= 0.0 {
+            continue;
+        }
+        let to = camera_point(q, dq) - here;
+        let dist = length(to);
+        let rise = dot(n, to) / max(dist, 1e-4) - 0.1;
+        occluded += max(rise, 0.0) * (1.0 - smoothstep(0.5 * radius_m, radius_m, dist));
+    }
+    return clamp(1.0 - g.occlusion.y * occluded / f32(count), 0.0, 1.0);
+}
+
+@fragment
+fn fs_occlusion(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+    let p = vec2<i32>(frag.xy);
+    let lit = textureLoad(lit_color, p, 0);
+    let d = depth_at(p);
+    if d <= 0.0 || g.occlusion.y <= 0.0 {
+        return vec4<f32>(lit.rgb, 1.0);
+    }
+    let ao = occlusion_at(p, d);
+    return vec4<f32>(lit.rgb * (1.0 - lit.a * (1.0 - ao)), 1.0);
 }

@@ -489,3 +489,120 @@ fn the_seam_draws_exactly_what_the_renderer_draws_of_the_converted_scene() {
                 .unwrap()
     );
 }
+
+/// A 2 × 1 × 0.2 m slab wearing `material`, seen square-on from the front (+z) so that its
+/// front face fills the middle of a 160 × 120 image.
+fn slab_front(material: Material, renderer: &Renderer) -> Frame {
+    let slab = Arc::new(Mesh {
+        parts: vec![MeshPart::cuboid(
+            "slab",
+            0,
+            [-1.0, 0.0, -0.1],
+            [1.0, 1.0, 0.1],
+        )],
+        materials: vec![material],
+    });
+    let scene = RenderScene::studio(vec![Instance::new("slab", slab, Pose::IDENTITY)]);
+    let camera = Camera::look_at(
+        Intrinsics::from_vertical_fov(160, 120, 0.6),
+        Point3::new(0.0, 0.5, 2.5),
+        Point3::new(0.0, 0.5, 0.0),
+        Vector3::y(),
+    );
+    renderer.render(&scene, &camera).unwrap()
+}
+
+/// Mean and standard deviation of the luminance (0–255 scale) in the 40 × 20 pixel window
+/// at the image's centre (more than the occlusion radius above the floor).
+fn centre_statistics(frame: &Frame) -> (f64, f64) {
+    let values: Vec<f64> = (50..70)
+        .flat_map(|y| (60..100).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            let c = frame.color.get_pixel(x, y).0;
+            0.3 * c[0] as f64 + 0.6 * c[1] as f64 + 0.1 * c[2] as f64
+        })
+        .collect();
+    let mean = values.iter().sum::<f64>() / values.len() as f64;
+    let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / values.len() as f64;
+    (mean, var.sqrt())
+}
+
+#[test]
+fn library_materials_show_their_texture_and_keep_their_colour() {
+    let colour = [0.40, 0.26, 0.14];
+    assert!(scenethesis_materials::resolve("flat_colour").is_none());
+    let plain = slab_front(Material::new("flat_colour", colour, 0.6), renderer());
+    let oak = slab_front(Material::new("oak", colour, 0.6), renderer());
+    assert_eq!(oak.id_at(80, 60), Some("slab"));
+    let (plain_mean, plain_spread) = centre_statistics(&plain);
+    let (oak_mean, oak_spread) = centre_statistics(&oak);
+    // A flat face under one sun is one colour; oak's grain varies across it.
+    assert!(plain_spread < 1.5, "plain face varies: {plain_spread:.2}");
+    assert!(oak_spread > 4.0, "oak shows no grain: {oak_spread:.2}");
+    // The texture multiplies the surface's own colour so that it averages that colour.
+    assert!(
+        (oak_mean - plain_mean).abs() < 0.15 * plain_mean,
+        "oak {oak_mean:.1} vs plain {plain_mean:.1}"
+    );
+    // Another tint of the same texture keeps the grain and changes the colour.
+    let red = slab_front(Material::new("oak", [0.5, 0.05, 0.04], 0.6), renderer());
+    let (c, o) = (red.color.get_pixel(80, 60).0, oak.color.get_pixel(80, 60).0);
+    assert!(c[0] > c[1] + 40 && o[0] < o[1] + 60, "{c:?} vs {o:?}");
+}
+
+/// An empty 4 × 3.6 m room seen from inside, looking at the back wall's left corner.
+fn empty_room_corner(renderer: &Renderer) -> (Frame, Camera) {
+    let scene = RenderScene::with_architecture(
+        Vec::new(),
+        Architecture::rectangular_room(4.0, 3.6, 2.6, 0.9),
+    );
+    let camera = Camera::look_at(
+        Intrinsics::from_vertical_fov(160, 120, 1.0),
+        Point3::new(0.2, 1.4, 0.4),
+        Point3::new(-2.0, 0.3, -1.8),
+        Vector3::y(),
+    );
+    (renderer.render(&scene, &camera).unwrap(), camera)
+}
+
+#[test]
+fn ambient_occlusion_darkens_the_corner_where_floor_meets_walls() {
+    let flat = Renderer::new(RendererOptions {
+        ambient_occlusion: false,
+        ..RendererOptions::from_env().unwrap()
+    })
+    .unwrap();
+    let (occluded, camera) = empty_room_corner(renderer());
+    let (open, _) = empty_room_corner(&flat);
+    let level = |f: &Frame, p: Point3<f64>| {
+        let px = camera.project(&p).unwrap().pixel;
+        let c = f.color.get_pixel(px.x as u32, px.y as u32).0;
+        c[0] as i32 + c[1] as i32 + c[2] as i32
+    };
+    // The room's inner faces: back wall at z = −1.8, left wall at x = −2.
+    let corner = Point3::new(-1.96, 0.03, -1.76);
+    let middle = Point3::new(-0.6, 0.0, -0.6);
+    let (dark, light) = (level(&occluded, corner), level(&open, corner));
+    assert!(
+        dark + 20 < light,
+        "corner {dark} with AO vs {light} without"
+    );
+    let (a, b) = (level(&occluded, middle), level(&open, middle));
+    assert!((a - b).abs() <= 6, "open floor {a} with AO vs {b} without");
+}
+
+#[test]
+fn rooms_show_a_sky_beyond_their_walls() {
+    let scene = room_scene();
+    // From inside, looking up over the back wall (rooms have no ceiling).
+    let camera = Camera::look_at(
+        Intrinsics::from_vertical_fov(80, 60, 0.9),
+        Point3::new(0.0, 1.5, 1.0),
+        Point3::new(0.0, 3.6, -1.8),
+        Vector3::y(),
+    );
+    let frame = renderer().render(&scene, &camera).unwrap();
+    assert_eq!(frame.id_at(40, 1), None);
+    let sky = frame.color.get_pixel(40, 1).0;
+    assert!(sky[2] > sky[0] + 30 && sky[2] > 150, "sky colour {sky:?}");
+}

@@ -1,11 +1,13 @@
 //! The wgpu renderer, one file a phase: opening the device ([`device`]), building the
-//! pipelines ([`pipelines`]), uploading a scene with its shadow map ([`prepare`]), rendering a
-//! view and reading it back ([`view`]), and anti-aliased previews ([`supersample`]).
+//! pipelines ([`pipelines`]), the material maps kept on the device ([`textures`]), uploading a
+//! scene with its shadow map ([`prepare`]), rendering a view with its ambient occlusion and
+//! reading it back ([`view`]), and anti-aliased previews ([`supersample`]).
 
 mod device;
 mod pipelines;
 mod prepare;
 mod supersample;
+mod textures;
 mod view;
 
 use std::ops::Range;
@@ -19,6 +21,7 @@ use wgpu::util::DeviceExt;
 use crate::geometry::WallRange;
 use crate::{Backdrop, BackendChoice, Frame, RenderError, RenderScene};
 use pipelines::Pipelines;
+use textures::MaterialTextures;
 
 const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 const VALUE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
@@ -35,6 +38,9 @@ pub struct RendererOptions {
     pub shadows: bool,
     /// Side of the square shadow map in texels.
     pub shadow_map_size: u32,
+    /// Screen-space ambient occlusion: creases, corners and contact under objects darken
+    /// their ambient light.
+    pub ambient_occlusion: bool,
 }
 
 impl Default for RendererOptions {
@@ -43,6 +49,7 @@ impl Default for RendererOptions {
             backend: BackendChoice::Auto,
             shadows: true,
             shadow_map_size: 2048,
+            ambient_occlusion: true,
         }
     }
 }
@@ -75,6 +82,8 @@ struct Globals {
     bg_top: [f32; 4],
     bg_horizon: [f32; 4],
     bg_bottom: [f32; 4],
+    eye: [f32; 4],
+    occlusion: [f32; 4],
 }
 
 /// Light and background colours of a backdrop (linear RGB).
@@ -97,13 +106,15 @@ fn palette(backdrop: Backdrop) -> Palette {
             horizon: [0.80, 0.80, 0.81],
             bottom: [0.55, 0.55, 0.55],
         },
+        // Daylight through the windows as the key light, the ceiling's and the floor's
+        // bounce as the fill, and a clear sky beyond the room.
         Backdrop::Interior => Palette {
-            sun: [0.74, 0.72, 0.68],
-            sky_ambient: [0.44, 0.44, 0.47],
-            ground_ambient: [0.22, 0.20, 0.18],
-            top: [0.10, 0.10, 0.12],
-            horizon: [0.22, 0.22, 0.24],
-            bottom: [0.08, 0.08, 0.08],
+            sun: [0.78, 0.74, 0.66],
+            sky_ambient: [0.46, 0.46, 0.48],
+            ground_ambient: [0.24, 0.21, 0.18],
+            top: [0.22, 0.40, 0.74],
+            horizon: [0.70, 0.79, 0.90],
+            bottom: [0.34, 0.33, 0.31],
         },
         Backdrop::Sky => Palette {
             sun: [0.95, 0.90, 0.80],
@@ -124,6 +135,7 @@ pub struct Renderer {
     info: wgpu::AdapterInfo,
     options: RendererOptions,
     pipelines: Pipelines,
+    textures: MaterialTextures,
 }
 
 impl std::fmt::Debug for Renderer {
@@ -171,12 +183,18 @@ impl Renderer {
     pub fn new(options: RendererOptions) -> Result<Self, RenderError> {
         let (device, queue, info) = device::open(options.backend.backends())?;
         let pipelines = Pipelines::build(&device);
+        let textures = MaterialTextures::new(
+            &device,
+            &pipelines.textures_layout,
+            &pipelines.texture_sampler,
+        );
         Ok(Self {
             device,
             queue,
             info,
             options,
             pipelines,
+            textures,
         })
     }
 

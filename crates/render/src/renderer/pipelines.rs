@@ -1,5 +1,6 @@
-//! What a device renders with, built once: the bind group layouts, the three pipelines
-//! (scene, background, shadow) sharing one shader, and the shadow map's comparison sampler.
+//! What a device renders with, built once: the bind group layouts, the six pipelines
+//! (depth pre-pass, scene, glass, background, shadow, ambient occlusion) sharing one shader, the shadow map's
+//! comparison sampler and the material textures' sampler.
 
 use super::{COLOR_FORMAT, DEPTH_FORMAT, VALUE_FORMAT};
 use crate::geometry::Vertex;
@@ -10,25 +11,38 @@ pub(super) struct Pipelines {
     pub(super) globals_layout: wgpu::BindGroupLayout,
     /// Group 1 of the scene pass: the shadow map and its sampler.
     pub(super) shadow_layout: wgpu::BindGroupLayout,
+    /// Group 2 of the scene pass: the material texture arrays and their sampler.
+    pub(super) textures_layout: wgpu::BindGroupLayout,
+    /// Group 1 of the ambient-occlusion pass: the lit colour and the linear depth.
+    pub(super) occlusion_layout: wgpu::BindGroupLayout,
     /// Lit, shadowed geometry into the colour, linear-depth and instance targets.
     pub(super) scene: wgpu::RenderPipeline,
+    /// The opaque surfaces' depth only, before the scene pass.
+    pub(super) prepass: wgpu::RenderPipeline,
+    /// See-through surfaces blended over the scene pass's colour, after it.
+    pub(super) glass: wgpu::RenderPipeline,
     /// The backdrop's gradient, drawn first as one full-screen triangle.
     pub(super) background: wgpu::RenderPipeline,
     /// Depth only, from the sun.
     pub(super) shadow: wgpu::RenderPipeline,
+    /// Screen-space ambient occlusion applied to the lit colour, into the final colour.
+    pub(super) occlusion: wgpu::RenderPipeline,
     /// Bilinear depth comparison for soft shadow edges.
     pub(super) shadow_sampler: wgpu::Sampler,
+    /// Repeating trilinear filtering of the material maps.
+    pub(super) texture_sampler: wgpu::Sampler,
 }
 
-/// What differs between the three pipelines; they share the shader and the colour targets.
+/// What differs between the pipelines; they share the shader.
 struct PipelineSpec<'a> {
     label: &'a str,
     layout: &'a wgpu::PipelineLayout,
     vertex_entry: &'a str,
     buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
     cull_mode: Option<wgpu::Face>,
-    depth: wgpu::DepthStencilState,
+    depth: Option<wgpu::DepthStencilState>,
     fragment_entry: Option<&'a str>,
+    targets: &'a [Option<wgpu::ColorTargetState>],
 }
 
 impl Pipelines {
@@ -37,6 +51,8 @@ impl Pipelines {
         let shader = device.create_shader_module(wgpu::include_wgsl!("../shader.wgsl"));
         let globals_layout = globals_layout(device);
         let shadow_layout = shadow_layout(device);
+        let textures_layout = textures_layout(device);
+        let occlusion_layout = occlusion_layout(device);
         let layout = |label, groups: &[Option<&wgpu::BindGroupLayout>]| {
             device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: Some(label),
@@ -44,9 +60,25 @@ impl Pipelines {
                 immediate_size: 0,
             })
         };
-        let scene_layout = layout("scene", &[Some(&globals_layout), Some(&shadow_layout)]);
+        let scene_layout = layout(
+            "scene",
+            &[
+                Some(&globals_layout),
+                Some(&shadow_layout),
+                Some(&textures_layout),
+            ],
+        );
         let globals_only = layout("globals only", &[Some(&globals_layout)]);
+        let occlusion_pass = layout(
+            "ambient occlusion",
+            &[Some(&globals_layout), Some(&occlusion_layout)],
+        );
         let vertices = [Some(vertex_layout())];
+        let targets = [
+            Some(wgpu::ColorTargetState::from(COLOR_FORMAT)),
+            Some(wgpu::ColorTargetState::from(VALUE_FORMAT)),
+            Some(wgpu::ColorTargetState::from(VALUE_FORMAT)),
+        ];
         let scene = pipeline(
             device,
             &shader,
@@ -56,8 +88,57 @@ impl Pipelines {
                 vertex_entry: "vs_scene",
                 buffers: &vertices,
                 cull_mode: Some(wgpu::Face::Back),
-                depth: depth_state(true, wgpu::CompareFunction::Less, Default::default()),
+                depth: Some(depth_state(
+                    false,
+                    wgpu::CompareFunction::LessEqual,
+                    Default::default(),
+                )),
                 fragment_entry: Some("fs_scene"),
+                targets: &targets,
+            },
+        );
+        let untouched = glass_targets().map(|t| {
+            t.map(|t| wgpu::ColorTargetState {
+                blend: None,
+                write_mask: wgpu::ColorWrites::empty(),
+                ..t
+            })
+        });
+        let prepass = pipeline(
+            device,
+            &shader,
+            PipelineSpec {
+                label: "depth pre-pass",
+                layout: &scene_layout,
+                vertex_entry: "vs_prepass",
+                buffers: &vertices,
+                cull_mode: Some(wgpu::Face::Back),
+                depth: Some(depth_state(
+                    true,
+                    wgpu::CompareFunction::Less,
+                    Default::default(),
+                )),
+                fragment_entry: Some("fs_prepass"),
+                targets: &untouched,
+            },
+        );
+        let glass_targets = glass_targets();
+        let glass = pipeline(
+            device,
+            &shader,
+            PipelineSpec {
+                label: "glass",
+                layout: &scene_layout,
+                vertex_entry: "vs_glass",
+                buffers: &vertices,
+                cull_mode: Some(wgpu::Face::Back),
+                depth: Some(depth_state(
+                    false,
+                    wgpu::CompareFunction::Less,
+                    Default::default(),
+                )),
+                fragment_entry: Some("fs_glass"),
+                targets: &glass_targets,
             },
         );
         let background = pipeline(
@@ -69,18 +150,43 @@ impl Pipelines {
                 vertex_entry: "vs_background",
                 buffers: &[],
                 cull_mode: None,
-                depth: depth_state(false, wgpu::CompareFunction::Always, Default::default()),
+                depth: Some(depth_state(
+                    false,
+                    wgpu::CompareFunction::Always,
+                    Default::default(),
+                )),
                 fragment_entry: Some("fs_background"),
+                targets: &targets,
             },
         );
         let shadow = pipeline(device, &shader, shadow_spec(&globals_only, &vertices));
+        let occlusion = pipeline(
+            device,
+            &shader,
+            PipelineSpec {
+                label: "ambient occlusion",
+                layout: &occlusion_pass,
+                vertex_entry: "vs_background",
+                buffers: &[],
+                cull_mode: None,
+                depth: None,
+                fragment_entry: Some("fs_occlusion"),
+                targets: &targets[..1],
+            },
+        );
         Self {
             globals_layout,
             shadow_layout,
+            textures_layout,
+            occlusion_layout,
             scene,
+            prepass,
+            glass,
             background,
             shadow,
+            occlusion,
             shadow_sampler: shadow_sampler(device),
+            texture_sampler: texture_sampler(device),
         }
     }
 }
@@ -96,7 +202,7 @@ fn shadow_spec<'a>(
         vertex_entry: "vs_shadow",
         buffers: vertices,
         cull_mode: None,
-        depth: depth_state(
+        depth: Some(depth_state(
             true,
             wgpu::CompareFunction::Less,
             wgpu::DepthBiasState {
@@ -104,23 +210,19 @@ fn shadow_spec<'a>(
                 slope_scale: 2.0,
                 clamp: 0.0,
             },
-        ),
+        )),
         fragment_entry: None,
+        targets: &[],
     }
 }
 
-/// A render pipeline of `shader` after `spec`, writing the three colour targets when it has
-/// a fragment stage.
+/// A render pipeline of `shader` after `spec`, writing its colour targets when it has a
+/// fragment stage.
 fn pipeline(
     device: &wgpu::Device,
     shader: &wgpu::ShaderModule,
     spec: PipelineSpec<'_>,
 ) -> wgpu::RenderPipeline {
-    let targets = [
-        Some(wgpu::ColorTargetState::from(COLOR_FORMAT)),
-        Some(wgpu::ColorTargetState::from(VALUE_FORMAT)),
-        Some(wgpu::ColorTargetState::from(VALUE_FORMAT)),
-    ];
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(spec.label),
         layout: Some(spec.layout),
@@ -134,17 +236,49 @@ fn pipeline(
             cull_mode: spec.cull_mode,
             ..Default::default()
         },
-        depth_stencil: Some(spec.depth),
+        depth_stencil: spec.depth,
         multisample: wgpu::MultisampleState::default(),
         fragment: spec.fragment_entry.map(|entry| wgpu::FragmentState {
             module: shader,
             entry_point: Some(entry),
             compilation_options: Default::default(),
-            targets: &targets,
+            targets: spec.targets,
         }),
         multiview_mask: None,
         cache: None,
     })
+}
+
+/// The glass pass's targets: colour blended by the fragment's opacity (the ambient share in
+/// alpha kept from the surface behind), depth and instance left untouched.
+fn glass_targets() -> [Option<wgpu::ColorTargetState>; 3] {
+    let keep = |format| {
+        Some(wgpu::ColorTargetState {
+            format,
+            blend: None,
+            write_mask: wgpu::ColorWrites::empty(),
+        })
+    };
+    [
+        Some(wgpu::ColorTargetState {
+            format: COLOR_FORMAT,
+            blend: Some(wgpu::BlendState {
+                color: wgpu::BlendComponent {
+                    src_factor: wgpu::BlendFactor::SrcAlpha,
+                    dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+                    operation: wgpu::BlendOperation::Add,
+                },
+                alpha: wgpu::BlendComponent {
+                    src_factor: wgpu::BlendFactor::Zero,
+                    dst_factor: wgpu::BlendFactor::One,
+                    operation: wgpu::BlendOperation::Add,
+                },
+            }),
+            write_mask: wgpu::ColorWrites::ALL,
+        }),
+        keep(VALUE_FORMAT),
+        keep(VALUE_FORMAT),
+    ]
 }
 
 /// Depth testing with `compare`, writing depth when `write`, with `bias`.
@@ -162,7 +296,8 @@ fn depth_state(
     }
 }
 
-/// A [`Vertex`]: position, normal, albedo and instance index.
+/// A [`Vertex`]: position, normal, albedo, instance index, texture coordinates, tangent,
+/// roughness and metalness, texture layer.
 fn vertex_layout() -> wgpu::VertexBufferLayout<'static> {
     wgpu::VertexBufferLayout {
         array_stride: std::mem::size_of::<Vertex>() as u64,
@@ -171,9 +306,17 @@ fn vertex_layout() -> wgpu::VertexBufferLayout<'static> {
     }
 }
 
-/// The attributes of a [`Vertex`], in shader locations 0–3.
-const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 4] =
-    wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x3, 3 => Uint32];
+/// The attributes of a [`Vertex`], in shader locations 0–7.
+const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 8] = wgpu::vertex_attr_array![
+    0 => Float32x3,
+    1 => Float32x3,
+    2 => Float32x4,
+    3 => Uint32,
+    4 => Float32x2,
+    5 => Float32x4,
+    6 => Float32x2,
+    7 => Uint32,
+];
 
 /// Group 0: one uniform buffer seen by vertex and fragment stages.
 fn globals_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
@@ -226,6 +369,85 @@ fn shadow_sampler(device: &wgpu::Device) -> wgpu::Sampler {
         mag_filter: wgpu::FilterMode::Linear,
         min_filter: wgpu::FilterMode::Linear,
         compare: Some(wgpu::CompareFunction::LessEqual),
+        ..Default::default()
+    })
+}
+
+/// A fragment-stage texture binding of `sample_type` and `view_dimension`.
+fn texture_entry(
+    binding: u32,
+    sample_type: wgpu::TextureSampleType,
+    view_dimension: wgpu::TextureViewDimension,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type,
+            view_dimension,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
+/// Group 2 of the scene pass: base-colour, normal and metallic-roughness arrays (one layer
+/// per library material) and a filtering sampler.
+fn textures_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let array = |binding| {
+        texture_entry(
+            binding,
+            wgpu::TextureSampleType::Float { filterable: true },
+            wgpu::TextureViewDimension::D2Array,
+        )
+    };
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("material textures"),
+        entries: &[
+            array(0),
+            array(1),
+            array(2),
+            wgpu::BindGroupLayoutEntry {
+                binding: 3,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                count: None,
+            },
+        ],
+    })
+}
+
+/// Group 1 of the ambient-occlusion pass: the lit colour (read texel by texel) and the
+/// linear-depth bits.
+fn occlusion_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("ambient occlusion"),
+        entries: &[
+            texture_entry(
+                0,
+                wgpu::TextureSampleType::Float { filterable: false },
+                wgpu::TextureViewDimension::D2,
+            ),
+            texture_entry(
+                1,
+                wgpu::TextureSampleType::Uint,
+                wgpu::TextureViewDimension::D2,
+            ),
+        ],
+    })
+}
+
+/// Repeating (the maps tile), bilinear within the nearest mip level: textures stay calm where
+/// they shrink, at half the texel reads of trilinear filtering (the previews' supersampling
+/// hides the steps between levels).
+fn texture_sampler(device: &wgpu::Device) -> wgpu::Sampler {
+    device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some("material maps"),
+        address_mode_u: wgpu::AddressMode::Repeat,
+        address_mode_v: wgpu::AddressMode::Repeat,
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
+        mipmap_filter: wgpu::MipmapFilterMode::Nearest,
         ..Default::default()
     })
 }

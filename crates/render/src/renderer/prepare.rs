@@ -1,7 +1,10 @@
-//! Uploading a scene: its vertices, the sun's orthographic frustum around it, and the shadow
-//! map rendered once for every view of the scene.
+//! Uploading a scene: its vertices, the maps of the materials it wears (once per renderer),
+//! the sun's orthographic frustum around it, and the shadow map rendered once for every view
+//! of the scene.
 
+use std::collections::BTreeSet;
 use std::ops::Range;
+use std::time::Instant;
 
 use bytemuck::Zeroable;
 use nalgebra::{Matrix4, Point3, Vector3};
@@ -15,7 +18,18 @@ use crate::{RenderError, RenderScene};
 impl Renderer {
     /// Uploads a scene's geometry and renders its shadow map, for rendering many views.
     pub fn prepare(&self, scene: &RenderScene) -> Result<PreparedScene, RenderError> {
+        let started = Instant::now();
         let geometry = SceneGeometry::build(scene)?;
+        let built = started.elapsed();
+        let layers: BTreeSet<u32> = geometry.vertices.iter().map(|v| v.layer).collect();
+        self.textures.ensure(
+            &self.queue,
+            layers
+                .into_iter()
+                .filter_map(|l| l.checked_sub(1))
+                .map(|l| l as usize),
+        );
+        let textured = started.elapsed();
         let bounds = scene.bounds();
         let center = bounds.center();
         let reach = geometry
@@ -42,6 +56,13 @@ impl Renderer {
             &shadow_view,
             casters.map(|b| (b, geometry.objects.clone())),
             &light_from_world,
+        );
+        tracing::debug!(
+            vertices = geometry.vertices.len(),
+            geometry_ms = built.as_secs_f64() * 1e3,
+            textures_ms = (textured - built).as_secs_f64() * 1e3,
+            total_ms = started.elapsed().as_secs_f64() * 1e3,
+            "scene prepared"
         );
         Ok(PreparedScene {
             vertices,

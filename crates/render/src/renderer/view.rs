@@ -1,7 +1,9 @@
 //! Rendering one view of a prepared scene: the camera checked, the uniform block for it, the
-//! scene pass into three targets (colour, linear depth, instance), and their read-back.
+//! scene pass into three targets (lit colour, linear depth, instance), the ambient-occlusion
+//! pass from the lit colour and the depth into the final colour, and the read-back.
 
 use std::sync::mpsc;
+use std::time::Instant;
 
 use image::RgbaImage;
 use nalgebra::Vector3;
@@ -12,6 +14,13 @@ use super::{COLOR_FORMAT, DEPTH_FORMAT, VALUE_FORMAT};
 use crate::geometry::WallRange;
 use crate::{Frame, RenderError};
 
+/// How far around a point the ambient occlusion looks for occluders, metres.
+const OCCLUSION_RADIUS_M: f32 = 0.35;
+/// How strongly occluders darken the ambient light (1 = a fully closed hemisphere is black).
+const OCCLUSION_STRENGTH: f32 = 1.4;
+/// The widest the occlusion's search disc gets on screen, pixels (near surfaces).
+const OCCLUSION_MAX_PIXELS: f32 = 48.0;
+
 impl Renderer {
     /// Renders a prepared scene from `camera` and reads the three images back.
     pub fn render_prepared(
@@ -20,6 +29,7 @@ impl Renderer {
         camera: &Camera,
     ) -> Result<Frame, RenderError> {
         self.check_camera(camera)?;
+        let started = Instant::now();
         let uniform = self.uniform(&self.view_globals(scene, camera));
         let targets = ViewTargets::new(
             &self.device,
@@ -28,10 +38,13 @@ impl Renderer {
         );
         let mut encoder = self.device.create_command_encoder(&Default::default());
         self.draw_view(&mut encoder, scene, camera, &uniform, &targets);
+        self.draw_occlusion(&mut encoder, &uniform, &targets);
         targets.copy_out(&mut encoder);
         self.queue.submit([encoder.finish()]);
         let [color, depth, instance] = targets.read_back(&self.device)?;
         let (width, height) = (targets.width, targets.height);
+        let ms = started.elapsed().as_secs_f64() * 1e3;
+        tracing::debug!(width, height, ms, "view rendered");
         let depth = depth
             .chunks_exact(4)
             .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
@@ -112,11 +125,29 @@ impl Renderer {
             bg_top: rgb(colors.top),
             bg_horizon: rgb(colors.horizon),
             bg_bottom: rgb(colors.bottom),
+            eye: [
+                camera.position.x as f32,
+                camera.position.y as f32,
+                camera.position.z as f32,
+                1.0,
+            ],
+            occlusion: [
+                OCCLUSION_RADIUS_M,
+                if self.options.ambient_occlusion {
+                    OCCLUSION_STRENGTH
+                } else {
+                    0.0
+                },
+                OCCLUSION_MAX_PIXELS,
+                0.0,
+            ],
         }
     }
 
-    /// The scene pass: the backdrop, then the objects and floor, then each wall unless the
-    /// scene cuts away walls the camera stands behind.
+    /// The scene pass: the backdrop; the objects and floor, then each wall unless the scene
+    /// cuts away walls the camera stands behind, drawn three times: their opaque surfaces'
+    /// depth, those surfaces shaded (each pixel once), and their see-through surfaces blended
+    /// over the rest.
     fn draw_view(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -155,16 +186,66 @@ impl Renderer {
         pass.set_pipeline(&self.pipelines.background);
         pass.draw(0..3, 0..1);
         if let Some(buffer) = &scene.vertices {
-            pass.set_pipeline(&self.pipelines.scene);
             pass.set_bind_group(1, &scene.shadow_group, &[]);
+            pass.set_bind_group(2, &self.textures.group, &[]);
             pass.set_vertex_buffer(0, buffer.slice(..));
-            pass.draw(scene.always.clone(), 0..1);
-            for wall in &scene.walls {
-                if !(scene.cut_away_walls && camera_behind_wall(camera, wall)) {
-                    pass.draw(wall.vertices.clone(), 0..1);
+            let pipelines = &self.pipelines;
+            for pipeline in [&pipelines.prepass, &pipelines.scene, &pipelines.glass] {
+                pass.set_pipeline(pipeline);
+                pass.draw(scene.always.clone(), 0..1);
+                for wall in &scene.walls {
+                    if !(scene.cut_away_walls && camera_behind_wall(camera, wall)) {
+                        pass.draw(wall.vertices.clone(), 0..1);
+                    }
                 }
             }
         }
+    }
+}
+
+impl Renderer {
+    /// The ambient-occlusion pass: the lit colour, its ambient share darkened where the
+    /// depth around a pixel rises in front of it, into the final colour target.
+    fn draw_occlusion(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        uniform: &wgpu::BindGroup,
+        targets: &ViewTargets,
+    ) {
+        let inputs = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ambient occlusion"),
+            layout: &self.pipelines.occlusion_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(&targets.views[0]),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&targets.views[1]),
+                },
+            ],
+        });
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("ambient occlusion"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &targets.shaded_view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: None,
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.pipelines.occlusion);
+        pass.set_bind_group(0, uniform, &[]);
+        pass.set_bind_group(1, &inputs, &[]);
+        pass.draw(0..3, 0..1);
     }
 }
 
@@ -174,13 +255,16 @@ fn camera_behind_wall(camera: &Camera, wall: &WallRange) -> bool {
     (c - wall.start.coords).dot(&wall.inward) < -wall.thickness / 2.0
 }
 
-/// The targets of one view (colour, linear depth bits, instance; all 4 bytes a pixel), the
-/// z-buffer, and the buffer they are copied into for reading back.
+/// The targets of one view (lit colour, linear depth bits, instance; all 4 bytes a pixel),
+/// the final colour the ambient-occlusion pass writes, the z-buffer, and the buffer the final
+/// colour, depth and instance targets are copied into for reading back.
 struct ViewTargets {
     width: u32,
     height: u32,
     textures: [wgpu::Texture; 3],
     views: [wgpu::TextureView; 3],
+    shaded: wgpu::Texture,
+    shaded_view: wgpu::TextureView,
     zbuffer: wgpu::TextureView,
     readback: wgpu::Buffer,
 }
@@ -202,11 +286,13 @@ impl ViewTargets {
             })
         };
         let readable = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
+        let sampled = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
         let textures = [
-            target("colour", COLOR_FORMAT, readable),
-            target("linear depth", VALUE_FORMAT, readable),
+            target("lit colour", COLOR_FORMAT, sampled),
+            target("linear depth", VALUE_FORMAT, readable | sampled),
             target("instance", VALUE_FORMAT, readable),
         ];
+        let shaded = target("colour", COLOR_FORMAT, readable);
         let zbuffer = target(
             "z-buffer",
             DEPTH_FORMAT,
@@ -226,15 +312,19 @@ impl ViewTargets {
             height,
             textures,
             views,
+            shaded_view: shaded.create_view(&Default::default()),
+            shaded,
             zbuffer: zbuffer.create_view(&Default::default()),
             readback,
         }
     }
 
-    /// Copies the three targets into the read-back buffer, one padded plane each.
+    /// Copies the final colour, the depth and the instance targets into the read-back
+    /// buffer, one padded plane each.
     fn copy_out(&self, encoder: &mut wgpu::CommandEncoder) {
         let plane = plane_size(self.width, self.height);
-        for (i, texture) in self.textures.iter().enumerate() {
+        let sources = [&self.shaded, &self.textures[1], &self.textures[2]];
+        for (i, texture) in sources.into_iter().enumerate() {
             encoder.copy_texture_to_buffer(
                 texture.as_image_copy(),
                 wgpu::TexelCopyBufferInfo {
