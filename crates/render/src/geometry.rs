@@ -1,4 +1,5 @@
-//! CPU-side geometry: posed meshes, floors, walls with door gaps and ground planes flattened
+//! CPU-side geometry: posed meshes, floors, walls with door and window gaps, window panes and
+//! ground planes flattened
 //! into one vertex list with per-corner normals, linear albedo and instance index.
 
 use std::collections::BTreeSet;
@@ -16,6 +17,9 @@ use crate::{Backdrop, RenderError, RenderScene};
 const FLOOR_ALBEDO: [f32; 3] = [0.50, 0.36, 0.22];
 /// Linear albedo of a room's walls (warm off-white).
 const WALL_ALBEDO: [f32; 3] = [0.72, 0.70, 0.66];
+/// Linear albedo of a window's glass pane (a pale sky blue: the renderer draws no
+/// transparency, so the pane shows as daylit glass).
+const GLASS_ALBEDO: [f32; 3] = [0.55, 0.72, 0.86];
 /// Linear albedo of the studio floor (neutral grey).
 const STUDIO_ALBEDO: [f32; 3] = [0.55, 0.55, 0.55];
 /// Linear albedo of outdoor ground (dry grass).
@@ -181,6 +185,7 @@ impl SceneGeometry {
                     geo.push_box(wall, center, half, wall_albedo, index);
                 }
                 geo.push_leaves(arch, wall);
+                geo.push_panes(arch, wall);
                 geo.walls.push(WallRange {
                     vertices: start..geo.vertices.len() as u32,
                     start: wall.start,
@@ -244,6 +249,18 @@ impl SceneGeometry {
         }
     }
 
+    /// The glass panes of `wall`'s windows ([`Architecture::window_pane`]) in
+    /// [`GLASS_ALBEDO`]: drawn, and cut away, with the wall, each under its window's id.
+    fn push_panes(&mut self, arch: &Architecture, wall: &Wall) {
+        for window in arch.windows.iter().filter(|w| w.wall == wall.id) {
+            if let Some((wall, pane)) = arch.window_pane(window) {
+                let index = self.push_id(&window.id);
+                let (center, half) = (pane.center(wall), pane.half_extents());
+                self.push_box(wall, center, half, GLASS_ALBEDO, index);
+            }
+        }
+    }
+
     /// A box aligned with `wall`, centred at `center` (x, y, z) with half extents along the
     /// wall, up and across.
     fn push_box(
@@ -283,47 +300,12 @@ impl SceneGeometry {
 }
 
 /// The boxes (centre, half extents along / up / across the wall) that make up a wall with its
-/// door openings cut out: full-height pieces between openings and lintels above them.
+/// door and window openings cut out ([`Architecture::wall_spans`], as every exporter cuts it).
 fn wall_boxes(arch: &Architecture, wall: &Wall) -> Vec<(Point3<f64>, Vector3<f64>)> {
-    let length = wall.length();
-    let half_t = wall.thickness / 2.0;
-    // Along-wall coordinates from the start; the wall overlaps its neighbours at corners.
-    let (lo, hi) = (-half_t, length + half_t);
-    let mut openings: Vec<(f64, f64, f64)> = arch
-        .doors
+    arch.wall_spans(wall)
         .iter()
-        .filter(|d| d.wall == wall.id)
-        .map(|d| {
-            let a = (d.offset - d.width / 2.0).clamp(lo, hi);
-            let b = (d.offset + d.width / 2.0).clamp(lo, hi);
-            (a, b, d.height.min(wall.height))
-        })
-        .filter(|(a, b, _)| b > a)
-        .collect();
-    openings.sort_by(|x, y| x.0.total_cmp(&y.0));
-    let dir = wall.direction();
-    let piece = |a: f64, b: f64, y0: f64, y1: f64| {
-        let mid = wall.start + dir * ((a + b) / 2.0);
-        (
-            Point3::new(mid.x, (y0 + y1) / 2.0, mid.y),
-            Vector3::new((b - a) / 2.0, (y1 - y0) / 2.0, half_t),
-        )
-    };
-    let mut boxes = Vec::new();
-    let mut cursor = lo;
-    for &(a, b, h) in &openings {
-        if a > cursor {
-            boxes.push(piece(cursor, a, 0.0, wall.height));
-        }
-        if h < wall.height {
-            boxes.push(piece(a, b, h, wall.height));
-        }
-        cursor = cursor.max(b);
-    }
-    if hi > cursor {
-        boxes.push(piece(cursor, hi, 0.0, wall.height));
-    }
-    boxes
+        .map(|span| (span.center(wall), span.half_extents()))
+        .collect()
 }
 
 /// Per-corner normals of a part (three per triangle): each corner averages the area-weighted
@@ -378,7 +360,7 @@ fn corner_normals(part: &MeshPart) -> Vec<[f32; 3]> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use scenethesis_scene_graph::Architecture;
+    use scenethesis_scene_graph::{Architecture, WindowOpening};
 
     #[test]
     fn door_leaves_a_gap_in_its_wall() {
@@ -399,6 +381,27 @@ mod tests {
         }
         let back = room.wall("wall_0").unwrap();
         assert_eq!(wall_boxes(&room, back).len(), 1);
+    }
+
+    #[test]
+    fn a_window_shows_as_a_hole_with_a_pane() {
+        let mut room = Architecture::rectangular_room(6.0, 4.0, 2.8, 0.9);
+        let back = room.wall("wall_0").unwrap().clone();
+        let window = WindowOpening::centred("window_0", &back, 1.2, 1.2, 0.9);
+        room.windows.push(window);
+        let back = &back;
+        let boxes = wall_boxes(&room, back);
+        assert_eq!(boxes.len(), 4, "piers, the wall below the sill, a lintel");
+        // Nothing of the wall at the window's centre (x = 0, y = 1.5).
+        for (c, h) in &boxes {
+            let covers = (c.x.abs() <= h.x) && (c.y - 1.5).abs() <= h.y;
+            assert!(!covers, "{c:?} {h:?}");
+        }
+        let mut geo = SceneGeometry::default();
+        geo.push_panes(&room, back);
+        assert_eq!(geo.vertices.len(), 36, "one box");
+        assert_eq!(geo.ids, ["window_0"]);
+        assert!(geo.vertices.iter().all(|v| v.albedo == GLASS_ALBEDO));
     }
 
     #[test]
