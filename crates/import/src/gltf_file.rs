@@ -115,6 +115,9 @@ pub struct GltfNode {
     pub primitives: Vec<GltfPrimitive>,
     /// Child node instances.
     pub children: Vec<GltfNode>,
+    /// The room type in the node's `extras` (`{"room": type}`): a node grouping the objects of
+    /// one room of a house, as scenethesis writes them.
+    pub room: Option<String>,
 }
 
 /// A glTF file's default scene (or first scene; without scenes, every node that is nobody's
@@ -125,6 +128,13 @@ pub struct GltfFile {
     pub materials: Vec<GltfMaterial>,
     /// Top-level node instances, in file order.
     pub roots: Vec<GltfNode>,
+}
+
+/// The `room` string of a node's `extras`, if it has one.
+fn room_of(node: &gltf::Node<'_>) -> Option<String> {
+    let extras = node.extras().as_ref()?;
+    let value: serde_json::Value = serde_json::from_str(extras.get()).ok()?;
+    value.get("room")?.as_str().map(str::to_owned)
 }
 
 impl GltfFile {
@@ -336,6 +346,7 @@ impl Walker<'_> {
             world,
             primitives,
             children: children?,
+            room: room_of(node),
         })
     }
 
