@@ -1,7 +1,7 @@
 //! The static architecture as solid boxes: a floor slab under y = 0, wall boxes split around
 //! their door and window openings, the glass pane in each window, and the leaves hung in the
-//! doors. Every exporter builds floor,
-//! walls and leaves from these pieces so that the formats agree.
+//! doors. Every exporter builds floor, walls, panes and leaves from these pieces so that the
+//! formats agree.
 
 use nalgebra::{Point3, Rotation3, Vector3};
 use scenethesis_scene_graph::{
@@ -164,11 +164,14 @@ pub fn pieces(architecture: &Architecture, look: &SceneLook) -> Vec<Piece> {
         }],
     }];
     for wall in &architecture.walls {
-        let boxes = architecture
+        let boxes: Vec<_> = architecture
             .wall_spans(wall)
             .iter()
             .map(|span| oriented(wall, span))
             .collect();
+        if boxes.is_empty() {
+            continue;
+        }
         out.push(Piece {
             id: wall.id.clone(),
             kind: PieceKind::Wall,

@@ -88,7 +88,7 @@ pub fn draw_label(image: &mut RgbaImage, text: &str, cx: f64, cy: f64) {
         let y0 = top + i64::from(SPACING * s);
         for (row, bits) in rows.iter().enumerate() {
             for col in 0..gw {
-                if bits >> (gw - 1 - col) & 1 == 1 {
+                if (bits >> (gw - 1 - col)) & 1 == 1 {
                     let (x, y) = (x0 + i64::from(col * s), y0 + (row as i64) * i64::from(s));
                     fill(image, x, y, s, s, INK);
                 }
