@@ -302,11 +302,11 @@ fn architecture_penetrations(scene: &EvalScene, prepared: &[Prepared]) -> Vec<Ar
 
 /// How deep the deepest of `points` lies inside the wall piece's box (0 when none is inside).
 pub(crate) fn piece_depth(piece: &WallPiece, points: &[Point3<f32>]) -> f64 {
-    let (rect, height) = (&piece.rect, piece.height);
+    let (rect, bottom, height) = (&piece.rect, piece.bottom, piece.height);
     let mut deepest = 0.0f64;
     for p in points {
         let (x, y, z) = (p.x as f64, p.y as f64, p.z as f64);
-        if y <= 0.0 || y >= height {
+        if y <= bottom || y >= height {
             continue;
         }
         let (dx, dz) = (x - rect.center[0], z - rect.center[1]);
@@ -314,7 +314,7 @@ pub(crate) fn piece_depth(piece: &WallPiece, points: &[Point3<f32>]) -> f64 {
         let v = -dx * rect.axis[1] + dz * rect.axis[0];
         let inside = (rect.half[0] - u.abs())
             .min(rect.half[1] - v.abs())
-            .min(y)
+            .min(y - bottom)
             .min(height - y);
         deepest = deepest.max(inside);
     }

@@ -19,6 +19,8 @@ pub struct GlbNode {
     pub mesh: Mesh,
     /// Child nodes.
     pub children: Vec<GlbNode>,
+    /// Whether it groups the objects of one room of a house (`extras` `{"room": type}`).
+    pub is_room: bool,
 }
 
 impl GlbNode {
@@ -158,6 +160,7 @@ fn convert(file: &GltfFile, node: &GltfNode) -> GlbNode {
         world: node.world,
         mesh,
         children: node.children.iter().map(|c| convert(file, c)).collect(),
+        is_room: node.room.is_some(),
     }
 }
 

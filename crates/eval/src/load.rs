@@ -85,7 +85,8 @@ fn load_scene_file_unchecked(
 }
 
 /// Loads any glTF / GLB scene that has no `scene.json`: every top-level node is an object (its
-/// subtree's meshes merged; a single mesh-less wrapper root is looked through) except nodes
+/// subtree's meshes merged; a single mesh-less wrapper root is looked through, and so is a
+/// house's room node, `extras` `{"room": type}`, whose children are its objects) except nodes
 /// named like architecture (`floor`, `ground`, `wall_3`,
 /// `Ceiling.001`, `door`, …). The floor rectangle is the floor nodes' box (or the objects' box
 /// when there is none); each connected piece of a wall node becomes a wall box. Support links
@@ -104,6 +105,14 @@ fn load_glb_unchecked(path: &Path) -> Result<EvalScene, EvalError> {
     while roots.len() == 1 && roots[0].mesh.parts.is_empty() && !roots[0].children.is_empty() {
         roots = &roots[0].children;
     }
+    // A house's room nodes group its objects: read them as if at the root.
+    let roots = roots.iter().flat_map(|node| {
+        if node.is_room {
+            node.children.iter().collect::<Vec<_>>()
+        } else {
+            vec![node]
+        }
+    });
     let mut floor_box: Option<Aabb> = None;
     let mut walls = Vec::new();
     let mut objects = Vec::new();

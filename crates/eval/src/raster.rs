@@ -3,7 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use scenethesis_scene_graph::{Components, Floor, FloorRaster};
+use scenethesis_scene_graph::{Components, Floor, FloorRaster, Wall, WallBox};
 
 use crate::scene::{EvalObject, EvalScene};
 
@@ -96,65 +96,54 @@ pub fn footprint(object: &EvalObject) -> Option<FloorRect> {
     })
 }
 
-/// A piece of wall between door openings, standing on the floor.
+/// A solid box of architecture standing upright: a piece of wall between, below or above its
+/// door and window openings, or a window's glass pane.
 #[derive(Debug, Clone, PartialEq)]
 pub struct WallPiece {
-    /// Id of the wall it belongs to.
+    /// Id of the wall it belongs to, or of the window whose pane it is.
     pub wall: String,
     /// Its rectangle on the floor plane (length along the wall, thickness across).
     pub rect: FloorRect,
-    /// Its height (m).
+    /// Height of its bottom above the floor (m): 0 for a piece standing on the floor.
+    pub bottom: f64,
+    /// Height of its top above the floor (m).
     pub height: f64,
 }
 
-/// The wall pieces standing on the floor: each wall's rectangle minus its door openings.
+impl WallPiece {
+    /// Whether it stands on the floor (and so blocks whoever walks there).
+    pub fn on_floor(&self) -> bool {
+        self.bottom <= 0.0
+    }
+}
+
+/// The solid pieces of the walls, cut around their door and window openings as every exporter
+/// cuts them ([`scenethesis_scene_graph::Architecture::wall_spans`]: piers, the wall under a window's sill, lintels),
+/// then each window's pane ([`scenethesis_scene_graph::Architecture::window_pane`]).
 pub fn wall_pieces(scene: &EvalScene) -> Vec<WallPiece> {
     let arch = &scene.architecture;
-    let mut out = Vec::new();
-    for wall in &arch.walls {
-        let len = wall.length();
-        if len <= 0.0 {
-            continue;
-        }
+    let piece = |id: &str, wall: &Wall, span: &WallBox| {
         let d = wall.direction();
-        let t = wall.thickness / 2.0;
-        let mut gaps: Vec<(f64, f64)> = arch
-            .doors
-            .iter()
-            .filter(|door| door.wall == wall.id)
-            .map(|door| {
-                (
-                    door.offset - door.width / 2.0,
-                    door.offset + door.width / 2.0,
-                )
-            })
-            .collect();
-        gaps.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let mut start = -t;
-        let mut pieces = Vec::new();
-        for (g0, g1) in gaps {
-            if g0 > start {
-                pieces.push((start, g0));
-            }
-            start = start.max(g1);
+        let c = span.center(wall);
+        let half = span.half_extents();
+        WallPiece {
+            wall: id.to_owned(),
+            rect: FloorRect {
+                center: [c.x, c.z],
+                axis: [d.x, d.y],
+                half: [half.x, half.z],
+            },
+            bottom: span.bottom,
+            height: span.top,
         }
-        if len + t > start {
-            pieces.push((start, len + t));
-        }
-        for (s0, s1) in pieces {
-            let mid = (s0 + s1) / 2.0;
-            out.push(WallPiece {
-                wall: wall.id.clone(),
-                rect: FloorRect {
-                    center: [wall.start.x + d.x * mid, wall.start.y + d.y * mid],
-                    axis: [d.x, d.y],
-                    half: [(s1 - s0) / 2.0, t],
-                },
-                height: wall.height,
-            });
-        }
-    }
-    out
+    };
+    let walls = (arch.walls.iter())
+        .flat_map(|wall| (arch.wall_spans(wall).into_iter()).map(move |span| (wall, span)))
+        .map(|(wall, span)| piece(&wall.id, wall, &span));
+    let panes = (arch.windows.iter())
+        .filter_map(|w| Some((w, arch.window_pane(w)?)))
+        .map(|(window, (wall, pane))| piece(&window.id, wall, &pane));
+    walls.chain(panes).collect()
 }
 
 /// The raster the Walk and Reach metrics use for `floor`: `RASTER_SIZE` × `RASTER_SIZE` cells
@@ -183,7 +172,10 @@ pub fn free_floor(grid: &FloorRaster, floor: &Floor, walls: &[WallPiece]) -> Vec
                 && floor.max.x - x >= r
                 && z - floor.min.y >= r
                 && floor.max.y - z >= r;
-            free[j * grid.nx + i] = inside && walls.iter().all(|w| w.rect.distance(x, z) > r);
+            free[j * grid.nx + i] = inside
+                && (walls.iter())
+                    .filter(|w| w.on_floor())
+                    .all(|w| w.rect.distance(x, z) > r);
         }
     }
     free
@@ -309,5 +301,47 @@ pub fn walk_and_reach(scene: &EvalScene) -> WalkReach {
         walkable_area: total as f64 * grid.cell * grid.cell,
         walk_components: areas.len(),
         unreachable_floor_objects,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::collision::piece_depth;
+    use nalgebra::Point3;
+    use scenethesis_scene_graph::{Architecture, WindowOpening};
+
+    /// A point poking into a window's opening touches nothing unless it reaches the pane; the
+    /// wall below the sill and the pane are solid, and only pieces on the floor block walking.
+    #[test]
+    fn a_window_opening_is_open_but_its_pane_and_sill_are_solid() {
+        let mut architecture = Architecture::rectangular_room(6.0, 4.0, 2.8, 0.9);
+        let back = &architecture.walls[0];
+        let window = WindowOpening::centred("window_0", back, 1.2, 1.2, 0.9);
+        architecture.windows.push(window);
+        let scene = EvalScene {
+            objects: Vec::new(),
+            architecture,
+        };
+        let pieces = wall_pieces(&scene);
+        let hit = |x: f32, y: f32, z: f32| -> Vec<&str> {
+            (pieces.iter())
+                .filter(|p| piece_depth(p, &[Point3::new(x, y, z)]) > 0.0)
+                .map(|p| p.wall.as_str())
+                .collect()
+        };
+        // The back wall's centre line is z = -2.05, its inner face z = -2.0.
+        assert!(
+            hit(0.0, 1.5, -2.02).is_empty(),
+            "in the opening, short of the pane"
+        );
+        assert_eq!(hit(0.0, 1.5, -2.05), ["window_0"]);
+        assert_eq!(hit(0.0, 0.5, -2.02), ["wall_0"], "the wall below the sill");
+        assert_eq!(hit(0.0, 2.5, -2.02), ["wall_0"], "the lintel");
+        let on_floor: Vec<_> = pieces.iter().filter(|p| p.on_floor()).collect();
+        assert!(on_floor
+            .iter()
+            .all(|p| p.wall != "window_0" && p.bottom == 0.0));
+        assert!(pieces.iter().any(|p| p.wall == "wall_0" && !p.on_floor()));
     }
 }

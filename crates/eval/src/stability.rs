@@ -377,15 +377,17 @@ fn add_architecture(world: &mut PhysicsWorld, scene: &EvalScene) {
     );
     for WallPiece {
         rect: piece,
+        bottom,
         height,
         ..
     } in wall_pieces(scene)
     {
         let angle = (-piece.axis[1]).atan2(piece.axis[0]) as f32;
+        let half_height = (height - bottom) as f32 / 2.0;
         let pose = Pose3::from_parts(
             Vec3::new(
                 piece.center[0] as f32,
-                height as f32 / 2.0,
+                (bottom + height) as f32 / 2.0,
                 piece.center[1] as f32,
             ),
             Quat::from_rotation_y(angle),
@@ -394,7 +396,7 @@ fn add_architecture(world: &mut PhysicsWorld, scene: &EvalScene) {
             RigidBodyBuilder::fixed().pose(pose),
             material(ColliderBuilder::cuboid(
                 piece.half[0] as f32,
-                height as f32 / 2.0,
+                half_height,
                 piece.half[1] as f32,
             )),
         );

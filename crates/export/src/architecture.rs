@@ -1,11 +1,12 @@
-//! The static architecture as solid boxes: a floor slab under y = 0 and wall boxes split around
-//! their door openings, and the leaves hung in those openings. Every exporter builds floor,
-//! walls and leaves from these pieces so that the formats agree.
+//! The static architecture as solid boxes: a floor slab under y = 0, wall boxes split around
+//! their door and window openings, the glass pane in each window, and the leaves hung in the
+//! doors. Every exporter builds floor, walls, panes and leaves from these pieces so that the
+//! formats agree.
 
 use nalgebra::{Point3, Rotation3, Vector3};
 use scenethesis_materials::surface_or;
 use scenethesis_scene_graph::{
-    Architecture, Environment, LeafGeometry, Material, Mesh, MeshPart, SceneLook,
+    Architecture, Environment, LeafGeometry, Material, Mesh, MeshPart, SceneLook, Wall, WallBox,
 };
 
 /// Thickness of the floor slab below y = 0, in metres.
@@ -16,8 +17,10 @@ pub const FLOOR_THICKNESS: f64 = 0.05;
 pub enum PieceKind {
     /// The floor slab (its top face is the plane y = 0).
     Floor,
-    /// A wall, possibly split into several boxes around door openings.
+    /// A wall, possibly split into several boxes around door and window openings.
     Wall,
+    /// A window's glass pane, filling its opening.
+    Window,
 }
 
 /// An oriented box in world coordinates: centre, half extents along its own axes, and a yaw
@@ -66,7 +69,7 @@ pub struct Piece {
     /// The solid boxes; a wall with a door has a box on each side and a lintel above it.
     pub boxes: Vec<OrientedBox>,
     /// Its surface: [`floor_material`] indoors, [`ground_material`] outdoors,
-    /// [`wall_material`] for walls.
+    /// [`wall_material`] for walls, [`glass_material`] for window panes.
     pub material: Material,
 }
 
@@ -87,11 +90,13 @@ impl Piece {
     }
 }
 
-pub use scenethesis_materials::{floor_material, ground_material, wall_material};
+pub use scenethesis_materials::{floor_material, glass_material, ground_material, wall_material};
 
 /// The architecture as solid pieces: the floor slab first, then each wall in order, cut around
-/// the door openings it holds (a box left and right of each door and a lintel above it when the
-/// door is lower than the wall). Segments shorter than 1 mm are dropped. Indoors the floor and
+/// the door and window openings it holds ([`Architecture::wall_spans`]: a box left and right of
+/// each opening, a lintel above it when it is lower than the wall, and under a window the wall
+/// below its sill), then each window's glass pane ([`Architecture::window_pane`], in
+/// [`glass_material`]), named by the window's id. Indoors the floor and
 /// walls wear the materials `look` records for the surfaces `floor` and `walls`
 /// ([`SceneLook::surfaces`]), else [`floor_material`] and [`wall_material`].
 pub fn pieces(architecture: &Architecture, look: &SceneLook) -> Vec<Piece> {
@@ -118,45 +123,14 @@ pub fn pieces(architecture: &Architecture, look: &SceneLook) -> Vec<Piece> {
         }],
     }];
     for wall in &architecture.walls {
-        let length = wall.length();
-        if length <= 0.0 || !length.is_finite() {
+        let boxes: Vec<_> = architecture
+            .wall_spans(wall)
+            .iter()
+            .map(|span| oriented(wall, span))
+            .collect();
+        if boxes.is_empty() {
             continue;
         }
-        let direction = wall.direction();
-        let yaw = (-direction.y).atan2(direction.x);
-        let half_t = wall.thickness / 2.0;
-        // Intervals along the centre line, measured from `start`; the box overhangs each end
-        // by half a thickness so that corners close.
-        let mut doors: Vec<_> = architecture
-            .doors
-            .iter()
-            .filter(|d| d.wall == wall.id)
-            .collect();
-        doors.sort_by(|a, b| a.offset.total_cmp(&b.offset));
-        let mut spans: Vec<(f64, f64, f64, f64)> = Vec::new(); // (from, to, y0, y1)
-        let mut cursor = -half_t;
-        for door in doors {
-            let (a, b) = (
-                door.offset - door.width / 2.0,
-                door.offset + door.width / 2.0,
-            );
-            spans.push((cursor, a, 0.0, wall.height));
-            spans.push((a.max(cursor), b, door.height.min(wall.height), wall.height));
-            cursor = cursor.max(b);
-        }
-        spans.push((cursor, length + half_t, 0.0, wall.height));
-        let boxes = spans
-            .into_iter()
-            .filter(|&(a, b, y0, y1)| b - a > 1e-3 && y1 - y0 > 1e-3)
-            .map(|(a, b, y0, y1)| {
-                let mid = wall.start + direction * ((a + b) / 2.0);
-                OrientedBox {
-                    center: Point3::new(mid.x, (y0 + y1) / 2.0, mid.y),
-                    half_extents: Vector3::new((b - a) / 2.0, (y1 - y0) / 2.0, half_t),
-                    yaw,
-                }
-            })
-            .collect();
         out.push(Piece {
             id: wall.id.clone(),
             kind: PieceKind::Wall,
@@ -164,7 +138,27 @@ pub fn pieces(architecture: &Architecture, look: &SceneLook) -> Vec<Piece> {
             boxes,
         });
     }
+    for window in &architecture.windows {
+        if let Some((wall, pane)) = architecture.window_pane(window) {
+            out.push(Piece {
+                id: window.id.clone(),
+                kind: PieceKind::Window,
+                material: glass_material(),
+                boxes: vec![oriented(wall, &pane)],
+            });
+        }
+    }
     out
+}
+
+/// A box of `wall` ([`WallBox`]) as an oriented box in world coordinates.
+fn oriented(wall: &Wall, span: &WallBox) -> OrientedBox {
+    let direction = wall.direction();
+    OrientedBox {
+        center: span.center(wall),
+        half_extents: span.half_extents(),
+        yaw: (-direction.y).atan2(direction.x),
+    }
 }
 
 /// A room door's leaf: a moving link fixed to the world by its hinge (the articulation of

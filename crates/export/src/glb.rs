@@ -7,9 +7,13 @@
 //! every material wearing it: `baseColorTexture` (tinted by `baseColorFactor`),
 //! `metallicRoughnessTexture` and `normalTexture`, one repeating sampler. Glass adds
 //! `KHR_materials_transmission` and `KHR_materials_ior`. Nodes are flat under the
-//! scene root: the architecture pieces first (`floor`, `wall_0`, …; geometry in world
-//! coordinates, identity transform), then one node per object in scene order, named by its id,
-//! with translation, a rotation about +Y and a uniform scale from its pose. Node `extras` carry
+//! scene root: the architecture pieces first (`floor`, `wall_0`, …, then each window's glass
+//! pane named by the window's id; geometry in world coordinates, identity transform, `extras`
+//! `{"architecture": "floor" | "wall" | "window"}`), then one node per object in scene order,
+//! named by its id, with translation, a rotation about +Y and a uniform scale from its pose. In
+//! a house (`architecture.rooms` not empty) the objects of each room are the children of a
+//! node named by the room's id (`extras` `{"room": type}`, no transform), after the pieces;
+//! objects in no room stay at the root. Node `extras` carry
 //! the object's category, parent, support and asset; primitive `extras` the part name.
 //!
 //! An articulated object's node holds its body's mesh and has one child node per joint (a
@@ -407,6 +411,47 @@ fn as_written(joint: &JointState) -> Value {
         .unwrap_or(Value::Null)
 }
 
+/// The scene root's nodes: the architecture pieces (the first `first_object` nodes), then in
+/// a house (`architecture.rooms` not empty) one node per room, named by its id with `extras`
+/// `{"room": type}`, holding the nodes of the objects whose `room` it is; then every object
+/// in no room of the house. Room nodes are appended to `nodes`.
+fn group_by_room(
+    scene: &scenethesis_scene_graph::Scene,
+    nodes: &mut Vec<Node>,
+    first_object: usize,
+) -> Vec<usize> {
+    let rooms = &scene.architecture.rooms;
+    let object_node = |k: usize| first_object + k;
+    let mut roots: Vec<usize> = (0..first_object).collect();
+    for room in rooms {
+        let children = (scene.objects.iter().enumerate())
+            .filter(|(_, o)| o.room.as_deref() == Some(room.id.as_str()))
+            .map(|(k, _)| object_node(k))
+            .collect();
+        nodes.push(Node {
+            name: room.id.clone(),
+            mesh: None,
+            children,
+            translation: None,
+            rotation: None,
+            scale: None,
+            extras: json!({ "room": room.room_type }),
+        });
+        roots.push(nodes.len() - 1);
+    }
+    let in_a_room = |o: &scenethesis_scene_graph::SceneObject| {
+        o.room
+            .as_deref()
+            .is_some_and(|r| rooms.iter().any(|room| room.id == r))
+    };
+    roots.extend(
+        (scene.objects.iter().enumerate())
+            .filter(|(_, o)| !in_a_room(o))
+            .map(|(k, _)| object_node(k)),
+    );
+    roots
+}
+
 /// The scene as a glTF 2.0 binary file.
 pub fn to_glb(export: &ExportScene<'_>) -> Vec<u8> {
     let scene = export.scene();
@@ -417,6 +462,7 @@ pub fn to_glb(export: &ExportScene<'_>) -> Vec<u8> {
         let kind = match piece.kind {
             PieceKind::Floor => "floor",
             PieceKind::Wall => "wall",
+            PieceKind::Window => "window",
         };
         nodes.push(Node {
             name: piece.id.clone(),
@@ -479,6 +525,7 @@ pub fn to_glb(export: &ExportScene<'_>) -> Vec<u8> {
             add_links(&mut b, &mut nodes, wall, &leaf.door, &articulation);
         }
     }
+    let scene_nodes = group_by_room(scene, &mut nodes, first_object);
     while b.bin.len() % 4 != 0 {
         b.bin.push(0);
     }
@@ -490,7 +537,7 @@ pub fn to_glb(export: &ExportScene<'_>) -> Vec<u8> {
         scene: 0,
         scenes: vec![SceneDef {
             name: "scene",
-            nodes: (0..roots).collect(),
+            nodes: scene_nodes,
         }],
         nodes,
         meshes: b.meshes,

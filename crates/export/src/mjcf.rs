@@ -111,7 +111,7 @@ impl MjcfParts {
         name
     }
 
-    /// A piece of the architecture: the floor as a plane, a wall as its boxes.
+    /// A piece of the architecture: the floor as a plane, a wall or window pane as its boxes.
     fn add_architecture(&mut self, piece: &Piece) {
         let mesh = piece.to_mesh();
         let mat = self.material_name(&mesh.materials[0], true);
@@ -130,7 +130,7 @@ impl MjcfParts {
                     num(b.half_extents.z),
                 );
             }
-            PieceKind::Wall => {
+            PieceKind::Wall | PieceKind::Window => {
                 for (i, b) in piece.boxes.iter().enumerate() {
                     let name = self.names.make(&format!("{}_{i}", piece.id));
                     let _ = writeln!(

@@ -7,14 +7,15 @@
 use std::collections::BTreeMap;
 use std::f64::consts::FRAC_PI_2;
 
-use nalgebra::Vector3;
+use nalgebra::{Point2, Vector3};
 use scenethesis_export::{Dynamics, ExportError, ExportScene, Format};
 use scenethesis_primitives::{cuboid, cylinder, sphere};
 
 mod common;
 use common::object;
 use scenethesis_scene_graph::{
-    Architecture, Material, Mesh, MeshPart, ParentRef, Pose, RelationKind, Scene,
+    Architecture, DoorLeaf, DoorOpening, Material, Mesh, MeshPart, ParentRef, Pose, RelationKind,
+    RoomArea, Scene, Wall, WindowOpening, EXTERIOR,
 };
 
 fn mesh(parts: Vec<MeshPart>, materials: Vec<Material>) -> Mesh {
@@ -695,4 +696,173 @@ fn ids_and_names_are_escaped_in_every_text_format() {
     let xml = mjcf::to_mjcf(&export);
     assert!(!xml.contains('\u{1b}') && !xml.contains('\u{7}'));
     assert!(!xml.contains("<x>"), "no raw markup from an id");
+}
+
+/// A window of `width` × 1.2 m, its sill 0.9 m up, centred `offset` m along `wall`.
+fn window(id: &str, wall: &str, offset: f64, room: Option<&str>) -> WindowOpening {
+    WindowOpening {
+        id: id.into(),
+        wall: wall.into(),
+        offset,
+        width: 1.0,
+        height: 1.2,
+        sill: 0.9,
+        room: room.map(Into::into),
+    }
+}
+
+/// The hand-built room of [`scene`] with a window in its back and left walls.
+fn room_with_windows() -> (Scene, BTreeMap<String, Mesh>) {
+    let (mut scene, meshes) = scene();
+    scene.architecture.windows = vec![
+        window("window_0", "wall_0", 1.2, None),
+        window("window_1", "wall_1", 2.5, None),
+    ];
+    (scene, meshes)
+}
+
+/// A two-room house, 8 × 4 m: `living_room` (x < 0, with the entrance door in the front wall)
+/// and `bedroom` (x > 0), parted by the wall `wall_4` at x = 0 with the door `door_1`; a window
+/// on the exterior wall of each room.
+fn two_room_house() -> (Scene, BTreeMap<String, Mesh>) {
+    let mut arch = Architecture::rectangular_room(8.0, 4.0, 2.6, 0.9);
+    arch.doors[0].offset = 2.0;
+    arch.doors[0].joins = Some(["living_room".into(), EXTERIOR.into()]);
+    arch.walls.push(Wall {
+        id: "wall_4".into(),
+        start: Point2::new(0.0, 2.0),
+        end: Point2::new(0.0, -2.0),
+        height: 2.6,
+        thickness: 0.1,
+    });
+    arch.doors.push(DoorOpening {
+        id: "door_1".into(),
+        wall: "wall_4".into(),
+        offset: 1.0,
+        width: 0.8,
+        height: 2.0,
+        leaf: Some(DoorLeaf::default()),
+        joins: Some(["living_room".into(), "bedroom".into()]),
+    });
+    let rect = |id: &str, kind: &str, x0: f64, x1: f64| RoomArea {
+        id: id.into(),
+        room_type: kind.into(),
+        polygon: [(x0, -2.0), (x1, -2.0), (x1, 2.0), (x0, 2.0)]
+            .iter()
+            .map(|&(x, z)| Point2::new(x, z))
+            .collect(),
+    };
+    arch.rooms = vec![
+        rect("living_room", "living room", -4.0, -0.05),
+        rect("bedroom", "bedroom", 0.05, 4.0),
+    ];
+    // wall_0 runs from x = 4.05 to −4.05 along the back: 2.05 m in is the bedroom's.
+    arch.windows = vec![
+        window("window_0", "wall_0", 2.05, Some("bedroom")),
+        window("window_1", "wall_0", 6.05, Some("living_room")),
+        window("window_2", "wall_1", 2.05, Some("living_room")),
+    ];
+    let mut scene = Scene::new(arch);
+    scene.prompt = "a two-room test house".into();
+    let meshes = BTreeMap::from([
+        ("table".to_owned(), table()),
+        ("crate".to_owned(), crate_mesh()),
+    ]);
+    let ground = || ParentRef::Ground;
+    let mut table = object(
+        "table",
+        "table",
+        &meshes["table"],
+        Pose::new(1.0, 0.0, Vector3::new(-2.0, 0.0, -1.4)),
+        ground(),
+        RelationKind::OnFloor,
+    );
+    table.room = Some("living_room".into());
+    let mut crate_ = object(
+        "crate",
+        "crate",
+        &meshes["crate"],
+        Pose::new(1.0, 0.0, Vector3::new(2.0, 0.0, 1.0)),
+        ground(),
+        RelationKind::OnFloor,
+    );
+    crate_.room = Some("bedroom".into());
+    scene.objects = vec![table, crate_];
+    (scene, meshes)
+}
+
+/// Every format of `scene` written into `dir` with its `scene.json`.
+fn write_every_format(scene: &Scene, meshes: &BTreeMap<String, Mesh>, dir: &std::path::Path) {
+    scene.validate().expect("the hand-built scene is valid");
+    let export = ExportScene::new(scene, meshes).unwrap();
+    std::fs::create_dir_all(dir).unwrap();
+    for format in Format::ALL {
+        format.write(&export, dir).unwrap();
+    }
+    scene.write_json_atomic(&dir.join("scene.json")).unwrap();
+}
+
+#[test]
+fn windows_and_houses_write_their_files() {
+    let temp = tempfile::tempdir().unwrap();
+    let dir = std::env::var_os("SCENETHESIS_EXPORT_DIR")
+        .map(std::path::PathBuf::from)
+        .unwrap_or_else(|| temp.path().to_owned());
+    let (room, room_meshes) = room_with_windows();
+    write_every_format(&room, &room_meshes, &dir.join("window"));
+    let (house, house_meshes) = two_room_house();
+    write_every_format(&house, &house_meshes, &dir.join("house"));
+
+    let bytes = std::fs::read(dir.join("house/scene.glb")).unwrap();
+    let gltf = gltf::Gltf::from_slice(&bytes).expect("GLB must parse");
+    let roots: Vec<_> = gltf.default_scene().unwrap().nodes().collect();
+    let root_names: Vec<_> = roots.iter().map(|n| n.name().unwrap()).collect();
+    assert_eq!(
+        root_names,
+        [
+            "floor",
+            "wall_0",
+            "wall_1",
+            "wall_2",
+            "wall_3",
+            "wall_4",
+            "window_0",
+            "window_1",
+            "window_2",
+            "living_room",
+            "bedroom"
+        ]
+    );
+    let children = |name: &str| -> Vec<String> {
+        let node = roots.iter().find(|n| n.name() == Some(name)).unwrap();
+        node.children()
+            .map(|c| c.name().unwrap().to_owned())
+            .collect()
+    };
+    assert_eq!(children("living_room"), ["table"]);
+    assert_eq!(children("bedroom"), ["crate"]);
+    // A window's pane is glass that lets light through.
+    let pane = roots.iter().find(|n| n.name() == Some("window_0")).unwrap();
+    let material = pane.mesh().unwrap().primitives().next().unwrap().material();
+    assert_eq!(material.name(), Some("glass"));
+    assert!(
+        gltf.extensions_used()
+            .any(|e| e == "KHR_materials_transmission"),
+        "the pane transmits light"
+    );
+    // The back wall has two window holes: pier, sill, lintel, pier, sill, lintel, pier.
+    let wall = roots.iter().find(|n| n.name() == Some("wall_0")).unwrap();
+    assert_eq!(wall.mesh().unwrap().primitives().count(), 7);
+
+    let xml = std::fs::read_to_string(dir.join("house/scene.mjcf.xml")).unwrap();
+    let urdf = std::fs::read_to_string(dir.join("house/scene.urdf")).unwrap();
+    let usda = std::fs::read_to_string(dir.join("house/scene.usda")).unwrap();
+    for id in ["window_0", "window_1", "window_2"] {
+        assert!(
+            xml.contains(&format!("<geom name=\"{id}_0\" type=\"box\"")),
+            "{id}"
+        );
+        assert!(urdf.contains(&format!("<link name=\"{id}\">")), "{id}");
+        assert!(usda.contains(&format!("def Xform \"{id}\"")), "{id}");
+    }
 }

@@ -116,6 +116,9 @@ pub struct GltfNode {
     pub primitives: Vec<GltfPrimitive>,
     /// Child node instances.
     pub children: Vec<GltfNode>,
+    /// The room type in the node's `extras` (`{"room": type}`): a node grouping the objects of
+    /// one room of a house, as scenethesis writes them.
+    pub room: Option<String>,
 }
 
 /// A glTF file's default scene (or first scene; without scenes, every node that is nobody's
@@ -130,6 +133,13 @@ pub struct GltfFile {
     /// folder, over a limit, not a PNG or JPEG), naming the material and the image; its
     /// material keeps the plain base-colour factor.
     pub texture_warnings: Vec<String>,
+}
+
+/// The `room` string of a node's `extras`, if it has one.
+fn room_of(node: &gltf::Node<'_>) -> Option<String> {
+    let extras = node.extras().as_ref()?;
+    let value: serde_json::Value = serde_json::from_str(extras.get()).ok()?;
+    value.get("room")?.as_str().map(str::to_owned)
 }
 
 impl GltfFile {
@@ -420,6 +430,7 @@ impl Walker<'_> {
             world,
             primitives,
             children: children?,
+            room: room_of(node),
         })
     }
 

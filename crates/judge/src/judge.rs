@@ -68,6 +68,9 @@ pub enum FailureKind {
     /// A door, drawer or lid cannot open to 90 % of its range without hitting another object
     /// or the architecture.
     OpeningClearance,
+    /// A floor object taller than a window's sill stands in front of the window
+    /// ([`scenethesis_scene_graph::Architecture::window_covered_by`]).
+    WindowCovered,
 }
 
 /// One reason a scene was rejected.
@@ -223,8 +226,9 @@ pub trait Judge: Send + Sync {
 /// penetrates the architecture (Col-O = Col-arch = 0), nothing moves in the stability simulation
 /// (Inst-S = false), every relation of the plan between objects present in the scene holds,
 /// every functional-arrangement rule holds ([`check_arrangement`]),
-/// Walk ≥ [`GeometricJudge::min_walk`], and every floor object is reachable — all measured by
-/// `scenethesis-eval` exactly as `metrics.md` defines them.
+/// Walk ≥ [`GeometricJudge::min_walk`], every floor object is reachable — all measured by
+/// `scenethesis-eval` exactly as `metrics.md` defines them — and no floor object taller than a
+/// window's sill stands in front of it.
 #[derive(Debug, Clone)]
 pub struct GeometricJudge {
     /// Smallest acceptable Walk (0.95 by default).
@@ -330,6 +334,7 @@ impl Judge for GeometricJudge {
             });
         }
         failures.extend(opening_failures(&metrics, &order, anchor));
+        failures.extend(window_failures(scene));
         let arrangement = check_arrangement(scene);
         failures.extend(arrangement_failures(&arrangement));
         Ok(Verdict {
@@ -341,6 +346,29 @@ impl Judge for GeometricJudge {
             review: None,
         })
     }
+}
+
+/// One failure per floor object that covers a window: its top above the sill, standing in
+/// the clearance in front of it.
+fn window_failures(scene: &Scene) -> Vec<Failure> {
+    let arch = &scene.architecture;
+    scene
+        .objects
+        .iter()
+        .filter(|o| o.parent == ParentRef::Ground)
+        .filter_map(|o| {
+            let bounds = o.world_aabb();
+            let window = arch.window_covered_by(&bounds)?;
+            Some(Failure {
+                kind: FailureKind::WindowCovered,
+                objects: vec![o.id.clone()],
+                detail: format!(
+                    "`{}` ({:.2} m tall) stands in front of window `{}`, whose sill is {:.2} m up",
+                    o.id, bounds.max.y, window.id, window.sill
+                ),
+            })
+        })
+        .collect()
 }
 
 /// Checks every relation of the plan (each object's support first) between objects present in
@@ -506,4 +534,61 @@ fn walk_blockers(scene: &Scene) -> Vec<String> {
         .take(1)
         .map(|(_, id)| id.to_owned())
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use scenethesis_scene_graph::nalgebra::{Point3, Vector3};
+    use scenethesis_scene_graph::{
+        Aabb, Architecture, AssetRef, Pose, RelationKind, SceneObject, WindowOpening,
+    };
+
+    fn standing(id: &str, x: f64, z: f64, top: f64) -> SceneObject {
+        SceneObject {
+            id: id.into(),
+            category: id.into(),
+            asset: AssetRef::Procedural {
+                generator: "box".into(),
+                seed: 0,
+                look: None,
+            },
+            pose: Pose::new(1.0, 0.0, Vector3::new(x, 0.0, z)),
+            parent: ParentRef::Ground,
+            support: RelationKind::OnFloor,
+            relations: Vec::new(),
+            local_bounds: Aabb::new(Point3::new(-0.4, 0.0, -0.25), Point3::new(0.4, top, 0.25)),
+            joints: Vec::new(),
+            parent_link: None,
+            room: None,
+        }
+    }
+
+    #[test]
+    fn a_wardrobe_in_front_of_a_window_fails_and_a_low_chest_does_not() {
+        let mut scene = Scene::new(Architecture::rectangular_room(5.0, 4.0, 2.6, 0.9));
+        scene.architecture.windows.push(WindowOpening {
+            id: "window_0".into(),
+            wall: "wall_0".into(),
+            offset: 2.55,
+            width: 1.2,
+            height: 1.2,
+            sill: 0.9,
+            room: None,
+        });
+        scene.objects = vec![
+            standing("wardrobe", 0.0, -1.7, 2.0),
+            standing("chest", 0.2, -1.7, 0.8),
+            standing("bookcase", 2.0, -1.7, 2.0),
+        ];
+        let failures = window_failures(&scene);
+        assert_eq!(failures.len(), 1, "{failures:?}");
+        assert_eq!(failures[0].kind, FailureKind::WindowCovered);
+        assert_eq!(failures[0].objects, ["wardrobe"]);
+        assert!(
+            failures[0].detail.contains("window `window_0`"),
+            "{}",
+            failures[0].detail
+        );
+    }
 }

@@ -25,6 +25,11 @@ pub fn wall_material() -> Material {
     library_material("wall_paint")
 }
 
+/// The material of window panes: the library's clear glass (transmissive).
+pub fn glass_material() -> Material {
+    library_material("glass")
+}
+
 fn library_material(id: &str) -> Material {
     by_id(id)
         .expect("the architecture's materials are in the library")

@@ -1,7 +1,7 @@
-//! CPU-side geometry: posed meshes, floors, walls with door gaps and ground planes flattened
-//! into one vertex list with per-corner normals, surface parameters, texture coordinates in
-//! metres with tangents (the library's box projection, as the exporters use it) and instance
-//! index.
+//! CPU-side geometry: posed meshes, floors, walls with door and window gaps, window panes and
+//! ground planes flattened into one vertex list with per-corner normals, surface parameters,
+//! texture coordinates in metres with tangents (the library's box projection, as the exporters
+//! use it) and instance index.
 
 use std::collections::BTreeSet;
 use std::ops::Range;
@@ -9,7 +9,8 @@ use std::ops::Range;
 use bytemuck::{Pod, Zeroable};
 use nalgebra::{Point2, Point3, Vector2, Vector3};
 use scenethesis_materials::{
-    floor_material, ground_material, maps, resolve, surface_or, wall_material, BoxProjection,
+    floor_material, glass_material, ground_material, maps, resolve, surface_or, wall_material,
+    BoxProjection,
 };
 use scenethesis_scene_graph::{
     leaf_material, Architecture, Environment, Material, MeshPart, Wall, GROUND_ID,
@@ -272,6 +273,7 @@ impl SceneGeometry {
                     geo.push_box(wall, center, half, &wall_surface, index);
                 }
                 geo.push_leaves(arch, wall);
+                geo.push_panes(arch, wall);
                 geo.walls.push(WallRange {
                     vertices: start..geo.vertices.len() as u32,
                     start: wall.start,
@@ -346,6 +348,19 @@ impl SceneGeometry {
         }
     }
 
+    /// The glass panes of `wall`'s windows ([`Architecture::window_pane`]) in the library's
+    /// glass ([`glass_material`]): drawn, and cut away, with the wall, each under its window's
+    /// id.
+    fn push_panes(&mut self, arch: &Architecture, wall: &Wall) {
+        for window in arch.windows.iter().filter(|w| w.wall == wall.id) {
+            if let Some((wall, pane)) = arch.window_pane(window) {
+                let index = self.push_id(&window.id);
+                let (center, half) = (pane.center(wall), pane.half_extents());
+                self.push_box(wall, center, half, &Surface::of(&glass_material()), index);
+            }
+        }
+    }
+
     /// A box aligned with `wall`, centred at `center` (x, y, z) with half extents along the
     /// wall, up and across.
     fn push_box(
@@ -393,47 +408,12 @@ impl SceneGeometry {
 }
 
 /// The boxes (centre, half extents along / up / across the wall) that make up a wall with its
-/// door openings cut out: full-height pieces between openings and lintels above them.
+/// door and window openings cut out ([`Architecture::wall_spans`], as every exporter cuts it).
 fn wall_boxes(arch: &Architecture, wall: &Wall) -> Vec<(Point3<f64>, Vector3<f64>)> {
-    let length = wall.length();
-    let half_t = wall.thickness / 2.0;
-    // Along-wall coordinates from the start; the wall overlaps its neighbours at corners.
-    let (lo, hi) = (-half_t, length + half_t);
-    let mut openings: Vec<(f64, f64, f64)> = arch
-        .doors
+    arch.wall_spans(wall)
         .iter()
-        .filter(|d| d.wall == wall.id)
-        .map(|d| {
-            let a = (d.offset - d.width / 2.0).clamp(lo, hi);
-            let b = (d.offset + d.width / 2.0).clamp(lo, hi);
-            (a, b, d.height.min(wall.height))
-        })
-        .filter(|(a, b, _)| b > a)
-        .collect();
-    openings.sort_by(|x, y| x.0.total_cmp(&y.0));
-    let dir = wall.direction();
-    let piece = |a: f64, b: f64, y0: f64, y1: f64| {
-        let mid = wall.start + dir * ((a + b) / 2.0);
-        (
-            Point3::new(mid.x, (y0 + y1) / 2.0, mid.y),
-            Vector3::new((b - a) / 2.0, (y1 - y0) / 2.0, half_t),
-        )
-    };
-    let mut boxes = Vec::new();
-    let mut cursor = lo;
-    for &(a, b, h) in &openings {
-        if a > cursor {
-            boxes.push(piece(cursor, a, 0.0, wall.height));
-        }
-        if h < wall.height {
-            boxes.push(piece(a, b, h, wall.height));
-        }
-        cursor = cursor.max(b);
-    }
-    if hi > cursor {
-        boxes.push(piece(cursor, hi, 0.0, wall.height));
-    }
-    boxes
+        .map(|span| (span.center(wall), span.half_extents()))
+        .collect()
 }
 
 /// Per-corner normals of a part (three per triangle): each corner averages the area-weighted
@@ -488,7 +468,7 @@ fn corner_normals(part: &MeshPart) -> Vec<[f32; 3]> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use scenethesis_scene_graph::Architecture;
+    use scenethesis_scene_graph::{Architecture, WindowOpening};
 
     #[test]
     fn door_leaves_a_gap_in_its_wall() {
@@ -509,6 +489,29 @@ mod tests {
         }
         let back = room.wall("wall_0").unwrap();
         assert_eq!(wall_boxes(&room, back).len(), 1);
+    }
+
+    #[test]
+    fn a_window_shows_as_a_hole_with_a_pane() {
+        let mut room = Architecture::rectangular_room(6.0, 4.0, 2.8, 0.9);
+        let back = room.wall("wall_0").unwrap().clone();
+        let window = WindowOpening::centred("window_0", &back, 1.2, 1.2, 0.9);
+        room.windows.push(window);
+        let back = &back;
+        let boxes = wall_boxes(&room, back);
+        assert_eq!(boxes.len(), 4, "piers, the wall below the sill, a lintel");
+        // Nothing of the wall at the window's centre (x = 0, y = 1.5).
+        for (c, h) in &boxes {
+            let covers = (c.x.abs() <= h.x) && (c.y - 1.5).abs() <= h.y;
+            assert!(!covers, "{c:?} {h:?}");
+        }
+        let mut geo = SceneGeometry::default();
+        geo.push_panes(&room, back);
+        assert_eq!(geo.vertices.len(), 36, "one box");
+        assert_eq!(geo.ids, ["window_0"]);
+        let glass = Surface::of(&glass_material());
+        assert!(glass.layer > 0, "the pane wears the library's glass");
+        assert!(geo.vertices.iter().all(|v| v.layer == glass.layer));
     }
 
     #[test]

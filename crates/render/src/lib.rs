@@ -44,6 +44,7 @@ mod error;
 mod frame;
 mod geometry;
 mod guidance;
+pub mod labels;
 mod renderer;
 mod scene;
 mod seam;

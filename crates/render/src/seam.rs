@@ -6,7 +6,7 @@ use scenethesis_imagery::Camera;
 use scenethesis_render_api::{RendererError, SceneRenderer, ViewImage, ViewKind, ViewRequest};
 use scenethesis_scene_graph::{Mesh, Scene};
 
-use crate::{views, RenderScene, Renderer};
+use crate::{labels, views, RenderScene, Renderer};
 
 /// The camera of a standard view of `scene` at `size`.
 pub fn view_camera(scene: &RenderScene, kind: ViewKind, size: [u32; 2]) -> Camera {
@@ -24,7 +24,8 @@ impl SceneRenderer for Renderer {
     }
 
     /// Uploads the scene once ([`RenderScene::from_scene`]), then draws each view from its
-    /// preset camera ([`views`]), supersampled as asked.
+    /// preset camera ([`views`]), supersampled as asked; a house's top view is labelled with
+    /// its rooms' ids ([`labels::label_rooms`]), a plan of it.
     fn render_views(
         &self,
         scene: &Scene,
@@ -42,7 +43,7 @@ impl SceneRenderer for Renderer {
             .iter()
             .map(|request| {
                 let camera = view_camera(&render_scene, request.kind, request.size);
-                let color = self
+                let mut color = self
                     .render_color_supersampled(&prepared, &camera, request.supersample)
                     .map_err(|e| RendererError::View {
                         renderer: self.name(),
@@ -50,6 +51,9 @@ impl SceneRenderer for Renderer {
                         size: request.size,
                         source: Box::new(e),
                     })?;
+                if request.kind == ViewKind::Top {
+                    labels::label_rooms(&mut color, &camera, &scene.architecture);
+                }
                 Ok(ViewImage { camera, color })
             })
             .collect()

@@ -80,6 +80,7 @@ pub mod limits;
 mod look;
 mod mesh;
 mod object;
+mod openings;
 mod pose;
 mod relations;
 mod scene;
@@ -107,6 +108,7 @@ pub use joint::{
 pub use look::{AssetLook, LookAttribute, LookScope, SceneLook, Srgb, WornMaterial};
 pub use mesh::{Material, Mesh, MeshPart};
 pub use object::{AssetRef, ParentRef, Relation, RelationKind, SceneObject, GROUND_ID};
+pub use openings::{WallBox, PANE_THICKNESS, WINDOW_CLEARANCE};
 pub use pose::{wrap_yaw, yaw_distance, yaw_distance_modulo, Pose};
 pub use relations::{
     aabb_floor_gap, floor_centre, floor_gap, front_dir, relation_holds, right_dir,
@@ -140,6 +142,19 @@ pub(crate) mod test_support {
             local_bounds: Aabb::new(Point3::new(-0.5, 0.0, -0.5), Point3::new(0.5, 1.0, 0.5)),
             joints: Vec::new(),
             parent_link: None,
+            room: None,
+        }
+    }
+
+    /// A window 1.2 m wide and high, its sill 0.9 m up, centred `offset` m along `wall`.
+    pub fn window(id: &str, wall: &str, offset: f64) -> WindowOpening {
+        WindowOpening {
+            id: id.into(),
+            wall: wall.into(),
+            offset,
+            width: 1.2,
+            height: 1.2,
+            sill: 0.9,
             room: None,
         }
     }

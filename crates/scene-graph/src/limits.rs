@@ -14,6 +14,12 @@ pub const MAX_OBJECTS: usize = 2000;
 pub const MAX_WALLS: usize = 256;
 /// Most door openings in one scene.
 pub const MAX_DOORS: usize = 256;
+/// Most windows in one scene.
+pub const MAX_WINDOWS: usize = 256;
+/// Most rooms in one scene (a house).
+pub const MAX_ROOMS: usize = 256;
+/// Most corners of one room's floor outline.
+pub const MAX_ROOM_CORNERS: usize = 64;
 /// Most relations on one object.
 pub const MAX_RELATIONS: usize = 256;
 /// Longest id, category or generator name, in bytes.

@@ -3,12 +3,13 @@ use std::collections::HashMap;
 
 use crate::limits::{
     MAX_COORDINATE, MAX_DOORS, MAX_ID_BYTES, MAX_OBJECTS, MAX_OBJECT_SIZE, MAX_RELATIONS,
-    MAX_SCALE, MAX_WALLS, MAX_WALL_HEIGHT, MAX_WALL_THICKNESS, MAX_YAW, MIN_SCALE,
+    MAX_ROOMS, MAX_ROOM_CORNERS, MAX_SCALE, MAX_WALLS, MAX_WALL_HEIGHT, MAX_WALL_THICKNESS,
+    MAX_WINDOWS, MAX_YAW, MIN_SCALE,
 };
 use crate::{
     Aabb, Architecture, AssetRef, DoorLeaf, DoorOpening, Floor, OpensTo, ParentRef, Pose,
-    RelationKind, Scene, SceneObject, Wall, FORMAT_VERSION, GROUND_ID, LEAF_FLOOR_GAP, LEAF_GAP,
-    LEAF_OPEN_LIMIT,
+    RelationKind, RoomArea, Scene, SceneObject, Wall, WindowOpening, EXTERIOR, FORMAT_VERSION,
+    GROUND_ID, LEAF_FLOOR_GAP, LEAF_GAP, LEAF_OPEN_LIMIT,
 };
 
 /// `text` safe to print on a terminal or write into a log line: control characters (escape
@@ -238,6 +239,54 @@ pub enum ValidationError {
         /// The missing wall id.
         wall: String,
     },
+    /// A window names a wall that does not exist.
+    #[error("window `{window}`: wall `{wall}` is not a wall of this scene")]
+    UnknownWindowWall {
+        /// The window id.
+        window: String,
+        /// The missing wall id.
+        wall: String,
+    },
+    /// Two openings (a window and a door, or two windows) overlap along their wall.
+    #[error(
+        "{first} and {second} overlap on wall `{wall}`; openings in one wall must not overlap"
+    )]
+    OpeningsOverlap {
+        /// The first opening (e.g. `door `door_0``).
+        first: String,
+        /// The second opening (e.g. `window `window_0``).
+        second: String,
+        /// The wall both are cut into.
+        wall: String,
+    },
+    /// An object, door or window names a room that is not in `architecture.rooms`.
+    #[error("{owner}: field `{field}` names room `{room}`, which is not in architecture.rooms{}", if *is_exterior_ok { " (nor `exterior`)" } else { "" })]
+    UnknownRoom {
+        /// Which element (e.g. `object `sofa``).
+        owner: String,
+        /// The field (`room`, `joins`).
+        field: &'static str,
+        /// The room named.
+        room: String,
+        /// Whether `exterior` would also have been accepted (a door's `joins`).
+        is_exterior_ok: bool,
+    },
+    /// A door joins a room to itself.
+    #[error("door `{door}`: field `joins` names `{room}` twice, expected two different rooms")]
+    DoorJoinsItself {
+        /// The door id.
+        door: String,
+        /// The room named twice.
+        room: String,
+    },
+    /// A room's floor outline is not a usable polygon.
+    #[error("room `{room}`: field `polygon` {problem}")]
+    BadRoomOutline {
+        /// The room id.
+        room: String,
+        /// What is wrong.
+        problem: String,
+    },
 }
 
 impl Scene {
@@ -255,6 +304,8 @@ impl Scene {
             ("objects", self.objects.len(), MAX_OBJECTS),
             ("walls", arch.walls.len(), MAX_WALLS),
             ("doors", arch.doors.len(), MAX_DOORS),
+            ("windows", arch.windows.len(), MAX_WINDOWS),
+            ("rooms", arch.rooms.len(), MAX_ROOMS),
         ] {
             if count > limit {
                 errors.push(ValidationError::TooMany { what, count, limit });
@@ -328,6 +379,8 @@ impl Scene {
         let elements = std::iter::once(("floor", arch.floor.id.as_str()))
             .chain(arch.walls.iter().map(|w| ("wall", w.id.as_str())))
             .chain(arch.doors.iter().map(|d| ("door", d.id.as_str())))
+            .chain(arch.windows.iter().map(|w| ("window", w.id.as_str())))
+            .chain(arch.rooms.iter().map(|r| ("room", r.id.as_str())))
             .chain(self.objects.iter().map(|o| ("object", o.id.as_str())));
         let mut counts: HashMap<&'static str, usize> = HashMap::new();
         for (kind, id) in elements {
@@ -364,6 +417,14 @@ impl Scene {
         }
         for door in &arch.doors {
             check_door(arch, door, errors);
+            check_joins(arch, door, errors);
+        }
+        for window in &arch.windows {
+            check_window(arch, window, errors);
+        }
+        check_overlaps(arch, errors);
+        for room in &arch.rooms {
+            check_room_outline(room, errors);
         }
     }
 
@@ -377,6 +438,15 @@ impl Scene {
             self.check_relation_targets(object, id, errors);
             check_joints(object, id, errors);
             self.check_parent_link(object, id, errors);
+            if let Some(room) = &object.room {
+                check_room_named(
+                    &self.architecture,
+                    &format!("object `{id}`"),
+                    "room",
+                    room,
+                    errors,
+                );
+            }
         }
     }
 
@@ -601,6 +671,156 @@ fn check_door(arch: &Architecture, door: &DoorOpening, errors: &mut Vec<Validati
     }
 }
 
+/// The rooms a door joins are rooms of the house (or [`EXTERIOR`]) and two different ones.
+fn check_joins(arch: &Architecture, door: &DoorOpening, errors: &mut Vec<ValidationError>) {
+    let Some(joins) = &door.joins else {
+        return;
+    };
+    let owner = format!("door `{}`", printable(&door.id));
+    for room in joins.iter().filter(|r| r.as_str() != EXTERIOR) {
+        if arch.room(room).is_none() {
+            errors.push(ValidationError::UnknownRoom {
+                owner: owner.clone(),
+                field: "joins",
+                room: shorten(room),
+                is_exterior_ok: true,
+            });
+        }
+    }
+    if joins[0] == joins[1] {
+        errors.push(ValidationError::DoorJoinsItself {
+            door: printable(&door.id).into_owned(),
+            room: shorten(&joins[0]),
+        });
+    }
+}
+
+/// `room`, named by `owner`'s `field`, is a room of the house.
+fn check_room_named(
+    arch: &Architecture,
+    owner: &str,
+    field: &'static str,
+    room: &str,
+    errors: &mut Vec<ValidationError>,
+) {
+    if arch.room(room).is_none() {
+        errors.push(ValidationError::UnknownRoom {
+            owner: owner.to_owned(),
+            field,
+            room: shorten(room),
+            is_exterior_ok: false,
+        });
+    }
+}
+
+/// A window's numbers are finite and positive, it opens within its wall's length and height,
+/// and the room it lights is a room of the house.
+fn check_window(arch: &Architecture, window: &WindowOpening, errors: &mut Vec<ValidationError>) {
+    let id = &window.id;
+    let numbers = [window.offset, window.width, window.height, window.sill];
+    if !numbers.iter().all(|v| v.is_finite()) {
+        errors.push(non_finite(id, "offset/width/height/sill"));
+        return;
+    }
+    for (field, value) in [("width", window.width), ("height", window.height)] {
+        if value <= 0.0 {
+            errors.push(out_of_range(id, field, value, "a positive size"));
+        }
+    }
+    if window.sill < 0.0 {
+        errors.push(out_of_range(
+            id,
+            "sill",
+            window.sill,
+            "a sill at or above the floor (>= 0)",
+        ));
+    }
+    if let Some(room) = &window.room {
+        check_room_named(
+            arch,
+            &format!("window `{}`", printable(id)),
+            "room",
+            room,
+            errors,
+        );
+    }
+    let Some(wall) = arch.wall(&window.wall) else {
+        errors.push(ValidationError::UnknownWindowWall {
+            window: printable(id).into_owned(),
+            wall: shorten(&window.wall),
+        });
+        return;
+    };
+    let half = window.width / 2.0;
+    if window.offset - half < 0.0 || window.offset + half > wall.length() {
+        errors.push(out_of_range(
+            id,
+            "offset",
+            window.offset,
+            "an opening that lies within its wall's length",
+        ));
+    }
+    if window.sill + window.height > wall.height {
+        errors.push(out_of_range(
+            id,
+            "sill + height",
+            window.sill + window.height,
+            "at most its wall's height",
+        ));
+    }
+}
+
+/// No window overlaps a door or another window on the same wall.
+fn check_overlaps(arch: &Architecture, errors: &mut Vec<ValidationError>) {
+    let doors = arch
+        .doors
+        .iter()
+        .map(|d| ("door", &d.id, &d.wall, d.offset, d.width));
+    let windows = arch
+        .windows
+        .iter()
+        .map(|w| ("window", &w.id, &w.wall, w.offset, w.width));
+    let openings: Vec<_> = doors.chain(windows).collect();
+    let first_window = arch.doors.len();
+    for (j, b) in openings.iter().enumerate().skip(first_window) {
+        for a in &openings[..j] {
+            let apart = (a.3 - b.3).abs() >= (a.4 + b.4) / 2.0 - 1e-9;
+            if a.2 == b.2 && !apart {
+                errors.push(ValidationError::OpeningsOverlap {
+                    first: format!("{} `{}`", a.0, printable(a.1)),
+                    second: format!("{} `{}`", b.0, printable(b.1)),
+                    wall: shorten(b.2),
+                });
+            }
+        }
+    }
+}
+
+/// A room's outline has 3 to [`MAX_ROOM_CORNERS`] corners, finite and within
+/// ±[`MAX_COORDINATE`], and encloses a positive area.
+fn check_room_outline(room: &RoomArea, errors: &mut Vec<ValidationError>) {
+    let n = room.polygon.len();
+    let problem = if !(3..=MAX_ROOM_CORNERS).contains(&n) {
+        Some(format!("has {n} corners, expected 3 to {MAX_ROOM_CORNERS}"))
+    } else if !room
+        .polygon
+        .iter()
+        .all(|p| p.iter().all(|v| v.is_finite() && v.abs() <= MAX_COORDINATE))
+    {
+        Some("has a corner that is not finite or lies beyond ±1000 m".to_owned())
+    } else if room.area() <= 0.0 {
+        Some("encloses no area".to_owned())
+    } else {
+        None
+    };
+    if let Some(problem) = problem {
+        errors.push(ValidationError::BadRoomOutline {
+            room: printable(&room.id).into_owned(),
+            problem,
+        });
+    }
+}
+
 /// A door's leaf: hinged left or right, thicker than nothing and no thicker than its wall,
 /// wider and taller than its gaps, its state within its limits.
 fn check_leaf(
@@ -768,22 +988,22 @@ fn check_local_bounds(object: &SceneObject, id: &str, errors: &mut Vec<Validatio
     }
 }
 
-/// A floor, wall or door of an [`Architecture`] with a number that is not finite or lies beyond
+/// A floor, wall, door or window of an [`Architecture`] with a number that is not finite or lies beyond
 /// ±[`MAX_COORDINATE`] m (see [`Architecture::out_of_bounds`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct OutOfBounds<'a> {
-    /// What the element is: `floor`, `wall` or `door`.
+    /// What the element is: `floor`, `wall`, `door` or `window`.
     pub kind: &'static str,
     /// The element's id.
     pub id: &'a str,
-    /// The fields checked together: `min/max` (floor), `start/end/height/thickness` (wall) or
-    /// `offset/width/height` (door).
+    /// The fields checked together: `min/max` (floor), `start/end/height/thickness` (wall),
+    /// `offset/width/height` (door) or `offset/width/height/sill` (window).
     pub fields: &'static str,
 }
 
 impl Architecture {
-    /// The first element (the floor, then the walls, then the doors) with a number that is not
-    /// finite or lies beyond ±[`MAX_COORDINATE`] m, if any: the bounds that every reader of
+    /// The first element (the floor, then the walls, the doors, the windows) with a number that
+    /// is not finite or lies beyond ±[`MAX_COORDINATE`] m, if any: the bounds that every reader of
     /// architecture (the exporter, whose GLB stores `f32`, and the evaluator, before parry and
     /// rapier see the room) checks through this one method. [`Scene::validate`] holds the
     /// architecture to these and the narrower wall and door limits, field by field.
@@ -797,34 +1017,38 @@ impl Architecture {
                 fields: "min/max",
             });
         }
-        let wall = self.walls.iter().find(|w| {
-            ![
-                w.start.x,
-                w.start.y,
-                w.end.x,
-                w.end.y,
-                w.height,
-                w.thickness,
-            ]
-            .iter()
-            .all(ok)
-        });
-        if let Some(w) = wall {
-            return Some(OutOfBounds {
+        let bad = |numbers: &[f64]| !numbers.iter().all(ok);
+        let walls = (self.walls.iter())
+            .filter(|w| {
+                bad(&[
+                    w.start.x,
+                    w.start.y,
+                    w.end.x,
+                    w.end.y,
+                    w.height,
+                    w.thickness,
+                ])
+            })
+            .map(|w| OutOfBounds {
                 kind: "wall",
-                id: &w.id,
+                id: w.id.as_str(),
                 fields: "start/end/height/thickness",
             });
-        }
-        let door = self
-            .doors
-            .iter()
-            .find(|d| ![d.offset, d.width, d.height].iter().all(ok));
-        door.map(|d| OutOfBounds {
-            kind: "door",
-            id: &d.id,
-            fields: "offset/width/height",
-        })
+        let doors = (self.doors.iter())
+            .filter(|d| bad(&[d.offset, d.width, d.height]))
+            .map(|d| OutOfBounds {
+                kind: "door",
+                id: d.id.as_str(),
+                fields: "offset/width/height",
+            });
+        let windows = (self.windows.iter())
+            .filter(|w| bad(&[w.offset, w.width, w.height, w.sill]))
+            .map(|w| OutOfBounds {
+                kind: "window",
+                id: w.id.as_str(),
+                fields: "offset/width/height/sill",
+            });
+        walls.chain(doors).chain(windows).next()
     }
 }
 
@@ -875,7 +1099,7 @@ fn out_of_range(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_support::{object, scene_with};
+    use crate::test_support::{object, scene_with, window};
 
     #[test]
     fn joints_are_checked_and_parent_links_must_name_one() {
@@ -987,6 +1211,94 @@ mod tests {
         );
         scene.architecture.floor.min.x = -MAX_COORDINATE - 1.0;
         assert_eq!(scene.architecture.out_of_bounds().unwrap().kind, "floor");
+    }
+
+    #[test]
+    fn windows_must_fit_their_wall_and_miss_the_other_openings() {
+        let mut scene = scene_with(Vec::new());
+        scene.architecture.windows = vec![window("window_0", "wall_0", 2.0)];
+        assert!(scene.validate().is_ok(), "{:?}", problems(&scene));
+        let door_offset = scene.architecture.doors[0].offset;
+        let mut high = window("window_2", "wall_1", 2.0);
+        high.sill = 2.0;
+        let mut flat = window("window_6", "wall_1", 1.0);
+        (flat.sill, flat.width) = (-0.1, 0.0);
+        scene.architecture.windows = vec![
+            window("window_0", "wall_9", 2.0),
+            window("window_1", "wall_0", 0.3),
+            high,
+            window("window_3", "wall_2", door_offset + 0.5),
+            window("window_4", "wall_3", 2.0),
+            window("window_5", "wall_3", 2.8),
+            flat,
+        ];
+        let text = problems(&scene).join("\n");
+        for expected in [
+            "window `window_0`: wall `wall_9` is not a wall",
+            "window_1: field `offset` is 0.3, expected an opening that lies within its wall's length",
+            "window_2: field `sill + height` is 3.2, expected at most its wall's height",
+            "door `door_0` and window `window_3` overlap on wall `wall_2`",
+            "window `window_4` and window `window_5` overlap on wall `wall_3`",
+            "window_6: field `width` is 0, expected a positive size",
+            "window_6: field `sill` is -0.1",
+        ] {
+            assert!(text.contains(expected), "missing {expected:?} in\n{text}");
+        }
+        scene.architecture.windows = vec![window("wall_0", "wall_0", 2.0)];
+        let text = problems(&scene).join("\n");
+        assert!(
+            text.contains("id `wall_0` is used more than once (by wall and window)"),
+            "{text}"
+        );
+        scene.architecture.windows[0].offset = f64::NAN;
+        let bad = scene.architecture.out_of_bounds().unwrap();
+        assert_eq!(
+            (bad.kind, bad.fields),
+            ("window", "offset/width/height/sill")
+        );
+    }
+
+    #[test]
+    fn rooms_doors_and_objects_name_known_rooms() {
+        use crate::RoomArea;
+        use nalgebra::Point2;
+        let rect = |id: &str, x0: f64, x1: f64| RoomArea {
+            id: id.into(),
+            room_type: "bedroom".into(),
+            polygon: [(x0, -2.0), (x1, -2.0), (x1, 2.0), (x0, 2.0)]
+                .iter()
+                .map(|&(x, z)| Point2::new(x, z))
+                .collect(),
+        };
+        let mut sofa = object("sofa", ParentRef::Ground, RelationKind::OnFloor);
+        sofa.room = Some("bedroom_1".into());
+        let mut scene = scene_with(vec![sofa]);
+        scene.architecture.rooms = vec![rect("bedroom_1", -3.0, 0.0), rect("hall", 0.0, 3.0)];
+        scene.architecture.doors[0].joins = Some(["hall".into(), EXTERIOR.into()]);
+        assert!(scene.validate().is_ok(), "{:?}", problems(&scene));
+
+        scene.objects[0].room = Some("attic".into());
+        scene.architecture.doors[0].joins = Some(["cellar".into(), EXTERIOR.into()]);
+        let mut w = window("window_0", "wall_0", 2.0);
+        w.room = Some("loft".into());
+        scene.architecture.windows = vec![w];
+        scene.architecture.rooms.push(rect("hall", 0.0, 0.0));
+        let text = problems(&scene).join("\n");
+        for expected in [
+            "object `sofa`: field `room` names room `attic`, which is not in architecture.rooms",
+            "door `door_0`: field `joins` names room `cellar`, which is not in architecture.rooms (nor `exterior`)",
+            "window `window_0`: field `room` names room `loft`",
+            "id `hall` is used more than once (by room and room)",
+            "room `hall`: field `polygon` encloses no area",
+        ] {
+            assert!(text.contains(expected), "missing {expected:?} in\n{text}");
+        }
+        scene.architecture.doors[0].joins = Some(["hall".into(), "hall".into()]);
+        let text = problems(&scene).join("\n");
+        assert!(
+            text.contains("door `door_0`: field `joins` names `hall` twice"),
+            "{text}"
+        );
     }
 
     #[test]

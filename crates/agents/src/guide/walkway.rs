@@ -6,7 +6,7 @@ use nalgebra::{Point2, Point3};
 use scenethesis_eval::raster::{walk_components, FloorRect, WALK_HEIGHT_LIMIT};
 #[cfg(test)]
 use scenethesis_scene_graph::OpensTo;
-use scenethesis_scene_graph::{Aabb, Components, Floor, RelationKind, ROBOT_RADIUS};
+use scenethesis_scene_graph::{Aabb, Architecture, Components, Floor, RelationKind, ROBOT_RADIUS};
 
 use super::geometry::{Footprint, Raster, RasterExt};
 use super::room::Room;
@@ -41,6 +41,9 @@ pub(super) struct FloorState<'a> {
     pub(super) door_zone: Option<Footprint>,
     /// The floor rectangle [min x, min z, max x, max z].
     pub(super) floor: [f64; 4],
+    /// The room's architecture when it has windows, whose fronts tall floor objects keep
+    /// clear of ([`Architecture::window_covered_by`]).
+    pub(super) windowed: Option<Architecture>,
     /// The objects placed so far (floor and wall-mounted), in placement order.
     pub(super) placed: Vec<Placed>,
     /// The plan being laid out.
@@ -93,6 +96,7 @@ impl<'a> FloorState<'a> {
             door_walk,
             door_zone,
             floor: [-hw, -hd, hw, hd],
+            windowed: (!room.architecture.windows.is_empty()).then(|| room.architecture.clone()),
             placed: Vec::new(),
             plan,
         }
@@ -120,13 +124,38 @@ impl FloorState<'_> {
     }
 
     /// Whether `p` fits: its footprint inside the floor and clear of the others (within
-    /// `gap`) and of the floor their doors and drawers open into, and the floor its own open
+    /// `gap`) and of the floor their doors and drawers open into, the floor its own open
     /// into inside the room and clear of every placed body, hung ones lower than its top
-    /// included (other openings may share it: one opens at a time). An object placed against
+    /// included (other openings may share it: one opens at a time), and, if its top rises
+    /// above a window's sill, not in front of that window. An object placed against
     /// another (a chair at its desk) may stand in that one's opening: it is moved aside to
     /// open it.
     pub(super) fn fits(&self, p: &Placed, gap: f64) -> bool {
-        self.inside_floor(&p.fp, 0.0) && !self.collides(&p.fp, gap) && self.clear_of_openings(p)
+        self.inside_floor(&p.fp, 0.0)
+            && !self.collides(&p.fp, gap)
+            && self.clear_of_openings(p)
+            && !self.covers_a_window(p)
+    }
+
+    /// Whether floor object `p` would stand in front of a window with its top above the sill.
+    fn covers_a_window(&self, p: &Placed) -> bool {
+        let Some(arch) = self.windowed.as_ref().filter(|_| !p.mounted) else {
+            return false;
+        };
+        let corners = p.fp.corners();
+        let (lo, hi) = corners[1..]
+            .iter()
+            .fold((corners[0], corners[0]), |(lo, hi), c| {
+                (
+                    [lo[0].min(c[0]), lo[1].min(c[1])],
+                    [hi[0].max(c[0]), hi[1].max(c[1])],
+                )
+            });
+        let bounds = Aabb::new(
+            Point3::new(lo[0], 0.0, lo[1]),
+            Point3::new(hi[0], p.height, hi[1]),
+        );
+        arch.window_covered_by(&bounds).is_some()
     }
 
     /// Whether `p` stands in no placed floor object's opening and its own opening lies inside
@@ -380,6 +409,59 @@ pub(super) fn drop_pocket_closers(state: &mut FloorState<'_>, dropped: &mut Vec<
 mod tests {
     use super::*;
     use crate::{KnowledgePlanner, PlanRequest, Planner};
+
+    /// A floor object taller than a window's sill does not fit in front of the window; a low
+    /// one does, and so does the tall one beside it.
+    #[test]
+    fn tall_furniture_keeps_clear_of_a_window() {
+        let available: Vec<String> = scenethesis_procedural::catalog::categories()
+            .map(|c| c.name.to_owned())
+            .collect();
+        let plan = KnowledgePlanner::new()
+            .plan(&PlanRequest::new("a bedroom", available, 0))
+            .unwrap();
+        let mut room = Room::of(&plan).unwrap();
+        let back = room.architecture.walls[0].clone();
+        room.architecture
+            .windows
+            .push(scenethesis_scene_graph::WindowOpening {
+                id: "window_0".into(),
+                wall: back.id.clone(),
+                offset: back.length() / 2.0,
+                width: 1.0,
+                height: 1.2,
+                sill: 0.9,
+                room: None,
+            });
+        let state = FloorState::new(&plan, &room, 0.05);
+        let inner = state.floor[1];
+        let at = |cx: f64, height: f64| Placed {
+            plan_index: 0,
+            fp: Footprint {
+                cx,
+                cz: inner + 0.3,
+                yaw: 0.0,
+                hx: 0.45,
+                hz: 0.3,
+            },
+            height,
+            front_access: true,
+            wall: Some(back.id.clone()),
+            mounted: false,
+            bottom: None,
+            opening: None,
+        };
+        assert!(
+            !state.fits(&at(0.0, 2.0), 0.0),
+            "a wardrobe in front of the window"
+        );
+        assert!(state.fits(&at(0.0, 0.6), 0.0), "a chest below the sill");
+        let beside = room.architecture.floor.max.x - 0.5;
+        assert!(
+            state.fits(&at(beside, 2.0), 0.0),
+            "a wardrobe beside the window"
+        );
+    }
 
     /// The door zone keeps the leaf's whole swing free: the quarter disc of radius the door's
     /// width about the hinge on the room side, whichever side the hinge is on, even when the

@@ -6,7 +6,8 @@ Usage: check_exports.py DIR [--seconds S] [--tolerance M]
 DIR must hold scene.json and the exports (scene.glb, scene.usda, scene.mjcf.xml, scene.urdf +
 meshes/). Checks:
   * glTF: the GLB header and JSON chunk are well formed and the scene's root nodes are one per
-    object and per architecture piece, named by its id.
+    architecture piece (floor, walls, window panes), named by its id, then in a house one per
+    room holding that room's objects, then one per object in no room.
   * OpenUSD (pip: usd-core): Usd.Stage.Open succeeds, upAxis is Y, metersPerUnit is 1, every
     object is an Xform whose world bounding box matches scene.json's world_aabb.
   * MuJoCo (pip: mujoco): MjModel.from_xml_path loads the MJCF, every body starts where
@@ -50,7 +51,30 @@ def ok(msg):
 
 def architecture_ids(scene):
     arch = scene["architecture"]
-    return [arch["floor"]["id"]] + [w["id"] for w in arch.get("walls", [])]
+    walls = [w["id"] for w in arch.get("walls", [])]
+    windows = [w["id"] for w in arch.get("windows", [])]
+    return [arch["floor"]["id"]] + walls + windows
+
+
+def glb_root_ids(scene):
+    """The GLB's root node names: the architecture pieces, in a house one node per room, then
+    the objects in no room of the house."""
+    rooms = [r["id"] for r in scene["architecture"].get("rooms", [])]
+    loose = [k for k, o in scene["objects"].items() if o.get("room") not in rooms]
+    return architecture_ids(scene) + rooms + loose
+
+
+def check_glb_rooms(path, gltf, scene):
+    """Each room node holds exactly the nodes of the objects whose `room` it is."""
+    nodes = gltf["nodes"]
+    for room in scene["architecture"].get("rooms", []):
+        node = next((n for n in nodes if n.get("name") == room["id"]), None)
+        held = sorted(nodes[i]["name"] for i in (node or {}).get("children", []))
+        want = sorted(k for k, o in scene["objects"].items() if o.get("room") == room["id"])
+        if node is None or held != want:
+            fail(f"{path}: room node {room['id']} holds {held}, expected {want}")
+        else:
+            ok(f"glb: room {room['id']} holds its {len(want)} objects")
 
 
 def check_glb(path, scene):
@@ -66,11 +90,12 @@ def check_glb(path, scene):
     gltf = json.loads(data[20 : 20 + json_len])
     roots = gltf["scenes"][gltf.get("scene", 0)]["nodes"]
     names = [gltf["nodes"][i].get("name") for i in roots]
-    expected = architecture_ids(scene) + list(scene["objects"].keys())
+    expected = glb_root_ids(scene)
     if names != expected:
         fail(f"{path}: node names {names} != ids {expected}")
     else:
         ok(f"glb: {len(names)} root nodes named by id, {len(gltf['materials'])} materials")
+    check_glb_rooms(path, gltf, scene)
     check_glb_textures(path, gltf, data[20 + json_len + 8 :])
     check_joints.check_glb_joints(gltf, scene, fail, ok)
 

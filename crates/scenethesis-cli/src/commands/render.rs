@@ -10,9 +10,9 @@ use scenethesis_imagery::{encode_png, Camera};
 use scenethesis_import::AssetResolver;
 use scenethesis_procedural::catalog;
 use scenethesis_render::{
-    views, BackendChoice, Instance, PreparedScene, RenderScene, Renderer, RendererOptions,
+    labels, views, BackendChoice, Instance, PreparedScene, RenderScene, Renderer, RendererOptions,
 };
-use scenethesis_scene_graph::{write_file_atomic, Mesh, Scene};
+use scenethesis_scene_graph::{write_file_atomic, Architecture, Mesh, Scene};
 
 /// An image size written `WIDTHxHEIGHT`, e.g. `800x600`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -113,22 +113,28 @@ pub fn run(args: RenderArgs) -> Result<()> {
         renderer.adapter_description()
     );
     for (name, camera) in &shots {
-        write_view(&renderer, &prepared, camera, &dir, name, &args)?;
+        let plan = (name == "preview_top").then_some(&scene.architecture);
+        write_view(&renderer, &prepared, (camera, plan), &dir, name, &args)?;
     }
     Ok(())
 }
 
+/// Renders view `name` from `camera` into `dir` (colour, and depth when asked), labelled with
+/// the rooms of `plan` when given (a house's top view).
 fn write_view(
     renderer: &Renderer,
     prepared: &PreparedScene,
-    camera: &Camera,
+    (camera, plan): (&Camera, Option<&Architecture>),
     dir: &Path,
     name: &str,
     args: &RenderArgs,
 ) -> Result<()> {
-    let color = renderer
+    let mut color = renderer
         .render_color_supersampled(prepared, camera, args.supersample)
         .with_context(|| format!("rendering {name} failed"))?;
+    if let Some(plan) = plan {
+        labels::label_rooms(&mut color, camera, plan);
+    }
     let png = encode_png(&color).with_context(|| format!("encoding {name}.png"))?;
     let path = dir.join(format!("{name}.png"));
     write_file_atomic(&path, &png).with_context(|| format!("cannot write {}", path.display()))?;
