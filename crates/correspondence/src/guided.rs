@@ -577,3 +577,43 @@ impl Aligner<'_> {
         Some((best, alignment))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Vector3;
+    use scenethesis_imagery::{Camera, Intrinsics};
+
+    fn evidence(score: f64, residual: f64) -> Evidence {
+        let camera = Camera::look_at(
+            Intrinsics::from_vertical_fov(64, 48, 1.0),
+            Point3::new(0.0, 1.5, 3.0),
+            Point3::origin(),
+            Vector3::y(),
+        );
+        Evidence {
+            score: ShapeScore {
+                iou: score,
+                depth_agreement: 1.0,
+                score,
+            },
+            residual,
+            alignment: PoseAlignment::new(camera, Vec::new()),
+        }
+    }
+
+    #[test]
+    fn the_lift_is_kept_only_when_the_image_says_it_is_better() {
+        let fitted = evidence(0.80, 0.30);
+        // Lower residual, shape score within 10 %: kept, with both measures in the reason.
+        let reason = evidence(0.75, 0.20).beats(&fitted, 0.1).unwrap();
+        assert!(reason.contains("0.2000 vs 0.3000"), "{reason}");
+        // Clearly better shape score at an equal residual: kept.
+        assert!(evidence(0.95, 0.30).beats(&fitted, 0.1).is_some());
+        // Lower residual but a clearly worse shape score, or a higher residual: not kept.
+        assert!(evidence(0.60, 0.20).beats(&fitted, 0.1).is_none());
+        assert!(evidence(0.95, 0.31).beats(&fitted, 0.1).is_none());
+        // No matches at the lift: nothing says it is better.
+        assert!(evidence(0.95, f64::INFINITY).beats(&fitted, 0.1).is_none());
+    }
+}
