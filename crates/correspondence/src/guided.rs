@@ -157,6 +157,10 @@ pub struct GuidedPose {
     pub score: ShapeScore,
     /// Refresh rounds run.
     pub rounds: usize,
+    /// Why the starting pose (the raw lift) was kept instead of the fitted one, when it was:
+    /// it agrees with the object's mask and depth better by the alignment's own measures
+    /// (its shape score and its match residual); `None` when the alignment moved the object.
+    pub kept_start: Option<String>,
     /// The time budget ran out: the pose is the best found before it did.
     pub out_of_time: bool,
 }
@@ -267,15 +271,60 @@ pub fn align_to_guidance(
     }
     let refined = aligner.refine(start, scale_range, &mut best)?;
     let rounds = refined.rounds;
-    let (best, alignment) = aligner.keep(refined, scale_range, best)?;
+    let (mut best, mut alignment) = aligner.keep(refined, scale_range, best)?;
+    let mut kept_start = None;
+    if best.0 != *start {
+        let sigma = aligner.depth_sigma(start)?;
+        let before = aligner.evidence(start, sigma, scale_range);
+        let after = aligner.evidence(&best.0, sigma, scale_range);
+        if let Some(reason) = before.beats(&after, settings.refine_tolerance) {
+            kept_start = Some(reason);
+            best = (*start, before.score);
+            alignment = before.alignment;
+        }
+    }
     Some(GuidedPose {
         pose: best.0,
         alignment,
         start_score,
         score: best.1,
         rounds,
+        kept_start,
         out_of_time: aligner.cut.get(),
     })
+}
+
+/// How well one pose agrees with its object's guidance, by the alignment's own measures (no
+/// ground truth): the shape score of its view, and the robust alignment loss of the matches
+/// made at that pose (silhouette pairs both ways and depth pairs, the scale prior left out),
+/// a mean per pair, so poses with different match counts compare.
+pub(crate) struct Evidence {
+    /// The shape agreement of the pose's view.
+    pub score: ShapeScore,
+    /// The mean robust alignment loss of the pose's own matches (infinite without matches).
+    pub residual: f64,
+    /// The matches at the pose, outliers trimmed, for the optimizer.
+    pub alignment: PoseAlignment,
+}
+
+impl Evidence {
+    /// Why `self` (the starting pose) agrees with the guidance better than `fitted`, when it
+    /// does: its matches fit with a lower residual and its shape score is not more than
+    /// `tolerance` (a fraction) below the fitted pose's — or its shape score is more than
+    /// `tolerance` above and its residual no higher.
+    pub(crate) fn beats(&self, fitted: &Evidence, tolerance: f64) -> Option<String> {
+        let tol = tolerance.clamp(0.0, 1.0);
+        let (a, b) = (self.score.score, fitted.score.score);
+        let fits_better = self.residual < fitted.residual && a >= b * (1.0 - tol);
+        let looks_better = a > b * (1.0 + tol) && self.residual <= fitted.residual;
+        (self.residual.is_finite() && (fits_better || looks_better)).then(|| {
+            format!(
+                "the raw lift agrees with the mask and depth better than the fitted pose \
+                 (match residual {:.4} vs {:.4}, shape score {:.3} vs {:.3})",
+                self.residual, fitted.residual, a, b
+            )
+        })
+    }
 }
 
 /// One object's alignment: its mesh, its guidance, the matcher and settings, the mask's
@@ -319,6 +368,60 @@ impl Aligner<'_> {
         projected_bbox(self.mesh, pose, camera)
             .and_then(|b| Window::around(b, 2, w, h))
             .map_or(self.mask_window, |p| p.union(&self.mask_window))
+    }
+
+    /// The depth noise σ (metres) at the distance of the asset at `pose`: the 3D weight of
+    /// its matches is `1/σ²`. `None` when the mesh has no bounds.
+    fn depth_sigma(&self, pose: &Pose) -> Option<f64> {
+        let depth = self
+            .target
+            .camera
+            .project(&pose.transform_point(&self.mesh.bounds()?.center()))
+            .map_or(1.0, |p| p.depth);
+        Some((self.settings.depth_noise * depth).max(0.01))
+    }
+
+    /// The alignment of `pairs` under the settings' weights, for depth noise `sigma`.
+    fn alignment_of(&self, pairs: Vec<crate::Correspondence>, sigma: f64) -> PoseAlignment {
+        PoseAlignment {
+            weight_2d: self.settings.weight_2d,
+            weight_3d: 1.0 / (sigma * sigma),
+            ..PoseAlignment::new(*self.target.camera, pairs)
+        }
+    }
+
+    /// The robust fit options for depth noise `sigma`.
+    fn fit_options(&self, scale_range: [f64; 2], sigma: f64) -> FitOptions {
+        FitOptions {
+            scale_range,
+            huber_m: self.settings.fit.huber_m.max(2.0 * sigma),
+            ..self.settings.fit
+        }
+    }
+
+    /// The [`Evidence`] of `pose`, its matches weighted for depth noise `sigma` (the same σ
+    /// for every pose compared, so their residuals are on one scale).
+    fn evidence(&self, pose: &Pose, sigma: f64, scale_range: [f64; 2]) -> Evidence {
+        let view = rasterize(self.mesh, pose, self.target.camera, self.window_at(pose));
+        let score = shape_score(&view, self.target, &self.scorer);
+        let pairs = lift(
+            &self.matcher.match_view(&view, self.target),
+            &view,
+            self.target,
+        );
+        let mut alignment = self.alignment_of(pairs, sigma);
+        let fit = self.fit_options(scale_range, sigma);
+        let residual = if alignment.active().count() == 0 {
+            f64::INFINITY
+        } else {
+            alignment.robust_loss(pose, &fit)
+        };
+        alignment.trim_outliers(pose, &fit, 2.0);
+        Evidence {
+            score,
+            residual,
+            alignment,
+        }
     }
 
     /// The shape agreement of the asset at `pose` with the guidance.
@@ -412,24 +515,15 @@ impl Aligner<'_> {
                 *best = (pose, score);
             }
             let pairs = lift(&self.matcher.match_view(&view, target), &view, target);
-            let depth = camera
-                .project(&pose.transform_point(&mesh.bounds()?.center()))
-                .map_or(1.0, |p| p.depth);
-            let sigma = (settings.depth_noise * depth).max(0.01);
+            let sigma = self.depth_sigma(&pose)?;
             alignment = PoseAlignment {
-                weight_2d: settings.weight_2d,
-                weight_3d: 1.0 / (sigma * sigma),
                 scale_prior,
-                ..PoseAlignment::new(*camera, pairs)
+                ..self.alignment_of(pairs, sigma)
             };
             if alignment.active().count() < 6 {
                 break;
             }
-            let fit = FitOptions {
-                scale_range,
-                huber_m: settings.fit.huber_m.max(2.0 * sigma),
-                ..settings.fit
-            };
+            let fit = self.fit_options(scale_range, sigma);
             let next = alignment.fit(&pose, &fit);
             let moved = (next.translation - pose.translation)
                 .norm()
@@ -478,18 +572,48 @@ impl Aligner<'_> {
             alignment.correspondences =
                 lift(&self.matcher.match_view(&view, target), &view, target);
         }
-        let depth = camera
-            .project(&best.0.transform_point(&mesh.bounds()?.center()))
-            .map_or(1.0, |p| p.depth);
-        let trim = FitOptions {
-            scale_range,
-            huber_m: settings
-                .fit
-                .huber_m
-                .max(2.0 * (settings.depth_noise * depth).max(0.01)),
-            ..settings.fit
-        };
+        let trim = self.fit_options(scale_range, self.depth_sigma(&best.0)?);
         alignment.trim_outliers(&best.0, &trim, 2.0);
         Some((best, alignment))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Vector3;
+    use scenethesis_imagery::{Camera, Intrinsics};
+
+    fn evidence(score: f64, residual: f64) -> Evidence {
+        let camera = Camera::look_at(
+            Intrinsics::from_vertical_fov(64, 48, 1.0),
+            Point3::new(0.0, 1.5, 3.0),
+            Point3::origin(),
+            Vector3::y(),
+        );
+        Evidence {
+            score: ShapeScore {
+                iou: score,
+                depth_agreement: 1.0,
+                score,
+            },
+            residual,
+            alignment: PoseAlignment::new(camera, Vec::new()),
+        }
+    }
+
+    #[test]
+    fn the_lift_is_kept_only_when_the_image_says_it_is_better() {
+        let fitted = evidence(0.80, 0.30);
+        // Lower residual, shape score within 10 %: kept, with both measures in the reason.
+        let reason = evidence(0.75, 0.20).beats(&fitted, 0.1).unwrap();
+        assert!(reason.contains("0.2000 vs 0.3000"), "{reason}");
+        // Clearly better shape score at an equal residual: kept.
+        assert!(evidence(0.95, 0.30).beats(&fitted, 0.1).is_some());
+        // Lower residual but a clearly worse shape score, or a higher residual: not kept.
+        assert!(evidence(0.60, 0.20).beats(&fitted, 0.1).is_none());
+        assert!(evidence(0.95, 0.31).beats(&fitted, 0.1).is_none());
+        // No matches at the lift: nothing says it is better.
+        assert!(evidence(0.95, f64::INFINITY).beats(&fitted, 0.1).is_none());
     }
 }

@@ -18,7 +18,10 @@
 //!   `scenethesis-physics-opt` takes the same loss as its alignment stage and the same step,
 //!   the same parameters and the same [`deadline`]s, from here.
 //! - [`align_to_guidance`] (`guided`): one object — yaw hypotheses ranked by shape, then
-//!   rounds of render → match → lift → fit, within a time budget ([`GuidedSettings`]).
+//!   rounds of render → match → lift → fit, within a time budget ([`GuidedSettings`]); the
+//!   fitted pose replaces the starting one (the raw lift) only when it agrees with the image
+//!   at least as well by the stage's own measures (shape score, match residual), else the
+//!   start is kept with the reason ([`GuidedPose::kept_start`], [`KeptLift`]).
 //! - [`correspond`] (`stage`): every object of a scene, in parallel, with the plan's facing
 //!   hints ([`facing_hint`]).
 //!
@@ -60,4 +63,4 @@ pub use raster::{
     projected_bbox, rasterize, rasterize_coarse, rasterized_guidance, RenderedView, Window,
 };
 pub use shape::{ShapeMatcher, ShapeScore};
-pub use stage::{correspond, facing_hint};
+pub use stage::{correspond, facing_hint, kept_lift, KeptLift};

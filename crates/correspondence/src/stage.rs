@@ -10,6 +10,7 @@ use std::collections::BTreeMap;
 use rayon::prelude::*;
 use scenethesis_imagery::{DepthMap, Guidance};
 use scenethesis_scene_graph::{Mesh, RelationKind, Scene, SceneObject};
+use serde::{Deserialize, Serialize};
 
 use crate::guided::{align_to_guidance, GuidedPose, GuidedSettings};
 use crate::matcher::{Matcher, TargetRegion};
@@ -92,5 +93,28 @@ pub fn correspond(
         })
         .collect::<Vec<_>>()
         .into_iter()
+        .collect()
+}
+
+/// An object whose raw lift was kept because it agrees with the guidance better than the pose
+/// the alignment fitted (`report.json`'s `alignment.kept_lift`).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct KeptLift {
+    /// The object.
+    pub id: String,
+    /// The measures that decided it.
+    pub reason: String,
+}
+
+/// The objects of a [`correspond`] result that kept their starting pose, by id.
+pub fn kept_lift(guided: &BTreeMap<String, GuidedPose>) -> Vec<KeptLift> {
+    guided
+        .iter()
+        .filter_map(|(id, g)| {
+            Some(KeptLift {
+                id: id.clone(),
+                reason: g.kept_start.clone()?,
+            })
+        })
         .collect()
 }

@@ -7,7 +7,8 @@
 //!    median ratio of box to asset extents, centre on the box's);
 //! 2. `alignment`: after the correspond stage ([`scenethesis_correspondence::correspond`]: yaw
 //!    hypotheses, shape matching against mask and depth, matches refreshed while the pose
-//!    moves);
+//!    moves; an object whose raw lift agrees with the image better than its fitted pose keeps
+//!    the lift, listed in [`AblationReport::kept_lift`]);
 //! 3. `collision`: after the optimizer's alignment stage and a physics stage that only resolves
 //!    collisions ([`ProjectedGaussNewton::stability`] off);
 //! 4. `stability`: after the full optimizer (collision and stability).
@@ -21,7 +22,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::sync::Arc;
 
-use scenethesis_correspondence::{correspond, GuidedSettings, ShapeMatcher};
+use scenethesis_correspondence::{correspond, kept_lift, GuidedSettings, KeptLift, ShapeMatcher};
 use scenethesis_eval::{evaluate_with_cache, DecompositionCache, EvalObject, EvalScene};
 use scenethesis_imagery::Guidance;
 use scenethesis_import::AssetResolver;
@@ -73,11 +74,26 @@ pub struct AblationRow {
     pub inst_o: f64,
 }
 
-/// The ablation of one scene: `{"rows": [...]}`.
+/// One recovered object's distance from its true box centre after each stage.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ObjectErrors {
+    /// The object.
+    pub id: String,
+    /// Metres, per stage: raw, alignment, collision, stability.
+    pub translation_m: [f64; 4],
+}
+
+/// The ablation of one scene: `{"rows": [...], "objects": [...], "kept_lift": [...]}`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct AblationReport {
     /// Raw, alignment, collision and stability, in that order.
     pub rows: Vec<AblationRow>,
+    /// Every recovered object's translation error per stage, by id.
+    #[serde(default)]
+    pub objects: Vec<ObjectErrors>,
+    /// The objects whose raw lift the alignment kept, with why.
+    #[serde(default)]
+    pub kept_lift: Vec<KeptLift>,
 }
 
 /// Why an ablation failed.
@@ -220,23 +236,34 @@ pub fn ablate(
     let collision = optimize(false)?;
     let stability = optimize(true)?;
     let cache = DecompositionCache::new();
-    let rows = [
+    let stages = [
         (AblationStage::Raw, &raw),
         (AblationStage::Alignment, &aligned),
         (AblationStage::Collision, &collision),
         (AblationStage::Stability, &stability),
-    ]
-    .into_iter()
-    .map(|(stage, poses)| {
+    ];
+    let mut objects: BTreeMap<String, [f64; 4]> = BTreeMap::new();
+    let mut rows = Vec::new();
+    for (k, (stage, poses)) in stages.into_iter().enumerate() {
         let poses: BTreeMap<String, Pose> = poses
             .iter()
             .filter(|(id, _)| recovered.object(id).is_some())
             .map(|(id, p)| (id.clone(), *p))
             .collect();
-        row(stage, scene, &recovered, meshes, &poses, &cache)
+        let errors = pose_errors(scene, meshes, &poses);
+        for (id, e) in &errors {
+            objects.entry(id.clone()).or_insert([f64::NAN; 4])[k] = e.translation;
+        }
+        rows.push(row(stage, &errors, &recovered, meshes, &poses, &cache));
+    }
+    Ok(AblationReport {
+        rows,
+        objects: objects
+            .into_iter()
+            .map(|(id, translation_m)| ObjectErrors { id, translation_m })
+            .collect(),
+        kept_lift: kept_lift(&guided),
     })
-    .collect();
-    Ok(AblationReport { rows })
 }
 
 /// The scene restricted to the objects in `poses` whose whole support chain is among them,
@@ -280,17 +307,22 @@ fn with_poses(scene: &Scene, poses: &BTreeMap<String, Pose>) -> Scene {
     out
 }
 
-/// One row: pose errors against `truth` and Col-O / Inst-O of `recovered` posed by `poses`.
-fn row(
-    stage: AblationStage,
+/// One object's pose errors against the truth.
+struct PoseError {
+    translation: f64,
+    yaw_deg: f64,
+    scale: f64,
+    iou: f64,
+}
+
+/// The pose errors against `truth` of every object in `poses` that the truth has.
+fn pose_errors(
     truth: &Scene,
-    recovered: &Scene,
     meshes: &BTreeMap<String, Mesh>,
     poses: &BTreeMap<String, Pose>,
-    cache: &DecompositionCache,
-) -> AblationRow {
+) -> BTreeMap<String, PoseError> {
     let boxes = true_boxes(truth, meshes);
-    let (mut t, mut y, mut s, mut iou) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let mut out = BTreeMap::new();
     for (id, pose) in poses {
         let (Some(object), Some(mesh), Some(tb)) =
             (truth.object(id), meshes.get(id), boxes.get(id))
@@ -299,14 +331,7 @@ fn row(
         };
         let Some(aabb) = mesh.bounds() else { continue };
         let center = pose.transform_point(&aabb.center());
-        t.push((center - tb.center).norm());
         let period = yaw_symmetry(mesh);
-        y.push(if period > 0.0 {
-            yaw_error(pose.yaw, object.pose.yaw, period)
-        } else {
-            0.0
-        });
-        s.push((pose.scale / object.pose.scale - 1.0).abs());
         let posed = LiftedBox {
             id: id.clone(),
             center,
@@ -316,8 +341,31 @@ fn row(
             depth_source: DepthSource::Measured,
             completed: false,
         };
-        iou.push(posed.iou(tb));
+        let error = PoseError {
+            translation: (center - tb.center).norm(),
+            yaw_deg: if period > 0.0 {
+                yaw_error(pose.yaw, object.pose.yaw, period)
+            } else {
+                0.0
+            },
+            scale: (pose.scale / object.pose.scale - 1.0).abs(),
+            iou: posed.iou(tb),
+        };
+        out.insert(id.clone(), error);
     }
+    out
+}
+
+/// One row: the medians of `errors` and Col-O / Inst-O of `recovered` posed by `poses`.
+fn row(
+    stage: AblationStage,
+    errors: &BTreeMap<String, PoseError>,
+    recovered: &Scene,
+    meshes: &BTreeMap<String, Mesh>,
+    poses: &BTreeMap<String, Pose>,
+    cache: &DecompositionCache,
+) -> AblationRow {
+    let of = |f: fn(&PoseError) -> f64| median(errors.values().map(f).collect());
     let scene = with_poses(recovered, poses);
     let eval = EvalScene {
         objects: scene
@@ -330,10 +378,10 @@ fn row(
     let metrics = evaluate_with_cache(&eval, cache);
     AblationRow {
         stage,
-        translation_median_m: median(t),
-        yaw_median_deg: median(y),
-        scale_error_median: median(s),
-        iou_median: median(iou),
+        translation_median_m: of(|e| e.translation),
+        yaw_median_deg: of(|e| e.yaw_deg),
+        scale_error_median: of(|e| e.scale),
+        iou_median: of(|e| e.iou),
         col_o: metrics.col_o,
         inst_o: metrics.inst_o,
     }

@@ -7,13 +7,18 @@ use scenethesis_render::Renderer;
 
 /// The offline scene of `prompt` (seed 0) and a renderer.
 fn generated(prompt: &str) -> (GeneratedScene, Renderer) {
+    generated_with_seed(prompt, 0)
+}
+
+/// The offline scene of `prompt` and `seed`, and a renderer.
+fn generated_with_seed(prompt: &str, seed: u64) -> (GeneratedScene, Renderer) {
     let options = GenerateOptions {
         max_replans: 1,
         previews: false,
         ..GenerateOptions::default()
     };
     let generated = Pipeline::offline()
-        .generate(prompt, 0, &options, &mut NoProgress)
+        .generate(prompt, seed, &options, &mut NoProgress)
         .expect("offline generation works");
     let renderer = Renderer::from_env().expect("a graphics adapter (Mesa llvmpipe in CI)");
     (generated, renderer)
@@ -104,4 +109,96 @@ fn ablation_alignment_beats_the_raw_lift_and_the_full_optimizer_is_clean() {
     ] {
         assert!(row[key].is_number(), "missing {key}: {json}");
     }
+}
+
+/// The ablation of `prompt` at `seed` with the default perturbation.
+fn ablation_of(prompt: &str, seed: u64) -> scenethesis_experiments::ablation::AblationReport {
+    let (generated, renderer) = generated_with_seed(prompt, seed);
+    let opts = RoundtripOptions {
+        size: [480, 360],
+        perturb: Perturbation::Default,
+        seed,
+    };
+    scenethesis_experiments::ablation::ablation(
+        &renderer,
+        &generated.scene,
+        &generated.meshes,
+        &opts,
+    )
+    .unwrap()
+}
+
+/// The alignment's cut of the raw lift's median translation error (negative: better), and
+/// whether the final row keeps Col-O 0 and stays within 2 cm of the alignment row.
+fn cut_and_final(report: &scenethesis_experiments::ablation::AblationReport) -> (f64, bool) {
+    let [raw, aligned, _, full] = &report.rows[..] else {
+        unreachable!()
+    };
+    let cut = aligned.translation_median_m / raw.translation_median_m.max(1e-9) - 1.0;
+    let clean =
+        full.col_o == 0.0 && full.translation_median_m <= aligned.translation_median_m + 0.02;
+    (cut, clean)
+}
+
+/// Prompts outside the benchmark list, as a new user would try them.
+const UNSEEN: [&str; 5] = [
+    "a teenager's bedroom",
+    "a farmhouse kitchen",
+    "a home office with two desks",
+    "a dining room with a long table and six chairs",
+    "a small studio apartment",
+];
+
+/// On scenes nobody tuned for, the alignment never leaves a scene's median translation error
+/// above its raw lift's (an object keeps its lift when that agrees with the image better), and
+/// the final row keeps Col-O 0 within 2 cm of the alignment row.
+#[test]
+fn alignment_is_never_worse_than_the_raw_lift_on_unseen_prompts() {
+    for (prompt, seed) in [(UNSEEN[0], 0), (UNSEEN[1], 1)] {
+        let report = ablation_of(prompt, seed);
+        let (cut, clean) = cut_and_final(&report);
+        assert!(
+            cut <= 0.0,
+            "`{prompt}` seed {seed}: alignment made the median error worse: {report:#?}"
+        );
+        assert!(
+            clean,
+            "`{prompt}` seed {seed}: final row collides or moved > 2 cm: {report:#?}"
+        );
+    }
+}
+
+/// The median cut over ten unseen scenes (five prompts, seeds 0 and 1), printed as JSON lines
+/// (`cargo test -p scenethesis-experiments --test roundtrip -- --ignored --nocapture`): at
+/// least 30 %, no scene worse than its raw lift, every final row without collisions. The
+/// scenes whose final row moved more than 2 cm from the alignment row are listed, not failed
+/// (docs/guidance.md: three of the ten).
+#[test]
+#[ignore = "ten generated scenes: minutes in the test profile"]
+fn alignment_cuts_the_error_by_thirty_percent_over_ten_unseen_scenes() {
+    let mut cuts = Vec::new();
+    let mut moved = Vec::new();
+    for seed in 0..2 {
+        for prompt in UNSEEN {
+            let report = ablation_of(prompt, seed);
+            let (cut, clean) = cut_and_final(&report);
+            println!(
+                "{}",
+                serde_json::json!({"prompt": prompt, "seed": seed, "cut": cut, "report": report})
+            );
+            assert!(
+                cut <= 0.0,
+                "`{prompt}` seed {seed}: alignment made it worse"
+            );
+            assert_eq!(report.rows[3].col_o, 0.0, "`{prompt}` seed {seed} collides");
+            cuts.push(cut);
+            if !clean {
+                moved.push(format!("{prompt} seed {seed}"));
+            }
+        }
+    }
+    cuts.sort_by(f64::total_cmp);
+    let median = (cuts[4] + cuts[5]) / 2.0;
+    println!("median cut {median:.3}, cuts {cuts:?}; final row > 2 cm off: {moved:?}");
+    assert!(median <= -0.3, "median cut {median:.3}: {cuts:?}");
 }

@@ -15,7 +15,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::judge::{GeometricJudge, Judge};
 use crate::phases::clock::StageClock;
-use crate::phases::correspond::correspond;
+use crate::phases::correspond::{correspond, Aligned};
 use crate::phases::judge::{judge, verdict_note, Attempt};
 use crate::phases::layout::lay_out;
 use crate::phases::optimize::optimize;
@@ -412,7 +412,7 @@ impl Pipeline {
         // Alignment needs metric depth: without it nothing but the outline says how far away an
         // object is, and a box-shaped mask pulls objects toward the camera to fill it; the
         // guide's single-view metrology (where the mask meets the floor) places them better.
-        let alignments = match (&layout.guidance, &self.matcher) {
+        let aligned = match (&layout.guidance, &self.matcher) {
             (Some(guidance), Some((matcher, settings))) if guidance.depth.is_some() => {
                 clock.check(Stage::Correspond, round)?;
                 clock.run(
@@ -429,10 +429,16 @@ impl Pipeline {
                             options,
                         )
                     },
-                    |a| format!("{} objects aligned", a.len()),
+                    |a| {
+                        format!(
+                            "{} objects aligned, {} kept their lift",
+                            a.alignments.len(),
+                            a.kept_lift.len()
+                        )
+                    },
                 )?
             }
-            _ => BTreeMap::new(),
+            _ => Aligned::default(),
         };
         clock.check(Stage::Optimize, round)?;
         let deadline = clock.deadline();
@@ -442,7 +448,7 @@ impl Pipeline {
             || {
                 optimize(
                     &mut scene,
-                    &alignments,
+                    &aligned.alignments,
                     &retrieved,
                     cache,
                     self.optimizer.as_ref(),
@@ -487,6 +493,7 @@ impl Pipeline {
             placement,
             verdict,
             guide_dropped: layout.dropped,
+            kept_lift: aligned.kept_lift,
             guidance: layout.guidance,
             round,
         })

@@ -33,6 +33,22 @@ pub struct Replan {
     pub layout_seed: u64,
 }
 
+/// `report.json`'s `alignment`: what the correspond stage decided.
+#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct AlignmentReport {
+    /// Objects that kept the raw lift's pose because it agrees with the image better than the
+    /// fitted one (the alignment never leaves an object worse than its lift), with the measures.
+    #[serde(default)]
+    pub kept_lift: Vec<scenethesis_correspondence::KeptLift>,
+}
+
+impl AlignmentReport {
+    /// Nothing to report.
+    pub fn is_empty(&self) -> bool {
+        self.kept_lift.is_empty()
+    }
+}
+
 /// Post-condition misses the optimizer reported for one object.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ObjectIssue {
@@ -105,6 +121,10 @@ pub struct Report {
     /// category it has; absent when none.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub guide_unmapped: Vec<UnmappedLabel>,
+    /// What the correspond stage decided (vision-guided runs with a matcher); absent when it
+    /// did not run or kept every fitted pose.
+    #[serde(default, skip_serializing_if = "AlignmentReport::is_empty")]
+    pub alignment: AlignmentReport,
     /// Every re-plan the judge made.
     pub replans: Vec<Replan>,
     /// The judge's verdict on the output, with every metric.

@@ -405,25 +405,36 @@ fn copy_guidance(to: &Path) -> PathBuf {
     dst
 }
 
+/// The flags that hand `generate` the guidance folder `g`'s files.
+fn guide_flags(g: &Path) -> Vec<String> {
+    let mut flags = Vec::new();
+    for (flag, file) in [
+        ("--guide-image", "rgb.png"),
+        ("--guide-masks", "ids.png"),
+        ("--guide-labels", "labels.json"),
+        ("--guide-depth", "depth.npy"),
+        ("--camera", "camera.json"),
+    ] {
+        flags.push(flag.to_owned());
+        flags.push(g.join(file).to_string_lossy().into_owned());
+    }
+    flags
+}
+
+/// `scenethesis` with `args` and then the guide flags of `g`.
+fn with_guidance(args: &[&str], g: &Path) -> Output {
+    let flags = guide_flags(g);
+    let all: Vec<&str> = args
+        .iter()
+        .copied()
+        .chain(flags.iter().map(String::as_str))
+        .collect();
+    scenethesis(&all)
+}
+
 fn generate_with(g: &Path, out: &Path) -> Output {
-    let p = |n: &str| g.join(n).to_string_lossy().into_owned();
-    scenethesis(&[
-        "generate",
-        PROMPT,
-        "--out",
-        out.to_str().unwrap(),
-        "--no-preview",
-        "--guide-image",
-        &p("rgb.png"),
-        "--guide-masks",
-        &p("ids.png"),
-        "--guide-labels",
-        &p("labels.json"),
-        "--guide-depth",
-        &p("depth.npy"),
-        "--camera",
-        &p("camera.json"),
-    ])
+    let out = out.to_str().unwrap();
+    with_guidance(&["generate", PROMPT, "--out", out, "--no-preview"], g)
 }
 
 #[test]
@@ -608,4 +619,68 @@ fn recovery_errors(
         taken.insert(gid);
     }
     errors
+}
+
+/// `generate` with the guidance files and no prompt.
+fn generate_photo_alone(g: &Path, out: &Path) -> Output {
+    let out = out.to_str().unwrap();
+    let args = [
+        "generate",
+        "--out",
+        out,
+        "--no-preview",
+        "--max-replans",
+        "0",
+    ];
+    with_guidance(&args, g)
+}
+
+/// A photo alone: no prompt, the scene the image shows — its labelled objects where it shows
+/// them, and the report saying what was read from it. An image whose depth shows no floor
+/// stops the run with one error naming the depth file, and nothing is written.
+#[test]
+fn a_photo_alone_builds_the_scene_it_shows() {
+    let (scene, g) = base();
+    let dir = tempfile::tempdir().unwrap();
+    let out_dir = dir.path().join("photo");
+    let out = generate_photo_alone(g, &out_dir);
+    let t = text(&out);
+    assert!(out.status.success(), "{t}");
+    assert!(t.contains("inferred: no prompt"), "{t}");
+    let report = report(&out_dir);
+    let assumptions = report["assumptions"].to_string();
+    assert!(assumptions.contains("no prompt"), "{report}");
+    assert!(assumptions.contains("floor is visible"), "{report}");
+    let truth = objects(scene);
+    let labelled = visible_labels(g);
+    let got = objects(&out_dir);
+    let errors = recovery_errors(&truth, &labelled, &got);
+    let within = errors.iter().filter(|e| **e < 0.10).count();
+    assert!(
+        within * 4 >= labelled.len() * 3,
+        "{within} of {} labelled objects within 10 cm: {errors:?}",
+        labelled.len()
+    );
+    assert!(got.len() <= labelled.len(), "{} objects placed", got.len());
+
+    // No floor in view: everything within a metre of the camera, nothing down at y = 0.
+    let g = copy_guidance(dir.path());
+    let near: Vec<f32> = (0..768 * 512)
+        .map(|i| 0.8 + 0.0002 * (i % 768) as f32)
+        .collect();
+    std::fs::write(
+        g.join("depth.npy"),
+        scenethesis_vision::files::write_npy(768, 512, &near),
+    )
+    .unwrap();
+    let out_dir = dir.path().join("no-floor");
+    let out = generate_photo_alone(&g, &out_dir);
+    let t = text(&out);
+    assert!(!out.status.success(), "accepted without a floor\n{t}");
+    assert!(
+        t.contains("depth.npy") && t.contains("no visible floor"),
+        "{t}"
+    );
+    assert!(!t.contains("✔ plan"), "the run started:\n{t}");
+    assert!(!out_dir.exists(), "something was written");
 }

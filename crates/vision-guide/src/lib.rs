@@ -19,7 +19,7 @@
 //! Modules, one phase each: [`source`] (where the image comes from, and file checks),
 //! [`camera`] (a camera estimated from the floor), [`adopt`] (labelled objects the plan lacks
 //! become planned objects), [`detect`] (masks for the planned objects),
-//! [`keep`] (`--keep-plan`: planned objects the image
+//! [`photo`] (a photo alone: the prompt read from its masks, the floor checked), [`keep`] (`--keep-plan`: planned objects the image
 //! does not show, placed offline around it), [`relations`] (the support relations a vision-language model states, cross-checked with the
 //! lift), [`assemble`] (boxes → scene graph), and the guide itself.
 #![warn(missing_docs)]
@@ -30,8 +30,10 @@ pub mod camera;
 pub mod detect;
 mod guide;
 pub mod keep;
+pub mod photo;
 pub mod relations;
 pub mod source;
 
 pub use guide::{edit_prompt, VisionGuide};
+pub use photo::{photo_scene, PhotoError, PhotoScene};
 pub use source::{GivenGuidance, GuidanceFileError, GuidanceFiles};

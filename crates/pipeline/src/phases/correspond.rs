@@ -6,15 +6,22 @@
 
 use std::collections::BTreeMap;
 
-use scenethesis_correspondence::{GuidedSettings, Matcher, PoseAlignment};
+use scenethesis_correspondence::{kept_lift, GuidedSettings, KeptLift, Matcher, PoseAlignment};
 use scenethesis_imagery::Guidance;
 use scenethesis_scene_graph::Scene;
 
 use super::retrieve::{AssetCache, Retrieved};
 use crate::{GenerateOptions, PipelineError};
 
-/// Aligns `scene`'s poses to `guidance` in place (its depth taken as metric); returns the
-/// correspondences per aligned object.
+/// What the correspond phase hands on: the correspondences per aligned object (the
+/// optimizer's alignment term) and the objects that kept their raw lift, with why.
+#[derive(Default)]
+pub(crate) struct Aligned {
+    pub(crate) alignments: BTreeMap<String, PoseAlignment>,
+    pub(crate) kept_lift: Vec<KeptLift>,
+}
+
+/// Aligns `scene`'s poses to `guidance` in place (its depth taken as metric).
 pub(crate) fn correspond(
     scene: &mut Scene,
     guidance: &Guidance,
@@ -23,7 +30,7 @@ pub(crate) fn correspond(
     matcher: &dyn Matcher,
     settings: &GuidedSettings,
     options: &GenerateOptions,
-) -> Result<BTreeMap<String, PoseAlignment>, PipelineError> {
+) -> Result<Aligned, PipelineError> {
     let mut meshes = BTreeMap::new();
     let mut ranges = BTreeMap::new();
     for object in &scene.objects {
@@ -56,8 +63,11 @@ pub(crate) fn correspond(
             object.pose = g.pose;
         }
     }
-    Ok(guided
-        .into_iter()
-        .map(|(id, g)| (id, g.alignment))
-        .collect())
+    Ok(Aligned {
+        kept_lift: kept_lift(&guided),
+        alignments: guided
+            .into_iter()
+            .map(|(id, g)| (id, g.alignment))
+            .collect(),
+    })
 }

@@ -18,6 +18,8 @@ pub(crate) struct Attempt {
     pub(crate) placement: Placement,
     pub(crate) verdict: Verdict,
     pub(crate) guide_dropped: Vec<DroppedObject>,
+    /// The objects whose raw lift the alignment kept, with why.
+    pub(crate) kept_lift: Vec<scenethesis_correspondence::KeptLift>,
     /// The guide's notes for the report.
     pub(crate) guide_notes: Vec<String>,
     /// What the guide saw (vision guides), handed on to the result.

@@ -64,6 +64,9 @@ pub(crate) fn report(best: &Attempt, run: RunRecord<'_>) -> Report {
         guide_dropped: best.guide_dropped.clone(),
         guide_adopted: run.adoption.objects.iter().map(|o| o.id.clone()).collect(),
         guide_unmapped: run.adoption.unmapped.clone(),
+        alignment: crate::report::AlignmentReport {
+            kept_lift: best.kept_lift.clone(),
+        },
         replans: run.replans,
         verdict: best.verdict.clone(),
         optimizer_issues,

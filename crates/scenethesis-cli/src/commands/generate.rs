@@ -17,8 +17,9 @@ use scenethesis_setup::PipelineSettings;
 /// Arguments of `scenethesis generate`.
 #[derive(Debug, clap::Args)]
 pub struct GenerateArgs {
-    /// What to build, e.g. "a cozy living room with reading materials" (or give --plan).
-    #[arg(required_unless_present = "plan", conflicts_with = "plan")]
+    /// What to build, e.g. "a cozy living room with reading materials" (or give --plan, or a
+    /// --guide-image with its masks and depth alone: the scene the image shows).
+    #[arg(required_unless_present_any = ["plan", "guide_image"], conflicts_with = "plan")]
     pub prompt: Option<String>,
     /// Build from a saved (possibly hand-edited) plan instead of a prompt: the JSON that
     /// `scenethesis plan` writes (docs/plan.md). The plan's prompt is the scene's prompt.
@@ -251,7 +252,16 @@ pub fn run(args: GenerateArgs) -> Result<()> {
     // malformed one leaves nothing behind, not even --out's missing parent folders; then the
     // output path, before the long work.
     let mut pipeline = args.pipeline.pipeline()?;
-    pipeline = args.guide.apply(pipeline, &args.pipeline.providers)?;
+    let photo_alone = args.prompt.is_none() && args.plan.is_none();
+    let (guided, photo) = args
+        .guide
+        .apply(pipeline, &args.pipeline.providers, photo_alone)?;
+    pipeline = guided;
+    if let Some(photo) = &photo {
+        for line in &photo.inferred {
+            eprintln!("inferred: {line}");
+        }
+    }
     let prompt = match &args.plan {
         Some(path) => {
             let planner = FixedPlanner::from_file(path)?;
@@ -259,7 +269,10 @@ pub fn run(args: GenerateArgs) -> Result<()> {
             pipeline = pipeline.with_planner(planner);
             prompt
         }
-        None => args.prompt.clone().unwrap_or_default(),
+        None => match &photo {
+            Some(photo) => photo.prompt.clone(),
+            None => args.prompt.clone().unwrap_or_default(),
+        },
     };
     let out = OutputDir::prepare(&args.out, args.force)?;
     let options = args.pipeline.options();
@@ -272,6 +285,10 @@ pub fn run(args: GenerateArgs) -> Result<()> {
             None => format!("generating \"{prompt}\""),
         })?;
     drop(guard);
+    if let Some(photo) = photo {
+        // What the image alone decided, beside the planner's own assumptions.
+        generated.report.assumptions.splice(0..0, photo.inferred);
+    }
     println!("{}", generated.report.summary_line());
     let rejected = !generated.report.accepted;
     if rejected && !args.strict {

@@ -6,7 +6,9 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use scenethesis_openai::OpenAiClient;
 use scenethesis_pipeline::{GuidedSettings, Pipeline, ShapeMatcher};
-use scenethesis_vision_guide::{GivenGuidance, GuidanceFiles, VisionGuide};
+use scenethesis_vision_guide::{
+    photo_scene, GivenGuidance, GuidanceFiles, PhotoScene, VisionGuide,
+};
 
 use super::providers::ProviderArgs;
 
@@ -86,7 +88,20 @@ impl GuideArgs {
     /// Installs the selected guide. The procedural default leaves `pipeline` as it is; the
     /// vision guide reads and checks its files first (any problem stops the run before anything
     /// is written). The models it uses report their use in `report.json` like the others.
-    pub fn apply(&self, pipeline: Pipeline, models: &ProviderArgs) -> Result<Pipeline> {
+    /// With `photo_alone` (no prompt, no plan) the given guidance must show its objects and
+    /// floor, and the returned [`PhotoScene`] holds the prompt read from it.
+    pub fn apply(
+        &self,
+        pipeline: Pipeline,
+        models: &ProviderArgs,
+        photo_alone: bool,
+    ) -> Result<(Pipeline, Option<PhotoScene>)> {
+        if photo_alone && (self.choice() != GuideChoice::Vision || self.guide_image.is_none()) {
+            anyhow::bail!(
+                "no prompt: give one, a --plan, or a --guide-image to build the scene it shows"
+            );
+        }
+        let mut photo = None;
         if self.choice() == GuideChoice::Procedural {
             if let Some(image) = &self.guide_image {
                 anyhow::bail!(
@@ -100,7 +115,7 @@ impl GuideArgs {
                 );
             }
             self.onnx.reject_unused()?;
-            return Ok(pipeline);
+            return Ok((pipeline, None));
         }
         if let (MatcherChoice::None, Some(model)) = (self.matcher, &self.onnx.match_model) {
             anyhow::bail!(
@@ -121,6 +136,9 @@ impl GuideArgs {
                 let categories = pipeline.assets().categories();
                 let given = GivenGuidance::read(&files, &categories)
                     .context("reading the guidance files")?;
+                if photo_alone {
+                    photo = Some(photo_scene(&given)?);
+                }
                 let guide = VisionGuide::from_files(given);
                 if self.guide_masks.is_some() {
                     // Masks given: a VLM named with --vlm-model still cross-checks the supports.
@@ -158,13 +176,14 @@ impl GuideArgs {
         };
         let guide = guide.with_keep_plan(self.keep_plan);
         let (pipeline, dense) = onnx.install(guide, pipeline);
-        Ok(match self.matcher {
+        let pipeline = match self.matcher {
             _ if dense => pipeline,
             MatcherChoice::Shape => {
                 pipeline.with_matcher(ShapeMatcher::default(), GuidedSettings::default())
             }
             MatcherChoice::None => pipeline,
-        })
+        };
+        Ok((pipeline, photo))
     }
 }
 
