@@ -1,10 +1,12 @@
 //! Collision: penetration depths between objects' real triangle meshes, both directions, and
 //! penetration of the floor and walls.
 
+use std::sync::OnceLock;
+
 use nalgebra::Point3;
 use rayon::prelude::*;
-use scenethesis_scene_graph::{Aabb, Mesh};
-use scenethesis_sdf::MeshSdf;
+use scenethesis_scene_graph::{Aabb, Mesh, MeshPart};
+use scenethesis_sdf::{MeshSdf, SignRule};
 use serde::{Deserialize, Serialize};
 
 use crate::raster::{wall_pieces, WallPiece};
@@ -52,10 +54,68 @@ pub struct CollisionReport {
     pub pairs_tested: usize,
 }
 
-/// One part of an object with its exact signed distance field.
-pub(crate) struct PartField {
+/// One part of an object: its box, and its exact signed distance field, built the first time
+/// a test point falls in the box (most parts of a large object are never reached).
+pub(crate) struct PartField<'a> {
     bounds: Aabb,
+    part: &'a MeshPart,
+    sdf: OnceLock<Option<BuiltField>>,
+}
+
+/// A part's exact field, and whether every solid of it is closed.
+struct BuiltField {
     sdf: MeshSdf,
+    closed: bool,
+}
+
+impl PartField<'_> {
+    /// The part's field; `None` for a part without a usable (non-degenerate) triangle, which
+    /// has no inside to penetrate.
+    fn built(&self) -> Option<&BuiltField> {
+        self.sdf
+            .get_or_init(|| {
+                let sdf = MeshSdf::new(&self.part.positions, &self.part.triangles).ok()?;
+                let closed = sdf
+                    .sign_rules()
+                    .iter()
+                    .all(|r| *r == SignRule::PseudoNormal);
+                Some(BuiltField { sdf, closed })
+            })
+            .as_ref()
+    }
+}
+
+/// Slack (m) for the `f32` rounding of a field's distances when they are bounded by a box
+/// depth computed in `f64`.
+const BOX_DEPTH_SLACK: f64 = 1e-4;
+
+/// How deep `q` lies inside `bounds` (its distance to the nearest face; `q` is inside).
+fn box_depth(bounds: &Aabb, q: &Point3<f64>) -> f64 {
+    (0..3)
+        .map(|k| (q[k] - bounds.min[k]).min(bounds.max[k] - q[k]))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The part fields of every object of a scene, each object's made on first use and then shared
+/// by every test of one evaluation (the collision pairs and the opening sweeps).
+pub(crate) struct SceneFields<'a> {
+    scene: &'a EvalScene,
+    objects: Vec<OnceLock<Vec<PartField<'a>>>>,
+}
+
+impl<'a> SceneFields<'a> {
+    /// No field of `scene` built yet.
+    pub(crate) fn new(scene: &'a EvalScene) -> Self {
+        Self {
+            scene,
+            objects: scene.objects.iter().map(|_| OnceLock::new()).collect(),
+        }
+    }
+
+    /// The part fields of object `k` of the scene.
+    pub(crate) fn of(&self, k: usize) -> &[PartField<'a>] {
+        self.objects[k].get_or_init(|| part_fields(&self.scene.objects[k].mesh))
+    }
 }
 
 /// What the collision test needs of one object.
@@ -116,13 +176,12 @@ pub fn test_points(mesh: &Mesh, seed: u64) -> Vec<Point3<f32>> {
     points
 }
 
-pub(crate) fn part_fields(mesh: &Mesh) -> Vec<PartField> {
+/// The parts of `mesh` with triangles, each with its box (fields not built yet).
+fn part_fields(mesh: &Mesh) -> Vec<PartField<'_>> {
     mesh.parts
         .iter()
         .filter(|p| !p.triangles.is_empty())
         .filter_map(|p| {
-            // A part without a usable triangle (degenerate) has no inside to penetrate.
-            let sdf = MeshSdf::new(&p.positions, &p.triangles).ok()?;
             let corners: Vec<Point3<f64>> = p
                 .positions
                 .iter()
@@ -130,7 +189,8 @@ pub(crate) fn part_fields(mesh: &Mesh) -> Vec<PartField> {
                 .collect();
             Some(PartField {
                 bounds: Aabb::from_points(corners.iter())?,
-                sdf,
+                part: p,
+                sdf: OnceLock::new(),
             })
         })
         .collect()
@@ -141,8 +201,15 @@ fn boxes_touch(a: &Aabb, b: &Aabb) -> bool {
 }
 
 /// The deepest penetration (m, ≥ 0) of any of `points` inside the parts of another object,
-/// whose whole box is `bounds` (a point outside it is outside every part: skipped at once).
-pub(crate) fn penetration(points: &[Point3<f32>], bounds: &Aabb, fields: &[PartField]) -> f64 {
+/// whose whole box is `bounds` (a point outside it is outside every part: skipped at once),
+/// when it is deeper than [`PENETRATION_TOLERANCE`]; otherwise some depth no deeper than that
+/// (callers only compare it with the tolerance).
+///
+/// A closed solid lies inside its part's box, so a point is no deeper in the solid than in the
+/// box: a point whose box depth cannot beat both the deepest found so far and the tolerance
+/// is not queried. That skips the many surface samples of a resting contact, which lie in the
+/// supporting part's box only by a hair.
+pub(crate) fn penetration(points: &[Point3<f32>], bounds: &Aabb, fields: &[PartField<'_>]) -> f64 {
     let mut near: Vec<(Point3<f32>, Point3<f64>)> = points
         .iter()
         .map(|p| (*p, p.cast::<f64>()))
@@ -154,11 +221,22 @@ pub(crate) fn penetration(points: &[Point3<f32>], bounds: &Aabb, fields: &[PartF
     for field in fields {
         let from = near.partition_point(|(_, q)| q.x < field.bounds.min.x);
         let to = near.partition_point(|(_, q)| q.x <= field.bounds.max.x);
-        for (p, q) in &near[from..to.max(from)] {
-            if !field.bounds.contains_point(q) {
+        let mut inside = near[from..to.max(from)]
+            .iter()
+            .filter(|(_, q)| field.bounds.contains_point(q))
+            .peekable();
+        if inside.peek().is_none() {
+            continue;
+        }
+        let Some(built) = field.built() else {
+            continue;
+        };
+        for (p, q) in inside {
+            let bound = deepest.max(PENETRATION_TOLERANCE);
+            if built.closed && box_depth(&field.bounds, q) + BOX_DEPTH_SLACK <= bound {
                 continue;
             }
-            let depth = -(field.sdf.signed_distance(p) as f64);
+            let depth = -(built.sdf.signed_distance(p) as f64);
             if depth > deepest {
                 deepest = depth;
             }
@@ -170,6 +248,11 @@ pub(crate) fn penetration(points: &[Point3<f32>], bounds: &Aabb, fields: &[PartF
 /// Tests every pair of objects whose boxes touch with their real meshes (both directions) and
 /// every object against the floor and walls.
 pub fn collisions(scene: &EvalScene) -> CollisionReport {
+    collisions_with(scene, &SceneFields::new(scene))
+}
+
+/// [`collisions`] with the part fields of `fields` (shared with other tests of the scene).
+pub(crate) fn collisions_with(scene: &EvalScene, fields: &SceneFields<'_>) -> CollisionReport {
     let objects = &scene.objects;
     let prepared: Vec<Prepared> = objects
         .par_iter()
@@ -180,7 +263,7 @@ pub fn collisions(scene: &EvalScene) -> CollisionReport {
         })
         .collect();
     let candidates = candidate_pairs(&prepared);
-    let depths = pair_depths(scene, &prepared, &candidates);
+    let depths = pair_depths(fields, &prepared, &candidates);
     let mut report = CollisionReport {
         pairs_tested: candidates.len(),
         ..Default::default()
@@ -223,35 +306,18 @@ fn candidate_pairs(prepared: &[Prepared]) -> Vec<(usize, usize)> {
 }
 
 /// Each candidate pair's deepest penetration, either way round, against the exact fields of
-/// the parts of the objects some pair involves.
+/// the parts of the other object.
 fn pair_depths(
-    scene: &EvalScene,
+    fields: &SceneFields<'_>,
     prepared: &[Prepared],
     candidates: &[(usize, usize)],
 ) -> Vec<f64> {
-    let objects = &scene.objects;
-    let mut involved = vec![false; objects.len()];
-    for &(i, j) in candidates {
-        involved[i] = true;
-        involved[j] = true;
-    }
-    let fields: Vec<Vec<PartField>> = objects
-        .par_iter()
-        .zip(&involved)
-        .map(|(o, &needed)| {
-            if needed {
-                part_fields(&o.mesh)
-            } else {
-                Vec::new()
-            }
-        })
-        .collect();
     candidates
         .par_iter()
         .map(|&(i, j)| match (&prepared[i].bounds, &prepared[j].bounds) {
             (Some(bi), Some(bj)) => {
-                let ab = penetration(&prepared[i].points, bj, &fields[j]);
-                let ba = penetration(&prepared[j].points, bi, &fields[i]);
+                let ab = penetration(&prepared[i].points, bj, fields.of(j));
+                let ba = penetration(&prepared[j].points, bi, fields.of(i));
                 ab.max(ba)
             }
             // Candidates are pairs with both boxes.

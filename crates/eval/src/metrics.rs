@@ -5,8 +5,8 @@ use std::collections::BTreeSet;
 use scenethesis_scene_graph::RelationKind;
 use serde::{Deserialize, Serialize};
 
-use crate::collision::{collisions, ArchPenetration, CollidingPair};
-use crate::opening::{opening_clearances, OpeningClearance};
+use crate::collision::{collisions_with, ArchPenetration, CollidingPair, SceneFields};
+use crate::opening::{opening_clearances_with, OpeningClearance};
 use crate::raster::walk_and_reach;
 use crate::scene::EvalScene;
 use crate::stability::{simulate, DecompositionCache, UnstableObject};
@@ -50,6 +50,10 @@ pub struct SceneMetrics {
     pub welded: Vec<String>,
     /// Objects without volume, excluded from stability.
     pub stability_skipped: Vec<String>,
+    /// Simulated time of the stability simulation (s): its full duration, or less when every
+    /// body fell asleep earlier.
+    #[serde(default)]
+    pub stability_simulated_seconds: f64,
     /// Walk: largest walkable component / walkable area.
     pub walk: f64,
     /// Reach over floor-standing objects; `None` without any.
@@ -78,12 +82,79 @@ pub fn evaluate(scene: &EvalScene) -> SceneMetrics {
     evaluate_with_cache(scene, &DecompositionCache::new())
 }
 
+/// Wall-clock seconds each part of an evaluation took ([`evaluate_timed`]). The parts run side
+/// by side (rayon), so on a multi-core machine they add up to more than the whole evaluation.
+/// The one non-deterministic output of this crate; it is kept out of [`SceneMetrics`].
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct EvalTimings {
+    /// Object pairs and the architecture tested with the meshes
+    /// ([`collisions`](crate::collision::collisions)).
+    pub collisions: f64,
+    /// The rigid-body stability simulation ([`simulate`]).
+    pub stability: f64,
+    /// The Walk and Reach floor rasters ([`walk_and_reach`]).
+    pub walk_reach: f64,
+    /// The opening-clearance sweep of doors, drawers and lids
+    /// ([`opening_clearances`](crate::opening::opening_clearances)).
+    pub openings: f64,
+}
+
 /// Evaluates one scene, reusing (and filling) `cache` for convex decompositions.
 pub fn evaluate_with_cache(scene: &EvalScene, cache: &DecompositionCache) -> SceneMetrics {
-    let ((collision, stability), (walk, openings)) = rayon::join(
-        || rayon::join(|| collisions(scene), || simulate(scene, cache)),
-        || rayon::join(|| walk_and_reach(scene), || opening_clearances(scene)),
+    evaluate_timed(scene, cache).0
+}
+
+/// Runs `work` and returns its result with the wall-clock seconds it took.
+fn timed<T>(work: impl FnOnce() -> T) -> (T, f64) {
+    let started = std::time::Instant::now();
+    let value = work();
+    (value, started.elapsed().as_secs_f64())
+}
+
+/// Evaluates one scene like [`evaluate_with_cache`] and says how long each part took.
+pub fn evaluate_timed(
+    scene: &EvalScene,
+    cache: &DecompositionCache,
+) -> (SceneMetrics, EvalTimings) {
+    // The collision pairs and the opening sweeps test against the same exact part fields.
+    let fields = SceneFields::new(scene);
+    let (
+        ((collision, collisions_s), (stability, stability_s)),
+        ((walk, walk_s), (openings, openings_s)),
+    ) = rayon::join(
+        || {
+            rayon::join(
+                || timed(|| collisions_with(scene, &fields)),
+                || timed(|| simulate(scene, cache)),
+            )
+        },
+        || {
+            rayon::join(
+                || timed(|| walk_and_reach(scene)),
+                || timed(|| opening_clearances_with(scene, &fields)),
+            )
+        },
     );
+    let timings = EvalTimings {
+        collisions: collisions_s,
+        stability: stability_s,
+        walk_reach: walk_s,
+        openings: openings_s,
+    };
+    (
+        metrics_of(scene, collision, stability, walk, openings),
+        timings,
+    )
+}
+
+/// The metrics of `scene` from its parts' results.
+fn metrics_of(
+    scene: &EvalScene,
+    collision: crate::collision::CollisionReport,
+    stability: crate::stability::StabilityReport,
+    walk: crate::raster::WalkReach,
+    openings: Vec<OpeningClearance>,
+) -> SceneMetrics {
     let n = scene.objects.len();
     let rate = |k: usize, d: usize| if d == 0 { 0.0 } else { k as f64 / d as f64 };
     let category_names: Vec<String> = scene
@@ -127,6 +198,7 @@ pub fn evaluate_with_cache(scene: &EvalScene, cache: &DecompositionCache) -> Sce
         unstable: stability.unstable,
         welded: stability.welded,
         stability_skipped: stability.skipped,
+        stability_simulated_seconds: stability.simulated_seconds,
         walk: walk.walk,
         reach_floor: walk.reach_floor,
         reach_all: walk.reach_all,

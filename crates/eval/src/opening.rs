@@ -7,8 +7,6 @@
 //! the walls and floor. The object's own parts never block it, and neither does an object the
 //! part carries (`parent_link`): a sock in a drawer rides out with it.
 
-use std::sync::OnceLock;
-
 use nalgebra::{Isometry3, Point3, Translation3, Unit, UnitQuaternion, Vector3};
 use rayon::prelude::*;
 use scenethesis_scene_graph::{
@@ -17,7 +15,7 @@ use scenethesis_scene_graph::{
 use serde::{Deserialize, Serialize};
 
 use crate::collision::{
-    part_fields, penetration, piece_depth, surface_area, PartField, PENETRATION_TOLERANCE,
+    penetration, piece_depth, surface_area, PartField, SceneFields, PENETRATION_TOLERANCE,
 };
 use crate::raster::{wall_pieces, WallPiece};
 use crate::scene::{EvalObject, EvalScene};
@@ -46,6 +44,15 @@ pub struct OpeningClearance {
 
 /// Every joint of the scene, in scene order and joint order.
 pub fn opening_clearances(scene: &EvalScene) -> Vec<OpeningClearance> {
+    opening_clearances_with(scene, &SceneFields::new(scene))
+}
+
+/// [`opening_clearances`] with the part fields of `fields` (shared with other tests of the
+/// scene).
+pub(crate) fn opening_clearances_with(
+    scene: &EvalScene,
+    fields: &SceneFields<'_>,
+) -> Vec<OpeningClearance> {
     let jobs: Vec<(usize, usize)> = scene
         .objects
         .iter()
@@ -56,10 +63,8 @@ pub fn opening_clearances(scene: &EvalScene) -> Vec<OpeningClearance> {
         return Vec::new();
     }
     let walls = wall_pieces(scene);
-    let fields: Vec<OnceLock<Vec<PartField>>> =
-        scene.objects.iter().map(|_| OnceLock::new()).collect();
     jobs.par_iter()
-        .map(|&(i, j)| sweep(scene, &walls, &fields, i, j))
+        .map(|&(i, j)| sweep(scene, &walls, fields, i, j))
         .collect()
 }
 
@@ -109,7 +114,7 @@ fn sweep_states(placed: &JointState) -> Vec<f32> {
 fn sweep(
     scene: &EvalScene,
     walls: &[WallPiece],
-    fields: &[OnceLock<Vec<PartField>>],
+    fields: &SceneFields<'_>,
     i: usize,
     j: usize,
 ) -> OpeningClearance {
@@ -204,21 +209,21 @@ fn motion(joint: &Joint, delta: f32) -> Isometry3<f32> {
 }
 
 /// An object a sweep may hit, with its box and exact part fields.
-struct Obstacle<'a> {
+struct Obstacle<'a, 's> {
     id: &'a str,
     bounds: Aabb,
-    fields: &'a [PartField],
+    fields: &'a [PartField<'s>],
 }
 
 /// The objects other than object `i` and what joint `joint` carries whose boxes meet the
 /// swept box, with their part fields (built once per object for all sweeps).
-fn obstacles<'a>(
+fn obstacles<'a, 's>(
     scene: &'a EvalScene,
-    fields: &'a [OnceLock<Vec<PartField>>],
+    fields: &'a SceneFields<'s>,
     i: usize,
     joint: &str,
     swept: Option<Aabb>,
-) -> Vec<Obstacle<'a>> {
+) -> Vec<Obstacle<'a, 's>> {
     let Some(swept) = swept else {
         return Vec::new();
     };
@@ -237,7 +242,7 @@ fn obstacles<'a>(
             touches(&bounds, &swept).then(|| Obstacle {
                 id: &o.id,
                 bounds,
-                fields: fields[k].get_or_init(|| part_fields(&o.mesh)),
+                fields: fields.of(k),
             })
         })
         .collect()
@@ -251,7 +256,7 @@ fn touches(a: &Aabb, b: &Aabb) -> bool {
 /// a wall or the floor.
 fn first_blocker(
     points: &[Point3<f32>],
-    obstacles: &[Obstacle],
+    obstacles: &[Obstacle<'_, '_>],
     walls: &[WallPiece],
     floor: &str,
 ) -> Option<String> {

@@ -413,6 +413,11 @@ fn thirty_object_scene_is_clean_and_deterministic() {
 /// A 0.6 m wide cabinet whose door (hinged on its left edge, opening toward +Z) is part of
 /// the mesh, with a box of side 0.3 m standing `gap` metres in front of it.
 fn cabinet_and_box(gap: f64, box_parent_link: Option<&str>) -> SceneMetrics {
+    evaluate(&cabinet_and_box_scene(gap, box_parent_link))
+}
+
+/// The scene of [`cabinet_and_box`].
+fn cabinet_and_box_scene(gap: f64, box_parent_link: Option<&str>) -> scenethesis_eval::EvalScene {
     use scenethesis_scene_graph::{Joint, JointKind, JointState, Material, MeshPart, OpensTo};
     let mut cabinet = scenethesis_scene_graph::Mesh::cuboid(
         "body",
@@ -464,7 +469,28 @@ fn cabinet_and_box(gap: f64, box_parent_link: Option<&str>) -> SceneMetrics {
         scenethesis_eval::EvalObject::from_scene_object(&cab, &cabinet),
         scenethesis_eval::EvalObject::from_scene_object(&item, &b),
     ];
-    evaluate(&room(objects))
+    room(objects)
+}
+
+#[test]
+fn collisions_and_openings_sharing_part_fields_answer_as_each_alone() {
+    use scenethesis_eval::{collision::collisions, evaluate_timed, opening::opening_clearances};
+    // The box stands 2 cm into the closed door: a collision, and a door that cannot open.
+    let scene = cabinet_and_box_scene(-0.02, None);
+    let (m, timings) = evaluate_timed(&scene, &scenethesis_eval::DecompositionCache::new());
+    assert!(!m.colliding_pairs.is_empty(), "the box is in the door");
+    assert_eq!(m.colliding_pairs, collisions(&scene).pairs);
+    assert!(m.blocked_openings().count() == 1, "{:?}", m.openings);
+    assert_eq!(m.openings, opening_clearances(&scene));
+    assert_eq!(m, evaluate(&scene));
+    for (part, seconds) in [
+        ("collisions", timings.collisions),
+        ("stability", timings.stability),
+        ("walk-reach", timings.walk_reach),
+        ("openings", timings.openings),
+    ] {
+        assert!(seconds > 0.0 && seconds < 60.0, "{part}: {seconds} s");
+    }
 }
 
 #[test]

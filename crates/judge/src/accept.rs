@@ -1,8 +1,8 @@
 //! A judge that accepts every scene it can measure.
 
-use scenethesis_eval::{evaluate_with_cache, DecompositionCache};
+use scenethesis_eval::{evaluate_timed, DecompositionCache};
 
-use crate::judge::{Judge, JudgeError, JudgeInput, Verdict};
+use crate::judge::{Judge, JudgeError, JudgeInput, JudgeTimings, Verdict};
 
 /// Accepts every scene, so the pipeline never re-plans. The verdict still carries the scene's
 /// metrics (as `scenethesis-eval` measures them) so `report.json` stays informative; it checks
@@ -25,14 +25,21 @@ impl Judge for AcceptAll {
     }
 
     fn judge(&self, input: &JudgeInput<'_>) -> Result<Verdict, JudgeError> {
-        let scene = input.eval_scene()?;
+        let mut meshes = 0.0;
+        let scene = crate::judge::timed(&mut meshes, || input.eval_scene())?;
+        let (metrics, timings) = evaluate_timed(&scene, &self.cache);
         Ok(Verdict {
             accepted: true,
             failures: Vec::new(),
-            metrics: evaluate_with_cache(&scene, &self.cache),
+            metrics,
             relations_checked: 0,
             arrangement: None,
             review: None,
+            timings: Some(JudgeTimings {
+                meshes,
+                metrics: timings,
+                ..JudgeTimings::default()
+            }),
         })
     }
 }

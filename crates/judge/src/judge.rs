@@ -5,7 +5,7 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use scenethesis_agents::{check_arrangement, check_prompt, ArrangementCheck, Plan};
 use scenethesis_eval::{
-    evaluate_with_cache, DecompositionCache, EvalError, EvalScene, SceneMetrics,
+    evaluate_timed, DecompositionCache, EvalError, EvalScene, EvalTimings, SceneMetrics,
 };
 use scenethesis_imagery::Guidance;
 use scenethesis_scene_graph::{relation_holds, Mesh, ParentRef, Relation, Scene};
@@ -105,6 +105,49 @@ pub struct Verdict {
     /// looked at it; absent for the geometric judge.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub review: Option<serde_json::Value>,
+    /// How long the parts of judging took, when the judge measured them. Wall-clock, so the
+    /// one non-deterministic part of a verdict: never serialized (the pipeline moves it into
+    /// `report.json`'s `timings`).
+    #[serde(skip)]
+    pub timings: Option<JudgeTimings>,
+}
+
+/// Wall-clock seconds the parts of judging one scene took.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct JudgeTimings {
+    /// Placing every object's mesh in the world for the metrics ([`JudgeInput::eval_scene`]).
+    pub meshes: f64,
+    /// The metrics' parts: collisions, the stability simulation, Walk and Reach, openings.
+    /// They run side by side, so they may add up to more than the judge's own time.
+    pub metrics: EvalTimings,
+    /// The relations of the plan and of the prompt.
+    pub relations: f64,
+    /// The functional-arrangement rules.
+    pub arrangement: f64,
+}
+
+impl JudgeTimings {
+    /// Every part as `(name, seconds)`, in the order `report.json` lists them.
+    pub fn parts(&self) -> [(&'static str, f64); 7] {
+        let m = &self.metrics;
+        [
+            ("meshes", self.meshes),
+            ("collisions", m.collisions),
+            ("stability", m.stability),
+            ("relations", self.relations),
+            ("walk-reach", m.walk_reach),
+            ("openings", m.openings),
+            ("arrangement", self.arrangement),
+        ]
+    }
+}
+
+/// Runs `work`, adding the wall-clock seconds it took to `seconds`.
+pub(crate) fn timed<T>(seconds: &mut f64, work: impl FnOnce() -> T) -> T {
+    let started = std::time::Instant::now();
+    let value = work();
+    *seconds += started.elapsed().as_secs_f64();
+    value
 }
 
 impl Verdict {
@@ -252,8 +295,10 @@ impl Judge for GeometricJudge {
 
     fn judge(&self, input: &JudgeInput<'_>) -> Result<Verdict, JudgeError> {
         let scene = input.scene;
-        let eval_scene = input.eval_scene()?;
-        let metrics = evaluate_with_cache(&eval_scene, &self.cache);
+        let mut timings = JudgeTimings::default();
+        let eval_scene = timed(&mut timings.meshes, || input.eval_scene())?;
+        let (metrics, metrics_timings) = evaluate_timed(&eval_scene, &self.cache);
+        timings.metrics = metrics_timings;
         let order = placement_rank(scene);
         let anchor = scene.anchor.as_deref();
         let mut failures = Vec::new();
@@ -306,8 +351,11 @@ impl Judge for GeometricJudge {
                 },
             });
         }
-        let relations_checked = plan_relation_failures(input.plan, scene, &mut failures);
-        failures.extend(prompt_failures(input.plan, scene));
+        let relations_checked = timed(&mut timings.relations, || {
+            let checked = plan_relation_failures(input.plan, scene, &mut failures);
+            failures.extend(prompt_failures(input.plan, scene));
+            checked
+        });
         if !metrics.unreachable_floor_objects.is_empty() {
             failures.push(Failure {
                 kind: FailureKind::Unreachable,
@@ -335,7 +383,7 @@ impl Judge for GeometricJudge {
         }
         failures.extend(opening_failures(&metrics, &order, anchor));
         failures.extend(window_failures(scene));
-        let arrangement = check_arrangement(scene);
+        let arrangement = timed(&mut timings.arrangement, || check_arrangement(scene));
         failures.extend(arrangement_failures(&arrangement));
         Ok(Verdict {
             accepted: failures.is_empty(),
@@ -344,6 +392,7 @@ impl Judge for GeometricJudge {
             relations_checked,
             arrangement: Some(arrangement),
             review: None,
+            timings: Some(timings),
         })
     }
 }

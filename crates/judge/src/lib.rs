@@ -15,4 +15,6 @@ mod accept;
 mod judge;
 
 pub use accept::AcceptAll;
-pub use judge::{Failure, FailureKind, GeometricJudge, Judge, JudgeError, JudgeInput, Verdict};
+pub use judge::{
+    Failure, FailureKind, GeometricJudge, Judge, JudgeError, JudgeInput, JudgeTimings, Verdict,
+};

@@ -22,7 +22,7 @@ use crate::objective::{LossSettings, ObjectProblem, RoomBounds, Stage};
 use crate::obstacles::Obstacles;
 use crate::optimizer::Optimizer;
 use crate::prepare::PreparedAsset;
-use crate::report::{ObjectReport, Placement};
+use crate::report::{ObjectReport, OptimizeTimings, Placement};
 use crate::support::{choose_surface, Support, SupportPlane};
 use crate::verify::{verify, Placed, Tolerances, Verdict};
 use crate::PhysicsOptError;
@@ -141,10 +141,13 @@ pub fn optimize_scene(
         (a, b) => a.or(b),
     };
     let room = RoomBounds::of(&scene.architecture);
+    let mut timings = OptimizeTimings::default();
+    let mut clock = Instant::now();
     let mut sweep = Sweep::new(&scene.architecture, order.len());
     for object in &order {
         sweep.place(problem, optimizer, settings, object, room, deadline);
     }
+    timings.sweep = lap(&mut clock);
     let Sweep {
         mut exact,
         mut reports,
@@ -165,6 +168,7 @@ pub fn optimize_scene(
         };
         checked = finish_pass(problem, optimizer, settings, &scope, &mut finished);
     }
+    timings.final_pass = lap(&mut clock);
     let out_of_time = past(deadline);
     let placed: Vec<Placed<'_>> = order
         .iter()
@@ -184,11 +188,21 @@ pub fn optimize_scene(
         report.support_gap = verdict.support_gap;
         report.issues = verdict.issues;
     }
+    timings.check = lap(&mut clock);
     Ok(Placement {
         optimizer: optimizer.name().to_owned(),
         objects: reports,
         out_of_time,
+        timings,
     })
+}
+
+/// The seconds since `clock`, which is moved on to now.
+fn lap(clock: &mut Instant) -> f64 {
+    let now = Instant::now();
+    let seconds = now.duration_since(*clock).as_secs_f64();
+    *clock = now;
+    seconds
 }
 
 /// Every object of `order` has a prepared asset and a finite pose of positive scale.

@@ -53,7 +53,7 @@ pub use obstacles::Obstacles;
 pub use optimizer::{LearningRates, Optimizer, Sgd, StageOutcome};
 pub use prepare::{PrepareSettings, PreparedAsset};
 pub use projected::ProjectedGaussNewton;
-pub use report::{Issue, ObjectReport, Placement};
+pub use report::{Issue, ObjectReport, OptimizeTimings, Placement};
 pub use support::{Support, SupportPlane};
 pub use verify::Tolerances;
 

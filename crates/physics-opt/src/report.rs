@@ -121,6 +121,34 @@ pub struct Placement {
     /// the poses reached, and the post-conditions were checked on those (absent when false).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub out_of_time: bool,
+    /// How long the parts of the optimization took. Wall-clock, so the one non-deterministic
+    /// part of a placement: never serialized.
+    #[serde(skip)]
+    pub timings: OptimizeTimings,
+}
+
+/// Wall-clock seconds the parts of [`crate::optimize_scene`] took.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct OptimizeTimings {
+    /// The breadth-first sweep: every object aligned, settled and polished in turn.
+    pub sweep: f64,
+    /// The final separation pass over the objects that still missed a post-condition
+    /// (0 when skipped).
+    pub final_pass: f64,
+    /// The post-condition check on the exact fields, when the final pass did not already make
+    /// it on the final poses.
+    pub check: f64,
+}
+
+impl OptimizeTimings {
+    /// Every part as `(name, seconds)`, in the order `report.json` lists them.
+    pub fn parts(&self) -> [(&'static str, f64); 3] {
+        [
+            ("sweep", self.sweep),
+            ("final-pass", self.final_pass),
+            ("check", self.check),
+        ]
+    }
 }
 
 impl Placement {

@@ -49,7 +49,9 @@ pub use pipeline::{
 };
 pub use plan_file::{plan_json, write_plan, PLAN_JSON};
 pub use replan::replan_action;
-pub use report::{AlignmentReport, ObjectIssue, Replan, ReplanAction, Report, StageTiming};
+pub use report::{
+    AlignmentReport, ObjectIssue, PartTiming, Replan, ReplanAction, Report, StageTiming,
+};
 pub use saved::SavedScene;
 /// The judge stage (its own crate, `scenethesis-judge`), re-exported for compatibility.
 pub use scenethesis_judge as judge;

@@ -38,6 +38,7 @@ impl GeneratedScene {
         self.report.timings.push(StageTiming {
             stage: Stage::Export,
             seconds: started.elapsed().as_secs_f64(),
+            parts: Vec::new(),
         });
         write_report(tmp, &self.report)
     }

@@ -442,7 +442,7 @@ impl Pipeline {
         };
         clock.check(Stage::Optimize, round)?;
         let deadline = clock.deadline();
-        let (placement, meshes) = clock.run(
+        let (placement, meshes, prepare_seconds) = clock.run(
             Stage::Optimize,
             round,
             || {
@@ -456,7 +456,7 @@ impl Pipeline {
                     deadline,
                 )
             },
-            |(p, _)| {
+            |(p, _, _)| {
                 format!(
                     "{} objects, {} with issues{}",
                     p.objects.len(),
@@ -465,6 +465,8 @@ impl Pipeline {
                 )
             },
         )?;
+        clock.add_parts(Stage::Optimize, &[("prepare", prepare_seconds)]);
+        clock.add_parts(Stage::Optimize, &placement.timings.parts());
         // What rests in a drawer rides with it; the judge sees the doors and drawers in the
         // state the scene is delivered in.
         scene.assign_parent_links(&meshes);
@@ -485,6 +487,9 @@ impl Pipeline {
             },
             verdict_note,
         )?;
+        if let Some(timings) = &verdict.timings {
+            clock.add_parts(Stage::Judge, &timings.parts());
+        }
         Ok(Attempt {
             plan: plan.clone(),
             scene,

@@ -65,6 +65,21 @@ pub struct StageTiming {
     pub stage: Stage,
     /// Seconds.
     pub seconds: f64,
+    /// The stage's parts as the stage itself measured them (the judge's collisions, stability
+    /// simulation, relations, …; the optimizer's sweep and final pass), summed over re-plans;
+    /// absent for stages that report none. Parts may run side by side, so they can add up to
+    /// more than the stage.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub parts: Vec<PartTiming>,
+}
+
+/// Wall-clock seconds spent in one part of a stage (summed over re-plans).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PartTiming {
+    /// The part's name (`collisions`, `sweep`, …; see `docs/report-json.md`).
+    pub part: String,
+    /// Seconds.
+    pub seconds: f64,
 }
 
 /// The content of `report.json`. Everything except `timings`, `total_seconds` and the

@@ -62,10 +62,47 @@ fn check_complete(a: &GeneratedScene) {
     ] {
         assert!(stages.contains(&stage), "no timing for {stage}");
     }
+    check_stage_parts(a);
     assert_eq!(a.report.attempts, a.report.replans.len() + 1);
     assert_eq!(a.report.objects, scene.objects.len());
     assert_eq!(a.report.verdict.metrics.objects, scene.objects.len());
     assert_eq!(a.report.accepted, a.report.verdict.failures.is_empty());
+}
+
+/// The judge and the optimizer report their parts, each timed within its stage's total (parts
+/// that run side by side may add up to more, but none is longer than the stage).
+fn check_stage_parts(a: &GeneratedScene) {
+    for (stage, names) in [
+        (
+            Stage::Judge,
+            &[
+                "meshes",
+                "collisions",
+                "stability",
+                "relations",
+                "walk-reach",
+                "openings",
+                "arrangement",
+            ][..],
+        ),
+        (
+            Stage::Optimize,
+            &["prepare", "sweep", "final-pass", "check"][..],
+        ),
+    ] {
+        let timing = a.report.timings.iter().find(|t| t.stage == stage).unwrap();
+        let parts: Vec<&str> = timing.parts.iter().map(|p| p.part.as_str()).collect();
+        assert_eq!(parts, names, "parts of {stage}");
+        for part in &timing.parts {
+            assert!(
+                part.seconds >= 0.0 && part.seconds <= timing.seconds,
+                "{stage} {}: {} s of {} s",
+                part.part,
+                part.seconds,
+                timing.seconds
+            );
+        }
+    }
 }
 
 /// The folder holds the three files; `scene.json` round-trips and names every object; the GLB

@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 use std::time::{Duration, Instant};
 
-use crate::report::StageTiming;
+use crate::report::{PartTiming, StageTiming};
 use crate::stage::{Progress, Stage};
 use crate::PipelineError;
 
@@ -12,6 +12,8 @@ use crate::PipelineError;
 pub(crate) struct StageClock<'p> {
     progress: &'p mut dyn Progress,
     totals: BTreeMap<Stage, f64>,
+    /// Per stage, its parts' seconds in the order first reported.
+    parts: BTreeMap<Stage, Vec<(&'static str, f64)>>,
     started: Instant,
     limit: Option<Duration>,
 }
@@ -22,6 +24,7 @@ impl<'p> StageClock<'p> {
         Self {
             progress,
             totals: BTreeMap::new(),
+            parts: BTreeMap::new(),
             started: Instant::now(),
             limit,
         }
@@ -100,14 +103,34 @@ impl<'p> StageClock<'p> {
         }
     }
 
-    /// The per-stage totals, in stage order.
+    /// Adds the seconds of `stage`'s parts, as the stage measured them, to their totals.
+    pub(crate) fn add_parts(&mut self, stage: Stage, parts: &[(&'static str, f64)]) {
+        let totals = self.parts.entry(stage).or_default();
+        for &(name, seconds) in parts {
+            match totals.iter_mut().find(|(n, _)| *n == name) {
+                Some(total) => total.1 += seconds,
+                None => totals.push((name, seconds)),
+            }
+        }
+    }
+
+    /// The per-stage totals with their parts, in stage order.
     pub(crate) fn timings(&self) -> Vec<StageTiming> {
         Stage::ALL
             .iter()
             .filter_map(|s| {
-                self.totals
-                    .get(s)
-                    .map(|&seconds| StageTiming { stage: *s, seconds })
+                let parts = self.parts.get(s).map_or(&[][..], Vec::as_slice);
+                self.totals.get(s).map(|&seconds| StageTiming {
+                    stage: *s,
+                    seconds,
+                    parts: parts
+                        .iter()
+                        .map(|&(part, seconds)| PartTiming {
+                            part: part.to_owned(),
+                            seconds,
+                        })
+                        .collect(),
+                })
             })
             .collect()
     }

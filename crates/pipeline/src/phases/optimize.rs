@@ -16,7 +16,7 @@ use crate::{GenerateOptions, PipelineError};
 /// Optimizes `scene` in place, with the pose-alignment correspondences of `alignments` (by
 /// object id; empty without guidance), within the optimizer's own time budget and by
 /// `deadline` (the end of the run's time limit); returns the placement report and each
-/// object's mesh.
+/// object's mesh, and the seconds spent preparing the assets (the stage's `prepare` part).
 pub(crate) fn optimize(
     scene: &mut Scene,
     alignments: &BTreeMap<String, PoseAlignment>,
@@ -25,7 +25,8 @@ pub(crate) fn optimize(
     optimizer: &dyn Optimizer,
     options: &GenerateOptions,
     deadline: Option<Instant>,
-) -> Result<(Placement, BTreeMap<String, Mesh>), PipelineError> {
+) -> Result<(Placement, BTreeMap<String, Mesh>, f64), PipelineError> {
+    let prepare_started = Instant::now();
     let mut meshes = BTreeMap::new();
     let mut problem = SceneProblem::new(scene.clone());
     for object in &scene.objects {
@@ -44,11 +45,12 @@ pub(crate) fn optimize(
     for (id, alignment) in alignments {
         problem.set_alignment(id, alignment.clone());
     }
+    let prepare_seconds = prepare_started.elapsed().as_secs_f64();
     let settings = OptimizeSettings {
         deadline,
         ..options.optimize.clone()
     };
     let placement = optimize_scene(&problem, optimizer, &settings)?;
     placement.apply_to(scene);
-    Ok((placement, meshes))
+    Ok((placement, meshes, prepare_seconds))
 }
