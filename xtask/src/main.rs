@@ -10,11 +10,13 @@
 //!   functional-arrangement rules held, run layouts, category-set diversity) and batch
 //!   throughput (`throughput/…`: scenes per hour per core through the CLI batch and Ray), and
 //!   the density and physics of the benchmark scenes over seeds 0–2 (`density/…`: objects and
-//!   small objects per scene, Col-O, Col-arch, Inst-O, Walk, Reach, acceptance).
-//!   Naming only those sections (`roundtrip`, `rooms`, `throughput`, `density`) skips the
-//!   criterion runs.
+//!   small objects per scene, Col-O, Col-arch, Inst-O, Walk, Reach, acceptance) and the time of
+//!   a five-room apartment with previews over seeds 0–4 (`houses/five_room_apartment`).
+//!   Naming only those sections (`roundtrip`, `rooms`, `throughput`, `density`, `houses`)
+//!   skips the criterion runs.
 
 mod density;
+mod houses;
 mod rooms;
 mod throughput;
 
@@ -103,6 +105,9 @@ fn bench(args: &[String]) -> Result<()> {
     if filter.is_empty() || filter.contains(&"density") {
         density::add_density(&root, &target, json_out, &mut figures)?;
     }
+    if filter.is_empty() || filter.contains(&"houses") {
+        houses::add_houses(&root, &target, json_out, &mut figures)?;
+    }
     if filter.is_empty() || filter.contains(&"throughput") {
         let exe = release_cli(&root, &target, json_out)?;
         throughput::add_throughput(&root, &target, &exe, &mut figures)?;
@@ -121,7 +126,7 @@ fn bench(args: &[String]) -> Result<()> {
 }
 
 /// The sections `bench` runs itself (not through criterion).
-const SECTIONS: [&str; 4] = ["roundtrip", "rooms", "throughput", "density"];
+const SECTIONS: [&str; 5] = ["roundtrip", "rooms", "throughput", "density", "houses"];
 
 /// Runs every crate's criterion benchmarks in release mode (bench targets only), filtered.
 fn run_criterion(root: &Path, filter: &[&str], json_out: bool) -> Result<()> {

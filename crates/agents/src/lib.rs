@@ -45,7 +45,7 @@ pub use guide::{
 pub use knowledge::{Knowledge, KnowledgeError};
 pub use places::{Family, PlaceKind, Thesaurus};
 pub use plan::{
-    cut_prompt, Attribute, AttributeKind, ConstraintTarget, Layer, PlaceReading, Plan,
+    cut_prompt, Attribute, AttributeKind, ConstraintTarget, KeepClear, Layer, PlaceReading, Plan,
     PlanConstraint, PlanError, PlanRequest, PlannedObject, Planner, ReadingSource, RequestedObject,
     RoomLook, StyleSource, SurfaceLook, UnavailableAttribute, Zone, BACK_WALL, FRONT_WALL,
     LEFT_WALL, LOW_CONFIDENCE, MAX_AISLE, MAX_COUNT_PER_OBJECT, MAX_DOOR_CLEARANCE,

@@ -319,6 +319,27 @@ pub struct Plan {
     /// generator's own materials).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub look: Option<RoomLook>,
+    /// Floor areas the guide keeps clear (a house room's doors and windows; empty for a
+    /// single room, whose one door's clearance is `door_clearance`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub keep_clear: Vec<KeepClear>,
+}
+
+/// A rectangle of the room's floor, in the room's frame (the floor centred on the origin), that
+/// no floor object may take — or, with `below`, none taller than that (the floor under a
+/// window).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct KeepClear {
+    /// What the area serves, e.g. `door_2 swing and approach` or `window_1`.
+    pub why: String,
+    /// Corner with the smallest (x, z), m.
+    pub min: [f64; 2],
+    /// Corner with the largest (x, z), m.
+    pub max: [f64; 2],
+    /// The height (m) an object's top may reach inside the area (a window's sill); `None`:
+    /// nothing may stand in it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub below: Option<f64>,
 }
 
 /// Below this confidence a reading of the place is reported as a guess (in `report.json`

@@ -498,6 +498,7 @@ fn assemble_plan(
         limits: Vec::new(),
         requested: Vec::new(),
         look: None,
+        keep_clear: Vec::new(),
         notes: {
             let mut n = vec![format!(
                 "model interpretation: {}",

@@ -28,6 +28,20 @@ pub enum PipelineError {
     /// The judge could not evaluate the scene.
     #[error("judge: {0}")]
     Judge(#[from] JudgeError),
+    /// No floor plan could be made for the house the prompt names.
+    #[error("floor plan: {0}")]
+    Layout(#[from] scenethesis_floorplan::LayoutError),
+    /// A floor plan given by file breaks a rule (the error names the room, door or window).
+    #[error("floor plan: {0}")]
+    FloorPlan(#[from] scenethesis_floorplan::PlanError),
+    /// A house plan file is not valid JSON of the house plan's shape.
+    #[error("{path}: {message}")]
+    PlanSyntax {
+        /// The file.
+        path: std::path::PathBuf,
+        /// What is wrong, with the line and column.
+        message: String,
+    },
     /// A stage returned something the next stage cannot use.
     #[error("internal inconsistency: {detail}")]
     Inconsistent {

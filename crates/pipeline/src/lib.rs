@@ -30,6 +30,7 @@
 
 pub mod batch;
 mod error;
+mod house;
 pub mod out_dir;
 mod output;
 mod phases;
@@ -41,6 +42,7 @@ mod saved;
 mod stage;
 
 pub use error::PipelineError;
+pub use house::{HousePlanFile, HouseReport, RoomReport};
 pub use out_dir::{Existing, OutputDir, REPORT_JSON, SCENE_JSON};
 pub use output::{export_file, export_folder, resolve_meshes};
 pub use pipeline::{

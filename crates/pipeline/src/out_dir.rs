@@ -404,7 +404,7 @@ fn ours(name: &str, full: &Path) -> bool {
         return false;
     };
     if meta.is_file() {
-        return KNOWN_FILES.contains(&name) || is_view_png(name);
+        return KNOWN_FILES.contains(&name) || is_view_png(name) || is_room_preview(name);
     }
     if !meta.is_dir() {
         return false;
@@ -422,6 +422,13 @@ fn ours(name: &str, full: &Path) -> bool {
                 .and_then(|x| x.to_str())
                 .is_some_and(|x| extensions.contains(&x))
     })
+}
+
+/// `preview_<room>.png`, a house room's own preview.
+fn is_room_preview(name: &str) -> bool {
+    name.strip_prefix("preview_")
+        .and_then(|r| r.strip_suffix(".png"))
+        .is_some_and(|room| !room.is_empty())
 }
 
 /// `view_K.png`, the orbit views of `render`.

@@ -13,6 +13,7 @@ use scenethesis_retrieval::{AssetSource, RetrievalSource};
 use scenethesis_scene_graph::{Mesh, OpenState, Scene};
 use serde::{Deserialize, Serialize};
 
+use crate::house::RoomShell;
 use crate::judge::{GeometricJudge, Judge};
 use crate::phases::clock::StageClock;
 use crate::phases::correspond::{correspond, Aligned};
@@ -237,6 +238,11 @@ impl Pipeline {
         self.planner.name()
     }
 
+    /// The preview renderer, if one is configured.
+    pub(crate) fn renderer(&self) -> Option<&dyn SceneRenderer> {
+        self.renderer.as_deref()
+    }
+
     /// Generates a scene for `prompt` with `seed`: plans, retrieves assets, lays out, optimizes
     /// and judges; while the judge rejects the scene and re-plans remain, moves the objects at
     /// fault (new asset variants and a new layout seed) and then drops them (those the prompt
@@ -260,7 +266,8 @@ impl Pipeline {
         Ok(generated)
     }
 
-    /// [`Pipeline::generate`] without the usage accounting.
+    /// [`Pipeline::generate`] without the usage accounting: a house when the prompt names a
+    /// dwelling or several rooms, else one room.
     fn run(
         &self,
         prompt: &str,
@@ -268,15 +275,37 @@ impl Pipeline {
         options: &GenerateOptions,
         progress: &mut dyn Progress,
     ) -> Result<GeneratedScene, PipelineError> {
+        // A fixed plan (`generate --plan`) is one room whatever its prompt says.
+        let reads_prompt = self.planner.name() != "fixed";
+        match crate::house::program_of(prompt).filter(|_| reads_prompt) {
+            Some(program) => self.run_house(prompt, seed, options, progress, &program),
+            None => self.run_room(prompt, seed, options, progress, None),
+        }
+    }
+
+    /// One room: planned, then laid out, optimized and judged until accepted or out of
+    /// re-plans. With a `shell` (a house's room), the plan takes the shell's size and keeps
+    /// its doors' and windows' floor clear, and every attempt is judged inside the shell.
+    pub(crate) fn run_room(
+        &self,
+        prompt: &str,
+        seed: u64,
+        options: &GenerateOptions,
+        progress: &mut dyn Progress,
+        shell: Option<&RoomShell>,
+    ) -> Result<GeneratedScene, PipelineError> {
         let started = Instant::now();
         let mut clock = StageClock::new(progress, options.time_limit);
         clock.check(Stage::Plan, 0)?;
-        let original_plan = clock.run(
+        let mut original_plan = clock.run(
             Stage::Plan,
             0,
             || self.plan(prompt, seed),
             |plan| format!("{} ({} objects)", plan.scene_type, plan.objects.len()),
         )?;
+        if let Some(shell) = shell {
+            shell.fit_plan(&mut original_plan);
+        }
 
         // The image leads: what the guide's image shows beyond the plan joins it before any
         // asset is retrieved (nothing for guides that read no image).
@@ -292,22 +321,23 @@ impl Pipeline {
         let mut best: Option<Attempt> = None;
         let mut stopped: Option<String> = None;
         for round in 0..=options.max_replans {
-            let attempt =
-                match self.attempt(&plan, &mut cache, &mut clock, prompt, seed, round, options) {
-                    Ok(attempt) => attempt,
-                    Err(PipelineError::OutOfTime {
-                        stage,
-                        limit_seconds,
-                        ..
-                    }) if best.is_some() => {
-                        stopped = Some(format!(
-                            "the time limit of {limit_seconds} s was reached before the {stage} \
+            let attempt = match self.attempt(
+                &plan, &mut cache, &mut clock, prompt, seed, round, options, shell,
+            ) {
+                Ok(attempt) => attempt,
+                Err(PipelineError::OutOfTime {
+                    stage,
+                    limit_seconds,
+                    ..
+                }) if best.is_some() => {
+                    stopped = Some(format!(
+                        "the time limit of {limit_seconds} s was reached before the {stage} \
                              stage of re-plan round {round}"
-                        ));
-                        break;
-                    }
-                    Err(e) => return Err(e),
-                };
+                    ));
+                    break;
+                }
+                Err(e) => return Err(e),
+            };
             let accepted = attempt.verdict.accepted;
             if !accepted && round < options.max_replans {
                 replans.push(rework(
@@ -387,6 +417,7 @@ impl Pipeline {
         seed: u64,
         round: usize,
         options: &GenerateOptions,
+        shell: Option<&RoomShell>,
     ) -> Result<Attempt, PipelineError> {
         clock.check(Stage::Retrieve, round)?;
         let retrieved = clock.run(
@@ -409,6 +440,10 @@ impl Pipeline {
             },
         )?;
         let mut scene = layout.scene;
+        if let Some(shell) = shell {
+            // A house room is judged in its real walls, doors and windows.
+            scene.architecture = shell.architecture.clone();
+        }
         // Alignment needs metric depth: without it nothing but the outline says how far away an
         // object is, and a box-shaped mask pulls objects toward the camera to fill it; the
         // guide's single-view metrology (where the mask meets the floor) places them better.

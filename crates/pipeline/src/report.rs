@@ -172,6 +172,9 @@ pub struct Report {
     /// requests, tokens, cache hits); absent for offline runs, which use none.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub providers: Vec<scenethesis_models::UsageReport>,
+    /// A house's rooms and its whole-house Walk and Reach; absent for a single room.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub house: Option<crate::HouseReport>,
 }
 
 impl Report {
@@ -226,6 +229,9 @@ impl Report {
         }
         for l in &self.limits {
             line.push_str(&format!("; capped: {l}"));
+        }
+        if let Some(house) = &self.house {
+            line.push_str(&format!("; {}", house.summary()));
         }
         line
     }

@@ -20,6 +20,18 @@ use crate::plan::Plan;
 pub(super) fn walk_grow(cell: f64) -> f64 {
     ROBOT_RADIUS + cell / 2.0 + 0.01
 }
+/// The guide's footprint of a plan's keep-clear area, with its height limit.
+fn keep_clear_zone(area: &crate::plan::KeepClear) -> (Footprint, Option<f64>) {
+    let zone = Footprint {
+        cx: (area.min[0] + area.max[0]) / 2.0,
+        cz: (area.min[1] + area.max[1]) / 2.0,
+        yaw: 0.0,
+        hx: (area.max[0] - area.min[0]).abs() / 2.0,
+        hz: (area.max[1] - area.min[1]).abs() / 2.0,
+    };
+    (zone, area.below)
+}
+
 /// Minimum share of the free floor the largest walkable component must hold.
 pub(super) const MIN_WALK: f64 = 0.995;
 
@@ -39,6 +51,9 @@ pub(super) struct FloorState<'a> {
     pub(super) door_walk: Option<usize>,
     /// The clearance in front of the door that no floor object may take (indoors).
     pub(super) door_zone: Option<Footprint>,
+    /// The plan's keep-clear areas and the height an object may reach in each
+    /// ([`crate::plan::KeepClear`]).
+    pub(super) keep_clear: Vec<(Footprint, Option<f64>)>,
     /// The floor rectangle [min x, min z, max x, max z].
     pub(super) floor: [f64; 4],
     /// The room's architecture when it has windows, whose fronts tall floor objects keep
@@ -95,6 +110,7 @@ impl<'a> FloorState<'a> {
             door_aisle,
             door_walk,
             door_zone,
+            keep_clear: plan.keep_clear.iter().map(keep_clear_zone).collect(),
             floor: [-hw, -hd, hw, hd],
             windowed: (!room.architecture.windows.is_empty()).then(|| room.architecture.clone()),
             placed: Vec::new(),
@@ -113,14 +129,31 @@ impl FloorState<'_> {
         })
     }
 
-    /// Whether a body at `fp` would overlap (within `gap`) a placed floor object or the room
-    /// door's zone.
+    /// Whether a body at `fp` would overlap (within `gap`) a placed floor object, the room
+    /// door's zone or an area the plan keeps wholly clear.
     pub(super) fn collides(&self, fp: &Footprint, gap: f64) -> bool {
         self.placed
             .iter()
             .filter(|p| !p.mounted)
             .any(|p| p.fp.overlaps(fp, gap))
             || self.door_zone.is_some_and(|d| d.overlaps(fp, 0.0))
+            || self
+                .keep_clear
+                .iter()
+                .any(|(zone, below)| below.is_none() && zone.overlaps(fp, 0.0))
+    }
+
+    /// Whether `p` reaches above the height limit of a keep-clear area it stands in (a tall
+    /// piece, or anything hung, in front of a window).
+    fn too_tall_for_keep_clear(&self, p: &Placed) -> bool {
+        let top = if p.mounted {
+            p.mounted_bottom() + p.height
+        } else {
+            p.height
+        };
+        self.keep_clear
+            .iter()
+            .any(|(zone, below)| below.is_some_and(|h| top > h) && zone.overlaps(&p.fp, 0.0))
     }
 
     /// Whether `p` fits: its footprint inside the floor and clear of the others (within
@@ -133,6 +166,7 @@ impl FloorState<'_> {
     pub(super) fn fits(&self, p: &Placed, gap: f64) -> bool {
         self.inside_floor(&p.fp, 0.0)
             && !self.collides(&p.fp, gap)
+            && !self.too_tall_for_keep_clear(p)
             && self.clear_of_openings(p)
             && !self.covers_a_window(p)
     }

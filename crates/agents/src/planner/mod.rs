@@ -161,6 +161,7 @@ impl Planner for KnowledgePlanner {
             limits: reading.limits.into_iter().chain(limits).collect(),
             requested,
             look: Some(look),
+            keep_clear: Vec::new(),
         })
     }
 }

@@ -79,5 +79,6 @@ pub(crate) fn report(best: &Attempt, run: RunRecord<'_>) -> Report {
         timings: run.timings,
         total_seconds: run.total_seconds,
         providers: Vec::new(),
+        house: None,
     }
 }

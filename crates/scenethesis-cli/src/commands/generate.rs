@@ -8,8 +8,8 @@ use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use scenethesis_models::{AnswerListener, AnswerProgress};
 use scenethesis_pipeline::{
-    export_folder, time_limit_from_secs, FixedPlanner, Format, GenerateOptions, OutputDir,
-    Pipeline, Progress, Stage, DEFAULT_TIME_LIMIT,
+    export_folder, time_limit_from_secs, FixedPlanner, Format, GenerateOptions, HousePlanFile,
+    OutputDir, Pipeline, Progress, Stage, DEFAULT_TIME_LIMIT,
 };
 use scenethesis_scene_graph::OpenState;
 use scenethesis_setup::PipelineSettings;
@@ -262,14 +262,21 @@ pub fn run(args: GenerateArgs) -> Result<()> {
             eprintln!("inferred: {line}");
         }
     }
-    let prompt = match &args.plan {
-        Some(path) => {
+    // A plan with `rooms` is a house's floor plan (checked here, before anything is written).
+    let house = match &args.plan {
+        Some(path) => HousePlanFile::from_file(path)
+            .with_context(|| format!("reading the plan {}", path.display()))?,
+        None => None,
+    };
+    let prompt = match (&args.plan, &house) {
+        (_, Some(house)) => house.prompt.clone(),
+        (Some(path), None) => {
             let planner = FixedPlanner::from_file(path)?;
             let prompt = planner.as_plan().prompt.clone();
             pipeline = pipeline.with_planner(planner);
             prompt
         }
-        None => match &photo {
+        (None, None) => match &photo {
             Some(photo) => photo.prompt.clone(),
             None => args.prompt.clone().unwrap_or_default(),
         },
@@ -278,12 +285,14 @@ pub fn run(args: GenerateArgs) -> Result<()> {
     let options = args.pipeline.options();
     let mut progress = StageProgress::on_stderr();
     let guard = watchdog(options.time_limit);
-    let mut generated = pipeline
-        .generate(&prompt, args.seed, &options, &mut progress)
-        .with_context(|| match &args.plan {
-            Some(path) => format!("generating from the plan {}", path.display()),
-            None => format!("generating \"{prompt}\""),
-        })?;
+    let generated = match &house {
+        Some(house) => pipeline.generate_house(house, args.seed, &options, &mut progress),
+        None => pipeline.generate(&prompt, args.seed, &options, &mut progress),
+    };
+    let mut generated = generated.with_context(|| match &args.plan {
+        Some(path) => format!("generating from the plan {}", path.display()),
+        None => format!("generating \"{prompt}\""),
+    })?;
     drop(guard);
     if let Some(photo) = photo {
         // What the image alone decided, beside the planner's own assumptions.

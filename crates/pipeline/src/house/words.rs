@@ -1,0 +1,169 @@
+//! What each house room is asked for: the single-room prompt of its type, plus what the
+//! house prompt says about rooms of that type ("a kitchen with an island").
+
+use scenethesis_floorplan::Knowledge;
+
+/// The single-room prompt the planner reads for each floor-plan room type: the archetype (or
+/// place) the planner knows that furnishes such a room.
+const ROOM_PROMPTS: &[(&str, &str)] = &[
+    ("living_room", "a living room"),
+    ("kitchen", "a kitchen"),
+    ("kitchenette", "a small kitchen"),
+    ("dining_room", "a dining room"),
+    ("bedroom", "a bedroom"),
+    ("bathroom", "a bathroom"),
+    ("toilet", "a small bathroom with a toilet"),
+    ("hallway", "a hallway"),
+    ("office", "an office"),
+    ("meeting_room", "a conference room"),
+    ("reception", "a reception with a desk"),
+    ("waiting_room", "a waiting room"),
+    ("exam_room", "a doctor's examination room"),
+    ("storeroom", "a storage room"),
+    ("shop_floor", "a convenience store"),
+    ("classroom", "a classroom"),
+    ("staff_room", "a break room"),
+    ("utility_room", "a laundry room"),
+];
+
+/// Dwelling words that also name one room the single-room planner furnishes ("an art studio",
+/// "a toy store", "a cafe", "a cozy home"): alone they leave a prompt one room, as before
+/// houses; with a room type named ("a cafe with a kitchen and a dining room") they make a
+/// house.
+const ONE_ROOM_AS_WELL: &[&str] = &[
+    "studio",
+    "shop",
+    "store",
+    "boutique",
+    "corner shop",
+    "grocery",
+    "restaurant",
+    "bistro",
+    "diner",
+    "cafe",
+    "eatery",
+    "school",
+    "home",
+];
+
+/// Whether `prompt`, which the floor-plan knowledge reads as a house program, asks for a house
+/// rather than one room: it names a dwelling unambiguously ("apartment", "studio flat",
+/// "office suite") or names a room type besides ("a shop with a store room"). Ambiguous
+/// dwelling words alone ([`ONE_ROOM_AS_WELL`]) stay one room.
+pub(crate) fn asks_for_house(knowledge: &Knowledge, prompt: &str) -> bool {
+    let tokens = tokens(prompt);
+    let unambiguous_dwelling = knowledge.dwellings.iter().any(|d| {
+        d.words
+            .iter()
+            .any(|w| !ONE_ROOM_AS_WELL.contains(&w.as_str()) && names(&tokens, w))
+    });
+    unambiguous_dwelling
+        || knowledge
+            .rooms
+            .iter()
+            .any(|r| r.words.iter().any(|w| names(&tokens, w)))
+}
+
+/// The prompt's lower-case words (letters and digits; "two-bedroom" is two words).
+fn tokens(prompt: &str) -> Vec<String> {
+    prompt
+        .to_lowercase()
+        .split(|c: char| !c.is_alphanumeric())
+        .filter(|t| !t.is_empty())
+        .map(str::to_owned)
+        .collect()
+}
+
+/// Whether `tokens` hold the phrase `words` (its last word also as a plural).
+fn names(tokens: &[String], words: &str) -> bool {
+    let phrase = self::tokens(words);
+    let n = phrase.len();
+    n > 0
+        && tokens.windows(n).any(|w| {
+            w[..n - 1] == phrase[..n - 1]
+                && (w[n - 1] == phrase[n - 1]
+                    || w[n - 1] == format!("{}s", phrase[n - 1])
+                    || w[n - 1] == format!("{}es", phrase[n - 1]))
+        })
+}
+
+/// The prompt a room of `room_type` is planned from: its type's single-room prompt, with what
+/// `house_prompt` asks of rooms of that type ("… a kitchen with an island" → "a kitchen with
+/// an island"). Counts ("three bedrooms") are the floor plan's, never the room's.
+pub(crate) fn room_prompt(knowledge: &Knowledge, house_prompt: &str, room_type: &str) -> String {
+    let base = ROOM_PROMPTS
+        .iter()
+        .find(|(t, _)| *t == room_type)
+        .map_or_else(
+            || format!("a {}", room_type.replace('_', " ")),
+            |(_, p)| (*p).to_owned(),
+        );
+    match details(knowledge, house_prompt, room_type) {
+        Some(extra) if base.contains(" with ") => format!("{base} and {extra}"),
+        Some(extra) => format!("{base} with {extra}"),
+        None => base,
+    }
+}
+
+/// What a clause of `prompt` naming `room_type` asks for after "with": `a kitchen with an
+/// island` gives `an island`. Clauses are split at commas, semicolons and "and".
+fn details(knowledge: &Knowledge, prompt: &str, room_type: &str) -> Option<String> {
+    let kind = knowledge.room(room_type)?;
+    let lower = prompt.to_lowercase();
+    lower
+        .split([',', ';', '.'])
+        .flat_map(|part| part.split(" and "))
+        .find_map(|clause| {
+            let (head, tail) = clause.split_once(" with ")?;
+            let head = head.trim_end();
+            let names = kind
+                .words
+                .iter()
+                .any(|w| head.ends_with(w.as_str()) || head.ends_with(&format!("{w}s")));
+            let tail = tail.trim();
+            (names && !tail.is_empty()).then(|| tail.to_owned())
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_room_gets_its_types_prompt_and_only_its_own_details() {
+        let k = Knowledge::builtin();
+        let prompt =
+            "a family house with three bedrooms, a kitchen with an island and two bathrooms";
+        assert_eq!(room_prompt(k, prompt, "bedroom"), "a bedroom");
+        assert_eq!(
+            room_prompt(k, prompt, "kitchen"),
+            "a kitchen with an island"
+        );
+        assert_eq!(room_prompt(k, prompt, "bathroom"), "a bathroom");
+        let desks = "an office suite with a meeting room and four offices with standing desks";
+        assert_eq!(
+            room_prompt(k, desks, "office"),
+            "an office with standing desks"
+        );
+        assert_eq!(room_prompt(k, desks, "meeting_room"), "a conference room");
+    }
+
+    #[test]
+    fn ambiguous_dwelling_words_alone_stay_one_room() {
+        let k = Knowledge::builtin();
+        for prompt in [
+            "a two-bedroom apartment",
+            "a studio flat",
+            "a shop with a store room",
+        ] {
+            assert!(asks_for_house(k, prompt), "{prompt}");
+        }
+        for prompt in [
+            "a convenience store",
+            "an art studio",
+            "a cafe with two bar stools",
+        ] {
+            assert!(!asks_for_house(k, prompt), "{prompt}");
+        }
+    }
+}
