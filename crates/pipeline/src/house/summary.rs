@@ -12,8 +12,9 @@ use super::measure::HouseMeasure;
 use super::report::{HouseReport, RoomReport};
 use super::HousePlan;
 use crate::pipeline::Pipeline;
-use crate::report::{Report, StageTiming};
+use crate::report::{AlignmentReport, PartTiming, Report, StageTiming};
 use crate::stage::Stage;
+use scenethesis_correspondence::KeptLift;
 
 /// What the house report is made from.
 pub(crate) struct HouseRun<'a> {
@@ -48,6 +49,17 @@ pub(crate) fn house_report(run: HouseRun<'_>, pipeline: &Pipeline) -> Report {
         notes.extend(room.notes.iter().map(|n| format!("{}: {n}", room.shell.id)));
     }
     notes.extend(run.notes);
+    let alignment = AlignmentReport {
+        kept_lift: reports
+            .iter()
+            .flat_map(|(room, r)| {
+                r.alignment.kept_lift.iter().map(|k| KeptLift {
+                    id: house_id(&room.shell.id, &k.id),
+                    reason: k.reason.clone(),
+                })
+            })
+            .collect(),
+    };
     Report {
         prompt: run.prompt.to_owned(),
         seed: run.seed,
@@ -85,6 +97,7 @@ pub(crate) fn house_report(run: HouseRun<'_>, pipeline: &Pipeline) -> Report {
             .collect(),
         guide_adopted: Vec::new(),
         guide_unmapped: Vec::new(),
+        alignment,
         replans: reports
             .iter()
             .flat_map(|(room, r)| {
@@ -170,6 +183,7 @@ fn house_verdict(run: &HouseRun<'_>) -> Verdict {
         relations_checked,
         arrangement: None,
         review: None,
+        timings: None,
     }
 }
 
@@ -229,22 +243,31 @@ fn room_report(room: &RoomRun, run: &HouseRun<'_>) -> RoomReport {
     }
 }
 
-/// Per-stage seconds: the rooms' summed (they run in parallel, so the sum can exceed the
-/// wall-clock total), plus the house's render.
+/// Per-stage seconds and parts: the rooms' summed (they run in parallel, so the sum can exceed
+/// the wall-clock total), plus the house's render.
 fn timings(reports: &[(&RoomRun, &Report)], render_seconds: f64) -> Vec<StageTiming> {
-    let mut totals: BTreeMap<Stage, f64> = BTreeMap::new();
+    let mut totals: BTreeMap<Stage, (f64, BTreeMap<String, f64>)> = BTreeMap::new();
     for (_, r) in reports {
         for t in &r.timings {
-            *totals.entry(t.stage).or_default() += t.seconds;
+            let (seconds, parts) = totals.entry(t.stage).or_default();
+            *seconds += t.seconds;
+            for p in &t.parts {
+                *parts.entry(p.part.clone()).or_default() += p.seconds;
+            }
         }
     }
-    *totals.entry(Stage::Render).or_default() += render_seconds;
+    totals.entry(Stage::Render).or_default().0 += render_seconds;
     Stage::ALL
         .iter()
         .filter_map(|s| {
-            totals
-                .get(s)
-                .map(|&seconds| StageTiming { stage: *s, seconds })
+            totals.remove(s).map(|(seconds, parts)| StageTiming {
+                stage: *s,
+                seconds,
+                parts: parts
+                    .into_iter()
+                    .map(|(part, seconds)| PartTiming { part, seconds })
+                    .collect(),
+            })
         })
         .collect()
 }
