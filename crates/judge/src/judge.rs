@@ -188,6 +188,7 @@ impl Verdict {
     ///     relations_checked: 0,
     ///     arrangement: None,
     ///     review: None,
+    ///     timings: None,
     /// };
     /// assert_eq!(v.reasons(), "cup_0 is 4 mm into table_0; vase_0 moved 3 cm");
     /// ```
