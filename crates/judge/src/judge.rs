@@ -398,8 +398,8 @@ impl Judge for GeometricJudge {
     }
 }
 
-/// One failure per floor object that covers a window: its top above the sill, standing in
-/// the clearance in front of it.
+/// One failure per floor object that covers a window: its top above the window's cover
+/// height, standing in the clearance in front of it.
 fn window_failures(scene: &Scene) -> Vec<Failure> {
     let arch = &scene.architecture;
     scene
@@ -413,8 +413,13 @@ fn window_failures(scene: &Scene) -> Vec<Failure> {
                 kind: FailureKind::WindowCovered,
                 objects: vec![o.id.clone()],
                 detail: format!(
-                    "`{}` ({:.2} m tall) stands in front of window `{}`, whose sill is {:.2} m up",
-                    o.id, bounds.max.y, window.id, window.sill
+                    "`{}` ({:.2} m tall) stands in front of window `{}` and covers it above \
+                     {:.2} m (its sill is {:.2} m up)",
+                    o.id,
+                    bounds.max.y,
+                    window.id,
+                    window.cover_height(),
+                    window.sill
                 ),
             })
         })

@@ -135,6 +135,9 @@ pub(crate) struct WallRange {
     pub inward: Vector2<f64>,
     /// Wall thickness in metres.
     pub thickness: f64,
+    /// Whether a house has a room on its outer side too (an interior wall): it is cut away only
+    /// where it stands between the camera and the floor the camera looks at.
+    pub interior: bool,
 }
 
 /// A whole scene flattened for drawing.
@@ -279,6 +282,7 @@ impl SceneGeometry {
                     start: wall.start,
                     inward: wall.inward_normal(),
                     thickness: wall.thickness,
+                    interior: is_interior(arch, wall),
                 });
             }
         }
@@ -407,6 +411,14 @@ impl SceneGeometry {
     }
 }
 
+/// Whether a house has a room on the outer side of `wall` (an interior wall between two rooms);
+/// never for a single room, whose architecture lists no rooms.
+fn is_interior(arch: &Architecture, wall: &Wall) -> bool {
+    let mid = nalgebra::center(&wall.start, &wall.end);
+    let behind = mid - wall.inward_normal() * wall.thickness;
+    arch.room_at(behind.x, behind.y).is_some()
+}
+
 /// The boxes (centre, half extents along / up / across the wall) that make up a wall with its
 /// door and window openings cut out ([`Architecture::wall_spans`], as every exporter cuts it).
 fn wall_boxes(arch: &Architecture, wall: &Wall) -> Vec<(Point3<f64>, Vector3<f64>)> {
@@ -489,6 +501,37 @@ mod tests {
         }
         let back = room.wall("wall_0").unwrap();
         assert_eq!(wall_boxes(&room, back).len(), 1);
+    }
+
+    #[test]
+    fn only_a_wall_between_two_rooms_of_a_house_is_interior() {
+        use scenethesis_scene_graph::RoomArea;
+        let mut house = Architecture::rectangular_room(6.0, 4.0, 2.8, 0.9);
+        let room = |id: &str, x0: f64, x1: f64| RoomArea {
+            id: id.into(),
+            room_type: "bedroom".into(),
+            polygon: [(x0, -2.0), (x1, -2.0), (x1, 2.0), (x0, 2.0)]
+                .iter()
+                .map(|&(x, z)| Point2::new(x, z))
+                .collect(),
+        };
+        house.rooms = vec![room("west", -3.0, -0.05), room("east", 0.05, 3.0)];
+        let partition = Wall {
+            id: "partition".into(),
+            start: Point2::new(0.0, -2.0),
+            end: Point2::new(0.0, 2.0),
+            height: 2.8,
+            thickness: 0.1,
+        };
+        assert!(is_interior(&house, &partition));
+        for wall in &house.walls {
+            assert!(!is_interior(&house, wall), "{} is an outer wall", wall.id);
+        }
+        let single = Architecture::rectangular_room(6.0, 4.0, 2.8, 0.9);
+        assert!(
+            !is_interior(&single, &partition),
+            "a single room has no rooms"
+        );
     }
 
     #[test]

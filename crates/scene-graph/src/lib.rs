@@ -108,7 +108,7 @@ pub use joint::{
 pub use look::{AssetLook, LookAttribute, LookScope, SceneLook, Srgb, WornMaterial};
 pub use mesh::{Material, Mesh, MeshPart};
 pub use object::{AssetRef, ParentRef, Relation, RelationKind, SceneObject, GROUND_ID};
-pub use openings::{WallBox, PANE_THICKNESS, WINDOW_CLEARANCE};
+pub use openings::{WallBox, PANE_THICKNESS, WINDOW_CLEARANCE, WINDOW_COVER_SHARE};
 pub use pose::{wrap_yaw, yaw_distance, yaw_distance_modulo, Pose};
 pub use relations::{
     aabb_floor_gap, floor_centre, floor_gap, front_dir, relation_holds, right_dir,

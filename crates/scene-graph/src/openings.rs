@@ -13,6 +13,11 @@ pub const PANE_THICKNESS: f64 = 0.012;
 /// rises above the window's sill, so that furniture does not cover a window.
 pub const WINDOW_CLEARANCE: f64 = 0.5;
 
+/// The share of a window's height that furniture standing in front of it may rise above its
+/// sill: a sofa's back or a low chest under a living-room window is fine; a wardrobe or a
+/// bookcase that hides most of the glass covers it.
+pub const WINDOW_COVER_SHARE: f64 = 1.0 / 3.0;
+
 /// Boxes thinner than this (m) along the wall or upright are left out.
 const MIN_SPAN: f64 = 1e-3;
 
@@ -71,6 +76,12 @@ impl WindowOpening {
             sill,
             room: None,
         }
+    }
+
+    /// The height (m) furniture in front of the window may reach: its sill plus
+    /// [`WINDOW_COVER_SHARE`] of its height.
+    pub fn cover_height(&self) -> f64 {
+        self.sill + WINDOW_COVER_SHARE * self.height
     }
 }
 
@@ -155,7 +166,8 @@ impl Architecture {
 
 impl Architecture {
     /// The first window that a box (an object's world box) covers: one whose top rises above
-    /// the window's sill and that reaches into the [`WINDOW_CLEARANCE`] in front of the
+    /// the window's [`WindowOpening::cover_height`] and that reaches into the
+    /// [`WINDOW_CLEARANCE`] in front of the
     /// window, across its width, on its wall's inner side. The rule the procedural guide keeps
     /// and the judge checks: tall furniture does not stand in front of a window.
     pub fn window_covered_by(&self, bounds: &Aabb) -> Option<&WindowOpening> {
@@ -164,7 +176,7 @@ impl Architecture {
                 return false;
             };
             let overlap = |lo: f64, hi: f64, a: f64, b: f64| hi.min(b) - lo.max(a) > 1e-6;
-            bounds.max.y > window.sill + 1e-6
+            bounds.max.y > window.cover_height() + 1e-6
                 && overlap(bounds.min.x, bounds.max.x, zone.min.x, zone.max.x)
                 && overlap(bounds.min.z, bounds.max.z, zone.min.z, zone.max.z)
         })

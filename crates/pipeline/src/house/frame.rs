@@ -9,6 +9,7 @@ use scenethesis_floorplan::geometry::{contains, Rect};
 use scenethesis_floorplan::{DoorKind, FloorPlan, Hinge, Room};
 use scenethesis_scene_graph::{
     wrap_yaw, Architecture, DoorLeaf, DoorOpening, Environment, OpensTo, Pose, WindowOpening,
+    WINDOW_CLEARANCE,
 };
 
 /// Wall thickness of a house (m), centred on the plan's wall lines, as a single room's.
@@ -19,9 +20,6 @@ pub(crate) const WALL_HEIGHT: f64 = 2.7;
 
 /// The free floor kept in front of every door on both sides (m), beyond its leaf's swing.
 pub(crate) const DOOR_APPROACH: f64 = 0.6;
-
-/// How deep (m) the floor in front of a window is kept free of anything taller than its sill.
-pub(crate) const WINDOW_DEPTH: f64 = 0.5;
 
 /// Height (m) of the opening left between the furnished rectangle of an L-shaped room and the
 /// rest of it.
@@ -352,7 +350,7 @@ impl RoomShell {
     }
 
     /// The plan's windows on the furnished rectangle, with the floor before them kept free of
-    /// anything taller than their sill.
+    /// anything that would cover them ([`WindowOpening::cover_height`]).
     fn add_windows(&mut self, plan: &FloorPlan, room: &Room, rect: &Rect) {
         for window in plan.windows.iter().filter(|w| w.room == room.id) {
             if !Side::ALL.iter().any(|s| s.holds(rect, window.centre)) {
@@ -362,14 +360,8 @@ impl RoomShell {
             let Some((wall, offset)) = self.wall_at(local) else {
                 continue;
             };
-            let (min, max) = self.zone_before(wall, offset, window.width, WINDOW_DEPTH);
-            self.keep_clear.push(KeepClear {
-                why: window.id.clone(),
-                min,
-                max,
-                below: Some(window.sill),
-            });
-            self.architecture.windows.push(WindowOpening {
+            let (min, max) = self.zone_before(wall, offset, window.width, WINDOW_CLEARANCE);
+            let opening = WindowOpening {
                 id: window.id.clone(),
                 wall: self.architecture.walls[wall].id.clone(),
                 offset,
@@ -377,7 +369,14 @@ impl RoomShell {
                 height: window.height,
                 sill: window.sill,
                 room: None,
+            };
+            self.keep_clear.push(KeepClear {
+                why: window.id.clone(),
+                min,
+                max,
+                below: Some(opening.cover_height()),
             });
+            self.architecture.windows.push(opening);
         }
     }
 

@@ -194,7 +194,7 @@ impl Renderer {
                 pass.set_pipeline(pipeline);
                 pass.draw(scene.always.clone(), 0..1);
                 for wall in &scene.walls {
-                    if !(scene.cut_away_walls && camera_behind_wall(camera, wall)) {
+                    if !(scene.cut_away_walls && cut_away(camera, wall)) {
                         pass.draw(wall.vertices.clone(), 0..1);
                     }
                 }
@@ -249,10 +249,29 @@ impl Renderer {
     }
 }
 
-/// Whether the camera stands on the outer side of a wall (so the wall would hide the room).
+/// Whether a wall is cut away for this camera: the camera stands on its outer side (so the wall
+/// would hide the room) and, for an interior wall of a house, the floor the camera looks at lies
+/// on its inner side (the wall stands in front of what the camera looks at).
+fn cut_away(camera: &Camera, wall: &WallRange) -> bool {
+    camera_behind_wall(camera, wall) && (!wall.interior || looks_past(camera, wall))
+}
+
+/// Whether the camera stands on the outer side of a wall.
 fn camera_behind_wall(camera: &Camera, wall: &WallRange) -> bool {
     let c = nalgebra::Vector2::new(camera.position.x, camera.position.z);
     (c - wall.start.coords).dot(&wall.inward) < -wall.thickness / 2.0
+}
+
+/// Whether the point where the camera's optical axis meets the floor lies on the wall's inner
+/// side (a camera that does not look down counts as looking past every wall it stands behind).
+fn looks_past(camera: &Camera, wall: &WallRange) -> bool {
+    let forward = camera.forward();
+    if forward.y > -1e-6 {
+        return true;
+    }
+    let hit = camera.position + forward * (-camera.position.y / forward.y);
+    let floor = nalgebra::Vector2::new(hit.x, hit.z);
+    (floor - wall.start.coords).dot(&wall.inward) > 0.0
 }
 
 /// The targets of one view (lit colour, linear depth bits, instance; all 4 bytes a pixel),
