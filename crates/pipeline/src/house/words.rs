@@ -48,20 +48,36 @@ const ONE_ROOM_AS_WELL: &[&str] = &[
 
 /// Whether `prompt`, which the floor-plan knowledge reads as a house program, asks for a house
 /// rather than one room: it names a dwelling unambiguously ("apartment", "studio flat",
-/// "office suite") or names a room type besides ("a shop with a store room"). Ambiguous
-/// dwelling words alone ([`ONE_ROOM_AS_WELL`]) stay one room.
+/// "office suite"), an ambiguous dwelling word ([`ONE_ROOM_AS_WELL`]) with a room type besides
+/// ("a shop with a store room"), or two room types apart ("a kitchen and a living room").
+/// Ambiguous dwelling words alone stay one room, and so do room words that only form one
+/// compound name ("a town hall reception": the hall is the town hall's).
 pub(crate) fn asks_for_house(knowledge: &Knowledge, prompt: &str) -> bool {
     let tokens = tokens(prompt);
-    let unambiguous_dwelling = knowledge.dwellings.iter().any(|d| {
-        d.words
-            .iter()
-            .any(|w| !ONE_ROOM_AS_WELL.contains(&w.as_str()) && names(&tokens, w))
-    });
-    unambiguous_dwelling
-        || knowledge
-            .rooms
-            .iter()
-            .any(|r| r.words.iter().any(|w| names(&tokens, w)))
+    let dwelling = |ambiguous: bool| {
+        knowledge.dwellings.iter().any(|d| {
+            d.words
+                .iter()
+                .any(|w| ONE_ROOM_AS_WELL.contains(&w.as_str()) == ambiguous && names(&tokens, w))
+        })
+    };
+    let rooms: Vec<(usize, usize)> = knowledge
+        .rooms
+        .iter()
+        .flat_map(|r| r.words.iter().flat_map(|w| spans(&tokens, w)))
+        .collect();
+    let apart = rooms.iter().any(|a| rooms.iter().any(|b| b.0 > a.1));
+    dwelling(false) || (dwelling(true) && !rooms.is_empty()) || apart
+}
+
+/// Where `tokens` hold the phrase `words` (its last word also as a plural): each match's first
+/// token and the token after its last.
+fn spans(tokens: &[String], words: &str) -> Vec<(usize, usize)> {
+    let n = self::tokens(words).len();
+    (0..tokens.len().saturating_sub(n.max(1) - 1))
+        .filter(|&i| n > 0 && names(&tokens[i..i + n], words))
+        .map(|i| (i, i + n))
+        .collect()
 }
 
 /// The prompt's lower-case words (letters and digits; "two-bedroom" is two words).
@@ -165,5 +181,18 @@ mod tests {
         ] {
             assert!(!asks_for_house(k, prompt), "{prompt}");
         }
+    }
+
+    #[test]
+    fn room_words_apart_make_a_house_and_one_compound_name_does_not() {
+        let k = Knowledge::builtin();
+        assert!(asks_for_house(k, "a kitchen and a living room"));
+        assert!(asks_for_house(k, "a bedroom with a bathroom"));
+        assert!(!asks_for_house(k, "a town hall reception"));
+        assert_eq!(
+            spans(&tokens("a living room, a kitchen"), "living room"),
+            [(1, 3)]
+        );
+        assert_eq!(spans(&tokens("two kitchens"), "kitchen"), [(1, 2)]);
     }
 }
