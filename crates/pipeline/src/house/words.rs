@@ -27,7 +27,8 @@ const ROOM_PROMPTS: &[(&str, &str)] = &[
 ];
 
 /// Dwelling words that also name one room the single-room planner furnishes ("an art studio",
-/// "a toy store", "a cafe", "a cozy home"): alone they leave a prompt one room, as before
+/// "a toy store", "a cafe", "a cozy home", "a witch's cottage"): alone they leave a prompt one
+/// room, as before
 /// houses; with a room type named ("a cafe with a kitchen and a dining room") they make a
 /// house.
 const ONE_ROOM_AS_WELL: &[&str] = &[
@@ -44,6 +45,7 @@ const ONE_ROOM_AS_WELL: &[&str] = &[
     "eatery",
     "school",
     "home",
+    "cottage",
 ];
 
 /// Whether `prompt`, which the floor-plan knowledge reads as a house program, asks for a house
@@ -178,6 +180,7 @@ mod tests {
             "a convenience store",
             "an art studio",
             "a cafe with two bar stools",
+            "a witch's cottage",
         ] {
             assert!(!asks_for_house(k, prompt), "{prompt}");
         }
