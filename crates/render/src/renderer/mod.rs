@@ -136,6 +136,19 @@ pub struct Renderer {
     options: RendererOptions,
     pipelines: Pipelines,
     textures: MaterialTextures,
+    /// Held while textures are written and while commands are submitted: wgpu-core can
+    /// deadlock when one thread writes a texture as another submits (two test threads sharing
+    /// a renderer on llvmpipe did).
+    queue_lock: std::sync::Mutex<()>,
+}
+
+impl Renderer {
+    /// The queue's lock ([`Renderer::queue_lock`]), taken even if a panicking thread held it.
+    fn queue_guard(&self) -> std::sync::MutexGuard<'_, ()> {
+        self.queue_lock
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
 }
 
 impl std::fmt::Debug for Renderer {
@@ -195,6 +208,7 @@ impl Renderer {
             options,
             pipelines,
             textures,
+            queue_lock: std::sync::Mutex::new(()),
         })
     }
 

@@ -22,6 +22,7 @@ impl Renderer {
         let geometry = SceneGeometry::build(scene)?;
         let built = started.elapsed();
         let layers: BTreeSet<u32> = geometry.vertices.iter().map(|v| v.layer).collect();
+        let queue = self.queue_guard();
         self.textures.ensure(
             &self.queue,
             layers
@@ -29,6 +30,7 @@ impl Renderer {
                 .filter_map(|l| l.checked_sub(1))
                 .map(|l| l as usize),
         );
+        drop(queue);
         let textured = started.elapsed();
         let bounds = scene.bounds();
         let center = bounds.center();
@@ -135,7 +137,9 @@ impl Renderer {
                 pass.draw(objects, 0..1);
             }
         }
+        let queue = self.queue_guard();
         self.queue.submit([encoder.finish()]);
+        drop(queue);
     }
 
     /// Group 1 of the scene pass: the shadow map `view` and the comparison sampler.

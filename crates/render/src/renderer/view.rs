@@ -40,7 +40,9 @@ impl Renderer {
         self.draw_view(&mut encoder, scene, camera, &uniform, &targets);
         self.draw_occlusion(&mut encoder, &uniform, &targets);
         targets.copy_out(&mut encoder);
+        let queue = self.queue_guard();
         self.queue.submit([encoder.finish()]);
+        drop(queue);
         let [color, depth, instance] = targets.read_back(&self.device)?;
         let (width, height) = (targets.width, targets.height);
         let ms = started.elapsed().as_secs_f64() * 1e3;
