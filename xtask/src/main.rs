@@ -11,13 +11,16 @@
 //!   throughput (`throughput/…`: scenes per hour per core through the CLI batch and Ray), and
 //!   the density and physics of the benchmark scenes over seeds 0–2 (`density/…`: objects and
 //!   small objects per scene, Col-O, Col-arch, Inst-O, Walk, Reach, acceptance) and the time of
-//!   a five-room apartment with previews over seeds 0–4 (`houses/five_room_apartment`).
-//!   Naming only those sections (`roundtrip`, `rooms`, `throughput`, `density`, `houses`)
+//!   a five-room apartment with previews over seeds 0–4 (`houses/five_room_apartment`), and
+//!   the seconds per benchmark scene without and with previews over seeds 0–2 (`speed/…`).
+//!   Naming only those sections (`roundtrip`, `rooms`, `throughput`, `density`, `speed`,
+//!   `houses`)
 //!   skips the criterion runs.
 
 mod density;
 mod houses;
 mod rooms;
+mod speed;
 mod throughput;
 
 use std::collections::BTreeMap;
@@ -105,6 +108,9 @@ fn bench(args: &[String]) -> Result<()> {
     if filter.is_empty() || filter.contains(&"density") {
         density::add_density(&root, &target, json_out, &mut figures)?;
     }
+    if filter.is_empty() || filter.contains(&"speed") {
+        speed::add_speed(&root, &target, json_out, &mut figures)?;
+    }
     if filter.is_empty() || filter.contains(&"houses") {
         houses::add_houses(&root, &target, json_out, &mut figures)?;
     }
@@ -126,7 +132,14 @@ fn bench(args: &[String]) -> Result<()> {
 }
 
 /// The sections `bench` runs itself (not through criterion).
-const SECTIONS: [&str; 5] = ["roundtrip", "rooms", "throughput", "density", "houses"];
+const SECTIONS: [&str; 6] = [
+    "roundtrip",
+    "rooms",
+    "throughput",
+    "density",
+    "speed",
+    "houses",
+];
 
 /// Runs every crate's criterion benchmarks in release mode (bench targets only), filtered.
 fn run_criterion(root: &Path, filter: &[&str], json_out: bool) -> Result<()> {
@@ -297,10 +310,22 @@ fn prompt_lines(text: &str) -> Vec<&str> {
 /// `scenethesis generate PROMPT --seed SEED --no-preview --out DIR`; an unaccepted scene is
 /// still a result (its folder is written), a run that writes no scene is an error.
 fn generate(exe: &Path, prompt: &str, seed: u64, dir: &Path) -> Result<()> {
-    let out = Command::new(exe)
+    run_generate(exe, prompt, seed, false, dir)
+}
+
+/// `scenethesis generate PROMPT --seed SEED [--no-preview] --out DIR`, as [`generate`] but
+/// with previews when `previews` is set.
+fn run_generate(exe: &Path, prompt: &str, seed: u64, previews: bool, dir: &Path) -> Result<()> {
+    let mut command = Command::new(exe);
+    command
         .arg("generate")
         .arg(prompt)
-        .args(["--seed", &seed.to_string(), "--no-preview", "--out"])
+        .args(["--seed", &seed.to_string()]);
+    if !previews {
+        command.arg("--no-preview");
+    }
+    let out = command
+        .arg("--out")
         .arg(dir)
         .output()
         .context("cannot run scenethesis generate")?;
