@@ -8,7 +8,7 @@ use std::path::Path;
 use scenethesis_pipeline::{
     GenerateOptions, GeneratedScene, HousePlanFile, NoProgress, Pipeline, PipelineError,
 };
-use scenethesis_scene_graph::{Scene, EXTERIOR};
+use scenethesis_scene_graph::{ParentRef, Scene, SceneObject, EXTERIOR};
 
 fn options() -> GenerateOptions {
     GenerateOptions {
@@ -39,6 +39,78 @@ fn check_objects_in_their_rooms(scene: &Scene) {
             c.z
         );
     }
+}
+
+/// The floor kept free on each side of a door (m), as the house's rooms keep it.
+const APPROACH: f64 = 0.6;
+
+/// No floor or hung object of the house reaches (by more than a centimetre) into the 0.6 m
+/// before any door, on either side, over the door's width and 0.1 m beyond each jamb.
+fn check_doorways_clear(scene: &Scene) {
+    let arch = &scene.architecture;
+    for door in &arch.doors {
+        let wall = arch.walls.iter().find(|w| w.id == door.wall).unwrap();
+        let (dir, n) = (wall.direction(), wall.inward_normal());
+        let centre = wall.start + dir * door.offset;
+        for side in [1.0, -1.0] {
+            let face = centre + n * (side * wall.thickness / 2.0);
+            let half = door.width / 2.0 + 0.1 - 0.01;
+            let a = face - dir * half + n * (side * 0.01);
+            let b = face + dir * half + n * (side * (APPROACH - 0.01));
+            let (lo, hi) = ([a.x.min(b.x), a.y.min(b.y)], [a.x.max(b.x), a.y.max(b.y)]);
+            for o in scene
+                .objects
+                .iter()
+                .filter(|o| matches!(o.parent, ParentRef::Ground | ParentRef::Wall(_)))
+            {
+                assert!(
+                    !footprint_overlaps(o, lo, hi),
+                    "{} stands in the approach of {} ({:?}–{:?})",
+                    o.id,
+                    door.id,
+                    lo,
+                    hi
+                );
+            }
+        }
+    }
+}
+
+/// Whether the turned floor rectangle of `o`'s box overlaps the axis-aligned `lo`–`hi`.
+fn footprint_overlaps(o: &SceneObject, lo: [f64; 2], hi: [f64; 2]) -> bool {
+    let (b, pose) = (&o.local_bounds, &o.pose);
+    let (s, c) = pose.yaw.sin_cos();
+    let at = |x: f64, z: f64| {
+        let (x, z) = (x * pose.scale, z * pose.scale);
+        [
+            pose.translation.x + c * x + s * z,
+            pose.translation.z - s * x + c * z,
+        ]
+    };
+    let corners = [
+        at(b.min.x, b.min.z),
+        at(b.max.x, b.min.z),
+        at(b.max.x, b.max.z),
+        at(b.min.x, b.max.z),
+    ];
+    let zone = [lo, [hi[0], lo[1]], hi, [lo[0], hi[1]]];
+    let edge = |k: usize| {
+        let (p, q) = (corners[k], corners[(k + 1) % 4]);
+        [q[0] - p[0], q[1] - p[1]]
+    };
+    [[1.0, 0.0], [0.0, 1.0], edge(0), edge(1)]
+        .iter()
+        .all(|axis: &[f64; 2]| {
+            let span = |ps: &[[f64; 2]; 4]| {
+                ps.iter()
+                    .map(|p| p[0] * axis[0] + p[1] * axis[1])
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+                        (a.min(v), b.max(v))
+                    })
+            };
+            let ((a0, a1), (b0, b1)) = (span(&corners), span(&zone));
+            a1 > b0 && b1 > a0
+        })
 }
 
 /// The house's report: Col-O and Col-arch 0 over the house, a line per room.
@@ -98,6 +170,7 @@ fn a_two_bedroom_apartment_is_furnished_room_by_room() {
         .validate()
         .expect("the house scene is valid");
     check_objects_in_their_rooms(&generated.scene);
+    check_doorways_clear(&generated.scene);
     check_house_report(&generated);
     // Every bed stands in a bedroom: "two bedrooms" is two rooms, not two beds a room.
     for o in generated
@@ -173,6 +246,7 @@ fn a_users_floor_plan_is_furnished_as_given() {
     assert!(passage.leaf.is_none());
     assert_eq!(arch.windows.len(), 2);
     check_objects_in_their_rooms(&generated.scene);
+    check_doorways_clear(&generated.scene);
     check_house_report(&generated);
     assert!(generated
         .scene
