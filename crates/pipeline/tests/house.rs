@@ -193,14 +193,15 @@ fn a_two_bedroom_apartment_is_furnished_room_by_room() {
     assert_eq!(back.objects.len(), generated.scene.objects.len());
 }
 
-/// A living room and a kitchen joined by a passage, the entrance into the living room.
+/// A living room and a kitchen-diner (3.5 × 3.9 m inside its walls: a kitchen run and a
+/// table for two) joined by a passage, the entrance into the living room.
 const PLAN: &str = r#"{
   "prompt": "a living room and a kitchen with a dining table",
   "rooms": [
     {"id": "living", "type": "living_room",
      "polygon": [[0, 0], [5, 0], [5, 4], [0, 4]]},
     {"id": "kitchen", "type": "kitchen",
-     "polygon": [[5, 0], [8, 0], [8, 4], [5, 4]]}
+     "polygon": [[5, 0], [8.6, 0], [8.6, 4], [5, 4]]}
   ],
   "doors": [
     {"id": "front", "rooms": ["living", "exterior"], "centre": [2, 4], "width": 0.9,
@@ -211,7 +212,7 @@ const PLAN: &str = r#"{
   "windows": [
     {"id": "w_living", "room": "living", "centre": [0, 2], "width": 1.4, "height": 1.4,
      "sill": 0.6},
-    {"id": "w_kitchen", "room": "kitchen", "centre": [8, 2], "width": 1.0, "height": 1.0,
+    {"id": "w_kitchen", "room": "kitchen", "centre": [8.6, 2], "width": 1.0, "height": 1.0,
      "sill": 1.05}
   ]
 }"#;
@@ -236,7 +237,7 @@ fn a_users_floor_plan_is_furnished_as_given() {
     assert_eq!(ids, ["living", "kitchen"]);
     let kitchen = arch.room("kitchen").unwrap();
     assert!(
-        (kitchen.area() - 2.9 * 3.9).abs() < 1e-9,
+        (kitchen.area() - 3.5 * 3.9).abs() < 1e-9,
         "{}",
         kitchen.area()
     );
@@ -248,6 +249,11 @@ fn a_users_floor_plan_is_furnished_as_given() {
     check_objects_in_their_rooms(&generated.scene);
     check_doorways_clear(&generated.scene);
     check_house_report(&generated);
+    assert!(
+        generated.report.verdict.accepted,
+        "{:?}",
+        generated.report.verdict.failures
+    );
     assert!(generated
         .scene
         .objects
@@ -262,8 +268,8 @@ fn a_bad_floor_plan_is_refused_naming_what_is_at_fault() {
         // The kitchen overlaps the living room.
         (
             PLAN.replace(
-                "[[5, 0], [8, 0], [8, 4], [5, 4]]",
-                "[[4, 0], [8, 0], [8, 4], [4, 4]]",
+                "[[5, 0], [8.6, 0], [8.6, 4], [5, 4]]",
+                "[[4, 0], [8.6, 0], [8.6, 4], [4, 4]]",
             ),
             "kitchen",
         ),
@@ -274,7 +280,7 @@ fn a_bad_floor_plan_is_refused_naming_what_is_at_fault() {
         ),
         // A window on the interior wall.
         (
-            PLAN.replace("\"centre\": [8, 2]", "\"centre\": [5, 1]"),
+            PLAN.replace("\"centre\": [8.6, 2]", "\"centre\": [5, 1]"),
             "w_kitchen",
         ),
         // Nothing joins the kitchen to the living room.

@@ -169,13 +169,19 @@ impl ProceduralGuide {
         let (order, left_out): (Vec<usize>, Vec<usize>) = placement_order(plan)
             .into_iter()
             .filter(|&i| state.placed_of(i).is_none())
-            .partition(|i| !leave_out.contains(i));
+            .partition(|i| {
+                !leave_out.contains(i) && runs.as_ref().is_none_or(|r| !r.left_out.contains(i))
+            });
         let mut dropped: Vec<DroppedObject> = left_out
             .into_iter()
             .map(|i| DroppedObject {
                 id: plan.objects[i].id.clone(),
-                reason: "left out to make room in the room's fixed walls for what it needs more"
-                    .into(),
+                reason: if leave_out.contains(&i) {
+                    "left out to make room in the room's fixed walls for what it needs more"
+                } else {
+                    "left out of the kitchen runs: the others fit the room's fixed walls only without it"
+                }
+                .into(),
             })
             .collect();
         dropped.extend(place_floor_objects(

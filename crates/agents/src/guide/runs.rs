@@ -74,6 +74,9 @@ pub(super) struct PlacedRuns {
     pub(super) rule: &'static RunsRule,
     /// The members placed, by plan index.
     pub(super) members: Vec<usize>,
+    /// Members left out so that the others form the runs within a room's fixed walls
+    /// ([`crate::Plan::room_is_fixed`]), by plan index.
+    pub(super) left_out: Vec<usize>,
 }
 
 /// One piece to lay: plan index, width along the wall, depth off it.
@@ -197,10 +200,57 @@ pub(super) fn place_runs(
         w: infos[i].size[0] as f64,
         d: infos[i].size[2] as f64,
     };
-    let seq: Vec<Piece> = sequence(state, rule, &members)
+    let mut seq: Vec<Piece> = sequence(state, rule, &members)
         .into_iter()
         .map(piece)
         .collect();
+    let mut left_out = Vec::new();
+    loop {
+        if let Some(mut placed) = lay_shapes(state, rule, infos, sides, &seq, &mut rng) {
+            placed.left_out = left_out;
+            return Some(placed);
+        }
+        // Fixed walls cannot grow around the runs: the runs are laid without a spare piece.
+        if !state.plan.room_is_fixed() {
+            return None;
+        }
+        let k = spare_piece(state, rule, &seq)?;
+        left_out.push(seq.remove(k).index);
+        if seq.len() < 2 {
+            return None;
+        }
+    }
+}
+
+/// The piece of `seq` the runs can best do without: not asked for, not one of the rule's
+/// `with` pieces or a sink, a dishwasher before a cabinet before a refrigerator before the
+/// rest, the last such first; `None` when every piece is needed.
+fn spare_piece(state: &FloorState<'_>, rule: &RunsRule, seq: &[Piece]) -> Option<usize> {
+    let plan = state.plan;
+    let rank = |c: &str| match c {
+        "dishwasher" => 0,
+        "cabinet" => 1,
+        "refrigerator" => 2,
+        _ => 3,
+    };
+    (0..seq.len())
+        .filter(|&k| {
+            let o = &plan.objects[seq[k].index];
+            !o.hard && o.category != "sink" && !rule.with.contains(&o.category)
+        })
+        .min_by_key(|&k| (rank(&plan.objects[seq[k].index].category), usize::MAX - k))
+}
+
+/// Lays `seq` as the first shape (drawn from `rng`, the prompt's named one first) that fits,
+/// keeps the walkway open and leaves the door free, with the rule's islands.
+fn lay_shapes(
+    state: &mut FloorState<'_>,
+    rule: &'static RunsRule,
+    infos: &[AssetInfo],
+    sides: &[Side],
+    seq: &[Piece],
+    rng: &mut ChaCha8Rng,
+) -> Option<PlacedRuns> {
     let mut shapes = vec![
         RunShape::OneWall,
         RunShape::LLeft,
@@ -208,25 +258,26 @@ pub(super) fn place_runs(
         RunShape::U,
         RunShape::Galley,
     ];
-    shapes.shuffle(&mut rng);
+    shapes.shuffle(rng);
     if let Some(name) = named_shape(rule, &state.plan.prompt) {
         shapes.sort_by_key(|s| s.name() != name);
     }
     for shape in shapes {
-        let mut orders = [seq.clone(), seq.iter().rev().copied().collect()];
+        let mut orders = [seq.to_vec(), seq.iter().rev().copied().collect()];
         if rng.random_bool(0.5) {
             orders.swap(0, 1);
         }
         for order in &orders {
-            let Some(spots) = lay(shape, order, state, sides, &mut rng) else {
+            let Some(spots) = lay(shape, order, state, sides, rng) else {
                 continue;
             };
             if commit_all(state, &spots, infos) {
                 let placed = PlacedRuns {
                     rule,
                     members: spots.iter().map(|(i, _, _)| *i).collect(),
+                    left_out: Vec::new(),
                 };
-                place_islands(state, rule, infos, &placed, &mut rng);
+                place_islands(state, rule, infos, &placed, rng);
                 return Some(placed);
             }
         }
