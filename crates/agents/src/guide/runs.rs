@@ -652,7 +652,14 @@ fn place_islands(
     let (x_min, x_max) = main.iter().fold((f64::MAX, f64::MIN), |(a, b), f| {
         (a.min(f.cx - f.hx), b.max(f.cx + f.hx))
     });
-    let mid = ((x_min + x_max) / 2.0).clamp(state.floor[0] + 1.5, state.floor[2] - 1.5);
+    // 1.5 m from either side wall; a floor narrower than 3 m (a house's kitchenette) has only
+    // its middle.
+    let (lo, hi) = (state.floor[0] + 1.5, state.floor[2] - 1.5);
+    let mid = if lo <= hi {
+        ((x_min + x_max) / 2.0).clamp(lo, hi)
+    } else {
+        (state.floor[0] + state.floor[2]) / 2.0
+    };
     for i in islands {
         let (hx, hz) = (infos[i].size[0] as f64 / 2.0, infos[i].size[2] as f64 / 2.0);
         let jitter = rng.random_range(-0.2..=0.2);
