@@ -340,6 +340,11 @@ pub struct KeepClear {
     /// nothing may stand in it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub below: Option<f64>,
+    /// Whether the area lies before the door the room is entered by, in its front wall (+z):
+    /// the guide keeps it as the room's door clearance and roots its walkway there, rather
+    /// than at the front wall's middle.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub entrance: bool,
 }
 
 /// Below this confidence a reading of the place is reported as a guess (in `report.json`
@@ -413,6 +418,13 @@ impl RequestedObject {
 }
 
 impl Plan {
+    /// Whether the room's walls are given rather than sized to the plan: a house room, whose
+    /// walls are the floor plan's (it carries the areas its doors and windows keep clear). A
+    /// guide may not grow such a room to fit what it could not place.
+    pub fn room_is_fixed(&self) -> bool {
+        !self.keep_clear.is_empty()
+    }
+
     /// The planned object with this id.
     pub fn object(&self, id: &str) -> Option<&PlannedObject> {
         self.objects.iter().find(|o| o.id == id)

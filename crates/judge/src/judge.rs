@@ -71,6 +71,10 @@ pub enum FailureKind {
     /// A floor object taller than a window's sill stands in front of the window
     /// ([`scenethesis_scene_graph::Architecture::window_covered_by`]).
     WindowCovered,
+    /// An object stands in (or hangs over) an area the plan keeps clear
+    /// ([`scenethesis_agents::KeepClear`]: a house door's swing and approach), or hangs in
+    /// front of a window above its cover height.
+    KeepClear,
 }
 
 /// One reason a scene was rejected.
@@ -384,6 +388,7 @@ impl Judge for GeometricJudge {
         }
         failures.extend(opening_failures(&metrics, &order, anchor));
         failures.extend(window_failures(scene));
+        failures.extend(keep_clear_failures(input.plan, scene));
         let arrangement = timed(&mut timings.arrangement, || check_arrangement(scene));
         failures.extend(arrangement_failures(&arrangement));
         Ok(Verdict {
@@ -424,6 +429,92 @@ fn window_failures(scene: &Scene) -> Vec<Failure> {
             })
         })
         .collect()
+}
+
+/// How far (m) an object may reach into an area the plan keeps clear: the optimizer's
+/// settling and the difference between an asset's mesh and the size it was laid out with.
+const KEEP_CLEAR_TOLERANCE: f64 = 0.01;
+
+/// One failure per floor or hung object whose footprint reaches into an area the plan keeps
+/// wholly clear (a house door's swing and approach), and per hung object reaching above the
+/// height limit of one it hangs in (a window's cover height; floor objects before a window
+/// are [`window_failures`]'). Objects resting on others move with them and are not checked.
+fn keep_clear_failures(plan: &Plan, scene: &Scene) -> Vec<Failure> {
+    let mut failures = Vec::new();
+    for o in &scene.objects {
+        let hung = matches!(o.parent, ParentRef::Wall(_));
+        if !hung && o.parent != ParentRef::Ground {
+            continue;
+        }
+        let top = o.world_aabb().max.y;
+        let corners = footprint_corners(o);
+        let zone = plan.keep_clear.iter().find(|k| {
+            let limited = k
+                .below
+                .is_some_and(|h| hung && top > h + KEEP_CLEAR_TOLERANCE);
+            (k.below.is_none() || limited) && reaches_into(&corners, k.min, k.max)
+        });
+        if let Some(zone) = zone {
+            failures.push(Failure {
+                kind: FailureKind::KeepClear,
+                objects: vec![o.id.clone()],
+                detail: format!(
+                    "`{}` {} in the area kept clear for {}",
+                    o.id,
+                    if hung { "hangs" } else { "stands" },
+                    zone.why
+                ),
+            });
+        }
+    }
+    failures
+}
+
+/// The floor corners (x, z) of an object's box, turned with its yaw.
+fn footprint_corners(o: &scenethesis_scene_graph::SceneObject) -> [[f64; 2]; 4] {
+    let (b, pose) = (&o.local_bounds, &o.pose);
+    let (s, c) = pose.yaw.sin_cos();
+    let t = pose.translation;
+    let at = |x: f64, z: f64| {
+        let (x, z) = (x * pose.scale, z * pose.scale);
+        [t.x + c * x + s * z, t.z - s * x + c * z]
+    };
+    [
+        at(b.min.x, b.min.z),
+        at(b.max.x, b.min.z),
+        at(b.max.x, b.max.z),
+        at(b.min.x, b.max.z),
+    ]
+}
+
+/// Whether the rectangle with `corners` overlaps the axis-aligned `min`–`max` shrunk by
+/// [`KEEP_CLEAR_TOLERANCE`] (separating axes: the two world axes and the rectangle's sides).
+fn reaches_into(corners: &[[f64; 2]; 4], min: [f64; 2], max: [f64; 2]) -> bool {
+    let (lo, hi) = (
+        [min[0] + KEEP_CLEAR_TOLERANCE, min[1] + KEEP_CLEAR_TOLERANCE],
+        [max[0] - KEEP_CLEAR_TOLERANCE, max[1] - KEEP_CLEAR_TOLERANCE],
+    );
+    if lo[0] >= hi[0] || lo[1] >= hi[1] {
+        return false;
+    }
+    let zone = [lo, [hi[0], lo[1]], hi, [lo[0], hi[1]]];
+    let side = |k: usize| {
+        let (a, b) = (corners[k], corners[(k + 1) % 4]);
+        [b[0] - a[0], b[1] - a[1]]
+    };
+    let axes = [[1.0, 0.0], [0.0, 1.0], side(0), side(1)];
+    axes.iter().all(|axis| {
+        let project = |p: &[f64; 2]| p[0] * axis[0] + p[1] * axis[1];
+        let span = |ps: &[[f64; 2]; 4]| {
+            ps.iter()
+                .map(project)
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+                    (a.min(v), b.max(v))
+                })
+        };
+        let ((a0, a1), (b0, b1)) = (span(corners), span(&zone));
+        a1 > b0 && b1 > a0
+    })
 }
 
 /// Checks every relation of the plan (each object's support first) between objects present in
@@ -617,6 +708,47 @@ mod tests {
             parent_link: None,
             room: None,
         }
+    }
+
+    /// A piece in a door's kept-clear approach fails, blamed on it; one beside the area, one
+    /// resting on another and one turned so that only its bounding box would reach in do not.
+    #[test]
+    fn a_piece_in_a_doors_approach_fails_and_one_beside_it_does_not() {
+        use scenethesis_agents::Planner as _;
+        let mut scene = Scene::new(Architecture::rectangular_room(5.0, 4.0, 2.6, 0.9));
+        let mut turned = standing("turned", 0.95, 0.7, 0.8);
+        turned.pose.yaw = std::f64::consts::FRAC_PI_4;
+        let mut child = standing("child", 0.0, 1.6, 0.3);
+        child.parent = ParentRef::Object("hamper".into());
+        scene.objects = vec![
+            standing("hamper", 0.2, 1.7, 0.6),
+            standing("beside", 2.0, 1.7, 0.6),
+            child,
+            turned,
+        ];
+        let mut plan = scenethesis_agents::KnowledgePlanner::new()
+            .plan(&scenethesis_agents::PlanRequest::new(
+                "a bedroom",
+                ["bed"],
+                0,
+            ))
+            .unwrap();
+        plan.keep_clear.push(scenethesis_agents::KeepClear {
+            why: "door_1 swing and approach".into(),
+            min: [-0.55, 1.1],
+            max: [0.55, 2.0],
+            below: None,
+            entrance: false,
+        });
+        let failures = keep_clear_failures(&plan, &scene);
+        assert_eq!(failures.len(), 1, "{failures:?}");
+        assert_eq!(failures[0].kind, FailureKind::KeepClear);
+        assert_eq!(failures[0].objects, ["hamper"]);
+        assert!(
+            failures[0].detail.contains("door_1"),
+            "{}",
+            failures[0].detail
+        );
     }
 
     #[test]

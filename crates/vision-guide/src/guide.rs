@@ -380,8 +380,8 @@ impl Guide for VisionGuide {
         let view = Guidance::new(camera, g.image.clone(), depth, masks.clone())
             .map_err(|e| provider("guidance", e.to_string()))?;
         // The room as the image shows it, when a camera placed in the room says where its
-        // walls are.
-        if g.camera.is_some() {
+        // walls are — unless its walls are given (a house room's are the floor plan's).
+        if g.camera.is_some() && !plan.room_is_fixed() {
             if let Some(size) = room_size(plan, &view) {
                 adoption.notes.push(format!(
                     "the room measured from the walls the guidance image shows: {:.2} × {:.2} m \

@@ -47,7 +47,9 @@ fn yaw_toward(from: [f64; 2], to: [f64; 2]) -> f64 {
 }
 
 /// Whether mounted object `p` may hang where it is: over no other mounted object, clear of
-/// the doors of the floor and hung objects around it (and theirs of it), free floor in front.
+/// the doors of the floor and hung objects around it (and theirs of it), outside the areas
+/// the plan keeps clear (a house room's doorways; below a window's cover height in front of
+/// it), free floor in front.
 pub(super) fn mount_ok(state: &FloorState<'_>, p: &Placed) -> bool {
     let fp = &p.fp;
     if state
@@ -57,6 +59,7 @@ pub(super) fn mount_ok(state: &FloorState<'_>, p: &Placed) -> bool {
         .any(|p| p.fp.overlaps(fp, 0.1))
         || state.in_a_swing(fp, WALL_MOUNT_HEIGHT - 0.5)
         || state.in_a_hung_swing(p)
+        || state.hangs_in_keep_clear(p)
     {
         return false;
     }

@@ -15,6 +15,7 @@ use super::shared::positional_target;
 use super::shared::Placed;
 use super::walkway::FloorState;
 use super::DroppedObject;
+use crate::arrangement::ArrangementRules;
 use crate::plan::{Plan, Zone};
 
 /// The plan indices of the floor objects in the order they are placed.
@@ -76,6 +77,13 @@ pub(super) fn place_floor_objects(
             }
             attempted[i] = true;
             progress = true;
+            if let Some(reason) = target_left_out(state, i, &attempted) {
+                dropped.push(DroppedObject {
+                    id: o.id.clone(),
+                    reason,
+                });
+                continue;
+            }
             let mounted = o.zone == Zone::WallMounted;
             if mounted && hang_above_run(state, runs, i, &infos[i], sides, rng) {
                 continue;
@@ -155,6 +163,36 @@ pub(super) fn place_floor_objects(
     dropped
 }
 
+/// Why relative object `i` is left out: its target was tried and found no spot, and it
+/// only serves such a target (a `needs` rule: a dining chair whose table found no room, with
+/// no other table standing), unless the prompt asked for it. `None` when it is placed.
+fn target_left_out(state: &FloorState<'_>, i: usize, attempted: &[bool]) -> Option<String> {
+    let plan = state.plan;
+    let o = &plan.objects[i];
+    if o.hard {
+        return None;
+    }
+    let t = state.index_of(positional_target(o)?)?;
+    let target = &plan.objects[t];
+    if !attempted[t] || state.placed_of(t).is_some() || target.parent != ParentRef::Ground {
+        return None;
+    }
+    let rule = ArrangementRules::builtin()
+        .needs
+        .iter()
+        .find(|r| r.subject.contains(&o.category) && r.target.contains(&target.category))?;
+    let served = state
+        .placed
+        .iter()
+        .any(|p| !p.mounted && rule.target.contains(&plan.objects[p.plan_index].category));
+    (!served).then(|| {
+        format!(
+            "its target `{}` found no spot and nothing else it serves stands here ({})",
+            target.id, rule.rule
+        )
+    })
+}
+
 /// Hangs wall-mounted object `i` above a run (a wall cabinet over the counters) at the first
 /// spot no other mounted object takes; returns whether it was hung.
 fn hang_above_run(
@@ -192,7 +230,10 @@ fn hang_above_run(
             bottom: Some(ABOVE_RUN_BOTTOM),
             ..Placed::standing(i, fp, info)
         };
-        if !state.in_a_hung_swing(&p) && state.evaluate(Some(&p)).0 {
+        if !state.in_a_hung_swing(&p)
+            && !state.hangs_in_keep_clear(&p)
+            && state.evaluate(Some(&p)).0
+        {
             state.commit(p);
             return true;
         }

@@ -74,6 +74,9 @@ pub(super) struct PlacedRuns {
     pub(super) rule: &'static RunsRule,
     /// The members placed, by plan index.
     pub(super) members: Vec<usize>,
+    /// Members left out so that the others form the runs within a room's fixed walls
+    /// ([`crate::Plan::room_is_fixed`]), by plan index.
+    pub(super) left_out: Vec<usize>,
 }
 
 /// One piece to lay: plan index, width along the wall, depth off it.
@@ -197,10 +200,101 @@ pub(super) fn place_runs(
         w: infos[i].size[0] as f64,
         d: infos[i].size[2] as f64,
     };
-    let seq: Vec<Piece> = sequence(state, rule, &members)
+    let mut seq: Vec<Piece> = sequence(state, rule, &members)
         .into_iter()
         .map(piece)
         .collect();
+    let mut left_out = Vec::new();
+    loop {
+        if let Some(mut placed) = lay_shapes(state, rule, infos, sides, &seq, &mut rng) {
+            placed.left_out = left_out;
+            return Some(placed);
+        }
+        // Fixed walls cannot grow around the runs: the runs go along another wall, or are
+        // laid without a spare piece.
+        if !state.plan.room_is_fixed() {
+            return None;
+        }
+        if let Some(mut placed) = lay_along_another_wall(state, rule, infos, sides, &seq, &mut rng)
+        {
+            placed.left_out = left_out;
+            return Some(placed);
+        }
+        let k = spare_piece(state, rule, &seq)?;
+        left_out.push(seq.remove(k).index);
+        if seq.len() < 2 {
+            return None;
+        }
+    }
+}
+
+/// The piece of `seq` the runs can best do without: not asked for, not a sink, not the last
+/// of the rule's `with` pieces; a dishwasher before a cabinet before a refrigerator before a
+/// counter before the rest, the last such first; `None` when every piece is needed.
+fn spare_piece(state: &FloorState<'_>, rule: &RunsRule, seq: &[Piece]) -> Option<usize> {
+    let plan = state.plan;
+    let category = |k: usize| plan.objects[seq[k].index].category.as_str();
+    let rank = |c: &str| match c {
+        "dishwasher" => 0,
+        "cabinet" => 1,
+        "refrigerator" => 2,
+        "kitchen_counter" => 3,
+        _ => 4,
+    };
+    let with = |k: usize| rule.with.iter().any(|w| w == category(k));
+    let withs = (0..seq.len()).filter(|&k| with(k)).count();
+    (0..seq.len())
+        .filter(|&k| {
+            !plan.objects[seq[k].index].hard && category(k) != "sink" && (!with(k) || withs > 1)
+        })
+        .min_by_key(|&k| (rank(category(k)), usize::MAX - k))
+}
+
+/// Lays `seq` as one run along a side wall or the door wall, the first that fits and keeps
+/// the walkway open (a house kitchen whose back wall is mostly a passage), without islands.
+fn lay_along_another_wall(
+    state: &mut FloorState<'_>,
+    rule: &'static RunsRule,
+    infos: &[AssetInfo],
+    sides: &[Side],
+    seq: &[Piece],
+    rng: &mut ChaCha8Rng,
+) -> Option<PlacedRuns> {
+    for turn in [1, 3, 2] {
+        // The sides turned so that wall `turn` is the main run's.
+        let turned: Vec<Side> = (0..4).map(|k| sides[(k + turn) % 4].clone()).collect();
+        for order in [seq.to_vec(), seq.iter().rev().copied().collect()] {
+            let split = (0, order.len(), 0);
+            let Some(spots) = lay_split(RunShape::OneWall, split, &order, state, &turned, rng)
+            else {
+                continue;
+            };
+            let spots: Vec<(usize, Footprint, usize)> = spots
+                .into_iter()
+                .map(|(i, fp, k)| (i, fp, (k + turn) % 4))
+                .collect();
+            if commit_all(state, &spots, infos) {
+                return Some(PlacedRuns {
+                    rule,
+                    members: spots.iter().map(|(i, _, _)| *i).collect(),
+                    left_out: Vec::new(),
+                });
+            }
+        }
+    }
+    None
+}
+
+/// Lays `seq` as the first shape (drawn from `rng`, the prompt's named one first) that fits,
+/// keeps the walkway open and leaves the door free, with the rule's islands.
+fn lay_shapes(
+    state: &mut FloorState<'_>,
+    rule: &'static RunsRule,
+    infos: &[AssetInfo],
+    sides: &[Side],
+    seq: &[Piece],
+    rng: &mut ChaCha8Rng,
+) -> Option<PlacedRuns> {
     let mut shapes = vec![
         RunShape::OneWall,
         RunShape::LLeft,
@@ -208,25 +302,26 @@ pub(super) fn place_runs(
         RunShape::U,
         RunShape::Galley,
     ];
-    shapes.shuffle(&mut rng);
+    shapes.shuffle(rng);
     if let Some(name) = named_shape(rule, &state.plan.prompt) {
         shapes.sort_by_key(|s| s.name() != name);
     }
     for shape in shapes {
-        let mut orders = [seq.clone(), seq.iter().rev().copied().collect()];
+        let mut orders = [seq.to_vec(), seq.iter().rev().copied().collect()];
         if rng.random_bool(0.5) {
             orders.swap(0, 1);
         }
         for order in &orders {
-            let Some(spots) = lay(shape, order, state, sides, &mut rng) else {
+            let Some(spots) = lay(shape, order, state, sides, rng) else {
                 continue;
             };
             if commit_all(state, &spots, infos) {
                 let placed = PlacedRuns {
                     rule,
                     members: spots.iter().map(|(i, _, _)| *i).collect(),
+                    left_out: Vec::new(),
                 };
-                place_islands(state, rule, infos, &placed, &mut rng);
+                place_islands(state, rule, infos, &placed, rng);
                 return Some(placed);
             }
         }
@@ -275,6 +370,35 @@ fn lay(
     splits
         .into_iter()
         .find_map(|split| lay_split(shape, split, order, state, sides, rng))
+}
+
+/// The start along `side` nearest `pick` within `lo..=hi` (in 5 cm steps) from which the
+/// `main` run stays clear of the door's clearance and the areas the plan keeps clear (a house
+/// room's other doors, whose walls the room cannot grow past); `None` when there is none.
+fn clear_start(
+    state: &FloorState<'_>,
+    side: &Side,
+    main: &[Piece],
+    lo: f64,
+    hi: f64,
+    pick: f64,
+) -> Option<f64> {
+    let steps = ((hi - lo) / 0.05).floor() as usize;
+    let mut starts: Vec<f64> = (0..=steps).map(|k| lo + k as f64 * 0.05).collect();
+    starts.push(pick);
+    starts.sort_by(|a, b| (a - pick).abs().total_cmp(&(b - pick).abs()));
+    starts.into_iter().find(|&x0| {
+        let mut x = x0;
+        main.iter().all(|p| {
+            let fp = side.footprint_at(x + p.w / 2.0, p.w / 2.0, p.d / 2.0);
+            x += p.w + RUN_GAP;
+            !state.door_zone.is_some_and(|d| d.overlaps(&fp, 0.0))
+                && !state
+                    .keep_clear
+                    .iter()
+                    .any(|(zone, below)| below.is_none() && zone.overlaps(&fp, 0.0))
+        })
+    })
 }
 
 /// Length of a run of `pieces`, gaps included.
@@ -330,7 +454,12 @@ fn lay_split(
     } else if b > 0 && !galley {
         hi
     } else {
-        rng.random_range(lo..=hi.max(lo))
+        let pick = rng.random_range(lo..=hi.max(lo));
+        if state.plan.room_is_fixed() {
+            clear_start(state, &sides[0], main, lo, hi.max(lo), pick)?
+        } else {
+            pick
+        }
     };
     let mut out = Vec::with_capacity(n);
     let mut x = x0;
@@ -523,7 +652,14 @@ fn place_islands(
     let (x_min, x_max) = main.iter().fold((f64::MAX, f64::MIN), |(a, b), f| {
         (a.min(f.cx - f.hx), b.max(f.cx + f.hx))
     });
-    let mid = ((x_min + x_max) / 2.0).clamp(state.floor[0] + 1.5, state.floor[2] - 1.5);
+    // 1.5 m from either side wall; a floor narrower than 3 m (a house's kitchenette) has only
+    // its middle.
+    let (lo, hi) = (state.floor[0] + 1.5, state.floor[2] - 1.5);
+    let mid = if lo <= hi {
+        ((x_min + x_max) / 2.0).clamp(lo, hi)
+    } else {
+        (state.floor[0] + state.floor[2]) / 2.0
+    };
     for i in islands {
         let (hx, hz) = (infos[i].size[0] as f64 / 2.0, infos[i].size[2] as f64 / 2.0);
         let jitter = rng.random_range(-0.2..=0.2);

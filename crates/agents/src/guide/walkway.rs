@@ -75,7 +75,18 @@ impl<'a> FloorState<'a> {
         let raster = Raster::new(-hw, -hd, hw, hd, cell);
         let mut aisle_base = raster.floor_mask(aisle_radius);
         let mut walk_base = raster.floor_mask(walk_grow(cell));
+        // A house room is entered by a door of its front wall that need not lie at its
+        // middle: the area that door keeps clear is the room's door clearance.
+        let entrance = plan
+            .keep_clear
+            .iter()
+            .find(|k| k.entrance)
+            .map(|k| keep_clear_zone(k).0);
+        let door_x = entrance.map_or(0.0, |zone| zone.cx);
         let door_zone = indoor.then(|| {
+            if let Some(zone) = entrance {
+                return zone;
+            }
             let clear = plan.door_clearance.max(0.6);
             let zone = Footprint {
                 cx: 0.0,
@@ -91,7 +102,7 @@ impl<'a> FloorState<'a> {
         let door_cell = |r: f64| {
             if indoor {
                 raster
-                    .cell_of(0.0, hd - r - cell * 1.5)
+                    .cell_of(door_x, hd - r - cell * 1.5)
                     .map(|(i, j)| j * raster.nx + i)
             } else {
                 None
@@ -141,6 +152,16 @@ impl FloorState<'_> {
                 .keep_clear
                 .iter()
                 .any(|(zone, below)| below.is_none() && zone.overlaps(fp, 0.0))
+    }
+
+    /// Whether hung object `p` would hang in an area the plan keeps wholly clear (a house
+    /// door's opening and approach) or reach above the height limit of one it hangs in (in
+    /// front of a window).
+    pub(super) fn hangs_in_keep_clear(&self, p: &Placed) -> bool {
+        self.keep_clear
+            .iter()
+            .any(|(zone, below)| below.is_none() && zone.overlaps(&p.fp, 0.0))
+            || self.too_tall_for_keep_clear(p)
     }
 
     /// Whether `p` reaches above the height limit of a keep-clear area it stands in (a tall

@@ -25,6 +25,9 @@ pub(crate) const DOOR_APPROACH: f64 = 0.6;
 /// rest of it.
 const OPEN_SIDE_HEIGHT: f64 = 2.1;
 
+/// The index of a shell's front wall (+z), the one its entrance lies in.
+const FRONT: usize = 2;
+
 /// Distance (m) under which a point counts as lying on a line.
 const ON_LINE: f64 = 1e-6;
 
@@ -219,7 +222,7 @@ impl RoomShell {
             keep_clear: Vec::new(),
         };
         shell.architecture.doors.clear();
-        shell.add_doors(plan, room, &rect);
+        shell.add_doors(plan, room, &rect, entry);
         shell.add_open_sides(room, &rect);
         shell.add_windows(plan, room, &rect);
         shell
@@ -265,8 +268,9 @@ impl RoomShell {
     }
 
     /// The plan's doors on the furnished rectangle, as openings of the shell with the floor
-    /// their leaves sweep and their approach kept clear.
-    fn add_doors(&mut self, plan: &FloorPlan, room: &Room, rect: &Rect) {
+    /// their leaves sweep and their approach kept clear; the area of the door `entry` (in the
+    /// front wall) is the room's entrance.
+    fn add_doors(&mut self, plan: &FloorPlan, room: &Room, rect: &Rect, entry: Option<&str>) {
         for door in plan.doors_of(&room.id) {
             if !Side::ALL.iter().any(|s| s.holds(rect, door.centre)) {
                 continue;
@@ -293,6 +297,7 @@ impl RoomShell {
                 min,
                 max,
                 below: None,
+                entrance: wall == FRONT && entry == Some(door.id.as_str()),
             });
             let wall_id = self.architecture.walls[wall].id.clone();
             self.architecture.doors.push(DoorOpening {
@@ -336,6 +341,8 @@ impl RoomShell {
                 min,
                 max,
                 below: None,
+                // The way in when the room is entered through its other part.
+                entrance: wall == FRONT && !self.keep_clear.iter().any(|k| k.entrance),
             });
             self.architecture.doors.push(DoorOpening {
                 id,
@@ -375,6 +382,7 @@ impl RoomShell {
                 min,
                 max,
                 below: Some(opening.cover_height()),
+                entrance: false,
             });
             self.architecture.windows.push(opening);
         }
