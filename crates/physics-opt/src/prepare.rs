@@ -2,7 +2,7 @@
 //! exact and baked signed distance fields, seeded surface and bottom samples, the centroid, and
 //! the metadata the losses need (support surfaces, scale range, placement).
 
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use nalgebra::{Point3, Vector3};
 use scenethesis_scene_graph::{Aabb, Mesh};
@@ -58,7 +58,7 @@ impl Default for PrepareSettings {
 /// An asset ready for optimization.
 pub struct PreparedAsset {
     exact: Arc<MeshSdf>,
-    grid: Arc<GridSdf>,
+    grid: Arc<LazyGrid>,
     surface_points: Vec<Point3<f64>>,
     bottom_points: Vec<Point3<f64>>,
     check_points: Vec<Point3<f64>>,
@@ -105,7 +105,6 @@ impl PreparedAsset {
             asset: name.to_owned(),
             source,
         })?;
-        let grid = GridSdf::bake(&exact, settings.grid_cell);
         let to64 = |p: &Point3<f32>| p.cast::<f64>();
         let area = surface_area(mesh);
         let count = |least: usize, spacing: f64, most: usize| {
@@ -176,9 +175,10 @@ impl PreparedAsset {
                     .map(|p| Point3::from(*p).cast::<f64>()),
             );
         }
+        let exact = Arc::new(exact);
         Ok(Self {
-            exact: Arc::new(exact),
-            grid: Arc::new(grid),
+            grid: Arc::new(LazyGrid::new(exact.clone(), settings.grid_cell)),
+            exact,
             surface_points: surface,
             bottom_points: bottom,
             check_points: check,
@@ -229,7 +229,8 @@ impl PreparedAsset {
         self.exact.clone()
     }
 
-    /// The baked grid field (for the inner loop).
+    /// The baked grid field (for the inner loop), baked the first time it is asked for a
+    /// distance: an asset no other object comes near never pays for its grid.
     pub fn grid_field(&self) -> Arc<dyn SignedDistance> {
         self.grid.clone()
     }
@@ -288,4 +289,50 @@ fn surface_area(mesh: &Mesh) -> f64 {
         .flat_map(|part| (0..part.triangles.len()).map(move |t| part.triangle(t)))
         .map(|[a, b, c]| ((b - a).cross(&(c - a))).norm() as f64 / 2.0)
         .sum()
+}
+
+/// An asset's baked grid field, baked from its exact field the first time a distance or
+/// gradient is asked of it (its bounds are the exact field's, known without baking). Most of
+/// a room's small objects are never an obstacle close enough to another object's samples to
+/// be queried, and baking was the largest share of preparing an asset.
+struct LazyGrid {
+    exact: Arc<MeshSdf>,
+    max_cell: Option<f32>,
+    grid: OnceLock<GridSdf>,
+}
+
+impl LazyGrid {
+    fn new(exact: Arc<MeshSdf>, max_cell: Option<f32>) -> Self {
+        Self {
+            exact,
+            max_cell,
+            grid: OnceLock::new(),
+        }
+    }
+
+    /// The grid, baked now if it is not yet. The bake runs on the calling thread alone: a
+    /// query can come from inside a rayon job, and a worker waiting for the bake's own tasks
+    /// could otherwise pick up another job that waits for this same grid.
+    fn grid(&self) -> &GridSdf {
+        self.grid
+            .get_or_init(|| GridSdf::bake_on_this_thread(&self.exact, self.max_cell))
+    }
+}
+
+impl SignedDistance for LazyGrid {
+    fn distance(&self, p: &Point3<f32>) -> f32 {
+        self.grid().distance(p)
+    }
+
+    fn gradient(&self, p: &Point3<f32>) -> Vector3<f32> {
+        self.grid().gradient(p)
+    }
+
+    fn local_bounds(&self) -> (Point3<f32>, Point3<f32>) {
+        self.exact.local_bounds()
+    }
+
+    fn distance_and_gradient(&self, p: &Point3<f32>) -> (f32, Vector3<f32>) {
+        self.grid().distance_and_gradient(p)
+    }
 }

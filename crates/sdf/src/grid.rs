@@ -82,18 +82,35 @@ impl GridSdf {
 
     /// Bakes `source` with the default resolution, or finer when `max_cell` (metres) asks.
     pub fn bake(source: &MeshSdf, max_cell: Option<f32>) -> Self {
+        Self::bake_with_cell(source, Self::capped_cell(source, max_cell))
+    }
+
+    /// [`GridSdf::bake`] on the calling thread alone, with no rayon task: for a bake started
+    /// from inside another parallel job (a field baked the first time it is queried), where a
+    /// worker waiting for its own tasks could pick up a job that waits for this very bake.
+    /// Same grid as [`GridSdf::bake`] (the bake does not depend on scheduling).
+    pub fn bake_on_this_thread(source: &MeshSdf, max_cell: Option<f32>) -> Self {
+        Self::bake_cells(source, Self::capped_cell(source, max_cell), false)
+    }
+
+    /// The default cell size for `source`, capped at `max_cell` when one is given.
+    fn capped_cell(source: &MeshSdf, max_cell: Option<f32>) -> f32 {
         let (lo, hi) = source.local_bounds();
-        let extent = (hi - lo).amax();
-        let mut cell = Self::default_cell_size(extent);
+        let mut cell = Self::default_cell_size((hi - lo).amax());
         if let Some(m) = max_cell.filter(|m| m.is_finite() && *m > 0.0) {
             cell = cell.min(m);
         }
-        Self::bake_with_cell(source, cell)
+        cell
     }
 
     /// Bakes `source` with cells of edge `cell` metres (enlarged only if the grid would exceed
     /// 1024 cells per axis or 2²⁶ nodes).
     pub fn bake_with_cell(source: &MeshSdf, cell: f32) -> Self {
+        Self::bake_cells(source, cell, true)
+    }
+
+    /// Bakes `source` with cells of edge `cell`, with rayon tasks when `parallel`.
+    fn bake_cells(source: &MeshSdf, cell: f32, parallel: bool) -> Self {
         let (lo, hi) = source.local_bounds();
         let size = hi - lo;
         let mut cell = if cell.is_finite() && cell > 0.0 {
@@ -131,7 +148,7 @@ impl GridSdf {
                 .map(|_| AtomicU64::new(0))
                 .collect(),
         };
-        baker.run(cells);
+        baker.run(cells, parallel);
         let values = baker
             .slots
             .into_iter()
@@ -320,6 +337,15 @@ struct Baker<'a> {
 }
 
 #[inline]
+/// Runs `f` on every item: as rayon tasks when `parallel`, else in order on this thread.
+fn for_each<T: Sync>(items: &[T], parallel: bool, f: impl Fn(&T) + Sync + Send) {
+    if parallel {
+        items.par_iter().for_each(f);
+    } else {
+        items.iter().for_each(f);
+    }
+}
+
 fn pack(v: f32, tag: u32) -> u64 {
     ((v.to_bits() as u64) << 32) | tag as u64
 }
@@ -357,13 +383,13 @@ impl Baker<'_> {
         }
     }
 
-    fn run(&self, cells: [usize; 3]) {
+    fn run(&self, cells: [usize; 3], parallel: bool) {
         let blocks = cells.map(|c| c / BLOCK);
         // Exact values on the root lattice, one x row per task, each node hinted by the last.
         let rows: Vec<[usize; 2]> = (0..=blocks[2])
             .flat_map(|k| (0..=blocks[1]).map(move |j| [j, k]))
             .collect();
-        rows.par_iter().for_each(|&[j, k]| {
+        for_each(&rows, parallel, |&[j, k]| {
             let mut hint = None;
             for i in 0..=blocks[0] {
                 hint = Some(self.exact(i * BLOCK, j * BLOCK, k * BLOCK, hint).1);
@@ -378,7 +404,7 @@ impl Baker<'_> {
                 })
                 .filter(|[i, j, k]| (i & 1) | ((j & 1) << 1) | ((k & 1) << 2) == colour)
                 .collect();
-            list.par_iter().for_each(|&[i, j, k]| {
+            for_each(&list, parallel, |&[i, j, k]| {
                 self.refine([i * BLOCK, j * BLOCK, k * BLOCK], BLOCK);
             });
         }

@@ -50,6 +50,16 @@ fn bake_is_deterministic_across_thread_counts() {
     assert_eq!(a.values(), b.values());
 }
 
+#[test]
+fn a_bake_on_the_calling_thread_is_the_parallel_bake() {
+    let sdf = torus_sdf();
+    let parallel = GridSdf::bake(&sdf, Some(0.02));
+    let serial = GridSdf::bake_on_this_thread(&sdf, Some(0.02));
+    assert_eq!(serial.cell_size(), parallel.cell_size());
+    assert_eq!(serial.values(), parallel.values());
+    assert_eq!(serial.local_bounds(), sdf.local_bounds());
+}
+
 fn baked() -> &'static (MeshSdf, GridSdf) {
     static CELL: std::sync::OnceLock<(MeshSdf, GridSdf)> = std::sync::OnceLock::new();
     CELL.get_or_init(|| {
