@@ -26,7 +26,8 @@ struct Globals {
     bg_bottom: vec4<f32>,
     // xyz: the camera's position.
     eye: vec4<f32>,
-    // x: search radius in metres; y: strength (0 = off); z: widest radius in pixels.
+    // x: search radius in metres; y: strength (0 = off); z: widest radius in pixels;
+    // w: supersampling factor (scene-pass pixels per output pixel and side).
     occlusion: vec4<f32>,
 };
 
@@ -345,8 +346,8 @@ fn surface_step(p: vec2<i32>, here: vec3<f32>, step: vec2<i32>, size: vec2<i32>)
 // Screen-space ambient occlusion: 12 depth samples on a spiral over a disc of `occlusion.x`
 // metres around the point, each occluding by how far it rises above the surface's tangent
 // plane, fading out with distance (so depth edges do not halo). The spiral turns by a 2 × 2
-// pixel pattern, which the previews' supersampling averages away.
-fn occlusion_at(p: vec2<i32>, d: f32) -> f32 {
+// pattern of output pixels (`pattern`).
+fn occlusion_at(p: vec2<i32>, d: f32, pattern: vec2<i32>) -> f32 {
     let size = vec2<i32>(textureDimensions(lit_depth));
     let here = camera_point(p, d);
     var n = normalize(cross(surface_step(p, here, vec2<i32>(1, 0), size), surface_step(p, here, vec2<i32>(0, 1), size)));
@@ -355,7 +356,7 @@ fn occlusion_at(p: vec2<i32>, d: f32) -> f32 {
     }
     let radius_m = g.occlusion.x;
     let radius_px = clamp(radius_m * g.intrinsics.x / d, 2.0, g.occlusion.z);
-    let turn = f32((p.x & 1) + 2 * (p.y & 1)) * (PI * 0.5) + 0.4;
+    let turn = f32((pattern.x & 1) + 2 * (pattern.y & 1)) * (PI * 0.5) + 0.4;
     var occluded = 0.0;
     let count = 12;
     for (var i = 0; i < count; i++) {
@@ -377,14 +378,37 @@ fn occlusion_at(p: vec2<i32>, d: f32) -> f32 {
     return clamp(1.0 - g.occlusion.y * occluded / f32(count), 0.0, 1.0);
 }
 
+// The final colour of an output pixel: the `occlusion.w` × `occlusion.w` block of lit
+// scene-pass pixels it covers (one for a plain frame, four for a 2× supersampled preview),
+// each with its ambient share darkened by the block's ambient occlusion, averaged in linear
+// light (the sRGB target encodes it). The occlusion is looked up once per output pixel, at
+// the block's nearest surface: supersampled previews pay it at their own size.
 @fragment
 fn fs_occlusion(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
-    let p = vec2<i32>(frag.xy);
-    let lit = textureLoad(lit_color, p, 0);
-    let d = depth_at(p);
-    if d <= 0.0 || g.occlusion.y <= 0.0 {
-        return vec4<f32>(lit.rgb, 1.0);
+    let factor = max(i32(g.occlusion.w), 1);
+    let base = vec2<i32>(frag.xy) * factor;
+    var nearest = base;
+    var nearest_d = 0.0;
+    for (var dy = 0; dy < factor; dy++) {
+        for (var dx = 0; dx < factor; dx++) {
+            let q = base + vec2<i32>(dx, dy);
+            let d = depth_at(q);
+            if d > 0.0 && (nearest_d <= 0.0 || d < nearest_d) {
+                nearest = q;
+                nearest_d = d;
+            }
+        }
     }
-    let ao = occlusion_at(p, d);
-    return vec4<f32>(lit.rgb * (1.0 - lit.a * (1.0 - ao)), 1.0);
+    var ao = 1.0;
+    if nearest_d > 0.0 && g.occlusion.y > 0.0 {
+        ao = occlusion_at(nearest, nearest_d, vec2<i32>(frag.xy));
+    }
+    var sum = vec3<f32>(0.0);
+    for (var dy = 0; dy < factor; dy++) {
+        for (var dx = 0; dx < factor; dx++) {
+            let lit = textureLoad(lit_color, base + vec2<i32>(dx, dy), 0);
+            sum += lit.rgb * (1.0 - lit.a * (1.0 - ao));
+        }
+    }
+    return vec4<f32>(sum / f32(factor * factor), 1.0);
 }

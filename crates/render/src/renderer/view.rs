@@ -28,25 +28,11 @@ impl Renderer {
         scene: &PreparedScene,
         camera: &Camera,
     ) -> Result<Frame, RenderError> {
-        self.check_camera(camera)?;
-        let started = Instant::now();
-        let uniform = self.uniform(&self.view_globals(scene, camera));
-        let targets = ViewTargets::new(
-            &self.device,
-            camera.intrinsics.width,
-            camera.intrinsics.height,
-        );
-        let mut encoder = self.device.create_command_encoder(&Default::default());
-        self.draw_view(&mut encoder, scene, camera, &uniform, &targets);
-        self.draw_occlusion(&mut encoder, &uniform, &targets);
-        targets.copy_out(&mut encoder);
-        let queue = self.queue_guard();
-        self.queue.submit([encoder.finish()]);
-        drop(queue);
-        let [color, depth, instance] = targets.read_back(&self.device)?;
-        let (width, height) = (targets.width, targets.height);
-        let ms = started.elapsed().as_secs_f64() * 1e3;
-        tracing::debug!(width, height, ms, "view rendered");
+        let planes = self.render_planes(scene, camera, 1)?;
+        let [color, depth, instance]: [Vec<u8>; 3] = planes
+            .try_into()
+            .map_err(|_| RenderError::Readback("expected three planes".into()))?;
+        let (width, height) = (camera.intrinsics.width, camera.intrinsics.height);
         let depth = depth
             .chunks_exact(4)
             .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
@@ -64,6 +50,42 @@ impl Renderer {
                 .collect(),
             ids: scene.ids.clone(),
         })
+    }
+
+    /// Renders `camera`'s view (whose size must be a multiple of `factor`) and reads back the
+    /// final colour at 1 / `factor` of its size per side — each output pixel the average of
+    /// the `factor`² scene-pass pixels it covers, with ambient occlusion looked up once per
+    /// output pixel — plus, for `factor` 1, the depth and instance planes.
+    pub(super) fn render_planes(
+        &self,
+        scene: &PreparedScene,
+        camera: &Camera,
+        factor: u32,
+    ) -> Result<Vec<Vec<u8>>, RenderError> {
+        self.check_camera(camera)?;
+        let started = Instant::now();
+        let mut globals = self.view_globals(scene, camera);
+        globals.occlusion[3] = factor as f32;
+        let uniform = self.uniform(&globals);
+        let k = camera.intrinsics;
+        let targets = ViewTargets::new(&self.device, k.width, k.height, factor);
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        self.draw_view(&mut encoder, scene, camera, &uniform, &targets);
+        self.draw_occlusion(&mut encoder, &uniform, &targets);
+        targets.copy_out(&mut encoder);
+        let queue = self.queue_guard();
+        self.queue.submit([encoder.finish()]);
+        drop(queue);
+        let planes = targets.read_back(&self.device)?;
+        let ms = started.elapsed().as_secs_f64() * 1e3;
+        tracing::debug!(
+            width = k.width,
+            height = k.height,
+            factor,
+            ms,
+            "view rendered"
+        );
+        Ok(planes)
     }
 
     /// Refuses an image size the device cannot hold and a camera with non-finite values or
@@ -277,11 +299,15 @@ fn looks_past(camera: &Camera, wall: &WallRange) -> bool {
 }
 
 /// The targets of one view (lit colour, linear depth bits, instance; all 4 bytes a pixel),
-/// the final colour the ambient-occlusion pass writes, the z-buffer, and the buffer the final
-/// colour, depth and instance targets are copied into for reading back.
+/// the final colour the ambient-occlusion pass writes (1 / `factor` of their size per side),
+/// the z-buffer, and the buffer the final colour (and, unsupersampled, the depth and instance
+/// targets) are copied into for reading back.
 struct ViewTargets {
+    /// Size of the final colour (and of every plane read back).
     width: u32,
     height: u32,
+    /// Planes read back: 3 (colour, depth, instance) unsupersampled, else the colour alone.
+    planes: u64,
     textures: [wgpu::Texture; 3],
     views: [wgpu::TextureView; 3],
     shaded: wgpu::Texture,
@@ -291,13 +317,16 @@ struct ViewTargets {
 }
 
 impl ViewTargets {
-    /// Targets of `width` × `height` pixels on `device`.
-    fn new(device: &wgpu::Device, width: u32, height: u32) -> Self {
-        let extent = extent(width, height);
-        let target = |label, format, usage| {
+    /// Scene-pass targets of `width` × `height` pixels on `device`, the final colour
+    /// `factor` times smaller per side.
+    fn new(device: &wgpu::Device, width: u32, height: u32, factor: u32) -> Self {
+        let factor = factor.max(1);
+        let (out_width, out_height) = (width / factor, height / factor);
+        let planes = if factor == 1 { 3 } else { 1 };
+        let target = |label, format, usage, size| {
             device.create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),
-                size: extent,
+                size,
                 mip_level_count: 1,
                 sample_count: 1,
                 dimension: wgpu::TextureDimension::D2,
@@ -308,29 +337,37 @@ impl ViewTargets {
         };
         let readable = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
         let sampled = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
+        let big = extent(width, height);
         let textures = [
-            target("lit colour", COLOR_FORMAT, sampled),
-            target("linear depth", VALUE_FORMAT, readable | sampled),
-            target("instance", VALUE_FORMAT, readable),
+            target("lit colour", COLOR_FORMAT, sampled, big),
+            target("linear depth", VALUE_FORMAT, readable | sampled, big),
+            target("instance", VALUE_FORMAT, readable, big),
         ];
-        let shaded = target("colour", COLOR_FORMAT, readable);
+        let shaded = target(
+            "colour",
+            COLOR_FORMAT,
+            readable,
+            extent(out_width, out_height),
+        );
         let zbuffer = target(
             "z-buffer",
             DEPTH_FORMAT,
             wgpu::TextureUsages::RENDER_ATTACHMENT,
+            big,
         );
         let views = textures
             .each_ref()
             .map(|t| t.create_view(&Default::default()));
         let readback = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("read-back"),
-            size: plane_size(width, height) * 3,
+            size: plane_size(out_width, out_height) * planes,
             usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
             mapped_at_creation: false,
         });
         Self {
-            width,
-            height,
+            width: out_width,
+            height: out_height,
+            planes,
             textures,
             views,
             shaded_view: shaded.create_view(&Default::default()),
@@ -340,12 +377,12 @@ impl ViewTargets {
         }
     }
 
-    /// Copies the final colour, the depth and the instance targets into the read-back
-    /// buffer, one padded plane each.
+    /// Copies the final colour (and, unsupersampled, the depth and the instance targets) into
+    /// the read-back buffer, one padded plane each.
     fn copy_out(&self, encoder: &mut wgpu::CommandEncoder) {
         let plane = plane_size(self.width, self.height);
         let sources = [&self.shaded, &self.textures[1], &self.textures[2]];
-        for (i, texture) in sources.into_iter().enumerate() {
+        for (i, texture) in sources.into_iter().take(self.planes as usize).enumerate() {
             encoder.copy_texture_to_buffer(
                 texture.as_image_copy(),
                 wgpu::TexelCopyBufferInfo {
@@ -361,8 +398,8 @@ impl ViewTargets {
         }
     }
 
-    /// Waits for the copies and returns the three planes' pixels with the row padding removed.
-    fn read_back(&self, device: &wgpu::Device) -> Result<[Vec<u8>; 3], RenderError> {
+    /// Waits for the copies and returns the planes' pixels with the row padding removed.
+    fn read_back(&self, device: &wgpu::Device) -> Result<Vec<Vec<u8>>, RenderError> {
         let (sender, receiver) = mpsc::channel();
         self.readback
             .map_async(wgpu::MapMode::Read, .., move |result| {
@@ -389,7 +426,7 @@ impl ViewTargets {
             }
             out
         };
-        let planes = [unpad(0), unpad(1), unpad(2)];
+        let planes = (0..self.planes).map(unpad).collect();
         drop(mapped);
         self.readback.unmap();
         Ok(planes)
