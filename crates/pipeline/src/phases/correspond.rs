@@ -33,13 +33,7 @@ pub(crate) fn correspond(
 ) -> Result<Aligned, PipelineError> {
     let mut meshes = BTreeMap::new();
     let mut ranges = BTreeMap::new();
-    cache.prepare_all(
-        scene
-            .objects
-            .iter()
-            .filter_map(|o| retrieved.chosen.get(&o.id)),
-        &options.prepare,
-    )?;
+    cache.prepare_scene(scene, retrieved, &options.prepare)?;
     for object in &scene.objects {
         let Some(key) = retrieved.chosen.get(&object.id) else {
             continue;

@@ -29,13 +29,7 @@ pub(crate) fn optimize(
     let prepare_started = Instant::now();
     let mut meshes = BTreeMap::new();
     let mut problem = SceneProblem::new(scene.clone());
-    cache.prepare_all(
-        scene
-            .objects
-            .iter()
-            .filter_map(|o| retrieved.chosen.get(&o.id)),
-        &options.prepare,
-    )?;
+    cache.prepare_scene(scene, retrieved, &options.prepare)?;
     for object in &scene.objects {
         let key = retrieved
             .chosen

@@ -8,7 +8,7 @@ use rayon::prelude::*;
 use scenethesis_agents::{Plan, PlannedObject};
 use scenethesis_physics_opt::{PrepareSettings, PreparedAsset};
 use scenethesis_retrieval::{AssetQuery, AssetSource};
-use scenethesis_scene_graph::{Asset, AssetInfo, AssetLook};
+use scenethesis_scene_graph::{Asset, AssetInfo, AssetLook, Scene};
 
 use crate::PipelineError;
 
@@ -148,14 +148,20 @@ impl AssetCache {
         Ok(prepared)
     }
 
-    /// Prepares, side by side (rayon), the assets under `keys` that are not prepared yet, so
-    /// that [`AssetCache::prepared`] finds them all. Each preparation depends on its asset and
-    /// `settings` alone, so the result is the same as preparing them one by one.
-    pub(crate) fn prepare_all<'k>(
+    /// Prepares, side by side (rayon), the assets of `scene`'s objects (as `retrieved` chose
+    /// them) that are not prepared yet, so that [`AssetCache::prepared`] finds them all. Each
+    /// preparation depends on its asset and `settings` alone, so the result is the same as
+    /// preparing them one by one.
+    pub(crate) fn prepare_scene(
         &mut self,
-        keys: impl IntoIterator<Item = &'k AssetKey>,
+        scene: &Scene,
+        retrieved: &Retrieved,
         settings: &PrepareSettings,
     ) -> Result<(), PipelineError> {
+        let keys = scene
+            .objects
+            .iter()
+            .filter_map(|o| retrieved.chosen.get(&o.id));
         let mut missing: BTreeMap<String, &Asset> = BTreeMap::new();
         for key in keys {
             let asset = &self.assets[key];
