@@ -392,11 +392,7 @@ fn clear_start(
         main.iter().all(|p| {
             let fp = side.footprint_at(x + p.w / 2.0, p.w / 2.0, p.d / 2.0);
             x += p.w + RUN_GAP;
-            !state.door_zone.is_some_and(|d| d.overlaps(&fp, 0.0))
-                && !state
-                    .keep_clear
-                    .iter()
-                    .any(|(zone, below)| below.is_none() && zone.overlaps(&fp, 0.0))
+            !state.in_door_ways(&fp)
         })
     })
 }

@@ -147,21 +147,27 @@ impl FloorState<'_> {
             .iter()
             .filter(|p| !p.mounted)
             .any(|p| p.fp.overlaps(fp, gap))
-            || self.door_zone.is_some_and(|d| d.overlaps(fp, 0.0))
-            || self
-                .keep_clear
-                .iter()
-                .any(|(zone, below)| below.is_none() && zone.overlaps(fp, 0.0))
+            || self.in_door_ways(fp)
+    }
+
+    /// Whether `fp` overlaps the room door's zone or an area the plan keeps wholly clear (a
+    /// house room's other doors' swings and approaches).
+    pub(super) fn in_door_ways(&self, fp: &Footprint) -> bool {
+        self.door_zone.is_some_and(|d| d.overlaps(fp, 0.0)) || self.in_wholly_clear(fp)
+    }
+
+    /// Whether `fp` overlaps an area the plan keeps wholly clear (one without a height limit).
+    fn in_wholly_clear(&self, fp: &Footprint) -> bool {
+        self.keep_clear
+            .iter()
+            .any(|(zone, below)| below.is_none() && zone.overlaps(fp, 0.0))
     }
 
     /// Whether hung object `p` would hang in an area the plan keeps wholly clear (a house
     /// door's opening and approach) or reach above the height limit of one it hangs in (in
     /// front of a window).
     pub(super) fn hangs_in_keep_clear(&self, p: &Placed) -> bool {
-        self.keep_clear
-            .iter()
-            .any(|(zone, below)| below.is_none() && zone.overlaps(&p.fp, 0.0))
-            || self.too_tall_for_keep_clear(p)
+        self.in_wholly_clear(&p.fp) || self.too_tall_for_keep_clear(p)
     }
 
     /// Whether `p` reaches above the height limit of a keep-clear area it stands in (a tall
