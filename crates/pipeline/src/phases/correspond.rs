@@ -33,7 +33,6 @@ pub(crate) fn correspond(
 ) -> Result<Aligned, PipelineError> {
     let mut meshes = BTreeMap::new();
     let mut ranges = BTreeMap::new();
-    cache.prepare_scene(scene, retrieved, &options.prepare)?;
     for object in &scene.objects {
         let Some(key) = retrieved.chosen.get(&object.id) else {
             continue;

@@ -29,7 +29,6 @@ pub(crate) fn optimize(
     let prepare_started = Instant::now();
     let mut meshes = BTreeMap::new();
     let mut problem = SceneProblem::new(scene.clone());
-    cache.prepare_scene(scene, retrieved, &options.prepare)?;
     for object in &scene.objects {
         let key = retrieved
             .chosen

@@ -4,11 +4,10 @@
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
-use rayon::prelude::*;
 use scenethesis_agents::{Plan, PlannedObject};
 use scenethesis_physics_opt::{PrepareSettings, PreparedAsset};
 use scenethesis_retrieval::{AssetQuery, AssetSource};
-use scenethesis_scene_graph::{Asset, AssetInfo, AssetLook, Scene};
+use scenethesis_scene_graph::{Asset, AssetInfo, AssetLook};
 
 use crate::PipelineError;
 
@@ -146,38 +145,6 @@ impl AssetCache {
         let prepared = Arc::new(PreparedAsset::from_asset(asset, settings)?);
         self.prepared.insert(source, prepared.clone());
         Ok(prepared)
-    }
-
-    /// Prepares, side by side (rayon), the assets of `scene`'s objects (as `retrieved` chose
-    /// them) that are not prepared yet, so that [`AssetCache::prepared`] finds them all. Each
-    /// preparation depends on its asset and `settings` alone, so the result is the same as
-    /// preparing them one by one.
-    pub(crate) fn prepare_scene(
-        &mut self,
-        scene: &Scene,
-        retrieved: &Retrieved,
-        settings: &PrepareSettings,
-    ) -> Result<(), PipelineError> {
-        let keys = scene
-            .objects
-            .iter()
-            .filter_map(|o| retrieved.chosen.get(&o.id));
-        let mut missing: BTreeMap<String, &Asset> = BTreeMap::new();
-        for key in keys {
-            let asset = &self.assets[key];
-            let source = asset.info.source.to_string();
-            if !self.prepared.contains_key(&source) {
-                missing.entry(source).or_insert(asset);
-            }
-        }
-        let prepared: Vec<(String, Result<PreparedAsset, _>)> = missing
-            .into_par_iter()
-            .map(|(source, asset)| (source, PreparedAsset::from_asset(asset, settings)))
-            .collect();
-        for (source, result) in prepared {
-            self.prepared.insert(source, Arc::new(result?));
-        }
-        Ok(())
     }
 
     /// The next round retrieves another variant of object `id`.
