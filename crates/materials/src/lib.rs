@@ -40,7 +40,7 @@ mod resolve;
 mod surfaces;
 
 pub use library::{by_id, library, Family, LibraryMaterial};
-pub use maps::{maps, MapKind, Maps, TEXTURE_SIZE};
+pub use maps::{make_maps, maps, MapKind, Maps, TEXTURE_SIZE};
 pub use pattern::{Pattern, Texel};
 pub use projection::{BoxProjection, FaceProjection};
 pub use resolve::resolve;

@@ -101,6 +101,28 @@ pub fn maps(material: &LibraryMaterial) -> &'static Maps {
     cache[material.index()].get_or_init(|| generate(material))
 }
 
+/// Generates the maps of every material in `materials` that no earlier call generated, and
+/// encodes them as PNG files, so that a later [`maps`] or [`Maps::png`] finds them ready.
+///
+/// Meant for a spare thread while other work runs (the pipeline calls it beside the judge, whose
+/// stability simulation keeps one core): the maps are the same whoever generates them first.
+///
+/// ```
+/// use scenethesis_materials::{by_id, make_maps, maps, MapKind};
+///
+/// let oak = by_id("oak").unwrap();
+/// make_maps([oak]);
+/// assert_eq!(&maps(oak).png(MapKind::Normal)[1..4], b"PNG");
+/// ```
+pub fn make_maps(materials: impl IntoIterator<Item = &'static LibraryMaterial>) {
+    for material in materials {
+        let made = maps(material);
+        for kind in MapKind::ALL {
+            made.png(kind);
+        }
+    }
+}
+
 /// A stable seed from a material's id (FNV-1a), so that two materials of one pattern differ.
 fn seed_of(id: &str) -> u32 {
     id.bytes().fold(0x811C_9DC5u32, |h, b| {

@@ -506,6 +506,7 @@ impl Pipeline {
         // state the scene is delivered in.
         scene.assign_parent_links(&meshes);
         crate::phases::looks::record_looks(&mut scene, plan, &meshes);
+        crate::phases::looks::make_maps_beside(&scene, &meshes);
         options.open_state.apply(&mut scene, seed);
         clock.check(Stage::Judge, round)?;
         let verdict = clock.run(

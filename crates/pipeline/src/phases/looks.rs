@@ -5,6 +5,10 @@
 use std::collections::BTreeMap;
 
 use scenethesis_agents::Plan;
+use scenethesis_materials::{
+    floor_material, glass_material, ground_material, make_maps, resolve, surface_or, wall_material,
+    LibraryMaterial,
+};
 use scenethesis_procedural::looks::surface_material;
 use scenethesis_scene_graph::{Mesh, Scene, SceneLook, WornMaterial};
 
@@ -27,4 +31,27 @@ pub(crate) fn record_looks(scene: &mut Scene, plan: &Plan, meshes: &BTreeMap<Str
         }
     }
     scene.look = look;
+}
+
+/// Starts generating the texture maps `scene` and its `meshes` wear on a thread of its own, so
+/// that the previews and the exports find them made. The judge's stability simulation, which
+/// runs next, keeps one core while the other is idle once the collision checks end; the maps
+/// are the same whichever thread makes them first (each is made once per process).
+pub(crate) fn make_maps_beside(scene: &Scene, meshes: &BTreeMap<String, Mesh>) {
+    let surfaces = &scene.look.surfaces;
+    let architecture = [
+        surface_or(surfaces, "floor", floor_material),
+        surface_or(surfaces, "walls", wall_material),
+        ground_material(),
+        glass_material(),
+    ];
+    let mut worn: Vec<&'static LibraryMaterial> = meshes
+        .values()
+        .flat_map(|mesh| mesh.materials.iter())
+        .chain(architecture.iter())
+        .filter_map(|material| resolve(&material.name))
+        .collect();
+    worn.sort_by_key(|m| m.index());
+    worn.dedup_by_key(|m| m.index());
+    std::thread::spawn(move || make_maps(worn));
 }
