@@ -485,6 +485,7 @@ fn assemble_plan(
         basis: format!("the model read the prompt as `{}`", printable(&scene_type)),
         source: ReadingSource::Model,
     };
+    let ground = (!indoor).then(|| known_ground(&scene_type)).flatten();
     Plan {
         prompt: prompt.trim().to_string(),
         scene_type,
@@ -494,7 +495,7 @@ fn assemble_plan(
         } else {
             Environment::Outdoor
         },
-        ground: (!indoor).then(|| known_ground(&scene_type)).flatten(),
+        ground,
         room_size: [room_side(answer.room_width), room_side(answer.room_depth)],
         wall_height: 2.8,
         aisle: 0.9,
