@@ -231,7 +231,7 @@ fn a_ground_indoors_or_outside_the_library_is_named_in_the_error() {
             "[[family]]\nname = \"outdoor\"\nroom = \"park\"\nwords = [\"park\"]\n\
              [[place]]\nname = \"lot\"\nwords = [\"empty lot\"]\nfamily = \"outdoor\"\n\
              gloss = \"an empty lot\"\nlike = \"{like}\"\nground = \"{ground}\"\n\
-             core = []\nsource = \"ours\"\n"
+             core = [\"bench\"]\nsource = \"ours\"\n"
         )
     };
     let err = Thesaurus::from_toml(&place("park", "lava"), nouns, k)
