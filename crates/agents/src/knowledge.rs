@@ -211,6 +211,9 @@ pub struct Archetype {
     pub phrases: Vec<Vec<String>>,
     /// Indoor room or outdoor ground.
     pub environment: Environment,
+    /// What the open ground of an outdoor archetype is made of: a library material id
+    /// (`sand`, `grass`, `paving`, …); `None` indoors.
+    pub ground: Option<String>,
     /// Size range [x_min, x_max, z_min, z_max] in metres.
     pub size: [f64; 4],
     /// The anchor category.
@@ -317,6 +320,8 @@ struct RawArchetype {
     name: String,
     words: Vec<String>,
     environment: Environment,
+    #[serde(default)]
+    ground: Option<String>,
     size: [f64; 4],
     anchor: String,
     anchor_place: AnchorPlace,
@@ -608,6 +613,34 @@ fn sparse_words(words: &SparseWords) -> BTreeMap<String, Sparsity> {
         .collect()
 }
 
+/// Checks a `ground` of `entry` in `file`: only outdoors, and naming a material of the
+/// procedural library (`scenethesis_materials::by_id`).
+pub(crate) fn check_ground(
+    file: &'static str,
+    entry: &str,
+    environment: Environment,
+    ground: Option<&str>,
+) -> Result<(), KnowledgeError> {
+    let Some(ground) = ground else {
+        return Ok(());
+    };
+    if environment != Environment::Outdoor {
+        return Err(invalid(
+            file,
+            entry,
+            format!("`ground = \"{ground}\"`: only outdoor places have open ground"),
+        ));
+    }
+    if scenethesis_materials::by_id(ground).is_none() {
+        return Err(invalid(
+            file,
+            entry,
+            format!("`ground = \"{ground}\"` is not a material of the library"),
+        ));
+    }
+    Ok(())
+}
+
 /// Reads and checks one archetype: its size range, object groups, anchor and core.
 fn read_archetype(
     raw: RawArchetype,
@@ -620,6 +653,19 @@ fn read_archetype(
             ARCHETYPES_FILE,
             &entry,
             "size must be [x_min, x_max, z_min, z_max] with 0 < min ≤ max".into(),
+        ));
+    }
+    check_ground(
+        ARCHETYPES_FILE,
+        &entry,
+        raw.environment,
+        raw.ground.as_deref(),
+    )?;
+    if raw.environment == Environment::Outdoor && raw.ground.is_none() {
+        return Err(invalid(
+            ARCHETYPES_FILE,
+            &entry,
+            "an outdoor archetype needs a `ground` (a library material id)".into(),
         ));
     }
     let objects = read_object_groups(&entry, raw.objects, known)?;
@@ -661,6 +707,7 @@ fn read_archetype(
             .collect(),
         name: raw.name,
         environment: raw.environment,
+        ground: raw.ground,
         size: raw.size,
         anchor: raw.anchor,
         anchor_place: raw.anchor_place,

@@ -9,7 +9,9 @@ use std::sync::OnceLock;
 
 use serde::Deserialize;
 
-use crate::knowledge::{AnchorPlace, Archetype, Knowledge, KnowledgeError, ObjectGroup, Place};
+use crate::knowledge::{
+    check_ground, AnchorPlace, Archetype, Knowledge, KnowledgeError, ObjectGroup, Place,
+};
 use crate::plan::Zone;
 use crate::text::phrase_stems;
 
@@ -55,6 +57,9 @@ pub struct PlaceKind {
     pub add: Vec<ObjectGroup>,
     /// A new anchor category and where it stands.
     pub anchor: Option<(String, AnchorPlace)>,
+    /// What the open ground is made of when it differs from the ground of the place it is
+    /// like (outdoor places only): a library material id.
+    pub ground: Option<String>,
     /// What any real room of this type holds: categories every plan of the place contains
     /// (each is the derived anchor or has a derived group with a minimum count of at least 1).
     pub core: Vec<String>,
@@ -134,6 +139,8 @@ struct RawPlace {
     add: Vec<(String, u32, u32, String)>,
     #[serde(default)]
     anchor: Option<(String, AnchorPlace)>,
+    #[serde(default)]
+    ground: Option<String>,
     core: Vec<String>,
     source: String,
 }
@@ -295,6 +302,7 @@ impl Thesaurus {
                 without: raw.without,
                 add,
                 anchor: raw.anchor,
+                ground: raw.ground,
                 core: raw.core,
                 source: raw.source,
             });
@@ -313,6 +321,12 @@ impl Thesaurus {
                         .into(),
                 ));
             };
+            check_ground(
+                PLACES_FILE,
+                &p.name,
+                derived.environment,
+                p.ground.as_deref(),
+            )?;
             for c in &p.core {
                 let held = *c == derived.anchor
                     || derived
@@ -368,6 +382,9 @@ impl Thesaurus {
         a.phrases = place.phrases.clone();
         a.core = place.core.clone();
         a.source = Some(place.source.clone());
+        if place.ground.is_some() {
+            a.ground = place.ground.clone();
+        }
         a.objects.retain(|g| !place.without.contains(&g.category));
         if let Some((category, anchor_place)) = &place.anchor {
             for g in &mut a.objects {

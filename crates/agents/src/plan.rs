@@ -280,6 +280,11 @@ pub struct Plan {
     pub archetypes: Vec<String>,
     /// Indoor room or outdoor ground.
     pub environment: Environment,
+    /// What an outdoor scene's open ground is made of: a library material id from the
+    /// place's knowledge (`sand` on a beach, `grass` in a park); `None` indoors and in plans
+    /// that name none (their ground is the library's soil).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ground: Option<String>,
     /// Room (or ground) size [x, z] in metres.
     pub room_size: [f64; 2],
     /// Wall height in metres (indoor).

@@ -205,3 +205,44 @@ fn a_place_core_outside_its_groups_is_named_in_the_error() {
     )
     .is_ok());
 }
+
+#[test]
+fn outdoor_places_plan_their_ground_and_rooms_none() {
+    for (prompt, ground) in [
+        ("a peaceful beach during sunset", Some("sand")),
+        ("a beach bar with stools", Some("sand")),
+        ("a city park with benches", Some("grass")),
+        ("a backyard with a picnic table", Some("grass")),
+        ("a zen garden", Some("gravel")),
+        ("a town square", Some("paving")),
+        ("a cozy living room", None),
+    ] {
+        let p = plan(prompt, 0);
+        assert_eq!(p.ground.as_deref(), ground, "{prompt} ({})", p.scene_type);
+    }
+}
+
+#[test]
+fn a_ground_indoors_or_outside_the_library_is_named_in_the_error() {
+    let k = Knowledge::builtin();
+    let nouns = "[[noun]]\nwords = [\"x\"]\n";
+    let place = |like: &str, ground: &str| {
+        format!(
+            "[[family]]\nname = \"outdoor\"\nroom = \"park\"\nwords = [\"park\"]\n\
+             [[place]]\nname = \"lot\"\nwords = [\"empty lot\"]\nfamily = \"outdoor\"\n\
+             gloss = \"an empty lot\"\nlike = \"{like}\"\nground = \"{ground}\"\n\
+             core = [\"bench\"]\nsource = \"ours\"\n"
+        )
+    };
+    let err = Thesaurus::from_toml(&place("park", "lava"), nouns, k)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("lot") && err.contains("lava"), "{err}");
+    let err = Thesaurus::from_toml(&place("warehouse", "gravel"), nouns, k)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("lot") && err.contains("outdoor"), "{err}");
+    let ok = Thesaurus::from_toml(&place("park", "gravel"), nouns, k).unwrap();
+    let lot = ok.archetype("lot", k).unwrap();
+    assert_eq!(lot.ground.as_deref(), Some("gravel"));
+}

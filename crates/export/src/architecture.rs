@@ -4,7 +4,7 @@
 //! formats agree.
 
 use nalgebra::{Point3, Rotation3, Vector3};
-use scenethesis_materials::surface_or;
+use scenethesis_materials::{outdoor_ground, surface_or};
 use scenethesis_scene_graph::{
     Architecture, Environment, LeafGeometry, Material, Mesh, MeshPart, SceneLook, Wall, WallBox,
 };
@@ -68,7 +68,7 @@ pub struct Piece {
     pub kind: PieceKind,
     /// The solid boxes; a wall with a door has a box on each side and a lintel above it.
     pub boxes: Vec<OrientedBox>,
-    /// Its surface: [`floor_material`] indoors, [`ground_material`] outdoors,
+    /// Its surface: [`floor_material`] indoors, the look's ground ([`outdoor_ground`]) outdoors,
     /// [`wall_material`] for walls, [`glass_material`] for window panes.
     pub material: Material,
 }
@@ -98,7 +98,8 @@ pub use scenethesis_materials::{floor_material, glass_material, ground_material,
 /// below its sill), then each window's glass pane ([`Architecture::window_pane`], in
 /// [`glass_material`]), named by the window's id. Indoors the floor and
 /// walls wear the materials `look` records for the surfaces `floor` and `walls`
-/// ([`SceneLook::surfaces`]), else [`floor_material`] and [`wall_material`].
+/// ([`SceneLook::surfaces`]), else [`floor_material`] and [`wall_material`]; outdoors the
+/// ground wears the look's `ground` ([`outdoor_ground`]).
 pub fn pieces(architecture: &Architecture, look: &SceneLook) -> Vec<Piece> {
     let floor = &architecture.floor;
     let extent = floor.extent();
@@ -108,7 +109,7 @@ pub fn pieces(architecture: &Architecture, look: &SceneLook) -> Vec<Piece> {
         id: floor.id.clone(),
         kind: PieceKind::Floor,
         material: if outdoor {
-            ground_material()
+            outdoor_ground(&look.surfaces)
         } else {
             surface_or(&look.surfaces, "floor", floor_material)
         },
@@ -266,5 +267,22 @@ mod tests {
         let b = pieces[0].to_mesh().bounds().unwrap();
         assert!(b.max.y.abs() < 1e-9 && (b.min.y + FLOOR_THICKNESS).abs() < 1e-6);
         assert!((b.max.x - 5.0).abs() < 1e-6 && (b.min.z + 4.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn open_ground_wears_the_looks_ground_else_soil() {
+        let ground = Architecture::open_ground(10.0, 8.0);
+        assert_eq!(
+            pieces(&ground, &SceneLook::default())[0].material,
+            ground_material()
+        );
+        let mut look = SceneLook::default();
+        let sand = scenethesis_materials::by_id("sand").unwrap().material();
+        look.surfaces
+            .insert(scenethesis_materials::GROUND_SURFACE.into(), sand.clone());
+        assert_eq!(pieces(&ground, &look)[0].material, sand);
+        // Indoors the ground is not a floor.
+        let room = Architecture::rectangular_room(6.0, 4.0, 2.8, 0.9);
+        assert_eq!(pieces(&room, &look)[0].material, floor_material());
     }
 }

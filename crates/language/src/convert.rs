@@ -5,8 +5,9 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use scenethesis_agents::{
-    ConstraintTarget, Layer, PlaceReading, Plan, PlanConstraint, PlannedObject, ReadingSource,
-    Zone, BACK_WALL, FRONT_WALL, LEFT_WALL, MAX_ROOM_SIDE, MIN_ROOM_SIDE, RIGHT_WALL,
+    ConstraintTarget, Knowledge, Layer, PlaceReading, Plan, PlanConstraint, PlannedObject,
+    ReadingSource, Thesaurus, Zone, BACK_WALL, FRONT_WALL, LEFT_WALL, MAX_ROOM_SIDE, MIN_ROOM_SIDE,
+    RIGHT_WALL,
 };
 use scenethesis_scene_graph::limits::{MAX_ID_BYTES, MAX_RELATIONS};
 use scenethesis_scene_graph::{
@@ -18,6 +19,14 @@ use serde_json::Value;
 use crate::schema::MAX_ANSWER_OBJECTS;
 
 const WALLS: [&str; 4] = [BACK_WALL, LEFT_WALL, FRONT_WALL, RIGHT_WALL];
+
+/// The ground the knowledge gives an outdoor scene type the model named (`beach` → sand),
+/// if it names a known archetype or place.
+fn known_ground(scene_type: &str) -> Option<String> {
+    Thesaurus::builtin()
+        .archetype(scene_type, Knowledge::builtin())
+        .and_then(|a| a.ground)
+}
 
 /// The model's answer, as the schema shapes it; read leniently by [`Answer::read`].
 #[derive(Debug, Clone, Default)]
@@ -476,6 +485,7 @@ fn assemble_plan(
         basis: format!("the model read the prompt as `{}`", printable(&scene_type)),
         source: ReadingSource::Model,
     };
+    let ground = (!indoor).then(|| known_ground(&scene_type)).flatten();
     Plan {
         prompt: prompt.trim().to_string(),
         scene_type,
@@ -485,6 +495,7 @@ fn assemble_plan(
         } else {
             Environment::Outdoor
         },
+        ground,
         room_size: [room_side(answer.room_width), room_side(answer.room_depth)],
         wall_height: 2.8,
         aisle: 0.9,

@@ -44,4 +44,7 @@ pub use maps::{make_maps, maps, MapKind, Maps, TEXTURE_SIZE};
 pub use pattern::{Pattern, Texel};
 pub use projection::{BoxProjection, FaceProjection};
 pub use resolve::resolve;
-pub use surfaces::{floor_material, glass_material, ground_material, surface_or, wall_material};
+pub use surfaces::{
+    floor_material, glass_material, ground_material, outdoor_ground, surface_or, wall_material,
+    GROUND_SURFACE,
+};

@@ -113,7 +113,7 @@ const fn wood(rings: u32, contrast: f32, warp: f32, pores: f32) -> Pattern {
 use Family as F;
 use Pattern as P;
 
-static LIBRARY: [LibraryMaterial; 45] = [
+static LIBRARY: [LibraryMaterial; 49] = [
     // Woods: one tile is a length of board, grain along u.
     entry(
         "oak",
@@ -587,6 +587,48 @@ static LIBRARY: [LibraryMaterial; 45] = [
         1.0,
         0.0,
         3.0,
+    ),
+    // Outdoor ground (the places' `ground`, knowledge/archetypes.toml): a tile is a metre of
+    // lawn or beach, half a metre of 1.5 cm gravel, 1.2 m of 0.6 × 0.3 m paving slabs.
+    entry(
+        "sand",
+        F::Stone,
+        P::Sand,
+        1.0,
+        [0xD6, 0xC2, 0x98],
+        0.95,
+        0.0,
+        1.5,
+    ),
+    entry(
+        "grass",
+        F::Plant,
+        P::Grass,
+        1.0,
+        [0x5E, 0x8C, 0x3C],
+        0.95,
+        0.0,
+        2.0,
+    ),
+    entry(
+        "gravel",
+        F::Stone,
+        P::Gravel,
+        0.5,
+        [0xA8, 0xA2, 0x96],
+        0.95,
+        0.0,
+        3.0,
+    ),
+    entry(
+        "paving",
+        F::Stone,
+        P::Pavers { rows: 4 },
+        1.2,
+        [0xA6, 0xA0, 0x96],
+        0.85,
+        0.0,
+        2.0,
     ),
 ];
 

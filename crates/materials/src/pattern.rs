@@ -110,6 +110,18 @@ pub enum Pattern {
     Leaf,
     /// Soil: granular clumps.
     Soil,
+    /// Sand: fine grains over low wind ripples across v.
+    Sand,
+    /// Lawn: dense blades along v in tufts, with drier and greener patches.
+    Grass,
+    /// Loose gravel: rounded pebbles of varied tone with dark gaps between them.
+    Gravel,
+    /// Paving slabs in running bond: `rows` rows of slabs twice as long as they are wide,
+    /// each row shifted by half a slab, with sunken joints.
+    Pavers {
+        /// Rows of slabs across one tile.
+        rows: u32,
+    },
 }
 
 impl Pattern {
@@ -285,6 +297,10 @@ impl Pattern {
                     1.0,
                 )
             }
+            Pattern::Sand => sand(u, v, seed),
+            Pattern::Grass => grass(u, v, seed),
+            Pattern::Gravel => gravel(u, v, seed),
+            Pattern::Pavers { rows } => pavers(u, v, rows, seed),
         }
     }
 }
@@ -422,6 +438,70 @@ fn concrete(u: f32, v: f32, seed: u32) -> Texel {
         (0.8 + 0.18 * mottle - 0.3 * hole + aggregate).clamp(0.0, 1.0),
         (0.6 + 0.2 * mottle - 0.5 * hole).clamp(0.0, 1.0),
         1.0 - 0.1 * mottle,
+    )
+}
+
+fn sand(u: f32, v: f32, seed: u32) -> Texel {
+    // Ripples a few centimetres apart, wandering along u; grains at texel scale.
+    let wander = fbm(u, v, 2, 2, 3, 0.5, seed) - 0.5;
+    let ripple = 0.5 + 0.5 * triangle(v * 9.0 + 1.5 * wander);
+    let grain = unit((u * 256.0) as u32, (v * 256.0) as u32, seed ^ 3);
+    let patch = fbm(u, v, 4, 4, 3, 0.5, seed ^ 5);
+    Texel::grey(
+        0.85 + 0.08 * patch + 0.07 * grain - 0.04 * ripple,
+        0.7 * ripple + 0.3 * grain,
+        0.9 + 0.1 * grain,
+    )
+}
+
+fn grass(u: f32, v: f32, seed: u32) -> Texel {
+    // Blades: noise stretched along v, thin across u; tufts and patches vary the tone.
+    let blade = fbm(u, v, 128, 24, 2, 0.5, seed);
+    let (tuft, _) = cellular(u, v, 16, seed ^ 7);
+    let patch = fbm(u, v, 3, 3, 4, 0.55, seed ^ 9);
+    let shade = 0.7 + 0.3 * blade - 0.15 * tuft.min(1.0);
+    let dry = smoothstep(0.55, 0.8, patch) * 0.35;
+    // Dry grass is yellower: more red, less blue than green.
+    let albedo = [shade * (0.85 + dry), shade, shade * (0.8 - 0.5 * dry)];
+    Texel {
+        albedo,
+        height: 0.7 * blade + 0.3 * (1.0 - tuft.min(1.0)),
+        roughness: 0.9 + 0.1 * blade,
+    }
+}
+
+fn gravel(u: f32, v: f32, seed: u32) -> Texel {
+    let (d, h) = cellular(u, v, 32, seed);
+    let stone = 1.0 - smoothstep(0.35, 0.75, d);
+    let tone = 0.65 + 0.35 * ((h >> 8) & 0xFF) as f32 / 255.0;
+    let warm = ((h >> 16) & 0xFF) as f32 / 255.0 * 0.08;
+    let fine = value(u, v, 256, 256, seed ^ 2);
+    let a = lerp(0.3, tone * (0.95 + 0.05 * fine), stone);
+    Texel {
+        albedo: [a * (1.0 + warm), a, a * (1.0 - warm)],
+        height: stone * (0.8 + 0.2 * fine),
+        roughness: lerp(1.0, 0.85 + 0.1 * fine, stone),
+    }
+}
+
+fn pavers(u: f32, v: f32, rows: u32, seed: u32) -> Texel {
+    let n = rows as f32;
+    let y = v * n;
+    let row = y.floor();
+    // Slabs twice as long as wide: `rows / 2` slabs per row along u, odd rows shifted half.
+    let per_row = (rows / 2).max(1) as f32;
+    let x = u * per_row + 0.5 * (row as u32 % 2) as f32;
+    let (fx, fy) = (fract(x), fract(y));
+    // Distance to the nearest joint in row heights.
+    let edge = (fx.min(1.0 - fx) * n / per_row).min(fy.min(1.0 - fy));
+    let joint = smoothstep(0.03, 0.015, edge);
+    let slab = unit((x.floor() as u32) % per_row as u32, row as u32, seed);
+    let surface = concrete(u, v, seed ^ 11);
+    let face = (0.88 + 0.1 * slab) * surface.albedo[0];
+    Texel::grey(
+        lerp(face, 0.45, joint),
+        lerp(0.5 + 0.3 * surface.height, 0.0, joint),
+        lerp(0.85 + 0.1 * slab, 1.0, joint),
     )
 }
 

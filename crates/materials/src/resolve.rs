@@ -194,7 +194,8 @@ const TOKENS: &[(&str, &str)] = &[
     ("rock", "slate"),
     ("plinth", "marble"),
     ("firebrick", "terracotta"),
-    ("sand", "soil"),
+    ("lawn", "grass"),
+    ("turf", "grass"),
     ("tyre", "rubber"),
     ("frame", "painted_wood"),
 ];

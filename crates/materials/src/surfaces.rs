@@ -1,5 +1,5 @@
 //! What a room's own surfaces wear: the defaults (oak floorboards, matte wall paint, soil
-//! outdoors) and how a scene look's palette material is laid on a floor or a wall. Exporters
+//! outdoors where the scene records no `ground`) and how a scene look's palette material is laid on a floor or a wall. Exporters
 //! and the renderer both dress the architecture from here, so that a preview and an export
 //! agree.
 
@@ -15,9 +15,20 @@ pub fn floor_material() -> Material {
     library_material("oak_floorboards")
 }
 
-/// The material of open ground (outdoor scenes): the library's soil.
+/// The material of open ground (outdoor scenes) that records no `ground` surface of its own
+/// (a place's ground, `knowledge/archetypes.toml`): the library's soil.
 pub fn ground_material() -> Material {
     library_material("soil")
+}
+
+/// The name of an outdoor scene's ground among a scene look's surfaces (`scene.json` →
+/// `look.surfaces.ground`), beside `floor` and `walls` indoors.
+pub const GROUND_SURFACE: &str = "ground";
+
+/// The material open ground wears: the one `surfaces` (a scene look's surfaces by name)
+/// records for [`GROUND_SURFACE`], else [`ground_material`].
+pub fn outdoor_ground(surfaces: &BTreeMap<String, Material>) -> Material {
+    surface_or(surfaces, GROUND_SURFACE, ground_material)
 }
 
 /// The material of walls: the library's matte wall paint.

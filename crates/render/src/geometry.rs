@@ -9,7 +9,7 @@ use std::ops::Range;
 use bytemuck::{Pod, Zeroable};
 use nalgebra::{Point2, Point3, Vector2, Vector3};
 use scenethesis_materials::{
-    floor_material, glass_material, ground_material, maps, resolve, surface_or, wall_material,
+    floor_material, glass_material, maps, outdoor_ground, resolve, surface_or, wall_material,
     BoxProjection,
 };
 use scenethesis_scene_graph::{
@@ -223,7 +223,7 @@ impl SceneGeometry {
             if !(ground_plane && outdoor) {
                 let index = geo.push_id(&arch.floor.id);
                 let material = if outdoor {
-                    ground_material()
+                    outdoor_ground(&scene.surfaces)
                 } else {
                     surface_or(&scene.surfaces, "floor", floor_material)
                 };
@@ -241,7 +241,7 @@ impl SceneGeometry {
                 Backdrop::Sky => (
                     arch.filter(|a| a.environment == Environment::Outdoor)
                         .map_or(GROUND_ID, |a| a.floor.id.as_str()),
-                    Surface::of(&ground_material()),
+                    Surface::of(&outdoor_ground(&scene.surfaces)),
                     500.0,
                 ),
                 _ => (

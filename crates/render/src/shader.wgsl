@@ -283,9 +283,42 @@ fn fs_glass(in: Varying, @builtin(front_facing) front: bool) -> Targets {
     return out;
 }
 
+// The shadow map of the opaque casters (depth only: no fragment stage, the cheap path).
 @vertex
 fn vs_shadow(v: VertexIn) -> @builtin(position) vec4<f32> {
+    if v.albedo.a < 0.999 {
+        return CULLED;
+    }
     return g.light_from_world * vec4<f32>(v.position, 1.0);
+}
+
+struct ShadowVarying {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) @interpolate(flat) opacity: f32,
+};
+
+// The see-through casters (glass), drawn into the shadow map after the opaque ones.
+@vertex
+fn vs_shadow_glass(v: VertexIn) -> ShadowVarying {
+    var out: ShadowVarying;
+    out.opacity = v.albedo.a;
+    out.clip = g.light_from_world * vec4<f32>(v.position, 1.0);
+    if v.albedo.a >= 0.999 {
+        out.clip = CULLED;
+    }
+    return out;
+}
+
+// Glass casts a partial shadow: it covers only the share `opacity` of the shadow map's texels
+// (a 4 × 4 ordered dither), which the receivers' percentage-closer filter averages into a
+// shadow that much as dark as an opaque one.
+@fragment
+fn fs_shadow_glass(in: ShadowVarying) {
+    let p = vec2<u32>(in.clip.xy) % 4u;
+    let bayer = array<u32, 16>(0u, 8u, 2u, 10u, 12u, 4u, 14u, 6u, 3u, 11u, 1u, 9u, 15u, 7u, 13u, 5u);
+    if (f32(bayer[p.y * 4u + p.x]) + 0.5) / 16.0 >= in.opacity {
+        discard;
+    }
 }
 
 @vertex

@@ -316,6 +316,48 @@ fn objects_cast_shadows_on_the_floor() {
 }
 
 #[test]
+fn glass_casts_a_partial_shadow() {
+    let glass_cube = |opacity: f32| {
+        let mut mesh = (*unit_cube()).clone();
+        mesh.materials[0] = Material {
+            name: "glass".into(),
+            base_color: [0.9, 0.95, 0.95, opacity],
+            roughness: 0.05,
+            metallic: 0.0,
+        };
+        RenderScene::studio(vec![Instance::new(
+            "cube",
+            Arc::new(mesh),
+            Pose::new(1.0, 0.0, Vector3::zeros()),
+        )])
+    };
+    let camera = Camera::look_at(
+        Intrinsics::from_vertical_fov(160, 120, 0.9),
+        Point3::new(-2.5, 3.0, -3.0),
+        Point3::new(0.0, 0.3, 0.0),
+        Vector3::y(),
+    );
+    let luminance = |scene: &RenderScene, p: Point3<f64>| {
+        let f = renderer().render(scene, &camera).unwrap();
+        let px = camera.project(&p).unwrap().pixel;
+        let c = f.color.get_pixel(px.x as u32, px.y as u32).0;
+        c[0] as i32 + c[1] as i32 + c[2] as i32
+    };
+    // As in `objects_cast_shadows_on_the_floor`: the shadow falls toward −x −z.
+    let in_shadow = Point3::new(-0.4, 0.0, -0.9);
+    let opaque = luminance(
+        &cube_scene(Pose::new(1.0, 0.0, Vector3::zeros())),
+        in_shadow,
+    );
+    let glass = luminance(&glass_cube(0.3), in_shadow);
+    let clear = luminance(&glass_cube(0.0), in_shadow);
+    assert!(
+        opaque + 40 < glass && glass + 10 < clear,
+        "opaque {opaque}, glass {glass}, fully clear {clear}"
+    );
+}
+
+#[test]
 fn outdoor_scenes_get_a_sky_and_ground() {
     let scene = RenderScene::with_architecture(
         vec![Instance::new("cube", unit_cube(), Pose::IDENTITY)],

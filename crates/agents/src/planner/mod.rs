@@ -147,6 +147,7 @@ impl Planner for KnowledgePlanner {
             scene_type: reading.scene_type,
             archetypes: reading.archetypes.iter().map(|a| a.name.clone()).collect(),
             environment,
+            ground: reading.archetypes[0].ground.clone(),
             room_size: room.size,
             wall_height: room.wall_height,
             aisle: room.aisle,

@@ -1,13 +1,14 @@
-//! Looks: the round's scene records the room's style, its surfaces' materials and what every
-//! object wears, read from the meshes it was optimized with (what the judge's prompt check
-//! reads and `scene.json` keeps).
+//! Looks: the round's scene records the room's style, its surfaces' materials (outdoors the
+//! place's ground) and what every object wears, read from the meshes it was optimized with
+//! (what the judge's prompt check reads and `scene.json` keeps); and the texture maps they
+//! wear are made beside the judge.
 
 use std::collections::BTreeMap;
 
 use scenethesis_agents::Plan;
 use scenethesis_materials::{
-    floor_material, glass_material, ground_material, make_maps, resolve, surface_or, wall_material,
-    LibraryMaterial,
+    by_id, floor_material, glass_material, make_maps, outdoor_ground, resolve, surface_or,
+    wall_material, LibraryMaterial, GROUND_SURFACE,
 };
 use scenethesis_procedural::looks::surface_material;
 use scenethesis_scene_graph::{Mesh, Scene, SceneLook, WornMaterial};
@@ -23,6 +24,10 @@ pub(crate) fn record_looks(scene: &mut Scene, plan: &Plan, meshes: &BTreeMap<Str
                 look.surfaces.insert(name.clone(), material);
             }
         }
+    }
+    if let Some(ground) = plan.ground.as_deref().and_then(by_id) {
+        look.surfaces
+            .insert(GROUND_SURFACE.to_owned(), ground.material());
     }
     for object in &scene.objects {
         if let Some(mesh) = meshes.get(&object.id) {
@@ -42,7 +47,7 @@ pub(crate) fn make_maps_beside(scene: &Scene, meshes: &BTreeMap<String, Mesh>) {
     let architecture = [
         surface_or(surfaces, "floor", floor_material),
         surface_or(surfaces, "walls", wall_material),
-        ground_material(),
+        outdoor_ground(surfaces),
         glass_material(),
     ];
     let mut worn: Vec<&'static LibraryMaterial> = meshes

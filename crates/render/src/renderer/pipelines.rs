@@ -23,8 +23,11 @@ pub(super) struct Pipelines {
     pub(super) glass: wgpu::RenderPipeline,
     /// The backdrop's gradient, drawn first as one full-screen triangle.
     pub(super) background: wgpu::RenderPipeline,
-    /// Depth only, from the sun.
+    /// Depth only, from the sun: the opaque casters.
     pub(super) shadow: wgpu::RenderPipeline,
+    /// The see-through casters into the same shadow map, covering only their opacity's share
+    /// of its texels (a partial shadow).
+    pub(super) shadow_glass: wgpu::RenderPipeline,
     /// Screen-space ambient occlusion applied to the lit colour, into the final colour.
     pub(super) occlusion: wgpu::RenderPipeline,
     /// Bilinear depth comparison for soft shadow edges.
@@ -159,7 +162,12 @@ impl Pipelines {
                 targets: &targets,
             },
         );
-        let shadow = pipeline(device, &shader, shadow_spec(&globals_only, &vertices));
+        let shadow = pipeline(
+            device,
+            &shader,
+            shadow_spec(&globals_only, &vertices, false),
+        );
+        let shadow_glass = pipeline(device, &shader, shadow_spec(&globals_only, &vertices, true));
         let occlusion = pipeline(
             device,
             &shader,
@@ -184,6 +192,7 @@ impl Pipelines {
             glass,
             background,
             shadow,
+            shadow_glass,
             occlusion,
             shadow_sampler: shadow_sampler(device),
             texture_sampler: texture_sampler(device),
@@ -191,15 +200,21 @@ impl Pipelines {
     }
 }
 
-/// The shadow pipeline: depth only, biased against acne.
+/// A shadow pipeline, biased against acne: the opaque casters depth only, or (`glass`) the
+/// see-through ones with a fragment stage that lets part of the light through.
 fn shadow_spec<'a>(
     layout: &'a wgpu::PipelineLayout,
     vertices: &'a [Option<wgpu::VertexBufferLayout<'a>>],
+    glass: bool,
 ) -> PipelineSpec<'a> {
     PipelineSpec {
-        label: "shadow",
+        label: if glass { "shadow glass" } else { "shadow" },
         layout,
-        vertex_entry: "vs_shadow",
+        vertex_entry: if glass {
+            "vs_shadow_glass"
+        } else {
+            "vs_shadow"
+        },
         buffers: vertices,
         cull_mode: None,
         depth: Some(depth_state(
@@ -211,7 +226,7 @@ fn shadow_spec<'a>(
                 clamp: 0.0,
             },
         )),
-        fragment_entry: None,
+        fragment_entry: glass.then_some("fs_shadow_glass"),
         targets: &[],
     }
 }

@@ -101,7 +101,9 @@ impl Renderer {
     }
 
     /// Renders the `casters` (a vertex buffer and the range of object vertices in it) into
-    /// the shadow map from the sun; with none, only clears it, so every lookup reads "lit".
+    /// the shadow map from the sun, the opaque ones whole and the see-through ones (glass) on
+    /// their opacity's share of the texels; with none, only clears it, so every lookup reads
+    /// "lit".
     fn draw_shadow_map(
         &self,
         view: &wgpu::TextureView,
@@ -131,9 +133,11 @@ impl Renderer {
                 let mut globals = Globals::zeroed();
                 globals.light_from_world = mat(light_from_world);
                 let uniform = self.uniform(&globals);
-                pass.set_pipeline(&self.pipelines.shadow);
                 pass.set_bind_group(0, &uniform, &[]);
                 pass.set_vertex_buffer(0, buffer.slice(..));
+                pass.set_pipeline(&self.pipelines.shadow);
+                pass.draw(objects.clone(), 0..1);
+                pass.set_pipeline(&self.pipelines.shadow_glass);
                 pass.draw(objects, 0..1);
             }
         }
