@@ -3,7 +3,9 @@
 //! at the end, by the Walk metric's own raster rules.
 
 use nalgebra::{Point2, Point3};
-use scenethesis_eval::raster::{walk_components, FloorRect, WALK_HEIGHT_LIMIT};
+use scenethesis_eval::raster::{
+    free_floor, grown_cells, metric_grid, FloorRect, WALK_HEIGHT_LIMIT,
+};
 #[cfg(test)]
 use scenethesis_scene_graph::OpensTo;
 use scenethesis_scene_graph::{Aabb, Architecture, Components, Floor, RelationKind, ROBOT_RADIUS};
@@ -61,6 +63,8 @@ pub(super) struct FloorState<'a> {
     pub(super) windowed: Option<Architecture>,
     /// The objects placed so far (floor and wall-mounted), in placement order.
     pub(super) placed: Vec<Placed>,
+    /// The Walk metric's raster of the floor with the placed objects stamped in.
+    pub(super) metric: MetricFloor,
     /// The plan being laid out.
     pub(super) plan: &'a Plan,
 }
@@ -125,6 +129,7 @@ impl<'a> FloorState<'a> {
             floor: [-hw, -hd, hw, hd],
             windowed: (!room.architecture.windows.is_empty()).then(|| room.architecture.clone()),
             placed: Vec::new(),
+            metric: MetricFloor::new([-hw, -hd, hw, hd]),
             plan,
         }
     }
@@ -276,7 +281,9 @@ impl FloorState<'_> {
     }
 
     /// Walkway evaluation with an optional extra object: (accepted, walk ratio, door reachable,
-    /// unreachable plan indices).
+    /// unreachable plan indices). An extra object is accepted only if it cuts no more floor
+    /// off the walkway on the Walk metric's raster ([`MetricFloor::cut_off_by`]) than is cut
+    /// off already.
     pub(super) fn evaluate(&self, extra: Option<&Placed>) -> (bool, f64, bool, Vec<usize>) {
         let r = &self.raster;
         let mut aisle = self.aisle_base.clone();
@@ -319,7 +326,12 @@ impl FloorState<'_> {
         let door_walk = self
             .door_walk
             .is_none_or(|d| wlabels[d] == largest as u32 && largest != 0);
-        let ok = door_ok && unreachable.is_empty() && ratio >= MIN_WALK && door_walk;
+        // Last (the dearest): the metric's own raster keeps every cell of floor on the walkway.
+        let ok = door_ok
+            && unreachable.is_empty()
+            && ratio >= MIN_WALK
+            && door_walk
+            && extra.is_none_or(|p| !self.metric.cut_off_by(p));
         (ok, ratio, door_ok, unreachable)
     }
 
@@ -361,6 +373,7 @@ impl FloorState<'_> {
                 mask[d] = true;
             }
         }
+        self.metric = MetricFloor::new(self.floor);
         let placed = std::mem::take(&mut self.placed);
         for p in placed {
             self.commit(p);
@@ -373,6 +386,7 @@ impl FloorState<'_> {
                 .stamp(&mut self.aisle_base, &p.fp, self.aisle_radius);
             self.raster
                 .stamp(&mut self.walk_base, &p.fp, walk_grow(self.raster.cell));
+            self.metric.stamp(&p);
         }
         self.placed.push(p);
     }
@@ -417,39 +431,158 @@ fn metric_rect(fp: &Footprint) -> FloorRect {
     }
 }
 
-/// The final check by the metric's own raster rules: objects that close off a pocket of floor
-/// are dropped (at most eight), newest and softest first, and reported in `dropped`.
+/// The Walk metric's raster of the floor ([`metric_grid`], [`free_floor`]) with every placed
+/// floor object that counts for Walk stamped in by the metric's rules ([`grown_cells`]): the
+/// guide keeps it in one piece, so that no pocket of floor is cut off from the walkway.
+pub(super) struct MetricFloor {
+    grid: Raster,
+    /// Walkable cells.
+    free: Vec<bool>,
+    /// Walkable cells off the largest component.
+    pocket_cells: usize,
+}
+
+impl MetricFloor {
+    /// The empty floor [min x, min z, max x, max z] on the metric's raster.
+    fn new(floor: [f64; 4]) -> Self {
+        let floor = Floor {
+            id: "floor".into(),
+            min: Point2::new(floor[0], floor[1]),
+            max: Point2::new(floor[2], floor[3]),
+        };
+        let grid = metric_grid(&floor);
+        let free = free_floor(&grid, &floor, &[]);
+        MetricFloor {
+            grid,
+            free,
+            pocket_cells: 0,
+        }
+    }
+
+    /// The cells `p` takes from the walkable floor: none for a hung object or one whose box
+    /// centre (at half its height) is at or above [`WALK_HEIGHT_LIMIT`].
+    fn cells_of(&self, p: &Placed) -> Vec<usize> {
+        if p.mounted || p.height / 2.0 >= WALK_HEIGHT_LIMIT {
+            return Vec::new();
+        }
+        grown_cells(&self.grid, &metric_rect(&p.fp))
+    }
+
+    /// The walkable cells off the largest component of `free`.
+    fn pockets_of(&self, free: &[bool]) -> usize {
+        let sizes = self.grid.components8(free).sizes;
+        let largest = sizes.iter().skip(1).max().copied().unwrap_or(0);
+        sizes.iter().skip(1).sum::<usize>() - largest
+    }
+
+    /// Stamps `p` in. The pockets are counted again only when `p` may have cut some floor
+    /// off; so the count may stay above the truth when `p` covers part of a pocket, and only
+    /// [`drop_pocket_closers`] counts afresh.
+    fn stamp(&mut self, p: &Placed) {
+        let taken: Vec<usize> = (self.cells_of(p).into_iter())
+            .filter(|&c| self.free[c])
+            .collect();
+        let bypassed = self.bypassed(&taken);
+        for &c in &taken {
+            self.free[c] = false;
+        }
+        if !bypassed {
+            self.pocket_cells = self.pockets_of(&self.free);
+        }
+    }
+
+    /// Whether placing `p` would cut more of the floor off the walkway than is cut off now.
+    /// Decided locally when it can be: if the free cells bordering what `p` takes stay
+    /// connected to each other around it, every path through it still has a way round.
+    pub(super) fn cut_off_by(&self, p: &Placed) -> bool {
+        let taken: Vec<usize> = (self.cells_of(p).into_iter())
+            .filter(|&c| self.free[c])
+            .collect();
+        if self.bypassed(&taken) {
+            return false;
+        }
+        let mut free = self.free.clone();
+        for c in taken {
+            free[c] = false;
+        }
+        self.pockets_of(&free) > self.pocket_cells
+    }
+
+    /// Whether the free cells 8-adjacent to the cells `taken` are all connected to each
+    /// other through free cells, not taken, of the box around `taken` grown by two cells
+    /// (so taking them cuts nothing off); true when nothing is taken.
+    fn bypassed(&self, taken: &[usize]) -> bool {
+        if taken.is_empty() {
+            return true;
+        }
+        let (nx, nz) = (self.grid.nx, self.grid.nz);
+        let (mut i0, mut j0, mut i1, mut j1) = (usize::MAX, usize::MAX, 0, 0);
+        for &c in taken {
+            let (i, j) = (c % nx, c / nx);
+            (i0, j0, i1, j1) = (i0.min(i), j0.min(j), i1.max(i), j1.max(j));
+        }
+        let (i0, j0) = (i0.saturating_sub(2), j0.saturating_sub(2));
+        let (i1, j1) = ((i1 + 2).min(nx - 1), (j1 + 2).min(nz - 1));
+        let w = i1 - i0 + 1;
+        let local = |c: usize| (c / nx - j0) * w + (c % nx - i0);
+        // 0 blocked, 1 taken, 2 free.
+        let mut cell = vec![0u8; w * (j1 - j0 + 1)];
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                cell[(j - j0) * w + (i - i0)] = 2 * u8::from(self.free[j * nx + i]);
+            }
+        }
+        for &c in taken {
+            cell[local(c)] = 1;
+        }
+        let neighbours = |k: usize| {
+            let (i, j) = ((k % w) as isize, (k / w) as isize);
+            let h = (cell.len() / w) as isize;
+            (-1..=1)
+                .flat_map(move |dj| (-1..=1).map(move |di| (i + di, j + dj)))
+                .filter(move |&(a, b)| {
+                    (a, b) != (i, j) && a >= 0 && b >= 0 && a < w as isize && b < h
+                })
+                .map(move |(a, b)| b as usize * w + a as usize)
+        };
+        let border: Vec<usize> = (0..cell.len())
+            .filter(|&k| cell[k] == 2 && neighbours(k).any(|n| cell[n] == 1))
+            .collect();
+        let Some(&first) = border.first() else {
+            return true;
+        };
+        let mut seen = vec![false; cell.len()];
+        let mut stack = vec![first];
+        seen[first] = true;
+        while let Some(k) = stack.pop() {
+            for n in neighbours(k) {
+                if cell[n] == 2 && !seen[n] {
+                    seen[n] = true;
+                    stack.push(n);
+                }
+            }
+        }
+        border.iter().all(|&k| seen[k])
+    }
+}
+
+/// The final check by the metric's own raster rules: no pocket of floor may stay cut off
+/// from the walkway (Walk = 1). Objects bordering a pocket are dropped (at most eight),
+/// newest and softest first, and reported in `dropped`.
 pub(super) fn drop_pocket_closers(state: &mut FloorState<'_>, dropped: &mut Vec<DroppedObject>) {
     let plan = state.plan;
-    let [x0, z0, x1, z1] = state.floor;
-    let floor = Floor {
-        id: "floor".into(),
-        min: Point2::new(x0, z0),
-        max: Point2::new(x1, z1),
-    };
     for _ in 0..8 {
-        // Floor objects stand at y = 0: the box centre is at half their height.
-        let walk_obstacles: Vec<FloorRect> = state
-            .placed
-            .iter()
-            .filter(|p| !p.mounted && p.height / 2.0 < WALK_HEIGHT_LIMIT)
-            .map(|p| metric_rect(&p.fp))
-            .collect();
-        let (raster, Components { labels, sizes }) = walk_components(&floor, &[], &walk_obstacles);
-        let total: usize = sizes.iter().sum();
+        let raster = &state.metric.grid;
+        let Components { labels, sizes } = raster.components8(&state.metric.free);
         let main = (1..sizes.len()).max_by_key(|&l| sizes[l]).unwrap_or(0);
-        if total == 0 || sizes[main] as f64 >= MIN_WALK * total as f64 {
+        if sizes.iter().skip(1).sum::<usize>() == sizes.get(main).copied().unwrap_or(0) {
             break;
         }
-        let px = raster.cell;
-        let culprit = state
-            .placed
-            .iter()
-            .enumerate()
+        let culprit = (state.placed.iter().enumerate())
             .filter(|(_, p)| !p.mounted && plan.objects[p.plan_index].id != plan.anchor)
             .filter(|(_, p)| {
                 let mut touches_pocket = false;
-                raster.for_cells_in(&p.fp, ROBOT_RADIUS + 1.5 * px, |idx| {
+                raster.for_cells_in(&p.fp, ROBOT_RADIUS + 1.5 * raster.cell, |idx| {
                     touches_pocket |= labels[idx] != 0 && labels[idx] as usize != main;
                 });
                 touches_pocket

@@ -144,8 +144,14 @@ pub(super) struct PhraseHit {
     pub named: Named,
     /// Index of its first token.
     pub start: usize,
-    /// Its word count.
+    /// Its token count, from its first word to its last (other words between included when
+    /// it is `spread`).
     pub len: usize,
+    /// The phrase's own word count: `len` unless other words stand between its words.
+    pub words: usize,
+    /// Whether other words of the prompt stand between the phrase's words ("a *radio*
+    /// station *studio*").
+    pub spread: bool,
 }
 
 /// Every whole phrase of an archetype or a place in `stems`.
@@ -173,8 +179,63 @@ pub(super) fn phrase_hits(
                         named,
                         start,
                         len: phrase.len(),
+                        words: phrase.len(),
+                        spread: false,
                     });
                 }
+            }
+        }
+    }
+    hits
+}
+
+/// Every phrase of an archetype or a place that the head noun of `place` ends and whose other
+/// words its modifiers spell in order with other words between them: "a *radio* station
+/// *studio*" names the radio studio (a recording studio), not the art studio that "studio"
+/// alone names. A modifier that names one kind of a head many places share decides which.
+/// Each phrase is matched to the modifiers nearest the head.
+pub(super) fn spread_hits(
+    stems: &[Option<&str>],
+    place: &PlacePhrase,
+    knowledge: &Knowledge,
+    thesaurus: &Thesaurus,
+) -> Vec<PhraseHit> {
+    let head = place.head_word;
+    let Some(head_stem) = stems[head] else {
+        return Vec::new();
+    };
+    let archetypes =
+        (knowledge.archetypes.iter().enumerate()).map(|(i, a)| (Named::Archetype(i), &a.phrases));
+    let places = (thesaurus.places.iter().enumerate()).map(|(i, p)| (Named::Place(i), &p.phrases));
+    let mut hits = Vec::new();
+    for (named, phrases) in archetypes.chain(places) {
+        for phrase in phrases.iter().filter(|p| p.len() >= 2) {
+            let Some((last, modifiers)) = phrase.split_last() else {
+                continue;
+            };
+            if last != head_stem {
+                continue;
+            }
+            // The modifiers from the last back, each at the nearest place before the next.
+            let mut end = head;
+            let mut start = Some(head);
+            for m in modifiers.iter().rev() {
+                start = (place.span.start..end)
+                    .rev()
+                    .find(|&i| stems[i] == Some(m.as_str()));
+                match start {
+                    Some(i) => end = i,
+                    None => break,
+                }
+            }
+            if let Some(start) = start.filter(|&s| head + 1 - s > phrase.len()) {
+                hits.push(PhraseHit {
+                    named,
+                    start,
+                    len: head + 1 - start,
+                    words: phrase.len(),
+                    spread: true,
+                });
             }
         }
     }

@@ -4,7 +4,9 @@
 //! head noun ([`super::head`]), in order, from: an archetype or a place of the thesaurus
 //! (`knowledge/places.toml`: "a pharmacy" is a shop selling medicine) whose phrase is on the
 //! head (then the longest; an archetype named as the head's modifier blends in: "an alchemy
-//! workshop"), or elsewhere in the place phrase when the head is a noun we do not know, or
+//! workshop"; a modifier that spells a phrase with the head across other words names one
+//! kind of a head many places share: "a *radio* station *studio*" is a radio studio), or
+//! elsewhere in the place phrase when the head is a noun we do not know, or
 //! after the contents ("chairs and a table in a kitchen"); the generic room of the head
 //! noun's place family ("a haunted castle" → fantasy); archetypes sharing the head's words;
 //! the archetypes holding the objects the prompt names; the default archetype. A word that
@@ -20,7 +22,7 @@ use crate::plan::{cut_prompt, PlaceReading, PlanError, PlanRequest, ReadingSourc
 use crate::prompt::{analyze, Analysis};
 use crate::text::tokenize;
 
-use super::head::{phrase_hits, setting_compound, Named, PhraseHit, PlacePhrase};
+use super::head::{phrase_hits, setting_compound, spread_hits, Named, PhraseHit, PlacePhrase};
 use super::KnowledgePlanner;
 
 /// What the planner made of a prompt before drafting any object.
@@ -54,7 +56,7 @@ pub(super) fn naming_tokens(planner: &KnowledgePlanner, prompt: &str) -> Vec<boo
     let tokens = tokenize(prompt);
     let stems: Vec<Option<&str>> = tokens.iter().map(|t| t.stem()).collect();
     let phrase = PlacePhrase::read(&stems, &planner.knowledge.vocabulary);
-    let hits = phrase_hits(&stems, &planner.knowledge, &planner.thesaurus);
+    let hits = place_hits(planner, &stems, phrase.as_ref());
     let no_analysis = Analysis::default();
     let namer = Chooser {
         planner,
@@ -63,6 +65,21 @@ pub(super) fn naming_tokens(planner: &KnowledgePlanner, prompt: &str) -> Vec<boo
         phrase: phrase.as_ref(),
     };
     namer.naming_tokens(&hits)
+}
+
+/// Every phrase of an archetype or a place in `stems`: whole ones, and those the place
+/// phrase's modifiers spell with its head across other words ([`spread_hits`]).
+fn place_hits(
+    planner: &KnowledgePlanner,
+    stems: &[Option<&str>],
+    phrase: Option<&PlacePhrase>,
+) -> Vec<PhraseHit> {
+    let (knowledge, thesaurus) = (&planner.knowledge, &planner.thesaurus);
+    let mut hits = phrase_hits(stems, knowledge, thesaurus);
+    if let Some(phrase) = phrase {
+        hits.extend(spread_hits(stems, phrase, knowledge, thesaurus));
+    }
+    hits
 }
 
 /// Reads `request.prompt` and chooses its archetypes.
@@ -80,7 +97,7 @@ pub(super) fn interpret(
     let tokens = tokenize(prompt);
     let stems: Vec<Option<&str>> = tokens.iter().map(|t| t.stem()).collect();
     let phrase = PlacePhrase::read(&stems, &knowledge.vocabulary);
-    let hits = phrase_hits(&stems, knowledge, &planner.thesaurus);
+    let hits = place_hits(planner, &stems, phrase.as_ref());
     let no_analysis = Analysis::default();
     let namer = Chooser {
         planner,
@@ -165,6 +182,9 @@ struct Choice {
 
 /// How sure a reading is when the prompt's head names the place outright.
 const NAMED: f64 = 0.95;
+/// … when a modifier and the head spell its phrase with other words between ("a *radio*
+/// station *studio*": a radio studio).
+const NAMED_ACROSS_WORDS: f64 = 0.85;
 /// … when a compound of the setting and the head names it ("a bar in a hotel": a hotel bar).
 const NAMED_IN_SETTING: f64 = 0.9;
 /// … when a generic head's modifier names it ("a *music* practice room").
@@ -325,7 +345,9 @@ impl Chooser<'_> {
                 let phrase = self.phrase?;
                 let on_head_word =
                     best.start <= phrase.head_word && phrase.head_word < best.start + best.len;
-                if on_head_word {
+                if best.spread {
+                    NAMED_ACROSS_WORDS
+                } else if on_head_word {
                     NAMED
                 } else {
                     NAMED_BY_MODIFIER
@@ -448,14 +470,16 @@ impl Chooser<'_> {
                     .filter(|h| phrase.holds(h.start, h.len))
                     .filter(|h| h.start + h.len <= best.start || h.start >= best.start + best.len)
                     .filter(|h| matches!(h.named, Named::Place(p) if kind_of_base(p)))
-                    .max_by_key(|h| h.len)
+                    .max_by_key(|h| (h.words, !h.spread))
                     .copied()
             })
             .flatten()
     }
 
     /// The whole phrase that names the place, with where it stands: the phrase on the head
-    /// first, then the longest, an archetype before a place of equal length.
+    /// first, then the longest (by its own words; of equal length, one whose words stand
+    /// together before one spread across other words), an archetype before a place of equal
+    /// length.
     fn best_hit(&self, hits: &[PhraseHit]) -> Option<(Standing, PhraseHit)> {
         // A phrase beside the head counts only when the head is a noun we do not know.
         let head_known = hits
@@ -468,10 +492,11 @@ impl Chooser<'_> {
                     return None;
                 }
                 let archetype = matches!(h.named, Named::Archetype(_));
-                Some(((standing, h.len, archetype, std::cmp::Reverse(h.start)), *h))
+                let key = (standing, h.words, !h.spread, archetype);
+                Some(((key, std::cmp::Reverse(h.start)), *h))
             })
             .max_by_key(|(k, _)| *k)
-            .map(|(k, h)| (k.0, h))
+            .map(|(k, h)| (k.0 .0, h))
     }
 
     /// Which tokens name the place (the best phrase and a blended modifier's): they are not
@@ -511,7 +536,7 @@ impl Chooser<'_> {
             .filter(|h| phrase.holds(h.start, h.len))
             .filter(|h| h.start + h.len <= best.start || h.start >= best.start + best.len)
             .filter(|h| matches!(h.named, Named::Archetype(_)) && h.named != best.named)
-            .max_by_key(|h| (h.len, std::cmp::Reverse(h.named)))
+            .max_by_key(|h| (h.words, !h.spread, std::cmp::Reverse(h.named)))
             .copied()
     }
 
