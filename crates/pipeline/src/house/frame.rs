@@ -283,7 +283,7 @@ impl RoomShell {
             let leaf = door
                 .swing
                 .as_ref()
-                .filter(|_| swings_in && door.kind == DoorKind::Single)
+                .filter(|_| swings_in && door.kind != DoorKind::Passage)
                 .map(|s| leaf_of(s.hinge));
             let sweep = match (swings_in, door.kind) {
                 (true, DoorKind::Single) => door.width,
@@ -421,13 +421,14 @@ fn any_wall_anchor(plan: &mut Plan) {
 }
 
 /// The scene-graph leaf of a plan door hinged on `hinge` (seen from the room it opens into, as
-/// [`DoorLeaf::opens_to`] is).
+/// [`DoorLeaf::opens_to`] is): two mirrored leaves for a double door ([`Hinge::Both`]).
 pub(crate) fn leaf_of(hinge: Hinge) -> DoorLeaf {
     DoorLeaf {
         opens_to: match hinge {
             Hinge::Right => OpensTo::Right,
             Hinge::Left | Hinge::Both => OpensTo::Left,
         },
+        double: hinge == Hinge::Both,
         ..DoorLeaf::default()
     }
 }
