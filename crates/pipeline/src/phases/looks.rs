@@ -40,8 +40,9 @@ pub(crate) fn record_looks(scene: &mut Scene, plan: &Plan, meshes: &BTreeMap<Str
 
 /// Starts generating the texture maps `scene` and its `meshes` wear on a thread of its own, so
 /// that the previews and the exports find them made. The judge's stability simulation, which
-/// runs next, keeps one core while the other is idle once the collision checks end; the maps
-/// are the same whichever thread makes them first (each is made once per process).
+/// runs next, keeps one core while the other is idle once the collision checks end; the
+/// thread runs at the lowest priority, so it takes only what the judge leaves. The maps are
+/// the same whichever thread makes them first (each is made once per process).
 pub(crate) fn make_maps_beside(scene: &Scene, meshes: &BTreeMap<String, Mesh>) {
     let surfaces = &scene.look.surfaces;
     let architecture = [
@@ -58,5 +59,22 @@ pub(crate) fn make_maps_beside(scene: &Scene, meshes: &BTreeMap<String, Mesh>) {
         .collect();
     worn.sort_by_key(|m| m.index());
     worn.dedup_by_key(|m| m.index());
-    std::thread::spawn(move || make_maps(worn));
+    std::thread::spawn(move || {
+        yield_to_other_threads();
+        make_maps(worn)
+    });
+}
+
+/// Gives the calling thread the lowest scheduling priority (nice 19), so that it runs on a core
+/// the process's other threads leave idle and never slows them (Linux schedules each thread
+/// with its own niceness; elsewhere the thread keeps its priority).
+fn yield_to_other_threads() {
+    #[cfg(target_os = "linux")]
+    // SAFETY: gettid has no preconditions; setpriority on the calling thread's own id only
+    // changes that thread's niceness, and a failure (reported by its return value) leaves the
+    // priority as it was, which is harmless.
+    unsafe {
+        let thread = libc::gettid();
+        libc::setpriority(libc::PRIO_PROCESS, thread as libc::id_t, 19);
+    }
 }
