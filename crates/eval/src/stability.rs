@@ -86,13 +86,12 @@ impl DecompositionCache {
     }
 
     /// The convex collision pieces of a part: a rapier cylinder or cone for a finely segmented
-    /// vertical cylinder or cone (see [`round_solid`]), a rapier cuboid for a rectangular box
-    /// in any orientation (see [`box_solid`]), the convex hull of the part when the part
+    /// vertical cylinder or cone (see [`round_solid`]), the convex hull of the part when the part
     /// is convex (procedural parts are), otherwise its VHACD decomposition (computed once per
     /// distinct geometry), so that cavities stay open. Empty for a flat or empty part.
     pub fn pieces(&self, part: &MeshPart) -> Pieces {
-        if let Some(solid) = round_solid(part).or_else(|| box_solid(part)) {
-            return Arc::new(vec![solid]);
+        if let Some(round) = round_solid(part) {
+            return Arc::new(vec![round]);
         }
         let points: Vec<Vec3> = part.positions.iter().map(|&p| Vec3::from(p)).collect();
         if is_convex(part) {
@@ -220,60 +219,6 @@ pub fn round_solid(part: &MeshPart) -> Option<(Pose3, SharedShape)> {
         ));
     }
     None
-}
-
-/// A rectangular box in any orientation (its corners, however many copies of each the mesh
-/// holds, are the 8 corners of one), as a rapier cuboid with its pose.
-///
-/// The same solid as its convex hull, but a cuboid pair's contacts come from a separating-axis
-/// test instead of the general polyhedron search: most procedural parts (boards, legs, books,
-/// boxes) are boxes, and their contacts are most of the simulation's cost.
-pub fn box_solid(part: &MeshPart) -> Option<(Pose3, SharedShape)> {
-    let mut corners: Vec<Vec3> = Vec::with_capacity(8);
-    for p in part.positions.iter().map(|&p| Vec3::from(p)) {
-        if !corners.iter().any(|c| (*c - p).length_squared() < 1e-12) {
-            if corners.len() == 8 {
-                return None;
-            }
-            corners.push(p);
-        }
-    }
-    if corners.len() != 8 {
-        return None;
-    }
-    let origin = corners[0];
-    let mut edges: Vec<Vec3> = corners[1..].iter().map(|c| *c - origin).collect();
-    edges.sort_by(|a, b| a.length_squared().total_cmp(&b.length_squared()));
-    // The box's edges at the origin: the shortest edge, then the shortest at right angles to
-    // it, then the shortest at right angles to both (a face diagonal can be shorter than the
-    // longest edge).
-    let square = |u: Vec3, v: Vec3| u.dot(v).abs() <= 1e-4 * u.length() * v.length();
-    let a = edges[0];
-    let b = *edges.iter().find(|e| square(a, **e))?;
-    let c = *edges.iter().find(|e| square(a, **e) && square(b, **e))?;
-    let size = a.length() + b.length() + c.length();
-    if a.length() <= 1e-5 {
-        return None;
-    }
-    // Every corner must be the origin plus a sum of some of the three edges.
-    let tolerance = 1e-5 + 1e-5 * size;
-    let on_box = corners.iter().all(|p| {
-        (0..8).any(|k: u32| {
-            let pick = |bit: u32, e: Vec3| if k & bit != 0 { e } else { Vec3::ZERO };
-            (origin + pick(1, a) + pick(2, b) + pick(4, c) - *p).length() <= tolerance
-        })
-    });
-    if !on_box {
-        return None;
-    }
-    let (x, y) = (a.normalize(), b.normalize());
-    let z = x.cross(y);
-    let rotation = Quat::from_mat3(&rapier3d::glamx::Mat3::from_cols(x, y, z)).normalize();
-    let centre = origin + (a + b + c) / 2.0;
-    Some((
-        Pose3::from_parts(centre, rotation),
-        SharedShape::cuboid(a.length() / 2.0, b.length() / 2.0, c.length() / 2.0),
-    ))
 }
 
 /// Massless contact feet of a convex piece: for every face with more than four corners, the
@@ -571,39 +516,6 @@ mod tests {
         assert!(round_solid(&cylinder("c", 0, [0.0, 0.0], 0.04, 0.0, 0.1, 8)).is_none());
         assert!(round_solid(&frustum("f", 0, [0.0, 0.0], 0.2, 0.1, 0.0, 0.5, 32)).is_none());
         assert!(round_solid(&cuboid("b", 0, [0.0; 3], [1.0; 3])).is_none());
-    }
-
-    #[test]
-    fn boxes_in_any_orientation_become_cuboids_and_other_hexahedra_do_not() {
-        use scenethesis_scene_graph::{Mesh, Pose};
-        let board = cuboid("board", 0, [-0.4, 0.3, -0.2], [0.4, 0.32, 0.2]);
-        let mesh = Mesh {
-            parts: vec![board.clone()],
-            materials: Vec::new(),
-        };
-        let pose = Pose::new(1.0, 0.7, ::nalgebra::Vector3::new(1.0, 0.0, -2.0));
-        let turned = mesh.transformed(&pose).parts.remove(0);
-        for part in [&board, &turned] {
-            let (pose, shape) = box_solid(part).expect("a box");
-            let half = shape.as_cuboid().expect("a cuboid").half_extents;
-            let mut sorted = [half.x, half.y, half.z];
-            sorted.sort_by(f32::total_cmp);
-            for (got, want) in sorted.iter().zip([0.01, 0.2, 0.4]) {
-                assert!((got - want).abs() < 1e-5, "{sorted:?}");
-            }
-            // The cuboid covers exactly the part's corners.
-            for p in &part.positions {
-                let local = pose.inverse_transform_point(Vec3::from(*p));
-                assert!((local.abs() - half).abs().max_element() < 1e-4, "{local:?}");
-            }
-        }
-        // A wedge and a sheared box are not boxes; neither is a cylinder.
-        let mut sheared = board.clone();
-        for p in sheared.positions.iter_mut().filter(|p| p[1] > 0.31) {
-            p[0] += 0.05;
-        }
-        assert!(box_solid(&sheared).is_none());
-        assert!(box_solid(&cylinder("c", 0, [0.0, 0.0], 0.04, 0.0, 0.1, 8)).is_none());
     }
 
     #[test]
