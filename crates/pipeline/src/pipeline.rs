@@ -1,6 +1,7 @@
 //! The pipeline: plan → retrieve → guide → optimize → judge (→ re-plan) → render.
 
 use std::collections::BTreeMap;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use scenethesis_agents::{Guide, KnowledgePlanner, Plan, PlanRequest, Planner, ProceduralGuide};
@@ -20,7 +21,7 @@ use crate::phases::correspond::{correspond, Aligned};
 use crate::phases::judge::{judge, verdict_note, Attempt};
 use crate::phases::layout::lay_out;
 use crate::phases::optimize::optimize;
-use crate::phases::previews::previews;
+use crate::phases::previews::{previews, PreviewsBeside};
 use crate::phases::retrieve::AssetCache;
 use crate::phases::rework::rework;
 use crate::phases::summary::{report, RunRecord};
@@ -133,7 +134,7 @@ pub struct Pipeline {
     guide: Box<dyn Guide>,
     optimizer: Box<dyn Optimizer>,
     judge: Box<dyn Judge>,
-    renderer: Option<Box<dyn SceneRenderer>>,
+    renderer: Option<Arc<dyn SceneRenderer>>,
     matcher: Option<(Box<dyn Matcher>, GuidedSettings)>,
 }
 
@@ -217,7 +218,7 @@ impl Pipeline {
     /// Sets the renderer of the previews ([`scenethesis_render_api::render_previews`]), e.g.
     /// `scenethesis_render::Renderer`.
     pub fn with_renderer(mut self, renderer: impl SceneRenderer + 'static) -> Self {
-        self.renderer = Some(Box::new(renderer));
+        self.renderer = Some(Arc::new(renderer));
         self
     }
 
@@ -356,13 +357,13 @@ impl Pipeline {
             }
         }
 
-        let best = best.expect("at least one attempt ran");
+        let mut best = best.expect("at least one attempt ran");
         let mut notes = adoption.notes.clone();
         if let Some(why) = stopped {
             notes.push(time_limit_note(&why, best.round));
         }
         let (previews, preview_notes) = match clock.check(Stage::Render, best.round) {
-            Ok(()) => previews(self.renderer.as_deref(), &best, options, &mut clock),
+            Ok(()) => previews(self.renderer.as_deref(), &mut best, options, &mut clock),
             // The error's own text says no scene was finished, which is not so here.
             Err(PipelineError::OutOfTime { limit_seconds, .. })
                 if options.previews && self.renderer.is_some() =>
@@ -509,6 +510,17 @@ impl Pipeline {
         crate::phases::looks::make_maps_beside(&scene, &meshes);
         options.open_state.apply(&mut scene, seed);
         clock.check(Stage::Judge, round)?;
+        // Most attempts are accepted: their previews are drawn on the core the judge's
+        // simulation leaves idle, and kept if this attempt is the one delivered.
+        let previews_beside = match &self.renderer {
+            Some(renderer) if options.previews => Some(PreviewsBeside::start(
+                renderer.clone(),
+                &scene,
+                &meshes,
+                options.preview_size,
+            )),
+            _ => None,
+        };
         let verdict = clock.run(
             Stage::Judge,
             round,
@@ -536,6 +548,7 @@ impl Pipeline {
             guide_dropped: layout.dropped,
             kept_lift: aligned.kept_lift,
             guidance: layout.guidance,
+            previews_beside,
             round,
         })
     }

@@ -249,3 +249,124 @@ fn a_run_out_of_time_before_any_scene_fails_naming_the_stage() {
     );
     assert!(err.to_string().contains("--time-limit"), "{err}");
 }
+
+/// A renderer of its own: every view is one flat colour made from a hash of the objects' ids
+/// and poses, so two scenes laid out differently give different images. Counts its calls.
+struct PoseColourRenderer {
+    calls: AtomicUsize,
+}
+
+impl scenethesis_render_api::SceneRenderer for PoseColourRenderer {
+    fn name(&self) -> String {
+        "pose-colour".into()
+    }
+
+    fn render_views(
+        &self,
+        scene: &scenethesis_scene_graph::Scene,
+        _meshes: &std::collections::BTreeMap<String, scenethesis_scene_graph::Mesh>,
+        requests: &[scenethesis_render_api::ViewRequest],
+    ) -> Result<Vec<scenethesis_render_api::ViewImage>, scenethesis_render_api::RendererError> {
+        self.calls.fetch_add(1, Ordering::SeqCst);
+        let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
+        for object in &scene.objects {
+            let t = object.pose.translation;
+            for bits in [t.x, t.y, t.z, object.pose.yaw].map(f64::to_bits) {
+                hash = (hash ^ bits).wrapping_mul(0x0100_0000_01b3);
+            }
+        }
+        let [r, g, b, ..] = hash.to_le_bytes();
+        Ok(requests
+            .iter()
+            .map(|request| {
+                let [w, h] = request.size;
+                let intrinsics = scenethesis_imagery::Intrinsics::from_vertical_fov(w, h, 1.0);
+                scenethesis_render_api::ViewImage {
+                    camera: scenethesis_imagery::Camera::look_at(
+                        intrinsics,
+                        nalgebra::Point3::new(0.0, 2.0, 4.0),
+                        nalgebra::Point3::origin(),
+                        nalgebra::Vector3::y(),
+                    ),
+                    color: image::RgbaImage::from_pixel(w, h, image::Rgba([r, g, b, 255])),
+                }
+            })
+            .collect())
+    }
+}
+
+/// A judge that rejects every attempt, each with one failure fewer than the one before
+/// (blaming the scene's first object), so the last attempt is the one delivered.
+struct FewerFailuresEachRound {
+    calls: AtomicUsize,
+}
+
+impl Judge for FewerFailuresEachRound {
+    fn name(&self) -> &str {
+        "fewer-failures"
+    }
+
+    fn judge(
+        &self,
+        input: &JudgeInput<'_>,
+    ) -> Result<scenethesis_pipeline::Verdict, scenethesis_pipeline::JudgeError> {
+        let round = self.calls.fetch_add(1, Ordering::SeqCst);
+        let mut verdict = AcceptAll::new().judge(input)?;
+        let blamed = input.scene.objects[0].id.clone();
+        verdict.failures = (round..3)
+            .map(|_| scenethesis_pipeline::Failure {
+                kind: scenethesis_pipeline::FailureKind::Collision,
+                objects: vec![blamed.clone()],
+                detail: format!("`{blamed}` is blamed by the test judge"),
+            })
+            .collect();
+        verdict.accepted = false;
+        Ok(verdict)
+    }
+}
+
+#[test]
+fn the_previews_drawn_beside_the_judge_are_the_delivered_attempts() {
+    let renderer = std::sync::Arc::new(PoseColourRenderer {
+        calls: AtomicUsize::new(0),
+    });
+    struct Shared(std::sync::Arc<PoseColourRenderer>);
+    impl scenethesis_render_api::SceneRenderer for Shared {
+        fn name(&self) -> String {
+            self.0.name()
+        }
+        fn render_views(
+            &self,
+            scene: &scenethesis_scene_graph::Scene,
+            meshes: &std::collections::BTreeMap<String, scenethesis_scene_graph::Mesh>,
+            requests: &[scenethesis_render_api::ViewRequest],
+        ) -> Result<Vec<scenethesis_render_api::ViewImage>, scenethesis_render_api::RendererError>
+        {
+            self.0.render_views(scene, meshes, requests)
+        }
+    }
+    let options = GenerateOptions {
+        max_replans: 2,
+        previews: true,
+        ..GenerateOptions::default()
+    };
+    let scene = Pipeline::offline()
+        .with_judge(FewerFailuresEachRound {
+            calls: AtomicUsize::new(0),
+        })
+        .with_renderer(Shared(renderer.clone()))
+        .generate(PROMPT, 3, &options, &mut ())
+        .expect("a scene, not accepted");
+    assert!(!scene.report.accepted);
+    assert_eq!(scene.report.attempts, 3);
+    // Drawn beside the judges (an attempt not delivered lets its drawing run out unread).
+    assert!(renderer.calls.load(Ordering::SeqCst) >= 1);
+    let expected = scenethesis_render_api::render_previews(
+        renderer.as_ref(),
+        &scene.scene,
+        &scene.meshes,
+        options.preview_size,
+    )
+    .unwrap();
+    assert_eq!(scene.previews, expected, "the delivered attempt's previews");
+}

@@ -103,6 +103,14 @@ impl<'p> StageClock<'p> {
         }
     }
 
+    /// Announces `stage` of `round` as run elsewhere (on a thread of its own, beside other
+    /// stages) and adds the `elapsed` time it took there to the stage's total.
+    pub(crate) fn record(&mut self, stage: Stage, round: usize, elapsed: Duration, note: &str) {
+        self.progress.stage_started(stage, round);
+        *self.totals.entry(stage).or_default() += elapsed.as_secs_f64();
+        self.progress.stage_finished(stage, round, elapsed, note);
+    }
+
     /// Adds the seconds of `stage`'s parts, as the stage measured them, to their totals.
     pub(crate) fn add_parts(&mut self, stage: Stage, parts: &[(&'static str, f64)]) {
         let totals = self.parts.entry(stage).or_default();

@@ -24,6 +24,8 @@ pub(crate) struct Attempt {
     pub(crate) guide_notes: Vec<String>,
     /// What the guide saw (vision guides), handed on to the result.
     pub(crate) guidance: Option<scenethesis_imagery::Guidance>,
+    /// This attempt's previews, drawn while the judge ran (when previews are asked for).
+    pub(crate) previews_beside: Option<crate::phases::previews::PreviewsBeside>,
     pub(crate) round: usize,
 }
 

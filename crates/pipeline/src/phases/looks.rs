@@ -60,21 +60,7 @@ pub(crate) fn make_maps_beside(scene: &Scene, meshes: &BTreeMap<String, Mesh>) {
     worn.sort_by_key(|m| m.index());
     worn.dedup_by_key(|m| m.index());
     std::thread::spawn(move || {
-        yield_to_other_threads();
+        super::run_at_lowest_priority();
         make_maps(worn)
     });
-}
-
-/// Gives the calling thread the lowest scheduling priority (nice 19), so that it runs on a core
-/// the process's other threads leave idle and never slows them (Linux schedules each thread
-/// with its own niceness; elsewhere the thread keeps its priority).
-fn yield_to_other_threads() {
-    #[cfg(target_os = "linux")]
-    // SAFETY: gettid has no preconditions; setpriority on the calling thread's own id only
-    // changes that thread's niceness, and a failure (reported by its return value) leaves the
-    // priority as it was, which is harmless.
-    unsafe {
-        let thread = libc::gettid();
-        libc::setpriority(libc::PRIO_PROCESS, thread as libc::id_t, 19);
-    }
 }
