@@ -230,7 +230,7 @@ impl ArrangementRules {
 
     /// Whether a judged `flanks` rule makes `subject` stand at a side of `target` (a
     /// nightstand off a bed's long side): the procedural guide then tries no spot before
-    /// the target's foot or behind its head.
+    /// the target's foot or behind its head in a house room (a room with fixed walls).
     pub(crate) fn must_flank(&self, subject: &str, target: &str) -> bool {
         self.flanks.iter().any(|r| {
             r.judge == Severity::Reject

@@ -132,8 +132,15 @@ pub(super) fn candidates(
 }
 
 /// Whether `o` must stand at a side of its positional target (a nightstand by its bed, a
-/// judged `flanks` rule): no spot elsewhere on the floor serves it.
+/// judged `flanks` rule) in a room whose walls are given ([`crate::Plan::room_is_fixed`]: a house
+/// room): no spot elsewhere on the floor serves it there. A room sized to its plan keeps the
+/// fallback spots (before the foot, elsewhere on the floor): its flanks are rarely taken, the
+/// judge re-plans the layout when it is, and its layouts (the seeded spot draws) stay those
+/// the single-room measurements and fixtures were made with.
 fn must_flank_target(state: &FloorState<'_>, o: &PlannedObject) -> bool {
+    if !state.plan.room_is_fixed() {
+        return false;
+    }
     positional_target(o)
         .and_then(|t| state.index_of(t))
         .is_some_and(|t| {
