@@ -104,6 +104,26 @@ impl RunsRule {
     }
 }
 
+/// The categories any of which stands for a room's anchor of category `anchor` (the object
+/// its room type is built around: a bedroom's bed): the anchor's own, and, when it is a member
+/// of a built-in `[[runs]]` rule (a kitchen's counter), every member of those runs, as the
+/// runs are the room's core and the guide may leave out a counter to fit the others.
+///
+/// ```
+/// let core = scenethesis_agents::core_categories("kitchen_counter");
+/// assert!(core.iter().any(|c| c == "stove") && core[0] == "kitchen_counter");
+/// assert_eq!(scenethesis_agents::core_categories("bed"), ["bed"]);
+/// ```
+pub fn core_categories(anchor: &str) -> Vec<String> {
+    let mut out = vec![anchor.to_owned()];
+    for r in &ArrangementRules::builtin().runs {
+        if r.members.iter().any(|m| m == anchor) {
+            out.extend(r.members.iter().filter(|m| *m != anchor).cloned());
+        }
+    }
+    out
+}
+
 /// The subject faces the room or stands against a wall.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -206,6 +226,17 @@ impl ArrangementRules {
             .filter(|r| r.judge == Severity::Reject && r.target.iter().any(|c| c == category))
             .map(|r| (r.subject.as_slice(), r.within))
             .collect()
+    }
+
+    /// Whether a judged `flanks` rule makes `subject` stand at a side of `target` (a
+    /// nightstand off a bed's long side): the procedural guide then tries no spot before
+    /// the target's foot or behind its head in a house room (a room with fixed walls).
+    pub(crate) fn must_flank(&self, subject: &str, target: &str) -> bool {
+        self.flanks.iter().any(|r| {
+            r.judge == Severity::Reject
+                && r.subject.iter().any(|c| c == subject)
+                && r.target.iter().any(|c| c == target)
+        })
     }
 
     /// Every category the rules name (for checking them against the library).

@@ -33,7 +33,9 @@ mod planner;
 mod prompt;
 mod text;
 
-pub use arrangement::{check_arrangement, run_layout, ArrangementCheck, BrokenRule};
+pub use arrangement::{
+    check_arrangement, core_categories, run_layout, ArrangementCheck, BrokenRule,
+};
 pub use fidelity::{
     check_prompt, constraint_holds, BrokenRelation, MissedAttribute, MissingObject, PromptCheck,
 };

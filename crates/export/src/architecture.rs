@@ -6,7 +6,7 @@
 use nalgebra::{Point3, Rotation3, Vector3};
 use scenethesis_materials::{outdoor_ground, surface_or};
 use scenethesis_scene_graph::{
-    Architecture, Environment, LeafGeometry, Material, Mesh, MeshPart, SceneLook, Wall, WallBox,
+    Architecture, Environment, JointState, Material, Mesh, MeshPart, SceneLook, Wall, WallBox,
 };
 
 /// Thickness of the floor slab below y = 0, in metres.
@@ -162,27 +162,38 @@ fn oriented(wall: &Wall, span: &WallBox) -> OrientedBox {
     }
 }
 
-/// A room door's leaf: a moving link fixed to the world by its hinge (the articulation of
-/// [`crate::articulation::Articulation::of_leaf`]).
+/// A room door's leaves: moving links fixed to the world by their hinges (the articulation of
+/// [`crate::articulation::Articulation::of_leaf`]); one for a single door, two mirrored for a
+/// double door.
 pub(crate) struct Leaf {
-    /// The door's id: writers name the leaf's link `<door>_leaf`, as an object's links.
+    /// The door's id: writers name each leaf's link `<door>_<joint>` (`<door>_leaf`,
+    /// `<door>_leaf_2`), as an object's links.
     pub door: String,
     /// The id of the wall the door is cut into.
     pub wall: String,
-    /// The leaf's joint and closed box in world coordinates.
-    pub geometry: LeafGeometry,
+    /// The leaves' joints in world coordinates, with their states.
+    pub joints: Vec<JointState>,
+    /// The closed leaves' boxes in world coordinates: one part per leaf, carried by the joint
+    /// of its name.
+    pub mesh: Mesh,
 }
 
-/// The leaf of every door that has one, in the order of the doors.
+/// The leaves of every door that has any, in the order of the doors.
 pub(crate) fn leaves(architecture: &Architecture) -> Vec<Leaf> {
     architecture
         .doors
         .iter()
         .filter_map(|door| {
+            let geometry = architecture.door_leaves(door);
+            let first = geometry.first()?;
             Some(Leaf {
                 door: door.id.clone(),
                 wall: door.wall.clone(),
-                geometry: architecture.door_leaf(door)?,
+                joints: geometry.iter().map(|g| g.joint.clone()).collect(),
+                mesh: Mesh {
+                    parts: geometry.iter().flat_map(|g| g.mesh.parts.clone()).collect(),
+                    materials: first.mesh.materials.clone(),
+                },
             })
         })
         .collect()

@@ -12,9 +12,7 @@
 //! Parts naming a joint the object does not carry stay with the body, as drawn (closed).
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
-use scenethesis_scene_graph::{
-    Joint, JointKind, JointState, LeafGeometry, Mesh, MeshPart, SceneObject,
-};
+use scenethesis_scene_graph::{Joint, JointKind, JointState, Mesh, MeshPart, SceneObject};
 
 use crate::{MassProperties, DENSITY};
 
@@ -97,11 +95,10 @@ impl<'a> Articulation<'a> {
         Self::of_joints(&object.joints, mesh)
     }
 
-    /// The split of a room door's leaf: no body, one link in world coordinates (the world is
-    /// its asset frame, scale 1).
-    pub fn of_leaf(leaf: &'a LeafGeometry) -> Self {
-        Self::of_joints(std::slice::from_ref(&leaf.joint), &leaf.mesh)
-            .expect("a leaf has its joint")
+    /// The split of a room door's leaves: no body, one link per leaf in world coordinates
+    /// (the world is their asset frame, scale 1).
+    pub fn of_leaf(leaf: &'a crate::architecture::Leaf) -> Self {
+        Self::of_joints(&leaf.joints, &leaf.mesh).expect("a door's leaves have their joints")
     }
 
     /// The split of `mesh` by `joints`, or `None` when there are none.

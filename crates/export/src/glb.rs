@@ -24,7 +24,8 @@
 //! writes the joint (radians or metres, asset units). Turning a node about `axis` (a revolute
 //! joint) or moving it along `axis` (a prismatic one) animates the part in Blender or
 //! three.js. A room door's leaf is such a link node, `<door>_leaf`, a child of the node of
-//! the wall it is cut into (whose frame is the world's), pivoting at its hinge.
+//! the wall it is cut into (whose frame is the world's), pivoting at its hinge; a double
+//! door's second leaf is its sibling `<door>_leaf_2`.
 
 use std::collections::BTreeMap;
 
@@ -521,7 +522,7 @@ pub fn to_glb(export: &ExportScene<'_>) -> Vec<u8> {
             .iter()
             .position(|n| n.name == leaf.wall)
         {
-            let articulation = Articulation::of_leaf(&leaf.geometry);
+            let articulation = Articulation::of_leaf(leaf);
             add_links(&mut b, &mut nodes, wall, &leaf.door, &articulation);
         }
     }

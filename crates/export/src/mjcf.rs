@@ -24,7 +24,8 @@
 //! `<contact><exclude>` keeps each link from colliding with its parent and its object's body.
 //!
 //! A room door's leaf is written the same way: a static body `<door>` (no free joint: it is
-//! fixed to the world) holding the leaf's body `<door>_leaf` on its hinge, excluded from
+//! fixed to the world) holding the leaf's body `<door>_leaf` (and a double door's second,
+//! `<door>_leaf_2`) on its hinge, excluded from
 //! contact with the world body's floor and walls (the frame it sits in).
 
 use std::collections::BTreeSet;
@@ -277,7 +278,7 @@ impl MjcfParts {
     /// leaf is written as an object's link) holding the leaf's body `<door>_leaf` on its
     /// hinge, which never collides with the walls and floor (the world body).
     fn add_leaf(&mut self, leaf: &Leaf) {
-        let articulation = Articulation::of_leaf(&leaf.geometry);
+        let articulation = Articulation::of_leaf(leaf);
         let body = self.names.make(&leaf.door);
         let _ = writeln!(
             self.world,

@@ -26,11 +26,7 @@ pub(crate) fn files(export: &ExportScene<'_>) -> BTreeMap<String, Vec<u8>> {
         .iter()
         .map(|p| p.to_mesh())
         .collect();
-    meshes.extend(
-        leaves(&scene.architecture)
-            .into_iter()
-            .map(|l| l.geometry.mesh),
-    );
+    meshes.extend(leaves(&scene.architecture).into_iter().map(|l| l.mesh));
     let used = meshes
         .iter()
         .chain(scene.objects.iter().map(|o| export.mesh(o)))

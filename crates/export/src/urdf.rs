@@ -14,7 +14,8 @@
 //! `revolute` or `prismatic` joint from the parent link, with the axis in the parent's frame,
 //! `<limit>` in radians or metres (scaled by the pose) and `<dynamics>` damping and friction as
 //! in MJCF. The zero configuration is closed. A room door's leaf is such a link
-//! (`<door>_leaf`) on a `revolute` joint from `world`, its origin the hinge.
+//! (`<door>_leaf`, a double door's second leaf `<door>_leaf_2`) on a `revolute` joint from
+//! `world`, its origin the hinge.
 
 use std::collections::BTreeMap;
 use std::fmt::Write;
@@ -118,11 +119,7 @@ pub fn to_urdf_textured(
         }
     }
     for leaf in &leaves(&scene.architecture) {
-        w.joints(
-            (&leaf.door, 1.0),
-            &Articulation::of_leaf(&leaf.geometry),
-            "world",
-        );
+        w.joints((&leaf.door, 1.0), &Articulation::of_leaf(leaf), "world");
     }
 
     let mut urdf = String::new();

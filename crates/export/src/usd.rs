@@ -21,7 +21,8 @@
 //! A room door's leaf is an `Xform` named by the door after the architecture pieces, an
 //! articulation root holding the leaf's rigid body (`leaf`, posed at the hinge in the scene's
 //! state, in world coordinates) and its `PhysicsRevoluteJoint` with no `physics:body0`: it is
-//! joined to the world.
+//! joined to the world; a double door's `Xform` holds both leaves (`leaf`, `leaf_2`), each
+//! with its joint.
 
 use std::collections::BTreeMap;
 use std::fmt::Write;
@@ -75,7 +76,7 @@ pub fn to_usda_textured(export: &ExportScene<'_>, texture_dir: &str) -> String {
     }
     let leaves = leaves(&scene.architecture);
     for leaf in &leaves {
-        looks.register(&leaf.geometry.mesh);
+        looks.register(&leaf.mesh);
     }
     out.push_str("    def Scope \"Looks\"\n    {\n");
     for (name, m) in &looks.materials {
@@ -293,7 +294,7 @@ fn write_leaf(out: &mut String, name: &str, leaf: &Leaf, looks: &Looks) {
         body: None,
         scale: 1.0,
     };
-    let articulation = Articulation::of_leaf(&leaf.geometry);
+    let articulation = Articulation::of_leaf(leaf);
     write_links(
         out,
         &owner,

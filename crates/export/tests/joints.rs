@@ -542,3 +542,57 @@ fn a_room_doors_leaf_hangs_on_its_hinge_in_every_format() {
         .unwrap();
     assert_eq!(joint, want.joint);
 }
+
+/// A double door: both leaves hang, mirrored on opposite jambs, each on its own joint, in
+/// every format.
+#[test]
+fn a_double_doors_two_leaves_hang_in_every_format() {
+    let (mut scene, meshes) = scene();
+    let door = &mut scene.architecture.doors[0];
+    door.width = 1.6;
+    door.leaf.as_mut().unwrap().double = true;
+    assert!(scene.validate().is_ok());
+    let export = export_of(&scene, &meshes);
+
+    let xml = mjcf::to_mjcf(&export);
+    for leaf in ["door_0_leaf", "door_0_leaf_2"] {
+        assert!(xml.contains(&format!("<body name=\"{leaf}\"")), "{xml}");
+        assert!(xml.contains(&format!("<joint name=\"{leaf}\" type=\"hinge\"")));
+        assert!(xml.contains(&format!("<exclude body1=\"world\" body2=\"{leaf}\"/>")));
+    }
+    // Mirrored: one turns about −Y, the other about +Y.
+    assert!(xml.contains("axis=\"0 -1 0\"") && xml.contains("axis=\"0 1 0\""));
+
+    let urdf = urdf::to_urdf(&export, "m").urdf;
+    for leaf in ["door_0_leaf", "door_0_leaf_2"] {
+        assert!(
+            urdf.contains(&format!("<joint name=\"{leaf}_joint\" type=\"revolute\">")),
+            "{urdf}"
+        );
+    }
+
+    let usda = usd::to_usda(&export);
+    assert!(usda.contains("def PhysicsRevoluteJoint \"leaf_joint\""));
+    assert!(
+        usda.contains("def PhysicsRevoluteJoint \"leaf_2_joint\""),
+        "{usda}"
+    );
+
+    let bytes = glb::to_glb(&export);
+    let gltf = gltf::Gltf::from_slice(&bytes).unwrap();
+    let wall = gltf.nodes().find(|n| n.name() == Some("wall_2")).unwrap();
+    let names: Vec<_> = wall
+        .children()
+        .filter_map(|n| n.name().map(str::to_owned))
+        .collect();
+    assert_eq!(names, ["door_0_leaf", "door_0_leaf_2"]);
+    let hinges: Vec<f32> = wall
+        .children()
+        .map(|n| n.transform().decomposed().0[0])
+        .collect();
+    // At the jambs, x = ±(0.8 − 0.005).
+    assert!(
+        (hinges[0] + hinges[1]).abs() < 1e-6 && (hinges[0].abs() - 0.795).abs() < 1e-6,
+        "{hinges:?}"
+    );
+}

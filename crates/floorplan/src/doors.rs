@@ -24,6 +24,10 @@ pub const ENTRANCE_WIDTH: f64 = 0.9;
 pub const PASSAGE_MIN: f64 = 1.2;
 /// Widest open passage, m.
 pub const PASSAGE_MAX: f64 = 2.4;
+/// Wall kept at each end of an open passage where the wall is long enough, m: a kitchen
+/// run's depth (0.6 m) and the 0.1 m the approach before the passage reaches past its edge,
+/// so that the walls beside a passage can still hold counters up to the corner.
+pub const PASSAGE_SIDE_WALL: f64 = 0.75;
 /// Double door widths, m.
 pub const DOUBLE_WIDTHS: [f64; 3] = [1.4, 1.5, 1.6];
 
@@ -264,7 +268,7 @@ impl Placer<'_, '_> {
                 .room(self.room_type(room))
                 .map_or(0.9, |r| r.door_width),
             DoorKind::Double => DOUBLE_WIDTHS[self.rng.random_range(0..DOUBLE_WIDTHS.len())],
-            DoorKind::Passage => (length - 0.6).clamp(PASSAGE_MIN, PASSAGE_MAX),
+            DoorKind::Passage => (length - 2.0 * PASSAGE_SIDE_WALL).clamp(PASSAGE_MIN, PASSAGE_MAX),
         }
     }
 

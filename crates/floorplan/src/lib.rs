@@ -33,7 +33,7 @@ mod windows;
 
 pub use doors::{
     leaf_clash, leaf_squares, CORNER_CLEARANCE, DOOR_HEIGHT, DOUBLE_WIDTHS, ENTRANCE_WIDTH,
-    PASSAGE_MAX, PASSAGE_MIN, SERVICE_ROOMS,
+    PASSAGE_MAX, PASSAGE_MIN, PASSAGE_SIDE_WALL, SERVICE_ROOMS,
 };
 pub use knowledge::{
     DwellingKind, Knowledge, KnowledgeError, Privacy, RoomKind, WindowSpec, HALLWAY,

@@ -3,7 +3,9 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use scenethesis_agents::{check_arrangement, check_prompt, ArrangementCheck, Plan};
+use scenethesis_agents::{
+    check_arrangement, check_prompt, core_categories, ArrangementCheck, Plan,
+};
 use scenethesis_eval::{
     evaluate_timed, DecompositionCache, EvalError, EvalScene, EvalTimings, SceneMetrics,
 };
@@ -359,6 +361,7 @@ impl Judge for GeometricJudge {
         let relations_checked = timed(&mut timings.relations, || {
             let checked = plan_relation_failures(input.plan, scene, &mut failures);
             failures.extend(prompt_failures(input.plan, scene));
+            failures.extend(anchor_failure(input.plan, scene));
             checked
         });
         if !metrics.unreachable_floor_objects.is_empty() {
@@ -599,6 +602,29 @@ fn arrangement_failures(check: &ArrangementCheck) -> Vec<Failure> {
             detail: format!("rule \"{}\": `{}` {}", b.rule, b.subject, b.reason),
         })
         .collect()
+}
+
+/// A failure when the plan's anchor — the object its room type is built around, a bedroom's
+/// bed, a living room's sofa (`anchor` in `knowledge/archetypes.toml`), or what stands for it
+/// ([`core_categories`]: a kitchen's runs) — is not in the scene (the guide found it no spot
+/// in a house room's fixed walls): the room is re-planned with other asset variants and
+/// another layout rather than accepted without its core. The anchor is blamed: the re-plan
+/// gives it another asset variant (a lower or narrower bed may fit where this one did not)
+/// and never drops it.
+fn anchor_failure(plan: &Plan, scene: &Scene) -> Option<Failure> {
+    let anchor = plan.object(&plan.anchor)?;
+    let core = core_categories(&anchor.category);
+    if scene.objects.iter().any(|o| core.contains(&o.category)) {
+        return None;
+    }
+    Some(Failure {
+        kind: FailureKind::MissingObject,
+        objects: vec![anchor.id.clone()],
+        detail: format!(
+            "the room's anchor `{}` ({}) is not in the scene: it found no spot",
+            anchor.id, anchor.category
+        ),
+    })
 }
 
 /// What the prompt asked for and the scene lacks: requested objects missing from the scene

@@ -332,16 +332,18 @@ impl SceneGeometry {
         self.push_triangle([a, c, b], surface, projection.as_ref(), id);
     }
 
-    /// The leaves hung in `wall`'s doors, at their states: drawn, and cut away, with the wall,
-    /// each under its door's id.
+    /// The leaves hung in `wall`'s doors (both of a double door), at their states: drawn, and
+    /// cut away, with the wall, each under its door's id.
     fn push_leaves(&mut self, arch: &Architecture, wall: &Wall) {
         for door in arch.doors.iter().filter(|d| d.wall == wall.id) {
-            let Some(leaf) = arch.door_leaf(door) else {
+            let leaves = arch.door_leaves(door);
+            if leaves.is_empty() {
                 continue;
-            };
+            }
             let index = self.push_id(&door.id);
             let surface = Surface::of(&leaf_material());
-            for part in &leaf.posed_mesh().parts {
+            let posed: Vec<_> = leaves.iter().map(|l| l.posed_mesh()).collect();
+            for part in posed.iter().flat_map(|m| &m.parts) {
                 let projection = surface.projection(&part.positions);
                 for t in &part.triangles {
                     let corner = |k: usize| Point3::from(part.positions[t[k] as usize]).cast();

@@ -6,19 +6,25 @@
 //! wall ([`Architecture::door_leaf`]): the leaf fills the opening less [`LEAF_GAP`] at the
 //! sides and top and [`LEAF_FLOOR_GAP`] at the floor, its room-side face flush with the wall's
 //! room-side face, and it turns about the vertical line through the hinge edge of that face,
-//! from closed (0) to [`LEAF_OPEN_LIMIT`] into the room.
+//! from closed (0) to [`LEAF_OPEN_LIMIT`] into the room. A double door ([`DoorLeaf::double`])
+//! hangs two such leaves, each half the opening, mirrored on opposite jambs, each with its own
+//! joint ([`LEAF_JOINT`], [`SECOND_LEAF_JOINT`]; [`Architecture::door_leaves`]).
 
 use nalgebra::{Point3, Vector2};
 use serde::{Deserialize, Serialize};
 
 use crate::{
     Aabb, Architecture, DoorOpening, Joint, JointKind, JointState, Material, Mesh, MeshPart,
-    OpensTo,
+    OpensTo, Wall,
 };
 
 /// The name of a door leaf's joint (and of its moving link); writers name the link
 /// `<door>_leaf`.
 pub const LEAF_JOINT: &str = "leaf";
+
+/// The name of the joint (and moving link) of a double door's second leaf, the mirror of the
+/// first; writers name the link `<door>_leaf_2`.
+pub const SECOND_LEAF_JOINT: &str = "leaf_2";
 
 /// The thickness of the leaf a procedural room hangs in its door, in metres.
 pub const LEAF_THICKNESS: f64 = 0.04;
@@ -40,9 +46,15 @@ pub struct DoorLeaf {
     pub opens_to: OpensTo,
     /// The leaf's thickness in metres: more than 0 and at most its wall's thickness.
     pub thickness: f64,
-    /// The joint's state in radians: 0 closed, up to [`LEAF_OPEN_LIMIT`] open.
+    /// The joint's state in radians: 0 closed, up to [`LEAF_OPEN_LIMIT`] open (both leaves of
+    /// a double door).
     #[serde(default)]
     pub state: f32,
+    /// A double door: two leaves, each half the opening, hinged on opposite jambs and meeting
+    /// in the middle ([`Architecture::door_leaves`]); `false` (and absent from `scene.json`)
+    /// for a single leaf.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub double: bool,
 }
 
 impl Default for DoorLeaf {
@@ -51,6 +63,7 @@ impl Default for DoorLeaf {
             opens_to: OpensTo::Left,
             thickness: LEAF_THICKNESS,
             state: 0.0,
+            double: false,
         }
     }
 }
@@ -83,10 +96,9 @@ pub fn leaf_material() -> Material {
 }
 
 impl Architecture {
-    /// The leaf of `door` in world coordinates, or `None` when the door has no leaf or its
-    /// wall is unknown. The joint turns about a vertical axis through the hinge edge of the
-    /// leaf's room-side face, its sign chosen so that a positive state swings the leaf into
-    /// the room.
+    /// The (first) leaf of `door` in world coordinates, or `None` when the door has no leaf
+    /// or its wall is unknown: the whole leaf of a single door, the leaf hinged on its
+    /// [`DoorLeaf::opens_to`] side of a double door ([`Architecture::door_leaves`]).
     ///
     /// ```
     /// use scenethesis_scene_graph::{Architecture, OpensTo};
@@ -100,59 +112,46 @@ impl Architecture {
     /// assert!(open[2] < 1.5 - 0.3);
     /// ```
     pub fn door_leaf(&self, door: &DoorOpening) -> Option<LeafGeometry> {
-        let leaf = door.leaf.as_ref()?;
-        let wall = self.wall(&door.wall)?;
-        let u = wall.direction();
-        let n = wall.inward_normal();
-        let face = wall.thickness / 2.0;
+        self.door_leaves(door).into_iter().next()
+    }
+
+    /// Every leaf hung in `door`, in world coordinates (empty when the door has no leaf or
+    /// its wall is unknown): one for a single door; for a double door
+    /// ([`DoorLeaf::double`]) two, each filling half the opening, the first ([`LEAF_JOINT`])
+    /// hinged on the [`DoorLeaf::opens_to`] side, the second ([`SECOND_LEAF_JOINT`]) its
+    /// mirror hinged on the other jamb, both at the door's state. Each joint turns about a
+    /// vertical axis through the hinge edge of its leaf's room-side face, its sign chosen so
+    /// that a positive state swings the leaf into the room.
+    pub fn door_leaves(&self, door: &DoorOpening) -> Vec<LeafGeometry> {
+        let (Some(leaf), Some(wall)) = (door.leaf.as_ref(), self.wall(&door.wall)) else {
+            return Vec::new();
+        };
         let a0 = door.offset - door.width / 2.0 + LEAF_GAP;
         let a1 = door.offset + door.width / 2.0 - LEAF_GAP;
-        let (y0, y1) = (LEAF_FLOOR_GAP, door.height - LEAF_GAP);
-        let at = |along: f64, across: f64, y: f64| -> [f32; 3] {
-            let p = wall.start + u * along + n * across;
-            [p.x as f32, y as f32, p.y as f32]
+        if !leaf.double {
+            return vec![leaf_box(
+                wall,
+                door,
+                leaf,
+                leaf.opens_to,
+                [a0, a1],
+                LEAF_JOINT,
+            )];
+        }
+        let mid = door.offset;
+        // Hinged on the left seen from the room: on the wall's +u end (see `leaf_box`).
+        let (own, other) = match leaf.opens_to {
+            OpensTo::Right => ([a0, mid - LEAF_GAP / 2.0], [mid + LEAF_GAP / 2.0, a1]),
+            _ => ([mid + LEAF_GAP / 2.0, a1], [a0, mid - LEAF_GAP / 2.0]),
         };
-        // Corner bits: along +u, up, toward the wall (−n): a right-handed numbering.
-        let corners = std::array::from_fn(|i| {
-            at(
-                if i & 1 == 0 { a0 } else { a1 },
-                if i & 4 == 0 {
-                    face
-                } else {
-                    face - leaf.thickness
-                },
-                if i & 2 == 0 { y0 } else { y1 },
-            )
-        });
-        let mut part = MeshPart::from_box_corners(LEAF_JOINT, 0, corners);
-        part.joint = Some(LEAF_JOINT.to_owned());
-        // Seen from the room facing the door, the viewer's right is the wall's −u.
-        let (hinge, toward_free) = match leaf.opens_to {
-            OpensTo::Right => (a0, u),
-            _ => (a1, -u),
+        let mirrored = match leaf.opens_to {
+            OpensTo::Right => OpensTo::Left,
+            _ => OpensTo::Right,
         };
-        // A turn about +Y takes (dx, dz) to (dz, −dx).
-        let turned = Vector2::new(toward_free.y, -toward_free.x);
-        let up = if turned.dot(&n) > 0.0 { 1.0 } else { -1.0 };
-        let joint = Joint {
-            name: LEAF_JOINT.to_owned(),
-            kind: JointKind::Revolute,
-            axis: [0.0, up, 0.0],
-            anchor: at(hinge, face, 0.0),
-            limits: [0.0, LEAF_OPEN_LIMIT],
-            opens_to: leaf.opens_to,
-            parent: None,
-        };
-        Some(LeafGeometry {
-            joint: JointState {
-                joint,
-                state: leaf.state,
-            },
-            mesh: Mesh {
-                parts: vec![part],
-                materials: vec![leaf_material()],
-            },
-        })
+        vec![
+            leaf_box(wall, door, leaf, leaf.opens_to, own, LEAF_JOINT),
+            leaf_box(wall, door, leaf, mirrored, other, SECOND_LEAF_JOINT),
+        ]
     }
 
     /// The box the leaf of `door` sweeps through from closed to fully open, grown across the
@@ -160,20 +159,82 @@ impl Architecture {
     /// width about the hinge, in world coordinates (`None` without a leaf): what must stay
     /// free of furniture.
     pub fn door_swing(&self, door: &DoorOpening) -> Option<Aabb> {
-        let geometry = self.door_leaf(door)?;
-        let joint = &geometry.joint.joint;
         let steps = 32;
         let mut swept: Option<Aabb> = None;
-        for k in 0..=steps {
-            let state = joint.limits[1] * k as f32 / steps as f32;
-            for &p in geometry.mesh.parts.iter().flat_map(|p| &p.positions) {
-                let q = joint.moved_point(state, p).map(f64::from);
-                let q = Point3::new(q[0], q[1], q[2]);
-                swept = Some(swept.map_or(Aabb::new(q, q), |b| b.including(&q)));
+        for geometry in self.door_leaves(door) {
+            let joint = &geometry.joint.joint;
+            for k in 0..=steps {
+                let state = joint.limits[1] * k as f32 / steps as f32;
+                for &p in geometry.mesh.parts.iter().flat_map(|p| &p.positions) {
+                    let q = joint.moved_point(state, p).map(f64::from);
+                    let q = Point3::new(q[0], q[1], q[2]);
+                    swept = Some(swept.map_or(Aabb::new(q, q), |b| b.including(&q)));
+                }
             }
         }
         let grow = nalgebra::Vector3::new(2.0 * LEAF_GAP, 0.0, 2.0 * LEAF_GAP);
         swept.map(|b| Aabb::new(b.min - grow, b.max + grow))
+    }
+}
+
+/// The leaf of `door` in `wall` spanning `[a0, a1]` along the wall, hinged on `opens_to`'s
+/// side seen from the room, its part and joint named `name`.
+fn leaf_box(
+    wall: &Wall,
+    door: &DoorOpening,
+    leaf: &DoorLeaf,
+    opens_to: OpensTo,
+    [a0, a1]: [f64; 2],
+    name: &str,
+) -> LeafGeometry {
+    let u = wall.direction();
+    let n = wall.inward_normal();
+    let face = wall.thickness / 2.0;
+    let (y0, y1) = (LEAF_FLOOR_GAP, door.height - LEAF_GAP);
+    let at = |along: f64, across: f64, y: f64| -> [f32; 3] {
+        let p = wall.start + u * along + n * across;
+        [p.x as f32, y as f32, p.y as f32]
+    };
+    // Corner bits: along +u, up, toward the wall (−n): a right-handed numbering.
+    let corners = std::array::from_fn(|i| {
+        at(
+            if i & 1 == 0 { a0 } else { a1 },
+            if i & 4 == 0 {
+                face
+            } else {
+                face - leaf.thickness
+            },
+            if i & 2 == 0 { y0 } else { y1 },
+        )
+    });
+    let mut part = MeshPart::from_box_corners(name, 0, corners);
+    part.joint = Some(name.to_owned());
+    // Seen from the room facing the door, the viewer's right is the wall's −u.
+    let (hinge, toward_free) = match opens_to {
+        OpensTo::Right => (a0, u),
+        _ => (a1, -u),
+    };
+    // A turn about +Y takes (dx, dz) to (dz, −dx).
+    let turned = Vector2::new(toward_free.y, -toward_free.x);
+    let up = if turned.dot(&n) > 0.0 { 1.0 } else { -1.0 };
+    let joint = Joint {
+        name: name.to_owned(),
+        kind: JointKind::Revolute,
+        axis: [0.0, up, 0.0],
+        anchor: at(hinge, face, 0.0),
+        limits: [0.0, LEAF_OPEN_LIMIT],
+        opens_to,
+        parent: None,
+    };
+    LeafGeometry {
+        joint: JointState {
+            joint,
+            state: leaf.state,
+        },
+        mesh: Mesh {
+            parts: vec![part],
+            materials: vec![leaf_material()],
+        },
     }
 }
 
@@ -303,5 +364,48 @@ mod tests {
         scene.architecture.doors[0].width = 0.005;
         let m = message(&scene);
         assert!(m.contains("door_0") && m.contains("`width`"), "{m}");
+    }
+    #[test]
+    fn a_double_door_hangs_two_mirrored_leaves_that_both_swing_in() {
+        let mut room = Architecture::rectangular_room(6.0, 4.0, 2.8, 1.6);
+        room.doors[0].leaf.as_mut().unwrap().double = true;
+        let leaves = room.door_leaves(&room.doors[0]);
+        assert_eq!(leaves.len(), 2);
+        let names: Vec<&str> = leaves.iter().map(|l| l.joint.joint.name.as_str()).collect();
+        assert_eq!(names, [LEAF_JOINT, SECOND_LEAF_JOINT]);
+        let (a, b) = (&leaves[0].joint.joint, &leaves[1].joint.joint);
+        // Hinged on opposite jambs (x = ±0.795), opening to opposite sides.
+        assert!((a.anchor[0] + b.anchor[0]).abs() < 1e-6 && a.anchor[0].abs() > 0.79);
+        assert_ne!(a.opens_to, b.opens_to);
+        for leaf in &leaves {
+            let bounds = leaf.mesh.bounds().unwrap();
+            // Each fills half the opening, less the gaps.
+            assert!(
+                (bounds.max.x - bounds.min.x - 0.7925).abs() < 1e-5,
+                "{bounds:?}"
+            );
+            let j = &leaf.joint.joint;
+            for &p in &leaf.mesh.parts[0].positions {
+                let q = j.moved_point(std::f32::consts::FRAC_PI_2, p);
+                assert!(
+                    q[2] <= 2.0 + 1e-5,
+                    "{} opened leaves the room: {q:?}",
+                    j.name
+                );
+            }
+        }
+        // The two halves do not overlap closed, and together sweep a half-width deep box.
+        let (ba, bb) = (
+            leaves[0].mesh.bounds().unwrap(),
+            leaves[1].mesh.bounds().unwrap(),
+        );
+        assert!(ba.min.x >= bb.max.x || bb.min.x >= ba.max.x);
+        let swing = room.door_swing(&room.doors[0]).unwrap();
+        assert!(
+            swing.min.z <= 2.0 - 0.79 && swing.min.z >= 2.0 - 0.85,
+            "{swing:?}"
+        );
+        let json = serde_json::to_string(&room.doors[0]).unwrap();
+        assert!(json.contains("\"double\":true"), "{json}");
     }
 }

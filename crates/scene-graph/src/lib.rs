@@ -96,7 +96,7 @@ pub use architecture::{
 pub use asset::{Asset, AssetInfo, Placement, SupportSurface, SurfaceKind, LOW_SHELF_SHARE};
 pub use door::{
     leaf_material, DoorLeaf, LeafGeometry, LEAF_FLOOR_GAP, LEAF_GAP, LEAF_JOINT, LEAF_OPEN_LIMIT,
-    LEAF_THICKNESS,
+    LEAF_THICKNESS, SECOND_LEAF_JOINT,
 };
 pub use floor_raster::{Components, FloorRaster, BLOCKED_CELL};
 pub use hash::{fnv1a64, fnv1a64_from, mix64, FNV_OFFSET_BASIS, GOLDEN_GAMMA};

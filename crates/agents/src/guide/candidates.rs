@@ -121,15 +121,31 @@ pub(super) fn candidates(
         Zone::Relative => out.extend(relative_candidates(state, o, hx, hz, infos, rng)),
         Zone::Supported => {}
     }
-    if matches!(
-        o.zone,
-        Zone::Free | Zone::Relative | Zone::Center | Zone::Rows
-    ) || (is_anchor && out.is_empty())
+    if (matches!(o.zone, Zone::Free | Zone::Center | Zone::Rows)
+        || (o.zone == Zone::Relative && !must_flank_target(state, o))
+        || (is_anchor && out.is_empty()))
     {
         add_free_candidates(state, o, info, rng, &mut out);
     }
     order_by_service(state, o, &mut out);
     out
+}
+
+/// Whether `o` must stand at a side of its positional target (a nightstand by its bed, a
+/// judged `flanks` rule) in a room whose walls are given ([`crate::Plan::room_is_fixed`]: a house
+/// room): no spot elsewhere on the floor serves it there. A room sized to its plan keeps the
+/// fallback spots (before the foot, elsewhere on the floor): its flanks are rarely taken, the
+/// judge re-plans the layout when it is, and its layouts (the seeded spot draws) stay those
+/// the single-room measurements and fixtures were made with.
+fn must_flank_target(state: &FloorState<'_>, o: &PlannedObject) -> bool {
+    if !state.plan.room_is_fixed() {
+        return false;
+    }
+    positional_target(o)
+        .and_then(|t| state.index_of(t))
+        .is_some_and(|t| {
+            ArrangementRules::builtin().must_flank(&o.category, &state.plan.objects[t].category)
+        })
 }
 
 /// Spots along any wall: with a target to face, the wall facing it first (nearest the
@@ -573,7 +589,7 @@ fn relative_candidates(
     match kind {
         RelationKind::InFrontOf | RelationKind::Behind => near.in_front_or_behind(kind, rng),
         RelationKind::Beside | RelationKind::LeftOf | RelationKind::RightOf => {
-            near.beside(side_rel, kind, rng)
+            near.beside(side_rel, kind, must_flank_target(state, o), rng)
         }
         RelationKind::Facing => near.facing(rng),
         RelationKind::Around => near.around(),
@@ -677,11 +693,13 @@ impl NearTarget {
     }
 
     /// Beside the target (or on the side `side_rel` names): both flanks at growing gaps,
-    /// then, when no side is stated, in front, behind and diagonally.
+    /// then, when no side is stated and the object need not flank the target
+    /// (`flanks_only`, a nightstand by its bed), in front, behind and diagonally.
     fn beside(
         &self,
         side_rel: Option<RelationKind>,
         kind: RelationKind,
+        flanks_only: bool,
         rng: &mut ChaCha8Rng,
     ) -> Vec<Candidate> {
         let (t, tc, r_t, f_t) = (&self.target, self.tc, self.r_t, self.f_t);
@@ -718,7 +736,7 @@ impl NearTarget {
                 out.push(self.at(c, y));
             }
         }
-        if side_rel.is_none() {
+        if side_rel.is_none() && !flanks_only {
             self.around_flanks(&mut out);
         }
         out

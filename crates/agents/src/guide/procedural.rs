@@ -309,4 +309,70 @@ mod tests {
             }
         }
     }
+
+    /// A bedroom holding only `bed` and `nightstand`, in a room `width` wide and 4 m deep,
+    /// fixed (an entrance kept clear off its front wall) or sized to its plan.
+    fn bed_and_nightstand(width: f64, fixed: bool) -> Plan {
+        let available: Vec<String> = scenethesis_procedural::catalog::categories()
+            .map(|c| c.name.to_owned())
+            .collect();
+        let request = PlanRequest::new("a bedroom with a bed and a nightstand", available, 0);
+        let mut plan = KnowledgePlanner::new().plan(&request).unwrap();
+        plan.objects
+            .retain(|o| o.category == "bed" || o.category == "nightstand");
+        let ids: BTreeSet<String> = plan.objects.iter().map(|o| o.id.clone()).collect();
+        for o in &mut plan.objects {
+            o.relations
+                .retain(|r| ids.contains(&r.target) || r.target.starts_with("wall"));
+        }
+        plan.room_size = [width, 4.0];
+        if fixed {
+            plan.keep_clear = vec![KeepClear {
+                why: "entrance".into(),
+                min: [-0.45, 1.3],
+                max: [0.45, 2.0],
+                below: None,
+                entrance: true,
+            }];
+        }
+        plan
+    }
+
+    /// In a house room a nightstand stands at a side of its bed or not at all: a room just
+    /// wider than the bed leaves its flanks no room, and the nightstand is dropped rather
+    /// than put before the bed's foot. A room sized to its plan keeps the fallback spots.
+    #[test]
+    fn a_house_rooms_nightstand_stands_only_at_its_beds_sides() {
+        let assets = NominalAssets::default();
+        let wide = ProceduralGuide::default()
+            .layout(&bed_and_nightstand(4.0, true), &assets, 0)
+            .unwrap();
+        let bed = wide
+            .scene
+            .objects
+            .iter()
+            .find(|o| o.category == "bed")
+            .expect("the bed fits a 4 m room");
+        let bed_width = footprint(bed).hx * 2.0;
+        let narrow = bed_width + 0.3;
+        for seed in 0..4 {
+            let fixed = ProceduralGuide::default()
+                .layout(&bed_and_nightstand(narrow, true), &assets, seed)
+                .unwrap();
+            let placed =
+                |l: &GuidedLayout, c: &str| l.scene.objects.iter().any(|o| o.category == c);
+            assert!(placed(&fixed, "bed"), "seed {seed}: no bed");
+            assert!(
+                !placed(&fixed, "nightstand"),
+                "seed {seed}: a nightstand in a {narrow:.2} m room beside a {bed_width:.2} m bed"
+            );
+            let sized = ProceduralGuide::default()
+                .layout(&bed_and_nightstand(narrow, false), &assets, seed)
+                .unwrap();
+            assert!(
+                placed(&sized, "nightstand"),
+                "seed {seed}: the sized room dropped it"
+            );
+        }
+    }
 }

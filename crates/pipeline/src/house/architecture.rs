@@ -21,7 +21,7 @@ pub(crate) fn house_architecture(plan: &FloorPlan, footprint: [f64; 4]) -> Archi
         .iter()
         .filter_map(|door| {
             let wall = plan_walls.iter().find(|w| w.openings.contains(&door.id))?;
-            let swings = door.kind == DoorKind::Single;
+            let swings = door.kind != DoorKind::Passage;
             Some(DoorOpening {
                 id: door.id.clone(),
                 wall: wall.id.clone(),
@@ -85,7 +85,7 @@ fn turned(plan: &FloorPlan, mut wall: PlanWall) -> PlanWall {
     let swings_right = plan
         .doors
         .iter()
-        .filter(|d| wall.openings.contains(&d.id) && d.kind == DoorKind::Single)
+        .filter(|d| wall.openings.contains(&d.id) && d.kind != DoorKind::Passage)
         .filter_map(|d| d.swing.as_ref())
         .any(|s| s.into == wall.rooms[1]);
     if swings_right && !wall.is_exterior() {

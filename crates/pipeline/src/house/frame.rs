@@ -4,12 +4,12 @@
 //! clear.
 
 use nalgebra::{Point2, Vector2, Vector3};
-use scenethesis_agents::{KeepClear, Plan};
+use scenethesis_agents::{KeepClear, Plan, Zone, BACK_WALL};
 use scenethesis_floorplan::geometry::{contains, Rect};
 use scenethesis_floorplan::{DoorKind, FloorPlan, Hinge, Room};
 use scenethesis_scene_graph::{
-    wrap_yaw, Architecture, DoorLeaf, DoorOpening, Environment, OpensTo, Pose, WindowOpening,
-    WINDOW_CLEARANCE,
+    wrap_yaw, Architecture, DoorLeaf, DoorOpening, Environment, OpensTo, Pose, RelationKind,
+    WindowOpening, WINDOW_CLEARANCE,
 };
 
 /// Wall thickness of a house (m), centred on the plan's wall lines, as a single room's.
@@ -283,7 +283,7 @@ impl RoomShell {
             let leaf = door
                 .swing
                 .as_ref()
-                .filter(|_| swings_in && door.kind == DoorKind::Single)
+                .filter(|_| swings_in && door.kind != DoorKind::Passage)
                 .map(|s| leaf_of(s.hinge));
             let sweep = match (swings_in, door.kind) {
                 (true, DoorKind::Single) => door.width,
@@ -388,23 +388,47 @@ impl RoomShell {
         }
     }
 
-    /// Fits a plan to this shell: its room size, wall height and the floor kept clear.
+    /// Fits a plan to this shell: its room size, wall height and the floor kept clear, and
+    /// the anchor free to stand against any wall ([`any_wall_anchor`]).
     pub(crate) fn fit_plan(&self, plan: &mut Plan) {
         plan.environment = Environment::Indoor;
         plan.room_size = self.size;
         plan.wall_height = WALL_HEIGHT;
         plan.keep_clear = self.keep_clear.clone();
+        any_wall_anchor(plan);
+    }
+}
+
+/// Lets a wall anchor the planner put on the back wall by default (a bedroom's bed) stand
+/// against any wall: in a house room's fixed walls the back wall may be all doorway and
+/// window, and a bed on a side wall beats a bedroom without one. The guide still tries the
+/// back wall first ([`Zone::Wall`] without a wall); an anchor the prompt puts on another wall
+/// keeps it.
+fn any_wall_anchor(plan: &mut Plan) {
+    let anchor = plan.anchor.clone();
+    let Some(o) = plan.objects.iter_mut().find(|o| o.id == anchor) else {
+        return;
+    };
+    if o.zone
+        == (Zone::Wall {
+            wall: Some(BACK_WALL.to_owned()),
+        })
+    {
+        o.zone = Zone::Wall { wall: None };
+        o.relations
+            .retain(|r| !(r.kind == RelationKind::AgainstWall && r.target == BACK_WALL));
     }
 }
 
 /// The scene-graph leaf of a plan door hinged on `hinge` (seen from the room it opens into, as
-/// [`DoorLeaf::opens_to`] is).
+/// [`DoorLeaf::opens_to`] is): two mirrored leaves for a double door ([`Hinge::Both`]).
 pub(crate) fn leaf_of(hinge: Hinge) -> DoorLeaf {
     DoorLeaf {
         opens_to: match hinge {
             Hinge::Right => OpensTo::Right,
             Hinge::Left | Hinge::Both => OpensTo::Left,
         },
+        double: hinge == Hinge::Both,
         ..DoorLeaf::default()
     }
 }
