@@ -251,9 +251,10 @@ fn a_run_out_of_time_before_any_scene_fails_naming_the_stage() {
 }
 
 /// A renderer of its own: every view is one flat colour made from a hash of the objects' ids
-/// and poses, so two scenes laid out differently give different images. Counts its calls.
+/// and poses, so two scenes laid out differently give different images. Counts its calls in
+/// a counter the test keeps.
 struct PoseColourRenderer {
-    calls: AtomicUsize,
+    calls: std::sync::Arc<AtomicUsize>,
 }
 
 impl scenethesis_render_api::SceneRenderer for PoseColourRenderer {
@@ -327,24 +328,7 @@ impl Judge for FewerFailuresEachRound {
 
 #[test]
 fn the_previews_drawn_beside_the_judge_are_the_delivered_attempts() {
-    let renderer = std::sync::Arc::new(PoseColourRenderer {
-        calls: AtomicUsize::new(0),
-    });
-    struct Shared(std::sync::Arc<PoseColourRenderer>);
-    impl scenethesis_render_api::SceneRenderer for Shared {
-        fn name(&self) -> String {
-            self.0.name()
-        }
-        fn render_views(
-            &self,
-            scene: &scenethesis_scene_graph::Scene,
-            meshes: &std::collections::BTreeMap<String, scenethesis_scene_graph::Mesh>,
-            requests: &[scenethesis_render_api::ViewRequest],
-        ) -> Result<Vec<scenethesis_render_api::ViewImage>, scenethesis_render_api::RendererError>
-        {
-            self.0.render_views(scene, meshes, requests)
-        }
-    }
+    let calls = std::sync::Arc::new(AtomicUsize::new(0));
     let options = GenerateOptions {
         max_replans: 2,
         previews: true,
@@ -354,15 +338,17 @@ fn the_previews_drawn_beside_the_judge_are_the_delivered_attempts() {
         .with_judge(FewerFailuresEachRound {
             calls: AtomicUsize::new(0),
         })
-        .with_renderer(Shared(renderer.clone()))
+        .with_renderer(PoseColourRenderer {
+            calls: calls.clone(),
+        })
         .generate(PROMPT, 3, &options, &mut ())
         .expect("a scene, not accepted");
     assert!(!scene.report.accepted);
     assert_eq!(scene.report.attempts, 3);
     // Drawn beside the judges (an attempt not delivered lets its drawing run out unread).
-    assert!(renderer.calls.load(Ordering::SeqCst) >= 1);
+    assert!(calls.load(Ordering::SeqCst) >= 1);
     let expected = scenethesis_render_api::render_previews(
-        renderer.as_ref(),
+        &PoseColourRenderer { calls },
         &scene.scene,
         &scene.meshes,
         options.preview_size,
