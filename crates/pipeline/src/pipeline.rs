@@ -16,12 +16,13 @@ use serde::{Deserialize, Serialize};
 
 use crate::house::RoomShell;
 use crate::judge::{GeometricJudge, Judge};
+use crate::phases::beside::PreviewsBeside;
 use crate::phases::clock::StageClock;
 use crate::phases::correspond::{correspond, Aligned};
 use crate::phases::judge::{judge, verdict_note, Attempt};
 use crate::phases::layout::lay_out;
 use crate::phases::optimize::optimize;
-use crate::phases::previews::{previews, PreviewsBeside};
+use crate::phases::previews::previews;
 use crate::phases::retrieve::AssetCache;
 use crate::phases::rework::rework;
 use crate::phases::summary::{report, RunRecord};

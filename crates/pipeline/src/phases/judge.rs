@@ -25,7 +25,7 @@ pub(crate) struct Attempt {
     /// What the guide saw (vision guides), handed on to the result.
     pub(crate) guidance: Option<scenethesis_imagery::Guidance>,
     /// This attempt's previews, drawn while the judge ran (when previews are asked for).
-    pub(crate) previews_beside: Option<crate::phases::previews::PreviewsBeside>,
+    pub(crate) previews_beside: Option<crate::phases::beside::PreviewsBeside>,
     pub(crate) round: usize,
 }
 

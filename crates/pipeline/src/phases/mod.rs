@@ -2,9 +2,10 @@
 //! the order they run: [`clock`] times and announces every stage, [`retrieve`] picks one asset
 //! per planned object, [`layout`] asks the guide for the initial layout, [`correspond`] aligns
 //! the poses to the guide's image when it gave one, [`optimize`] refines
-//! the poses, [`looks`] records what the scene wears, [`judge`] scores the attempt (while [`previews`] draws its previews beside it), [`rework`] applies the re-plan policy when the
+//! the poses, [`looks`] records what the scene wears, [`judge`] scores the attempt (while [`beside`] draws its previews), [`rework`] applies the re-plan policy when the
 //! judge rejects it, [`previews`] renders the chosen attempt and [`summary`] writes its report.
 
+pub(crate) mod beside;
 pub(crate) mod clock;
 pub(crate) mod correspond;
 pub(crate) mod judge;
