@@ -6,7 +6,7 @@ use std::cell::Cell;
 use std::time::Instant;
 
 use nalgebra::Point3;
-use scenethesis_scene_graph::{Mesh, Pose};
+use scenethesis_scene_graph::{yaw_distance, Mesh, Pose, FACING_TOLERANCE};
 use serde::{Deserialize, Serialize};
 
 use crate::alignment::{FitOptions, PoseAlignment, ScalePrior};
@@ -26,6 +26,12 @@ pub struct GuidedSettings {
     /// Candidates within this fraction of the best score count as tied; a facing hint picks
     /// among them.
     pub hint_tie: f64,
+    /// With a facing hint, only yaws within this many radians of it are tried, and a starting
+    /// pose outside it is not kept: an object backed onto a wall faces out of it and one
+    /// facing another faces it (the judge allows 50°, [`FACING_TOLERANCE`]); a silhouette
+    /// that fits a little better turned away is a front/back confusion, not evidence.
+    #[serde(default = "default_hint_window")]
+    pub hint_window: f64,
     /// The yaw hypotheses are first ranked on views subsampled by this stride (1: every
     /// hypothesis at full resolution).
     #[serde(default = "default_coarse_stride")]
@@ -103,6 +109,10 @@ impl GuidedSettings {
     }
 }
 
+fn default_hint_window() -> f64 {
+    FACING_TOLERANCE
+}
+
 fn default_refine_tolerance() -> f64 {
     0.1
 }
@@ -124,6 +134,7 @@ impl Default for GuidedSettings {
         Self {
             yaw_candidates: 24,
             hint_tie: 0.03,
+            hint_window: default_hint_window(),
             coarse_stride: default_coarse_stride(),
             coarse_keep: default_coarse_keep(),
             refreshes: 10,
@@ -250,9 +261,10 @@ pub fn align_to_guidance(
     };
     let start_score = aligner.score_at(start);
     let mut best = (*start, start_score);
+    let fits_hint = |p: &Pose| hint.is_none_or(|h| yaw_distance(p.yaw, h) <= settings.hint_window);
     if settings.yaw_candidates > 1 && !aligner.over() {
         if let Some(found) = aligner.best_yaw(start, hint) {
-            if found.1.score > best.1.score {
+            if found.1.score > best.1.score || (!fits_hint(start) && fits_hint(&found.0)) {
                 best = found;
             }
         }
@@ -273,7 +285,7 @@ pub fn align_to_guidance(
     let rounds = refined.rounds;
     let (mut best, mut alignment) = aligner.keep(refined, scale_range, best)?;
     let mut kept_start = None;
-    if best.0 != *start {
+    if best.0 != *start && fits_hint(start) {
         let sigma = aligner.depth_sigma(start)?;
         let before = aligner.evidence(start, sigma, scale_range);
         let after = aligner.evidence(&best.0, sigma, scale_range);
@@ -437,9 +449,16 @@ impl Aligner<'_> {
             (self.mesh, self.target.camera, self.target, self.settings);
         let (w, h) = (camera.intrinsics.width, camera.intrinsics.height);
         let step = std::f64::consts::TAU / settings.yaw_candidates as f64;
-        let yaws: Vec<f64> = (0..settings.yaw_candidates)
-            .map(|k| start.yaw + k as f64 * step)
+        let all = (0..settings.yaw_candidates).map(|k| start.yaw + k as f64 * step);
+        let within: Vec<f64> = all
+            .clone()
+            .filter(|&y| hint.is_none_or(|h| yaw_distance(y, h) <= settings.hint_window))
             .collect();
+        let yaws: Vec<f64> = if within.is_empty() {
+            all.collect()
+        } else {
+            within
+        };
         // One window for every hypothesis: the mask's, grown to what the asset can cover.
         let radius = mesh.bounds().map_or(0.0, |b| {
             let e = b.max - b.min;

@@ -111,7 +111,7 @@ pub use object::{AssetRef, ParentRef, Relation, RelationKind, SceneObject, GROUN
 pub use openings::{WallBox, PANE_THICKNESS, WINDOW_CLEARANCE, WINDOW_COVER_SHARE};
 pub use pose::{wrap_yaw, yaw_distance, yaw_distance_modulo, Pose};
 pub use relations::{
-    aabb_floor_gap, floor_centre, floor_gap, front_dir, relation_holds, right_dir,
+    aabb_floor_gap, floor_centre, floor_gap, front_dir, relation_holds, right_dir, FACING_TOLERANCE,
 };
 pub use scene::{Scene, FORMAT_VERSION};
 pub use validate::{is_printable_id, printable, OutOfBounds, ValidationError};

@@ -45,9 +45,13 @@ pub fn aabb_floor_gap(a: &Aabb, b: &Aabb) -> f64 {
     (dx * dx + dz * dz).sqrt()
 }
 
+/// How far (radians) an object's front may turn from the direction to what it faces and
+/// still face it: 50°.
+pub const FACING_TOLERANCE: f64 = 50.0 * std::f64::consts::PI / 180.0;
+
 fn faces(o: &SceneObject, t: &SceneObject) -> bool {
     let d = floor_centre(t) - floor_centre(o);
-    d.norm() > 1e-9 && front_dir(o).dot(&d.normalize()) >= 50f64.to_radians().cos()
+    d.norm() > 1e-9 && front_dir(o).dot(&d.normalize()) >= FACING_TOLERANCE.cos()
 }
 
 /// Whether `relation` of object `subject` holds in `scene`'s geometry (world boxes and

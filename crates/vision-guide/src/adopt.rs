@@ -266,10 +266,15 @@ pub fn room_from_walls(view: &Guidance) -> [Option<f64>; 2] {
     [wall_plane(xs), wall_plane(zs)]
 }
 
-/// The outermost plane of `distances` (from the room's centre) that a wall's share of them
-/// lies on: scanning inward from the farthest point, the first slab [`WALL_SLAB`] thick that
-/// holds [`WALL_SHARE`] of them, at its median (a wall's top and outer face, seen from a camera
-/// outside a cut-away room, hold far fewer points than its inner face).
+/// How far (metres) beyond a wall's inner face its outer face, top edge or cut end may show.
+const WALL_DEPTH: f64 = 0.3;
+
+/// The plane of `distances` (from the room's centre) that a wall's inner face makes: scanning
+/// inward from the farthest point, the first slab [`WALL_SLAB`] thick that holds
+/// [`WALL_SHARE`] of them marks the wall; of the slabs within [`WALL_DEPTH`] inside it, the
+/// one holding the most points is its inner face, at its median. A wall's outer face, top and
+/// cut ends, seen from a camera outside a cut-away room, can hold a wall's share too, but far
+/// fewer points than the inner face.
 fn wall_plane(mut distances: Vec<f64>) -> Option<f64> {
     if distances.len() < 100 {
         return None;
@@ -277,15 +282,24 @@ fn wall_plane(mut distances: Vec<f64>) -> Option<f64> {
     distances.sort_by(f64::total_cmp);
     let needed = (WALL_SHARE * distances.len() as f64).ceil() as usize;
     let mut lo = distances.len();
+    let mut outermost: Option<f64> = None;
+    let mut best: Option<(usize, f64)> = None;
     for hi in (0..distances.len()).rev() {
+        if outermost.is_some_and(|d| distances[hi] < d - WALL_DEPTH) {
+            break;
+        }
         while lo > 0 && distances[hi] - distances[lo - 1] <= 2.0 * WALL_SLAB {
             lo -= 1;
         }
-        if hi + 1 - lo >= needed {
-            return Some(distances[(lo + hi) / 2]);
+        let count = hi + 1 - lo;
+        if count >= needed {
+            outermost.get_or_insert(distances[hi]);
+            if best.is_none_or(|(c, _)| count > c) {
+                best = Some((count, distances[(lo + hi) / 2]));
+            }
         }
     }
-    None
+    best.map(|(_, plane)| plane)
 }
 
 /// The plan's room resized to the walls `view` shows ([`room_from_walls`]), rounded to the
@@ -316,7 +330,13 @@ mod tests {
         let mut d: Vec<f64> = (0..900).map(|i| 2.75 + (i % 3) as f64 * 0.001).collect();
         d.extend((0..20).map(|i| 2.85 + i as f64 * 0.001));
         d.extend((0..2000).map(|i| i as f64 * 0.001));
-        let plane = wall_plane(d).unwrap();
+        let plane = wall_plane(d.clone()).unwrap();
+        assert!((plane - 2.751).abs() < 0.002, "{plane}");
+        // A wall's cut ends 10 cm beyond its inner face hold a wall's share as well, but
+        // fewer points than the face.
+        let mut ends = d.clone();
+        ends.extend((0..150).map(|i| 2.85 + (i % 5) as f64 * 0.002));
+        let plane = wall_plane(ends).unwrap();
         assert!((plane - 2.751).abs() < 0.002, "{plane}");
         // No wall: points spread evenly hold no slab's share.
         assert_eq!(

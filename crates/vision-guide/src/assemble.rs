@@ -8,7 +8,8 @@
 //! - **Pose**: translation = the box's bottom centre (the asset frame's origin), scale = the
 //!   box height over the asset's, clamped to the asset's scale range, yaw = the box's yaw, or
 //!   the half turn of it that faces away from a wall the box backs onto (within 15 cm), else
-//!   toward the camera: a box alone cannot tell front from back.
+//!   toward the box of what the plan has it face, else toward the camera: a box alone cannot
+//!   tell front from back.
 //! - **Against a wall**: a ground object whose box backs onto a wall within 15 cm.
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -103,11 +104,29 @@ pub fn build_scene(
             by_id[id.as_str()],
             &infos[id],
         );
-        let built = scene_object(&scene, object, b, info, placed[id].clone(), &done, eye);
+        let toward = facing_target(object, b, &by_id)
+            .unwrap_or(Vector2::new(eye.x - b.center.x, eye.z - b.center.z));
+        let built = scene_object(&scene, object, b, info, placed[id].clone(), &done, toward);
         scene.objects.push(built);
     }
     scene.anchor = anchor(&scene, plan);
     scene
+}
+
+/// The direction (x, z) from box `b` to the box of what `object` is planned to face, when
+/// that was recovered.
+fn facing_target(
+    object: &PlannedObject,
+    b: &LiftedBox,
+    by_id: &BTreeMap<&str, &LiftedBox>,
+) -> Option<Vector2<f64>> {
+    object
+        .relations
+        .iter()
+        .filter(|r| r.kind == RelationKind::Facing)
+        .find_map(|r| by_id.get(r.target.as_str()))
+        .map(|t| Vector2::new(t.center.x - b.center.x, t.center.z - b.center.z))
+        .filter(|d| d.norm() > 1e-6)
 }
 
 /// An object's parent, support kind and, for one standing against a wall, that wall.
@@ -206,7 +225,7 @@ fn parents_first(
 }
 
 /// The scene object of box `b`: scaled to the box's height within the asset's range, turned
-/// to face out of its wall (or toward the camera at `eye`), standing on the floor or at the
+/// to face out of its wall (or along `toward`: what it faces, else the camera), standing on the floor or at the
 /// box's bottom, with the planned relations whose targets exist (`done`, the walls, the
 /// ground) and the wall it stands against.
 fn scene_object(
@@ -216,14 +235,14 @@ fn scene_object(
     info: &AssetInfo,
     (parent, support_kind, wall): Placed,
     done: &BTreeSet<String>,
-    eye: Point3<f64>,
+    toward: Vector2<f64>,
 ) -> SceneObject {
     let [sx, sy, sz] = info.size.map(f64::from);
     let [lo, hi] = info.scale_range.map(f64::from);
     let scale = (b.size().y / sy.max(1e-6)).clamp(lo.min(hi), hi.max(lo));
     let yaw = match backing_wall(&scene.architecture, b) {
         Some((_, inward)) => facing(b, inward),
-        None => facing(b, Vector2::new(eye.x - b.center.x, eye.z - b.center.z)),
+        None => facing(b, toward),
     };
     let on_floor = parent == ParentRef::Ground
         && (support_kind != RelationKind::AgainstWall || b.bottom() < 0.1);

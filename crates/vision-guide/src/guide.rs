@@ -13,7 +13,7 @@ use scenethesis_imagery::{
 use scenethesis_models::{
     ChatModel, DepthEstimator, ImageData, ImageEditRequest, ImageGenerator, Segmenter,
 };
-use scenethesis_scene_graph::{Architecture, AssetInfo, Material, Mesh, Scene};
+use scenethesis_scene_graph::{Architecture, AssetInfo, Material, Mesh, Scene, SurfaceKind};
 use scenethesis_vision::{lift_scene, LiftOptions, LiftedScene};
 
 use crate::adopt::{adopted_objects, new_objects, room_size};
@@ -617,6 +617,12 @@ impl VisionGuide {
                 (id.clone(), nalgebra::Vector3::new(x, y, z))
             })
             .collect();
+        options.tiers = infos
+            .iter()
+            .filter(|(id, i)| guidance.masks.contains_key(*id) && i.size[1] > 0.0)
+            .map(|(id, i)| (id.clone(), tiers(i)))
+            .filter(|(_, t)| !t.is_empty())
+            .collect();
         options.walls = architecture.walls.clone();
         options
     }
@@ -652,6 +658,18 @@ impl VisionGuide {
         }
         Ok(notes)
     }
+}
+
+/// The heights of an asset's shelves and inner floors that span at least half its footprint
+/// (boards, not a drawer's floor), as fractions of its height.
+fn tiers(info: &AssetInfo) -> Vec<f64> {
+    let footprint = info.size[0] * info.size[2];
+    info.support_surfaces
+        .iter()
+        .filter(|s| matches!(s.kind, SurfaceKind::Shelf | SurfaceKind::Interior))
+        .filter(|s| s.area() >= 0.5 * footprint)
+        .map(|s| f64::from(s.height / info.size[1]))
+        .collect()
 }
 
 /// Each planned object's asset metadata, by id; an object without an asset is an error.

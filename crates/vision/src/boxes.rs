@@ -21,7 +21,8 @@ use crate::points::{
     vertical_margins,
 };
 use crate::support::{
-    infer_supports_within, mount_on_walls, wall_offset, SupportGuess, SupportKind, MOUNT_WALL_REACH,
+    infer_supports_within, mount_on_walls, prefer_tiers, wall_offset, SupportGuess, SupportKind,
+    MOUNT_WALL_REACH,
 };
 use crate::LiftError;
 use scenethesis_imagery::{Camera, DepthMap, Guidance, Mask};
@@ -53,6 +54,10 @@ pub struct LiftOptions {
     /// Known full sizes `(x, y, z)` in metres per object id, in the object's own frame
     /// (+Z front): used to complete the hidden side and to pick the footprint's orientation.
     pub priors: BTreeMap<String, Vector3<f64>>,
+    /// Shelf and interior heights per object id, as fractions of the object's height (from
+    /// its asset): where a box standing on a box in a shelf bay really stands on the board
+    /// above it ([`crate::support::prefer_tiers`]). Empty when the assets are unknown.
+    pub tiers: BTreeMap<String, Vec<f64>>,
     /// Relative standard deviation of a prior's size (how far the real object may be scaled
     /// from it). The measured scale and the prior's are blended by their uncertainties: a
     /// precise measurement keeps its own size, a noisy one leans on the prior.
@@ -118,6 +123,7 @@ impl Default for LiftOptions {
             min_points: 12,
             calibrate_on_floor: true,
             priors: BTreeMap::new(),
+            tiers: BTreeMap::new(),
             prior_scale_sigma: 0.1,
             mask_boundary_px: 1.0,
             noisy_filter_radius: 2,
@@ -370,7 +376,8 @@ pub fn lift_scene(guidance: &Guidance, options: &LiftOptions) -> Result<LiftedSc
             None => missing.push(id.clone()),
         }
     }
-    let supports = infer_supports_within(&boxes, options.contact_gap, options.support_reach);
+    let mut supports = infer_supports_within(&boxes, options.contact_gap, options.support_reach);
+    prefer_tiers(&boxes, &mut supports, &options.tiers);
     if options.settle {
         settle(&mut boxes, &supports);
     }

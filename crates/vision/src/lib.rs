@@ -58,6 +58,6 @@ pub use cross_check::{cross_check, Decision, Evidence, SupportCheck};
 pub use error::LiftError;
 pub use footprint::{min_area_rectangle, FloorRectangle};
 pub use support::{
-    infer_supports, infer_supports_within, mount_on_walls, SupportGuess, SupportKind,
+    infer_supports, infer_supports_within, mount_on_walls, prefer_tiers, SupportGuess, SupportKind,
     MOUNT_MIN_BOTTOM, MOUNT_WALL_REACH,
 };

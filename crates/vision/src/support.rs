@@ -9,6 +9,8 @@
 //! lifting error). A box at the floor lying mostly over a larger low one (a mat, a towel, a
 //! pallet) rests on it.
 
+use std::collections::BTreeMap;
+
 use serde::{Deserialize, Serialize};
 
 use crate::footprint::FloorRectangle;
@@ -216,6 +218,66 @@ pub fn infer_supports_within(boxes: &[LiftedBox], gap: f64, reach: f64) -> Vec<S
     }
     out.sort_by(|a, b| a.id.cmp(&b.id));
     out
+}
+
+/// Boxes held by the floor, or *on* another box, that stand within a container's shelf
+/// instead: `tiers` holds each container's shelf and inner-floor heights as fractions of its
+/// height, by id (boards spanning most of its footprint). A box whose footprint lies mostly
+/// inside a container's moves onto the tier nearest its bottom among those at or above what
+/// holds it now and below its top, when that tier is nearer its bottom than its holder, or
+/// above its bottom (the board would cut through it). The boxes alone cannot see the boards,
+/// the container's asset can: a box that fills a shelf bay reaches up to the board above it,
+/// so a toy on that board is within the contact gap of both; a bottle on a bottom shelf whose
+/// lip hides its foot is lifted down to the floor under the shelf.
+pub fn prefer_tiers(
+    boxes: &[LiftedBox],
+    supports: &mut [SupportGuess],
+    tiers: &BTreeMap<String, Vec<f64>>,
+) {
+    if tiers.is_empty() {
+        return;
+    }
+    let by_id: BTreeMap<&str, &LiftedBox> = boxes.iter().map(|b| (b.id.as_str(), b)).collect();
+    for guess in supports.iter_mut() {
+        let Some(b) = by_id.get(guess.id.as_str()) else {
+            continue;
+        };
+        let held_at = match (guess.kind, guess.parent.as_deref()) {
+            (SupportKind::Ground | SupportKind::Under, _) => 0.0,
+            (SupportKind::On, Some(p)) => match by_id.get(p) {
+                Some(p) => p.top(),
+                None => continue,
+            },
+            _ => continue,
+        };
+        let holder_gap = (b.bottom() - held_at).abs();
+        let mut best: Option<(f64, &str)> = None;
+        for (id, levels) in tiers {
+            let Some(c) = by_id.get(id.as_str()).filter(|c| c.id != b.id) else {
+                continue;
+            };
+            if guess.parent.as_deref() == Some(id.as_str())
+                || b.footprint().fraction_inside(&c.footprint(), 0.05) < 0.6
+            {
+                continue;
+            }
+            for f in levels {
+                let t = c.bottom() + f * (c.top() - c.bottom());
+                let gap = (b.bottom() - t).abs();
+                let holds = t >= held_at - 1e-3 && t < b.top();
+                if holds
+                    && (gap < holder_gap || t > b.bottom())
+                    && best.is_none_or(|(g, _)| gap < g)
+                {
+                    best = Some((gap, id.as_str()));
+                }
+            }
+        }
+        if let Some((_, id)) = best {
+            guess.parent = Some(id.to_owned());
+            guess.kind = SupportKind::Inside;
+        }
+    }
 }
 
 /// The wall-mounting thresholds, whose one home is the scene graph's [`hangs_on_wall`] rule.
