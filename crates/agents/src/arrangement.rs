@@ -210,8 +210,15 @@ impl ArrangementRules {
     }
 
     /// The judged `faces` rules `category` is a subject of, as (targets, within metres): the
-    /// procedural guide puts such an object where it faces a target near it.
-    pub(crate) fn faces_of(&self, category: &str) -> Vec<(&[String], f64)> {
+    /// procedural guide puts such an object where it faces a target near it, and the vision
+    /// guide turns a recovered one toward the nearest target it sees.
+    ///
+    /// ```
+    /// use scenethesis_agents::arrangement::ArrangementRules;
+    /// let rules = ArrangementRules::builtin().faces_of("bar_stool");
+    /// assert!(rules.iter().any(|(targets, _)| targets.iter().any(|t| t == "bar_counter")));
+    /// ```
+    pub fn faces_of(&self, category: &str) -> Vec<(&[String], f64)> {
         self.faces
             .iter()
             .filter(|r| r.judge == Severity::Reject && r.subject.iter().any(|c| c == category))

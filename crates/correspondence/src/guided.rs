@@ -6,7 +6,7 @@ use std::cell::Cell;
 use std::time::Instant;
 
 use nalgebra::Point3;
-use scenethesis_scene_graph::{yaw_distance, Mesh, Pose, FACING_TOLERANCE};
+use scenethesis_scene_graph::{wrap_yaw, yaw_distance, Mesh, Pose, FACING_TOLERANCE};
 use serde::{Deserialize, Serialize};
 
 use crate::alignment::{FitOptions, PoseAlignment, ScalePrior};
@@ -28,7 +28,8 @@ pub struct GuidedSettings {
     pub hint_tie: f64,
     /// With a facing hint, only yaws within this many radians of it are tried, and a starting
     /// pose outside it is not kept: an object backed onto a wall faces out of it and one
-    /// facing another faces it (the judge allows 50°, [`FACING_TOLERANCE`]); a silhouette
+    /// facing another faces it (the judge allows 50°, [`FACING_TOLERANCE`]; the default window
+    /// is 30°); a silhouette
     /// that fits a little better turned away is a front/back confusion, not evidence.
     #[serde(default = "default_hint_window")]
     pub hint_window: f64,
@@ -109,8 +110,10 @@ impl GuidedSettings {
     }
 }
 
+/// Three fifths of the judge's facing tolerance: the object's target (or its own position)
+/// may still move after alignment, so the yaw must face it with room to spare.
 fn default_hint_window() -> f64 {
-    FACING_TOLERANCE
+    0.6 * FACING_TOLERANCE
 }
 
 fn default_refine_tolerance() -> f64 {
@@ -257,6 +260,7 @@ pub fn align_to_guidance(
         mask_window: Window::around(bbox, margin, w, h)?,
         scorer: ShapeMatcher::default(),
         deadline: settings.deadline(),
+        hint,
         cut: Cell::new(false),
     };
     let start_score = aligner.score_at(start);
@@ -349,6 +353,8 @@ struct Aligner<'a> {
     mask_window: Window,
     scorer: ShapeMatcher,
     deadline: Option<Instant>,
+    /// The facing hint, when there is one: no fit turns the object out of its window.
+    hint: Option<f64>,
     /// Set when the budget made a step be skipped.
     cut: Cell<bool>,
 }
@@ -543,7 +549,7 @@ impl Aligner<'_> {
                 break;
             }
             let fit = self.fit_options(scale_range, sigma);
-            let next = alignment.fit(&pose, &fit);
+            let next = self.within_hint(alignment.fit(&pose, &fit));
             let moved = (next.translation - pose.translation)
                 .norm()
                 .max((next.yaw - pose.yaw).abs())
@@ -560,6 +566,17 @@ impl Aligner<'_> {
             alignment,
             rounds,
         })
+    }
+
+    /// `pose` turned back, when a fit turned it more than the hint window away from the facing
+    /// hint, to the window's nearer edge (yaw kept continuous with `pose`'s).
+    fn within_hint(&self, mut pose: Pose) -> Pose {
+        if let Some(h) = self.hint {
+            let window = self.settings.hint_window;
+            let off = wrap_yaw(pose.yaw - h);
+            pose.yaw -= off - off.clamp(-window, window);
+        }
+        pose
     }
 
     /// The pose kept — the fitted one, unless it scores clearly worse than the best seen —

@@ -8,31 +8,49 @@
 //! - **Pose**: translation = the box's bottom centre (the asset frame's origin), scale = the
 //!   box height over the asset's, clamped to the asset's scale range, yaw = the box's yaw, or
 //!   the half turn of it that faces away from a wall the box backs onto (within 15 cm), else
-//!   toward the box of what the plan has it face, else toward the camera: a box alone cannot
-//!   tell front from back.
+//!   toward the box of what it faces, else toward the camera: a box alone cannot tell front
+//!   from back. What it faces is what the plan says, or for seating the nearest recovered
+//!   table, desk or counter it serves (an arrangement `faces` rule, within the rule's reach):
+//!   that becomes a `facing` relation, so the correspond stage's yaw search and the judge
+//!   hold it to it. A square box facing something may also turn a quarter.
 //! - **Against a wall**: a ground object whose box backs onto a wall within 15 cm.
 
 use std::collections::{BTreeMap, BTreeSet};
-use std::f64::consts::PI;
+use std::f64::consts::{FRAC_1_SQRT_2, PI};
 
 use nalgebra::{Point3, Vector2, Vector3};
+use scenethesis_agents::arrangement::ArrangementRules;
 use scenethesis_agents::{Plan, PlannedObject};
 use scenethesis_scene_graph::{
-    wrap_yaw, Aabb, Architecture, ParentRef, Pose, Relation, RelationKind, Scene, SceneObject,
-    GROUND_ID,
+    aabb_floor_gap, wrap_yaw, Aabb, Architecture, ParentRef, Pose, Relation, RelationKind, Scene,
+    SceneObject, GROUND_ID,
 };
 use scenethesis_scene_graph::{AssetInfo, Placement};
 use scenethesis_vision::{LiftedBox, SupportGuess, SupportKind};
 
 /// Largest gap between a box's back and a wall that still counts as backing onto it.
 pub const WALL_GAP: f64 = 0.15;
+/// Walls whose gaps to a box differ by at most this (metres) are a corner it stands in.
+const CORNER_TIE: f64 = 0.03;
+/// A box more than this (metres) inside a wall was lifted a quarter turn off.
+const WALL_DEEP: f64 = 0.1;
 
 /// The wall a footprint backs onto: `(wall id, inward normal)` of the nearest wall whose inner
-/// face is within [`WALL_GAP`] of the box.
-fn backing_wall(architecture: &Architecture, b: &LiftedBox) -> Option<(String, Vector2<f64>)> {
+/// face is within [`WALL_GAP`] of the box. In a corner (gaps within [`CORNER_TIE`]), an
+/// oblong asset (`size`, its front +Z) backs onto the wall its back lines: a shelving unit
+/// whose end touches the side wall still backs onto the wall behind it, a bed onto the wall
+/// at its head. A box more than [`WALL_DEEP`] inside a wall backs onto that one.
+fn backing_wall(
+    architecture: &Architecture,
+    b: &LiftedBox,
+    size: [f32; 3],
+) -> Option<(String, Vector2<f64>)> {
     let floor = &architecture.floor;
-    let corners = b.footprint().corners();
-    let mut best: Option<(f64, String, Vector2<f64>)> = None;
+    let footprint = b.footprint();
+    let corners = footprint.corners();
+    let depth_axis = back_axis(b, size);
+    // (gap, wall, inward normal, whether its back lines it) of the walls within reach.
+    let mut near: Vec<(f64, String, Vector2<f64>, bool)> = Vec::new();
     for wall in &architecture.walls {
         // Rectangular rooms: each wall lines one side of the floor rectangle.
         let mid = nalgebra::center(&wall.start, &wall.end);
@@ -53,22 +71,63 @@ fn backing_wall(architecture: &Architecture, b: &LiftedBox) -> Option<(String, V
             .iter()
             .map(|c| (c[axis] - face) * normal[axis])
             .fold(f64::INFINITY, f64::min);
-        if gap <= WALL_GAP && best.as_ref().is_none_or(|(g, _, _)| gap < *g) {
-            best = Some((gap, wall.id.clone(), normal));
+        if gap <= WALL_GAP {
+            let along = depth_axis.is_none_or(|a| a.dot(&normal).abs() >= FRAC_1_SQRT_2);
+            near.push((gap, wall.id.clone(), normal, along));
         }
     }
-    best.map(|(_, id, n)| (id, n))
+    let nearest = near.iter().map(|w| w.0).fold(f64::INFINITY, f64::min);
+    // A box deep in a wall is a quarter turn off (the lift read its length as its depth): it
+    // backs onto that wall. Else walls about as near (a corner) go by which one its back lines.
+    let tied = |gap: f64| nearest >= -WALL_DEEP && gap <= nearest.max(0.0) + CORNER_TIE;
+    near.into_iter()
+        .filter(|w| w.0 == nearest || tied(w.0))
+        .max_by(|a, b| {
+            (a.3, -a.0)
+                .partial_cmp(&(b.3, -b.0))
+                .unwrap_or(std::cmp::Ordering::Equal)
+        })
+        .map(|(_, id, n, _)| (id, n))
 }
 
-/// The yaw among `b.yaw` and `b.yaw + π` whose front (+Z turned by yaw) points most along
-/// `toward`.
-fn facing(b: &LiftedBox, toward: Vector2<f64>) -> f64 {
-    let front = |yaw: f64| Vector2::new(yaw.sin(), yaw.cos());
-    if front(b.yaw).dot(&toward) >= front(b.yaw + PI).dot(&toward) {
-        wrap_yaw(b.yaw)
-    } else {
-        wrap_yaw(b.yaw + PI)
+/// Footprints whose sides differ by at most this fraction count as square: their box cannot
+/// tell a quarter turn either.
+const SQUARE: f64 = 0.15;
+
+/// The box axis (world x, z) along which the asset of `size` (x, y, z) turned to the box's
+/// footprint looks front to back, when the asset is oblong: the box side that matches the
+/// asset's width runs along its back.
+fn back_axis(b: &LiftedBox, size: [f32; 3]) -> Option<Vector2<f64>> {
+    let (sx, sz) = (f64::from(size[0]), f64::from(size[2]));
+    if (sx - sz).abs() <= SQUARE * sx.max(sz) {
+        return None;
     }
+    let (w, d) = (b.half_extents.x, b.half_extents.z);
+    let footprint = b.footprint();
+    Some(if (w >= d) == (sx >= sz) {
+        footprint.axis_z()
+    } else {
+        footprint.axis_x()
+    })
+}
+
+/// The yaw among the box's turns (`b.yaw` and `b.yaw + π`; for a square box facing a target,
+/// every quarter turn) whose front (+Z turned by yaw) points most along `toward`.
+fn facing(b: &LiftedBox, toward: Vector2<f64>, quarter: bool) -> f64 {
+    let front = |yaw: f64| Vector2::new(yaw.sin(), yaw.cos());
+    let (w, d) = (b.half_extents.x, b.half_extents.z);
+    let square = quarter && (w - d).abs() <= SQUARE * w.max(d);
+    let turns: &[f64] = if square {
+        &[0.0, PI / 2.0, PI, -PI / 2.0]
+    } else {
+        &[0.0, PI]
+    };
+    let best = turns
+        .iter()
+        .map(|t| b.yaw + t)
+        .max_by(|a, c| front(*a).dot(&toward).total_cmp(&front(*c).dot(&toward)))
+        .unwrap_or(b.yaw);
+    wrap_yaw(best)
 }
 
 /// The scene of the recovered boxes. `infos` are the assets by planned id, `supports` the
@@ -104,29 +163,112 @@ pub fn build_scene(
             by_id[id.as_str()],
             &infos[id],
         );
-        let toward = facing_target(object, b, &by_id)
-            .unwrap_or(Vector2::new(eye.x - b.center.x, eye.z - b.center.z));
-        let built = scene_object(&scene, object, b, info, placed[id].clone(), &done, toward);
+        let faced = faced(plan, &placed, object, b, &by_id);
+        let built = scene_object(
+            &scene,
+            object,
+            b,
+            info,
+            placed[id].clone(),
+            &done,
+            Heading {
+                faced,
+                camera: Vector2::new(eye.x - b.center.x, eye.z - b.center.z),
+            },
+        );
         scene.objects.push(built);
     }
     scene.anchor = anchor(&scene, plan);
     scene
 }
 
-/// The direction (x, z) from box `b` to the box of what `object` is planned to face, when
-/// that was recovered.
-fn facing_target(
+/// What box `b` of `object` faces, when it was recovered: the target of a planned `facing`
+/// relation, else (for a floor object an arrangement `faces` rule makes face a table, desk or
+/// counter it serves) the nearest floor box of a target category within the rule's reach.
+/// Returns the target's id, whether the plan named it, and the direction (x, z) to it.
+fn faced(
+    plan: &Plan,
+    placed: &BTreeMap<String, Placed>,
     object: &PlannedObject,
     b: &LiftedBox,
     by_id: &BTreeMap<&str, &LiftedBox>,
-) -> Option<Vector2<f64>> {
-    object
+) -> Option<Faced> {
+    let toward = |t: &LiftedBox| {
+        Some(Vector2::new(
+            t.center.x - b.center.x,
+            t.center.z - b.center.z,
+        ))
+        .filter(|d| d.norm() > 1e-6)
+    };
+    let planned = object
         .relations
         .iter()
         .filter(|r| r.kind == RelationKind::Facing)
-        .find_map(|r| by_id.get(r.target.as_str()))
-        .map(|t| Vector2::new(t.center.x - b.center.x, t.center.z - b.center.z))
-        .filter(|d| d.norm() > 1e-6)
+        .find_map(|r| Some((r.target.clone(), toward(by_id.get(r.target.as_str())?)?)));
+    if let Some((target, direction)) = planned {
+        return Some(Faced {
+            target,
+            planned: true,
+            direction,
+        });
+    }
+    let on_floor = |id: &str| placed.get(id).is_some_and(|p| p.0 == ParentRef::Ground);
+    if !on_floor(&object.id) {
+        return None;
+    }
+    let mine = floor_box(b);
+    let mut best: Option<(f64, &LiftedBox)> = None;
+    for (targets, within) in ArrangementRules::builtin().faces_of(&object.category) {
+        for (id, t) in by_id {
+            let category = plan.object(id).map(|o| o.category.as_str());
+            if *id == object.id
+                || !on_floor(id)
+                || !category.is_some_and(|c| targets.iter().any(|x| x == c))
+            {
+                continue;
+            }
+            let gap = aabb_floor_gap(&mine, &floor_box(t));
+            if gap <= within && best.is_none_or(|(g, _)| gap < g) {
+                best = Some((gap, t));
+            }
+        }
+    }
+    let (_, t) = best?;
+    Some(Faced {
+        target: t.id.clone(),
+        planned: false,
+        direction: toward(t)?,
+    })
+}
+
+/// The world box of `b`'s footprint (flat, at the floor), as the judge's floor gaps measure.
+fn floor_box(b: &LiftedBox) -> Aabb {
+    let corners = b.footprint().corners();
+    let (xs, zs) = (corners.map(|c| c.x), corners.map(|c| c.y));
+    let lo = |v: [f64; 4]| v.into_iter().fold(f64::INFINITY, f64::min);
+    let hi = |v: [f64; 4]| v.into_iter().fold(f64::NEG_INFINITY, f64::max);
+    Aabb::new(
+        Point3::new(lo(xs), 0.0, lo(zs)),
+        Point3::new(hi(xs), 0.0, hi(zs)),
+    )
+}
+
+/// What a recovered object faces (see [`faced`]).
+struct Faced {
+    /// The target's id.
+    target: String,
+    /// Whether the plan has the `facing` relation (else the scene gains it).
+    planned: bool,
+    /// The direction (x, z) from the object's box to the target's.
+    direction: Vector2<f64>,
+}
+
+/// What turns a box that backs onto no wall: what it faces, else the camera.
+struct Heading {
+    /// What it faces, when anything.
+    faced: Option<Faced>,
+    /// The direction (x, z) from the box to the camera.
+    camera: Vector2<f64>,
 }
 
 /// An object's parent, support kind and, for one standing against a wall, that wall.
@@ -144,7 +286,9 @@ fn placement(
     b: &LiftedBox,
     guess: Option<&SupportGuess>,
 ) -> Placed {
-    let wall = backing_wall(architecture, b);
+    // Without its asset (never in a planned scene), the box's own sides decide nothing.
+    let size = infos.get(&object.id).map_or([1.0; 3], |i| i.size);
+    let wall = backing_wall(architecture, b, size);
     match guess.map(|g| (g.kind, g.parent.clone())) {
         Some((SupportKind::On, Some(p))) => (ParentRef::Object(p), RelationKind::On, None),
         Some((SupportKind::Inside, Some(p))) => (ParentRef::Object(p), RelationKind::Inside, None),
@@ -225,8 +369,8 @@ fn parents_first(
 }
 
 /// The scene object of box `b`: scaled to the box's height within the asset's range, turned
-/// to face out of its wall (or along `toward`: what it faces, else the camera), standing on the floor or at the
-/// box's bottom, with the planned relations whose targets exist (`done`, the walls, the
+/// to face out of its wall (else by its `heading`: what it faces, else the camera), standing
+/// on the floor or at the box's bottom, with the planned relations whose targets exist (`done`, the walls, the
 /// ground) and the wall it stands against.
 fn scene_object(
     scene: &Scene,
@@ -235,14 +379,16 @@ fn scene_object(
     info: &AssetInfo,
     (parent, support_kind, wall): Placed,
     done: &BTreeSet<String>,
-    toward: Vector2<f64>,
+    heading: Heading,
 ) -> SceneObject {
+    let Heading { faced, camera } = heading;
     let [sx, sy, sz] = info.size.map(f64::from);
     let [lo, hi] = info.scale_range.map(f64::from);
     let scale = (b.size().y / sy.max(1e-6)).clamp(lo.min(hi), hi.max(lo));
-    let yaw = match backing_wall(&scene.architecture, b) {
-        Some((_, inward)) => facing(b, inward),
-        None => facing(b, toward),
+    let yaw = match (backing_wall(&scene.architecture, b, info.size), &faced) {
+        (Some((_, inward)), _) => facing(b, inward, false),
+        (None, Some(f)) => facing(b, f.direction, true),
+        (None, None) => facing(b, camera, false),
     };
     let on_floor = parent == ParentRef::Ground
         && (support_kind != RelationKind::AgainstWall || b.bottom() < 0.1);
@@ -260,6 +406,9 @@ fn scene_object(
         .collect();
     if let Some(w) = wall {
         relations.insert(0, Relation::new(RelationKind::AgainstWall, w));
+    }
+    if let Some(f) = faced.filter(|f| !f.planned && done.contains(&f.target)) {
+        relations.push(Relation::new(RelationKind::Facing, f.target));
     }
     let support_kind = if support_kind == RelationKind::AgainstWall
         && !relations
@@ -304,5 +453,63 @@ fn anchor(scene: &Scene, plan: &Plan) -> Option<String> {
             .iter()
             .find(|o| o.parent == ParentRef::Ground)
             .map(|o| o.id.clone())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use scenethesis_scene_graph::yaw_distance;
+
+    /// A room 4 m × 6 m (x from −2 to 2, z from −3 to 3) and the wall whose inward normal is
+    /// `normal`.
+    fn room_and_wall(normal: Vector2<f64>) -> (Architecture, String) {
+        let room = Architecture::rectangular_room(4.0, 6.0, 2.6, 0.9);
+        let id = room
+            .walls
+            .iter()
+            .find(|w| (w.inward_normal() - normal).norm() < 1e-6)
+            .expect("a wall with that normal")
+            .id
+            .clone();
+        (room, id)
+    }
+
+    #[test]
+    fn in_a_corner_an_oblong_asset_backs_onto_the_wall_along_its_back() {
+        let shelf = [1.0, 1.8, 0.4];
+        // A shelving unit in the back-right corner, its end 1 cm into the side wall.
+        let b = LiftedBox::axis_aligned("shelf", [1.51, 0.9, -2.8], [0.5, 0.9, 0.2]);
+        let (room, back) = room_and_wall(Vector2::new(0.0, 1.0));
+        assert_eq!(backing_wall(&room, &b, shelf).map(|w| w.0), Some(back));
+        // A bed (long in its own z) in the same corner, its head against the side wall.
+        let bed = LiftedBox::axis_aligned("bed", [0.99, 0.3, -2.2], [1.0, 0.3, 0.8]);
+        let (_, side) = room_and_wall(Vector2::new(-1.0, 0.0));
+        assert_eq!(
+            backing_wall(&room, &bed, [1.6, 0.6, 2.0]).map(|w| w.0),
+            Some(side)
+        );
+    }
+
+    #[test]
+    fn a_box_deep_in_a_wall_backs_onto_it() {
+        // Lifted a quarter turn off: its length pokes 30 cm into the side wall.
+        let b = LiftedBox::axis_aligned("shelf", [1.8, 0.9, -2.7], [0.5, 0.9, 0.25]);
+        let (room, side) = room_and_wall(Vector2::new(-1.0, 0.0));
+        assert_eq!(
+            backing_wall(&room, &b, [1.0, 1.8, 0.5]).map(|w| w.0),
+            Some(side)
+        );
+    }
+
+    #[test]
+    fn seating_faces_the_table_it_serves_even_turned_a_quarter() {
+        // A square stool's box cannot tell a quarter turn: facing a target picks the turn.
+        let stool = LiftedBox::axis_aligned("bar_stool_0", [0.0, 0.35, 0.0], [0.2, 0.35, 0.2]);
+        let yaw = facing(&stool, Vector2::new(-1.0, 0.0), true);
+        assert!(yaw_distance(yaw, -PI / 2.0) < 1e-9, "{yaw}");
+        // Without a target only the half turn is free.
+        let yaw = facing(&stool, Vector2::new(-1.0, 0.1), false);
+        assert!(yaw_distance(yaw, 0.0) < 1e-9 || yaw_distance(yaw, PI) < 1e-9);
     }
 }

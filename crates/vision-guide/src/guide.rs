@@ -660,15 +660,32 @@ impl VisionGuide {
     }
 }
 
+/// Surfaces within this many metres of each other's height are one board (the bays of a
+/// shelving unit divided by uprights).
+const TIER_BAND: f32 = 0.01;
+
 /// The heights of an asset's shelves and inner floors that span at least half its footprint
-/// (boards, not a drawer's floor), as fractions of its height.
+/// together at one height (boards, bays side by side, not a drawer's floor), as fractions of
+/// its height.
 fn tiers(info: &AssetInfo) -> Vec<f64> {
     let footprint = info.size[0] * info.size[2];
-    info.support_surfaces
+    let mut levels: Vec<(f32, f32)> = Vec::new();
+    let mut boards: Vec<_> = info
+        .support_surfaces
         .iter()
         .filter(|s| matches!(s.kind, SurfaceKind::Shelf | SurfaceKind::Interior))
-        .filter(|s| s.area() >= 0.5 * footprint)
-        .map(|s| f64::from(s.height / info.size[1]))
+        .collect();
+    boards.sort_by(|a, b| a.height.total_cmp(&b.height));
+    for s in boards {
+        match levels.last_mut() {
+            Some((h, area)) if s.height - *h <= TIER_BAND => *area += s.area(),
+            _ => levels.push((s.height, s.area())),
+        }
+    }
+    levels
+        .into_iter()
+        .filter(|&(_, area)| area >= 0.5 * footprint)
+        .map(|(h, _)| f64::from(h / info.size[1]))
         .collect()
 }
 

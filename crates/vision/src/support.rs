@@ -220,7 +220,7 @@ pub fn infer_supports_within(boxes: &[LiftedBox], gap: f64, reach: f64) -> Vec<S
     out
 }
 
-/// Boxes held by the floor, or *on* another box, that stand within a container's shelf
+/// Boxes held by the floor (beside a container or lifted *under* it), or *on* another box,
 /// instead: `tiers` holds each container's shelf and inner-floor heights as fractions of its
 /// height, by id (boards spanning most of its footprint). A box whose footprint lies mostly
 /// inside a container's moves onto the tier nearest its bottom among those at or above what
@@ -256,9 +256,9 @@ pub fn prefer_tiers(
             let Some(c) = by_id.get(id.as_str()).filter(|c| c.id != b.id) else {
                 continue;
             };
-            if guess.parent.as_deref() == Some(id.as_str())
-                || b.footprint().fraction_inside(&c.footprint(), 0.05) < 0.6
-            {
+            let on_it =
+                guess.kind == SupportKind::On && guess.parent.as_deref() == Some(id.as_str());
+            if on_it || b.footprint().fraction_inside(&c.footprint(), 0.05) < 0.6 {
                 continue;
             }
             for f in levels {
