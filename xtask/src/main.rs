@@ -12,16 +12,18 @@
 //!   the density and physics of the benchmark scenes over seeds 0–2 (`density/…`: objects and
 //!   small objects per scene, Col-O, Col-arch, Inst-O, Walk, Reach, acceptance) and the time of
 //!   a five-room apartment with previews over seeds 0–4 (`houses/five_room_apartment`), and
-//!   the seconds per benchmark scene without and with previews over seeds 0–2 (`speed/…`).
-//!   Naming only those sections (`roundtrip`, `rooms`, `throughput`, `density`, `speed`,
-//!   `houses`)
-//!   skips the criterion runs.
+//!   the seconds per benchmark scene without and with previews over seeds 0–2 (`speed/…`),
+//!   and the vision path against the offline one per benchmark prompt (`vision/…`: seconds
+//!   from guidance files against offline, and with a generic prompt the share of the image's
+//!   objects recovered within 10 cm). Naming only those sections (`roundtrip`, `rooms`,
+//!   `throughput`, `density`, `speed`, `houses`, `vision`) skips the criterion runs.
 
 mod density;
 mod houses;
 mod rooms;
 mod speed;
 mod throughput;
+mod vision;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -114,6 +116,9 @@ fn bench(args: &[String]) -> Result<()> {
     if filter.is_empty() || filter.contains(&"houses") {
         houses::add_houses(&root, &target, json_out, &mut figures)?;
     }
+    if filter.is_empty() || filter.contains(&"vision") {
+        vision::add_vision(&root, &target, json_out, &mut figures)?;
+    }
     if filter.is_empty() || filter.contains(&"throughput") {
         let exe = release_cli(&root, &target, json_out)?;
         throughput::add_throughput(&root, &target, &exe, &mut figures)?;
@@ -132,13 +137,14 @@ fn bench(args: &[String]) -> Result<()> {
 }
 
 /// The sections `bench` runs itself (not through criterion).
-const SECTIONS: [&str; 6] = [
+const SECTIONS: [&str; 7] = [
     "roundtrip",
     "rooms",
     "throughput",
     "density",
     "speed",
     "houses",
+    "vision",
 ];
 
 /// Runs every crate's criterion benchmarks in release mode (bench targets only), filtered.
