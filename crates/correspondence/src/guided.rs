@@ -29,8 +29,8 @@ pub struct GuidedSettings {
     /// With a facing hint, only yaws within this many radians of it are tried, and a starting
     /// pose outside it is not kept: an object backed onto a wall faces out of it and one
     /// facing another faces it (the judge allows 50°, [`FACING_TOLERANCE`]; the default window
-    /// is 30°); a silhouette
-    /// that fits a little better turned away is a front/back confusion, not evidence.
+    /// is 30°); a silhouette that fits a little better turned away is a front/back
+    /// confusion, not evidence.
     #[serde(default = "default_hint_window")]
     pub hint_window: f64,
     /// The yaw hypotheses are first ranked on views subsampled by this stride (1: every
@@ -265,9 +265,9 @@ pub fn align_to_guidance(
     };
     let start_score = aligner.score_at(start);
     let mut best = (*start, start_score);
-    let fits_hint = |p: &Pose| hint.is_none_or(|h| yaw_distance(p.yaw, h) <= settings.hint_window);
+    let fits_hint = |p: &Pose| aligner.fits_hint(p.yaw);
     if settings.yaw_candidates > 1 && !aligner.over() {
-        if let Some(found) = aligner.best_yaw(start, hint) {
+        if let Some(found) = aligner.best_yaw(start) {
             if found.1.score > best.1.score || (!fits_hint(start) && fits_hint(&found.0)) {
                 best = found;
             }
@@ -449,17 +449,14 @@ impl Aligner<'_> {
     }
 
     /// The yaw hypotheses over the full turn from `start` (a coarse pass first when set),
-    /// the pick among them (a facing `hint` settling ties), and its score.
-    fn best_yaw(&self, start: &Pose, hint: Option<f64>) -> Option<(Pose, ShapeScore)> {
+    /// the pick among them (the facing hint settling ties and bounding them to its window), and its score.
+    fn best_yaw(&self, start: &Pose) -> Option<(Pose, ShapeScore)> {
         let (mesh, camera, target, settings) =
             (self.mesh, self.target.camera, self.target, self.settings);
         let (w, h) = (camera.intrinsics.width, camera.intrinsics.height);
         let step = std::f64::consts::TAU / settings.yaw_candidates as f64;
         let all = (0..settings.yaw_candidates).map(|k| start.yaw + k as f64 * step);
-        let within: Vec<f64> = all
-            .clone()
-            .filter(|&y| hint.is_none_or(|h| yaw_distance(y, h) <= settings.hint_window))
-            .collect();
+        let within: Vec<f64> = all.clone().filter(|&y| self.fits_hint(y)).collect();
         let yaws: Vec<f64> = if within.is_empty() {
             all.collect()
         } else {
@@ -504,7 +501,7 @@ impl Aligner<'_> {
         } else {
             search_yaw(mesh, start, camera, target, window, &yaws, scorer)
         };
-        let pick = pick_yaw(&candidates, hint, settings.hint_tie)?;
+        let pick = pick_yaw(&candidates, self.hint, settings.hint_tie)?;
         Some((pick.pose, self.score_at(&pick.pose)))
     }
 
@@ -566,6 +563,12 @@ impl Aligner<'_> {
             alignment,
             rounds,
         })
+    }
+
+    /// Whether `yaw` lies within the hint window of the facing hint (any yaw without one).
+    fn fits_hint(&self, yaw: f64) -> bool {
+        self.hint
+            .is_none_or(|h| yaw_distance(yaw, h) <= self.settings.hint_window)
     }
 
     /// `pose` turned back, when a fit turned it more than the hint window away from the facing

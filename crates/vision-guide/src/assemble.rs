@@ -82,11 +82,7 @@ fn backing_wall(
     let tied = |gap: f64| nearest >= -WALL_DEEP && gap <= nearest.max(0.0) + CORNER_TIE;
     near.into_iter()
         .filter(|w| w.0 == nearest || tied(w.0))
-        .max_by(|a, b| {
-            (a.3, -a.0)
-                .partial_cmp(&(b.3, -b.0))
-                .unwrap_or(std::cmp::Ordering::Equal)
-        })
+        .max_by(|a, b| a.3.cmp(&b.3).then(b.0.total_cmp(&a.0)))
         .map(|(_, id, n, _)| (id, n))
 }
 
@@ -94,12 +90,17 @@ fn backing_wall(
 /// tell a quarter turn either.
 const SQUARE: f64 = 0.15;
 
+/// Whether sides `a` and `b` make a square footprint (within [`SQUARE`]).
+fn square(a: f64, b: f64) -> bool {
+    (a - b).abs() <= SQUARE * a.max(b)
+}
+
 /// The box axis (world x, z) along which the asset of `size` (x, y, z) turned to the box's
 /// footprint looks front to back, when the asset is oblong: the box side that matches the
 /// asset's width runs along its back.
 fn back_axis(b: &LiftedBox, size: [f32; 3]) -> Option<Vector2<f64>> {
     let (sx, sz) = (f64::from(size[0]), f64::from(size[2]));
-    if (sx - sz).abs() <= SQUARE * sx.max(sz) {
+    if square(sx, sz) {
         return None;
     }
     let (w, d) = (b.half_extents.x, b.half_extents.z);
@@ -115,9 +116,7 @@ fn back_axis(b: &LiftedBox, size: [f32; 3]) -> Option<Vector2<f64>> {
 /// every quarter turn) whose front (+Z turned by yaw) points most along `toward`.
 fn facing(b: &LiftedBox, toward: Vector2<f64>, quarter: bool) -> f64 {
     let front = |yaw: f64| Vector2::new(yaw.sin(), yaw.cos());
-    let (w, d) = (b.half_extents.x, b.half_extents.z);
-    let square = quarter && (w - d).abs() <= SQUARE * w.max(d);
-    let turns: &[f64] = if square {
+    let turns: &[f64] = if quarter && square(b.half_extents.x, b.half_extents.z) {
         &[0.0, PI / 2.0, PI, -PI / 2.0]
     } else {
         &[0.0, PI]
