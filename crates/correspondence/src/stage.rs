@@ -17,7 +17,8 @@ use crate::matcher::{Matcher, TargetRegion};
 
 /// The yaw that turns `object`'s front (+Z) the way the plan says, when it says so: toward the
 /// target of a `facing` relation (an object of `scene`), or away from the wall of an
-/// `against-wall` relation. This settles the front/back ambiguity of silhouettes.
+/// `against-wall` relation; for a square footprint, toward what stands in front of it
+/// ([`fronted_by`]). This settles the front/back ambiguity of silhouettes.
 pub fn facing_hint(scene: &Scene, object: &SceneObject) -> Option<f64> {
     let here = object.pose.translation;
     for r in &object.relations {
@@ -39,7 +40,41 @@ pub fn facing_hint(scene: &Scene, object: &SceneObject) -> Option<f64> {
             _ => {}
         }
     }
-    None
+    fronted_by(scene, object)
+}
+
+/// Footprints whose sides differ by at most this fraction are square: their silhouette
+/// cannot tell their front.
+const SQUARE: f64 = 0.15;
+
+/// For a square-footprint object (a round beach umbrella, a square side table), whose
+/// silhouette shows no front, the yaw toward what the scene places *in front of* it and away
+/// from what it places *behind* it (unit directions summed); `None` otherwise.
+fn fronted_by(scene: &Scene, object: &SceneObject) -> Option<f64> {
+    let size = object.local_bounds.size();
+    if (size.x - size.z).abs() > SQUARE * size.x.max(size.z) {
+        return None;
+    }
+    let here = object.pose.translation;
+    let mut sum = (0.0, 0.0);
+    for o in scene.objects.iter().filter(|o| o.id != object.id) {
+        let sign = o
+            .relations
+            .iter()
+            .filter(|r| r.target == object.id)
+            .find_map(|r| match r.kind {
+                RelationKind::InFrontOf => Some(1.0),
+                RelationKind::Behind => Some(-1.0),
+                _ => None,
+            });
+        let d = o.pose.translation - here;
+        let length = d.x.hypot(d.z);
+        if let Some(sign) = sign.filter(|_| length > 1e-6) {
+            sum.0 += sign * d.x / length;
+            sum.1 += sign * d.z / length;
+        }
+    }
+    (sum.0.hypot(sum.1) > 1e-6).then(|| sum.0.atan2(sum.1))
 }
 
 /// Aligns every object of `scene` that has a mesh in `meshes` and a mask in `guidance`,
@@ -117,4 +152,60 @@ pub fn kept_lift(guided: &BTreeMap<String, GuidedPose>) -> Vec<KeptLift> {
             })
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{Point3, Vector3};
+    use scenethesis_scene_graph::{
+        yaw_distance, Aabb, Architecture, AssetRef, JointState, ParentRef, Pose, Relation,
+    };
+
+    fn object(id: &str, half: [f64; 2], at: [f64; 2], relations: Vec<Relation>) -> SceneObject {
+        SceneObject {
+            id: id.into(),
+            category: id.into(),
+            asset: AssetRef::Procedural {
+                generator: "box".into(),
+                seed: 0,
+                look: Default::default(),
+            },
+            pose: Pose::new(1.0, 0.0, Vector3::new(at[0], 0.0, at[1])),
+            parent: ParentRef::Ground,
+            support: RelationKind::OnFloor,
+            relations,
+            local_bounds: Aabb::new(
+                Point3::new(-half[0], 0.0, -half[1]),
+                Point3::new(half[0], 1.0, half[1]),
+            ),
+            joints: JointState::all_closed(&[]),
+            parent_link: None,
+            room: None,
+        }
+    }
+
+    #[test]
+    fn a_square_object_faces_what_stands_in_front_of_it_and_away_from_what_is_behind() {
+        let mut scene = Scene::new(Architecture::rectangular_room(8.0, 8.0, 2.8, 0.9));
+        let in_front = |t: &str| vec![Relation::new(RelationKind::InFrontOf, t)];
+        scene.objects = vec![
+            object("umbrella", [1.0, 1.0], [0.0, 0.0], vec![]),
+            object("towel_0", [0.9, 0.4], [0.5, -2.3], in_front("umbrella")),
+            object("towel_1", [0.9, 0.4], [-0.5, -2.3], in_front("umbrella")),
+            object(
+                "cooler",
+                [0.3, 0.2],
+                [0.0, 1.6],
+                vec![Relation::new(RelationKind::Behind, "umbrella")],
+            ),
+            object("bench", [1.0, 0.3], [0.0, 3.0], vec![]),
+        ];
+        let hint = facing_hint(&scene, &scene.objects[0]).unwrap();
+        assert!(yaw_distance(hint, std::f64::consts::PI) < 1e-9, "{hint}");
+        // An oblong object's silhouette shows its front: no hint from what stands around it.
+        scene.objects[4] = object("bench", [1.0, 0.3], [0.0, 3.0], vec![]);
+        scene.objects[1].relations = in_front("bench");
+        assert_eq!(facing_hint(&scene, &scene.objects[4]), None);
+    }
 }

@@ -216,6 +216,9 @@ struct Attempts {
     was_stable: bool,
     best: Option<(Pose, Score)>,
     spent: usize,
+    /// Whether a toppling object reached a stable pose clear of its holders (pressing only
+    /// into siblings, which make room in their turn).
+    rests_clear: bool,
 }
 
 impl Resettle<'_> {
@@ -233,6 +236,7 @@ impl Resettle<'_> {
             was_stable: self.stable(&before),
             best: None,
             spent: 0,
+            rests_clear: false,
         };
         let outcome = self
             .optimizer
@@ -244,7 +248,7 @@ impl Resettle<'_> {
         }
         // Clear of its holder and pressing only into siblings, it waits for them to make
         // room (next round); still pressed into its holder, it turns.
-        if !attempts.best.is_some_and(|(_, b)| b.0 <= tol.penetration) {
+        if !attempts.rests_clear && !attempts.best.is_some_and(|(_, b)| b.0 <= tol.penetration) {
             if let Some(j) = self.tree.parent_of[self.i] {
                 self.try_holder_turns(&mut attempts, start, poses[j].yaw);
             }
@@ -324,6 +328,9 @@ impl Resettle<'_> {
 
     /// Keeps `p` (scoring `s`) when acceptable and better than the best so far.
     fn consider(&self, attempts: &mut Attempts, p: Pose, s: Score) {
+        if self.topples && s.0 <= self.input.tolerances.penetration && self.stable(&p) {
+            attempts.rests_clear = true;
+        }
         if self.acceptable(attempts, &p, s)
             && attempts.best.is_none_or(|(_, b)| {
                 (self.resolved(s), -s.0, -s.1) > (self.resolved(b), -b.0, -b.1)

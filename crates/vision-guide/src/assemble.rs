@@ -30,13 +30,31 @@ use scenethesis_vision::{LiftedBox, SupportGuess, SupportKind};
 
 /// Largest gap between a box's back and a wall that still counts as backing onto it.
 pub const WALL_GAP: f64 = 0.15;
+/// The same for an object the plan puts against a wall: seen only at the image's edge (a
+/// standing mirror on the wall behind the camera), its box comes out farther off.
+const PLANNED_WALL_GAP: f64 = 0.35;
+
+/// How far (metres) from a wall `object`'s box may back onto it: [`PLANNED_WALL_GAP`] when the
+/// plan puts it against a wall, else [`WALL_GAP`].
+fn wall_reach(object: &PlannedObject) -> f64 {
+    if object.support == RelationKind::AgainstWall
+        || object
+            .relations
+            .iter()
+            .any(|r| r.kind == RelationKind::AgainstWall)
+    {
+        PLANNED_WALL_GAP
+    } else {
+        WALL_GAP
+    }
+}
 /// Walls whose gaps to a box differ by at most this (metres) are a corner it stands in.
 const CORNER_TIE: f64 = 0.03;
 /// A box more than this (metres) inside a wall was lifted a quarter turn off.
 const WALL_DEEP: f64 = 0.1;
 
 /// The wall a footprint backs onto: `(wall id, inward normal)` of the nearest wall whose inner
-/// face is within [`WALL_GAP`] of the box. In a corner (gaps within [`CORNER_TIE`]), an
+/// face is within `reach` of the box ([`wall_reach`]). In a corner (gaps within [`CORNER_TIE`]), an
 /// oblong asset (`size`, its front +Z) backs onto the wall its back lines: a shelving unit
 /// whose end touches the side wall still backs onto the wall behind it, a bed onto the wall
 /// at its head. A box more than [`WALL_DEEP`] inside a wall backs onto that one.
@@ -44,6 +62,7 @@ fn backing_wall(
     architecture: &Architecture,
     b: &LiftedBox,
     size: [f32; 3],
+    reach: f64,
 ) -> Option<(String, Vector2<f64>)> {
     let floor = &architecture.floor;
     let footprint = b.footprint();
@@ -71,7 +90,7 @@ fn backing_wall(
             .iter()
             .map(|c| (c[axis] - face) * normal[axis])
             .fold(f64::INFINITY, f64::min);
-        if gap <= WALL_GAP {
+        if gap <= reach {
             let along = depth_axis.is_none_or(|a| a.dot(&normal).abs() >= FRAC_1_SQRT_2);
             near.push((gap, wall.id.clone(), normal, along));
         }
@@ -287,7 +306,7 @@ fn placement(
 ) -> Placed {
     // Without its asset (never in a planned scene), the box's own sides decide nothing.
     let size = infos.get(&object.id).map_or([1.0; 3], |i| i.size);
-    let wall = backing_wall(architecture, b, size);
+    let wall = backing_wall(architecture, b, size, wall_reach(object));
     match guess.map(|g| (g.kind, g.parent.clone())) {
         Some((SupportKind::On, Some(p))) => (ParentRef::Object(p), RelationKind::On, None),
         Some((SupportKind::Inside, Some(p))) => (ParentRef::Object(p), RelationKind::Inside, None),
@@ -384,7 +403,8 @@ fn scene_object(
     let [sx, sy, sz] = info.size.map(f64::from);
     let [lo, hi] = info.scale_range.map(f64::from);
     let scale = (b.size().y / sy.max(1e-6)).clamp(lo.min(hi), hi.max(lo));
-    let yaw = match (backing_wall(&scene.architecture, b, info.size), &faced) {
+    let backing = backing_wall(&scene.architecture, b, info.size, wall_reach(object));
+    let yaw = match (backing, &faced) {
         (Some((_, inward)), _) => facing(b, inward, false),
         (None, Some(f)) => facing(b, f.direction, true),
         (None, None) => facing(b, camera, false),
@@ -475,17 +495,31 @@ mod tests {
     }
 
     #[test]
+    fn a_box_the_plan_puts_against_a_wall_backs_onto_it_from_farther() {
+        // A standing mirror seen at the image's edge: its box 26 cm off the front wall.
+        let (room, front) = room_and_wall(Vector2::new(0.0, -1.0));
+        let mirror = LiftedBox::axis_aligned("mirror", [1.0, 0.85, 2.49], [0.38, 0.85, 0.25]);
+        let size = [0.77, 1.69, 0.5];
+        assert_eq!(backing_wall(&room, &mirror, size, WALL_GAP), None);
+        let found = backing_wall(&room, &mirror, size, PLANNED_WALL_GAP);
+        assert_eq!(found.map(|w| w.0), Some(front));
+    }
+
+    #[test]
     fn in_a_corner_an_oblong_asset_backs_onto_the_wall_along_its_back() {
         let shelf = [1.0, 1.8, 0.4];
         // A shelving unit in the back-right corner, its end 1 cm into the side wall.
         let b = LiftedBox::axis_aligned("shelf", [1.51, 0.9, -2.8], [0.5, 0.9, 0.2]);
         let (room, back) = room_and_wall(Vector2::new(0.0, 1.0));
-        assert_eq!(backing_wall(&room, &b, shelf).map(|w| w.0), Some(back));
+        assert_eq!(
+            backing_wall(&room, &b, shelf, WALL_GAP).map(|w| w.0),
+            Some(back)
+        );
         // A bed (long in its own z) in the same corner, its head against the side wall.
         let bed = LiftedBox::axis_aligned("bed", [0.99, 0.3, -2.2], [1.0, 0.3, 0.8]);
         let (_, side) = room_and_wall(Vector2::new(-1.0, 0.0));
         assert_eq!(
-            backing_wall(&room, &bed, [1.6, 0.6, 2.0]).map(|w| w.0),
+            backing_wall(&room, &bed, [1.6, 0.6, 2.0], WALL_GAP).map(|w| w.0),
             Some(side)
         );
     }
@@ -496,7 +530,7 @@ mod tests {
         let b = LiftedBox::axis_aligned("shelf", [1.8, 0.9, -2.7], [0.5, 0.9, 0.25]);
         let (room, side) = room_and_wall(Vector2::new(-1.0, 0.0));
         assert_eq!(
-            backing_wall(&room, &b, [1.0, 1.8, 0.5]).map(|w| w.0),
+            backing_wall(&room, &b, [1.0, 1.8, 0.5], WALL_GAP).map(|w| w.0),
             Some(side)
         );
     }

@@ -14,7 +14,7 @@ use scenethesis_models::{
     ChatModel, DepthEstimator, ImageData, ImageEditRequest, ImageGenerator, Segmenter,
 };
 use scenethesis_scene_graph::{Architecture, AssetInfo, Material, Mesh, Scene, SurfaceKind};
-use scenethesis_vision::{lift_scene, LiftOptions, LiftedScene};
+use scenethesis_vision::{lift_scene, LiftOptions, LiftedScene, SupportGuess, SupportKind};
 
 use crate::adopt::{adopted_objects, new_objects, room_size};
 use crate::assemble::build_scene;
@@ -460,6 +460,7 @@ impl Guide for VisionGuide {
             lift_scene(&guidance, &options).map_err(|e| provider("lift", e.to_string()))?;
         let mut notes =
             self.cross_check_supports(plan, &mut lifted, &options, &image_data, seed)?;
+        rest_on_hollowless(&mut lifted.supports, &infos);
         let mut left_out = unplaced(plan, &lifted);
         if lifted.boxes.is_empty() {
             return Err(provider(
@@ -687,6 +688,29 @@ fn tiers(info: &AssetInfo) -> Vec<f64> {
         .filter(|&(_, area)| area >= 0.5 * footprint)
         .map(|(h, _)| f64::from(h / info.size[1]))
         .collect()
+}
+
+/// A box lifted *inside* a parent whose asset has nothing to be inside of (no shelf, no inner
+/// floor: a towel on a camping chair's sling, its bottom found below the sling's rim) rests
+/// *on* it instead, on the surface nearest its bottom.
+fn rest_on_hollowless(supports: &mut [SupportGuess], infos: &BTreeMap<String, AssetInfo>) {
+    for guess in supports
+        .iter_mut()
+        .filter(|g| g.kind == SupportKind::Inside)
+    {
+        let hollow = guess
+            .parent
+            .as_ref()
+            .and_then(|p| infos.get(p))
+            .is_none_or(|info| {
+                info.support_surfaces
+                    .iter()
+                    .any(|s| matches!(s.kind, SurfaceKind::Shelf | SurfaceKind::Interior))
+            });
+        if !hollow {
+            guess.kind = SupportKind::On;
+        }
+    }
 }
 
 /// Each planned object's asset metadata, by id; an object without an asset is an error.

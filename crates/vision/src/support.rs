@@ -50,9 +50,10 @@ pub struct SupportGuess {
     pub kind: SupportKind,
 }
 
-/// The box a floor-standing box `i` stands under: the lowest-topped box taller than it whose
-/// footprint covers at least 60 % of its own and that does not itself reach down around it
-/// (its bottom may be on the floor, as table legs are).
+/// The box a floor-standing box `i` stands under: among the boxes taller than it whose
+/// footprint covers at least 60 % of its own, the one standing lowest (its bottom may be on
+/// the floor, as table legs are), then the lowest-topped: a toolbox on a workbench covers the
+/// paint can under the workbench too, and a workbench with a pegboard tops out above it.
 fn under(boxes: &[LiftedBox], i: usize) -> Option<usize> {
     let b = &boxes[i];
     let foot = b.footprint();
@@ -65,12 +66,20 @@ fn under(boxes: &[LiftedBox], i: usize) -> Option<usize> {
         if a.footprint().area() <= foot.area() {
             continue;
         }
-        if best.is_none_or(|k| a.top() < boxes[k].top()) {
+        let lower = |k: usize| {
+            let c = &boxes[k];
+            a.bottom() < c.bottom() - UNDER_BAND
+                || (a.bottom() <= c.bottom() + UNDER_BAND && a.top() < c.top())
+        };
+        if best.is_none_or(lower) {
             best = Some(j);
         }
     }
     best
 }
+
+/// Covering boxes whose bottoms lie this close (metres) stand at one height for [`under`].
+const UNDER_BAND: f64 = 0.02;
 
 /// The low box (a mat, a towel, a rug: its top within `gap` of the floor; or a pallet: its
 /// top within `reach` of the floor and more than `gap` below box `i`'s) a floor-level box `i` lies on: larger than it and under at
@@ -394,6 +403,22 @@ mod tests {
         // A painting 0.55 m above the table stays mounted.
         let painting = reaching.iter().find(|s| s.id == "painting").unwrap();
         assert_eq!(painting.kind, SupportKind::Unsupported);
+    }
+
+    #[test]
+    fn a_can_under_a_workbench_is_under_it_not_under_the_toolbox_on_it() {
+        let boxes = [
+            // A workbench with a pegboard: 0–1.8 m, its top board at 0.9 m.
+            LiftedBox::axis_aligned("workbench", [0.0, 0.9, 0.0], [0.8, 0.9, 0.3]),
+            // A toolbox on the board, over the can; its top (1.1 m) below the pegboard's.
+            LiftedBox::axis_aligned("toolbox", [0.1, 1.0, 0.0], [0.25, 0.1, 0.15]),
+            LiftedBox::axis_aligned("paint_can", [0.1, 0.09, 0.0], [0.06, 0.09, 0.06]),
+        ];
+        let s = infer_supports(&boxes, 0.06);
+        assert_eq!(
+            of(&s, "paint_can"),
+            (SupportKind::Under, Some("workbench".into()))
+        );
     }
 
     #[test]
