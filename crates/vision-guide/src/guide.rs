@@ -13,8 +13,12 @@ use scenethesis_imagery::{
 use scenethesis_models::{
     ChatModel, DepthEstimator, ImageData, ImageEditRequest, ImageGenerator, Segmenter,
 };
-use scenethesis_scene_graph::{Architecture, AssetInfo, Material, Mesh, Scene, SurfaceKind};
-use scenethesis_vision::{lift_scene, LiftOptions, LiftedScene, SupportGuess, SupportKind};
+use scenethesis_scene_graph::{
+    Architecture, AssetInfo, Material, Mesh, Scene, SupportSurface, SurfaceKind,
+};
+use scenethesis_vision::{
+    lift_scene, LiftOptions, LiftedBox, LiftedScene, SupportGuess, SupportKind,
+};
 
 use crate::adopt::{adopted_objects, new_objects, room_size};
 use crate::assemble::build_scene;
@@ -460,7 +464,7 @@ impl Guide for VisionGuide {
             lift_scene(&guidance, &options).map_err(|e| provider("lift", e.to_string()))?;
         let mut notes =
             self.cross_check_supports(plan, &mut lifted, &options, &image_data, seed)?;
-        rest_on_hollowless(&mut lifted.supports, &infos);
+        rest_on_nearest_surface(&mut lifted.supports, &lifted.boxes, &infos);
         let mut left_out = unplaced(plan, &lifted);
         if lifted.boxes.is_empty() {
             return Err(provider(
@@ -690,24 +694,41 @@ fn tiers(info: &AssetInfo) -> Vec<f64> {
         .collect()
 }
 
-/// A box lifted *inside* a parent whose asset has nothing to be inside of (no shelf, no inner
-/// floor: a towel on a camping chair's sling, its bottom found below the sling's rim) rests
-/// *on* it instead, on the surface nearest its bottom.
-fn rest_on_hollowless(supports: &mut [SupportGuess], infos: &BTreeMap<String, AssetInfo>) {
+/// A box lifted *inside* a parent rests *on* it instead when the parent's asset has nothing to
+/// be inside of (no shelf, no inner floor: a towel on a camping chair's sling, its bottom
+/// found below the sling's rim), or when the surface nearest its bottom is a top (a mug on a
+/// workbench whose pegboard makes the bench's box tall, not on the bench's low shelf).
+/// Surface heights are the asset's, scaled to the parent box's height.
+fn rest_on_nearest_surface(
+    supports: &mut [SupportGuess],
+    boxes: &[LiftedBox],
+    infos: &BTreeMap<String, AssetInfo>,
+) {
+    let by_id: BTreeMap<&str, &LiftedBox> = boxes.iter().map(|b| (b.id.as_str(), b)).collect();
     for guess in supports
         .iter_mut()
         .filter(|g| g.kind == SupportKind::Inside)
     {
-        let hollow = guess
-            .parent
-            .as_ref()
-            .and_then(|p| infos.get(p))
-            .is_none_or(|info| {
-                info.support_surfaces
-                    .iter()
-                    .any(|s| matches!(s.kind, SurfaceKind::Shelf | SurfaceKind::Interior))
-            });
-        if !hollow {
+        let Some(parent) = guess.parent.as_deref() else {
+            continue;
+        };
+        let (Some(info), Some(b)) = (infos.get(parent), by_id.get(guess.id.as_str())) else {
+            continue;
+        };
+        let nearest = by_id.get(parent).and_then(|p| {
+            let scale = (p.top() - p.bottom()) / f64::from(info.size[1]).max(1e-6);
+            info.support_surfaces.iter().min_by(|x, y| {
+                let gap = |s: &&SupportSurface| {
+                    (p.bottom() + f64::from(s.height) * scale - b.bottom()).abs()
+                };
+                gap(x).total_cmp(&gap(y))
+            })
+        });
+        let hollow = info
+            .support_surfaces
+            .iter()
+            .any(|s| matches!(s.kind, SurfaceKind::Shelf | SurfaceKind::Interior));
+        if !hollow || nearest.is_some_and(|s| s.kind == SurfaceKind::Top) {
             guess.kind = SupportKind::On;
         }
     }
@@ -814,5 +835,75 @@ fn walkway(scene: &Scene, infos: &BTreeMap<String, AssetInfo>) -> WalkwayReport 
         walk_ratio: wr.walk,
         door_reachable,
         unreachable: wr.unreachable_floor_objects,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use scenethesis_scene_graph::{AssetRef, Placement};
+
+    fn info(surfaces: &[(SurfaceKind, f32)]) -> AssetInfo {
+        AssetInfo {
+            source: AssetRef::Procedural {
+                generator: "workbench".into(),
+                seed: 0,
+                look: Default::default(),
+            },
+            category: "workbench".into(),
+            synonyms: Vec::new(),
+            size: [1.6, 1.8, 0.6],
+            placement: Placement::Floor,
+            front: [0.0, 0.0, 1.0],
+            support_surfaces: surfaces
+                .iter()
+                .enumerate()
+                .map(|(k, &(kind, height))| SupportSurface {
+                    name: format!("s{k}"),
+                    kind,
+                    polygon: vec![[-0.7, -0.25], [0.7, -0.25], [0.7, 0.25], [-0.7, 0.25]],
+                    height,
+                    clearance: None,
+                })
+                .collect(),
+            scale_range: [0.8, 1.2],
+            joints: Vec::new(),
+            opening_bounds: None,
+        }
+    }
+
+    fn inside(id: &str) -> SupportGuess {
+        SupportGuess {
+            id: id.into(),
+            parent: Some("bench".into()),
+            kind: SupportKind::Inside,
+        }
+    }
+
+    #[test]
+    fn inside_a_box_becomes_on_the_top_nearest_its_bottom_or_a_hollowless_parent() {
+        // A workbench with a pegboard (1.8 m), its top at 0.9 m and a low shelf at 0.25 m.
+        let bench = LiftedBox::axis_aligned("bench", [0.0, 0.9, 0.0], [0.8, 0.9, 0.3]);
+        let mug = LiftedBox::axis_aligned("mug", [0.2, 0.95, 0.0], [0.05, 0.05, 0.05]);
+        let paint = LiftedBox::axis_aligned("paint", [-0.2, 0.34, 0.0], [0.08, 0.09, 0.08]);
+        let boxes = [bench, mug, paint];
+        let mut infos = BTreeMap::new();
+        infos.insert(
+            "bench".to_string(),
+            info(&[(SurfaceKind::Top, 0.9), (SurfaceKind::Shelf, 0.25)]),
+        );
+        let mut supports = vec![inside("mug"), inside("paint")];
+        rest_on_nearest_surface(&mut supports, &boxes, &infos);
+        assert_eq!(supports[0].kind, SupportKind::On, "the mug is on the top");
+        assert_eq!(
+            supports[1].kind,
+            SupportKind::Inside,
+            "the can is on the shelf"
+        );
+        // Nothing to be inside of: on it, wherever its bottom came out.
+        infos.insert("bench".to_string(), info(&[(SurfaceKind::Top, 0.9)]));
+        let mut supports = vec![inside("paint")];
+        rest_on_nearest_surface(&mut supports, &boxes, &infos);
+        assert_eq!(supports[0].kind, SupportKind::On);
     }
 }

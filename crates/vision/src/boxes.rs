@@ -541,6 +541,27 @@ fn normal_quantile(p: f64) -> f64 {
     }
 }
 
+/// A known object no side of which is longer than this (metres: a billiard ball, a can, a
+/// cup) is placed from as few as [`SMALL_MIN_POINTS`]: a few pixels fix where it is, and its
+/// size prior what it spans.
+const SMALL_PRIOR: f64 = 0.15;
+/// The fewest points that place an object of a small prior ([`SMALL_PRIOR`]).
+const SMALL_MIN_POINTS: usize = 4;
+
+/// The fewest points that place object `id`: `options.min_points`, or for an object with a
+/// small size prior [`SMALL_MIN_POINTS`] (when fewer).
+fn required_points(id: &str, options: &LiftOptions) -> usize {
+    let small = options
+        .priors
+        .get(id)
+        .is_some_and(|p| p.x.max(p.y).max(p.z) <= SMALL_PRIOR);
+    if small {
+        options.min_points.min(SMALL_MIN_POINTS)
+    } else {
+        options.min_points
+    }
+}
+
 /// [`lift_points`] for points of known `precision`: the noise's inflation of the trimmed
 /// vertical extent is taken off, and with a prior the measured scale is blended with the
 /// prior's by their uncertainties.
@@ -552,11 +573,12 @@ pub fn lift_points_with(
     precision: Precision,
     options: &LiftOptions,
 ) -> Option<LiftedBox> {
-    if points.len() < options.min_points {
+    let required = required_points(id, options);
+    if points.len() < required {
         return None;
     }
     let kept = cluster(points, eye, options);
-    if kept.len() < options.min_points {
+    if kept.len() < required {
         return None;
     }
     let heights = Heights::of(&kept, eye, precision.depth_noise, options.trim);
@@ -887,6 +909,31 @@ mod tests {
         assert_eq!(boxes[0].center.x, 0.5);
         assert_eq!(boxes[0].center.y, 1.6);
         assert_eq!(boxes[2].center.z, -1.75);
+    }
+
+    #[test]
+    fn a_small_known_object_is_placed_from_a_few_points() {
+        // Six points of a billiard ball 4 m from the camera, on a table top at 0.8 m.
+        let points: Vec<Point3<f64>> = (0..6)
+            .map(|k| {
+                let (x, y) = ((k % 3) as f64 * 0.01, (k / 3) as f64 * 0.02);
+                Point3::new(1.0 + x, 0.81 + y, -0.03)
+            })
+            .collect();
+        let eye = Point3::new(1.0, 2.0, 4.0);
+        let mut options = LiftOptions::default();
+        assert!(lift_points("ball", &points, DepthSource::Measured, eye, &options).is_none());
+        options
+            .priors
+            .insert("ball".into(), Vector3::new(0.057, 0.057, 0.057));
+        let ball = lift_points("ball", &points, DepthSource::Measured, eye, &options)
+            .expect("a small prior needs only a few points");
+        assert!((ball.center.x - 1.01).abs() < 0.05, "{:?}", ball.center);
+        // A large prior still needs the full count.
+        options
+            .priors
+            .insert("ball".into(), Vector3::new(0.6, 0.5, 0.4));
+        assert!(lift_points("ball", &points, DepthSource::Measured, eye, &options).is_none());
     }
 
     #[test]
