@@ -17,30 +17,25 @@ use crate::matcher::{Matcher, TargetRegion};
 
 /// The yaw that turns `object`'s front (+Z) the way the plan says, when it says so: toward the
 /// target of a `facing` relation (an object of `scene`), or away from the wall of an
-/// `against-wall` relation; for a square footprint, toward what stands in front of it
-/// ([`fronted_by`]). This settles the front/back ambiguity of silhouettes.
+/// `against-wall` relation (a `facing` target first); for a square footprint, toward what
+/// stands in front of it ([`fronted_by`]). This settles the front/back ambiguity of
+/// silhouettes.
 pub fn facing_hint(scene: &Scene, object: &SceneObject) -> Option<f64> {
     let here = object.pose.translation;
-    for r in &object.relations {
-        match r.kind {
-            RelationKind::Facing => {
-                if let Some(t) = scene.object(&r.target) {
-                    let d = t.pose.translation - here;
-                    if d.x.hypot(d.z) > 1e-6 {
-                        return Some(d.x.atan2(d.z));
-                    }
-                }
-            }
-            RelationKind::AgainstWall => {
-                if let Some(w) = scene.architecture.walls.iter().find(|w| w.id == r.target) {
-                    let n = w.inward_normal();
-                    return Some(n.x.atan2(n.y));
-                }
-            }
-            _ => {}
-        }
-    }
-    fronted_by(scene, object)
+    let of = |kind: RelationKind| object.relations.iter().filter(move |r| r.kind == kind);
+    let faced = of(RelationKind::Facing).find_map(|r| {
+        let d = scene.object(&r.target)?.pose.translation - here;
+        (d.x.hypot(d.z) > 1e-6).then(|| d.x.atan2(d.z))
+    });
+    // What it faces decides before the wall behind it (a desk chair beside the side wall).
+    let backed = || {
+        of(RelationKind::AgainstWall).find_map(|r| {
+            let w = scene.architecture.walls.iter().find(|w| w.id == r.target)?;
+            let n = w.inward_normal();
+            Some(n.x.atan2(n.y))
+        })
+    };
+    faced.or_else(backed).or_else(|| fronted_by(scene, object))
 }
 
 /// Footprints whose sides differ by at most this fraction are square: their silhouette

@@ -4,7 +4,7 @@
 
 use nalgebra::{Point2, Point3, Vector3};
 use scenethesis_scene_graph::{Architecture, Pose, RelationKind};
-use scenethesis_scene_graph::{SupportSurface, SurfaceKind, LOW_SHELF_SHARE};
+use scenethesis_scene_graph::{SupportSurface, SurfaceKind};
 use serde::{Deserialize, Serialize};
 
 use scenethesis_correspondence::params::world_point;
@@ -146,16 +146,7 @@ pub fn choose_surface(
     best.map(|(_, p)| p)
 }
 
-/// Whether `shelf` is a low shelf beneath a top of the same asset: at most
-/// [`LOW_SHELF_SHARE`] of the top's height.
-pub fn is_low_shelf(shelf: &SupportSurface, surfaces: &[SupportSurface]) -> bool {
-    shelf.kind == SurfaceKind::Shelf
-        && surfaces.iter().any(|t| {
-            t.kind == SurfaceKind::Top
-                && t.height > shelf.height
-                && shelf.height <= LOW_SHELF_SHARE as f32 * t.height
-        })
-}
+pub use scenethesis_scene_graph::is_low_shelf;
 
 /// Whether `p` is inside the convex polygon (either winding) or on its border.
 pub fn polygon_contains(poly: &[Point2<f64>], p: &Point2<f64>) -> bool {

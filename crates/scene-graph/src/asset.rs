@@ -60,6 +60,25 @@ impl SurfaceKind {
 /// The layout, the optimizer's surface choice and the relation check all read it from here.
 pub const LOW_SHELF_SHARE: f64 = 0.35;
 
+/// Whether `shelf` is a low shelf beneath a top of the same asset (`surfaces`): at most
+/// [`LOW_SHELF_SHARE`] of the top's height.
+pub fn is_low_shelf(shelf: &SupportSurface, surfaces: &[SupportSurface]) -> bool {
+    shelf.kind == SurfaceKind::Shelf
+        && surfaces.iter().any(|t| {
+            t.kind == SurfaceKind::Top
+                && t.height > shelf.height
+                && shelf.height <= LOW_SHELF_SHARE as f32 * t.height
+        })
+}
+
+/// Whether an asset with `surfaces` holds anything *under* it: a floor space beneath it or a
+/// low shelf ([`is_low_shelf`]).
+pub fn holds_under(surfaces: &[SupportSurface]) -> bool {
+    surfaces
+        .iter()
+        .any(|s| s.kind == SurfaceKind::Under || is_low_shelf(s, surfaces))
+}
+
 /// A place where something can rest, in the asset's own frame.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SupportSurface {

@@ -93,7 +93,10 @@ pub use architecture::{
     hangs_on_wall, Architecture, DoorOpening, Environment, Floor, RoomArea, Wall, WindowOpening,
     EXTERIOR, MOUNT_MIN_BOTTOM, MOUNT_WALL_REACH,
 };
-pub use asset::{Asset, AssetInfo, Placement, SupportSurface, SurfaceKind, LOW_SHELF_SHARE};
+pub use asset::{
+    holds_under, is_low_shelf, Asset, AssetInfo, Placement, SupportSurface, SurfaceKind,
+    LOW_SHELF_SHARE,
+};
 pub use door::{
     leaf_material, DoorLeaf, LeafGeometry, LEAF_FLOOR_GAP, LEAF_GAP, LEAF_JOINT, LEAF_OPEN_LIMIT,
     LEAF_THICKNESS, SECOND_LEAF_JOINT,

@@ -7,9 +7,8 @@
 //!   recovered, and otherwise stands on the floor below where it was seen.
 //! - **Pose**: translation = the box's bottom centre (the asset frame's origin), scale = the
 //!   box height over the asset's, clamped to the asset's scale range, yaw = the box's yaw, or
-//!   the half turn of it that faces away from a wall the box backs onto (within 15 cm), else
-//!   toward the box of what it faces, else toward the camera: a box alone cannot tell front
-//!   from back. What it faces is what the plan says, or for seating the nearest recovered
+//!   the half turn of it toward the box of what it faces, else away from a wall the box backs
+//!   onto (within 15 cm), else toward the camera: a box alone cannot tell front from back. What it faces is what the plan says, or for seating the nearest recovered
 //!   table, desk or counter it serves (an arrangement `faces` rule, within the rule's reach):
 //!   that becomes a `facing` relation, so the correspond stage's yaw search and the judge
 //!   hold it to it. A square box facing something may also turn a quarter.
@@ -403,10 +402,12 @@ fn scene_object(
     let [sx, sy, sz] = info.size.map(f64::from);
     let [lo, hi] = info.scale_range.map(f64::from);
     let scale = (b.size().y / sy.max(1e-6)).clamp(lo.min(hi), hi.max(lo));
+    // What it faces decides before the wall behind it: a desk chair beside the side wall
+    // still faces its desk.
     let backing = backing_wall(&scene.architecture, b, info.size, wall_reach(object));
-    let yaw = match (backing, &faced) {
-        (Some((_, inward)), _) => facing(b, inward, false),
-        (None, Some(f)) => facing(b, f.direction, true),
+    let yaw = match (&faced, backing) {
+        (Some(f), _) => facing(b, f.direction, true),
+        (None, Some((_, inward))) => facing(b, inward, false),
         (None, None) => facing(b, camera, false),
     };
     let on_floor = parent == ParentRef::Ground

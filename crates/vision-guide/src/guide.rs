@@ -14,7 +14,7 @@ use scenethesis_models::{
     ChatModel, DepthEstimator, ImageData, ImageEditRequest, ImageGenerator, Segmenter,
 };
 use scenethesis_scene_graph::{
-    Architecture, AssetInfo, Material, Mesh, Scene, SupportSurface, SurfaceKind,
+    holds_under, Architecture, AssetInfo, Material, Mesh, Scene, SupportSurface, SurfaceKind,
 };
 use scenethesis_vision::{
     lift_scene, LiftOptions, LiftedBox, LiftedScene, SupportGuess, SupportKind,
@@ -694,7 +694,9 @@ fn tiers(info: &AssetInfo) -> Vec<f64> {
         .collect()
 }
 
-/// A box lifted *inside* a parent rests *on* it instead when the parent's asset has nothing to
+/// A box lifted *under* a parent whose asset has no space beneath it (a display case standing
+/// on its plinth, whose box came out wide through its glass) stands on the floor. A box
+/// lifted *inside* a parent rests *on* it instead when the parent's asset has nothing to
 /// be inside of (no shelf, no inner floor: a towel on a camping chair's sling, its bottom
 /// found below the sling's rim), or when the surface nearest its bottom is a top (a mug on a
 /// workbench whose pegboard makes the bench's box tall, not on the bench's low shelf).
@@ -705,6 +707,17 @@ fn rest_on_nearest_surface(
     infos: &BTreeMap<String, AssetInfo>,
 ) {
     let by_id: BTreeMap<&str, &LiftedBox> = boxes.iter().map(|b| (b.id.as_str(), b)).collect();
+    for guess in supports.iter_mut().filter(|g| g.kind == SupportKind::Under) {
+        let open = guess
+            .parent
+            .as_deref()
+            .and_then(|p| infos.get(p))
+            .is_none_or(|info| holds_under(&info.support_surfaces));
+        if !open {
+            guess.parent = None;
+            guess.kind = SupportKind::Ground;
+        }
+    }
     for guess in supports
         .iter_mut()
         .filter(|g| g.kind == SupportKind::Inside)
@@ -900,10 +913,15 @@ mod tests {
             SupportKind::Inside,
             "the can is on the shelf"
         );
-        // Nothing to be inside of: on it, wherever its bottom came out.
+        // Nothing to be inside of: on it, wherever its bottom came out; nothing to stand
+        // under: on the floor.
         infos.insert("bench".to_string(), info(&[(SurfaceKind::Top, 0.9)]));
-        let mut supports = vec![inside("paint")];
+        let mut under = inside("paint");
+        under.kind = SupportKind::Under;
+        let mut supports = vec![inside("paint"), under];
         rest_on_nearest_surface(&mut supports, &boxes, &infos);
         assert_eq!(supports[0].kind, SupportKind::On);
+        let floor = (supports[1].kind, supports[1].parent.as_deref());
+        assert_eq!(floor, (SupportKind::Ground, None));
     }
 }
