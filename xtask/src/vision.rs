@@ -11,6 +11,7 @@ use std::path::Path;
 use std::process::Command;
 
 use anyhow::{bail, Context, Result};
+use scenethesis_scene_graph::{recovery_errors, Scene};
 use serde_json::{json, Value};
 
 use crate::{benchmark_prompts, fresh_scratch, median, prompt_lines, release_cli};
@@ -64,49 +65,10 @@ fn read_json(path: &Path) -> Result<Value> {
     serde_json::from_str(&text).with_context(|| format!("cannot parse {}", path.display()))
 }
 
-/// `(category, translation)` of every object of a `scene.json`.
-fn placed(scene: &Value) -> BTreeMap<String, (String, [f64; 3])> {
-    let mut out = BTreeMap::new();
-    for (id, o) in scene["objects"].as_object().into_iter().flatten() {
-        let t = &o["pose"]["translation"];
-        let at = |i: usize| t[i].as_f64().unwrap_or(f64::NAN);
-        let category = o["category"].as_str().unwrap_or_default().to_owned();
-        out.insert(id.clone(), (category, [at(0), at(1), at(2)]));
-    }
-    out
-}
-
-/// For each of `truth`'s objects named in `labelled`, the distance to the object of `found`
-/// of its category paired with it: pairs are taken nearest first, each object at most once;
-/// infinite when none is left.
-fn recovery(
-    labelled: &[String],
-    truth: &BTreeMap<String, (String, [f64; 3])>,
-    found: &BTreeMap<String, (String, [f64; 3])>,
-) -> Vec<f64> {
-    let mut pairs: Vec<(f64, usize, &str)> = Vec::new();
-    for (i, id) in labelled.iter().enumerate() {
-        let Some((category, at)) = truth.get(id) else {
-            continue;
-        };
-        for (fid, (c, p)) in found {
-            if c == category {
-                let d = (0..3).map(|k| (p[k] - at[k]).powi(2)).sum::<f64>().sqrt();
-                pairs.push((d, i, fid));
-            }
-        }
-    }
-    pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let mut error = vec![f64::INFINITY; labelled.len()];
-    let mut taken = std::collections::BTreeSet::new();
-    for (d, i, fid) in pairs {
-        if error[i].is_finite() || taken.contains(fid) {
-            continue;
-        }
-        error[i] = d;
-        taken.insert(fid);
-    }
-    error
+/// The scene of `dir`'s `scene.json`.
+fn scene_of(dir: &Path) -> Result<Scene> {
+    let path = dir.join("scene.json");
+    Scene::read_json(&path).with_context(|| format!("cannot read {}", path.display()))
 }
 
 /// The object ids the guidance shows: the labels of `labels.json` (`{"N": {"id": …}}`) whose
@@ -165,9 +127,7 @@ pub fn add_vision(
         let generic = format!("a {}", scene_type.replace('_', " "));
         let recovered = generate(&exe, &generic, &dir.join("generic"), Some(&guidance))?;
         let ids = labelled(&guidance)?;
-        let truth = placed(&read_json(&a.join("scene.json"))?);
-        let found = placed(&read_json(&dir.join("generic/scene.json"))?);
-        let error = recovery(&ids, &truth, &found);
+        let error = recovery_errors(&scene_of(&a)?, &ids, &scene_of(&dir.join("generic"))?);
         let within = error.iter().filter(|&&e| e < RECOVERED_WITHIN).count();
         let (off_s, vis_s) = (
             offline["total_seconds"].as_f64().unwrap_or(f64::NAN),
@@ -217,37 +177,4 @@ pub fn add_vision(
         }),
     );
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn at(category: &str, x: f64) -> (String, [f64; 3]) {
-        (category.to_owned(), [x, 0.0, 0.0])
-    }
-
-    #[test]
-    fn recovery_pairs_each_object_once_nearest_first_and_by_category() {
-        let truth: BTreeMap<String, _> = [
-            ("chair_0".to_owned(), at("chair", 0.0)),
-            ("chair_1".to_owned(), at("chair", 1.0)),
-            ("lamp_0".to_owned(), at("lamp", 2.0)),
-        ]
-        .into();
-        // One chair found near chair_1; the lamp found only as a chair.
-        let found: BTreeMap<String, _> = [
-            ("chair_7".to_owned(), at("chair", 1.05)),
-            ("chair_8".to_owned(), at("chair", 2.0)),
-        ]
-        .into();
-        let ids: Vec<String> = ["chair_0", "chair_1", "lamp_0"].map(String::from).into();
-        let error = recovery(&ids, &truth, &found);
-        assert!((error[1] - 0.05).abs() < 1e-9, "{error:?}");
-        assert!(
-            (error[0] - 2.0).abs() < 1e-9,
-            "chair_0 gets the chair left: {error:?}"
-        );
-        assert!(error[2].is_infinite(), "no lamp was found: {error:?}");
-    }
 }

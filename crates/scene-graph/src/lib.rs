@@ -82,6 +82,7 @@ mod mesh;
 mod object;
 mod openings;
 mod pose;
+mod recovery;
 mod relations;
 mod scene;
 mod traversal;
@@ -113,6 +114,7 @@ pub use mesh::{Material, Mesh, MeshPart};
 pub use object::{AssetRef, ParentRef, Relation, RelationKind, SceneObject, GROUND_ID};
 pub use openings::{WallBox, PANE_THICKNESS, WINDOW_CLEARANCE, WINDOW_COVER_SHARE};
 pub use pose::{wrap_yaw, yaw_distance, yaw_distance_modulo, Pose};
+pub use recovery::recovery_errors;
 pub use relations::{
     aabb_floor_gap, floor_centre, floor_gap, front_dir, relation_holds, right_dir, FACING_TOLERANCE,
 };

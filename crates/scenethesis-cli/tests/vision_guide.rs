@@ -10,6 +10,7 @@ use std::sync::OnceLock;
 
 use scenethesis_models::ImageData;
 use scenethesis_openai::testing::{openai_completion, openai_image, Reply, TestServer};
+use scenethesis_scene_graph::{recovery_errors, Scene};
 use serde_json::{json, Value};
 
 mod common;
@@ -552,9 +553,9 @@ fn a_generic_prompt_adopts_what_the_image_shows() {
     let unmapped = &report["guide_unmapped"];
     assert_eq!(unmapped[0]["id"], "hovercraft_0", "{unmapped}");
     assert!(unmapped[0]["nearest"].is_string(), "{unmapped}");
-    let truth = objects(scene);
+    let truth = scene_of(scene);
     let labelled = visible_labels(&base().1);
-    let got = objects(&out_dir);
+    let got = scene_of(&out_dir);
     let errors = recovery_errors(&truth, &labelled, &got);
     let within = errors.iter().filter(|e| **e < 0.10).count();
     let share = within as f64 / labelled.len() as f64;
@@ -568,9 +569,9 @@ fn a_generic_prompt_adopts_what_the_image_shows() {
     );
     // Nothing the image does not show is invented: every placed object is one of A's.
     assert!(
-        got.len() <= labelled.len(),
+        got.objects.len() <= labelled.len(),
         "{} objects placed from {} labels",
-        got.len(),
+        got.objects.len(),
         labelled.len()
     );
 }
@@ -591,34 +592,9 @@ fn visible_labels(g: &Path) -> Vec<String> {
         .collect()
 }
 
-/// For each labelled object of the truth, the distance to the nearest object of its category
-/// in `got` that no other truth object took (greedy, nearest pairs first); infinity when none
-/// is left.
-fn recovery_errors(
-    truth: &serde_json::Map<String, Value>,
-    labelled: &[String],
-    got: &serde_json::Map<String, Value>,
-) -> Vec<f64> {
-    let mut pairs: Vec<(f64, usize, &String)> = Vec::new();
-    for (i, id) in labelled.iter().enumerate() {
-        let t = &truth[id];
-        for (gid, o) in got {
-            if o["category"] == t["category"] {
-                pairs.push((distance(translation(o), translation(t)), i, gid));
-            }
-        }
-    }
-    pairs.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(b.2)));
-    let mut errors = vec![f64::INFINITY; labelled.len()];
-    let mut taken = std::collections::BTreeSet::new();
-    for (d, i, gid) in pairs {
-        if errors[i].is_finite() || taken.contains(gid) {
-            continue;
-        }
-        errors[i] = d;
-        taken.insert(gid);
-    }
-    errors
+/// The scene of `dir`'s `scene.json`.
+fn scene_of(dir: &Path) -> Scene {
+    Scene::read_json(&dir.join("scene.json")).unwrap()
 }
 
 /// `generate` with the guidance files and no prompt.
@@ -651,9 +627,9 @@ fn a_photo_alone_builds_the_scene_it_shows() {
     let assumptions = report["assumptions"].to_string();
     assert!(assumptions.contains("no prompt"), "{report}");
     assert!(assumptions.contains("floor is visible"), "{report}");
-    let truth = objects(scene);
+    let truth = scene_of(scene);
     let labelled = visible_labels(g);
-    let got = objects(&out_dir);
+    let got = scene_of(&out_dir);
     let errors = recovery_errors(&truth, &labelled, &got);
     let within = errors.iter().filter(|e| **e < 0.10).count();
     assert!(
@@ -661,7 +637,11 @@ fn a_photo_alone_builds_the_scene_it_shows() {
         "{within} of {} labelled objects within 10 cm: {errors:?}",
         labelled.len()
     );
-    assert!(got.len() <= labelled.len(), "{} objects placed", got.len());
+    assert!(
+        got.objects.len() <= labelled.len(),
+        "{} objects placed",
+        got.objects.len()
+    );
 
     // No floor in view: everything within a metre of the camera, nothing down at y = 0.
     let g = copy_guidance(dir.path());
