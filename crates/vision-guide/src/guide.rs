@@ -464,6 +464,7 @@ impl Guide for VisionGuide {
             lift_scene(&guidance, &options).map_err(|e| provider("lift", e.to_string()))?;
         let mut notes =
             self.cross_check_supports(plan, &mut lifted, &options, &image_data, seed)?;
+        rest_where_the_holder_rests(&mut lifted.supports, &infos);
         rest_on_nearest_surface(&mut lifted.supports, &lifted.boxes, &infos);
         let mut left_out = unplaced(plan, &lifted);
         if lifted.boxes.is_empty() {
@@ -692,6 +693,42 @@ fn tiers(info: &AssetInfo) -> Vec<f64> {
         .filter(|&(_, area)| area >= 0.5 * footprint)
         .map(|(h, _)| f64::from(h / info.size[1]))
         .collect()
+}
+
+/// A box lifted *on* or *inside* a parent whose asset holds nothing (no support surface: a
+/// can found on top of a bottle, from a few pixels over its rim) rests where that parent
+/// rests instead — inside the rack the bottle stands in, or on the floor.
+fn rest_where_the_holder_rests(supports: &mut [SupportGuess], infos: &BTreeMap<String, AssetInfo>) {
+    let holds_nothing = |id: &str| {
+        infos
+            .get(id)
+            .is_some_and(|info| info.support_surfaces.is_empty())
+    };
+    let guesses: BTreeMap<String, SupportGuess> =
+        supports.iter().map(|g| (g.id.clone(), g.clone())).collect();
+    for guess in supports
+        .iter_mut()
+        .filter(|g| matches!(g.kind, SupportKind::On | SupportKind::Inside))
+    {
+        // Up the chain while the holder holds nothing (a chain is at most as long as the
+        // guesses; lifted parents are strictly lower, so it ends).
+        for _ in 0..guesses.len() {
+            let Some(parent) = guess.parent.clone().filter(|p| holds_nothing(p)) else {
+                break;
+            };
+            match guesses.get(&parent) {
+                Some(up) if matches!(up.kind, SupportKind::On | SupportKind::Inside) => {
+                    guess.parent = up.parent.clone();
+                    guess.kind = up.kind;
+                }
+                _ => {
+                    guess.parent = None;
+                    guess.kind = SupportKind::Ground;
+                    break;
+                }
+            }
+        }
+    }
 }
 
 /// A box lifted *under* a parent whose asset has no space beneath it (a display case standing
@@ -923,5 +960,29 @@ mod tests {
         assert_eq!(supports[0].kind, SupportKind::On);
         let floor = (supports[1].kind, supports[1].parent.as_deref());
         assert_eq!(floor, (SupportKind::Ground, None));
+    }
+
+    #[test]
+    fn on_a_thing_that_holds_nothing_is_where_that_thing_rests() {
+        let mut infos = BTreeMap::new();
+        infos.insert("rack".to_string(), info(&[(SurfaceKind::Shelf, 0.1)]));
+        infos.insert("bottle".to_string(), info(&[]));
+        infos.insert("stool".to_string(), info(&[]));
+        let guess = |id: &str, parent: Option<&str>, kind| SupportGuess {
+            id: id.into(),
+            parent: parent.map(str::to_owned),
+            kind,
+        };
+        let mut supports = vec![
+            guess("bottle", Some("rack"), SupportKind::Inside),
+            guess("can", Some("bottle"), SupportKind::On),
+            guess("stool", None, SupportKind::Ground),
+            guess("cup", Some("stool"), SupportKind::On),
+        ];
+        rest_where_the_holder_rests(&mut supports, &infos);
+        let of = |k: usize| (supports[k].kind, supports[k].parent.as_deref());
+        assert_eq!(of(1), (SupportKind::Inside, Some("rack")));
+        assert_eq!(of(3), (SupportKind::Ground, None));
+        assert_eq!(of(0), (SupportKind::Inside, Some("rack")));
     }
 }
