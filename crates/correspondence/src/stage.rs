@@ -38,16 +38,11 @@ pub fn facing_hint(scene: &Scene, object: &SceneObject) -> Option<f64> {
     faced.or_else(backed).or_else(|| fronted_by(scene, object))
 }
 
-/// Footprints whose sides differ by at most this fraction are square: their silhouette
-/// cannot tell their front.
-const SQUARE: f64 = 0.15;
-
 /// For a square-footprint object (a round beach umbrella, a square side table), whose
 /// silhouette shows no front, the yaw toward what the scene places *in front of* it and away
 /// from what it places *behind* it (unit directions summed); `None` otherwise.
 fn fronted_by(scene: &Scene, object: &SceneObject) -> Option<f64> {
-    let size = object.local_bounds.size();
-    if (size.x - size.z).abs() > SQUARE * size.x.max(size.z) {
+    if !object.local_bounds.has_square_footprint() {
         return None;
     }
     let here = object.pose.translation;

@@ -3,6 +3,15 @@ use serde::{Deserialize, Serialize};
 
 use crate::Pose;
 
+/// Footprints whose two sides differ by at most this fraction of the longer count as square.
+pub const SQUARE_FOOTPRINT: f64 = 0.15;
+
+/// Whether footprint sides `a` and `b` (metres, either order) are square within
+/// [`SQUARE_FOOTPRINT`].
+pub fn is_square_footprint(a: f64, b: f64) -> bool {
+    (a - b).abs() <= SQUARE_FOOTPRINT * a.max(b)
+}
+
 /// An axis-aligned bounding box, in metres.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Aabb {
@@ -38,6 +47,21 @@ impl Aabb {
     /// Edge lengths along x, y and z.
     pub fn size(&self) -> nalgebra::Vector3<f64> {
         self.max - self.min
+    }
+
+    /// Whether the footprint (x by z) is square within [`SQUARE_FOOTPRINT`]: a silhouette or a
+    /// box of it cannot tell front from side.
+    ///
+    /// ```
+    /// use scenethesis_scene_graph::{nalgebra::Point3, Aabb};
+    /// let stool = Aabb::new(Point3::new(-0.2, 0.0, -0.19), Point3::new(0.2, 0.45, 0.19));
+    /// let bench = Aabb::new(Point3::new(-0.6, 0.0, -0.2), Point3::new(0.6, 0.45, 0.2));
+    /// assert!(stool.has_square_footprint());
+    /// assert!(!bench.has_square_footprint());
+    /// ```
+    pub fn has_square_footprint(&self) -> bool {
+        let size = self.size();
+        is_square_footprint(size.x, size.z)
     }
 
     /// The centre point.

@@ -89,7 +89,7 @@ mod traversal;
 mod validate;
 mod walkway;
 
-pub use aabb::Aabb;
+pub use aabb::{is_square_footprint, Aabb, SQUARE_FOOTPRINT};
 pub use architecture::{
     hangs_on_wall, Architecture, DoorOpening, Environment, Floor, RoomArea, Wall, WindowOpening,
     EXTERIOR, MOUNT_MIN_BOTTOM, MOUNT_WALL_REACH,

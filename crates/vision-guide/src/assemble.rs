@@ -24,7 +24,7 @@ use scenethesis_scene_graph::{
     aabb_floor_gap, wrap_yaw, Aabb, Architecture, ParentRef, Pose, Relation, RelationKind, Scene,
     SceneObject, GROUND_ID,
 };
-use scenethesis_scene_graph::{AssetInfo, Placement};
+use scenethesis_scene_graph::{is_square_footprint, AssetInfo, Placement};
 use scenethesis_vision::{LiftedBox, SupportGuess, SupportKind};
 
 /// Largest gap between a box's back and a wall that still counts as backing onto it.
@@ -104,21 +104,12 @@ fn backing_wall(
         .map(|(_, id, n, _)| (id, n))
 }
 
-/// Footprints whose sides differ by at most this fraction count as square: their box cannot
-/// tell a quarter turn either.
-const SQUARE: f64 = 0.15;
-
-/// Whether sides `a` and `b` make a square footprint (within [`SQUARE`]).
-fn square(a: f64, b: f64) -> bool {
-    (a - b).abs() <= SQUARE * a.max(b)
-}
-
 /// The box axis (world x, z) along which the asset of `size` (x, y, z) turned to the box's
 /// footprint looks front to back, when the asset is oblong: the box side that matches the
 /// asset's width runs along its back.
 fn back_axis(b: &LiftedBox, size: [f32; 3]) -> Option<Vector2<f64>> {
     let (sx, sz) = (f64::from(size[0]), f64::from(size[2]));
-    if square(sx, sz) {
+    if is_square_footprint(sx, sz) {
         return None;
     }
     let (w, d) = (b.half_extents.x, b.half_extents.z);
@@ -134,7 +125,7 @@ fn back_axis(b: &LiftedBox, size: [f32; 3]) -> Option<Vector2<f64>> {
 /// every quarter turn) whose front (+Z turned by yaw) points most along `toward`.
 fn facing(b: &LiftedBox, toward: Vector2<f64>, quarter: bool) -> f64 {
     let front = |yaw: f64| Vector2::new(yaw.sin(), yaw.cos());
-    let turns: &[f64] = if quarter && square(b.half_extents.x, b.half_extents.z) {
+    let turns: &[f64] = if quarter && is_square_footprint(b.half_extents.x, b.half_extents.z) {
         &[0.0, PI / 2.0, PI, -PI / 2.0]
     } else {
         &[0.0, PI]
