@@ -147,31 +147,17 @@ pub fn kept_lift(guided: &BTreeMap<String, GuidedPose>) -> Vec<KeptLift> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nalgebra::{Point3, Vector3};
-    use scenethesis_scene_graph::{
-        yaw_distance, Aabb, Architecture, AssetRef, JointState, ParentRef, Pose, Relation,
-    };
+    use nalgebra::Point3;
+    use scenethesis_scene_graph::{yaw_distance, Aabb, Architecture, Relation};
 
     fn object(id: &str, half: [f64; 2], at: [f64; 2], relations: Vec<Relation>) -> SceneObject {
+        let bounds = Aabb::new(
+            Point3::new(-half[0], 0.0, -half[1]),
+            Point3::new(half[0], 1.0, half[1]),
+        );
         SceneObject {
-            id: id.into(),
-            category: id.into(),
-            asset: AssetRef::Procedural {
-                generator: "box".into(),
-                seed: 0,
-                look: Default::default(),
-            },
-            pose: Pose::new(1.0, 0.0, Vector3::new(at[0], 0.0, at[1])),
-            parent: ParentRef::Ground,
-            support: RelationKind::OnFloor,
             relations,
-            local_bounds: Aabb::new(
-                Point3::new(-half[0], 0.0, -half[1]),
-                Point3::new(half[0], 1.0, half[1]),
-            ),
-            joints: JointState::all_closed(&[]),
-            parent_link: None,
-            room: None,
+            ..SceneObject::standing_box(id, bounds, at[0], at[1])
         }
     }
 

@@ -711,29 +711,12 @@ fn walk_blockers(scene: &Scene) -> Vec<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use scenethesis_scene_graph::nalgebra::{Point3, Vector3};
-    use scenethesis_scene_graph::{
-        Aabb, Architecture, AssetRef, Pose, RelationKind, SceneObject, WindowOpening,
-    };
+    use scenethesis_scene_graph::nalgebra::Point3;
+    use scenethesis_scene_graph::{Aabb, Architecture, SceneObject, WindowOpening};
 
     fn standing(id: &str, x: f64, z: f64, top: f64) -> SceneObject {
-        SceneObject {
-            id: id.into(),
-            category: id.into(),
-            asset: AssetRef::Procedural {
-                generator: "box".into(),
-                seed: 0,
-                look: None,
-            },
-            pose: Pose::new(1.0, 0.0, Vector3::new(x, 0.0, z)),
-            parent: ParentRef::Ground,
-            support: RelationKind::OnFloor,
-            relations: Vec::new(),
-            local_bounds: Aabb::new(Point3::new(-0.4, 0.0, -0.25), Point3::new(0.4, top, 0.25)),
-            joints: Vec::new(),
-            parent_link: None,
-            room: None,
-        }
+        let bounds = Aabb::new(Point3::new(-0.4, 0.0, -0.25), Point3::new(0.4, top, 0.25));
+        SceneObject::standing_box(id, bounds, x, z)
     }
 
     /// A piece in a door's kept-clear approach fails, blamed on it; one beside the area, one

@@ -2,6 +2,8 @@ use std::fmt;
 
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
+use nalgebra::Vector3;
+
 use crate::{Aabb, AssetLook, JointState, Pose};
 
 /// The reserved id of the ground, the root of every scene graph.
@@ -44,6 +46,37 @@ pub struct SceneObject {
 }
 
 impl SceneObject {
+    /// An object of category `id` standing unturned on the floor at (`x`, `z`), its mesh the
+    /// procedural `box` generator (seed 0) and its local box `bounds`; no relations, no
+    /// joints. A building block for tests and examples of every stage.
+    ///
+    /// ```
+    /// use scenethesis_scene_graph::{nalgebra::Point3, Aabb, ParentRef, SceneObject};
+    /// let bounds = Aabb::new(Point3::new(-0.4, 0.0, -0.25), Point3::new(0.4, 0.7, 0.25));
+    /// let crate_box = SceneObject::standing_box("crate", bounds, 1.0, -2.0);
+    /// assert_eq!(crate_box.parent, ParentRef::Ground);
+    /// assert!((crate_box.world_aabb().min.z + 2.25).abs() < 1e-12);
+    /// ```
+    pub fn standing_box(id: &str, bounds: Aabb, x: f64, z: f64) -> SceneObject {
+        SceneObject {
+            id: id.into(),
+            category: id.into(),
+            asset: AssetRef::Procedural {
+                generator: "box".into(),
+                seed: 0,
+                look: None,
+            },
+            pose: Pose::new(1.0, 0.0, Vector3::new(x, 0.0, z)),
+            parent: ParentRef::Ground,
+            support: RelationKind::OnFloor,
+            relations: Vec::new(),
+            local_bounds: bounds,
+            joints: Vec::new(),
+            parent_link: None,
+            room: None,
+        }
+    }
+
     /// The world-space axis-aligned box of the posed asset.
     pub fn world_aabb(&self) -> Aabb {
         self.local_bounds.transformed(&self.pose)
