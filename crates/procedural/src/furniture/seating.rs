@@ -721,7 +721,8 @@ pub(super) fn kids_chair(rng: &mut ChaCha8Rng) -> Asset {
     b.finish(Placement::Floor, SCALE)
 }
 
-/// Bean bag: width 0.7–1.0, height 0.6–0.9, depth 0.7–1.0; a squashed sack with a raised back.
+/// Bean bag: width 0.7–1.0, height 0.6–0.9, depth 0.7–1.0; a squashed sack with a raised back,
+/// flat where it rests on the floor.
 pub(super) fn bean_bag(rng: &mut ChaCha8Rng) -> Asset {
     let mut b = AssetBuilder::new();
     let cover = mat_either(&mut b, 0.6, Palette::Fabric, Palette::BrightPlastic, rng);
@@ -742,6 +743,17 @@ pub(super) fn bean_bag(rng: &mut ChaCha8Rng) -> Asset {
         [0.0, 0.5 * h, -0.22 * d],
         [0.42 * w, 0.5 * h, 0.26 * d],
         12,
+        20,
+    ));
+    // The filling spreads the sack's bottom flat where it meets the floor: a sack resting on
+    // the lowest points of its two rounded halves alone would rock.
+    b.part(cylinder(
+        "flat_bottom",
+        cover,
+        [0.0, 0.0],
+        0.3 * w.min(d),
+        0.0,
+        0.06,
         20,
     ));
     // A flattened seat hollow on top of the sack, in front of the back bulge.
