@@ -30,51 +30,9 @@ fn evaluate_thirty_objects(c: &mut Criterion) {
 
 /// A catalog store shelf on the floor with a catalog can every 9 cm along each shelf board.
 fn stocked_shelf() -> scenethesis_eval::EvalScene {
-    use scenethesis_procedural::catalog;
-    use scenethesis_scene_graph::{Architecture, RelationKind, SurfaceKind};
-    let generate = |name: &str, seed| {
-        let category = catalog::categories()
-            .find(|c| c.name == name)
-            .unwrap_or_else(|| panic!("the catalog has `{name}`"));
-        catalog::generate(category, seed)
-    };
-    let shelf = generate("store_shelf", 0);
-    let can = generate("can", 0);
-    let drop = 0.00125;
-    let mut objects = vec![support::place(
-        "store_shelf",
-        "store_shelf",
-        &shelf.mesh,
-        support::at(0.0, drop, 0.0, 0.0),
-        None,
-        RelationKind::OnFloor,
-    )];
-    for surface in shelf
-        .info
-        .support_surfaces
-        .iter()
-        .filter(|s| matches!(s.kind, SurfaceKind::Shelf | SurfaceKind::Top))
-    {
-        let xs = surface.polygon.iter().map(|p| p[0]);
-        let (x0, x1) = xs.fold((f32::MAX, f32::MIN), |(a, b), x| (a.min(x), b.max(x)));
-        let z = surface.center()[1];
-        let mut x = x0 + 0.05;
-        while x < x1 - 0.05 {
-            let id = format!("can_{}", objects.len());
-            objects.push(support::place(
-                &id,
-                "can",
-                &can.mesh,
-                support::at(x as f64, surface.height as f64 + 2.0 * drop, z as f64, 0.0),
-                Some("store_shelf"),
-                RelationKind::Inside,
-            ));
-            x += 0.09;
-        }
-    }
     scenethesis_eval::EvalScene {
-        objects,
-        architecture: Architecture::open_ground(6.0, 6.0),
+        objects: support::stocked_shelf(0.0, 0.0),
+        architecture: scenethesis_scene_graph::Architecture::open_ground(6.0, 6.0),
     }
 }
 

@@ -1,7 +1,7 @@
 //! The stability metric keeps a resting pair's contact points while the pair drifts less than
 //! `CONTACT_RECYCLE_DRIFT` (a speed-up). Recycled contacts must not change what the metric
 //! sees: on a room of the assets that crept under rapier's game default (tall lamps, plants,
-//! umbrellas, coat racks), things standing on a table and a shop shelf stocked with round cans,
+//! umbrellas, coat racks), things standing on a table and a shop shelf stocked with round cans on every board,
 //! every body ends where recomputing every contact at every step leaves it, and what falls
 //! still falls; a round fruit that rolls away on bare ground still rolls (at rapier's game
 //! default of 5 cm, stale contacts hold it in place).
@@ -12,22 +12,12 @@ use scenethesis_eval::stability::{
     simulate_with, BodyMotion, Simulation, MAX_DISPLACEMENT, MAX_ROTATION,
 };
 use scenethesis_eval::{DecompositionCache, EvalObject, EvalScene};
-use scenethesis_procedural::catalog;
 use scenethesis_scene_graph::{Architecture, Asset, RelationKind, SurfaceKind};
-use support::{at, place};
+use support::{at, catalog_asset, place, stocked_shelf, SETTLE_DROP};
 
-/// The optimizer's gap between an object's bottom and its support (metres).
-const SETTLE_DROP: f64 = 0.00125;
 /// How far apart the two runs may leave a body (m, rad): a twentieth of the metric's 1 cm and
 /// 0.1 rad.
 const SAME_END: (f64, f64) = (0.0005, 0.005);
-
-fn generate(name: &str, seed: u64) -> Asset {
-    let category = catalog::categories()
-        .find(|c| c.name == name)
-        .unwrap_or_else(|| panic!("the catalog has `{name}`"));
-    catalog::generate(category, seed)
-}
 
 /// The highest surface of `kind` of `asset`: (height, centre x, centre z, half width along x).
 fn surface(asset: &Asset, kind: SurfaceKind) -> (f64, f64, f64, f64) {
@@ -66,7 +56,7 @@ fn room() -> EvalScene {
             let z = -3.0 + 3.0 * seed as f64;
             let id = format!("{name}_{seed}");
             let pose = at(x, SETTLE_DROP, z, 0.4 * seed as f64);
-            let asset = generate(name, seed);
+            let asset = catalog_asset(name, seed);
             objects.push(place(
                 &id,
                 name,
@@ -77,7 +67,7 @@ fn room() -> EvalScene {
             ));
         }
     }
-    let table = generate("side_table", 0);
+    let table = catalog_asset("side_table", 0);
     let (top, cx, cz, half) = surface(&table, SurfaceKind::Top);
     objects.push(place(
         "table",
@@ -90,7 +80,7 @@ fn room() -> EvalScene {
     for (k, name) in ["table_lamp", "candle", "bottle"].iter().enumerate() {
         let x = cx + (k as f64 - 1.0) * 0.5 * half;
         let pose = at(x, top + 2.0 * SETTLE_DROP, 4.0 + cz, 0.0);
-        let asset = generate(name, 1);
+        let asset = catalog_asset(name, 1);
         objects.push(place(
             name,
             name,
@@ -100,31 +90,7 @@ fn room() -> EvalScene {
             RelationKind::On,
         ));
     }
-    let shelf = generate("store_shelf", 0);
-    let (board, sx, sz, half) = surface(&shelf, SurfaceKind::Shelf);
-    objects.push(place(
-        "shelf",
-        "store_shelf",
-        &shelf.mesh,
-        at(4.0, SETTLE_DROP, 4.0, 0.0),
-        None,
-        RelationKind::OnFloor,
-    ));
-    let can = generate("can", 0);
-    let mut x = sx - half + 0.05;
-    while x < sx + half - 0.05 {
-        let pose = at(4.0 + x, board + 2.0 * SETTLE_DROP, 4.0 + sz, 0.0);
-        let id = format!("can_{}", objects.len());
-        objects.push(place(
-            &id,
-            "can",
-            &can.mesh,
-            pose,
-            Some("shelf"),
-            RelationKind::Inside,
-        ));
-        x += 0.09;
-    }
+    objects.extend(stocked_shelf(4.0, 4.0));
     EvalScene {
         objects,
         architecture: Architecture::open_ground(16.0, 12.0),
@@ -178,7 +144,7 @@ fn a_fruit_that_rolls_away_with_recomputed_contacts_rolls_with_recycled_ones() {
     let cache = DecompositionCache::default();
     let mut rolling = 0;
     for seed in 0..6u64 {
-        let fruit = generate("fruit", seed);
+        let fruit = catalog_asset("fruit", seed);
         for yaw in [0.0, 1.0, 2.0] {
             let scene = EvalScene {
                 objects: vec![place(

@@ -8,12 +8,8 @@ mod support;
 
 use scenethesis_eval::stability::simulate;
 use scenethesis_eval::{DecompositionCache, EvalScene};
-use scenethesis_procedural::catalog;
 use scenethesis_scene_graph::{Architecture, RelationKind};
-use support::{at, place};
-
-/// The optimizer's default gap between an object's bottom and its support (metres).
-const SETTLE_DROP: f64 = 0.00125;
+use support::{at, catalog_asset, place, SETTLE_DROP};
 
 #[test]
 fn round_based_assets_stand_still_after_the_settle_drop() {
@@ -26,11 +22,8 @@ fn round_based_assets_stand_still_after_the_settle_drop() {
         "palm_tree",
         "beach_umbrella",
     ] {
-        let category = catalog::categories()
-            .find(|c| c.name == name)
-            .expect("category exists");
         for seed in 0..24u64 {
-            let asset = catalog::generate(category, seed);
+            let asset = catalog_asset(name, seed);
             for yaw in [0.0, std::f64::consts::PI] {
                 let scene = EvalScene {
                     objects: vec![place(

@@ -106,6 +106,63 @@ pub fn place(
     }
 }
 
+/// The optimizer's default gap between an object's bottom and its support (metres): the
+/// stability simulation lets every object fall that far.
+pub const SETTLE_DROP: f64 = 0.00125;
+
+/// The built-in catalog's asset `name` generated with `seed`.
+pub fn catalog_asset(name: &str, seed: u64) -> scenethesis_scene_graph::Asset {
+    use scenethesis_procedural::catalog;
+    let category = catalog::categories()
+        .find(|c| c.name == name)
+        .unwrap_or_else(|| panic!("the catalog has `{name}`"));
+    catalog::generate(category, seed)
+}
+
+/// A catalog store shelf (`store_shelf`) standing at (`x`, `z`) with a catalog can every 9 cm
+/// along each of its boards and its top (`can_1`, `can_2`, …), each dropped by
+/// [`SETTLE_DROP`].
+pub fn stocked_shelf(x: f64, z: f64) -> Vec<EvalObject> {
+    use scenethesis_scene_graph::SurfaceKind;
+    let shelf = catalog_asset("store_shelf", 0);
+    let can = catalog_asset("can", 0);
+    let mut objects = vec![place(
+        "store_shelf",
+        "store_shelf",
+        &shelf.mesh,
+        at(x, SETTLE_DROP, z, 0.0),
+        None,
+        RelationKind::OnFloor,
+    )];
+    for surface in shelf
+        .info
+        .support_surfaces
+        .iter()
+        .filter(|s| matches!(s.kind, SurfaceKind::Shelf | SurfaceKind::Top))
+    {
+        let xs = surface.polygon.iter().map(|p| p[0]);
+        let (x0, x1) = xs.fold((f32::MAX, f32::MIN), |(a, b), x| (a.min(x), b.max(x)));
+        let board_z = surface.center()[1];
+        let y = surface.height as f64 + 2.0 * SETTLE_DROP;
+        let mut along = x0 + 0.05;
+        while along < x1 - 0.05 {
+            let id = format!("can_{}", objects.len());
+            let pose = at(x + along as f64, y, z + board_z as f64, 0.0);
+            let inside = RelationKind::Inside;
+            objects.push(place(
+                &id,
+                "can",
+                &can.mesh,
+                pose,
+                Some("store_shelf"),
+                inside,
+            ));
+            along += 0.09;
+        }
+    }
+    objects
+}
+
 /// A pose with yaw and translation, unit scale.
 pub fn at(x: f64, y: f64, z: f64, yaw: f64) -> Pose {
     Pose::new(1.0, yaw, Vector3::new(x, y, z))
