@@ -113,15 +113,10 @@ fn ground_base_colour_maps_wrap_seamlessly() {
     for material in GROUNDS.map(|id| by_id(id).unwrap_or_else(|| panic!("{id}"))) {
         let texels = &maps(material).base_color;
         for channel in 0..3 {
-            let at = |x: usize, y: usize| i32::from(texels[(y * n + x) * 3 + channel]);
-            let across_u: i32 = (0..n).map(|y| (at(n - 1, y) - at(0, y)).abs()).sum();
-            let inside_u: i32 = (0..n)
-                .map(|y| (at(n / 2, y) - at(n / 2 + 1, y)).abs())
-                .sum();
-            let across_v: i32 = (0..n).map(|x| (at(x, n - 1) - at(x, 0)).abs()).sum();
-            let inside_v: i32 = (0..n)
-                .map(|x| (at(x, n / 2) - at(x, n / 2 + 1)).abs())
-                .sum();
+            let map = Channel { texels, channel };
+            let (across_u, across_v) = (map.columns_apart(n - 1, 0), map.rows_apart(n - 1, 0));
+            let inside_u = map.columns_apart(n / 2, n / 2 + 1);
+            let inside_v = map.rows_apart(n / 2, n / 2 + 1);
             if across_u > 2 * inside_u + n as i32 || across_v > 2 * inside_v + n as i32 {
                 seams.push(format!(
                     "{} channel {channel}: u {across_u} vs {inside_u}, v {across_v} vs {inside_v}",
