@@ -7,7 +7,8 @@
 //! and metalness and the real-world size one tile covers. Its [`Maps`] — base colour, tangent-
 //! space normal and glTF metallic-roughness (G roughness, B metalness) — are [`TEXTURE_SIZE`]²
 //! texels, tileable (the noise is periodic over the tile), deterministic (integer hashing, the
-//! same bytes every run) and generated once per process. The base-colour map is an albedo
+//! same bytes every run) and generated once per process, or once per machine when a folder
+//! keeps them between processes ([`keep_maps_in`]). The base-colour map is an albedo
 //! *multiplier*: a surface's own colour tints it ([`Maps::color_factor`]), so a red leather and
 //! a black leather share one leather texture.
 //!
@@ -31,6 +32,7 @@
 #![warn(missing_docs)]
 
 pub mod color;
+mod kept;
 mod library;
 mod maps;
 pub mod noise;
@@ -39,6 +41,7 @@ mod projection;
 mod resolve;
 mod surfaces;
 
+pub use kept::{keep_maps_in, kept_maps_folder};
 pub use library::{by_id, library, Family, LibraryMaterial};
 pub use maps::{make_maps, maps, MapKind, Maps, TEXTURE_SIZE};
 pub use pattern::{Pattern, Texel};

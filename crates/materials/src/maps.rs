@@ -1,6 +1,7 @@
 //! The texture maps of a library material: its pattern sampled over one tile at
 //! [`TEXTURE_SIZE`]² texels, as PNG files in glTF's channel layout, generated on first use and
-//! kept for the rest of the process.
+//! kept for the rest of the process (and between processes in a folder, when one is named:
+//! [`keep_maps_in`](crate::keep_maps_in)).
 
 use std::sync::OnceLock;
 
@@ -61,6 +62,24 @@ pub struct Maps {
 }
 
 impl Maps {
+    /// Maps from their texels and averages (their PNG files encoded when first asked for).
+    pub(crate) fn from_parts(
+        base_color: Vec<u8>,
+        normal: Vec<u8>,
+        metallic_roughness: Vec<u8>,
+        mean_albedo: [f32; 3],
+        mean_roughness: f32,
+    ) -> Self {
+        Maps {
+            base_color,
+            normal,
+            metallic_roughness,
+            mean_albedo,
+            mean_roughness,
+            png: Default::default(),
+        }
+    }
+
     /// The texels of one map.
     pub fn texels(&self, kind: MapKind) -> &[u8] {
         match kind {
@@ -94,11 +113,26 @@ impl Maps {
     }
 }
 
-/// The maps of `material`, generated on the first call for it and shared afterwards.
+/// The maps of `material`, made on the first call for it and shared afterwards: read from
+/// the folder [`keep_maps_in`](crate::keep_maps_in) names when an earlier process kept them
+/// there, else generated (and kept there when a folder is named).
 pub fn maps(material: &LibraryMaterial) -> &'static Maps {
     static CACHE: OnceLock<Vec<OnceLock<Maps>>> = OnceLock::new();
     let cache = CACHE.get_or_init(|| library().iter().map(|_| OnceLock::new()).collect());
-    cache[material.index()].get_or_init(|| generate(material))
+    cache[material.index()].get_or_init(|| {
+        let folder = crate::kept::kept_maps_folder();
+        if let Some(kept) = folder
+            .as_deref()
+            .and_then(|f| crate::kept::load(f, material))
+        {
+            return kept;
+        }
+        let made = generate(material);
+        if let Some(folder) = &folder {
+            crate::kept::store(folder, material, &made);
+        }
+        made
+    })
 }
 
 /// Generates the maps of every material in `materials` that no earlier call generated, and
@@ -130,7 +164,8 @@ fn seed_of(id: &str) -> u32 {
     })
 }
 
-fn generate(material: &LibraryMaterial) -> Maps {
+/// The maps of `material`, generated from its pattern.
+pub(crate) fn generate(material: &LibraryMaterial) -> Maps {
     let n = TEXTURE_SIZE as usize;
     let seed = seed_of(material.id);
     let texels: Vec<Texel> = (0..n * n)
@@ -157,14 +192,13 @@ fn generate(material: &LibraryMaterial) -> Maps {
         metallic_roughness.extend_from_slice(&[255, r, metal]);
     }
     let count = (n * n) as f64;
-    Maps {
+    Maps::from_parts(
         base_color,
-        normal: normal_map(&texels, n, material.bump),
+        normal_map(&texels, n, material.bump),
         metallic_roughness,
-        mean_albedo: sum.map(|s| (s / count) as f32),
-        mean_roughness: (roughness_sum / count) as f32,
-        png: Default::default(),
-    }
+        sum.map(|s| (s / count) as f32),
+        (roughness_sum / count) as f32,
+    )
 }
 
 /// The tangent-space normals of the height field (wrapping at the edges, so the map tiles):

@@ -39,25 +39,51 @@ pub fn smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
 
 /// The fractional part of `x` in `[0, 1)`.
 pub fn fract(x: f32) -> f32 {
-    x - x.floor()
+    x - floor(x)
+}
+
+/// The largest integer not above `x`, for `|x| < 2³¹` (every lattice coordinate here): the
+/// same value as `f32::floor`, through a truncating conversion instead of a call into the
+/// maths library (texture generation calls it for every lattice lookup).
+fn floor(x: f32) -> f32 {
+    let truncated = x as i32 as f32;
+    if truncated > x {
+        truncated - 1.0
+    } else {
+        truncated
+    }
 }
 
 /// Lattice index of `x` (in cells) wrapped into `0..period`.
 fn wrap(cell: i64, period: u32) -> u32 {
-    cell.rem_euclid(period as i64) as u32
+    if (0..period as i64).contains(&cell) {
+        cell as u32
+    } else {
+        cell.rem_euclid(period as i64) as u32
+    }
+}
+
+/// The lattice index after `cell` (already in `0..period`), wrapped.
+fn next(cell: u32, period: u32) -> u32 {
+    if cell + 1 >= period {
+        0
+    } else {
+        cell + 1
+    }
 }
 
 /// Value noise in `[0, 1)` at tile coordinates `(u, v)`, with `px` × `py` lattice cells across
 /// one tile (so it repeats with period 1 in both coordinates).
 pub fn value(u: f32, v: f32, px: u32, py: u32, seed: u32) -> f32 {
     let (x, y) = (u * px as f32, v * py as f32);
-    let (x0, y0) = (x.floor(), y.floor());
+    let (x0, y0) = (floor(x), floor(y));
     let (tx, ty) = (fade(x - x0), fade(y - y0));
-    let (ix, iy) = (x0 as i64, y0 as i64);
-    let at = |dx: i64, dy: i64| unit(wrap(ix + dx, px), wrap(iy + dy, py), seed);
+    let (ix0, iy0) = (wrap(x0 as i64, px), wrap(y0 as i64, py));
+    let (ix1, iy1) = (next(ix0, px), next(iy0, py));
+    let at = |cx: u32, cy: u32| unit(cx, cy, seed);
     lerp(
-        lerp(at(0, 0), at(1, 0), tx),
-        lerp(at(0, 1), at(1, 1), tx),
+        lerp(at(ix0, iy0), at(ix1, iy0), tx),
+        lerp(at(ix0, iy1), at(ix1, iy1), tx),
         ty,
     )
 }
@@ -80,7 +106,7 @@ pub fn fbm(u: f32, v: f32, px: u32, py: u32, octaves: u32, gain: f32, seed: u32)
 /// the nearest cell (to colour cells one by one).
 pub fn cellular(u: f32, v: f32, cells: u32, seed: u32) -> (f32, u32) {
     let (x, y) = (u * cells as f32, v * cells as f32);
-    let (cx, cy) = (x.floor() as i64, y.floor() as i64);
+    let (cx, cy) = (floor(x) as i64, floor(y) as i64);
     let mut best = (f32::INFINITY, 0);
     for dy in -1..=1 {
         for dx in -1..=1 {

@@ -62,6 +62,7 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     init_logging(cli.verbose);
+    scenethesis_materials::keep_maps_in(maps_folder());
     match run(cli.command) {
         Ok(()) => ExitCode::SUCCESS,
         Err(err) => {
@@ -74,6 +75,21 @@ fn main() -> ExitCode {
             }
             ExitCode::FAILURE
         }
+    }
+}
+
+/// Where the texture maps this run generates are kept for the next runs (they are the same
+/// bytes every time): `SCENETHESIS_CACHE_DIR` (empty: nowhere), else
+/// `$XDG_CACHE_HOME/scenethesis`, else `$HOME/.cache/scenethesis`.
+fn maps_folder() -> Option<std::path::PathBuf> {
+    let named = |var: &str| std::env::var_os(var).map(std::path::PathBuf::from);
+    match named("SCENETHESIS_CACHE_DIR") {
+        Some(dir) if dir.as_os_str().is_empty() => None,
+        Some(dir) => Some(dir),
+        None => named("XDG_CACHE_HOME")
+            .filter(|d| d.is_absolute())
+            .or_else(|| named("HOME").map(|home| home.join(".cache")))
+            .map(|cache| cache.join("scenethesis")),
     }
 }
 
