@@ -33,7 +33,8 @@ pub mod stability;
 pub use error::EvalError;
 pub use load::{load_folder, load_glb, load_path};
 pub use metrics::{
-    evaluate, evaluate_timed, evaluate_with_cache, EvalTimings, MetricsSummary, SceneMetrics,
+    evaluate, evaluate_timed, evaluate_timed_with, evaluate_with_cache, EvalTimings,
+    MetricsSummary, SceneMetrics,
 };
 pub use scene::{procedural_mesh, EvalObject, EvalScene};
 pub use stability::DecompositionCache;

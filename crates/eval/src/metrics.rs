@@ -9,7 +9,7 @@ use crate::collision::{collisions_with, ArchPenetration, CollidingPair, SceneFie
 use crate::opening::{opening_clearances_with, OpeningClearance};
 use crate::raster::walk_and_reach;
 use crate::scene::EvalScene;
-use crate::stability::{simulate, DecompositionCache, UnstableObject};
+use crate::stability::{simulate_with, DecompositionCache, Simulation, UnstableObject};
 
 /// Every metric of one scene (see `metrics.md`), with the details a judge can act on.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -90,7 +90,7 @@ pub struct EvalTimings {
     /// Object pairs and the architecture tested with the meshes
     /// ([`collisions`](crate::collision::collisions)).
     pub collisions: f64,
-    /// The rigid-body stability simulation ([`simulate`]).
+    /// The rigid-body stability simulation ([`simulate_with`]).
     pub stability: f64,
     /// The Walk and Reach floor rasters ([`walk_and_reach`]).
     pub walk_reach: f64,
@@ -116,6 +116,17 @@ pub fn evaluate_timed(
     scene: &EvalScene,
     cache: &DecompositionCache,
 ) -> (SceneMetrics, EvalTimings) {
+    evaluate_timed_with(scene, cache, &Simulation::default())
+}
+
+/// Evaluates one scene like [`evaluate_timed`], running the stability simulation as
+/// `simulation` says ([`Simulation::on_one_core`] keeps it on the calling thread, for a caller
+/// that runs other work meanwhile).
+pub fn evaluate_timed_with(
+    scene: &EvalScene,
+    cache: &DecompositionCache,
+    simulation: &Simulation,
+) -> (SceneMetrics, EvalTimings) {
     // The collision pairs and the opening sweeps test against the same exact part fields.
     let fields = SceneFields::new(scene);
     let (
@@ -125,7 +136,7 @@ pub fn evaluate_timed(
         || {
             rayon::join(
                 || timed(|| collisions_with(scene, &fields)),
-                || timed(|| simulate(scene, cache)),
+                || timed(|| simulate_with(scene, cache, simulation).0),
             )
         },
         || {

@@ -1,6 +1,6 @@
 //! A judge that accepts every scene it can measure.
 
-use scenethesis_eval::{evaluate_timed, DecompositionCache};
+use scenethesis_eval::{evaluate_timed_with, DecompositionCache};
 
 use crate::judge::{Judge, JudgeError, JudgeInput, JudgeTimings, Verdict};
 
@@ -27,7 +27,7 @@ impl Judge for AcceptAll {
     fn judge(&self, input: &JudgeInput<'_>) -> Result<Verdict, JudgeError> {
         let mut meshes = 0.0;
         let scene = crate::judge::timed(&mut meshes, || input.eval_scene())?;
-        let (metrics, timings) = evaluate_timed(&scene, &self.cache);
+        let (metrics, timings) = evaluate_timed_with(&scene, &self.cache, &input.simulation());
         Ok(Verdict {
             accepted: true,
             failures: Vec::new(),

@@ -6,8 +6,9 @@ use std::collections::{BTreeMap, BTreeSet};
 use scenethesis_agents::{
     check_arrangement, check_prompt, core_categories, ArrangementCheck, Plan,
 };
+use scenethesis_eval::stability::Simulation;
 use scenethesis_eval::{
-    evaluate_timed, DecompositionCache, EvalError, EvalScene, EvalTimings, SceneMetrics,
+    evaluate_timed_with, DecompositionCache, EvalError, EvalScene, EvalTimings, SceneMetrics,
 };
 use scenethesis_imagery::Guidance;
 use scenethesis_scene_graph::{relation_holds, Mesh, ParentRef, Relation, Scene};
@@ -25,6 +26,22 @@ pub struct JudgeInput<'a> {
     /// The guidance the layout was lifted from (image, camera, depth, masks), when the guide
     /// worked from one; a judge that sees images can compare the scene with it.
     pub guidance: Option<&'a Guidance>,
+    /// Whether the caller runs other work on the spare core while the judge runs (the
+    /// pipeline draws the previews beside it): the stability simulation then runs its
+    /// separate worlds one after another on one core ([`Simulation::on_one_core`]) instead of
+    /// side by side. The verdict is the same either way.
+    pub cores_shared: bool,
+}
+
+impl JudgeInput<'_> {
+    /// How the stability simulation runs for this input (see [`JudgeInput::cores_shared`]).
+    pub fn simulation(&self) -> Simulation {
+        if self.cores_shared {
+            Simulation::on_one_core()
+        } else {
+            Simulation::default()
+        }
+    }
 }
 
 impl JudgeInput<'_> {
@@ -259,7 +276,13 @@ pub enum JudgeError {
 /// let plan = KnowledgePlanner::new().plan(&PlanRequest::new("a bedroom", ["bed"], 0)).unwrap();
 /// let scene = Scene::new(Architecture::rectangular_room(4.0, 3.0, 2.6, 0.9));
 /// let meshes = BTreeMap::new();
-/// let input = JudgeInput { plan: &plan, scene: &scene, meshes: &meshes, guidance: None };
+/// let input = JudgeInput {
+///     plan: &plan,
+///     scene: &scene,
+///     meshes: &meshes,
+///     guidance: None,
+///     cores_shared: false,
+/// };
 /// let verdict = NotEmpty(AcceptAll::new()).judge(&input).unwrap();
 /// assert!(!verdict.accepted);
 /// assert_eq!(verdict.reasons(), "the scene is empty");
@@ -304,7 +327,8 @@ impl Judge for GeometricJudge {
         let scene = input.scene;
         let mut timings = JudgeTimings::default();
         let eval_scene = timed(&mut timings.meshes, || input.eval_scene())?;
-        let (metrics, metrics_timings) = evaluate_timed(&eval_scene, &self.cache);
+        let (metrics, metrics_timings) =
+            evaluate_timed_with(&eval_scene, &self.cache, &input.simulation());
         timings.metrics = metrics_timings;
         let order = placement_rank(scene);
         let anchor = scene.anchor.as_deref();

@@ -220,6 +220,7 @@ fn the_judge_sees_the_guidance_image_first_when_there_is_one() {
         scene: &generated.scene,
         meshes: &generated.meshes,
         guidance: Some(&guidance),
+        cores_shared: false,
     };
     let verdict = judge.judge(&input).unwrap();
     assert!(verdict.accepted);
@@ -306,6 +307,7 @@ fn a_cut_off_review_keeps_its_scores_and_complete_objects() {
         scene: &generated.scene,
         meshes: &generated.meshes,
         guidance: None,
+        cores_shared: false,
     };
     let blamed = generated.scene.objects[0].id.clone();
     // Cut by max_tokens (`finish_reason: length`), and a stream cut off mid-answer.

@@ -532,6 +532,7 @@ impl Pipeline {
                     &scene,
                     &meshes,
                     layout.guidance.as_ref(),
+                    previews_beside.is_some(),
                 )
             },
             verdict_note,

@@ -237,6 +237,7 @@ fn check_judge_names_a_pushed_object(b: &GeneratedScene) {
             scene: &broken,
             meshes: &b.meshes,
             guidance: None,
+            cores_shared: false,
         })
         .unwrap();
     assert!(!verdict.accepted);

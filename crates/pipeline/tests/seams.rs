@@ -117,6 +117,7 @@ fn the_accept_all_judge_accepts_what_the_geometric_judge_rejects() {
         scene: &generated.scene,
         meshes: &generated.meshes,
         guidance: None,
+        cores_shared: false,
     };
     let strict = scenethesis_pipeline::GeometricJudge::default()
         .judge(&input)

@@ -1,5 +1,6 @@
-//! Stability: the whole scene simulated at once with rapier, each object one free rigid body
-//! made of convex pieces, and the objects that move or turn reported.
+//! Stability: the scene simulated with rapier, each object one free rigid body made of convex
+//! pieces, and the objects that move or turn reported. Groups of bodies that cannot reach
+//! each other are simulated in worlds of their own, side by side ([`WORLD_GAP`]).
 
 use std::collections::HashMap;
 use std::hash::{Hash, Hasher};
@@ -8,11 +9,16 @@ use std::sync::{Arc, Mutex};
 use rapier3d::glamx::{Pose3, Quat, Vec3};
 use rapier3d::parry::transformation::vhacd::VHACDParameters;
 use rapier3d::prelude::*;
+use rayon::prelude::*;
 use scenethesis_scene_graph::MeshPart;
 use serde::{Deserialize, Serialize};
 
 use crate::raster::{wall_pieces, WallPiece};
+
+mod worlds;
 use crate::scene::EvalScene;
+use worlds::{worlds, FreeBody};
+pub use worlds::{MAX_EXCURSION, MAX_WORLDS, WORLD_GAP};
 
 /// Simulated time in seconds.
 pub const SIM_DURATION: f64 = 2.0;
@@ -60,9 +66,14 @@ pub struct StabilityReport {
     /// The unstable objects, in scene order.
     pub unstable: Vec<UnstableObject>,
     /// Simulated time (s): [`SIM_DURATION`], or less when every body fell asleep earlier
-    /// (nothing moves any more, so the rest of the run would change nothing).
+    /// (nothing moves any more, so the rest of the run would change nothing); the longest
+    /// of the worlds when the bodies were simulated in several.
     #[serde(default)]
     pub simulated_seconds: f64,
+    /// The worlds the free bodies were simulated in: 1, or up to [`MAX_WORLDS`] when they
+    /// form groups that cannot reach each other ([`WORLD_GAP`]).
+    #[serde(default)]
+    pub worlds: usize,
 }
 
 /// Convex collision pieces of one mesh part, each with its pose in the part's frame.
@@ -136,7 +147,7 @@ impl DecompositionCache {
 /// Rings with at least this many vertices are simulated as round primitives.
 const MIN_ROUND_SEGMENTS: usize = 12;
 
-/// A vertical cylinder or cone given as a mesh with at least [`MIN_ROUND_SEGMENTS`] sides, as
+/// A vertical cylinder or cone given as a mesh with at least `MIN_ROUND_SEGMENTS` (12) sides, as
 /// the matching rapier primitive with its pose.
 ///
 /// A convex hull with many vertices around its base keeps rocking on a dynamic support in
@@ -333,12 +344,21 @@ pub struct Simulation {
     /// Relative-pose drift (m) under which a colliding pair keeps its last contact points;
     /// 0 recomputes every pair's contacts at every step.
     pub contact_recycle_drift: f64,
+    /// Free bodies that cannot reach each other are simulated in separate worlds
+    /// ([`WORLD_GAP`]); `false` simulates every body in one world.
+    pub separate_worlds: bool,
+    /// The separate worlds run side by side on rayon's workers; `false` runs them one after
+    /// another on the calling thread, for a caller that keeps the other cores busy. Each
+    /// world's result is the same either way.
+    pub worlds_in_parallel: bool,
 }
 
 impl Default for Simulation {
     fn default() -> Self {
         Simulation {
             contact_recycle_drift: CONTACT_RECYCLE_DRIFT,
+            separate_worlds: true,
+            worlds_in_parallel: true,
         }
     }
 }
@@ -348,6 +368,24 @@ impl Simulation {
     pub fn recomputing_contacts() -> Self {
         Simulation {
             contact_recycle_drift: 0.0,
+            ..Simulation::default()
+        }
+    }
+
+    /// Every free body in one world, the way a single simulation of the scene goes.
+    pub fn one_world() -> Self {
+        Simulation {
+            separate_worlds: false,
+            ..Simulation::default()
+        }
+    }
+
+    /// The metric's simulation on the calling thread alone: the same separate worlds, one
+    /// after another, with the same results as [`Simulation::default`].
+    pub fn on_one_core() -> Self {
+        Simulation {
+            worlds_in_parallel: false,
+            ..Simulation::default()
         }
     }
 }
@@ -380,16 +418,21 @@ pub fn simulate_with(
     cache: &DecompositionCache,
     settings: &Simulation,
 ) -> (StabilityReport, Vec<BodyMotion>) {
-    let mut world = new_world(settings);
-    add_architecture(&mut world, scene);
     let mut report = StabilityReport::default();
-    let bodies = add_objects(&mut world, scene, cache, &mut report);
-    report.tested = bodies.len();
-    report.simulated_seconds = run(&mut world) as f64 * SIM_STEP;
-    let motions: Vec<BodyMotion> = bodies
-        .into_iter()
-        .map(|(id, handle)| motion(id, &world.bodies[handle]))
-        .collect();
+    let objects = collision_shapes(scene, cache, &mut report);
+    let free: Vec<usize> = (0..objects.len()).filter(|&i| !objects[i].welded).collect();
+    report.tested = free.len();
+    let mut runs = match settings.separate_worlds {
+        true => separate_worlds(scene, &objects, &free, settings),
+        false => None,
+    }
+    .unwrap_or_else(|| vec![run_world(scene, &objects, &free, settings)]);
+    report.simulated_seconds = runs.iter().map(|r| r.steps).max().unwrap_or(0) as f64 * SIM_STEP;
+    report.worlds = runs.len();
+    let mut motions: Vec<(usize, BodyMotion)> =
+        runs.iter_mut().flat_map(|r| r.motions.drain(..)).collect();
+    motions.sort_by_key(|(index, _)| *index);
+    let motions: Vec<BodyMotion> = motions.into_iter().map(|(_, m)| m).collect();
     report.unstable = motions
         .iter()
         .filter(|m| m.is_unstable())
@@ -401,6 +444,195 @@ pub fn simulate_with(
         })
         .collect();
     (report, motions)
+}
+
+/// The free bodies simulated in up to [`MAX_WORLDS`] worlds side by side (`worlds::worlds`), or
+/// `None` when they make one world, or when a body travelled farther than [`MAX_EXCURSION`]
+/// (it could have reached a body of another world).
+fn separate_worlds(
+    scene: &EvalScene,
+    objects: &[ObjectShapes],
+    free: &[usize],
+    settings: &Simulation,
+) -> Option<Vec<WorldRun>> {
+    let bodies: Vec<FreeBody> = free
+        .iter()
+        .map(|&i| FreeBody {
+            bounds: objects[i].bounds,
+            weight: objects[i].colliders.len(),
+        })
+        .collect();
+    let split = worlds(&bodies);
+    if split.len() < 2 {
+        return None;
+    }
+    let run = |members: &Vec<usize>| {
+        let members: Vec<usize> = members.iter().map(|&k| free[k]).collect();
+        run_world(scene, objects, &members, settings)
+    };
+    let runs: Vec<WorldRun> = if settings.worlds_in_parallel {
+        split.par_iter().map(run).collect()
+    } else {
+        split.iter().map(run).collect()
+    };
+    runs.iter()
+        .all(|r| r.excursion <= MAX_EXCURSION)
+        .then_some(runs)
+}
+
+/// The collision shapes of one object, ready to become a body in any world.
+struct ObjectShapes {
+    /// Object id.
+    id: String,
+    /// Its colliders, each a convex piece or a massless contact foot, with its pose.
+    colliders: Vec<Collider>,
+    /// Welded to a wall: a fixed body in every world.
+    welded: bool,
+    /// Its mesh's box (world frame): minimum and maximum corner.
+    bounds: [[f64; 3]; 2],
+}
+
+/// Every object with something to simulate, in scene order; the others are noted as
+/// skipped, the welded ones as welded, in `report`.
+fn collision_shapes(
+    scene: &EvalScene,
+    cache: &DecompositionCache,
+    report: &mut StabilityReport,
+) -> Vec<ObjectShapes> {
+    let mut out = Vec::new();
+    for object in &scene.objects {
+        let mut colliders = Vec::new();
+        for part in &object.mesh.parts {
+            for (pose, shape) in cache.pieces(part).iter() {
+                // Feet first: massless, they only add contact points where the piece's own
+                // contact generation leaves a wide face with too few.
+                for foot in face_feet(shape) {
+                    colliders.push(
+                        material(ColliderBuilder::new(foot).position(*pose))
+                            .density(0.0)
+                            .build(),
+                    );
+                }
+                colliders
+                    .push(material(ColliderBuilder::new(shape.clone()).position(*pose)).build());
+            }
+        }
+        if colliders.is_empty() {
+            report.skipped.push(object.id.clone());
+            continue;
+        }
+        if object.welded() {
+            report.welded.push(object.id.clone());
+        }
+        out.push(ObjectShapes {
+            id: object.id.clone(),
+            colliders,
+            welded: object.welded(),
+            bounds: mesh_bounds(&object.mesh),
+        });
+    }
+    out
+}
+
+/// The box of every vertex of a mesh: minimum and maximum corner.
+fn mesh_bounds(mesh: &scenethesis_scene_graph::Mesh) -> [[f64; 3]; 2] {
+    let mut bounds = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
+    for p in mesh.parts.iter().flat_map(|part| part.positions.iter()) {
+        for k in 0..3 {
+            bounds[0][k] = bounds[0][k].min(p[k] as f64);
+            bounds[1][k] = bounds[1][k].max(p[k] as f64);
+        }
+    }
+    bounds
+}
+
+/// What one world's simulation found.
+struct WorldRun {
+    /// Steps run.
+    steps: usize,
+    /// Each free body's motion, with the index of its object in the shapes list.
+    motions: Vec<(usize, BodyMotion)>,
+    /// The farthest any point of a free body travelled at any step (m), bounded above.
+    excursion: f64,
+}
+
+/// Simulates the room, every welded object and the free objects `members` (indices into
+/// `objects`) in one world, objects inserted in scene order.
+fn run_world(
+    scene: &EvalScene,
+    objects: &[ObjectShapes],
+    members: &[usize],
+    settings: &Simulation,
+) -> WorldRun {
+    let mut world = new_world(settings);
+    add_architecture(&mut world, scene);
+    let mut bodies = Vec::new();
+    let mut next_member = members.iter().peekable();
+    for (index, object) in objects.iter().enumerate() {
+        let member = next_member.peek() == Some(&&index);
+        if member {
+            next_member.next();
+        }
+        if !(member || object.welded) {
+            continue;
+        }
+        let handle = add_object(&mut world, object);
+        if member && !object.welded {
+            bodies.push((
+                index,
+                handle,
+                reach_from_centre(&world.bodies[handle], object),
+            ));
+        }
+    }
+    let (steps, excursion) = run(&mut world, &bodies);
+    let motions = bodies
+        .into_iter()
+        .map(|(index, handle, _)| {
+            (
+                index,
+                motion(objects[index].id.clone(), &world.bodies[handle]),
+            )
+        })
+        .collect();
+    WorldRun {
+        steps,
+        motions,
+        excursion,
+    }
+}
+
+/// One body made of an object's colliders: fixed when it is welded, free otherwise.
+fn add_object(world: &mut PhysicsWorld, object: &ObjectShapes) -> RigidBodyHandle {
+    let builder = if object.welded {
+        RigidBodyBuilder::fixed()
+    } else {
+        RigidBodyBuilder::dynamic()
+    };
+    let handle = world.bodies.insert(builder);
+    for collider in &object.colliders {
+        world
+            .colliders
+            .insert_with_parent(collider.clone(), handle, &mut world.bodies);
+    }
+    handle
+}
+
+/// The farthest corner of an object's box from its body's centre of mass (m).
+fn reach_from_centre(body: &RigidBody, object: &ObjectShapes) -> f64 {
+    let com = body.local_center_of_mass();
+    let [lo, hi] = object.bounds;
+    (0..8)
+        .map(|corner| {
+            let pick = |k: usize| if corner >> k & 1 == 0 { lo[k] } else { hi[k] };
+            let d = [
+                pick(0) - com.x as f64,
+                pick(1) - com.y as f64,
+                pick(2) - com.z as f64,
+            ];
+            (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
+        })
+        .fold(0.0, f64::max)
 }
 
 /// An empty world with the metric's gravity and time step, computing contacts as `settings`
@@ -481,69 +713,35 @@ fn add_architecture(world: &mut PhysicsWorld, scene: &EvalScene) {
     }
 }
 
-/// One body per object made of its convex pieces: free, or fixed when welded to a wall (noted
-/// in `report`); objects with nothing to simulate are noted as skipped. Returns the free
-/// bodies by id.
-fn add_objects(
-    world: &mut PhysicsWorld,
-    scene: &EvalScene,
-    cache: &DecompositionCache,
-    report: &mut StabilityReport,
-) -> Vec<(String, RigidBodyHandle)> {
-    let mut bodies = Vec::new();
-    for object in &scene.objects {
-        let shapes: Vec<(Pose3, SharedShape)> = object
-            .mesh
-            .parts
-            .iter()
-            .flat_map(|part| cache.pieces(part).iter().cloned().collect::<Vec<_>>())
-            .collect();
-        if shapes.is_empty() {
-            report.skipped.push(object.id.clone());
-            continue;
-        }
-        let builder = if object.welded() {
-            report.welded.push(object.id.clone());
-            RigidBodyBuilder::fixed()
-        } else {
-            RigidBodyBuilder::dynamic()
-        };
-        let handle = world.bodies.insert(builder);
-        for (pose, shape) in shapes {
-            // Feet first: massless, they only add contact points where the piece's own
-            // contact generation leaves a wide face with too few.
-            for foot in face_feet(&shape) {
-                world.colliders.insert_with_parent(
-                    material(ColliderBuilder::new(foot).position(pose)).density(0.0),
-                    handle,
-                    &mut world.bodies,
-                );
-            }
-            world.colliders.insert_with_parent(
-                material(ColliderBuilder::new(shape).position(pose)),
-                handle,
-                &mut world.bodies,
-            );
-        }
-        if !object.welded() {
-            bodies.push((object.id.clone(), handle));
-        }
-    }
-    bodies
-}
-
-/// Steps the world for [`SIM_DURATION`], or until every body sleeps; returns the steps run.
-fn run(world: &mut PhysicsWorld) -> usize {
+/// Steps the world for [`SIM_DURATION`], or until every body sleeps. Returns the steps run
+/// and the farthest any point of the free `bodies` (handle, and the reach of its box from
+/// its centre of mass) travelled at any step: the centre's travel plus the angle turned times
+/// the reach bounds every point's.
+fn run(world: &mut PhysicsWorld, bodies: &[(usize, RigidBodyHandle, f64)]) -> (usize, f64) {
     let steps = (SIM_DURATION / SIM_STEP).round() as usize;
     let mut ran = 0;
+    let mut excursion = 0.0f64;
     while ran < steps {
         world.step();
         ran += 1;
+        for (_, handle, reach) in bodies {
+            let body = &world.bodies[*handle];
+            let local_com = body.local_center_of_mass();
+            let pose = body.position();
+            let moved = (pose.transform_point(local_com) - local_com).length() as f64;
+            let travel = moved + quat_angle(pose.rotation) as f64 * reach;
+            // NaN counts as far.
+            excursion = if travel.is_nan() {
+                f64::INFINITY
+            } else {
+                excursion.max(travel)
+            };
+        }
         if world.islands.active_bodies().next().is_none() {
             break;
         }
     }
-    ran
+    (ran, excursion)
 }
 
 /// The motion of object `id`'s body since it was placed.

@@ -44,19 +44,21 @@ impl Attempt {
 }
 
 /// The judge's verdict on `scene` laid out from `plan` (and from `guidance`, when the guide
-/// had one).
+/// had one); `cores_shared` when previews are drawn meanwhile.
 pub(crate) fn judge(
     judge: &dyn Judge,
     plan: &Plan,
     scene: &Scene,
     meshes: &BTreeMap<String, Mesh>,
     guidance: Option<&Guidance>,
+    cores_shared: bool,
 ) -> Result<Verdict, PipelineError> {
     Ok(judge.judge(&JudgeInput {
         plan,
         scene,
         meshes,
         guidance,
+        cores_shared,
     })?)
 }
 
