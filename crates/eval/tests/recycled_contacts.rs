@@ -8,16 +8,10 @@
 
 mod support;
 
-use scenethesis_eval::stability::{
-    simulate_with, BodyMotion, Simulation, MAX_DISPLACEMENT, MAX_ROTATION,
-};
+use scenethesis_eval::stability::{simulate_with, Simulation};
 use scenethesis_eval::{DecompositionCache, EvalObject, EvalScene};
 use scenethesis_scene_graph::{Architecture, Asset, RelationKind, SurfaceKind};
-use support::{at, catalog_asset, place, stocked_shelf, SETTLE_DROP};
-
-/// How far apart the two runs may leave a body (m, rad): a twentieth of the metric's 1 cm and
-/// 0.1 rad.
-const SAME_END: (f64, f64) = (0.0005, 0.005);
+use support::{assert_same_ends, at, catalog_asset, clear_cut, place, stocked_shelf, SETTLE_DROP};
 
 /// The highest surface of `kind` of `asset`: (height, centre x, centre z, half width along x).
 fn surface(asset: &Asset, kind: SurfaceKind) -> (f64, f64, f64, f64) {
@@ -97,20 +91,6 @@ fn room() -> EvalScene {
     }
 }
 
-/// Whether the reference run left `m` clearly still (under half the metric's thresholds) or
-/// clearly fallen (over twice them); a body in between is at the metric's edge, where any
-/// perturbation (even rounding) may tip it either way, and is not compared.
-fn clear_cut(m: &BodyMotion) -> Option<bool> {
-    let (d, r) = (m.displacement / MAX_DISPLACEMENT, m.rotation / MAX_ROTATION);
-    if d < 0.5 && r < 0.5 {
-        Some(false)
-    } else if m.non_finite || d > 2.0 || r > 2.0 {
-        Some(true)
-    } else {
-        None
-    }
-}
-
 #[test]
 fn recycled_contacts_leave_every_body_where_recomputed_contacts_do() {
     let scene = room();
@@ -118,19 +98,7 @@ fn recycled_contacts_leave_every_body_where_recomputed_contacts_do() {
     let (_, fast) = simulate_with(&scene, &cache, &Simulation::default());
     let (exact, reference) = simulate_with(&scene, &cache, &Simulation::recomputing_contacts());
     assert!(exact.tested > 20, "only {} bodies", exact.tested);
-    let mut marginal = Vec::new();
-    for (f, e) in fast.iter().zip(&reference) {
-        match clear_cut(e) {
-            Some(false) => assert!(
-                (f.displacement - e.displacement).abs() <= SAME_END.0
-                    && (f.rotation - e.rotation).abs() <= SAME_END.1,
-                "{} ends apart: {f:?} against {e:?}",
-                e.id
-            ),
-            Some(true) => assert!(f.is_unstable(), "{} no longer falls: {f:?}", e.id),
-            None => marginal.push(e.id.as_str()),
-        }
-    }
+    let marginal = assert_same_ends(&fast, &reference);
     assert!(
         marginal.len() <= 2,
         "too many bodies at the edge: {marginal:?}"

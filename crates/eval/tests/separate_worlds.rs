@@ -7,17 +7,13 @@
 
 mod support;
 
-use scenethesis_eval::stability::{
-    simulate_with, BodyMotion, Simulation, MAX_DISPLACEMENT, MAX_ROTATION,
-};
+use scenethesis_eval::stability::{simulate_with, Simulation};
 use scenethesis_eval::{DecompositionCache, EvalObject, EvalScene};
 use scenethesis_primitives::cuboid;
 use scenethesis_scene_graph::{Architecture, RelationKind};
-use support::{at, block, catalog_asset, cup, mesh, place, stocked_shelf, table, SETTLE_DROP};
-
-/// How far apart the two runs may leave a body (m, rad): a twentieth of the metric's 1 cm and
-/// 0.1 rad.
-const SAME_END: (f64, f64) = (0.0005, 0.005);
+use support::{
+    assert_same_ends, at, block, catalog_asset, cup, mesh, place, stocked_shelf, table, SETTLE_DROP,
+};
 
 /// A shop shelf stocked with cans, a table with four cups, and a row of tall floor items,
 /// each group a metre or more from the others.
@@ -60,20 +56,6 @@ fn room_of_groups() -> EvalScene {
     }
 }
 
-/// Whether the one-world run left `m` clearly still (under half the metric's thresholds) or
-/// clearly fallen (over twice them); a body in between is at the metric's edge, where any
-/// perturbation (even rounding) may tip it either way, and is not compared.
-fn clear_cut(m: &BodyMotion) -> Option<bool> {
-    let (d, r) = (m.displacement / MAX_DISPLACEMENT, m.rotation / MAX_ROTATION);
-    if d < 0.5 && r < 0.5 {
-        Some(false)
-    } else if m.non_finite || d > 2.0 || r > 2.0 {
-        Some(true)
-    } else {
-        None
-    }
-}
-
 #[test]
 fn separate_worlds_leave_every_body_where_one_world_does() {
     let scene = room_of_groups();
@@ -84,19 +66,7 @@ fn separate_worlds_leave_every_body_where_one_world_does() {
     assert_eq!(whole.worlds, 1);
     assert_eq!(split.tested, whole.tested);
     assert!(whole.tested > 20, "only {} bodies", whole.tested);
-    for (a, t) in apart.iter().zip(&together) {
-        assert_eq!(a.id, t.id, "bodies out of scene order");
-        match clear_cut(t) {
-            Some(false) => assert!(
-                (a.displacement - t.displacement).abs() <= SAME_END.0
-                    && (a.rotation - t.rotation).abs() <= SAME_END.1,
-                "{} ends apart: {a:?} against {t:?}",
-                t.id
-            ),
-            Some(true) => assert!(a.is_unstable(), "{} no longer falls: {a:?}", t.id),
-            None => {}
-        }
-    }
+    assert_same_ends(&apart, &together);
     // The scene does move a little (the settle drop), so the comparison is not of zeros.
     assert!(together.iter().any(|m| m.displacement > 0.0005));
 }

@@ -4,6 +4,7 @@
 use std::f64::consts::FRAC_PI_2;
 
 use nalgebra::{Point2, Vector3};
+use scenethesis_eval::stability::{BodyMotion, MAX_DISPLACEMENT, MAX_ROTATION};
 use scenethesis_eval::{EvalObject, EvalScene};
 use scenethesis_primitives::{cuboid, cylinder};
 use scenethesis_scene_graph::{
@@ -361,4 +362,49 @@ pub fn write_glb_under(path: &std::path::Path, root: Option<&str>, nodes: &[(&st
     out.extend_from_slice(b"BIN\0");
     out.extend_from_slice(&bin);
     std::fs::write(path, out).unwrap();
+}
+
+/// How far apart two runs of the stability simulation may leave a body (m, rad): a twentieth
+/// of the metric's 1 cm and 0.1 rad.
+pub const SAME_END: (f64, f64) = (0.0005, 0.005);
+
+/// Whether the reference run left `m` clearly still (under half the metric's thresholds) or
+/// clearly fallen (over twice them); a body in between is at the metric's edge, where any
+/// perturbation (even rounding) may tip it either way, and is not compared.
+pub fn clear_cut(m: &BodyMotion) -> Option<bool> {
+    let (d, r) = (m.displacement / MAX_DISPLACEMENT, m.rotation / MAX_ROTATION);
+    if d < 0.5 && r < 0.5 {
+        Some(false)
+    } else if m.non_finite || d > 2.0 || r > 2.0 {
+        Some(true)
+    } else {
+        None
+    }
+}
+
+/// Checks that `run` leaves every body where `reference` (the same bodies, in the same order)
+/// does: within [`SAME_END`] of a body the reference leaves clearly still, unstable where the
+/// reference clearly topples it. Returns the ids of the bodies at the edge, which are not
+/// compared.
+pub fn assert_same_ends<'a>(run: &[BodyMotion], reference: &'a [BodyMotion]) -> Vec<&'a str> {
+    assert_eq!(
+        run.len(),
+        reference.len(),
+        "the runs simulated different bodies"
+    );
+    let mut marginal = Vec::new();
+    for (m, r) in run.iter().zip(reference) {
+        assert_eq!(m.id, r.id, "bodies out of order");
+        match clear_cut(r) {
+            Some(false) => assert!(
+                (m.displacement - r.displacement).abs() <= SAME_END.0
+                    && (m.rotation - r.rotation).abs() <= SAME_END.1,
+                "{} ends apart: {m:?} against {r:?}",
+                r.id
+            ),
+            Some(true) => assert!(m.is_unstable(), "{} no longer falls: {m:?}", r.id),
+            None => marginal.push(r.id.as_str()),
+        }
+    }
+    marginal
 }
