@@ -1,8 +1,9 @@
-//! Generated maps kept on disk between processes: each command-line run would otherwise
-//! generate again, from scratch, the maps of every material its scene wears (about a fifth of
-//! a small scene's CPU time).
+//! Where a material's maps come from: made once per process ([`maps`]) and, when a folder is
+//! named, kept on disk between processes. Each command-line run would otherwise generate
+//! again, from scratch, the maps of every material its scene wears (about a fifth of a small
+//! scene's CPU time).
 //!
-//! Off until [`keep_maps_in`] names a folder. Maps live in `<folder>/maps-<digest>/<id>.maps`,
+//! Keeping is off until [`keep_maps_in`] names a folder. Maps live in `<folder>/maps-<digest>/<id>.maps`,
 //! where the digest covers this crate's version and every one of its source files, so a file
 //! written by a build whose generator differs is never read. A file is the texels and the
 //! averages with a checksum; one that is missing, short, foreign or corrupt is ignored and
@@ -14,10 +15,10 @@
 use std::fs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::RwLock;
+use std::sync::{OnceLock, RwLock};
 
-use crate::library::LibraryMaterial;
-use crate::maps::{Maps, TEXTURE_SIZE};
+use crate::library::{library, LibraryMaterial};
+use crate::maps::{generate, MapKind, Maps, TEXTURE_SIZE};
 
 /// Names the files of this build's generator.
 const SOURCE_DIGEST: &str = env!("SCENETHESIS_MATERIALS_SOURCE_DIGEST");
@@ -51,6 +52,47 @@ pub fn keep_maps_in(folder: Option<PathBuf>) {
 /// The folder [`keep_maps_in`] named, if any.
 pub fn kept_maps_folder() -> Option<PathBuf> {
     FOLDER.read().ok().and_then(|kept| kept.clone())
+}
+
+/// The maps of `material`, made on the first call for it and shared afterwards: read from
+/// the folder [`keep_maps_in`] names when an earlier process kept them
+/// there, else generated (and kept there when a folder is named).
+pub fn maps(material: &LibraryMaterial) -> &'static Maps {
+    static CACHE: OnceLock<Vec<OnceLock<Maps>>> = OnceLock::new();
+    let cache = CACHE.get_or_init(|| library().iter().map(|_| OnceLock::new()).collect());
+    cache[material.index()].get_or_init(|| {
+        let folder = kept_maps_folder();
+        if let Some(kept) = folder.as_deref().and_then(|f| load(f, material)) {
+            return kept;
+        }
+        let made = generate(material);
+        if let Some(folder) = &folder {
+            store(folder, material, &made);
+        }
+        made
+    })
+}
+
+/// Generates the maps of every material in `materials` that no earlier call generated, and
+/// encodes them as PNG files, so that a later [`maps`] or [`Maps::png`] finds them ready.
+///
+/// Meant for a spare thread while other work runs (the pipeline calls it beside the judge):
+/// the maps are the same whoever makes them first.
+///
+/// ```
+/// use scenethesis_materials::{by_id, make_maps, maps, MapKind};
+///
+/// let oak = by_id("oak").unwrap();
+/// make_maps([oak]);
+/// assert_eq!(&maps(oak).png(MapKind::Normal)[1..4], b"PNG");
+/// ```
+pub fn make_maps(materials: impl IntoIterator<Item = &'static LibraryMaterial>) {
+    for material in materials {
+        let made = maps(material);
+        for kind in MapKind::ALL {
+            made.png(kind);
+        }
+    }
 }
 
 /// The file that keeps `material`'s maps under `folder`.
@@ -166,7 +208,14 @@ fn checksum(bytes: &[u8]) -> u64 {
 mod tests {
     use super::*;
     use crate::library::by_id;
-    use crate::maps::generate;
+
+    #[test]
+    fn maps_are_made_once_per_process() {
+        let oak = by_id("oak").unwrap();
+        let first = maps(oak);
+        assert!(std::ptr::eq(first, maps(oak)), "made once");
+        assert_eq!(*first, generate(oak));
+    }
 
     fn scratch(name: &str) -> PathBuf {
         let dir =

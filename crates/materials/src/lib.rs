@@ -41,9 +41,9 @@ mod projection;
 mod resolve;
 mod surfaces;
 
-pub use kept::{keep_maps_in, kept_maps_folder};
+pub use kept::{keep_maps_in, kept_maps_folder, make_maps, maps};
 pub use library::{by_id, library, Family, LibraryMaterial};
-pub use maps::{make_maps, maps, MapKind, Maps, TEXTURE_SIZE};
+pub use maps::{MapKind, Maps, TEXTURE_SIZE};
 pub use pattern::{Pattern, Texel};
 pub use projection::{BoxProjection, FaceProjection};
 pub use resolve::resolve;

@@ -1,14 +1,13 @@
 //! The texture maps of a library material: its pattern sampled over one tile at
-//! [`TEXTURE_SIZE`]² texels, as PNG files in glTF's channel layout, generated on first use and
-//! kept for the rest of the process (and between processes in a folder, when one is named:
-//! [`keep_maps_in`](crate::keep_maps_in)).
+//! [`TEXTURE_SIZE`]² texels, as PNG files in glTF's channel layout (generated here; made once
+//! per process and kept between processes by [`maps`](crate::maps)).
 
 use std::sync::OnceLock;
 
 use image::ImageEncoder;
 
 use crate::color::linear_to_srgb_byte;
-use crate::library::{library, LibraryMaterial};
+use crate::library::LibraryMaterial;
 use crate::pattern::Texel;
 
 /// Width and height of every map, texels.
@@ -113,50 +112,6 @@ impl Maps {
     }
 }
 
-/// The maps of `material`, made on the first call for it and shared afterwards: read from
-/// the folder [`keep_maps_in`](crate::keep_maps_in) names when an earlier process kept them
-/// there, else generated (and kept there when a folder is named).
-pub fn maps(material: &LibraryMaterial) -> &'static Maps {
-    static CACHE: OnceLock<Vec<OnceLock<Maps>>> = OnceLock::new();
-    let cache = CACHE.get_or_init(|| library().iter().map(|_| OnceLock::new()).collect());
-    cache[material.index()].get_or_init(|| {
-        let folder = crate::kept::kept_maps_folder();
-        if let Some(kept) = folder
-            .as_deref()
-            .and_then(|f| crate::kept::load(f, material))
-        {
-            return kept;
-        }
-        let made = generate(material);
-        if let Some(folder) = &folder {
-            crate::kept::store(folder, material, &made);
-        }
-        made
-    })
-}
-
-/// Generates the maps of every material in `materials` that no earlier call generated, and
-/// encodes them as PNG files, so that a later [`maps`] or [`Maps::png`] finds them ready.
-///
-/// Meant for a spare thread while other work runs (the pipeline calls it beside the judge, whose
-/// stability simulation keeps one core): the maps are the same whoever generates them first.
-///
-/// ```
-/// use scenethesis_materials::{by_id, make_maps, maps, MapKind};
-///
-/// let oak = by_id("oak").unwrap();
-/// make_maps([oak]);
-/// assert_eq!(&maps(oak).png(MapKind::Normal)[1..4], b"PNG");
-/// ```
-pub fn make_maps(materials: impl IntoIterator<Item = &'static LibraryMaterial>) {
-    for material in materials {
-        let made = maps(material);
-        for kind in MapKind::ALL {
-            made.png(kind);
-        }
-    }
-}
-
 /// A stable seed from a material's id (FNV-1a), so that two materials of one pattern differ.
 fn seed_of(id: &str) -> u32 {
     id.bytes().fold(0x811C_9DC5u32, |h, b| {
@@ -241,8 +196,7 @@ mod tests {
     #[test]
     fn maps_are_cached_deterministic_tileable_and_well_formed() {
         let oak = by_id("oak").unwrap();
-        let first = maps(oak);
-        assert!(std::ptr::eq(first, maps(oak)), "generated once");
+        let first = &generate(oak);
         assert_eq!(first.base_color, generate(oak).base_color, "deterministic");
         let png = first.png(MapKind::BaseColor);
         assert_eq!(&png[1..4], b"PNG");
@@ -263,7 +217,7 @@ mod tests {
         );
         assert!(first.mean_albedo.iter().all(|m| (0.3..=1.0).contains(m)));
         // glTF layout: metals have B = 255, dielectrics B = 0; roughness in G.
-        let steel = maps(by_id("brushed_steel").unwrap());
+        let steel = &generate(by_id("brushed_steel").unwrap());
         assert!(steel.metallic_roughness.chunks(3).all(|c| c[2] == 255));
         assert!(first
             .metallic_roughness

@@ -38,11 +38,11 @@ pub(crate) fn record_looks(scene: &mut Scene, plan: &Plan, meshes: &BTreeMap<Str
     scene.look = look;
 }
 
-/// Starts generating the texture maps `scene` and its `meshes` wear on a thread of its own, so
-/// that the previews and the exports find them made. The judge's stability simulation, which
-/// runs next, keeps one core while the other is idle once the collision checks end; the
-/// thread runs at the lowest priority, so it takes only what the judge leaves. The maps are
-/// the same whichever thread makes them first (each is made once per process).
+/// Starts making the texture maps `scene` and its `meshes` wear on a thread of its own, so
+/// that the previews and the exports find them made. The judge runs next; the thread runs at
+/// the lowest priority, so it takes only what the judge leaves, and where the maps are kept
+/// between runs ([`keep_maps_in`](scenethesis_materials::keep_maps_in)) it mostly reads them.
+/// The maps are the same whichever thread makes them first (each is made once per process).
 pub(crate) fn make_maps_beside(scene: &Scene, meshes: &BTreeMap<String, Mesh>) {
     let surfaces = &scene.look.surfaces;
     let architecture = [
