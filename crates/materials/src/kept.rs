@@ -49,6 +49,22 @@ pub fn keep_maps_in(folder: Option<PathBuf>) {
     }
 }
 
+/// The folder the command line and the Python package keep maps in: `SCENETHESIS_CACHE_DIR`
+/// (an empty value: none), else `$XDG_CACHE_HOME/scenethesis` (when absolute), else
+/// `$HOME/.cache/scenethesis`; `None` when none of them is set. A library that wants maps kept
+/// passes this (or its own folder) to [`keep_maps_in`]; nothing is kept unless it does.
+pub fn default_maps_folder() -> Option<PathBuf> {
+    let named = |var: &str| std::env::var_os(var).map(PathBuf::from);
+    match named("SCENETHESIS_CACHE_DIR") {
+        Some(dir) if dir.as_os_str().is_empty() => None,
+        Some(dir) => Some(dir),
+        None => named("XDG_CACHE_HOME")
+            .filter(|d| d.is_absolute())
+            .or_else(|| named("HOME").map(|home| home.join(".cache")))
+            .map(|cache| cache.join("scenethesis")),
+    }
+}
+
 /// The folder [`keep_maps_in`] named, if any.
 pub fn kept_maps_folder() -> Option<PathBuf> {
     FOLDER.read().ok().and_then(|kept| kept.clone())

@@ -41,7 +41,7 @@ mod projection;
 mod resolve;
 mod surfaces;
 
-pub use kept::{keep_maps_in, kept_maps_folder, make_maps, maps};
+pub use kept::{default_maps_folder, keep_maps_in, kept_maps_folder, make_maps, maps};
 pub use library::{by_id, library, Family, LibraryMaterial};
 pub use maps::{MapKind, Maps, TEXTURE_SIZE};
 pub use pattern::{Pattern, Texel};

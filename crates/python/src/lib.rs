@@ -142,6 +142,8 @@ fn batch_jobs(
 /// The native module.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // The texture maps are kept between processes where the command line keeps them.
+    scenethesis_materials::keep_maps_in(scenethesis_materials::default_maps_folder());
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_class::<Settings>()?;
     m.add_class::<NativeScene>()?;

@@ -62,7 +62,8 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     init_logging(cli.verbose);
-    scenethesis_materials::keep_maps_in(maps_folder());
+    // The texture maps a run generates are the same bytes every time: keep them for the next.
+    scenethesis_materials::keep_maps_in(scenethesis_materials::default_maps_folder());
     match run(cli.command) {
         Ok(()) => ExitCode::SUCCESS,
         Err(err) => {
@@ -75,21 +76,6 @@ fn main() -> ExitCode {
             }
             ExitCode::FAILURE
         }
-    }
-}
-
-/// Where the texture maps this run generates are kept for the next runs (they are the same
-/// bytes every time): `SCENETHESIS_CACHE_DIR` (empty: nowhere), else
-/// `$XDG_CACHE_HOME/scenethesis`, else `$HOME/.cache/scenethesis`.
-fn maps_folder() -> Option<std::path::PathBuf> {
-    let named = |var: &str| std::env::var_os(var).map(std::path::PathBuf::from);
-    match named("SCENETHESIS_CACHE_DIR") {
-        Some(dir) if dir.as_os_str().is_empty() => None,
-        Some(dir) => Some(dir),
-        None => named("XDG_CACHE_HOME")
-            .filter(|d| d.is_absolute())
-            .or_else(|| named("HOME").map(|home| home.join(".cache")))
-            .map(|cache| cache.join("scenethesis")),
     }
 }
 
