@@ -10,13 +10,13 @@ use rapier3d::glamx::{Pose3, Quat, Vec3};
 use rapier3d::parry::transformation::vhacd::VHACDParameters;
 use rapier3d::prelude::*;
 use rayon::prelude::*;
-use scenethesis_scene_graph::MeshPart;
+use scenethesis_scene_graph::{Aabb, MeshPart};
 use serde::{Deserialize, Serialize};
 
 use crate::raster::{wall_pieces, WallPiece};
+use crate::scene::EvalScene;
 
 mod worlds;
-use crate::scene::EvalScene;
 use worlds::{worlds, FreeBody};
 pub use worlds::{MAX_EXCURSION, MAX_WORLDS, WORLD_GAP};
 
@@ -422,9 +422,10 @@ pub fn simulate_with(
     let objects = collision_shapes(scene, cache, &mut report);
     let free: Vec<usize> = (0..objects.len()).filter(|&i| !objects[i].welded).collect();
     report.tested = free.len();
-    let mut runs = match settings.separate_worlds {
-        true => separate_worlds(scene, &objects, &free, settings),
-        false => None,
+    let mut runs = if settings.separate_worlds {
+        separate_worlds(scene, &objects, &free, settings)
+    } else {
+        None
     }
     .unwrap_or_else(|| vec![run_world(scene, &objects, &free, settings)]);
     report.simulated_seconds = runs.iter().map(|r| r.steps).max().unwrap_or(0) as f64 * SIM_STEP;
@@ -488,8 +489,8 @@ struct ObjectShapes {
     colliders: Vec<Collider>,
     /// Welded to a wall: a fixed body in every world.
     welded: bool,
-    /// Its mesh's box (world frame): minimum and maximum corner.
-    bounds: [[f64; 3]; 2],
+    /// Its mesh's box (world frame).
+    bounds: Aabb,
 }
 
 /// Every object with something to simulate, in scene order; the others are noted as
@@ -528,22 +529,13 @@ fn collision_shapes(
             id: object.id.clone(),
             colliders,
             welded: object.welded(),
-            bounds: mesh_bounds(&object.mesh),
+            bounds: object
+                .mesh
+                .bounds()
+                .expect("a mesh with collision pieces has vertices"),
         });
     }
     out
-}
-
-/// The box of every vertex of a mesh: minimum and maximum corner.
-fn mesh_bounds(mesh: &scenethesis_scene_graph::Mesh) -> [[f64; 3]; 2] {
-    let mut bounds = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
-    for p in mesh.parts.iter().flat_map(|part| part.positions.iter()) {
-        for k in 0..3 {
-            bounds[0][k] = bounds[0][k].min(p[k] as f64);
-            bounds[1][k] = bounds[1][k].max(p[k] as f64);
-        }
-    }
-    bounds
 }
 
 /// What one world's simulation found.
@@ -621,17 +613,12 @@ fn add_object(world: &mut PhysicsWorld, object: &ObjectShapes) -> RigidBodyHandl
 /// The farthest corner of an object's box from its body's centre of mass (m).
 fn reach_from_centre(body: &RigidBody, object: &ObjectShapes) -> f64 {
     let com = body.local_center_of_mass();
-    let [lo, hi] = object.bounds;
-    (0..8)
-        .map(|corner| {
-            let pick = |k: usize| if corner >> k & 1 == 0 { lo[k] } else { hi[k] };
-            let d = [
-                pick(0) - com.x as f64,
-                pick(1) - com.y as f64,
-                pick(2) - com.z as f64,
-            ];
-            (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
-        })
+    let com = ::nalgebra::Point3::new(com.x as f64, com.y as f64, com.z as f64);
+    object
+        .bounds
+        .corners()
+        .iter()
+        .map(|corner| (corner - com).norm())
         .fold(0.0, f64::max)
 }
 
@@ -725,11 +712,8 @@ fn run(world: &mut PhysicsWorld, bodies: &[(usize, RigidBodyHandle, f64)]) -> (u
         world.step();
         ran += 1;
         for (_, handle, reach) in bodies {
-            let body = &world.bodies[*handle];
-            let local_com = body.local_center_of_mass();
-            let pose = body.position();
-            let moved = (pose.transform_point(local_com) - local_com).length() as f64;
-            let travel = moved + quat_angle(pose.rotation) as f64 * reach;
+            let (moved, turned) = moved_and_turned(&world.bodies[*handle]);
+            let travel = moved.length() as f64 + turned as f64 * reach;
             // NaN counts as far.
             excursion = if travel.is_nan() {
                 f64::INFINITY
@@ -746,16 +730,23 @@ fn run(world: &mut PhysicsWorld, bodies: &[(usize, RigidBodyHandle, f64)]) -> (u
 
 /// The motion of object `id`'s body since it was placed.
 fn motion(id: String, body: &RigidBody) -> BodyMotion {
-    let local_com = body.local_center_of_mass();
-    let pose = body.position();
-    let moved = pose.transform_point(local_com) - local_com;
-    let rotation = quat_angle(pose.rotation);
+    let (moved, rotation) = moved_and_turned(body);
     BodyMotion {
         id,
         displacement: moved.length() as f64,
         rotation: rotation as f64,
-        non_finite: !pose.is_finite() || !moved.is_finite() || !rotation.is_finite(),
+        non_finite: !body.position().is_finite() || !moved.is_finite() || !rotation.is_finite(),
     }
+}
+
+/// How far a body's centre of mass has moved since it was placed, and the angle it turned.
+fn moved_and_turned(body: &RigidBody) -> (Vec3, f32) {
+    let local_com = body.local_center_of_mass();
+    let pose = body.position();
+    (
+        pose.transform_point(local_com) - local_com,
+        quat_angle(pose.rotation),
+    )
 }
 
 /// The rotation angle of a unit quaternion, in [0, π].

@@ -8,6 +8,8 @@
 //! that gap; the simulation checks that none did ([`MAX_EXCURSION`]) and otherwise runs the
 //! whole scene in one world again.
 
+use scenethesis_scene_graph::Aabb;
+
 /// Free bodies whose boxes are farther apart than this (m), on every axis where they do not
 /// overlap, and not joined through nearer bodies, may be simulated in separate worlds.
 pub const WORLD_GAP: f64 = 0.05;
@@ -25,19 +27,19 @@ pub const MAX_EXCURSION: f64 = 0.02;
 /// the split changes the results by rounding, and a scene must come out the same everywhere.
 pub const MAX_WORLDS: usize = 2;
 
-/// One free body to place in a world: its box (world frame, min and max corners) and a weight
-/// for balancing the worlds (its number of colliders).
+/// One free body to place in a world: its box (world frame) and a weight for balancing the
+/// worlds (its number of colliders).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct FreeBody {
-    /// The body's box: minimum corner, maximum corner.
-    pub bounds: [[f64; 3]; 2],
+    /// The body's box.
+    pub bounds: Aabb,
     /// What simulating the body costs, roughly: its number of colliders.
     pub weight: usize,
 }
 
 /// Whether two boxes come within `gap` of each other.
-fn near(a: &[[f64; 3]; 2], b: &[[f64; 3]; 2], gap: f64) -> bool {
-    (0..3).all(|k| a[0][k] - gap <= b[1][k] && b[0][k] - gap <= a[1][k])
+fn near(a: &Aabb, b: &Aabb, gap: f64) -> bool {
+    (0..3).all(|k| a.min[k] - gap <= b.max[k] && b.min[k] - gap <= a.max[k])
 }
 
 /// The groups of bodies joined by chains of boxes within [`WORLD_GAP`] of each other, each a
@@ -102,10 +104,11 @@ pub(crate) fn worlds(bodies: &[FreeBody]) -> Vec<Vec<usize>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::Point3;
 
     fn body(x: f64, width: f64, weight: usize) -> FreeBody {
         FreeBody {
-            bounds: [[x, 0.0, 0.0], [x + width, 1.0, 1.0]],
+            bounds: Aabb::new(Point3::new(x, 0.0, 0.0), Point3::new(x + width, 1.0, 1.0)),
             weight,
         }
     }
@@ -122,8 +125,8 @@ mod tests {
         assert_eq!(touching_groups(&bodies), vec![vec![0, 1, 2], vec![3]]);
         // Apart on one axis is enough: the same boxes side by side in depth.
         let mut far = body(0.5, 1.0, 1);
-        far.bounds[0][2] = 1.06;
-        far.bounds[1][2] = 2.0;
+        far.bounds.min.z = 1.06;
+        far.bounds.max.z = 2.0;
         assert_eq!(touching_groups(&[bodies[0], far]).len(), 2);
     }
 
