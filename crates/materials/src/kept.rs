@@ -17,6 +17,8 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::{OnceLock, RwLock};
 
+use scenethesis_scene_graph::fnv1a64;
+
 use crate::library::{library, LibraryMaterial};
 use crate::maps::{generate, MapKind, Maps, TEXTURE_SIZE};
 
@@ -182,7 +184,7 @@ fn encode(maps: &Maps) -> Vec<u8> {
     for value in maps.mean_albedo.iter().chain([&maps.mean_roughness]) {
         out.extend_from_slice(&value.to_le_bytes());
     }
-    let sum = checksum(&out);
+    let sum = fnv1a64(&out);
     out.extend_from_slice(&sum.to_le_bytes());
     out
 }
@@ -196,7 +198,7 @@ fn decode(bytes: &[u8]) -> Option<Maps> {
         return None;
     }
     let (body, sum) = bytes.split_at(body_len);
-    if checksum(body).to_le_bytes() != sum || body[8..12] != TEXTURE_SIZE.to_le_bytes() {
+    if fnv1a64(body).to_le_bytes() != sum || body[8..12] != TEXTURE_SIZE.to_le_bytes() {
         return None;
     }
     let maps = &body[12..12 + 3 * n];
@@ -211,13 +213,6 @@ fn decode(bytes: &[u8]) -> Option<Maps> {
         [float(0), float(1), float(2)],
         float(3),
     ))
-}
-
-/// 64-bit FNV-1a of `bytes`.
-fn checksum(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, b| {
-        (h ^ u64::from(*b)).wrapping_mul(0x0100_0000_01b3)
-    })
 }
 
 #[cfg(test)]
