@@ -3,9 +3,9 @@
 //! again, from scratch, the maps of every material its scene wears (about a fifth of a small
 //! scene's CPU time).
 //!
-//! Keeping is off until [`keep_maps_in`] names a folder. Maps live in `<folder>/maps-<digest>/<id>.maps`,
-//! where the digest covers this crate's version and every one of its source files, so a file
-//! written by a build whose generator differs is never read. A file is the texels and the
+//! Keeping is off until [`keep_maps_in`] names a folder. Maps live in
+//! `<folder>/maps-<digest>/<id>.maps`, where the digest covers this crate's version and every
+//! one of its source files, so a file written by a build whose generator differs is never read. A file is the texels and the
 //! averages with a checksum; one that is missing, short, foreign or corrupt is ignored and
 //! written again. Files are written to a temporary name and renamed into place, so a process
 //! that reads while another writes sees a whole file or none. A build that starts its folder
@@ -27,6 +27,9 @@ const SOURCE_DIGEST: &str = env!("SCENETHESIS_MATERIALS_SOURCE_DIGEST");
 
 /// The first bytes of a kept file.
 const MAGIC: &[u8; 8] = b"SCNMAPS1";
+
+/// Bytes before the maps: the magic and the texture size (`u32`).
+const HEADER: usize = MAGIC.len() + 4;
 
 static FOLDER: RwLock<Option<PathBuf>> = RwLock::new(None);
 
@@ -168,14 +171,14 @@ fn remove_other_builds(folder: &Path, ours: &Path) {
     }
 }
 
-/// Texels per map.
+/// Bytes of one map (RGB8).
 fn map_len() -> usize {
     (TEXTURE_SIZE * TEXTURE_SIZE * 3) as usize
 }
 
 /// The bytes of a kept file: magic, size, the three maps, the four averages, checksum.
 fn encode(maps: &Maps) -> Vec<u8> {
-    let mut out = Vec::with_capacity(8 + 4 + 3 * map_len() + 16 + 8);
+    let mut out = Vec::with_capacity(HEADER + 3 * map_len() + 16 + 8);
     out.extend_from_slice(MAGIC);
     out.extend_from_slice(&TEXTURE_SIZE.to_le_bytes());
     out.extend_from_slice(&maps.base_color);
@@ -193,17 +196,18 @@ fn encode(maps: &Maps) -> Vec<u8> {
 /// writes for this texture size.
 fn decode(bytes: &[u8]) -> Option<Maps> {
     let n = map_len();
-    let body_len = 8 + 4 + 3 * n + 16;
-    if bytes.len() != body_len + 8 || &bytes[..8] != MAGIC {
+    let body_len = HEADER + 3 * n + 16;
+    if bytes.len() != body_len + 8 || &bytes[..MAGIC.len()] != MAGIC {
         return None;
     }
     let (body, sum) = bytes.split_at(body_len);
-    if fnv1a64(body).to_le_bytes() != sum || body[8..12] != TEXTURE_SIZE.to_le_bytes() {
+    if fnv1a64(body).to_le_bytes() != sum || body[MAGIC.len()..HEADER] != TEXTURE_SIZE.to_le_bytes()
+    {
         return None;
     }
-    let maps = &body[12..12 + 3 * n];
+    let maps = &body[HEADER..HEADER + 3 * n];
     let float = |k: usize| {
-        let at = 12 + 3 * n + 4 * k;
+        let at = HEADER + 3 * n + 4 * k;
         f32::from_le_bytes([body[at], body[at + 1], body[at + 2], body[at + 3]])
     };
     Some(Maps::from_parts(
