@@ -286,6 +286,7 @@ impl<'a> Sweep<'a> {
             alignment,
             settings: &settings.losses,
             deadline,
+            memo: None,
         };
         let (mut pose, alignment_iterations, mut physics_iterations) = if past(deadline) {
             // Out of time: not reached, it keeps its starting pose.

@@ -18,6 +18,7 @@ use scenethesis_correspondence::shape::turned;
 use scenethesis_scene_graph::{yaw_distance, Pose, SceneObject};
 use scenethesis_sdf::SignedDistance;
 
+use crate::memo::ContactMemo;
 use crate::objective::{LossSettings, ObjectProblem, RoomBounds, Stage};
 use crate::obstacles::Obstacles;
 use crate::optimizer::Optimizer;
@@ -111,6 +112,7 @@ pub(crate) fn finish(
                 .or_insert_with(|| Arc::new(dense[i].densified()))
                 .clone();
             let support = supports[i].clone();
+            let memo = ContactMemo::new();
             let problem = ObjectProblem {
                 id: &input.order[i].id,
                 asset: &asset,
@@ -120,6 +122,7 @@ pub(crate) fn finish(
                 alignment: None,
                 settings: input.losses,
                 deadline: input.deadline,
+                memo: Some(&memo),
             };
             let resettle = Resettle {
                 input,

@@ -34,6 +34,7 @@ mod carry;
 mod contact;
 mod driver;
 mod finish;
+mod memo;
 mod objective;
 mod obstacles;
 mod optimizer;
@@ -48,6 +49,7 @@ pub use driver::{
     architecture_fields, optimize_scene, OptimizeSettings, SceneProblem,
     DEFAULT_OPTIMIZE_BUDGET_SECS,
 };
+pub use memo::ContactMemo;
 pub use objective::{LossSettings, Losses, ObjectProblem, RoomBounds, Stage};
 pub use obstacles::Obstacles;
 pub use optimizer::{LearningRates, Optimizer, Sgd, StageOutcome};

@@ -9,6 +9,7 @@ use scenethesis_scene_graph::{Aabb, Architecture, Pose};
 use serde::{Deserialize, Serialize};
 
 use crate::contact::{cluster_contacts, CollisionState, Contact};
+use crate::memo::{self, Clearance, ContactMemo, MemoState};
 use crate::obstacles::box_distance;
 use crate::obstacles::Obstacles;
 use crate::prepare::PreparedAsset;
@@ -170,6 +171,9 @@ pub struct ObjectProblem<'a> {
     /// When set, optimizers stop iterating once this instant has passed and return the pose
     /// reached (the stage's time budget; see [`crate::OptimizeSettings::time_budget`]).
     pub deadline: Option<Instant>,
+    /// Distances remembered between this problem's contact checks
+    /// ([`ObjectProblem::contacts`]), when its obstacles stay put while it is solved.
+    pub memo: Option<&'a ContactMemo>,
 }
 
 impl ObjectProblem<'_> {
@@ -205,28 +209,72 @@ impl ObjectProblem<'_> {
 
     /// [`ObjectProblem::collision`] without the clusters (`clusters` is left empty): for the
     /// callers that only ask whether and where the object collides. Clustering is the costly
-    /// part of a colliding pose's check, and most checks never look at the clusters.
+    /// part of a colliding pose's check, and most checks never look at the clusters. With a
+    /// [`ObjectProblem::memo`], points its bounds prove clear of the margin are not queried
+    /// (the contacts are the same).
     pub fn contacts(&self, pose: &Pose) -> CollisionState {
-        let margin = self.settings.collision_margin;
-        let mut contacts = Vec::new();
-        // Only obstacles near the object's box can matter.
         let region = self.world_box(pose);
-        let near = self.obstacles.near_box(&region, margin);
+        // Only obstacles near the object's box can matter.
+        let near = self
+            .obstacles
+            .near_box(&region, self.settings.collision_margin);
         if near.is_empty() {
             return CollisionState::default();
         }
-        for local in self.asset.surface_points() {
+        let mut forgetful = MemoState::default();
+        let mut kept = self.memo.map(ContactMemo::lock);
+        let memo = kept.as_deref_mut().unwrap_or(&mut forgetful);
+        if self.memo.is_some() {
+            let own = self.asset.surface_points().len();
+            memo.hold_for(&near, own, |index| self.obstacles.samples(index).len());
+        }
+        let mut contacts = self.own_contacts(pose, &near, memo);
+        contacts.extend(self.foreign_contacts(pose, &region, &near, memo));
+        CollisionState {
+            contacts,
+            clusters: Vec::new(),
+        }
+    }
+
+    /// The object's surface points within the margin of a `near` obstacle, each with its
+    /// nearest such obstacle.
+    fn own_contacts(&self, pose: &Pose, near: &[usize], memo: &mut MemoState) -> Vec<Contact> {
+        let margin = self.settings.collision_margin;
+        let reach = memo::reach(margin);
+        let obstacles = self.obstacles;
+        let mut contacts = Vec::new();
+        for (k, local) in self.asset.surface_points().iter().enumerate() {
             let world = world_point(pose, local);
+            let known = memo.own(k);
+            let proven = known.clear_of(&world, margin);
+            let outside = known.outside_unless_within(&world, reach);
             let mut best: Option<(usize, f64)> = None;
-            for &index in &near {
-                let b = self.obstacles.bounds(index);
-                if box_distance(b, &world) >= margin {
+            let mut clearance = f64::INFINITY;
+            for &index in near {
+                let lipschitz = obstacles.is_lipschitz(index);
+                if proven && lipschitz {
                     continue;
                 }
-                let d = self.obstacles.distance_to(index, &world);
+                let gap = box_distance(obstacles.bounds(index), &world);
+                let d = if gap >= margin {
+                    gap
+                } else if lipschitz
+                    && outside
+                    && obstacles.surface_within(index, &world, reach) == Some(false)
+                {
+                    reach
+                } else {
+                    obstacles.distance_to(index, &world)
+                };
+                if lipschitz {
+                    clearance = clearance.min(d);
+                }
                 if d < margin && best.is_none_or(|(_, bd)| d < bd) {
                     best = Some((index, d));
                 }
+            }
+            if !proven {
+                memo.set_own(k, Clearance::new(world, clearance));
             }
             if let Some((obstacle, distance)) = best {
                 contacts.push(Contact {
@@ -235,28 +283,61 @@ impl ObjectProblem<'_> {
                     distance,
                     violation: margin - distance,
                     obstacle,
-                    push: self.obstacles.gradient_of(obstacle, &world),
+                    push: obstacles.gradient_of(obstacle, &world),
                     foreign: false,
                 });
             }
         }
+        contacts
+    }
+
+    /// The `near` obstacles' samples inside (or within the margin of) the object's own field.
+    fn foreign_contacts(
+        &self,
+        pose: &Pose,
+        region: &Aabb,
+        near: &[usize],
+        memo: &mut MemoState,
+    ) -> Vec<Contact> {
+        let margin = self.settings.collision_margin;
         let own = if self.obstacles.is_exact() {
             self.asset.exact_field()
         } else {
             self.asset.grid_field()
         };
+        let remember = own.is_lipschitz();
+        // The margin in the asset's own units, where its field measures.
+        let local_margin = margin / pose.scale;
+        let local_reach = memo::reach(local_margin);
         let grown = Aabb::new(
             region.min - Vector3::repeat(margin),
             region.max + Vector3::repeat(margin),
         );
-        for &index in &near {
-            for world in self.obstacles.samples(index) {
+        let mut contacts = Vec::new();
+        for (slot, &index) in near.iter().enumerate() {
+            for (k, world) in self.obstacles.samples(index).iter().enumerate() {
                 if !grown.contains_point(world) {
                     continue;
                 }
                 let local_scaled = unrotate_y(pose.yaw, &(world.coords - pose.translation));
                 let local = Point3::from(local_scaled / pose.scale);
-                let (d, g) = own.distance_and_gradient(&local.cast::<f32>());
+                let point = local.cast::<f32>();
+                if remember {
+                    let known = memo.foreign(slot, k);
+                    if known.clear_of(&local, local_margin) {
+                        continue;
+                    }
+                    if known.outside_unless_within(&local, local_reach)
+                        && own.surface_within(&point, local_reach as f32) == Some(false)
+                    {
+                        memo.set_foreign(slot, k, Clearance::new(local, local_reach));
+                        continue;
+                    }
+                }
+                let (d, g) = own.distance_and_gradient(&point);
+                if remember {
+                    memo.set_foreign(slot, k, Clearance::new(local, f64::from(d)));
+                }
                 let distance = d as f64 * pose.scale;
                 if distance >= margin {
                     continue;
@@ -273,10 +354,7 @@ impl ObjectProblem<'_> {
                 });
             }
         }
-        CollisionState {
-            contacts,
-            clusters: Vec::new(),
-        }
+        contacts
     }
 
     /// Groups `state`'s contacts into clusters of nearby points (indices into its contacts).
@@ -536,6 +614,7 @@ mod tests {
             alignment: None,
             settings,
             deadline: None,
+            memo: None,
         }
     }
 

@@ -19,6 +19,7 @@ pub struct Obstacles {
     bounds: Vec<Aabb>,
     architecture: Vec<bool>,
     points: Vec<Vec<Point3<f64>>>,
+    lipschitz: Vec<bool>,
     exact: bool,
 }
 
@@ -50,6 +51,7 @@ impl Obstacles {
         samples: &[Point3<f64>],
     ) {
         let world: Vec<Point3<f64>> = samples.iter().map(|p| world_point(&pose, p)).collect();
+        let lipschitz = field.is_lipschitz();
         self.scene.insert(id, field, pose);
         let (lo, hi) = self
             .scene
@@ -61,12 +63,14 @@ impl Obstacles {
                 self.bounds[i] = bounds;
                 self.architecture[i] = architecture;
                 self.points[i] = world;
+                self.lipschitz[i] = lipschitz;
             }
             None => {
                 self.ids.push(id.to_owned());
                 self.bounds.push(bounds);
                 self.architecture.push(architecture);
                 self.points.push(world);
+                self.lipschitz.push(lipschitz);
             }
         }
     }
@@ -111,11 +115,25 @@ impl Obstacles {
         &self.points[index]
     }
 
+    /// Whether field `index` is a true signed distance
+    /// ([`SignedDistance::is_lipschitz`]).
+    pub fn is_lipschitz(&self, index: usize) -> bool {
+        self.lipschitz[index]
+    }
+
     /// The signed distance from world point `p` to field `index`.
     pub fn distance_to(&self, index: usize, p: &Point3<f64>) -> f64 {
         self.scene
             .distance_to(&self.ids[index], &p.cast::<f32>())
             .map_or(f64::INFINITY, f64::from)
+    }
+
+    /// Whether the surface of field `index` comes within `radius` of world point `p`, when
+    /// its field answers that more cheaply than a distance
+    /// ([`SignedDistance::surface_within`]).
+    pub fn surface_within(&self, index: usize, p: &Point3<f64>, radius: f64) -> Option<bool> {
+        self.scene
+            .surface_within(&self.ids[index], &p.cast::<f32>(), radius as f32)
     }
 
     /// The outward unit gradient of field `index` at world point `p`.

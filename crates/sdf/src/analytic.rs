@@ -40,6 +40,10 @@ impl SignedDistance for BoxSdf {
         g
     }
 
+    fn is_lipschitz(&self) -> bool {
+        true
+    }
+
     fn local_bounds(&self) -> (Point3<f32>, Point3<f32>) {
         (
             Point3::from(-self.half_extents),
@@ -72,6 +76,10 @@ impl SignedDistance for SphereSdf {
         p.coords.try_normalize(0.0).unwrap_or_else(Vector3::y)
     }
 
+    fn is_lipschitz(&self) -> bool {
+        true
+    }
+
     fn local_bounds(&self) -> (Point3<f32>, Point3<f32>) {
         let r = Vector3::repeat(self.radius);
         (Point3::from(-r), Point3::from(r))
@@ -90,6 +98,10 @@ impl SignedDistance for PlaneSdf {
 
     fn gradient(&self, _p: &Point3<f32>) -> Vector3<f32> {
         Vector3::y()
+    }
+
+    fn is_lipschitz(&self) -> bool {
+        true
     }
 
     /// The whole solid half-space: infinite in x and z and downward, up to y = 0.

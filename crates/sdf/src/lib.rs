@@ -76,6 +76,21 @@ pub trait SignedDistance: Send + Sync {
     fn distance_and_gradient(&self, p: &Point3<f32>) -> (f32, Vector3<f32>) {
         (self.distance(p), self.gradient(p))
     }
+
+    /// Whether the distance is 1-Lipschitz: between any two points it changes by at most
+    /// their distance, and its sign flips only across the surface (a true signed distance).
+    /// A caller that measured `d` at a point then knows, without a query, that the distance is
+    /// at least `d − δ` anywhere within `δ` of it. `false` unless the field proves it.
+    fn is_lipschitz(&self) -> bool {
+        false
+    }
+
+    /// Whether some point of the surface lies within `radius` of `p`, ignoring the sign:
+    /// `Some` when the field answers that more cheaply than a distance query (a search that
+    /// stops at the first triangle found within `radius`), `None` when it cannot.
+    fn surface_within(&self, _p: &Point3<f32>, _radius: f32) -> Option<bool> {
+        None
+    }
 }
 
 /// The result of an exact query against a [`MeshSdf`].

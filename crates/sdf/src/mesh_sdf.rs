@@ -676,6 +676,56 @@ impl MeshSdf {
         }
     }
 
+    /// Whether any triangle lies closer than `radius` to `p` (unsigned): a depth-first search
+    /// that prunes every node and packet at least `radius` away and stops at the first triangle
+    /// inside it. Far cheaper than [`MeshSdf::search`] when nothing is that near.
+    fn any_within(&self, p: V3, radius: f32) -> bool {
+        let r2 = radius * radius;
+        let pa = [p.x, p.y, p.z];
+        let p4 = pa.map(F4::splat);
+        self.groups.iter().any(|g| {
+            distance2_to_box(&pa, &g.min, &g.max) < r2 && self.any_from(g.wide_root, &p4, r2)
+        })
+    }
+
+    /// [`MeshSdf::any_within`] below the 4-wide tree's `entry` (node, 0) or (first packet,
+    /// packet count), for the squared radius `r2`.
+    fn any_from(&self, entry: (u32, u32), p4: &[F4; 3], r2: f32) -> bool {
+        const CAP: usize = 64;
+        let mut stack = [(0u32, 0u32); CAP];
+        stack[0] = entry;
+        let mut sp = 1usize;
+        while sp > 0 {
+            sp -= 1;
+            let (index, count) = stack[sp];
+            if count > 0 {
+                let start = index as usize;
+                let packets = &self.packets.packets[start..start + count as usize];
+                if packets.iter().any(|q| q.distances2(p4).min_lane() < r2) {
+                    return true;
+                }
+                continue;
+            }
+            let n = &self.wide[index as usize];
+            let ds = n.distances2(p4).0;
+            for (lane, &d) in ds.iter().enumerate() {
+                if d >= r2 {
+                    continue;
+                }
+                if sp == CAP {
+                    // Pathologically deep tree: search this child recursively.
+                    if self.any_from(n.entry(lane), p4, r2) {
+                        return true;
+                    }
+                } else {
+                    stack[sp] = n.entry(lane);
+                    sp += 1;
+                }
+            }
+        }
+        false
+    }
+
     /// Hierarchical generalized winding number of the subtree at `root`.
     fn winding(&self, root: u32, p: V3) -> f32 {
         let mut stack: Vec<u32> = Vec::with_capacity(64);
@@ -748,6 +798,16 @@ impl SignedDistance for MeshSdf {
 
     fn local_bounds(&self) -> (Point3<f32>, Point3<f32>) {
         (self.min, self.max)
+    }
+
+    fn surface_within(&self, p: &Point3<f32>, radius: f32) -> Option<bool> {
+        Some(self.any_within(p.coords, radius))
+    }
+
+    /// Closed solids signed by pseudo-normals give a true signed distance (the union's is
+    /// their minimum); an open soup's winding-number sign may flip away from its surface.
+    fn is_lipschitz(&self) -> bool {
+        self.groups.iter().all(|g| g.rule == SignRule::PseudoNormal)
     }
 
     fn distance_and_gradient(&self, p: &Point3<f32>) -> (f32, Vector3<f32>) {

@@ -112,6 +112,11 @@ impl Entry {
         self.field.distance(&self.to_local(p)) * self.scale
     }
 
+    fn surface_within(&self, p: &Point3<f32>, radius: f32) -> Option<bool> {
+        self.field
+            .surface_within(&self.to_local(p), radius / self.scale)
+    }
+
     #[inline]
     fn distance_and_gradient(&self, p: &Point3<f32>) -> (f32, Vector3<f32>) {
         let (d, g) = self.field.distance_and_gradient(&self.to_local(p));
@@ -260,6 +265,14 @@ impl SceneSdf {
     pub fn distance_to(&self, id: &str, p: &Point3<f32>) -> Option<f32> {
         let e = &self.entries[self.position(id).ok()?];
         e.valid.then(|| e.distance(p))
+    }
+
+    /// Whether one object's surface comes within `radius` (world metres) of `p`, when its
+    /// field answers that cheaply ([`SignedDistance::surface_within`]); `None` when it cannot
+    /// or when the scene has no valid object `id`.
+    pub fn surface_within(&self, id: &str, p: &Point3<f32>, radius: f32) -> Option<bool> {
+        let e = &self.entries[self.position(id).ok()?];
+        e.valid.then(|| e.surface_within(p, radius)).flatten()
     }
 
     /// Signed distance and unit world gradient of one object's field at `p`.

@@ -130,6 +130,17 @@ fn overlapping_parts_form_a_union() {
 }
 
 #[test]
+fn only_closed_solids_promise_a_lipschitz_distance() {
+    let (p, mut t) = shapes::bumpy_sphere(0.5, 0.0, 24, 12);
+    assert!(MeshSdf::new(&p, &t).unwrap().is_lipschitz());
+    assert!(MeshSdf::from_mesh(&table()).unwrap().is_lipschitz());
+    t.remove(100);
+    // A holed mesh is signed by its winding number, which may flip away from the surface.
+    assert!(!MeshSdf::new(&p, &t).unwrap().is_lipschitz());
+    assert!(BoxSdf::new(Vector3::new(1.0, 1.0, 1.0)).is_lipschitz());
+}
+
+#[test]
 fn mesh_with_small_hole_keeps_its_inside() {
     let (p, mut t) = shapes::bumpy_sphere(0.5, 0.0, 24, 12);
     t.remove(100); // punch a hole
@@ -228,6 +239,22 @@ proptest! {
         let p = Point3::new(x * 0.5, y, z * 0.4);
         let inside = mesh.parts.iter().any(|part| brute_winding(&part.positions, &part.triangles, &p) > 0.5);
         prop_assert_eq!(sdf.distance(&p) < 0.0, inside);
+    }
+
+    #[test]
+    fn surface_within_agrees_with_the_brute_force_distance(
+        x in -0.8f32..0.8, y in -0.8f32..0.8, z in -0.8f32..0.8, radius in 0.0005f32..0.2,
+    ) {
+        let (positions, triangles) = shapes::bumpy_sphere(0.5, 0.15, 40, 21);
+        let p = Point3::new(x, y, z);
+        let exact = brute_distance(&positions, &triangles, &p);
+        // Points within rounding of the radius may go either way.
+        prop_assume!((exact - f64::from(radius)).abs() > 1e-5);
+        prop_assert_eq!(
+            bumpy_sphere().surface_within(&p, radius),
+            Some(exact < f64::from(radius)),
+            "{} from the surface, radius {}", exact, radius
+        );
     }
 
     #[test]
