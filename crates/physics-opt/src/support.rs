@@ -117,7 +117,7 @@ const KIND_RANK_COST: f64 = 0.05;
 /// asset origin, i.e. the centre of its footprint at its lowest point) with relation `relation`:
 /// among the surfaces of the kinds the relation allows ([`SurfaceKind::for_support`]), a
 /// surface under the foot before one beside it, then the nearest in height, a less preferred
-/// kind counting [`KIND_RANK_COST`] farther per rank. For `under`, the low shelves beneath a
+/// kind counting `KIND_RANK_COST` farther per rank. For `under`, the low shelves beneath a
 /// top ([`is_low_shelf`]) fit as well as the floor beneath it. `None` when the parent has no
 /// surfaces of a fitting kind.
 pub fn choose_surface(
