@@ -34,6 +34,7 @@ fn sofa() -> Mesh {
             positions,
             triangles,
             joint: None,
+            uvs: None,
         }],
         materials: Vec::new(),
     }

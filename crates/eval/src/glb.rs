@@ -153,6 +153,7 @@ fn convert(file: &GltfFile, node: &GltfNode) -> GlbNode {
             positions,
             triangles,
             joint: None,
+            uvs: None,
         });
     }
     GlbNode {
@@ -206,6 +207,7 @@ mod tests {
             positions: positions.clone(),
             triangles: triangles.clone(),
             joint: None,
+            uvs: None,
         };
         assert!(
             crate::stability::round_solid(&split).is_some(),
@@ -220,6 +222,7 @@ mod tests {
             positions,
             triangles,
             joint: None,
+            uvs: None,
         };
         assert!(crate::stability::round_solid(&part).is_none());
         assert!(crate::stability::is_convex(&part));

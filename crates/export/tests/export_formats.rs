@@ -46,6 +46,7 @@ fn mug() -> Mesh {
             base_color: [0.9, 0.9, 0.85, 1.0],
             roughness: 0.3,
             metallic: 0.0,
+            texture: None,
         }],
     )
 }
@@ -67,6 +68,7 @@ fn crate_mesh() -> Mesh {
             base_color: [0.6, 0.6, 0.62, 1.0],
             roughness: 0.35,
             metallic: 1.0,
+            texture: None,
         }],
     )
 }
@@ -92,6 +94,7 @@ fn stool() -> Mesh {
                 base_color: [0.8, 0.8, 0.8, 1.0],
                 roughness: 0.1,
                 metallic: 1.0,
+                texture: None,
             },
         ],
     )

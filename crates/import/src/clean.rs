@@ -63,7 +63,11 @@ fn clean_part(part: &mut MeshPart) -> Cleaned {
     }
     if triangles.len() != part.triangles.len() {
         let positions = std::mem::take(&mut part.positions);
-        (part.positions, part.triangles) = drop_unused(positions, triangles);
+        let kept;
+        (part.positions, part.triangles, kept) = drop_unused(positions, triangles);
+        if let Some(uvs) = &mut part.uvs {
+            *uvs = kept.iter().filter_map(|&i| uvs.get(i).copied()).collect();
+        }
     }
     c
 }
@@ -104,11 +108,12 @@ fn zero_area(t: &[u32; 3], positions: &[[f32; 3]]) -> bool {
     cross.iter().all(|x| *x == 0.0)
 }
 
-/// Removes vertices no triangle uses (keeping order) and renumbers the triangles.
+/// Removes vertices no triangle uses (keeping order) and renumbers the triangles; also returns
+/// the old index of every vertex kept.
 fn drop_unused(
     positions: Vec<[f32; 3]>,
     triangles: Vec<[u32; 3]>,
-) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
+) -> (Vec<[f32; 3]>, Vec<[u32; 3]>, Vec<usize>) {
     let mut new_index = vec![u32::MAX; positions.len()];
     for t in &triangles {
         for &i in t {
@@ -116,17 +121,19 @@ fn drop_unused(
         }
     }
     let mut kept = Vec::new();
+    let mut old = Vec::new();
     for (i, p) in positions.into_iter().enumerate() {
         if new_index[i] == 0 {
             new_index[i] = kept.len() as u32;
             kept.push(p);
+            old.push(i);
         }
     }
     let triangles = triangles
         .into_iter()
         .map(|t| t.map(|i| new_index[i as usize]))
         .collect();
-    (kept, triangles)
+    (kept, triangles, old)
 }
 
 #[cfg(test)]
@@ -142,6 +149,7 @@ mod tests {
                 positions,
                 triangles,
                 joint: None,
+                uvs: None,
             }],
             materials: vec![Material::new("grey", [0.5; 3], 0.8)],
         }

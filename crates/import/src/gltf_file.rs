@@ -4,13 +4,15 @@
 //! - the file and every external buffer are read with a size limit ([`super::limits`]);
 //! - buffer URIs must be `data:` URIs or relative paths that, once canonicalised, stay inside
 //!   the containment folder given by the caller (the asset pack, or the file's own folder);
-//!   image URIs follow the same rule, and a base-colour texture is read only to tint its
-//!   material by the texture's mean colour (a texture that cannot be used is a warning);
+//!   image URIs follow the same rule; a base-colour texture is decoded within the limits and
+//!   kept on its material (a texture that cannot be used is a warning), and the primitives
+//!   wearing it keep the texture coordinates it names (`TEXCOORD_n`);
 //! - node hierarchies are walked with an explicit depth limit and a check for cycles (a node
 //!   that is its own ancestor), and the total number of node instances, vertices and triangles
 //!   is bounded, so a graph that shares nodes exponentially cannot blow up;
 //! - accessors are checked against their buffer views and buffers before the `gltf` crate reads
-//!   them (sparse accessors are refused), indices against the vertex count;
+//!   them (sparse accessors are refused), indices against the vertex count, texture
+//!   coordinates for one finite pair per vertex;
 //! - node transforms and vertex positions must be finite and within
 //!   [`super::limits::MAX_FILE_COORDINATE`].
 //!
@@ -20,7 +22,7 @@ use std::path::{Path, PathBuf};
 
 use gltf::mesh::Mode;
 use nalgebra::{Matrix4, Point3};
-use scenethesis_scene_graph::{printable, read_bounded, Material, Mesh, MeshPart};
+use scenethesis_scene_graph::{printable, read_bounded, Material, Mesh, MeshPart, TextureImage};
 
 use super::limits::{
     MAX_BUFFER_BYTES, MAX_FILE_COORDINATE, MAX_GLTF_BYTES, MAX_NODE_DEPTH, MAX_NODE_INSTANCES,
@@ -60,7 +62,7 @@ fn invalid(field: impl Into<String>, reason: impl Into<String>) -> GltfError {
     }
 }
 
-/// A material's name and factors.
+/// A material's name, factors and base-colour texture.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GltfMaterial {
     /// The material's name, if it has one.
@@ -71,6 +73,9 @@ pub struct GltfMaterial {
     pub roughness: f32,
     /// Metalness factor (0..=1).
     pub metallic: f32,
+    /// The base-colour texture's image, when it could be used, and the index `n` of the
+    /// `TEXCOORD_n` set it is sampled with.
+    pub texture: Option<(TextureImage, u32)>,
 }
 
 impl GltfMaterial {
@@ -81,6 +86,7 @@ impl GltfMaterial {
             base_color: self.base_color,
             roughness: self.roughness,
             metallic: self.metallic,
+            texture: self.texture.as_ref().map(|(image, _)| image.clone()),
         }
     }
 }
@@ -101,6 +107,10 @@ pub struct GltfPrimitive {
     /// Triangles (strips and fans converted; winding flipped under mirroring transforms).
     /// Degenerate triangles are kept.
     pub triangles: Vec<[u32; 3]>,
+    /// Texture coordinates per vertex (glTF's convention, v down from the image's top), read
+    /// when the primitive's material has a usable base-colour texture and the primitive the
+    /// `TEXCOORD_n` set that texture names; `None` otherwise.
+    pub uvs: Option<Vec<[f32; 2]>>,
 }
 
 /// One node instance of the scene.
@@ -131,7 +141,7 @@ pub struct GltfFile {
     pub roots: Vec<GltfNode>,
     /// One line per base-colour texture that could not be used (missing, outside the asset
     /// folder, over a limit, not a PNG or JPEG), naming the material and the image; its
-    /// material keeps the plain base-colour factor.
+    /// material keeps the plain base-colour factor and no image.
     pub texture_warnings: Vec<String>,
 }
 
@@ -195,9 +205,13 @@ impl GltfFile {
         }
         let mut materials: Vec<GltfMaterial> =
             gltf.materials().map(|m| read_material(&m)).collect();
-        let texture_warnings = tint_by_textures(&gltf, &buffers, dir, root, &mut materials);
+        let texture_warnings = read_textures(&gltf, &buffers, dir, root, &mut materials);
         let mut walker = Walker {
             buffers: &buffers,
+            texcoord_sets: materials
+                .iter()
+                .map(|m| m.texture.as_ref().map(|(_, set)| *set))
+                .collect(),
             instances: 0,
             vertices: 0,
             triangles: 0,
@@ -237,6 +251,7 @@ impl GltfFile {
                 base_color: [1.0; 4],
                 roughness: 1.0,
                 metallic: 1.0,
+                texture: None,
             })
     }
 }
@@ -277,9 +292,9 @@ fn unit(v: f32, default: f32) -> f32 {
     }
 }
 
-/// Tints every material that has a base-colour texture by the texture's mean colour; returns a
-/// warning for each texture that could not be used (its material keeps the plain factor).
-fn tint_by_textures(
+/// Reads the base-colour texture of every material that has one onto it; returns a warning for
+/// each texture that could not be used (its material keeps the plain factor and no image).
+fn read_textures(
     gltf: &gltf::Gltf,
     buffers: &[Vec<u8>],
     dir: &Path,
@@ -292,10 +307,10 @@ fn tint_by_textures(
             continue;
         };
         let image = info.texture().source();
-        let mean = image_bytes(&image, buffers, dir, root)
-            .and_then(|bytes| super::textures::mean_linear_colour(&bytes));
-        match mean {
-            Ok(mean) => material.base_color = super::textures::tinted(material.base_color, mean),
+        let decoded = image_bytes(&image, buffers, dir, root)
+            .and_then(|bytes| super::textures::texture_image(&bytes));
+        match decoded {
+            Ok(texture) => material.texture = Some((texture, info.tex_coord())),
             Err(reason) => warnings.push(format!(
                 "materials[{}]{}: base-colour texture images[{}]{} cannot be used ({reason}); \
                  using the plain base colour",
@@ -357,11 +372,14 @@ fn read_material(m: &gltf::Material<'_>) -> GltfMaterial {
         base_color: pbr.base_color_factor().map(|c| unit(c, 1.0)),
         roughness: unit(pbr.roughness_factor(), 1.0),
         metallic: unit(pbr.metallic_factor(), 1.0),
+        texture: None,
     }
 }
 
 struct Walker<'a> {
     buffers: &'a [Vec<u8>],
+    /// Per glTF material, the `TEXCOORD_n` set its usable base-colour texture is sampled with.
+    texcoord_sets: Vec<Option<u32>>,
     instances: usize,
     vertices: usize,
     triangles: usize,
@@ -455,7 +473,7 @@ impl Walker<'_> {
                 "has no POSITION attribute",
             ));
         };
-        check_accessor(&accessor, self.buffers, true)?;
+        check_accessor(&accessor, self.buffers, Use::Positions)?;
         self.vertices = self.vertices.saturating_add(accessor.count());
         if self.vertices > MAX_VERTICES {
             return Err(invalid(
@@ -464,7 +482,7 @@ impl Walker<'_> {
             ));
         }
         if let Some(indices) = primitive.indices() {
-            check_accessor(&indices, self.buffers, false)?;
+            check_accessor(&indices, self.buffers, Use::Indices)?;
         }
         let reader = primitive.reader(|b| self.buffers.get(b.index()).map(|d| d.as_slice()));
         let mut positions = Vec::with_capacity(accessor.count());
@@ -540,6 +558,14 @@ impl Walker<'_> {
                 t.swap(1, 2);
             }
         }
+        let set = primitive
+            .material()
+            .index()
+            .and_then(|m| self.texcoord_sets.get(m).copied().flatten());
+        let uvs = match set.and_then(|n| Some((n, primitive.get(&gltf::Semantic::TexCoords(n))?))) {
+            Some((n, accessor)) => Some(self.texcoords(&reader, n, &accessor, positions.len())?),
+            None => None,
+        };
         Ok(Some(GltfPrimitive {
             mesh: mesh.index(),
             mesh_name: mesh.name().map(str::to_owned),
@@ -547,38 +573,105 @@ impl Walker<'_> {
             material: primitive.material().index(),
             positions,
             triangles,
+            uvs,
         }))
+    }
+
+    /// The `TEXCOORD_n` set of a primitive with `vertices` vertices: one finite pair per
+    /// vertex.
+    fn texcoords<'a, 's, F>(
+        &self,
+        reader: &gltf::mesh::Reader<'a, 's, F>,
+        set: u32,
+        accessor: &gltf::Accessor<'_>,
+        vertices: usize,
+    ) -> Result<Vec<[f32; 2]>, GltfError>
+    where
+        F: Clone + Fn(gltf::Buffer<'a>) -> Option<&'s [u8]>,
+    {
+        check_accessor(accessor, self.buffers, Use::TexCoords)?;
+        let field = format!("accessors[{}]", accessor.index());
+        if accessor.count() != vertices {
+            return Err(invalid(
+                field,
+                format!(
+                    "TEXCOORD_{set} holds {} elements for {vertices} vertices",
+                    accessor.count()
+                ),
+            ));
+        }
+        let uvs: Vec<[f32; 2]> = reader
+            .read_tex_coords(set)
+            .map(|t| t.into_f32().collect())
+            .unwrap_or_default();
+        if uvs.len() != vertices {
+            return Err(invalid(field, format!("TEXCOORD_{set} cannot be read")));
+        }
+        if let Some(k) = uvs.iter().position(|uv| {
+            uv.iter()
+                .any(|v| !v.is_finite() || v.abs() > MAX_FILE_COORDINATE as f32)
+        }) {
+            return Err(invalid(
+                field,
+                format!(
+                    "TEXCOORD_{set} of vertex {k} is {:?}, expected finite values within ±{MAX_FILE_COORDINATE}",
+                    uvs[k]
+                ),
+            ));
+        }
+        Ok(uvs)
     }
 }
 
+/// What an accessor is read as, for [`check_accessor`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Use {
+    /// `POSITION`: float VEC3.
+    Positions,
+    /// Indices: unsigned integer SCALAR.
+    Indices,
+    /// `TEXCOORD_n`: float, or normalized unsigned byte or short, VEC2.
+    TexCoords,
+}
+
 /// Checks that an accessor lies inside its buffer view and buffer, is dense, and has the type
-/// its use needs (`positions`: float VEC3; otherwise an unsigned integer SCALAR index list), so
-/// that the `gltf` crate's reader cannot run off a slice.
+/// its use needs ([`Use`]), so that the `gltf` crate's reader cannot run off a slice.
 fn check_accessor(
     accessor: &gltf::Accessor<'_>,
     buffers: &[Vec<u8>],
-    positions: bool,
+    usage: Use,
 ) -> Result<(), GltfError> {
     use gltf::accessor::{DataType, Dimensions};
     let field = format!("accessors[{}]", accessor.index());
     if accessor.sparse().is_some() {
         return Err(invalid(field, "sparse accessors are not supported"));
     }
-    let ok_type = if positions {
-        accessor.data_type() == DataType::F32 && accessor.dimensions() == Dimensions::Vec3
-    } else {
-        matches!(
-            accessor.data_type(),
-            DataType::U8 | DataType::U16 | DataType::U32
-        ) && accessor.dimensions() == Dimensions::Scalar
+    let ok_type = match usage {
+        Use::Positions => {
+            accessor.data_type() == DataType::F32 && accessor.dimensions() == Dimensions::Vec3
+        }
+        Use::Indices => {
+            matches!(
+                accessor.data_type(),
+                DataType::U8 | DataType::U16 | DataType::U32
+            ) && accessor.dimensions() == Dimensions::Scalar
+        }
+        Use::TexCoords => {
+            (accessor.data_type() == DataType::F32
+                || (matches!(accessor.data_type(), DataType::U8 | DataType::U16)
+                    && accessor.normalized()))
+                && accessor.dimensions() == Dimensions::Vec2
+        }
     };
     if !ok_type {
         return Err(invalid(
             field,
-            if positions {
-                "POSITION must be a FLOAT VEC3 accessor"
-            } else {
-                "indices must be an UNSIGNED_BYTE/SHORT/INT SCALAR accessor"
+            match usage {
+                Use::Positions => "POSITION must be a FLOAT VEC3 accessor",
+                Use::Indices => "indices must be an UNSIGNED_BYTE/SHORT/INT SCALAR accessor",
+                Use::TexCoords => {
+                    "TEXCOORD_n must be a FLOAT or normalized UNSIGNED_BYTE/SHORT VEC2 accessor"
+                }
             },
         ));
     }
@@ -772,6 +865,7 @@ pub(super) fn load(path: &Path, root: &Path) -> Result<(Mesh, Vec<String>), Mesh
                 positions: p.positions.clone(),
                 triangles,
                 joint: None,
+                uvs: p.uvs.clone(),
             };
             scenethesis_primitives::compact(&mut part);
             mesh.parts.push(part);

@@ -29,9 +29,15 @@
 //! is imported with the defaults and its file stem as category.
 //!
 //! Materials keep their base colour, roughness and metalness. A base-colour texture (glTF
-//! `baseColorTexture` from a file, a data URI or the GLB's buffer; OBJ `map_Kd`) tints its
-//! material by the texture's mean colour: a scene's parts carry one material each and no texture
-//! coordinates of their own. A texture that is missing, outside the directory, over
+//! `baseColorTexture` from a file, a data URI or the GLB's buffer; OBJ `map_Kd`) is decoded and
+//! kept on its material as a PNG [`TextureImage`](scenethesis_scene_graph::TextureImage) with
+//! its mean colour, shared by every object of the asset; the parts wearing it keep their texture
+//! coordinates ([`MeshPart::uvs`](scenethesis_scene_graph::MeshPart::uvs): glTF's `TEXCOORD_n`
+//! set the texture names; OBJ `vt` when every face corner of the part names one, v flipped to
+//! glTF's v-down convention). The renderer and the exporters draw the image at those
+//! coordinates; a part without them shows the material's flat colour, its base colour times the
+//! image's mean ([`Material::flat_color`](scenethesis_scene_graph::Material::flat_color)), as
+//! every import did before images were kept. A texture that is missing, outside the directory, over
 //! [`limits::MAX_TEXTURE_BYTES`] / [`limits::MAX_TEXTURE_PIXELS`] or not a readable PNG or JPEG
 //! is an [`ImportWarning`] naming the asset, the material and the file; the asset is still
 //! imported with the plain colour.
@@ -100,6 +106,7 @@
 //!                 base_color: [0.8, 0.6, 0.4, 1.0],
 //!                 roughness: 0.7,
 //!                 metallic: 0.0,
+//!                 texture: None,
 //!             }],
 //!             parts: vec![MeshPart::cuboid("box", 0, [0.0; 3], [w, h, d])],
 //!         })

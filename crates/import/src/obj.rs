@@ -1,13 +1,15 @@
 //! Wavefront OBJ loading: `v` and `f` records (polygons fan-triangulated, `v/vt/vn` forms,
 //! negative indices), one part per object/group and material run, and diffuse colours (`Kd`),
-//! shininess (`Ns`) and opacity (`d`) from `mtllib` files when present; a diffuse texture
-//! (`map_Kd`) tints its material by the texture's mean colour (one that cannot be used is a
-//! warning).
+//! shininess (`Ns`) and opacity (`d`) from `mtllib` files when present. A diffuse texture
+//! (`map_Kd`) that can be used is kept on its material, and a part of that material whose
+//! every face corner names a texture coordinate (`vt`, flipped to glTF's v-down convention)
+//! keeps them, its vertices then split where one position has several; a texture that cannot
+//! be used is a warning, and its material keeps the plain `Kd` colour.
 
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use scenethesis_scene_graph::{printable, Material, Mesh, MeshPart};
+use scenethesis_scene_graph::{printable, Material, Mesh, MeshPart, TextureImage};
 
 use super::limits::{
     MAX_FILE_COORDINATE, MAX_MTL_BYTES, MAX_OBJ_BYTES, MAX_TEXTURE_BYTES, MAX_TRIANGLES,
@@ -22,7 +24,12 @@ pub(super) fn load(path: &Path, root: &Path) -> Result<(Mesh, Vec<String>), Mesh
     let bytes = scenethesis_scene_graph::read_bounded(path, MAX_OBJ_BYTES)?;
     let text = String::from_utf8_lossy(&bytes);
     let base = path.parent().unwrap_or_else(|| Path::new("."));
-    let (mut mesh, textures) = parse_with_textures(&text, |name| {
+    let read_texture = |file: &str| {
+        let resolved = super::gltf_file::resolve_inside(base, root, file)?;
+        scenethesis_scene_graph::read_bounded(&resolved, MAX_TEXTURE_BYTES)
+            .map_err(|e| e.to_string())
+    };
+    parse_with_textures(&text, Some(&read_texture), |name| {
         let resolved = match super::gltf_file::resolve_inside(base, root, name) {
             Ok(p) => p,
             Err(reason) => {
@@ -35,39 +42,30 @@ pub(super) fn load(path: &Path, root: &Path) -> Result<(Mesh, Vec<String>), Mesh
         };
         let bytes = scenethesis_scene_graph::read_bounded(&resolved, MAX_MTL_BYTES).ok()?;
         Some(String::from_utf8_lossy(&bytes).into_owned())
-    })?;
-    let warnings = tint_by_textures(&mut mesh, &textures, |file| {
-        let resolved = super::gltf_file::resolve_inside(base, root, file)?;
-        scenethesis_scene_graph::read_bounded(&resolved, MAX_TEXTURE_BYTES)
-            .map_err(|e| e.to_string())
-    });
-    Ok((mesh, warnings))
+    })
 }
 
-/// Tints each material of `mesh` that names a diffuse texture in `textures` (material name →
-/// file) by the texture's mean colour, reading files with `read`; returns a warning for each
-/// texture that could not be used (its material keeps the plain `Kd` colour).
-fn tint_by_textures(
-    mesh: &mut Mesh,
-    textures: &BTreeMap<String, String>,
-    read: impl Fn(&str) -> Result<Vec<u8>, String>,
-) -> Vec<String> {
-    let mut warnings = Vec::new();
-    for material in &mut mesh.materials {
-        let Some(file) = textures.get(&material.name) else {
-            continue;
-        };
-        match read(file).and_then(|bytes| super::textures::mean_linear_colour(&bytes)) {
-            Ok(mean) => material.base_color = super::textures::tinted(material.base_color, mean),
-            Err(reason) => warnings.push(format!(
+/// Reads encoded texture files by name.
+type TextureReader<'a> = &'a dyn Fn(&str) -> Result<Vec<u8>, String>;
+
+/// The diffuse texture (`file`, from `map_Kd`) of material `material` as a texture image, or
+/// the warning that says why it cannot be used (its material then keeps the plain `Kd`
+/// colour).
+fn read_texture_of(
+    read: TextureReader<'_>,
+    material: &str,
+    file: &str,
+) -> Result<TextureImage, String> {
+    read(file)
+        .and_then(|bytes| super::textures::texture_image(&bytes))
+        .map_err(|reason| {
+            format!(
                 "material `{}`: diffuse texture `{}` (map_Kd) cannot be used ({reason}); using \
                  the plain Kd colour",
-                printable(&material.name),
+                printable(material),
                 printable(file)
-            )),
-        }
-    }
-    warnings
+            )
+        })
 }
 
 /// Parses OBJ text; `read_mtl` returns the text of a material library by its file name.
@@ -76,18 +74,24 @@ pub(super) fn parse(
     text: &str,
     read_mtl: impl Fn(&str) -> Option<String>,
 ) -> Result<Mesh, MeshLoadError> {
-    parse_with_textures(text, read_mtl).map(|(mesh, _)| mesh)
+    parse_with_textures(text, None, read_mtl).map(|(mesh, _)| mesh)
 }
 
-/// [`parse`], also returning the diffuse texture file (`map_Kd`) each material names.
+/// [`parse`], also reading the diffuse texture (`map_Kd`) of every material a part uses with
+/// `read_texture` (when given): the warnings say which could not be used.
 fn parse_with_textures(
     text: &str,
+    read_texture: Option<TextureReader<'_>>,
     read_mtl: impl Fn(&str) -> Option<String>,
-) -> Result<(Mesh, BTreeMap<String, String>), MeshLoadError> {
+) -> Result<(Mesh, Vec<String>), MeshLoadError> {
     let mut vertices: Vec<[f32; 3]> = Vec::new();
+    let mut texcoords: Vec<Option<[f32; 2]>> = Vec::new();
     let mut library: BTreeMap<String, Material> = BTreeMap::new();
     let mut textures: BTreeMap<String, String> = BTreeMap::new();
-    let mut parts = Parts::default();
+    let mut parts = Parts {
+        read_texture,
+        ..Parts::default()
+    };
     let mut group = String::from("mesh");
     let mut current_material = String::new();
     let mut triangles = 0usize;
@@ -126,10 +130,37 @@ fn parse_with_textures(
                 }
                 vertices.push(p);
             }
+            "vt" => {
+                // A texture coordinate that cannot be read leaves the faces naming it without
+                // texture coordinates (and their part plain), as before they were read.
+                let mut uv = [0.0f32; 2];
+                let mut ok = true;
+                for c in &mut uv {
+                    match fields.next().and_then(|f| f.parse::<f32>().ok()) {
+                        Some(v) if v.is_finite() && v.abs() <= MAX_FILE_COORDINATE as f32 => *c = v,
+                        _ => ok = false,
+                    }
+                }
+                if texcoords.len() < MAX_VERTICES {
+                    texcoords.push(ok.then_some([uv[0], 1.0 - uv[1]]));
+                }
+            }
             "f" => {
                 let mut face = Vec::new();
                 for token in fields {
-                    let first = token.split('/').next().unwrap_or("");
+                    let mut indices = token.split('/');
+                    let first = indices.next().unwrap_or("");
+                    let texcoord =
+                        indices
+                            .next()
+                            .and_then(|t| t.parse::<i64>().ok())
+                            .and_then(|i| {
+                                let count = texcoords.len() as i64;
+                                let resolved = if i > 0 { i - 1 } else { count + i };
+                                (i != 0 && (0..count).contains(&resolved))
+                                    .then_some(resolved as u32)
+                                    .filter(|&r| texcoords[r as usize].is_some())
+                            });
                     let i: i64 = first.parse().map_err(|_| {
                         err(format!(
                             "bad face index `{}`",
@@ -143,7 +174,7 @@ fn parse_with_textures(
                             "face index {i} out of range ({count} vertices so far)"
                         )));
                     }
-                    face.push(resolved as u32);
+                    face.push((resolved as u32, texcoord));
                 }
                 if face.len() < 3 {
                     return Err(err("a face needs at least three vertices".into()));
@@ -156,20 +187,34 @@ fn parse_with_textures(
                 }
                 for k in 1..face.len() - 1 {
                     let t = [face[0], face[k], face[k + 1]];
-                    if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
+                    if t[0].0 != t[1].0 && t[1].0 != t[2].0 && t[0].0 != t[2].0 {
                         parts.pending.push(t);
                     }
                 }
             }
             "o" | "g" => {
-                parts.flush(&vertices, &group, &current_material, &library);
+                parts.flush(
+                    &vertices,
+                    &texcoords,
+                    &group,
+                    &current_material,
+                    &library,
+                    &textures,
+                );
                 group = fields.collect::<Vec<_>>().join("_");
                 if group.is_empty() {
                     group = "mesh".into();
                 }
             }
             "usemtl" => {
-                parts.flush(&vertices, &group, &current_material, &library);
+                parts.flush(
+                    &vertices,
+                    &texcoords,
+                    &group,
+                    &current_material,
+                    &library,
+                    &textures,
+                );
                 current_material = fields.collect::<Vec<_>>().join(" ");
             }
             "mtllib" => {
@@ -178,46 +223,65 @@ fn parse_with_textures(
                     parse_mtl(&text, &mut library, &mut textures);
                 }
             }
-            _ => {} // vt, vn, s, l, p and the rest carry nothing we keep.
+            _ => {} // vn, s, l, p and the rest carry nothing we keep.
         }
     }
-    parts.flush(&vertices, &group, &current_material, &library);
+    parts.flush(
+        &vertices,
+        &texcoords,
+        &group,
+        &current_material,
+        &library,
+        &textures,
+    );
     if parts.mesh.triangle_count() == 0 {
         return Err(MeshLoadError::Empty);
     }
-    Ok((parts.mesh, textures))
+    Ok((parts.mesh, parts.warnings))
 }
+
+/// A face corner: its vertex and, when it names a readable one, its texture coordinate.
+type Corner = (u32, Option<u32>);
 
 /// The mesh being read: finished parts, the triangles of the part being filled and the index of
 /// every material used so far.
 #[derive(Default)]
-struct Parts {
+struct Parts<'a> {
     mesh: Mesh,
     /// Global-index triangles of the part being filled.
-    pending: Vec<[u32; 3]>,
+    pending: Vec<[Corner; 3]>,
     material_index: BTreeMap<String, usize>,
+    /// Reads the diffuse textures of the materials used (none read without it).
+    read_texture: Option<TextureReader<'a>>,
+    /// One line per diffuse texture that could not be used.
+    warnings: Vec<String>,
 }
 
-impl Parts {
+impl Parts<'_> {
     /// Closes the part being filled (if it has triangles) as object/group `group` with
-    /// `material` (looked up in `library`, a grey default when missing), keeping only the
-    /// vertices it uses.
+    /// `material` (looked up in `library`, a grey default when missing; on its first use its
+    /// diffuse texture in `textures` is read), keeping only the vertices it uses: by position,
+    /// or by position and texture coordinate (`texcoords`) when the material has a texture and
+    /// every corner of the part names a texture coordinate.
     fn flush(
         &mut self,
         vertices: &[[f32; 3]],
+        texcoords: &[Option<[f32; 2]>],
         group: &str,
         material: &str,
         library: &BTreeMap<String, Material>,
+        textures: &BTreeMap<String, String>,
     ) {
         if self.pending.is_empty() {
             return;
         }
         let mesh = &mut self.mesh;
+        let (read_texture, warnings) = (self.read_texture, &mut self.warnings);
         let m = *self
             .material_index
             .entry(material.to_owned())
             .or_insert_with(|| {
-                let mat = library.get(material).cloned().unwrap_or_else(|| {
+                let mut mat = library.get(material).cloned().unwrap_or_else(|| {
                     Material::new(
                         if material.is_empty() {
                             "default"
@@ -228,17 +292,30 @@ impl Parts {
                         0.7,
                     )
                 });
+                if let (Some(read), Some(file)) = (read_texture, textures.get(material)) {
+                    match read_texture_of(read, &mat.name, file) {
+                        Ok(texture) => mat.texture = Some(texture),
+                        Err(warning) => warnings.push(warning),
+                    }
+                }
                 mesh.materials.push(mat);
                 mesh.materials.len() - 1
             });
-        let mut local: std::collections::HashMap<u32, u32> = std::collections::HashMap::new();
+        let textured = mesh.materials[m].texture.is_some()
+            && self.pending.iter().flatten().all(|(_, t)| t.is_some());
+        let mut local: std::collections::HashMap<Corner, u32> = std::collections::HashMap::new();
         let mut positions = Vec::new();
+        let mut uvs = Vec::new();
         let triangles = std::mem::take(&mut self.pending)
             .into_iter()
             .map(|t| {
-                t.map(|i| {
-                    *local.entry(i).or_insert_with(|| {
+                t.map(|(i, texcoord)| {
+                    let key = (i, if textured { texcoord } else { None });
+                    *local.entry(key).or_insert_with(|| {
                         positions.push(vertices[i as usize]);
+                        if let Some(uv) = key.1.and_then(|k| texcoords[k as usize]) {
+                            uvs.push(uv);
+                        }
                         positions.len() as u32 - 1
                     })
                 })
@@ -254,6 +331,7 @@ impl Parts {
             positions,
             triangles,
             joint: None,
+            uvs: textured.then_some(uvs),
         };
         mesh.parts.push(part);
     }

@@ -701,7 +701,7 @@ fn import_table(dir: &Path, glb: &[u8]) -> ImportReport {
 }
 
 #[test]
-fn a_readable_texture_tints_its_material_by_its_mean_colour() {
+fn a_readable_texture_is_kept_and_shows_as_its_mean_colour_where_no_part_maps_it() {
     let dir = tempfile::tempdir().unwrap();
     // sRGB 188 is linear ~0.5: the oak factor is halved.
     write(dir.path(), "oak.png", &png_of(4, 4, [188, 188, 188]));
@@ -709,8 +709,16 @@ fn a_readable_texture_tints_its_material_by_its_mean_colour() {
     assert!(report.warnings.is_empty(), "{:?}", report.warnings);
     let oak = &report.assets[0].mesh.materials[0];
     assert_eq!(oak.name, "oak");
+    assert!(oak.texture.is_some(), "the image is kept");
+    assert_eq!(
+        oak.base_color,
+        [0.6, 0.4, 0.2, 1.0],
+        "the factor stays the factor"
+    );
+    // The table has no TEXCOORD_0: its parts keep no coordinates and show the flat colour.
+    assert!(report.assets[0].mesh.parts.iter().all(|p| p.uvs.is_none()));
     let expected = [0.6, 0.4, 0.2].map(|c| c * 0.5029);
-    for (got, want) in oak.base_color.iter().zip(expected) {
+    for (got, want) in oak.flat_color().iter().zip(expected) {
         assert!((got - want).abs() < 2e-3, "{oak:?}");
     }
 }
@@ -747,6 +755,7 @@ fn a_missing_or_broken_texture_is_one_warning_naming_the_file_and_a_plain_materi
             [0.6, 0.4, 0.2, 1.0],
             "plain factor ({file})"
         );
+        assert!(oak.texture.is_none(), "no image ({file})");
     }
 }
 
@@ -783,7 +792,7 @@ fn obj_diffuse_textures_tint_or_warn() {
             .iter()
             .find(|m| m.name == name)
             .unwrap()
-            .base_color
+            .flat_color()
     };
     assert_eq!(colour("painted"), [1.0, 0.0, 0.0, 1.0]);
     assert_eq!(colour("lost"), [0.5, 0.5, 0.5, 1.0]);
@@ -798,4 +807,37 @@ fn obj_diffuse_textures_tint_or_warn() {
         texture_warnings[0].contains("gone.jpg") && texture_warnings[0].contains("box.obj"),
         "{texture_warnings:?}"
     );
+}
+
+#[test]
+fn obj_texture_coordinates_are_kept_for_a_textured_material_and_v_flipped() {
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "quad.mtl",
+        b"newmtl tiles\nKd 1 1 1\nmap_Kd tiles.png\n",
+    );
+    write(dir.path(), "tiles.png", &png_of(2, 2, [200, 100, 50]));
+    // A closed tetrahedron whose corner 1 has two texture coordinates (a seam).
+    let obj = "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n\
+               vt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\nvt 0.5 0.25\n\
+               usemtl tiles\nf 1/1 3/3 2/2\nf 1/1 2/5 4/4\nf 1/1 4/4 3/3\nf 2/2 3/3 4/4\n";
+    write(dir.path(), "quad.obj", obj.as_bytes());
+    let report = import_directory(dir.path()).unwrap();
+    let mesh = &report.assets[0].mesh;
+    assert!(mesh.materials[0].texture.is_some());
+    let part = &mesh.parts[0];
+    let uvs = part.uvs.as_ref().expect("the part keeps its coordinates");
+    assert_eq!(uvs.len(), part.positions.len());
+    assert_eq!(part.positions.len(), 5, "vertex 2 is split at its seam");
+    assert!(
+        uvs.contains(&[0.5, 0.75]),
+        "v flipped to glTF's v down: {uvs:?}"
+    );
+    // The same file without its image: no coordinates, one vertex per position, as before.
+    std::fs::remove_file(dir.path().join("tiles.png")).unwrap();
+    let report = import_directory(dir.path()).unwrap();
+    let part = &report.assets[0].mesh.parts[0];
+    assert!(part.uvs.is_none());
+    assert_eq!(part.positions.len(), 4);
 }

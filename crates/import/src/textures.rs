@@ -1,19 +1,46 @@
-//! Base-colour textures of imported materials. A scene's meshes carry one material per part
-//! and no texture coordinates of their own (the exporters and the renderer project the
-//! library's textures in metres), so an imported texture is reduced to its mean colour, which
-//! tints the material's base colour. A texture that cannot be used (missing, outside the asset
-//! folder, over a limit, not a PNG or JPEG) leaves the plain base colour and a warning naming
-//! the file.
+//! Base-colour textures of imported materials. A usable texture (a PNG or JPEG within the
+//! limits) is decoded, re-encoded as PNG and carried on its material as a
+//! [`TextureImage`](scenethesis_scene_graph::TextureImage) with its mean colour; the parts
+//! wearing the material keep their texture coordinates, so the exporters and the renderer
+//! draw the image itself. A texture that cannot be used (missing, outside the asset folder,
+//! over a limit, not a PNG or JPEG) leaves the plain base colour and a warning naming the
+//! file.
 
 use std::io::Cursor;
+
+use scenethesis_scene_graph::TextureImage;
 
 use super::limits::MAX_TEXTURE_PIXELS;
 
 /// At most this many texels a side are averaged: a larger image is sampled on a regular grid.
 const SAMPLES_PER_SIDE: u32 = 256;
 
+/// An encoded PNG or JPEG image as a texture: decoded, re-encoded as an 8-bit PNG (RGB, or
+/// RGBA when the image has an alpha channel; the same image always gives the same bytes) with
+/// its mean linear colour; or why it cannot be used.
+pub(crate) fn texture_image(bytes: &[u8]) -> Result<TextureImage, String> {
+    let image = decode(bytes)?;
+    let mean = mean_of(&image.to_rgb8());
+    let mut png = Vec::new();
+    let encoded = if image.color().has_alpha() {
+        image::DynamicImage::ImageRgba8(image.to_rgba8())
+    } else {
+        image::DynamicImage::ImageRgb8(image.to_rgb8())
+    };
+    encoded
+        .write_to(&mut Cursor::new(&mut png), image::ImageFormat::Png)
+        .map_err(|e| format!("cannot encode the image as PNG: {e}"))?;
+    TextureImage::from_png(png, mean).map_err(|e| e.to_string())
+}
+
 /// The mean linear RGB colour of an encoded PNG or JPEG image, or why it cannot be decoded.
-pub(crate) fn mean_linear_colour(bytes: &[u8]) -> Result<[f32; 3], String> {
+#[cfg(test)]
+fn mean_linear_colour(bytes: &[u8]) -> Result<[f32; 3], String> {
+    decode(bytes).map(|image| mean_of(&image.to_rgb8()))
+}
+
+/// Decodes a PNG or JPEG image within [`MAX_TEXTURE_PIXELS`].
+fn decode(bytes: &[u8]) -> Result<image::DynamicImage, String> {
     let reader = image::ImageReader::new(Cursor::new(bytes))
         .with_guessed_format()
         .map_err(|e| e.to_string())?;
@@ -28,10 +55,7 @@ pub(crate) fn mean_linear_colour(bytes: &[u8]) -> Result<[f32; 3], String> {
             "the image is {w} x {h} pixels; expected 1 to {MAX_TEXTURE_PIXELS} pixels"
         ));
     }
-    let image = image::load_from_memory(bytes)
-        .map_err(|e| format!("cannot decode the image: {e}"))?
-        .to_rgb8();
-    Ok(mean_of(&image))
+    image::load_from_memory(bytes).map_err(|e| format!("cannot decode the image: {e}"))
 }
 
 /// The mean linear colour of an sRGB image, over at most [`SAMPLES_PER_SIDE`]² texels.
@@ -59,17 +83,6 @@ fn srgb_to_linear(c: u8) -> f32 {
     } else {
         ((c + 0.055) / 1.055).powf(2.4)
     }
-}
-
-/// `base` (linear RGBA) tinted by a texture's mean colour: glTF and OBJ both multiply the
-/// base-colour factor (`Kd`) by the texture.
-pub(crate) fn tinted(base: [f32; 4], mean: [f32; 3]) -> [f32; 4] {
-    [
-        base[0] * mean[0],
-        base[1] * mean[1],
-        base[2] * mean[2],
-        base[3],
-    ]
 }
 
 #[cfg(test)]
@@ -120,10 +133,20 @@ mod tests {
     }
 
     #[test]
-    fn tint_multiplies_colour_and_keeps_alpha() {
-        assert_eq!(
-            tinted([0.5, 1.0, 1.0, 0.3], [0.5, 0.25, 1.0]),
-            [0.25, 0.25, 1.0, 0.3]
+    fn textures_are_png_with_their_mean_and_the_same_bytes_every_time() {
+        let bytes = png(4, 2, |x, _| if x < 2 { [255, 0, 0] } else { [0, 0, 255] });
+        let image = texture_image(&bytes).unwrap();
+        assert_eq!((image.width(), image.height()), (4, 2));
+        let mean = image.mean_color();
+        assert!(
+            (mean[0] - 0.5).abs() < 1e-6 && (mean[2] - 0.5).abs() < 1e-6,
+            "{mean:?}"
         );
+        let again = texture_image(&bytes).unwrap();
+        assert_eq!(image.png(), again.png());
+        let decoded = image::load_from_memory(image.png()).unwrap().to_rgb8();
+        assert_eq!(decoded.get_pixel(0, 0).0, [255, 0, 0]);
+        assert_eq!(decoded.get_pixel(3, 1).0, [0, 0, 255]);
+        assert!(texture_image(b"not an image").is_err());
     }
 }

@@ -55,6 +55,7 @@ impl AssetLoader for BoxLoader {
                 base_color: [0.6, 0.45, 0.3, 1.0],
                 roughness: 0.8,
                 metallic: 0.0,
+                texture: None,
             }],
         })
     }

@@ -73,6 +73,7 @@ impl LibraryMaterial {
             base_color: [c[0], c[1], c[2], alpha],
             roughness: self.roughness,
             metallic: self.metallic,
+            texture: None,
         }
     }
 }

@@ -86,6 +86,7 @@ pub fn convex_hull(name: &str, material: usize, points: &[[f32; 3]]) -> Option<M
         positions: points.to_vec(),
         triangles: faces,
         joint: None,
+        uvs: None,
     };
     compact(&mut part);
     Some(part)

@@ -23,6 +23,7 @@
 //!     base_color: [0.5, 0.3, 0.2, 1.0],
 //!     roughness: 0.6,
 //!     metallic: 0.0,
+//!     texture: None,
 //! });
 //! b.part(cuboid("post", wood, [-0.03, 0.0, -0.03], [0.03, 0.42, 0.03]));
 //! b.part(cylinder("seat", wood, [0.0, 0.0], 0.17, 0.42, 0.45, 24));

@@ -60,6 +60,7 @@ pub fn frustum(
         positions,
         triangles,
         joint: None,
+        uvs: None,
     };
     if r0 == 0.0 {
         weld_ring(&mut part, 0, n, bottom);
@@ -146,6 +147,7 @@ pub fn ellipsoid(
         positions,
         triangles,
         joint: None,
+        uvs: None,
     }
 }
 

@@ -43,6 +43,7 @@ pub fn loft(name: &str, material: usize, ring0: &[[f32; 3]], ring1: &[[f32; 3]])
         positions,
         triangles,
         joint: None,
+        uvs: None,
     };
     orient_outward(&mut part);
     part

@@ -192,6 +192,7 @@ fn builder_moves_the_footprint_centre_to_the_origin() {
         base_color: [0.1, 0.2, 0.3, 1.0],
         roughness: 0.5,
         metallic: 0.0,
+        texture: None,
     };
     let m = b.material(material());
     assert_eq!(b.material(material()), m);

@@ -3,20 +3,27 @@
 use nalgebra::{Point3, Rotation3, Unit, Vector3};
 use scenethesis_scene_graph::MeshPart;
 
-/// Drops unused vertices and renumbers the triangles.
+/// Drops unused vertices (and their texture coordinates) and renumbers the triangles.
 pub fn compact(part: &mut MeshPart) {
     let mut map = vec![u32::MAX; part.positions.len()];
     let mut positions = Vec::new();
+    let mut uvs = Vec::new();
     for t in &mut part.triangles {
         for i in t.iter_mut() {
             if map[*i as usize] == u32::MAX {
                 map[*i as usize] = positions.len() as u32;
                 positions.push(part.positions[*i as usize]);
+                if let Some(uv) = part.uvs.as_ref().and_then(|u| u.get(*i as usize)) {
+                    uvs.push(*uv);
+                }
             }
             *i = map[*i as usize];
         }
     }
     part.positions = positions;
+    if part.uvs.is_some() {
+        part.uvs = (uvs.len() == part.positions.len()).then_some(uvs);
+    }
 }
 
 /// Flips every triangle of `part` when its signed volume is negative, so faces point outward.

@@ -41,6 +41,7 @@ fn cylinder(name: &str, material: usize, radius: f32, height: f32, segments: u32
         positions,
         triangles,
         joint: None,
+        uvs: None,
     }
 }
 
@@ -324,6 +325,7 @@ fn glass_casts_a_partial_shadow() {
             base_color: [0.9, 0.95, 0.95, opacity],
             roughness: 0.05,
             metallic: 0.0,
+            texture: None,
         };
         RenderScene::studio(vec![Instance::new(
             "cube",

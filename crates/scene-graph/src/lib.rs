@@ -85,6 +85,7 @@ mod pose;
 mod recovery;
 mod relations;
 mod scene;
+mod texture;
 mod traversal;
 mod validate;
 mod walkway;
@@ -119,6 +120,7 @@ pub use relations::{
     aabb_floor_gap, floor_centre, floor_gap, front_dir, relation_holds, right_dir, FACING_TOLERANCE,
 };
 pub use scene::{Scene, FORMAT_VERSION};
+pub use texture::{TextureError, TextureImage};
 pub use validate::{is_printable_id, printable, OutOfBounds, ValidationError};
 pub use walkway::ROBOT_RADIUS;
 

@@ -184,7 +184,7 @@ impl WornMaterial {
 
     /// The record of `material` worn by `parts`.
     pub fn new(material: &Material, parts: Vec<String>) -> Self {
-        let [r, g, b, a] = material.base_color;
+        let [r, g, b, a] = material.flat_color();
         WornMaterial {
             name: material.name.clone(),
             color: Srgb::from_linear([r, g, b]),

@@ -3,7 +3,7 @@ use std::collections::HashMap;
 use nalgebra::{Point3, Vector3};
 use serde::{Deserialize, Serialize};
 
-use crate::{Aabb, Pose};
+use crate::{Aabb, Pose, TextureImage};
 
 /// A surface material: linear-space base colour and roughness (metallic-roughness PBR model,
 /// as in glTF).
@@ -17,6 +17,12 @@ pub struct Material {
     pub roughness: f32,
     /// Metalness in [0, 1].
     pub metallic: f32,
+    /// The base-colour image `base_color` multiplies, sampled at the texture coordinates of
+    /// the parts wearing the material ([`MeshPart::uvs`]): an imported asset's texture. `None`
+    /// for a plain colour and for the library's materials, which the exporters and the
+    /// renderer project in metres instead.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub texture: Option<TextureImage>,
 }
 
 impl Material {
@@ -27,6 +33,21 @@ impl Material {
             base_color: [rgb[0], rgb[1], rgb[2], 1.0],
             roughness,
             metallic: 0.0,
+            texture: None,
+        }
+    }
+
+    /// The colour the material shows as one colour (what formats without its image write, and
+    /// what a scene records it wears): `base_color`, its RGB multiplied by the image's mean
+    /// colour when it has an image.
+    pub fn flat_color(&self) -> [f32; 4] {
+        let [r, g, b, a] = self.base_color;
+        match &self.texture {
+            Some(t) => {
+                let m = t.mean_color();
+                [r * m[0], g * m[1], b * m[2], a]
+            }
+            None => [r, g, b, a],
         }
     }
 }
@@ -48,6 +69,13 @@ pub struct MeshPart {
     /// as drawn closed; `None` for the asset's fixed body. See [`Joint`](crate::Joint).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub joint: Option<String>,
+    /// Texture coordinates, one per vertex of `positions`, in images (1 = the image's width or
+    /// height; the image repeats beyond) with glTF's convention: u to the right and v down from
+    /// the image's top-left corner. Read through the part's [`Material::texture`], and only
+    /// then: imported parts whose material has an image carry them; `None` for every other
+    /// part (procedural parts are box-projected in metres by the exporters and the renderer).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uvs: Option<Vec<[f32; 2]>>,
 }
 
 impl MeshPart {
@@ -84,6 +112,7 @@ impl MeshPart {
             positions: corners.to_vec(),
             triangles: Self::BOX_TRIANGLES.to_vec(),
             joint: None,
+            uvs: None,
         }
     }
 
@@ -95,6 +124,17 @@ impl MeshPart {
             std::array::from_fn(|k| if i & (1 << k) == 0 { min[k] } else { max[k] })
         });
         Self::from_box_corners(name, material, corners)
+    }
+
+    /// The texture coordinates of the part when it has one per vertex and its material
+    /// `material` has an image: what a textured part is drawn with; `None` otherwise.
+    pub fn textured_uvs<'a>(
+        &'a self,
+        material: &'a Material,
+    ) -> Option<(&'a [[f32; 2]], &'a TextureImage)> {
+        let uvs = self.uvs.as_deref()?;
+        let texture = material.texture.as_ref()?;
+        (uvs.len() == self.positions.len()).then_some((uvs, texture))
     }
 
     /// The position of vertex `i` as a point.

@@ -194,6 +194,7 @@ mod tests {
                 positions,
                 triangles,
                 joint: None,
+                uvs: None,
             }],
             materials: vec![Material::new("m", [0.5; 3], 0.5)],
         }

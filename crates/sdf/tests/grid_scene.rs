@@ -202,6 +202,7 @@ fn penetrating_surface_points_cluster_per_contact() {
             positions: p,
             triangles: t,
             joint: None,
+            uvs: None,
         }],
         materials: vec![],
     };
@@ -235,6 +236,7 @@ fn table_mesh() -> scenethesis_sdf::Mesh {
             positions: p.iter().map(|v| (Vector3::from(*v) + at).into()).collect(),
             triangles: t,
             joint: None,
+            uvs: None,
         }
     };
     let mut parts = vec![part(

@@ -24,6 +24,7 @@ fn part(
             .collect(),
         triangles,
         joint: None,
+        uvs: None,
     }
 }
 

@@ -233,6 +233,7 @@ pub fn pick_material(palette: Palette, rng: &mut impl rand::Rng) -> Material {
         base_color: [c[0], c[1], c[2], alpha],
         roughness,
         metallic,
+        texture: None,
     }
 }
 
@@ -244,6 +245,7 @@ pub fn fixed_material(name: &str, srgb: [u8; 3], roughness: f32, metallic: f32) 
         base_color: [c[0], c[1], c[2], 1.0],
         roughness,
         metallic,
+        texture: None,
     }
 }
 
