@@ -1,11 +1,12 @@
 //! Geometry shared by the writers: vertex normals with a crease angle, mass properties of
 //! closed meshes, frame conversion to Z-up and identifier sanitising.
 
+use std::borrow::Cow;
 use std::collections::{BTreeSet, HashMap};
 
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 use scenethesis_materials::{BoxProjection, LibraryMaterial};
-use scenethesis_scene_graph::{Material, Mesh, MeshPart};
+use scenethesis_scene_graph::{Material, Mesh, MeshPart, TextureImage};
 
 /// Faces meeting at less than this angle share smooth vertex normals (a cylinder's side);
 /// sharper edges (a box's corners) keep one normal per face.
@@ -14,23 +15,84 @@ const CREASE_ANGLE_DEG: f32 = 40.0;
 /// A part ready for a renderer: vertices split wherever faces meet at a crease, with one
 /// normal per vertex; when the part wears a library material, also split wherever faces are
 /// projected along different axes, with texture coordinates in tiles of that material and
-/// glTF tangents ([`scenethesis_materials::BoxProjection`], in the part's own frame).
+/// glTF tangents ([`scenethesis_materials::BoxProjection`], in the part's own frame); when it
+/// shows its material's image, with the part's own texture coordinates (no tangents).
 pub(crate) struct ShadedPart {
     pub positions: Vec<[f32; 3]>,
     pub normals: Vec<[f32; 3]>,
     pub indices: Vec<u32>,
-    /// Texture coordinates per vertex (empty without a library material).
+    /// Texture coordinates per vertex (empty without a library material or an image).
     pub uvs: Vec<[f32; 2]>,
     /// Tangents per vertex, `w` the bitangent's sign (empty without a library material).
     pub tangents: Vec<[f32; 4]>,
 }
 
-/// The library material a scene material wears, found by its name.
+/// The library material a scene material wears, found by its name; `None` for a material
+/// with an image of its own (an imported texture), which is shown instead.
 pub(crate) fn library_of(material: &Material) -> Option<&'static LibraryMaterial> {
+    if material.texture.is_some() {
+        return None;
+    }
     scenethesis_materials::resolve(&material.name)
 }
 
-pub(crate) fn shade(part: &MeshPart, texture: Option<&LibraryMaterial>) -> ShadedPart {
+/// The material `part` is written with: `material` itself when the part can show its image
+/// (it has a texture coordinate per vertex) or it has none; else `material` without its image,
+/// in its flat colour ([`Material::flat_color`]), as imported textures were written before
+/// parts kept their texture coordinates.
+pub(crate) fn worn<'a>(part: &MeshPart, material: &'a Material) -> Cow<'a, Material> {
+    if material.texture.is_none() || part.textured_uvs(material).is_some() {
+        return Cow::Borrowed(material);
+    }
+    Cow::Owned(Material {
+        base_color: material.flat_color(),
+        texture: None,
+        ..material.clone()
+    })
+}
+
+/// The file name of an imported image beside the text formats: `image_<digest>.png`.
+pub(crate) fn image_file_name(image: &TextureImage) -> String {
+    format!("image_{}.png", image.digest_hex())
+}
+
+/// How a part's surface maps to images, for [`shade`].
+#[derive(Clone, Copy)]
+pub(crate) enum Mapping<'a> {
+    /// No image: plain colour.
+    Plain,
+    /// A library material's maps, box-projected in tiles of the material.
+    Library(&'a LibraryMaterial),
+    /// The material's own image, at the part's texture coordinates (one per vertex).
+    Image(&'a [[f32; 2]]),
+}
+
+impl<'a> Mapping<'a> {
+    /// The mapping of `part` wearing `material` (as [`worn`] gives it).
+    pub fn of(part: &'a MeshPart, material: &'a Material) -> Self {
+        if let Some((uvs, _)) = part.textured_uvs(material) {
+            return Mapping::Image(uvs);
+        }
+        library_of(material).map_or(Mapping::Plain, Mapping::Library)
+    }
+}
+
+impl<'a> From<Option<&'a LibraryMaterial>> for Mapping<'a> {
+    fn from(library: Option<&'a LibraryMaterial>) -> Self {
+        library.map_or(Mapping::Plain, Mapping::Library)
+    }
+}
+
+pub(crate) fn shade<'a>(part: &MeshPart, mapping: impl Into<Mapping<'a>>) -> ShadedPart {
+    let mapping = mapping.into();
+    let texture = match mapping {
+        Mapping::Library(library) => Some(library),
+        _ => None,
+    };
+    let own_uvs = match mapping {
+        Mapping::Image(uvs) => Some(uvs),
+        _ => None,
+    };
     let face_normals: Vec<Vector3<f32>> = part
         .triangles
         .iter()
@@ -79,6 +141,8 @@ pub(crate) fn shade(part: &MeshPart, texture: Option<&LibraryMaterial>) -> Shade
                 if let Some(face) = face {
                     out.uvs.push(face.uv(p));
                     out.tangents.push(face.tangent([n.x, n.y, n.z]));
+                } else if let Some(uvs) = own_uvs {
+                    out.uvs.push(uvs[i as usize]);
                 }
                 out.positions.len() as u32 - 1
             });

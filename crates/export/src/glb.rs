@@ -5,7 +5,10 @@
 //! library material) and TANGENT when its material wears a library material; all 4-byte
 //! aligned. Each map of each library material used is one PNG image in the buffer, shared by
 //! every material wearing it: `baseColorTexture` (tinted by `baseColorFactor`),
-//! `metallicRoughnessTexture` and `normalTexture`, one repeating sampler. Glass adds
+//! `metallicRoughnessTexture` and `normalTexture`, one repeating sampler. A part showing an
+//! imported image (its material's [`texture`](scenethesis_scene_graph::Material::texture), at
+//! the part's own texture coordinates) has TEXCOORD_0 from those coordinates and its material
+//! that image, embedded once per file by digest, as `baseColorTexture`. Glass adds
 //! `KHR_materials_transmission` and `KHR_materials_ior`. Nodes are flat under the
 //! scene root: the architecture pieces first (`floor`, `wall_0`, …, then each window's glass
 //! pane named by the window's id; geometry in world coordinates, identity transform, `extras`
@@ -34,7 +37,7 @@ use serde_json::{json, Value};
 
 use crate::architecture::{leaves, pieces, PieceKind};
 use crate::articulation::Articulation;
-use crate::geometry::{library_of, shade};
+use crate::geometry::{library_of, shade, worn, Mapping};
 use crate::ExportScene;
 use scenethesis_materials::{maps, LibraryMaterial, MapKind};
 use scenethesis_scene_graph::{JointState, Material, Mesh};
@@ -161,6 +164,8 @@ struct Builder {
     textures: Vec<Value>,
     images: Vec<Value>,
     texture_index: BTreeMap<(usize, MapKind), usize>,
+    /// The texture of each imported image embedded, by digest.
+    image_index: BTreeMap<u64, usize>,
     uses_transmission: bool,
 }
 
@@ -176,6 +181,7 @@ impl Builder {
             textures: Vec::new(),
             images: Vec::new(),
             texture_index: BTreeMap::new(),
+            image_index: BTreeMap::new(),
             uses_transmission: false,
         }
     }
@@ -278,18 +284,40 @@ impl Builder {
         self.textures.len() - 1
     }
 
+    /// The texture of an imported image: its PNG embedded in the buffer once, on first use.
+    fn image_texture(&mut self, image: &scenethesis_scene_graph::TextureImage) -> usize {
+        if let Some(&i) = self.image_index.get(&image.digest()) {
+            return i;
+        }
+        let view = self.view(image.png(), None);
+        self.images.push(json!({
+            "name": format!("image_{}", image.digest_hex()),
+            "bufferView": view,
+            "mimeType": "image/png",
+        }));
+        self.textures
+            .push(json!({ "sampler": 0, "source": self.images.len() - 1 }));
+        self.image_index
+            .insert(image.digest(), self.textures.len() - 1);
+        self.textures.len() - 1
+    }
+
     /// The index of a glTF material equal to `m`, added on first use. Materials that agree in
-    /// name and every factor are shared across objects. A material wearing a library material
+    /// name, every factor and image are shared across objects. A material with an image has it
+    /// as `baseColorTexture`. A material wearing a library material
     /// gets its base-colour, metallic-roughness and normal textures (the factors rescaled so
     /// the surface keeps its colour and roughness on average), glass its transmission.
     fn material(&mut self, m: &Material) -> usize {
-        let key = format!(
+        let mut key = format!(
             "{}|{:?}|{}|{}",
             m.name,
             m.base_color.map(f32::to_bits),
             m.roughness.to_bits(),
             m.metallic.to_bits()
         );
+        if let Some(image) = &m.texture {
+            key.push_str(&format!("|{}", image.digest_hex()));
+        }
         if let Some(&i) = self.material_index.get(&key) {
             return i;
         }
@@ -305,7 +333,10 @@ impl Builder {
         if m.base_color[3] < 1.0 {
             value["alphaMode"] = json!("BLEND");
         }
-        if let Some(library) = library_of(m) {
+        if let Some(image) = &m.texture {
+            let index = self.image_texture(image);
+            value["pbrMetallicRoughness"]["baseColorTexture"] = json!({ "index": index });
+        } else if let Some(library) = library_of(m) {
             self.add_textures(&mut value, m, library);
         }
         self.materials.push(value);
@@ -338,17 +369,19 @@ impl Builder {
     fn mesh(&mut self, name: &str, mesh: &Mesh) -> usize {
         let mut primitives = Vec::new();
         for part in mesh.parts.iter().filter(|p| !p.triangles.is_empty()) {
-            let scene_material = &mesh.materials[part.material];
-            let shaded = shade(part, library_of(scene_material));
+            let scene_material = worn(part, &mesh.materials[part.material]);
+            let shaded = shade(part, Mapping::of(part, &scene_material));
             let position = self.vec3_accessor(&shaded.positions, true);
             let normal = self.vec3_accessor(&shaded.normals, false);
             let mut attributes = BTreeMap::from([("NORMAL", normal), ("POSITION", position)]);
             if !shaded.uvs.is_empty() {
                 attributes.insert("TEXCOORD_0", self.float_accessor(&shaded.uvs, "VEC2"));
+            }
+            if !shaded.tangents.is_empty() {
                 attributes.insert("TANGENT", self.float_accessor(&shaded.tangents, "VEC4"));
             }
             let indices = self.index_accessor(&shaded.indices);
-            let material = self.material(scene_material);
+            let material = self.material(&scene_material);
             primitives.push(Primitive {
                 attributes,
                 indices,

@@ -247,6 +247,16 @@ fn check_mesh(id: &str, mesh: &Mesh) -> Result<(), ExportError> {
                 printable(&part.name)
             )));
         }
+        if let Some(uvs) = &part.uvs {
+            if uvs.len() != part.positions.len() || uvs.iter().flatten().any(|v| !v.is_finite()) {
+                return Err(invalid(format!(
+                    "part `{}` has {} texture coordinates for {} vertices, or one that is not finite",
+                    printable(&part.name),
+                    uvs.len(),
+                    part.positions.len()
+                )));
+            }
+        }
         if part.positions.iter().flatten().any(|v| {
             !v.is_finite() || v.abs() as f64 > scenethesis_scene_graph::limits::MAX_OBJECT_SIZE
         }) {

@@ -12,7 +12,9 @@
 //! A material wearing a library material references its base-colour map as a `<texture>`
 //! (a PNG in the texture folder beside the file), its `rgba` the tint; mesh parts carry
 //! box-projected `texcoord`s, and the floor plane and wall boxes repeat the texture per metre
-//! (`texuniform`).
+//! (`texuniform`). A material with an imported image references it the same way
+//! (`image_<digest>.png`, its `rgba` the base colour), and the mesh parts showing it carry
+//! their own texture coordinates as `texcoord` (v flipped to MuJoCo's bottom-up convention).
 //!
 //! An articulated object's body holds its fixed parts and one nested child body per joint
 //! (`<object>_<joint>`, a nested joint's inside its parent's) at the joint's anchor, with a
@@ -35,7 +37,9 @@ use nalgebra::{UnitQuaternion, Vector3};
 
 use crate::architecture::{leaves, pieces, Leaf, OrientedBox, Piece, PieceKind};
 use crate::articulation::{Articulation, JOINT_DAMPING};
-use crate::geometry::{library_of, num, num32, shade, to_z_up, y_up_to_z_up, Identifiers};
+use crate::geometry::{
+    image_file_name, library_of, num, num32, shade, to_z_up, worn, y_up_to_z_up, Identifiers,
+};
 use crate::textures;
 use crate::{Dynamics, ExportScene, DENSITY, FRICTION};
 use scenethesis_materials::{maps, MapKind};
@@ -181,7 +185,8 @@ impl MjcfParts {
     fn add_geoms(&mut self, id: &str, mesh: &Mesh, scale: f64, indent: &str) {
         for part in mesh.parts.iter().filter(|p| !p.triangles.is_empty()) {
             let name = self.names.make(&format!("{id}_{}", part.name));
-            let material = &mesh.materials[part.material];
+            let material = worn(part, &mesh.materials[part.material]);
+            let material = &*material;
             let s = num(scale);
             let _ = writeln!(
                 self.meshes,
@@ -313,8 +318,19 @@ impl MjcfParts {
         );
         let mut textures = BTreeSet::new();
         for (_, m, _) in &self.materials {
+            if let Some(image) = &m.texture {
+                if textures.insert(image.digest_hex()) {
+                    let _ = writeln!(
+                        out,
+                        "    <texture name=\"tex_image_{}\" type=\"2d\" file=\"{}/{}\"/>",
+                        image.digest_hex(),
+                        attr(&self.texture_dir),
+                        image_file_name(image),
+                    );
+                }
+            }
             if let Some(library) = library_of(m) {
-                if textures.insert(library.id) {
+                if textures.insert(library.id.to_owned()) {
                     let _ = writeln!(
                         out,
                         "    <texture name=\"tex_{}\" type=\"2d\" file=\"{}/{}\"/>",
@@ -328,14 +344,20 @@ impl MjcfParts {
         for (name, m, uniform) in &self.materials {
             let library = library_of(m);
             let c = library.map_or(m.base_color, |l| maps(l).color_factor(m.base_color));
-            let texture = library.map_or(String::new(), |l| {
-                let repeat = if *uniform { 1.0 / l.tile_size_m } else { 1.0 };
-                format!(
-                    " texture=\"tex_{}\" texrepeat=\"{r} {r}\" texuniform=\"{}\"",
-                    l.id,
-                    uniform,
-                    r = num32(repeat),
-                )
+            let image = m
+                .texture
+                .as_ref()
+                .map(|image| format!(" texture=\"tex_image_{}\"", image.digest_hex()));
+            let texture = image.unwrap_or_else(|| {
+                library.map_or(String::new(), |l| {
+                    let repeat = if *uniform { 1.0 / l.tile_size_m } else { 1.0 };
+                    format!(
+                        " texture=\"tex_{}\" texrepeat=\"{r} {r}\" texuniform=\"{}\"",
+                        l.id,
+                        uniform,
+                        r = num32(repeat),
+                    )
+                })
             });
             let _ = writeln!(
                 out,
@@ -374,6 +396,9 @@ impl MjcfParts {
 /// MuJoCo's bottom-up convention) when the part wears a library material; the vertices are then
 /// split where the projection changes.
 fn mesh_data(part: &MeshPart, material: &Material) -> String {
+    if let Some((uvs, _)) = part.textured_uvs(material) {
+        return image_mesh_data(part, uvs);
+    }
     let shaded = library_of(material).map(|l| shade(part, Some(l)));
     let (positions, faces): (&[[f32; 3]], Vec<[u32; 3]>) = match &shaded {
         Some(s) => (
@@ -404,6 +429,32 @@ fn mesh_data(part: &MeshPart, material: &Material) -> String {
         let _ = write!(out, " texcoord=\"{}\"", uvs.join("  "));
     }
     out
+}
+
+/// A mesh asset's `vertex`, `face` and `texcoord` attributes for a part showing an imported
+/// image: its own vertices and texture coordinates, v flipped to MuJoCo's bottom-up
+/// convention.
+fn image_mesh_data(part: &MeshPart, uvs: &[[f32; 2]]) -> String {
+    let vertices: Vec<String> = part
+        .positions
+        .iter()
+        .map(|p| format!("{} {} {}", num32(p[0]), num32(p[1]), num32(p[2])))
+        .collect();
+    let faces: Vec<String> = part
+        .triangles
+        .iter()
+        .map(|t| format!("{} {} {}", t[0], t[1], t[2]))
+        .collect();
+    let uvs: Vec<String> = uvs
+        .iter()
+        .map(|uv| format!("{} {}", num32(uv[0]), num32(1.0 - uv[1])))
+        .collect();
+    format!(
+        "vertex=\"{}\" face=\"{}\" texcoord=\"{}\"",
+        vertices.join("  "),
+        faces.join("  "),
+        uvs.join("  ")
+    )
 }
 
 /// `pos`, `quat` and `size` of a static box in Z-up: the box's local up (y) becomes z.

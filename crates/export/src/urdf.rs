@@ -8,6 +8,11 @@
 //! Each part of an object's mesh is a visual and a collision referring to its own OBJ file,
 //! written in the asset's frame (+Y up) and turned up by the element's `rpy` of π/2 about X,
 //! scaled by the pose. Masses and inertias come from the closed parts at [`crate::DENSITY`].
+//! A material wearing a library material names its base-colour map as its `<texture>` and its
+//! parts' OBJ files carry box-projected `vt`s; one with an imported image names that image
+//! (`image_<digest>.png`) and its parts carry their own texture coordinates; a part of such a
+//! material without texture coordinates wears its flat colour (the material's colour times the
+//! image's mean).
 //!
 //! An articulated object's link holds its fixed body; each joint adds a link (named
 //! `<object>_<joint>`, its parts' OBJ files in the joint's frame, origin at the anchor) and a
@@ -25,7 +30,8 @@ use nalgebra::{Matrix3, Vector3};
 use crate::architecture::{leaves, pieces, OrientedBox};
 use crate::articulation::{Articulation, JOINT_DAMPING};
 use crate::geometry::{
-    library_of, num, num32, shade, to_z_up, y_up_to_z_up, Identifiers, MassProperties,
+    image_file_name, library_of, num, num32, shade, to_z_up, worn, y_up_to_z_up, Identifiers,
+    MassProperties,
 };
 use crate::mjcf::{attr, comment};
 use crate::textures;
@@ -130,11 +136,16 @@ pub fn to_urdf_textured(
     );
     for (name, m) in &w.materials {
         let c = m.base_color;
-        let texture = library_of(m).map_or(String::new(), |l| {
+        let file = match (&m.texture, library_of(m)) {
+            (Some(image), _) => Some(image_file_name(image)),
+            (None, Some(l)) => Some(textures::file_name(l, MapKind::BaseColor)),
+            (None, None) => None,
+        };
+        let texture = file.map_or(String::new(), |file| {
             format!(
                 "\n    <texture filename=\"{}/{}\"/>",
                 attr(texture_dir),
-                textures::file_name(l, MapKind::BaseColor)
+                file
             )
         });
         let _ = writeln!(
@@ -203,15 +214,15 @@ impl Writer<'_> {
         }
         for part in mesh.parts.iter().filter(|p| !p.triangles.is_empty()) {
             let file = format!("{}.obj", self.files.make(&format!("{id}_{}", part.name)));
-            self.meshes
-                .insert(file.clone(), obj(part, &mesh.materials[part.material]));
+            let material = worn(part, &mesh.materials[part.material]);
+            self.meshes.insert(file.clone(), obj(part, &material));
             let geometry = format!(
                 "      <origin xyz=\"0 0 0\" rpy=\"{} 0 0\"/>\n      <geometry>\n        <mesh filename=\"{}/{}\" scale=\"{s} {s} {s}\"/>\n      </geometry>\n",
                 num(std::f64::consts::FRAC_PI_2),
                 attr(self.mesh_dir),
                 attr(&file),
             );
-            let mat = self.material(&mesh.materials[part.material]);
+            let mat = self.material(&material);
             let _ = writeln!(
                 self.body,
                 "    <visual name=\"{p}\">\n{geometry}      <material name=\"{}\"/>\n    </visual>\n    <collision name=\"{p}\">\n{geometry}    </collision>",
@@ -279,9 +290,23 @@ fn vec3(v: &Vector3<f64>) -> String {
 
 /// A part as Wavefront OBJ text (positions and 1-based triangles); a part wearing a library
 /// material also has box-projected texture coordinates (`vt`, v up as OBJ has it), its
-/// vertices split where the projection changes.
+/// vertices split where the projection changes; a part showing an imported image has its own
+/// (v flipped up).
 fn obj(part: &MeshPart, material: &Material) -> String {
     let mut out = format!("# scenethesis part {}\no {}\n", part.name, part.name);
+    if let Some((uvs, _)) = part.textured_uvs(material) {
+        for p in &part.positions {
+            let _ = writeln!(out, "v {} {} {}", num32(p[0]), num32(p[1]), num32(p[2]));
+        }
+        for uv in uvs {
+            let _ = writeln!(out, "vt {} {}", num32(uv[0]), num32(1.0 - uv[1]));
+        }
+        for t in &part.triangles {
+            let [a, b, c] = [t[0] + 1, t[1] + 1, t[2] + 1];
+            let _ = writeln!(out, "f {a}/{a} {b}/{b} {c}/{c}");
+        }
+        return out;
+    }
     let Some(library) = library_of(material) else {
         for p in &part.positions {
             let _ = writeln!(out, "v {} {} {}", num32(p[0]), num32(p[1]), num32(p[2]));

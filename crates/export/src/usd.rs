@@ -5,7 +5,9 @@
 //! asset frame), each with one `Mesh` per part bound to a `UsdPreviewSurface` material under
 //! `/World/Looks`; a material wearing a library material reads its base-colour,
 //! metallic-roughness and normal maps through `UsdUVTexture` shaders (files in the texture
-//! folder beside the layer, `primvars:st` box-projected in tiles of the material). Stage metadata: `upAxis = "Y"`, `metersPerUnit = 1`. Prim names are the ids
+//! folder beside the layer, `primvars:st` box-projected in tiles of the material); one with an
+//! imported image reads it as its diffuse colour the same way (`image_<digest>.png` in that
+//! folder, `primvars:st` the part's own texture coordinates, t up as USD has it). Stage metadata: `upAxis = "Y"`, `metersPerUnit = 1`. Prim names are the ids
 //! when they are valid USD identifiers, otherwise sanitised; the original id is kept in the
 //! custom attribute `scenethesis:id`.
 //!
@@ -31,11 +33,11 @@ use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
 use crate::architecture::{leaves, pieces, Leaf};
 use crate::articulation::Articulation;
-use crate::geometry::{library_of, num, num32, shade, Identifiers};
+use crate::geometry::{image_file_name, library_of, num, num32, shade, worn, Identifiers, Mapping};
 use crate::textures;
 use crate::{Dynamics, ExportScene, DENSITY};
 use scenethesis_materials::{maps, LibraryMaterial, MapKind};
-use scenethesis_scene_graph::{JointKind, Material, Mesh, OpensTo, SceneObject};
+use scenethesis_scene_graph::{JointKind, Material, Mesh, OpensTo, SceneObject, TextureImage};
 
 /// The scene as a USD text layer whose textures are in [`crate::TEXTURE_DIR`] beside it.
 pub fn to_usda(export: &ExportScene<'_>) -> String {
@@ -352,28 +354,57 @@ struct Looks {
 
 impl Looks {
     fn key(m: &Material) -> String {
-        format!(
+        let mut key = format!(
             "{}|{:?}|{}|{}",
             m.name,
             m.base_color.map(f32::to_bits),
             m.roughness.to_bits(),
             m.metallic.to_bits()
-        )
+        );
+        if let Some(image) = &m.texture {
+            key.push_str(&format!("|{}", image.digest_hex()));
+        }
+        key
     }
 
+    /// Registers the materials of `mesh` in material order: each as it is, or for a material
+    /// with an image, as the parts wear it ([`worn`]: with the image where a part shows it,
+    /// flat where one cannot).
     fn register(&mut self, mesh: &Mesh) {
-        for m in &mesh.materials {
-            let key = Self::key(m);
-            if self.by_key.contains_key(&key) {
+        for (i, m) in mesh.materials.iter().enumerate() {
+            if m.texture.is_none() {
+                self.add(m);
                 continue;
             }
-            let name = self
-                .names
-                .get_or_insert_with(|| Identifiers::new(false))
-                .make(&m.name);
-            self.materials.push((name, m.clone()));
-            self.by_key.insert(key, self.materials.len() - 1);
+            let parts = mesh.parts.iter().filter(|p| p.material == i);
+            let mut worn_by: Vec<std::borrow::Cow<'_, Material>> = Vec::new();
+            for part in parts {
+                let w = worn(part, m);
+                if !worn_by.iter().any(|known| **known == *w) {
+                    worn_by.push(w);
+                }
+            }
+            if worn_by.is_empty() {
+                worn_by.push(worn(&Default::default(), m));
+            }
+            for w in &worn_by {
+                self.add(w);
+            }
         }
+    }
+
+    /// Adds `m` under a fresh prim name unless an equal material is registered.
+    fn add(&mut self, m: &Material) {
+        let key = Self::key(m);
+        if self.by_key.contains_key(&key) {
+            return;
+        }
+        let name = self
+            .names
+            .get_or_insert_with(|| Identifiers::new(false))
+            .make(&m.name);
+        self.materials.push((name, m.clone()));
+        self.by_key.insert(key, self.materials.len() - 1);
     }
 
     fn path(&self, m: &Material) -> String {
@@ -390,6 +421,9 @@ fn write_material(out: &mut String, name: &str, m: &Material, texture_dir: &str)
     let look = format!("/World/Looks/{name}");
     let input = |ty: &str, input: &str, value: String, shader: &str, output: &str| match library {
         Some(_) => format!("{ty} inputs:{input}.connect = <{look}/{shader}.outputs:{output}>"),
+        None if m.texture.is_some() && input == "diffuseColor" => {
+            format!("{ty} inputs:{input}.connect = <{look}/{shader}.outputs:{output}>")
+        }
         None => format!("{ty} inputs:{input} = {value}"),
     };
     let _ = write!(
@@ -415,8 +449,31 @@ fn write_material(out: &mut String, name: &str, m: &Material, texture_dir: &str)
     );
     if let Some(library) = library {
         write_textures(out, &look, m, library, texture_dir);
+    } else if let Some(image) = &m.texture {
+        write_image(out, &look, m, image, texture_dir);
     }
     out.push_str("        }\n");
+}
+
+/// The shaders of a material showing an imported image: a `UsdPrimvarReader_float2` reading
+/// `st` and a `UsdUVTexture` of the image whose `scale` is the material's base colour.
+fn write_image(
+    out: &mut String,
+    look: &str,
+    m: &Material,
+    image: &TextureImage,
+    texture_dir: &str,
+) {
+    let c = m.base_color;
+    let _ = write!(
+        out,
+        "\n            def Shader \"TexCoord\"\n            {{\n                uniform token info:id = \"UsdPrimvarReader_float2\"\n                token inputs:varname = \"st\"\n                float2 outputs:result\n            }}\n\n            def Shader \"BaseColor\"\n            {{\n                uniform token info:id = \"UsdUVTexture\"\n                asset inputs:file = @{}/{}@\n                float4 inputs:scale = ({}, {}, {}, 1)\n                token inputs:sourceColorSpace = \"sRGB\"\n                float2 inputs:st.connect = <{look}/TexCoord.outputs:result>\n                token inputs:wrapS = \"repeat\"\n                token inputs:wrapT = \"repeat\"\n                float3 outputs:rgb\n            }}\n",
+        texture_dir,
+        image_file_name(image),
+        num32(c[0]),
+        num32(c[1]),
+        num32(c[2]),
+    );
 }
 
 /// The texture shaders of a material wearing `library`: a `UsdPrimvarReader_float2` reading
@@ -491,8 +548,10 @@ fn write_textures(
 fn write_meshes(out: &mut String, mesh: &Mesh, looks: &Looks, collision: bool) {
     let mut names = Identifiers::new(false);
     for part in mesh.parts.iter().filter(|p| !p.triangles.is_empty()) {
-        let material = &mesh.materials[part.material];
-        let shaded = shade(part, library_of(material));
+        let material = worn(part, &mesh.materials[part.material]);
+        let material = &*material;
+        let mapping = Mapping::of(part, material);
+        let shaded = shade(part, mapping);
         let mut min = [f32::INFINITY; 3];
         let mut max = [f32::NEG_INFINITY; 3];
         for p in &shaded.positions {
@@ -542,10 +601,15 @@ fn write_meshes(out: &mut String, mesh: &Mesh, looks: &Looks, collision: bool) {
             points.join(", ")
         );
         if !shaded.uvs.is_empty() {
+            // An image's coordinates have v down from its top (glTF's way); USD's t runs up.
+            let flip = matches!(mapping, Mapping::Image(_));
             let st: Vec<String> = shaded
                 .uvs
                 .iter()
-                .map(|uv| format!("({}, {})", num32(uv[0]), num32(uv[1])))
+                .map(|uv| {
+                    let t = if flip { 1.0 - uv[1] } else { uv[1] };
+                    format!("({}, {})", num32(uv[0]), num32(t))
+                })
                 .collect();
             let _ = writeln!(
                 out,

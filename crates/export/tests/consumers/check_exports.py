@@ -108,9 +108,17 @@ def check_glb_textures(path, gltf, bin_chunk):
     if not images or bad:
         fail(f"{path}: {len(images)} embedded images, not PNG: {bad[:5]}")
         return
+    textures = gltf.get("textures", [])
+
+    def imported(m):
+        # An imported image (`image_<digest>`) is a base-colour texture alone.
+        index = m["pbrMetallicRoughness"]["baseColorTexture"]["index"]
+        return images[textures[index]["source"]].get("name", "").startswith("image_")
+
     textured = [m for m in gltf["materials"] if "baseColorTexture" in m.get("pbrMetallicRoughness", {})]
     full = [m for m in textured
-            if "metallicRoughnessTexture" in m["pbrMetallicRoughness"] and "normalTexture" in m]
+            if imported(m)
+            or ("metallicRoughnessTexture" in m["pbrMetallicRoughness"] and "normalTexture" in m)]
     if not textured or len(full) != len(textured):
         fail(f"{path}: {len(textured)} materials with a base-colour texture, {len(full)} with all three maps")
     textured_ids = {i for i, m in enumerate(gltf["materials"]) if m in textured}
