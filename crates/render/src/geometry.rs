@@ -1,9 +1,9 @@
 //! CPU-side geometry: posed meshes, floors, walls with door and window gaps, window panes and
 //! ground planes flattened into one vertex list with per-corner normals, surface parameters,
 //! texture coordinates in metres with tangents (the library's box projection, as the exporters
-//! use it) and instance index.
+//! use it) or a part's own texture coordinates into its imported image, and instance index.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use std::ops::Range;
 
 use bytemuck::{Pod, Zeroable};
@@ -44,7 +44,8 @@ pub(crate) struct Vertex {
     pub tangent: [f32; 4],
     /// Roughness and metalness factors (the metallic-roughness map multiplies them).
     pub roughness_metallic: [f32; 2],
-    /// Texture layer: 1 + the library index of the material worn, 0 for a plain colour.
+    /// Texture layer: 1 + the layer of the material's maps (a library material's index, or an
+    /// imported image's layer after the library's), 0 for a plain colour.
     pub layer: u32,
 }
 
@@ -82,6 +83,17 @@ impl Surface {
                 layer: 0,
                 tile_size_m: None,
             },
+        }
+    }
+
+    /// The surface of a material showing its imported image from texture layer `layer`: the
+    /// base colour multiplies the image, roughness and metalness as they are.
+    fn image(material: &Material, layer: u32) -> Self {
+        Self {
+            albedo: material.base_color.map(|c| c.clamp(0.0, 1.0)),
+            roughness_metallic: [material.roughness, material.metallic],
+            layer: layer + 1,
+            tile_size_m: None,
         }
     }
 
@@ -156,8 +168,11 @@ pub(crate) struct SceneGeometry {
 }
 
 impl SceneGeometry {
-    /// Flattens `scene`; fails on duplicate ids or invalid poses.
-    pub fn build(scene: &RenderScene) -> Result<Self, RenderError> {
+    /// Flattens `scene`; fails on duplicate ids or invalid poses. `images` gives the texture
+    /// layer of each imported image on the device, by digest: a part showing one of them is
+    /// drawn with it at its own texture coordinates, any other part of a material with an
+    /// image in the material's flat colour.
+    pub fn build(scene: &RenderScene, images: &BTreeMap<u64, u32>) -> Result<Self, RenderError> {
         let mut geo = SceneGeometry::default();
         let mut seen = BTreeSet::new();
         for inst in &scene.instances {
@@ -173,11 +188,21 @@ impl SceneGeometry {
             let index = geo.push_id(&inst.id);
             let rotation = pose.rotation();
             for part in &inst.mesh.parts {
-                let surface = inst
-                    .mesh
-                    .materials
-                    .get(part.material)
-                    .map_or(Surface::plain([0.6; 3], 0.6), Surface::of);
+                let material = inst.mesh.materials.get(part.material);
+                let image = material.and_then(|m| {
+                    let (uvs, image) = part.textured_uvs(m)?;
+                    Some((uvs, Surface::image(m, *images.get(&image.digest())?)))
+                });
+                let surface = match (&image, material) {
+                    (Some((_, surface)), _) => *surface,
+                    (None, Some(m)) if m.texture.is_some() => Surface::of(&Material {
+                        base_color: m.flat_color(),
+                        texture: None,
+                        ..m.clone()
+                    }),
+                    (None, m) => m.map_or(Surface::plain([0.6; 3], 0.6), Surface::of),
+                };
+                let own_uvs = image.map(|(uvs, _)| uvs);
                 let projection = surface.projection(&part.positions);
                 let world: Vec<[f32; 3]> = part
                     .positions
@@ -199,11 +224,19 @@ impl SceneGeometry {
                     let face = projection.map(|p| p.face(face_normal.into()));
                     for (k, &v) in tri.iter().enumerate() {
                         let local_normal = normals[3 * t + k];
-                        let texture = face.map(|f| {
-                            let local = f.tangent(local_normal);
-                            let [x, y, z] = to_world([local[0], local[1], local[2]]);
-                            (f.uv(part.positions[v as usize]), [x, y, z, local[3]])
-                        });
+                        let texture = face
+                            .map(|f| {
+                                let local = f.tangent(local_normal);
+                                let [x, y, z] = to_world([local[0], local[1], local[2]]);
+                                (f.uv(part.positions[v as usize]), [x, y, z, local[3]])
+                            })
+                            .or_else(|| {
+                                // The image's flat normal map leaves the tangent unused; it
+                                // only has to stay off the normal.
+                                let uv = own_uvs?[v as usize];
+                                let [x, y, z] = to_world(perpendicular(local_normal));
+                                Some((uv, [x, y, z, 1.0]))
+                            });
                         geo.vertices.push(surface.vertex(
                             world[v as usize],
                             to_world(local_normal),
@@ -433,6 +466,20 @@ fn wall_boxes(arch: &Architecture, wall: &Wall) -> Vec<(Point3<f64>, Vector3<f64
 /// Per-corner normals of a part (three per triangle): each corner averages the area-weighted
 /// normals of the triangles around its vertex that meet its own face at less than 35°, so
 /// curved surfaces look smooth and box edges stay sharp.
+/// A unit vector perpendicular to the unit vector `n`.
+fn perpendicular(n: [f32; 3]) -> [f32; 3] {
+    let n = Vector3::from(n);
+    let axis = if n.x.abs() < 0.9 {
+        Vector3::x()
+    } else {
+        Vector3::y()
+    };
+    let t = (axis - n * n.dot(&axis))
+        .try_normalize(1e-12)
+        .unwrap_or(Vector3::z());
+    [t.x, t.y, t.z]
+}
+
 fn corner_normals(part: &MeshPart) -> Vec<[f32; 3]> {
     let faces: Vec<Vector3<f32>> = (0..part.triangles.len())
         .map(|t| {

@@ -650,3 +650,95 @@ fn rooms_show_a_sky_beyond_their_walls() {
     let sky = frame.color.get_pixel(40, 1).0;
     assert!(sky[2] > sky[0] + 30 && sky[2] > 150, "sky colour {sky:?}");
 }
+
+/// A cube of side 1 standing on y = 0 whose top face alone shows the whole of a 4 × 4 checker
+/// of red and blue pixels (texture coordinates per vertex, v down), its sides the image's
+/// top-left corner.
+fn checker_cube() -> Arc<Mesh> {
+    let image = image::RgbImage::from_fn(4, 4, |x, y| {
+        image::Rgb(if (x + y) % 2 == 0 {
+            [220, 30, 30]
+        } else {
+            [30, 40, 220]
+        })
+    });
+    let mut png = Vec::new();
+    image
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .unwrap();
+    let texture = scenethesis_scene_graph::TextureImage::from_png(png, [0.35, 0.02, 0.35]).unwrap();
+    let mut part = MeshPart::cuboid("cube", 0, [-0.5, 0.0, -0.5], [0.5, 1.0, 0.5]);
+    // Corners 2, 3, 6, 7 are the top (y = 1): the image spans x and z across it.
+    part.uvs = Some(
+        part.positions
+            .iter()
+            .map(|p| {
+                if p[1] > 0.5 {
+                    [p[0] + 0.5, p[2] + 0.5]
+                } else {
+                    [0.0, 0.0]
+                }
+            })
+            .collect(),
+    );
+    let mut material = Material::new("checker", [1.0; 3], 0.8);
+    material.texture = Some(texture);
+    Arc::new(Mesh {
+        parts: vec![part],
+        materials: vec![material],
+    })
+}
+
+#[test]
+fn an_imported_image_is_drawn_at_the_parts_own_coordinates() {
+    let camera = Camera::look_at(
+        Intrinsics::from_vertical_fov(160, 120, 0.9),
+        Point3::new(0.0, 3.2, 0.6),
+        Point3::new(0.0, 1.0, 0.0),
+        Vector3::y(),
+    );
+    let render = |mesh: Arc<Mesh>| {
+        let scene = RenderScene::studio(vec![Instance::new(
+            "cube",
+            mesh,
+            Pose::new(1.0, 0.0, Vector3::zeros()),
+        )]);
+        renderer().render(&scene, &camera).unwrap()
+    };
+    let frame = render(checker_cube());
+    if let Some(dir) = std::env::var_os("SCENETHESIS_RENDER_OUT") {
+        frame
+            .color
+            .save(PathBuf::from(dir).join("checker_cube.png"))
+            .unwrap();
+    }
+    // The top face's pixels: clearly red ones and clearly blue ones.
+    let (mut red, mut blue) = (0, 0);
+    for x in 0..5 {
+        for z in 0..5 {
+            let p = Point3::new(-0.4 + 0.2 * x as f64, 1.0, -0.4 + 0.2 * z as f64);
+            let px = camera.project(&p).unwrap().pixel;
+            let [r, _, b, _] = frame.color.get_pixel(px.x as u32, px.y as u32).0;
+            if r as i32 > b as i32 + 60 {
+                red += 1;
+            } else if b as i32 > r as i32 + 60 {
+                blue += 1;
+            }
+        }
+    }
+    assert!(
+        red >= 5 && blue >= 5,
+        "red {red}, blue {blue} of 25 samples"
+    );
+    assert_eq!(frame.color, render(checker_cube()).color, "deterministic");
+    // Without its coordinates the part wears the image's flat colour: one purple, no checker.
+    let mut plain = (*checker_cube()).clone();
+    plain.parts[0].uvs = None;
+    let flat = render(Arc::new(plain));
+    let centre = camera.project(&Point3::new(0.0, 1.0, 0.0)).unwrap().pixel;
+    let [r, g, b, _] = flat.color.get_pixel(centre.x as u32, centre.y as u32).0;
+    assert!(
+        (r as i32 - b as i32).abs() < 40 && g < r && g < b,
+        "{r} {g} {b}"
+    );
+}

@@ -2,13 +2,13 @@
 //! the sun's orthographic frustum around it, and the shadow map rendered once for every view
 //! of the scene.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use std::ops::Range;
 use std::time::Instant;
 
 use bytemuck::Zeroable;
 use nalgebra::{Matrix4, Point3, Vector3};
-use scenethesis_scene_graph::Aabb;
+use scenethesis_scene_graph::{Aabb, TextureImage};
 use wgpu::util::DeviceExt;
 
 use super::{mat, Globals, PreparedScene, Renderer, DEPTH_FORMAT, SUN_DIRECTION};
@@ -19,9 +19,32 @@ impl Renderer {
     /// Uploads a scene's geometry and renders its shadow map, for rendering many views.
     pub fn prepare(&self, scene: &RenderScene) -> Result<PreparedScene, RenderError> {
         let started = Instant::now();
-        let geometry = SceneGeometry::build(scene)?;
+        let mut shown: BTreeMap<u64, &TextureImage> = BTreeMap::new();
+        for inst in &scene.instances {
+            for part in &inst.mesh.parts {
+                let material = inst.mesh.materials.get(part.material);
+                if let Some((_, image)) = material.and_then(|m| part.textured_uvs(m)) {
+                    shown.entry(image.digest()).or_insert(image);
+                }
+            }
+        }
+        let images = if shown.is_empty() {
+            BTreeMap::new()
+        } else {
+            let shown: Vec<&TextureImage> = shown.into_values().collect();
+            let _queue = self.queue_guard();
+            self.textures
+                .ensure_images(&self.device, &self.queue, &shown)
+        };
+        let geometry = SceneGeometry::build(scene, &images)?;
         let built = started.elapsed();
-        let layers: BTreeSet<u32> = geometry.vertices.iter().map(|v| v.layer).collect();
+        let library_layers = scenethesis_materials::library().len() as u32;
+        let layers: BTreeSet<u32> = geometry
+            .vertices
+            .iter()
+            .map(|v| v.layer)
+            .filter(|&l| l <= library_layers)
+            .collect();
         let queue = self.queue_guard();
         self.textures.ensure(
             &self.queue,

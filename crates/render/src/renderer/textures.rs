@@ -1,22 +1,43 @@
-//! The library's material maps on the GPU: three texture arrays (base colour, normal,
+//! The material maps on the GPU: three texture arrays (base colour, normal,
 //! metallic-roughness) with one layer per library material, each layer uploaded with its mip
 //! chain the first time a prepared scene wears that material and kept for the renderer's
-//! life, so that every part, scene and view of a material shares one copy.
+//! life, so that every part, scene and view of a material shares one copy. Imported images
+//! (a material's own [`TextureImage`]) get layers after the library's, one per distinct image
+//! (by digest), resampled to the layers' size with a flat normal and full roughness and
+//! metalness maps (their material's factors apply unchanged); the arrays grow, their layers
+//! copied on the device, when a scene brings more images than they hold.
 
+use std::collections::BTreeMap;
 use std::sync::Mutex;
 
 use scenethesis_materials::color::{linear_to_srgb_byte, srgb_byte_to_linear};
 use scenethesis_materials::{library, maps, MapKind, TEXTURE_SIZE};
+use scenethesis_scene_graph::TextureImage;
 
 /// Mip levels of a [`TEXTURE_SIZE`]² map, down to 1 × 1.
 const MIP_LEVELS: u32 = TEXTURE_SIZE.ilog2() + 1;
 
+/// Layers added at a time when imported images outgrow the arrays.
+const GROWTH: u32 = 8;
+
 /// The texture arrays of a renderer and which layers hold their material's maps.
 pub(super) struct MaterialTextures {
+    layout: wgpu::BindGroupLayout,
+    sampler: wgpu::Sampler,
+    state: Mutex<State>,
+}
+
+/// The arrays, their bind group and what their layers hold.
+struct State {
     arrays: [wgpu::Texture; 3],
     /// Group 2 of the scene pass: the three arrays and their sampler.
-    pub(super) group: wgpu::BindGroup,
-    uploaded: Mutex<Vec<bool>>,
+    group: wgpu::BindGroup,
+    /// Layers of each array.
+    layers: u32,
+    /// Per library material, whether its layer holds its maps.
+    uploaded: Vec<bool>,
+    /// The layer of each imported image uploaded, by digest.
+    images: BTreeMap<u64, u32>,
 }
 
 impl MaterialTextures {
@@ -27,69 +48,40 @@ impl MaterialTextures {
         sampler: &wgpu::Sampler,
     ) -> Self {
         let layers = library().len() as u32;
-        let arrays = MapKind::ALL.map(|kind| {
-            device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(kind.suffix()),
-                size: wgpu::Extent3d {
-                    width: TEXTURE_SIZE,
-                    height: TEXTURE_SIZE,
-                    depth_or_array_layers: layers,
-                },
-                mip_level_count: MIP_LEVELS,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: format(kind),
-                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-                view_formats: &[],
-            })
-        });
-        let views = arrays.each_ref().map(|t| {
-            t.create_view(&wgpu::TextureViewDescriptor {
-                dimension: Some(wgpu::TextureViewDimension::D2Array),
-                ..Default::default()
-            })
-        });
-        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("material textures"),
-            layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::TextureView(&views[0]),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::TextureView(&views[1]),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&views[2]),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: wgpu::BindingResource::Sampler(sampler),
-                },
-            ],
-        });
+        let (arrays, group) = arrays(device, layout, sampler, layers);
         Self {
-            arrays,
-            group,
-            uploaded: Mutex::new(vec![false; layers as usize]),
+            layout: layout.clone(),
+            sampler: sampler.clone(),
+            state: Mutex::new(State {
+                arrays,
+                group,
+                layers,
+                uploaded: vec![false; layers as usize],
+                images: BTreeMap::new(),
+            }),
         }
+    }
+
+    fn state(&self) -> std::sync::MutexGuard<'_, State> {
+        self.state
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+
+    /// Group 2 of the scene pass, as the arrays are now.
+    pub(super) fn group(&self) -> wgpu::BindGroup {
+        self.state().group.clone()
     }
 
     /// Uploads the maps of the library materials at `indices` that no earlier scene used.
     pub(super) fn ensure(&self, queue: &wgpu::Queue, indices: impl IntoIterator<Item = usize>) {
-        let mut uploaded = self
-            .uploaded
-            .lock()
-            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        let mut state = self.state();
         for index in indices {
-            if uploaded.get(index).copied().unwrap_or(true) {
+            if state.uploaded.get(index).copied().unwrap_or(true) {
                 continue;
             }
             let material_maps = maps(&library()[index]);
-            for (array, kind) in self.arrays.iter().zip(MapKind::ALL) {
+            for (array, kind) in state.arrays.iter().zip(MapKind::ALL) {
                 for (level, (size, texels)) in mip_chain(material_maps.texels(kind), kind)
                     .iter()
                     .enumerate()
@@ -97,9 +89,164 @@ impl MaterialTextures {
                     write_layer(queue, array, index as u32, level as u32, *size, texels);
                 }
             }
-            uploaded[index] = true;
+            state.uploaded[index] = true;
         }
     }
+
+    /// Uploads the imported `images` that no earlier scene showed, each into a layer of its
+    /// own (growing the arrays when they are full), and returns the layer of every image of
+    /// `images` by digest. An image whose PNG cannot be decoded gets no layer (its parts are
+    /// drawn in their flat colour).
+    pub(super) fn ensure_images(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        images: &[&TextureImage],
+    ) -> BTreeMap<u64, u32> {
+        let mut state = self.state();
+        let mut decoded = Vec::new();
+        for image in images {
+            if state.images.contains_key(&image.digest())
+                || decoded.iter().any(|(d, _)| *d == image.digest())
+            {
+                continue;
+            }
+            match layer_texels(image) {
+                Ok(texels) => decoded.push((image.digest(), texels)),
+                Err(e) => tracing::warn!(
+                    "image {}: cannot be decoded for the preview ({e}); drawn in its flat colour",
+                    image.digest_hex()
+                ),
+            }
+        }
+        let needed = library().len() as u32 + (state.images.len() + decoded.len()) as u32;
+        if needed > state.layers {
+            let layers = needed.max(state.layers + GROWTH);
+            self.grow(device, queue, &mut state, layers);
+        }
+        let flat = [
+            mip_chain(&flat_map([128, 128, 255]), MapKind::Normal),
+            mip_chain(&flat_map([0, 255, 255]), MapKind::MetallicRoughness),
+        ];
+        for (digest, texels) in decoded {
+            let layer = library().len() as u32 + state.images.len() as u32;
+            let color = mip_chain(&texels, MapKind::BaseColor);
+            for (array, chain) in state.arrays.iter().zip([&color, &flat[0], &flat[1]]) {
+                for (level, (size, texels)) in chain.iter().enumerate() {
+                    write_layer(queue, array, layer, level as u32, *size, texels);
+                }
+            }
+            state.images.insert(digest, layer);
+        }
+        images
+            .iter()
+            .filter_map(|i| Some((i.digest(), *state.images.get(&i.digest())?)))
+            .collect()
+    }
+
+    /// Replaces the arrays by ones of `layers` layers holding the same maps (copied on the
+    /// device) and rebinds them.
+    fn grow(&self, device: &wgpu::Device, queue: &wgpu::Queue, state: &mut State, layers: u32) {
+        let (arrays, group) = arrays(device, &self.layout, &self.sampler, layers);
+        let mut encoder = device.create_command_encoder(&Default::default());
+        for (old, new) in state.arrays.iter().zip(&arrays) {
+            for level in 0..MIP_LEVELS {
+                let side = TEXTURE_SIZE >> level;
+                let at = |texture| wgpu::TexelCopyTextureInfo {
+                    texture,
+                    mip_level: level,
+                    origin: wgpu::Origin3d::ZERO,
+                    aspect: wgpu::TextureAspect::All,
+                };
+                encoder.copy_texture_to_texture(
+                    at(old),
+                    at(new),
+                    wgpu::Extent3d {
+                        width: side,
+                        height: side,
+                        depth_or_array_layers: state.layers,
+                    },
+                );
+            }
+        }
+        queue.submit([encoder.finish()]);
+        state.arrays = arrays;
+        state.group = group;
+        state.layers = layers;
+    }
+}
+
+/// Three empty arrays of `layers` layers and their bind group.
+fn arrays(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    sampler: &wgpu::Sampler,
+    layers: u32,
+) -> ([wgpu::Texture; 3], wgpu::BindGroup) {
+    let arrays = MapKind::ALL.map(|kind| {
+        device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(kind.suffix()),
+            size: wgpu::Extent3d {
+                width: TEXTURE_SIZE,
+                height: TEXTURE_SIZE,
+                depth_or_array_layers: layers,
+            },
+            mip_level_count: MIP_LEVELS,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: format(kind),
+            usage: wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_DST
+                | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        })
+    });
+    let views = arrays.each_ref().map(|t| {
+        t.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::D2Array),
+            ..Default::default()
+        })
+    });
+    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("material textures"),
+        layout,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(&views[0]),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::TextureView(&views[1]),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::TextureView(&views[2]),
+            },
+            wgpu::BindGroupEntry {
+                binding: 3,
+                resource: wgpu::BindingResource::Sampler(sampler),
+            },
+        ],
+    });
+    (arrays, group)
+}
+
+/// A [`TEXTURE_SIZE`]² RGB8 map of one texel value.
+fn flat_map(texel: [u8; 3]) -> Vec<u8> {
+    texel.repeat((TEXTURE_SIZE * TEXTURE_SIZE) as usize)
+}
+
+/// An imported image as a [`TEXTURE_SIZE`]² RGB8 map: enlarged by repeating pixels (a small
+/// image keeps its sharp texels), reduced by a triangle filter.
+fn layer_texels(image: &TextureImage) -> Result<Vec<u8>, image::ImageError> {
+    let rgb = image::load_from_memory_with_format(image.png(), image::ImageFormat::Png)?.to_rgb8();
+    let filter = if rgb.width() < TEXTURE_SIZE || rgb.height() < TEXTURE_SIZE {
+        image::imageops::FilterType::Nearest
+    } else {
+        image::imageops::FilterType::Triangle
+    };
+    Ok(image::imageops::resize(&rgb, TEXTURE_SIZE, TEXTURE_SIZE, filter).into_raw())
 }
 
 /// The texel format of a map: sRGB for colour, linear for the data maps.

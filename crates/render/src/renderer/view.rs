@@ -211,7 +211,7 @@ impl Renderer {
         pass.draw(0..3, 0..1);
         if let Some(buffer) = &scene.vertices {
             pass.set_bind_group(1, &scene.shadow_group, &[]);
-            pass.set_bind_group(2, &self.textures.group, &[]);
+            pass.set_bind_group(2, &self.textures.group(), &[]);
             pass.set_vertex_buffer(0, buffer.slice(..));
             let pipelines = &self.pipelines;
             for pipeline in [&pipelines.prepass, &pipelines.scene, &pipelines.glass] {
