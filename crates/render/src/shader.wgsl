@@ -34,6 +34,10 @@ struct Globals {
 @group(0) @binding(0) var<uniform> g: Globals;
 @group(1) @binding(0) var shadow_map: texture_depth_2d;
 @group(1) @binding(1) var shadow_sampler: sampler_comparison;
+// rgb: the share of sunlight the see-through casters (glass) let through, per channel; a: the
+// nearest one's depth from the sun. Cleared to 1 (no glass: all light, farthest).
+@group(1) @binding(2) var shadow_tint: texture_2d<f32>;
+@group(1) @binding(3) var tint_sampler: sampler;
 // One layer per library material: sRGB albedo multiplier, tangent-space normal (+Y toward the
 // image's top), metallic-roughness (G roughness, B metalness).
 @group(2) @binding(0) var base_maps: texture_2d_array<f32>;
@@ -134,18 +138,19 @@ fn scene_vertex(v: VertexIn) -> Varying {
     return out;
 }
 
-// Fraction of sunlight reaching `world` (1 = lit), from a 4×4 percentage-closer filter over
-// the shadow map with hardware bilinear comparison: soft edges a few centimetres wide.
-fn sunlight(world: vec3<f32>, normal: vec3<f32>) -> f32 {
+// Share of sunlight reaching `world` per channel (1 = lit): the opaque casters' shadow, from a
+// 4×4 percentage-closer filter over the shadow map with hardware bilinear comparison (soft
+// edges a few centimetres wide), times the colour the glass between it and the sun lets through.
+fn sunlight(world: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
     if g.sun.w < 0.5 {
-        return 1.0;
+        return vec3<f32>(1.0);
     }
     let texel = g.light_dir.w;
     let offset_world = world + normal * (1.5 * texel);
     let p = g.light_from_world * vec4<f32>(offset_world, 1.0);
     let uv = vec2<f32>(p.x * 0.5 + 0.5, 0.5 - p.y * 0.5);
     if uv.x <= 0.0 || uv.x >= 1.0 || uv.y <= 0.0 || uv.y >= 1.0 {
-        return 1.0;
+        return vec3<f32>(1.0);
     }
     let size = vec2<f32>(textureDimensions(shadow_map));
     // Receivers beyond the casters' sphere (a floor far below) compare as farthest: in shadow
@@ -158,7 +163,18 @@ fn sunlight(world: vec3<f32>, normal: vec3<f32>) -> f32 {
             lit += textureSampleCompareLevel(shadow_map, shadow_sampler, uv + o, reference);
         }
     }
-    return lit / 16.0;
+    return lit / 16.0 * glass_transmission(uv, reference, texel * size.x);
+}
+
+// The light the glass at shadow-map position `uv` lets through to a receiver at sun depth
+// `reference`: its tint when the receiver lies at least 2 cm beyond the nearest pane (depth
+// spans `depth_span` metres), else all of it (the pane itself, or what stands on it).
+fn glass_transmission(uv: vec2<f32>, reference: f32, depth_span: f32) -> vec3<f32> {
+    let tint = textureSampleLevel(shadow_tint, tint_sampler, uv, 0.0);
+    if reference > tint.a + 0.02 / depth_span {
+        return tint.rgb;
+    }
+    return vec3<f32>(1.0);
 }
 
 // A surface point as the lights see it: albedo, shading normal, roughness, metalness.
@@ -235,7 +251,7 @@ fn light(in: Varying, front: bool) -> Lit {
     let l = g.light_dir.xyz;
     let n_l = max(dot(n, l), 0.0);
     let n_v = max(dot(n, v), 1e-3);
-    var shadow = 1.0;
+    var shadow = vec3<f32>(1.0);
     let geometric = normalize(in.normal);
     if dot(geometric, l) > 0.0 {
         shadow = sunlight(in.world, geometric);
@@ -294,14 +310,14 @@ fn vs_shadow(v: VertexIn) -> @builtin(position) vec4<f32> {
 
 struct ShadowVarying {
     @builtin(position) clip: vec4<f32>,
-    @location(0) @interpolate(flat) opacity: f32,
+    @location(0) @interpolate(flat) albedo: vec4<f32>,
 };
 
-// The see-through casters (glass), drawn into the shadow map after the opaque ones.
+// The see-through casters (glass), drawn into the shadow tint.
 @vertex
 fn vs_shadow_glass(v: VertexIn) -> ShadowVarying {
     var out: ShadowVarying;
-    out.opacity = v.albedo.a;
+    out.albedo = v.albedo;
     out.clip = g.light_from_world * vec4<f32>(v.position, 1.0);
     if v.albedo.a >= 0.999 {
         out.clip = CULLED;
@@ -309,16 +325,15 @@ fn vs_shadow_glass(v: VertexIn) -> ShadowVarying {
     return out;
 }
 
-// Glass casts a partial shadow: it covers only the share `opacity` of the shadow map's texels
-// (a 4 × 4 ordered dither), which the receivers' percentage-closer filter averages into a
-// shadow that much as dark as an opaque one.
+// Glass lets through the share 1 − opacity of the light, coloured by its hue (its albedo
+// scaled so the brightest channel is 1: clear glass casts a grey shadow, green glass a green
+// one). The target keeps the minimum over the panes, so a closed pane (two faces) shades
+// as much as one face.
 @fragment
-fn fs_shadow_glass(in: ShadowVarying) {
-    let p = vec2<u32>(in.clip.xy) % 4u;
-    let bayer = array<u32, 16>(0u, 8u, 2u, 10u, 12u, 4u, 14u, 6u, 3u, 11u, 1u, 9u, 15u, 7u, 13u, 5u);
-    if (f32(bayer[p.y * 4u + p.x]) + 0.5) / 16.0 >= in.opacity {
-        discard;
-    }
+fn fs_shadow_tint(in: ShadowVarying) -> @location(0) vec4<f32> {
+    let c = max(in.albedo.rgb, vec3<f32>(0.0));
+    let hue = c / max(max(c.r, max(c.g, c.b)), 1e-4);
+    return vec4<f32>((1.0 - in.albedo.a) * hue, in.clip.z);
 }
 
 @vertex

@@ -316,47 +316,116 @@ fn objects_cast_shadows_on_the_floor() {
     assert!((luminance(&shaded, open_floor) - luminance(&lit, open_floor)).abs() <= 3);
 }
 
-#[test]
-fn glass_casts_a_partial_shadow() {
-    let glass_cube = |opacity: f32| {
-        let mut mesh = (*unit_cube()).clone();
-        mesh.materials[0] = Material {
-            name: "glass".into(),
-            base_color: [0.9, 0.95, 0.95, opacity],
-            roughness: 0.05,
-            metallic: 0.0,
-            texture: None,
-        };
-        RenderScene::studio(vec![Instance::new(
-            "cube",
-            Arc::new(mesh),
-            Pose::new(1.0, 0.0, Vector3::zeros()),
-        )])
+/// A unit cube of see-through material `color` (linear RGB) and `opacity` in the studio.
+fn glass_cube(color: [f32; 3], opacity: f32) -> RenderScene {
+    let mut mesh = (*unit_cube()).clone();
+    mesh.materials[0] = Material {
+        name: "glass".into(),
+        base_color: [color[0], color[1], color[2], opacity],
+        roughness: 0.05,
+        metallic: 0.0,
+        texture: None,
     };
+    RenderScene::studio(vec![Instance::new(
+        "cube",
+        Arc::new(mesh),
+        Pose::new(1.0, 0.0, Vector3::zeros()),
+    )])
+}
+
+/// The colour of the floor where the unit cube's shadow falls (the sun comes from
+/// (0.4, 1, 0.6), so toward −x −z), seen from above and behind.
+fn shadow_color(scene: &RenderScene) -> [i32; 3] {
     let camera = Camera::look_at(
         Intrinsics::from_vertical_fov(160, 120, 0.9),
         Point3::new(-2.5, 3.0, -3.0),
         Point3::new(0.0, 0.3, 0.0),
         Vector3::y(),
     );
-    let luminance = |scene: &RenderScene, p: Point3<f64>| {
-        let f = renderer().render(scene, &camera).unwrap();
-        let px = camera.project(&p).unwrap().pixel;
-        let c = f.color.get_pixel(px.x as u32, px.y as u32).0;
-        c[0] as i32 + c[1] as i32 + c[2] as i32
-    };
-    // As in `objects_cast_shadows_on_the_floor`: the shadow falls toward −x −z.
-    let in_shadow = Point3::new(-0.4, 0.0, -0.9);
-    let opaque = luminance(
-        &cube_scene(Pose::new(1.0, 0.0, Vector3::zeros())),
-        in_shadow,
-    );
-    let glass = luminance(&glass_cube(0.3), in_shadow);
-    let clear = luminance(&glass_cube(0.0), in_shadow);
+    let f = renderer().render(scene, &camera).unwrap();
+    let px = camera.project(&Point3::new(-0.4, 0.0, -0.9)).unwrap().pixel;
+    let c = f.color.get_pixel(px.x as u32, px.y as u32).0;
+    [c[0] as i32, c[1] as i32, c[2] as i32]
+}
+
+#[test]
+fn glass_casts_a_partial_shadow() {
+    let luminance = |c: [i32; 3]| c.iter().sum::<i32>();
+    let opaque = luminance(shadow_color(&cube_scene(Pose::new(
+        1.0,
+        0.0,
+        Vector3::zeros(),
+    ))));
+    let clear_white = [0.9, 0.95, 0.95];
+    let glass = luminance(shadow_color(&glass_cube(clear_white, 0.3)));
+    let clear = luminance(shadow_color(&glass_cube(clear_white, 0.0)));
     assert!(
         opaque + 40 < glass && glass + 10 < clear,
         "opaque {opaque}, glass {glass}, fully clear {clear}"
     );
+}
+
+#[test]
+fn coloured_glass_tints_its_shadow() {
+    let [r, g, b] = shadow_color(&glass_cube([0.1, 0.8, 0.1], 0.3));
+    assert!(
+        g > r + 25 && g > b + 25,
+        "green glass's shadow is {r} {g} {b}"
+    );
+    let [r, g, b] = shadow_color(&glass_cube([0.9, 0.9, 0.9], 0.3));
+    assert!(
+        (g - r).abs() <= 8 && (g - b).abs() <= 8,
+        "clear glass's shadow is {r} {g} {b}"
+    );
+}
+
+#[test]
+fn what_stands_on_glass_is_not_tinted_by_it() {
+    // A green glass slab 2 cm thick with an opaque cube standing on it: the cube's sunlit top
+    // is as bright as without the slab; the floor under the slab is green.
+    let box_of = |name: &str, material: Material, min: [f32; 3], max: [f32; 3]| {
+        Instance::new(
+            name,
+            Arc::new(Mesh::cuboid(name, material, min, max)),
+            Pose::IDENTITY,
+        )
+    };
+    let green_glass = Material {
+        name: "glass".into(),
+        base_color: [0.1, 0.8, 0.1, 0.3],
+        roughness: 0.05,
+        metallic: 0.0,
+        texture: None,
+    };
+    let slab = box_of("slab", green_glass, [-1.0, 0.0, -1.0], [1.0, 0.02, 1.0]);
+    let cube = || {
+        box_of(
+            "cube",
+            Material::new("grey", [0.6, 0.6, 0.6], 0.6),
+            [-0.2, 0.02, -0.2],
+            [0.2, 0.42, 0.2],
+        )
+    };
+    let camera = Camera::look_at(
+        Intrinsics::from_vertical_fov(160, 120, 0.9),
+        Point3::new(2.0, 3.0, 3.0),
+        Point3::new(0.0, 0.0, 0.0),
+        Vector3::y(),
+    );
+    let color_at = |scene: &RenderScene, p: Point3<f64>| {
+        let f = renderer().render(scene, &camera).unwrap();
+        let px = camera.project(&p).unwrap().pixel;
+        f.color.get_pixel(px.x as u32, px.y as u32).0
+    };
+    let top = Point3::new(0.0, 0.42, 0.0);
+    let alone = color_at(&RenderScene::studio(vec![cube()]), top);
+    let on_glass = color_at(&RenderScene::studio(vec![slab, cube()]), top);
+    for c in 0..3 {
+        assert!(
+            (alone[c] as i32 - on_glass[c] as i32).abs() <= 6,
+            "the cube's top alone {alone:?}, on green glass {on_glass:?}"
+        );
+    }
 }
 
 #[test]

@@ -26,6 +26,9 @@ use textures::MaterialTextures;
 const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 const VALUE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// The shadow tint: the light see-through casters let pass (rgb) and the nearest one's depth
+/// from the sun (alpha), both kept as the minimum over the casters.
+const TINT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Unit direction toward the sun (from the front right, high up).
 const SUN_DIRECTION: [f64; 3] = [0.4, 1.0, 0.6];
 

@@ -1,15 +1,15 @@
-//! What a device renders with, built once: the bind group layouts, the six pipelines
-//! (depth pre-pass, scene, glass, background, shadow, ambient occlusion) sharing one shader, the shadow map's
-//! comparison sampler and the material textures' sampler.
+//! What a device renders with, built once: the bind group layouts, the seven pipelines
+//! (depth pre-pass, scene, glass, background, shadow, shadow tint, ambient occlusion) sharing
+//! one shader, the shadow map's samplers and the material textures' sampler.
 
-use super::{COLOR_FORMAT, DEPTH_FORMAT, VALUE_FORMAT};
+use super::{COLOR_FORMAT, DEPTH_FORMAT, TINT_FORMAT, VALUE_FORMAT};
 use crate::geometry::Vertex;
 
 /// The layouts, pipelines and sampler of a [`Renderer`](super::Renderer).
 pub(super) struct Pipelines {
     /// Group 0 of every pass: the uniform block.
     pub(super) globals_layout: wgpu::BindGroupLayout,
-    /// Group 1 of the scene pass: the shadow map and its sampler.
+    /// Group 1 of the scene pass: the shadow map's depth and tint and their samplers.
     pub(super) shadow_layout: wgpu::BindGroupLayout,
     /// Group 2 of the scene pass: the material texture arrays and their sampler.
     pub(super) textures_layout: wgpu::BindGroupLayout,
@@ -25,13 +25,15 @@ pub(super) struct Pipelines {
     pub(super) background: wgpu::RenderPipeline,
     /// Depth only, from the sun: the opaque casters.
     pub(super) shadow: wgpu::RenderPipeline,
-    /// The see-through casters into the same shadow map, covering only their opacity's share
-    /// of its texels (a partial shadow).
-    pub(super) shadow_glass: wgpu::RenderPipeline,
+    /// The see-through casters into the shadow tint: the light they let through and their
+    /// depth, each kept as the minimum over the casters.
+    pub(super) shadow_tint: wgpu::RenderPipeline,
     /// Screen-space ambient occlusion applied to the lit colour, into the final colour.
     pub(super) occlusion: wgpu::RenderPipeline,
     /// Bilinear depth comparison for soft shadow edges.
     pub(super) shadow_sampler: wgpu::Sampler,
+    /// Clamped bilinear filtering of the shadow tint.
+    pub(super) tint_sampler: wgpu::Sampler,
     /// Repeating trilinear filtering of the material maps.
     pub(super) texture_sampler: wgpu::Sampler,
 }
@@ -165,9 +167,55 @@ impl Pipelines {
         let shadow = pipeline(
             device,
             &shader,
-            shadow_spec(&globals_only, &vertices, false),
+            PipelineSpec {
+                label: "shadow",
+                layout: &globals_only,
+                vertex_entry: "vs_shadow",
+                buffers: &vertices,
+                cull_mode: None,
+                depth: Some(depth_state(
+                    true,
+                    wgpu::CompareFunction::Less,
+                    wgpu::DepthBiasState {
+                        constant: 2,
+                        slope_scale: 2.0,
+                        clamp: 0.0,
+                    },
+                )),
+                fragment_entry: None,
+                targets: &[],
+            },
         );
-        let shadow_glass = pipeline(device, &shader, shadow_spec(&globals_only, &vertices, true));
+        let tint_target = [Some(wgpu::ColorTargetState {
+            format: TINT_FORMAT,
+            blend: Some(wgpu::BlendState {
+                color: wgpu::BlendComponent {
+                    src_factor: wgpu::BlendFactor::One,
+                    dst_factor: wgpu::BlendFactor::One,
+                    operation: wgpu::BlendOperation::Min,
+                },
+                alpha: wgpu::BlendComponent {
+                    src_factor: wgpu::BlendFactor::One,
+                    dst_factor: wgpu::BlendFactor::One,
+                    operation: wgpu::BlendOperation::Min,
+                },
+            }),
+            write_mask: wgpu::ColorWrites::ALL,
+        })];
+        let shadow_tint = pipeline(
+            device,
+            &shader,
+            PipelineSpec {
+                label: "shadow tint",
+                layout: &globals_only,
+                vertex_entry: "vs_shadow_glass",
+                buffers: &vertices,
+                cull_mode: None,
+                depth: None,
+                fragment_entry: Some("fs_shadow_tint"),
+                targets: &tint_target,
+            },
+        );
         let occlusion = pipeline(
             device,
             &shader,
@@ -192,42 +240,12 @@ impl Pipelines {
             glass,
             background,
             shadow,
-            shadow_glass,
+            shadow_tint,
             occlusion,
             shadow_sampler: shadow_sampler(device),
+            tint_sampler: tint_sampler(device),
             texture_sampler: texture_sampler(device),
         }
-    }
-}
-
-/// A shadow pipeline, biased against acne: the opaque casters depth only, or (`glass`) the
-/// see-through ones with a fragment stage that lets part of the light through.
-fn shadow_spec<'a>(
-    layout: &'a wgpu::PipelineLayout,
-    vertices: &'a [Option<wgpu::VertexBufferLayout<'a>>],
-    glass: bool,
-) -> PipelineSpec<'a> {
-    PipelineSpec {
-        label: if glass { "shadow glass" } else { "shadow" },
-        layout,
-        vertex_entry: if glass {
-            "vs_shadow_glass"
-        } else {
-            "vs_shadow"
-        },
-        buffers: vertices,
-        cull_mode: None,
-        depth: Some(depth_state(
-            true,
-            wgpu::CompareFunction::Less,
-            wgpu::DepthBiasState {
-                constant: 2,
-                slope_scale: 2.0,
-                clamp: 0.0,
-            },
-        )),
-        fragment_entry: glass.then_some("fs_shadow_glass"),
-        targets: &[],
     }
 }
 
@@ -350,7 +368,8 @@ fn globals_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     })
 }
 
-/// Group 1 of the scene pass: the depth texture of the shadow map and a comparison sampler.
+/// Group 1 of the scene pass: the depth texture of the shadow map with a comparison sampler,
+/// and its tint with a filtering one.
 fn shadow_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("shadow map"),
@@ -371,6 +390,17 @@ fn shadow_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
                 ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
                 count: None,
             },
+            texture_entry(
+                2,
+                wgpu::TextureSampleType::Float { filterable: true },
+                wgpu::TextureViewDimension::D2,
+            ),
+            wgpu::BindGroupLayoutEntry {
+                binding: 3,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                count: None,
+            },
         ],
     })
 }
@@ -384,6 +414,18 @@ fn shadow_sampler(device: &wgpu::Device) -> wgpu::Sampler {
         mag_filter: wgpu::FilterMode::Linear,
         min_filter: wgpu::FilterMode::Linear,
         compare: Some(wgpu::CompareFunction::LessEqual),
+        ..Default::default()
+    })
+}
+
+/// Clamped and bilinear: the shadow tint blends across its texels like the depth comparison.
+fn tint_sampler(device: &wgpu::Device) -> wgpu::Sampler {
+    device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some("shadow tint"),
+        address_mode_u: wgpu::AddressMode::ClampToEdge,
+        address_mode_v: wgpu::AddressMode::ClampToEdge,
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
         ..Default::default()
     })
 }

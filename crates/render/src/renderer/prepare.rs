@@ -11,7 +11,7 @@ use nalgebra::{Matrix4, Point3, Vector3};
 use scenethesis_scene_graph::{Aabb, TextureImage};
 use wgpu::util::DeviceExt;
 
-use super::{mat, Globals, PreparedScene, Renderer, DEPTH_FORMAT, SUN_DIRECTION};
+use super::{mat, Globals, PreparedScene, Renderer, DEPTH_FORMAT, SUN_DIRECTION, TINT_FORMAT};
 use crate::geometry::SceneGeometry;
 use crate::{RenderError, RenderScene};
 
@@ -75,10 +75,11 @@ impl Renderer {
         let radius = (bounds.size().norm() / 2.0).max(0.5);
         let light_from_world = light_matrix(&bounds, radius);
         let size = self.options.shadow_map_size.max(1);
-        let shadow_view = self.shadow_map(size);
+        let shadow_view = self.shadow_texture("shadow map", size, DEPTH_FORMAT);
+        let tint_view = self.shadow_texture("shadow tint", tint_size(size), TINT_FORMAT);
         let casters = vertices.as_ref().filter(|_| self.options.shadows);
         self.draw_shadow_map(
-            &shadow_view,
+            (&shadow_view, &tint_view),
             casters.map(|b| (b, geometry.objects.clone())),
             &light_from_world,
         );
@@ -100,14 +101,20 @@ impl Renderer {
             reach,
             light_from_world,
             shadow_texel: 2.0 * radius / size as f64,
-            shadow_group: self.shadow_group(&shadow_view),
+            shadow_group: self.shadow_group(&shadow_view, &tint_view),
         })
     }
 
-    /// A square depth texture of `size` texels a side, to render into and sample.
-    fn shadow_map(&self, size: u32) -> wgpu::TextureView {
+    /// A square texture of `size` texels a side in `format`, to render into from the sun and
+    /// sample: the shadow map's depth or its tint.
+    fn shadow_texture(
+        &self,
+        label: &str,
+        size: u32,
+        format: wgpu::TextureFormat,
+    ) -> wgpu::TextureView {
         let texture = self.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("shadow map"),
+            label: Some(label),
             size: wgpu::Extent3d {
                 width: size,
                 height: size,
@@ -116,34 +123,34 @@ impl Renderer {
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
-            format: DEPTH_FORMAT,
+            format,
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
             view_formats: &[],
         });
         texture.create_view(&Default::default())
     }
 
-    /// Renders the `casters` (a vertex buffer and the range of object vertices in it) into
-    /// the shadow map from the sun, the opaque ones whole and the see-through ones (glass) on
-    /// their opacity's share of the texels; with none, only clears it, so every lookup reads
-    /// "lit".
+    /// Renders the `casters` (a vertex buffer and the range of object vertices in it) from
+    /// the sun: the opaque ones into the shadow map's depth, the see-through ones (glass) into
+    /// its tint (the light they let through and the nearest pane's depth). With none, only
+    /// clears both, so every lookup reads "lit".
     fn draw_shadow_map(
         &self,
-        view: &wgpu::TextureView,
+        (depth, tint): (&wgpu::TextureView, &wgpu::TextureView),
         casters: Option<(&wgpu::Buffer, Range<u32>)>,
         light_from_world: &Matrix4<f64>,
     ) {
         let mut encoder = self.device.create_command_encoder(&Default::default());
-        let label = if casters.is_some() {
-            "shadow"
-        } else {
-            "shadow clear"
-        };
+        let drawn = casters.map(|(buffer, objects)| {
+            let mut globals = Globals::zeroed();
+            globals.light_from_world = mat(light_from_world);
+            (self.uniform(&globals), buffer, objects)
+        });
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some(label),
+                label: Some("shadow"),
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view,
+                    view: depth,
                     depth_ops: Some(wgpu::Operations {
                         load: wgpu::LoadOp::Clear(1.0),
                         store: wgpu::StoreOp::Store,
@@ -152,16 +159,32 @@ impl Renderer {
                 }),
                 ..Default::default()
             });
-            if let Some((buffer, objects)) = casters {
-                let mut globals = Globals::zeroed();
-                globals.light_from_world = mat(light_from_world);
-                let uniform = self.uniform(&globals);
-                pass.set_bind_group(0, &uniform, &[]);
+            if let Some((uniform, buffer, objects)) = &drawn {
+                pass.set_bind_group(0, uniform, &[]);
                 pass.set_vertex_buffer(0, buffer.slice(..));
                 pass.set_pipeline(&self.pipelines.shadow);
                 pass.draw(objects.clone(), 0..1);
-                pass.set_pipeline(&self.pipelines.shadow_glass);
-                pass.draw(objects, 0..1);
+            }
+        }
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("shadow tint"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: tint,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::WHITE),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                ..Default::default()
+            });
+            if let Some((uniform, buffer, objects)) = &drawn {
+                pass.set_bind_group(0, uniform, &[]);
+                pass.set_vertex_buffer(0, buffer.slice(..));
+                pass.set_pipeline(&self.pipelines.shadow_tint);
+                pass.draw(objects.clone(), 0..1);
             }
         }
         let queue = self.queue_guard();
@@ -169,23 +192,38 @@ impl Renderer {
         drop(queue);
     }
 
-    /// Group 1 of the scene pass: the shadow map `view` and the comparison sampler.
-    fn shadow_group(&self, view: &wgpu::TextureView) -> wgpu::BindGroup {
+    /// Group 1 of the scene pass: the shadow map's `depth` with the comparison sampler and
+    /// its `tint` with a filtering one.
+    fn shadow_group(&self, depth: &wgpu::TextureView, tint: &wgpu::TextureView) -> wgpu::BindGroup {
         self.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("shadow map"),
             layout: &self.pipelines.shadow_layout,
             entries: &[
                 wgpu::BindGroupEntry {
                     binding: 0,
-                    resource: wgpu::BindingResource::TextureView(view),
+                    resource: wgpu::BindingResource::TextureView(depth),
                 },
                 wgpu::BindGroupEntry {
                     binding: 1,
                     resource: wgpu::BindingResource::Sampler(&self.pipelines.shadow_sampler),
                 },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(tint),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::Sampler(&self.pipelines.tint_sampler),
+                },
             ],
         })
     }
+}
+
+/// Side of the shadow tint in texels: half the depth map's (a tint has no sharp edges to
+/// keep, and a quarter of the texels to clear and blend).
+fn tint_size(shadow_map_size: u32) -> u32 {
+    (shadow_map_size / 2).max(1)
 }
 
 /// The sun's orthographic clip-from-world matrix for a sphere of `radius` around the box's
