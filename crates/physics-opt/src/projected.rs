@@ -129,8 +129,14 @@ impl ProjectedGaussNewton {
         let mut pose = problem.project(&initial);
         let resting = !matches!(problem.support, Support::Free);
         let mut iterations = 0;
+        let mut started = RecentPoses::default();
         while iterations < self.physics_iterations && !problem.out_of_time() {
             iterations += 1;
+            let left = self.physics_iterations - iterations;
+            if let Some(end) = started.cycle_end(&pose, left) {
+                return (end, iterations);
+            }
+            started.push(pose);
             if self.stability {
                 pose = self.settle_vertically(problem, pose);
             }
@@ -314,9 +320,107 @@ fn clamp_norm(v: Vector3<f64>, limit: f64) -> Vector3<f64> {
     }
 }
 
+/// The longest cycle of poses the settle loop recognises.
+const LONGEST_CYCLE: usize = 8;
+
+/// The poses that started the settle loop's latest iterations, newest first.
+#[derive(Default)]
+struct RecentPoses {
+    newest_first: std::collections::VecDeque<Pose>,
+}
+
+impl RecentPoses {
+    /// Remembers the pose that starts an iteration, forgetting what no cycle can reach.
+    fn push(&mut self, pose: Pose) {
+        self.newest_first.push_front(pose);
+        self.newest_first.truncate(LONGEST_CYCLE);
+    }
+
+    /// Where the loop ends when `pose`, starting an iteration with `left` more to run after it,
+    /// repeats (bit for bit) the pose that started the iteration `p` ago, `p` ≤
+    /// [`LONGEST_CYCLE`]. An iteration is a function of the pose that starts it, so from there
+    /// on the loop goes round the same `p` poses and would end, `left + 1` steps on, on the one
+    /// the remainder of `left + 1` by `p` selects. `None` when `pose` repeats none.
+    fn cycle_end(&self, pose: &Pose, left: usize) -> Option<Pose> {
+        let bits = |p: &Pose| {
+            [
+                p.scale,
+                p.yaw,
+                p.translation.x,
+                p.translation.y,
+                p.translation.z,
+            ]
+            .map(f64::to_bits)
+        };
+        let key = bits(pose);
+        let back = self.newest_first.iter().position(|p| bits(p) == key)?;
+        let period = back + 1;
+        // Step `m` (0..period) of the cycle from `pose` is the pose that started the
+        // iteration `period − m` ago: newest_first[period − m − 1], and `pose` itself at m = 0.
+        let m = (left + 1) % period;
+        Some(if m == 0 {
+            *pose
+        } else {
+            self.newest_first[period - m - 1]
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A pose standing for state `k` of a made-up iteration.
+    fn state(k: usize) -> Pose {
+        Pose::new(1.0, 0.0, Vector3::new(k as f64 * 0.01, 0.0, 0.0))
+    }
+
+    /// The last pose of `iterations` steps of `step` from `start`, run out in full or ended
+    /// early by [`RecentPoses::cycle_end`], as `settle` does.
+    fn run(step: impl Fn(usize) -> usize, iterations: usize, early: bool) -> (Pose, usize) {
+        let mut k = 0;
+        let mut recent = RecentPoses::default();
+        for i in 1..=iterations {
+            if early {
+                if let Some(end) = recent.cycle_end(&state(k), iterations - i) {
+                    return (end, i);
+                }
+                recent.push(state(k));
+            }
+            k = step(k);
+        }
+        (state(k), iterations)
+    }
+
+    #[test]
+    fn a_cycle_ends_the_settle_loop_on_the_pose_it_would_have_reached() {
+        for tail in 0..4 {
+            for period in 1..=LONGEST_CYCLE + 2 {
+                // States 0..tail lead into the cycle tail..tail + period.
+                let step = |k: usize| {
+                    if k + 1 < tail + period {
+                        k + 1
+                    } else {
+                        tail
+                    }
+                };
+                for iterations in 1..40 {
+                    let (full, _) = run(step, iterations, false);
+                    let (early, spent) = run(step, iterations, true);
+                    assert_eq!(
+                        full, early,
+                        "tail {tail}, period {period}, {iterations} iterations"
+                    );
+                    if period <= LONGEST_CYCLE && iterations > tail + period + 1 {
+                        assert!(spent <= tail + period + 1, "spent {spent} of {iterations}");
+                    }
+                    if period > LONGEST_CYCLE {
+                        assert_eq!(spent, iterations);
+                    }
+                }
+            }
+        }
+    }
 
     #[test]
     fn min_norm_step_meets_every_constraint_or_reports_contradiction() {
