@@ -18,7 +18,7 @@ use crate::house::RoomShell;
 use crate::judge::{GeometricJudge, Judge};
 use crate::phases::beside::PreviewsBeside;
 use crate::phases::clock::StageClock;
-use crate::phases::correspond::{correspond, Aligned};
+use crate::phases::correspond::{correspond, Aligned, AlignmentMemo};
 use crate::phases::judge::{judge, verdict_note, Attempt};
 use crate::phases::layout::lay_out;
 use crate::phases::optimize::optimize;
@@ -316,6 +316,7 @@ impl Pipeline {
             clock.run_quietly(Stage::Guide, || self.guide.adopt(&original_plan, seed))?;
         let mut plan = adoption.apply(&original_plan);
         let mut cache = AssetCache::default();
+        let mut alignments = AlignmentMemo::default();
         clock.run_quietly(Stage::Retrieve, || {
             cache.fit_variants(self.assets.as_ref(), &plan, seed, &adoption.sizes)
         })?;
@@ -324,7 +325,14 @@ impl Pipeline {
         let mut stopped: Option<String> = None;
         for round in 0..=options.max_replans {
             let attempt = match self.attempt(
-                &plan, &mut cache, &mut clock, prompt, seed, round, options, shell,
+                &plan,
+                (&mut cache, &mut alignments),
+                &mut clock,
+                prompt,
+                seed,
+                round,
+                options,
+                shell,
             ) {
                 Ok(attempt) => attempt,
                 Err(PipelineError::OutOfTime {
@@ -408,12 +416,13 @@ impl Pipeline {
         })
     }
 
-    /// One round: retrieve, lay out, optimize and judge `plan`.
+    /// One round: retrieve, lay out, optimize and judge `plan`, with the assets and the
+    /// alignments kept from earlier rounds.
     #[allow(clippy::too_many_arguments)]
     fn attempt(
         &self,
         plan: &Plan,
-        cache: &mut AssetCache,
+        (cache, alignments): (&mut AssetCache, &mut AlignmentMemo),
         clock: &mut StageClock<'_>,
         prompt: &str,
         seed: u64,
@@ -461,6 +470,7 @@ impl Pipeline {
                             guidance,
                             &retrieved,
                             cache,
+                            alignments,
                             matcher.as_ref(),
                             settings,
                             options,

@@ -3,14 +3,21 @@
 //! configured the stage runs between guide and optimize and brings the objects back.
 
 use std::collections::BTreeMap;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
 use nalgebra::{Point3, Vector3};
 use scenethesis_agents::{AssetLookup, Guide, GuideError, GuidedLayout, Plan, ProceduralGuide};
-use scenethesis_correspondence::{rasterized_guidance, GuidedSettings, ShapeMatcher};
+use scenethesis_correspondence::{
+    rasterized_guidance, GuidedSettings, Matcher, PixelMatch, RenderedView, ShapeMatcher,
+    TargetRegion,
+};
 use scenethesis_imagery::{Camera, Intrinsics};
 use scenethesis_import::AssetResolver;
-use scenethesis_pipeline::{GenerateOptions, Pipeline, Progress, Stage};
+use scenethesis_judge::{
+    Failure, FailureKind, GeometricJudge, Judge, JudgeError, JudgeInput, Verdict,
+};
+use scenethesis_pipeline::{GenerateOptions, NoProgress, Pipeline, Progress, Stage};
 use scenethesis_scene_graph::{ParentRef, Pose, Scene};
 
 /// The procedural layout as guidance, with the floor objects' starting poses shifted by
@@ -126,4 +133,103 @@ fn correspond_runs_between_guide_and_optimize_and_undoes_the_shift() {
     // within 5 cm (median; 4.4 cm measured on this bedroom since its archetype draws optional
     // extras per seed, which crowd the floor the optimizer then resolves).
     assert!(median < 0.05, "median floor-object error {median} m");
+}
+
+/// Like a guide that reads a photo: the first round's layout of [`ShiftedGuide`] fixes every
+/// object's place for good; later rounds get it again, less the objects the plan dropped.
+#[derive(Default)]
+struct SameEveryRound {
+    shifted: ShiftedGuide,
+    first: Mutex<Option<GuidedLayout>>,
+}
+
+impl Guide for SameEveryRound {
+    fn name(&self) -> &str {
+        "same-every-round"
+    }
+
+    fn layout(
+        &self,
+        plan: &Plan,
+        assets: &dyn AssetLookup,
+        seed: u64,
+    ) -> Result<GuidedLayout, GuideError> {
+        let mut first = self.first.lock().unwrap();
+        if first.is_none() {
+            *first = Some(self.shifted.layout(plan, assets, seed)?);
+        }
+        let mut layout = first.clone().unwrap();
+        let planned = |id: &str| plan.objects.iter().any(|o| o.id == id);
+        layout.scene.objects.retain(|o| planned(&o.id));
+        if let Some(g) = &mut layout.guidance {
+            g.masks.retain(|id, _| planned(id));
+        }
+        Ok(layout)
+    }
+}
+
+/// The shape matcher, counting the views it matches.
+#[derive(Default, Clone)]
+struct CountingMatcher(Arc<AtomicUsize>);
+
+impl Matcher for CountingMatcher {
+    fn name(&self) -> &str {
+        "counting-shape"
+    }
+
+    fn match_view(&self, view: &RenderedView, target: &TargetRegion<'_>) -> Vec<PixelMatch> {
+        self.0.fetch_add(1, Ordering::Relaxed);
+        ShapeMatcher::default().match_view(view, target)
+    }
+}
+
+/// The geometric judge, but every scene it sees is refused for a made-up wobble of its
+/// first object (so the pipeline re-plans until its rounds run out).
+struct RefusingJudge(GeometricJudge);
+
+impl Judge for RefusingJudge {
+    fn name(&self) -> &str {
+        "refusing"
+    }
+
+    fn judge(&self, input: &JudgeInput<'_>) -> Result<Verdict, JudgeError> {
+        let mut verdict = self.0.judge(input)?;
+        verdict.accepted = false;
+        verdict.failures.push(Failure {
+            kind: FailureKind::Unstable,
+            objects: vec![input.scene.objects[0].id.clone()],
+            detail: "refused by the test".into(),
+        });
+        Ok(verdict)
+    }
+}
+
+#[test]
+fn a_replan_round_reuses_the_alignments_whose_inputs_are_unchanged() {
+    let prompt = "a bedroom with a bed, a wardrobe and a desk";
+    let matched_views = |max_replans: usize| {
+        let matcher = CountingMatcher::default();
+        let options = GenerateOptions {
+            previews: false,
+            max_replans,
+            ..GenerateOptions::default()
+        };
+        let generated = Pipeline::offline()
+            .with_guide(SameEveryRound::default())
+            .with_judge(RefusingJudge(GeometricJudge::default()))
+            .with_matcher(matcher.clone(), GuidedSettings::default())
+            .generate(prompt, 0, &options, &mut NoProgress)
+            .unwrap();
+        assert_eq!(generated.report.replans.len(), max_replans);
+        matcher.0.load(Ordering::Relaxed)
+    };
+    let one_round = matched_views(0);
+    let three_rounds = matched_views(2);
+    assert!(one_round > 0);
+    // Each re-plan moves the blamed object; the others start where they started, in front
+    // of the same guidance, and keep their alignment.
+    assert!(
+        three_rounds < one_round * 3 / 2,
+        "{one_round} views matched in one round, {three_rounds} in three"
+    );
 }
