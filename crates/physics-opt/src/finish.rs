@@ -61,6 +61,20 @@ pub(crate) struct FinishInput<'a> {
     pub deadline: Option<Instant>,
 }
 
+/// The slack of [`Resettle::acceptable`]'s comparison of scores.
+const SCORE_SLACK: f64 = 1e-6;
+
+/// Whether score `s` is better than `was`: no deeper into a holder, and lower in one part by
+/// more than [`SCORE_SLACK`].
+fn improves(was: Score, s: Score) -> bool {
+    s.0 <= was.0 + SCORE_SLACK && (s.0 < was.0 - SCORE_SLACK || s.1 < was.1 - SCORE_SLACK)
+}
+
+/// Whether any score [`improves`] on `was` (scores are never negative).
+fn could_improve(was: Score) -> bool {
+    was.0 > SCORE_SLACK || was.1 > SCORE_SLACK
+}
+
 /// What the pass needs to re-resolve an object's support after its parent moved.
 pub(crate) type ResolveSupport<'a> = dyn Fn(usize, &Pose, &[Pose]) -> Support + 'a;
 
@@ -241,6 +255,11 @@ impl Resettle<'_> {
             spent: 0,
             rests_clear: false,
         };
+        if !(self.topples && input.settle) && !could_improve(attempts.was) {
+            // Its own samples touch nothing (the check saw another object's samples in it):
+            // no pose can score better, so none would be taken. The other moves in its turn.
+            return (None, 0);
+        }
         let outcome = self
             .optimizer
             .optimize(&self.problem, Stage::Physics, start);
@@ -317,15 +336,14 @@ impl Resettle<'_> {
                 .is_none_or(|plane| rests_stably(self.dense, plane, p))
     }
 
-    /// Whether pose `p` scoring `s` may replace the start.
+    /// Whether pose `p` scoring `s` may replace the start (for an object that does not
+    /// topple, only a score [`could_improve`] on).
     fn acceptable(&self, attempts: &Attempts, p: &Pose, s: Score) -> bool {
         if self.topples && self.input.settle {
             self.stable(p) && self.resolved(s)
         } else {
             // Never trade a collision for a topple, nor press harder into a holder.
-            (!attempts.was_stable || self.stable(p))
-                && s.0 <= attempts.was.0 + 1e-6
-                && (s.0 < attempts.was.0 - 1e-6 || s.1 < attempts.was.1 - 1e-6)
+            (!attempts.was_stable || self.stable(p)) && improves(attempts.was, s)
         }
     }
 
@@ -643,6 +661,23 @@ fn convex_hull(points: &[Point2<f64>]) -> Vec<Point2<f64>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn no_score_improves_on_one_that_could_not_be_improved() {
+        let values = [0.0, 1e-7, 5e-7, 1e-6, 1.5e-6, 2e-6, 1e-3, 0.02];
+        for &a in &values {
+            for &b in &values {
+                for &c in &values {
+                    for &d in &values {
+                        if improves((a, b), (c, d)) {
+                            assert!(could_improve((a, b)), "({a}, {b}) improved by ({c}, {d})");
+                        }
+                    }
+                }
+            }
+        }
+        assert!(!could_improve((0.0, 1e-6)) && could_improve((0.0, 2e-6)));
+    }
 
     #[test]
     fn hull_contains_with_margin() {
