@@ -340,6 +340,7 @@ fn pose_errors(
             points: 0,
             depth_source: DepthSource::Measured,
             completed: false,
+            seen_height: aabb.size().y * pose.scale,
         };
         let error = PoseError {
             translation: (center - tb.center).norm(),

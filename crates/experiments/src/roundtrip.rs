@@ -220,6 +220,7 @@ pub(crate) fn true_boxes(
                 points: 0,
                 depth_source: scenethesis_vision::boxes::DepthSource::Measured,
                 completed: false,
+                seen_height: size.y,
             },
         );
     }

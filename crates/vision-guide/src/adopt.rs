@@ -137,12 +137,14 @@ pub fn adopted_objects(
             planned(n, guess, wall_asset, &layers)
         })
         .collect();
+    // The height the image shows, not the prior-blended one: the category's prior must not
+    // pick the asset variant that then becomes the object's prior.
     let sizes = lifted
         .boxes
         .iter()
         .map(|b| {
             let s = b.size();
-            (b.id.clone(), [s.x.max(s.z), s.y, s.x.min(s.z)])
+            (b.id.clone(), [s.x.max(s.z), b.seen_height, s.x.min(s.z)])
         })
         .collect();
     Ok((parents_first(objects), sizes))

@@ -637,6 +637,7 @@ pub fn lift_points_with(
     rect.half_extents.x += margin * sight.perp(&rect.axis_x()).abs();
     rect.half_extents.y += margin * sight.perp(&rect.axis_z()).abs();
     let mut completed = false;
+    let seen_height = top - bottom;
     if let Some(prior) = options.priors.get(id) {
         completed = true;
         // Height first: when the known height reaches down to the floor, the object stands on
@@ -678,6 +679,7 @@ pub fn lift_points_with(
         points: kept.len(),
         depth_source: source,
         completed,
+        seen_height: seen_height.max(0.0),
     })
 }
 

@@ -34,6 +34,11 @@ pub struct LiftedBox {
     pub depth_source: DepthSource,
     /// Whether a size prior completed the hidden side.
     pub completed: bool,
+    /// The height the points span before a size prior is blended in (metres; the box's own
+    /// height when no prior took part): what the image alone says of the object's size, for
+    /// choosing among assets without the prior choosing itself.
+    #[serde(default)]
+    pub seen_height: f64,
 }
 
 impl LiftedBox {
@@ -54,6 +59,7 @@ impl LiftedBox {
             points: 0,
             depth_source: DepthSource::Measured,
             completed: true,
+            seen_height: 2.0 * half_extents[1],
         }
     }
 

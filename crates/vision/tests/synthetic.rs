@@ -264,3 +264,38 @@ fn noisy_scaled_depth_is_calibrated_on_the_floor() {
         assert!(err < 10.0, "{}: yaw {:.1}°", t.id, b.yaw.to_degrees());
     }
 }
+
+#[test]
+fn seen_height_is_what_the_image_shows_whatever_the_prior_says() {
+    let boxes = truth();
+    let guidance = render(&boxes, true);
+    // Priors 40 % too tall (a catalogue's generic size for an object the image shows
+    // smaller): the boxes lean toward them, the seen heights do not.
+    let tall: BTreeMap<String, Vector3<f64>> = priors(&boxes)
+        .into_iter()
+        .map(|(id, s)| (id, Vector3::new(s.x, s.y * 1.4, s.z)))
+        .collect();
+    let options = LiftOptions {
+        priors: tall,
+        mask_margin_px: 0,
+        ..LiftOptions::default()
+    };
+    let lifted = lift_scene(&guidance, &options).unwrap();
+    for t in &boxes {
+        let b = lifted.boxes.iter().find(|b| b.id == t.id).unwrap();
+        assert!(
+            (b.seen_height - t.size.y).abs() / t.size.y < 0.06,
+            "{}: seen {:.3} vs {:.3}",
+            t.id,
+            b.seen_height,
+            t.size.y
+        );
+        assert!(
+            b.size().y > t.size.y * 1.04,
+            "{}: the prior is blended in ({:.3} vs {:.3})",
+            t.id,
+            b.size().y,
+            t.size.y
+        );
+    }
+}
