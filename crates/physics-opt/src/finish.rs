@@ -255,7 +255,8 @@ impl Resettle<'_> {
             spent: 0,
             rests_clear: false,
         };
-        if !(self.topples && input.settle) && !could_improve(attempts.was) {
+        let settles_a_topple = self.topples && input.settle;
+        if !(settles_a_topple || could_improve(attempts.was)) {
             // Its own samples touch nothing (the check saw another object's samples in it):
             // no pose can score better, so none would be taken. The other moves in its turn.
             return (None, 0);
