@@ -12,7 +12,7 @@
 //!    horizontal extent.
 //! 4. [`boxes`]: the gravity-aligned box per object ([`LiftedBox`]).
 //! 5. [`support`]: support relations, lowest first, from footprint overlap and height gaps;
-//!    [`cross_check`] reconciles them with the relations a vision-language model states.
+//!    [`cross_check`](mod@cross_check) reconciles them with the relations a vision-language model states.
 //!
 //! Everything here is deterministic and free of GPU, HTTP and model runtimes; the model-backed
 //! pieces (segmentation, monocular depth) produce the [`Guidance`](scenethesis_imagery::Guidance) this crate reads.
