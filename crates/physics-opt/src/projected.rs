@@ -342,18 +342,8 @@ impl RecentPoses {
     /// on the loop goes round the same `p` poses and would end, `left + 1` steps on, on the one
     /// the remainder of `left + 1` by `p` selects. `None` when `pose` repeats none.
     fn cycle_end(&self, pose: &Pose, left: usize) -> Option<Pose> {
-        let bits = |p: &Pose| {
-            [
-                p.scale,
-                p.yaw,
-                p.translation.x,
-                p.translation.y,
-                p.translation.z,
-            ]
-            .map(f64::to_bits)
-        };
-        let key = bits(pose);
-        let back = self.newest_first.iter().position(|p| bits(p) == key)?;
+        let key = pose.to_bits();
+        let back = self.newest_first.iter().position(|p| p.to_bits() == key)?;
         let period = back + 1;
         // Step `m` (0..period) of the cycle from `pose` is the pose that started the
         // iteration `period − m` ago: newest_first[period − m − 1], and `pose` itself at m = 0.

@@ -85,6 +85,22 @@ impl Pose {
         }
     }
 
+    /// The pose's five numbers bit for bit (scale, yaw, translation x, y, z): a key under which
+    /// two poses are equal exactly when every later computation from them gives the same
+    /// result (`-0.0` and `0.0` differ).
+    ///
+    /// ```
+    /// use nalgebra::Vector3;
+    /// use scenethesis_scene_graph::Pose;
+    /// let p = Pose::new(1.0, 0.0, Vector3::new(0.5, 0.0, -1.0));
+    /// assert_eq!(p.to_bits(), p.to_bits());
+    /// assert_ne!(p.to_bits(), Pose::new(1.0, -0.0, p.translation).to_bits());
+    /// ```
+    pub fn to_bits(&self) -> [u64; 5] {
+        let t = self.translation;
+        [self.scale, self.yaw, t.x, t.y, t.z].map(f64::to_bits)
+    }
+
     /// The rotation about +Y by [`Pose::yaw`].
     pub fn rotation(&self) -> Rotation3<f64> {
         Rotation3::from_axis_angle(&Vector3::y_axis(), self.yaw)

@@ -10,7 +10,7 @@ use scenethesis_correspondence::{
     facing_hint, kept_lift, GuidedPose, GuidedSettings, KeptLift, Matcher, PoseAlignment,
 };
 use scenethesis_imagery::{Guidance, Mask};
-use scenethesis_scene_graph::{Pose, Scene, SceneObject};
+use scenethesis_scene_graph::{Scene, SceneObject};
 
 use super::retrieve::{AssetCache, AssetKey, Retrieved};
 use crate::{GenerateOptions, PipelineError};
@@ -51,15 +51,10 @@ struct AlignmentInputs {
 impl AlignmentInputs {
     /// The inputs of `object`'s alignment in `scene` with `asset` and `scale_range`.
     fn of(scene: &Scene, object: &SceneObject, asset: &AssetKey, scale_range: [f64; 2]) -> Self {
-        let Pose {
-            scale,
-            yaw,
-            translation: t,
-        } = object.pose;
         Self {
             id: object.id.clone(),
             asset: asset.clone(),
-            start: [scale, yaw, t.x, t.y, t.z].map(f64::to_bits),
+            start: object.pose.to_bits(),
             scale_range: scale_range.map(f64::to_bits),
             hint: facing_hint(scene, object).map(f64::to_bits),
         }
