@@ -38,17 +38,29 @@ pub(crate) fn library_of(material: &Material) -> Option<&'static LibraryMaterial
 
 /// The material `part` is written with: `material` itself when the part can show its image
 /// (it has a texture coordinate per vertex) or it has none; else `material` without its image,
-/// in its flat colour ([`Material::flat_color`]), as imported textures were written before
+/// in its flat colour ([`Material::without_image`]), as imported textures were written before
 /// parts kept their texture coordinates.
 pub(crate) fn worn<'a>(part: &MeshPart, material: &'a Material) -> Cow<'a, Material> {
     if material.texture.is_none() || part.textured_uvs(material).is_some() {
         return Cow::Borrowed(material);
     }
-    Cow::Owned(Material {
-        base_color: material.flat_color(),
-        texture: None,
-        ..material.clone()
-    })
+    Cow::Owned(material.without_image())
+}
+
+/// A key equal for two materials exactly when the writers may share one material between
+/// them: the same name, every factor bit for bit and the same image.
+pub(crate) fn material_key(m: &Material) -> String {
+    let mut key = format!(
+        "{}|{:?}|{}|{}",
+        m.name,
+        m.base_color.map(f32::to_bits),
+        m.roughness.to_bits(),
+        m.metallic.to_bits()
+    );
+    if let Some(image) = &m.texture {
+        key.push_str(&format!("|{}", image.digest_hex()));
+    }
+    key
 }
 
 /// The file name of an imported image beside the text formats: `image_<digest>.png`.

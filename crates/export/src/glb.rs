@@ -37,7 +37,7 @@ use serde_json::{json, Value};
 
 use crate::architecture::{leaves, pieces, PieceKind};
 use crate::articulation::Articulation;
-use crate::geometry::{library_of, shade, worn, Mapping};
+use crate::geometry::{library_of, material_key, shade, worn, Mapping};
 use crate::ExportScene;
 use scenethesis_materials::{maps, LibraryMaterial, MapKind};
 use scenethesis_scene_graph::{JointState, Material, Mesh};
@@ -308,16 +308,7 @@ impl Builder {
     /// gets its base-colour, metallic-roughness and normal textures (the factors rescaled so
     /// the surface keeps its colour and roughness on average), glass its transmission.
     fn material(&mut self, m: &Material) -> usize {
-        let mut key = format!(
-            "{}|{:?}|{}|{}",
-            m.name,
-            m.base_color.map(f32::to_bits),
-            m.roughness.to_bits(),
-            m.metallic.to_bits()
-        );
-        if let Some(image) = &m.texture {
-            key.push_str(&format!("|{}", image.digest_hex()));
-        }
+        let key = material_key(m);
         if let Some(&i) = self.material_index.get(&key) {
             return i;
         }

@@ -33,7 +33,9 @@ use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
 use crate::architecture::{leaves, pieces, Leaf};
 use crate::articulation::Articulation;
-use crate::geometry::{image_file_name, library_of, num, num32, shade, worn, Identifiers, Mapping};
+use crate::geometry::{
+    image_file_name, library_of, material_key, num, num32, shade, worn, Identifiers, Mapping,
+};
 use crate::textures;
 use crate::{Dynamics, ExportScene, DENSITY};
 use scenethesis_materials::{maps, LibraryMaterial, MapKind};
@@ -353,20 +355,6 @@ struct Looks {
 }
 
 impl Looks {
-    fn key(m: &Material) -> String {
-        let mut key = format!(
-            "{}|{:?}|{}|{}",
-            m.name,
-            m.base_color.map(f32::to_bits),
-            m.roughness.to_bits(),
-            m.metallic.to_bits()
-        );
-        if let Some(image) = &m.texture {
-            key.push_str(&format!("|{}", image.digest_hex()));
-        }
-        key
-    }
-
     /// Registers the materials of `mesh` in material order: each as it is, or for a material
     /// with an image, as the parts wear it ([`worn`]: with the image where a part shows it,
     /// flat where one cannot).
@@ -395,7 +383,7 @@ impl Looks {
 
     /// Adds `m` under a fresh prim name unless an equal material is registered.
     fn add(&mut self, m: &Material) {
-        let key = Self::key(m);
+        let key = material_key(m);
         if self.by_key.contains_key(&key) {
             return;
         }
@@ -410,7 +398,7 @@ impl Looks {
     fn path(&self, m: &Material) -> String {
         format!(
             "/World/Looks/{}",
-            self.materials[self.by_key[&Self::key(m)]].0
+            self.materials[self.by_key[&material_key(m)]].0
         )
     }
 }

@@ -195,11 +195,7 @@ impl SceneGeometry {
                 });
                 let surface = match (&image, material) {
                     (Some((_, surface)), _) => *surface,
-                    (None, Some(m)) if m.texture.is_some() => Surface::of(&Material {
-                        base_color: m.flat_color(),
-                        texture: None,
-                        ..m.clone()
-                    }),
+                    (None, Some(m)) if m.texture.is_some() => Surface::of(&m.without_image()),
                     (None, m) => m.map_or(Surface::plain([0.6; 3], 0.6), Surface::of),
                 };
                 let own_uvs = image.map(|(uvs, _)| uvs);
@@ -463,9 +459,6 @@ fn wall_boxes(arch: &Architecture, wall: &Wall) -> Vec<(Point3<f64>, Vector3<f64
         .collect()
 }
 
-/// Per-corner normals of a part (three per triangle): each corner averages the area-weighted
-/// normals of the triangles around its vertex that meet its own face at less than 35°, so
-/// curved surfaces look smooth and box edges stay sharp.
 /// A unit vector perpendicular to the unit vector `n`.
 fn perpendicular(n: [f32; 3]) -> [f32; 3] {
     let n = Vector3::from(n);
@@ -480,6 +473,9 @@ fn perpendicular(n: [f32; 3]) -> [f32; 3] {
     [t.x, t.y, t.z]
 }
 
+/// Per-corner normals of a part (three per triangle): each corner averages the area-weighted
+/// normals of the triangles around its vertex that meet its own face at less than 35°, so
+/// curved surfaces look smooth and box edges stay sharp.
 fn corner_normals(part: &MeshPart) -> Vec<[f32; 3]> {
     let faces: Vec<Vector3<f32>> = (0..part.triangles.len())
         .map(|t| {

@@ -50,6 +50,23 @@ impl Material {
             None => [r, g, b, a],
         }
     }
+
+    /// The material without its image, in its [`Material::flat_color`]: what a part that
+    /// cannot show the image (it has no texture coordinates) wears.
+    ///
+    /// ```
+    /// use scenethesis_scene_graph::Material;
+    ///
+    /// let red = Material::new("red", [0.8, 0.1, 0.1], 0.5);
+    /// assert_eq!(red.without_image(), red);
+    /// ```
+    pub fn without_image(&self) -> Material {
+        Material {
+            base_color: self.flat_color(),
+            texture: None,
+            ..self.clone()
+        }
+    }
 }
 
 /// One part of a mesh: an indexed triangle list with one material. Parts of procedural assets
