@@ -531,10 +531,7 @@ fn formats_write_their_files() {
     let (scene, meshes) = scene();
     let export = ExportScene::new(&scene, &meshes).unwrap();
     let temp = tempfile::tempdir().unwrap();
-    let dir = std::env::var_os("SCENETHESIS_EXPORT_DIR")
-        .map(std::path::PathBuf::from)
-        .unwrap_or_else(|| temp.path().to_owned());
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::export_dir(temp.path());
     for format in Format::ALL {
         let path = format.write(&export, &dir).unwrap();
         assert!(path.exists(), "{format} did not write {}", path.display());
@@ -808,9 +805,7 @@ fn write_every_format(scene: &Scene, meshes: &BTreeMap<String, Mesh>, dir: &std:
 #[test]
 fn windows_and_houses_write_their_files() {
     let temp = tempfile::tempdir().unwrap();
-    let dir = std::env::var_os("SCENETHESIS_EXPORT_DIR")
-        .map(std::path::PathBuf::from)
-        .unwrap_or_else(|| temp.path().to_owned());
+    let dir = common::export_dir(temp.path());
     let (room, room_meshes) = room_with_windows();
     write_every_format(&room, &room_meshes, &dir.join("window"));
     let (house, house_meshes) = two_room_house();

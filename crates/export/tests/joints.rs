@@ -256,10 +256,7 @@ fn articulated_scene_writes_every_format() {
     let (scene, meshes) = scene();
     let export = export_of(&scene, &meshes);
     let temp = tempfile::tempdir().unwrap();
-    let dir = std::env::var_os("SCENETHESIS_EXPORT_DIR")
-        .map(std::path::PathBuf::from)
-        .unwrap_or_else(|| temp.path().to_owned());
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::export_dir(temp.path());
     scenethesis_export::write_formats(&Format::ALL, &export, &dir).unwrap();
     assert!(dir.join("meshes/cabinet_drawer_drawer_front.obj").exists());
     scene.write_json_atomic(&dir.join("scene.json")).unwrap();

@@ -241,10 +241,7 @@ fn the_text_formats_reference_the_written_image() {
     let (scene, meshes) = scene_with(&mesh);
     let export = ExportScene::new(&scene, &meshes).unwrap();
     let temp = tempfile::tempdir().unwrap();
-    let dir = std::env::var_os("SCENETHESIS_EXPORT_DIR")
-        .map(std::path::PathBuf::from)
-        .unwrap_or_else(|| temp.path().to_owned());
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::export_dir(temp.path());
     scenethesis_export::write_formats(&Format::ALL, &export, &dir).unwrap();
     let file = format!("image_{}.png", image.digest_hex());
     let written = std::fs::read(dir.join("textures").join(&file)).unwrap();

@@ -1,5 +1,7 @@
 //! Helpers shared by the export tests.
 
+use std::path::{Path, PathBuf};
+
 use nalgebra::Point3;
 use scenethesis_scene_graph::{Aabb, AssetRef, Mesh, ParentRef, Pose, RelationKind, SceneObject};
 
@@ -32,4 +34,14 @@ pub fn object(
         parent_link: None,
         room: None,
     }
+}
+
+/// Where a test writes its exports: `SCENETHESIS_EXPORT_DIR` when set (CI's Python consumers
+/// read them there), else `temp`; created if missing.
+pub fn export_dir(temp: &Path) -> PathBuf {
+    let dir = std::env::var_os("SCENETHESIS_EXPORT_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| temp.to_owned());
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
 }
