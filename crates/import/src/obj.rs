@@ -84,10 +84,7 @@ fn parse_with_textures(
     read_texture: Option<TextureReader<'_>>,
     read_mtl: impl Fn(&str) -> Option<String>,
 ) -> Result<(Mesh, Vec<String>), MeshLoadError> {
-    let mut vertices: Vec<[f32; 3]> = Vec::new();
-    let mut texcoords: Vec<Option<[f32; 2]>> = Vec::new();
-    let mut library: BTreeMap<String, Material> = BTreeMap::new();
-    let mut textures: BTreeMap<String, String> = BTreeMap::new();
+    let mut records = Records::default();
     let mut parts = Parts {
         read_texture,
         ..Parts::default()
@@ -123,12 +120,12 @@ fn parse_with_textures(
                         )));
                     }
                 }
-                if vertices.len() >= MAX_VERTICES {
+                if records.vertices.len() >= MAX_VERTICES {
                     return Err(err(format!(
                         "more than the limit of {MAX_VERTICES} vertices"
                     )));
                 }
-                vertices.push(p);
+                records.vertices.push(p);
             }
             "vt" => {
                 // A texture coordinate that cannot be read leaves the faces naming it without
@@ -141,8 +138,8 @@ fn parse_with_textures(
                         _ => ok = false,
                     }
                 }
-                if texcoords.len() < MAX_VERTICES {
-                    texcoords.push(ok.then_some([uv[0], 1.0 - uv[1]]));
+                if records.texcoords.len() < MAX_VERTICES {
+                    records.texcoords.push(ok.then_some([uv[0], 1.0 - uv[1]]));
                 }
             }
             "f" => {
@@ -155,11 +152,11 @@ fn parse_with_textures(
                             .next()
                             .and_then(|t| t.parse::<i64>().ok())
                             .and_then(|i| {
-                                let count = texcoords.len() as i64;
+                                let count = records.texcoords.len() as i64;
                                 let resolved = if i > 0 { i - 1 } else { count + i };
                                 (i != 0 && (0..count).contains(&resolved))
                                     .then_some(resolved as u32)
-                                    .filter(|&r| texcoords[r as usize].is_some())
+                                    .filter(|&r| records.texcoords[r as usize].is_some())
                             });
                     let i: i64 = first.parse().map_err(|_| {
                         err(format!(
@@ -167,7 +164,7 @@ fn parse_with_textures(
                             scenethesis_scene_graph::printable(token)
                         ))
                     })?;
-                    let count = vertices.len() as i64;
+                    let count = records.vertices.len() as i64;
                     let resolved = if i > 0 { i - 1 } else { count + i };
                     if i == 0 || resolved < 0 || resolved >= count {
                         return Err(err(format!(
@@ -193,51 +190,41 @@ fn parse_with_textures(
                 }
             }
             "o" | "g" => {
-                parts.flush(
-                    &vertices,
-                    &texcoords,
-                    &group,
-                    &current_material,
-                    &library,
-                    &textures,
-                );
+                parts.flush(&records, &group, &current_material);
                 group = fields.collect::<Vec<_>>().join("_");
                 if group.is_empty() {
                     group = "mesh".into();
                 }
             }
             "usemtl" => {
-                parts.flush(
-                    &vertices,
-                    &texcoords,
-                    &group,
-                    &current_material,
-                    &library,
-                    &textures,
-                );
+                parts.flush(&records, &group, &current_material);
                 current_material = fields.collect::<Vec<_>>().join(" ");
             }
             "mtllib" => {
                 let name = line["mtllib".len()..].trim();
                 if let Some(text) = read_mtl(name) {
-                    parse_mtl(&text, &mut library, &mut textures);
+                    parse_mtl(&text, &mut records.library, &mut records.textures);
                 }
             }
             _ => {} // vn, s, l, p and the rest carry nothing we keep.
         }
     }
-    parts.flush(
-        &vertices,
-        &texcoords,
-        &group,
-        &current_material,
-        &library,
-        &textures,
-    );
+    parts.flush(&records, &group, &current_material);
     if parts.mesh.triangle_count() == 0 {
         return Err(MeshLoadError::Empty);
     }
     Ok((parts.mesh, parts.warnings))
+}
+
+/// What the OBJ text has declared so far that parts refer to: vertex positions, texture
+/// coordinates (`None` for one that could not be read), the materials of its libraries and the
+/// diffuse texture file (`map_Kd`) each names.
+#[derive(Default)]
+struct Records {
+    vertices: Vec<[f32; 3]>,
+    texcoords: Vec<Option<[f32; 2]>>,
+    library: BTreeMap<String, Material>,
+    textures: BTreeMap<String, String>,
 }
 
 /// A face corner: its vertex and, when it names a readable one, its texture coordinate.
@@ -259,19 +246,17 @@ struct Parts<'a> {
 
 impl Parts<'_> {
     /// Closes the part being filled (if it has triangles) as object/group `group` with
-    /// `material` (looked up in `library`, a grey default when missing; on its first use its
-    /// diffuse texture in `textures` is read), keeping only the vertices it uses: by position,
-    /// or by position and texture coordinate (`texcoords`) when the material has a texture and
-    /// every corner of the part names a texture coordinate.
-    fn flush(
-        &mut self,
-        vertices: &[[f32; 3]],
-        texcoords: &[Option<[f32; 2]>],
-        group: &str,
-        material: &str,
-        library: &BTreeMap<String, Material>,
-        textures: &BTreeMap<String, String>,
-    ) {
+    /// `material` (looked up in `records`' library, a grey default when missing; on its first
+    /// use its diffuse texture is read), keeping only the vertices it uses: by position, or by
+    /// position and texture coordinate when the material has a texture and every corner of the
+    /// part names a texture coordinate.
+    fn flush(&mut self, records: &Records, group: &str, material: &str) {
+        let Records {
+            vertices,
+            texcoords,
+            library,
+            textures,
+        } = records;
         if self.pending.is_empty() {
             return;
         }
