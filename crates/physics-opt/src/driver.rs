@@ -287,6 +287,7 @@ impl<'a> Sweep<'a> {
             settings: &settings.losses,
             deadline,
             memo: None,
+            iteration_limit: None,
         };
         let (mut pose, alignment_iterations, mut physics_iterations) = if past(deadline) {
             // Out of time: not reached, it keeps its starting pose.

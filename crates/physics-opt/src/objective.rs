@@ -174,6 +174,10 @@ pub struct ObjectProblem<'a> {
     /// Distances remembered between this problem's contact checks
     /// ([`ObjectProblem::contacts`]), when its obstacles stay put while it is solved.
     pub memo: Option<&'a ContactMemo>,
+    /// When set, optimizers take at most this many iterations in a stage, fewer than their
+    /// own budget allows ([`ObjectProblem::iteration_budget`]): the final pass probes further
+    /// starts this way, since a start that frees the object does so within a few.
+    pub iteration_limit: Option<usize>,
 }
 
 impl ObjectProblem<'_> {
@@ -181,6 +185,12 @@ impl ObjectProblem<'_> {
     /// iteration (it only ever stops work early; a deadline not reached changes nothing).
     pub fn out_of_time(&self) -> bool {
         scenethesis_correspondence::deadline::past(self.deadline)
+    }
+
+    /// The iterations an optimizer whose own budget is `own` may take in a stage of this
+    /// problem: `own`, or the [`ObjectProblem::iteration_limit`] when lower.
+    pub fn iteration_budget(&self, own: usize) -> usize {
+        self.iteration_limit.map_or(own, |limit| limit.min(own))
     }
 
     /// The allowed scale interval.
@@ -615,6 +625,7 @@ mod tests {
             settings,
             deadline: None,
             memo: None,
+            iteration_limit: None,
         }
     }
 

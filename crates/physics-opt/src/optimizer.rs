@@ -145,6 +145,7 @@ impl Optimizer for Sgd {
             Stage::Alignment => (self.alignment_rates, self.alignment_iterations),
             Stage::Physics => (self.physics_rates, self.physics_iterations),
         };
+        let budget = problem.iteration_budget(budget);
         let rates = rates.as_vector();
         let mut pose = problem.project(&initial);
         let mut velocity = PoseVector::zeros();

@@ -110,7 +110,8 @@ impl ProjectedGaussNewton {
         let mut jac = Vec::new();
         let mut iterations = 0;
         let mut cost: f64 = alignment.residuals(&pose, None).iter().map(|r| r * r).sum();
-        while iterations < self.alignment_iterations && !problem.out_of_time() {
+        let budget = problem.iteration_budget(self.alignment_iterations);
+        while iterations < budget && !problem.out_of_time() {
             iterations += 1;
             let r = alignment.residuals(&pose, Some(&mut jac));
             let normal = NormalEquations::of(&r, &jac, None);
@@ -130,9 +131,10 @@ impl ProjectedGaussNewton {
         let resting = !matches!(problem.support, Support::Free);
         let mut iterations = 0;
         let mut started = RecentPoses::default();
-        while iterations < self.physics_iterations && !problem.out_of_time() {
+        let budget = problem.iteration_budget(self.physics_iterations);
+        while iterations < budget && !problem.out_of_time() {
             iterations += 1;
-            let left = self.physics_iterations - iterations;
+            let left = budget - iterations;
             if let Some(end) = started.cycle_end(&pose, left) {
                 return (end, iterations);
             }

@@ -107,3 +107,59 @@ fn a_budget_spent_mid_stage_ends_it_early() {
     };
     assert!(iterations(&cut) < iterations(&full));
 }
+
+#[test]
+fn an_iteration_limit_caps_each_stage_below_the_optimizers_budget() {
+    use std::sync::Arc;
+
+    use nalgebra::Vector3;
+    use scenethesis_physics_opt::{LossSettings, ObjectProblem, Obstacles, Stage, Support};
+    use scenethesis_scene_graph::Pose;
+    use scenethesis_sdf::BoxSdf;
+    use support::{at, book, shelf, SHELF_BOARDS};
+
+    let (shelf, moving) = (shelf(), book());
+    let mut obstacles = Obstacles::new(true);
+    obstacles.insert(
+        "floor",
+        Arc::new(BoxSdf::new(Vector3::new(3.0, 0.25, 3.0))),
+        Pose::new(1.0, 0.0, Vector3::new(0.0, -0.25, 0.0)),
+        true,
+        &[],
+    );
+    obstacles.insert(
+        "shelf",
+        shelf.exact_field(),
+        at(0.0, 0.0, 0.0, 0.0),
+        false,
+        shelf.check_points(),
+    );
+    let settings = LossSettings::default();
+    let support = Support::Free;
+    let free = ObjectProblem {
+        id: "book_0",
+        asset: &moving,
+        obstacles: &obstacles,
+        support: &support,
+        room: None,
+        alignment: None,
+        settings: &settings,
+        deadline: None,
+        memo: None,
+        iteration_limit: None,
+    };
+    let limited = ObjectProblem {
+        iteration_limit: Some(2),
+        ..free
+    };
+    // Sunk 3 cm into the middle board and turned across the shelf's side boards.
+    let start = at(0.25, SHELF_BOARDS[1] - 0.03, 0.0, 0.3);
+    for optimizer in optimizers() {
+        let unlimited = optimizer.optimize(&free, Stage::Physics, start);
+        let capped = optimizer.optimize(&limited, Stage::Physics, start);
+        assert!(unlimited.iterations > 2, "{}", optimizer.name());
+        assert!(capped.iterations <= 2, "{}", optimizer.name());
+    }
+    assert_eq!(limited.iteration_budget(40), 2);
+    assert_eq!(free.iteration_budget(40), 40);
+}

@@ -91,6 +91,7 @@ fn remembered_checks_find_the_same_contacts_as_fresh_ones() {
         settings: &settings,
         deadline: None,
         memo: None,
+        iteration_limit: None,
     };
     let memo = ContactMemo::new();
     let remembering = ObjectProblem {
