@@ -456,6 +456,51 @@ impl Plan {
     pub fn layer(&self, layer: Layer) -> impl Iterator<Item = &PlannedObject> {
         self.objects.iter().filter(move |o| o.layer == layer)
     }
+
+    /// The plan with each object's support as `scene` holds it wherever `scene` rests it on
+    /// another parent than planned, for every object the prompt did not pin down
+    /// ([`PlannedObject::hard`]): when an image leads the layout, what it shows an object
+    /// resting on (a bucket on the floor beside a crate, not in it) replaces the planner's
+    /// default, and the judge holds the scene to the image. Objects the prompt stated keep
+    /// their planned support, as do objects on their planned parent (on the floor, whether
+    /// against a wall is the plan's to say) and objects `scene` lacks.
+    ///
+    /// ```
+    /// use scenethesis_agents::{KnowledgePlanner, PlanRequest, Planner};
+    /// use scenethesis_scene_graph::{nalgebra::Point3, Aabb, Architecture, ParentRef, RelationKind,
+    ///     Scene, SceneObject};
+    ///
+    /// let request = PlanRequest::new("a cozy living room", ["sofa", "cushion", "coffee_table"], 0);
+    /// let plan = KnowledgePlanner::new().plan(&request).unwrap();
+    /// // Something the planner rests on another object, and the prompt did not place.
+    /// let held = plan.objects.iter().find(|o| o.parent != ParentRef::Ground && !o.hard);
+    /// let held = held.expect("the living room's plan rests things on others");
+    /// // The image shows it standing on the floor.
+    /// let bounds = Aabb::new(Point3::new(-0.1, 0.0, -0.1), Point3::new(0.1, 0.5, 0.1));
+    /// let mut scene = Scene::new(Architecture::default());
+    /// scene.objects.push(SceneObject::standing_box(&held.id, bounds, 0.0, 0.0));
+    /// let placed = plan.with_supports_of(&scene);
+    /// let as_seen = placed.object(&held.id).unwrap();
+    /// assert_eq!((as_seen.support, &as_seen.parent), (RelationKind::OnFloor, &ParentRef::Ground));
+    /// assert_eq!(placed.objects.len(), plan.objects.len());
+    /// // Had the prompt placed it, the plan would keep its word.
+    /// let mut pinned = plan.clone();
+    /// pinned.objects.iter_mut().find(|o| o.id == held.id).unwrap().hard = true;
+    /// assert_eq!(pinned.with_supports_of(&scene).object(&held.id), pinned.object(&held.id));
+    /// ```
+    pub fn with_supports_of(&self, scene: &scenethesis_scene_graph::Scene) -> Plan {
+        let mut plan = self.clone();
+        for planned in plan.objects.iter_mut().filter(|o| !o.hard) {
+            if let Some(placed) = scene
+                .object(&planned.id)
+                .filter(|p| p.parent != planned.parent)
+            {
+                planned.support = placed.support;
+                planned.parent = placed.parent.clone();
+            }
+        }
+        plan
+    }
 }
 
 /// Why a prompt could not be planned.

@@ -1,5 +1,6 @@
 //! The pipeline: plan → retrieve → guide → optimize → judge (→ re-plan) → render.
 
+use std::borrow::Cow;
 use std::collections::BTreeMap;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -532,13 +533,19 @@ impl Pipeline {
             )),
             _ => None,
         };
+        // The image leads: what it shows an object resting on is what the scene is held to,
+        // unless the prompt said otherwise.
+        let judged_plan = match &layout.guidance {
+            Some(_) => Cow::Owned(plan.with_supports_of(&scene)),
+            None => Cow::Borrowed(plan),
+        };
         let verdict = clock.run(
             Stage::Judge,
             round,
             || {
                 judge(
                     self.judge.as_ref(),
-                    plan,
+                    &judged_plan,
                     &scene,
                     &meshes,
                     layout.guidance.as_ref(),
