@@ -25,7 +25,7 @@ use crate::phases::layout::lay_out;
 use crate::phases::optimize::optimize;
 use crate::phases::previews::previews;
 use crate::phases::retrieve::AssetCache;
-use crate::phases::rework::rework;
+use crate::phases::rework::{rework, unmendable};
 use crate::phases::summary::{report, RunRecord};
 use crate::report::{Replan, Report};
 use crate::stage::{Progress, Stage};
@@ -324,6 +324,7 @@ impl Pipeline {
         let mut replans: Vec<Replan> = Vec::new();
         let mut best: Option<Attempt> = None;
         let mut stopped: Option<String> = None;
+        let mut unmended: Option<String> = None;
         for round in 0..=options.max_replans {
             let attempt = match self.attempt(
                 &plan,
@@ -350,7 +351,8 @@ impl Pipeline {
                 Err(e) => return Err(e),
             };
             let accepted = attempt.verdict.accepted;
-            if !accepted && round < options.max_replans {
+            unmended = (!accepted).then(|| unmendable(&attempt)).flatten();
+            if !accepted && round < options.max_replans && unmended.is_none() {
                 replans.push(rework(
                     &mut plan,
                     &mut cache,
@@ -362,7 +364,7 @@ impl Pipeline {
             if best.as_ref().is_none_or(|b| attempt.better_than(b)) {
                 best = Some(attempt);
             }
-            if accepted {
+            if accepted || unmended.is_some() {
                 break;
             }
         }
@@ -372,6 +374,7 @@ impl Pipeline {
         if let Some(why) = stopped {
             notes.push(time_limit_note(&why, best.round));
         }
+        notes.extend(unmended);
         let (previews, preview_notes) = match clock.check(Stage::Render, best.round) {
             Ok(()) => previews(self.renderer.as_deref(), &mut best, options, &mut clock),
             // The error's own text says no scene was finished, which is not so here.

@@ -1,13 +1,16 @@
 //! The correspond stage inside the pipeline: a guide that hands over guidance (drawn by the CPU
 //! rasterizer from its own layout) but starts every floor object off its place; with a matcher
-//! configured the stage runs between guide and optimize and brings the objects back.
+//! configured the stage runs between guide and optimize and brings the objects back. And the
+//! re-plan rounds of a guide that reads an image.
 
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
 use nalgebra::{Point3, Vector3};
-use scenethesis_agents::{AssetLookup, Guide, GuideError, GuidedLayout, Plan, ProceduralGuide};
+use scenethesis_agents::{
+    AssetLookup, DroppedObject, Guide, GuideError, GuidedLayout, Plan, ProceduralGuide,
+};
 use scenethesis_correspondence::{
     rasterized_guidance, GuidedSettings, Matcher, PixelMatch, RenderedView, ShapeMatcher,
     TargetRegion,
@@ -231,5 +234,75 @@ fn a_replan_round_reuses_the_alignments_whose_inputs_are_unchanged() {
     assert!(
         three_rounds < one_round * 3 / 2,
         "{one_round} views matched in one round, {three_rounds} in three"
+    );
+}
+
+/// [`ShiftedGuide`] whose image does not show the desk (nor what rests on it): it leaves them
+/// out as a guide reading a photo would.
+#[derive(Default)]
+struct DeskUnseen {
+    shifted: ShiftedGuide,
+}
+
+impl Guide for DeskUnseen {
+    fn name(&self) -> &str {
+        "desk-unseen"
+    }
+
+    fn layout(
+        &self,
+        plan: &Plan,
+        assets: &dyn AssetLookup,
+        seed: u64,
+    ) -> Result<GuidedLayout, GuideError> {
+        let mut layout = self.shifted.layout(plan, assets, seed)?;
+        let unseen: Vec<String> = layout
+            .scene
+            .objects
+            .iter()
+            .filter(|o| {
+                o.category == "desk" || o.parent.object_id().is_some_and(|p| p.starts_with("desk"))
+            })
+            .map(|o| o.id.clone())
+            .collect();
+        layout.scene.objects.retain(|o| !unseen.contains(&o.id));
+        if let Some(g) = &mut layout.guidance {
+            g.masks.retain(|id, _| !unseen.contains(id));
+        }
+        layout
+            .dropped
+            .extend(unseen.into_iter().map(|id| DroppedObject {
+                id,
+                reason: "not found in the guidance image (no mask)".into(),
+            }));
+        Ok(layout)
+    }
+}
+
+#[test]
+fn an_asked_for_object_the_image_does_not_show_costs_no_replan() {
+    let guide = DeskUnseen::default();
+    let options = GenerateOptions {
+        previews: false,
+        max_replans: 2,
+        ..GenerateOptions::default()
+    };
+    let prompt = "a bedroom with a bed, a wardrobe and a desk";
+    let pipeline = Pipeline::offline()
+        .with_guide(guide)
+        .with_matcher(ShapeMatcher::default(), GuidedSettings::default());
+    let generated = pipeline
+        .generate(prompt, 0, &options, &mut NoProgress)
+        .unwrap();
+    let report = &generated.report;
+    assert!(!report.accepted);
+    assert!(report.replans.is_empty(), "{:?}", report.replans);
+    assert!(
+        report
+            .notes
+            .iter()
+            .any(|n| n.starts_with("no re-plan") && n.contains("desk_0")),
+        "{:?}",
+        report.notes
     );
 }

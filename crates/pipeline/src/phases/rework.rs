@@ -10,6 +10,36 @@ use crate::judge::FailureKind;
 use crate::replan::{drop_objects, replan_action};
 use crate::report::{Replan, ReplanAction};
 
+/// Why no re-plan can mend the rejected `attempt`, if none can: its guide read an image, and
+/// every failure is an object the prompt asks for that the guide left out because the image
+/// does not show it (or too little of it). A guide that reads an image never invents what the
+/// image lacks, so moving or dropping other objects cannot bring it in.
+pub(crate) fn unmendable(attempt: &Attempt) -> Option<String> {
+    attempt.guidance.as_ref()?;
+    let failures = &attempt.verdict.failures;
+    let left_out = |id: &String| attempt.guide_dropped.iter().find(|d| &d.id == id);
+    let unseen = failures.iter().all(|f| {
+        f.kind == FailureKind::MissingObject
+            && !f.objects.is_empty()
+            && f.objects.iter().all(|id| left_out(id).is_some())
+    });
+    if failures.is_empty() || !unseen {
+        return None;
+    }
+    let why: Vec<String> = failures
+        .iter()
+        .flat_map(|f| &f.objects)
+        .filter_map(left_out)
+        .map(|d| format!("`{}`: {}", d.id, d.reason))
+        .collect();
+    Some(format!(
+        "no re-plan: what the prompt asks for and the scene lacks, the image does not show \
+         ({}); re-planning cannot add it (--keep-plan places such objects offline around what \
+         the image fixes)",
+        why.join("; ")
+    ))
+}
+
 /// Changes `plan` and the asset variants after the rejected `attempt` of `round`; returns the
 /// record of what was done. Objects blamed only for a broken arrangement rule (a run of kitchen
 /// counters with a gap) are moved — new asset variants and a new layout seed, which draws a new
