@@ -9,7 +9,7 @@ use std::collections::BTreeMap;
 
 use nalgebra::{Point2, Point3, Vector3};
 use scenethesis_imagery::{Camera, DepthMap, Guidance, Intrinsics, Mask, RgbImage};
-use scenethesis_scene_graph::{Mesh, Pose, Scene};
+use scenethesis_scene_graph::{Mesh, MeshPart, Pose, Scene};
 
 /// A rectangle of pixels of a camera's image: columns `x0 .. x0 + width`, rows
 /// `y0 .. y0 + height`.
@@ -172,7 +172,8 @@ pub fn projected_bbox(mesh: &Mesh, pose: &Pose, camera: &Camera) -> Option<(u32,
 
 /// Renders the depth of `mesh` at `pose` seen by `camera`, inside `window` of the camera's
 /// image. Triangles with a vertex closer than 1 cm to the camera plane are skipped (objects
-/// are in front of the camera); both faces are drawn.
+/// are in front of the camera); both faces are drawn; see-through parts
+/// ([`scenethesis_scene_graph::Material::is_see_through`]) are not.
 pub fn rasterize(mesh: &Mesh, pose: &Pose, camera: &Camera, window: Window) -> RenderedView {
     rasterize_coarse(mesh, pose, camera, window, 1)
 }
@@ -205,7 +206,14 @@ pub fn rasterize_coarse(
     let k = &view_camera.intrinsics;
     let cam_from_world = camera.rotation.inverse();
     let (s, c) = pose.yaw.sin_cos();
-    for part in &mesh.parts {
+    // See-through parts (glass) leave the depth to what lies behind them, as in the guidance
+    // the renderer draws and as depth sensors measure it.
+    let opaque = |part: &&MeshPart| {
+        mesh.materials
+            .get(part.material)
+            .is_none_or(|m| !m.is_see_through())
+    };
+    for part in mesh.parts.iter().filter(opaque) {
         // Vertices in the camera frame: (u, v, depth).
         let projected: Vec<Option<(f64, f64, f64)>> = part
             .positions
@@ -377,5 +385,39 @@ mod tests {
             bbox.0 <= 32 - half as u32 && bbox.2 >= 32 + half as u32,
             "{bbox:?}"
         );
+    }
+
+    #[test]
+    fn glass_leaves_the_depth_to_what_lies_behind_it() {
+        let k = Intrinsics::from_vertical_fov(64, 64, 1.0);
+        let camera = Camera::look_at(
+            k,
+            Point3::new(0.0, 0.5, 4.0),
+            Point3::new(0.0, 0.5, 0.0),
+            Vector3::y(),
+        );
+        // A cabinet's back panel, and a glass front 40 cm nearer the camera.
+        let grey = Material::new("grey", [0.5; 3], 0.8);
+        let mut cabinet = Mesh::cuboid("back", grey, [-0.5, 0.0, -0.5], [0.5, 1.0, -0.45]);
+        let mut glass = Material::new("glass", [0.9; 3], 0.05);
+        glass.base_color[3] = 0.25;
+        cabinet.append(&Mesh::cuboid(
+            "front",
+            glass,
+            [-0.5, 0.0, -0.1],
+            [0.5, 1.0, -0.09],
+        ));
+        let pose = Pose::new(1.0, 0.0, Vector3::zeros());
+        let view = rasterize(&cabinet, &pose, &camera, Window::full(&camera));
+        let d = view.depth.get(32, 32).unwrap();
+        assert!(
+            (d - 4.45).abs() < 1e-3,
+            "the back panel is at 4.45 m, not the glass: {d}"
+        );
+        // Made opaque, the front hides the panel.
+        cabinet.materials[1].base_color[3] = 1.0;
+        let view = rasterize(&cabinet, &pose, &camera, Window::full(&camera));
+        let d = view.depth.get(32, 32).unwrap();
+        assert!((d - 4.09).abs() < 1e-3, "{d}");
     }
 }

@@ -37,6 +37,22 @@ impl Material {
         }
     }
 
+    /// Whether the material is see-through (glass): its opacity, `base_color`'s alpha, is
+    /// below 0.999. The renderer draws such surfaces over the opaque ones and leaves their
+    /// depth and instance to what lies behind, as depth sensors see through glass.
+    ///
+    /// ```
+    /// use scenethesis_scene_graph::Material;
+    ///
+    /// let mut pane = Material::new("glass", [0.9, 0.95, 0.95], 0.05);
+    /// assert!(!pane.is_see_through());
+    /// pane.base_color[3] = 0.2;
+    /// assert!(pane.is_see_through());
+    /// ```
+    pub fn is_see_through(&self) -> bool {
+        self.base_color[3] < 0.999
+    }
+
     /// The colour the material shows as one colour (what formats without its image write, and
     /// what a scene records it wears): `base_color`, its RGB multiplied by the image's mean
     /// colour when it has an image.
