@@ -345,15 +345,22 @@ mod tests {
     use super::*;
     use scenethesis_scene_graph::Material;
 
-    #[test]
-    fn a_box_seen_head_on_fills_its_projection_at_its_front_depth() {
+    /// A 64 × 64 camera 4 m in front of the origin (+Z), at half a metre's height, looking
+    /// along −Z.
+    fn camera_in_front() -> Camera {
         let k = Intrinsics::from_vertical_fov(64, 64, 1.0);
-        let camera = Camera::look_at(
+        Camera::look_at(
             k,
             Point3::new(0.0, 0.5, 4.0),
             Point3::new(0.0, 0.5, 0.0),
             Vector3::y(),
-        );
+        )
+    }
+
+    #[test]
+    fn a_box_seen_head_on_fills_its_projection_at_its_front_depth() {
+        let camera = camera_in_front();
+        let k = camera.intrinsics;
         let grey = Material::new("grey", [0.5; 3], 0.8);
         let mesh = Mesh::cuboid("box", grey, [-0.5, 0.0, -0.5], [0.5, 1.0, 0.5]);
         let pose = Pose::new(1.0, 0.0, Vector3::zeros());
@@ -389,13 +396,7 @@ mod tests {
 
     #[test]
     fn glass_leaves_the_depth_to_what_lies_behind_it() {
-        let k = Intrinsics::from_vertical_fov(64, 64, 1.0);
-        let camera = Camera::look_at(
-            k,
-            Point3::new(0.0, 0.5, 4.0),
-            Point3::new(0.0, 0.5, 0.0),
-            Vector3::y(),
-        );
+        let camera = camera_in_front();
         // A cabinet's back panel, and a glass front 40 cm nearer the camera.
         let grey = Material::new("grey", [0.5; 3], 0.8);
         let mut cabinet = Mesh::cuboid("back", grey, [-0.5, 0.0, -0.5], [0.5, 1.0, -0.45]);

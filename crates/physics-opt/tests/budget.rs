@@ -110,30 +110,11 @@ fn a_budget_spent_mid_stage_ends_it_early() {
 
 #[test]
 fn an_iteration_limit_caps_each_stage_below_the_optimizers_budget() {
-    use std::sync::Arc;
-
-    use nalgebra::Vector3;
-    use scenethesis_physics_opt::{LossSettings, ObjectProblem, Obstacles, Stage, Support};
-    use scenethesis_scene_graph::Pose;
-    use scenethesis_sdf::BoxSdf;
-    use support::{at, book, shelf, SHELF_BOARDS};
+    use scenethesis_physics_opt::{LossSettings, ObjectProblem, Stage, Support};
+    use support::{at, book, floor_and_shelf, shelf, SHELF_BOARDS};
 
     let (shelf, moving) = (shelf(), book());
-    let mut obstacles = Obstacles::new(true);
-    obstacles.insert(
-        "floor",
-        Arc::new(BoxSdf::new(Vector3::new(3.0, 0.25, 3.0))),
-        Pose::new(1.0, 0.0, Vector3::new(0.0, -0.25, 0.0)),
-        true,
-        &[],
-    );
-    obstacles.insert(
-        "shelf",
-        shelf.exact_field(),
-        at(0.0, 0.0, 0.0, 0.0),
-        false,
-        shelf.check_points(),
-    );
+    let obstacles = floor_and_shelf(&shelf);
     let settings = LossSettings::default();
     let support = Support::Free;
     let free = ObjectProblem {

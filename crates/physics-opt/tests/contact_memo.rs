@@ -6,36 +6,18 @@
 mod support;
 
 use std::f64::consts::FRAC_PI_2;
-use std::sync::Arc;
 
-use nalgebra::Vector3;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use scenethesis_physics_opt::{
     ContactMemo, LossSettings, ObjectProblem, Obstacles, PreparedAsset, Support,
 };
 use scenethesis_scene_graph::Pose;
-use scenethesis_sdf::BoxSdf;
-use support::{at, book, shelf, SHELF_BOARDS};
+use support::{at, book, floor_and_shelf, shelf, SHELF_BOARDS};
 
 /// The shelf at the origin, a second book on its middle board and the floor slab, exact.
 fn obstacles(shelf: &PreparedAsset, other: &PreparedAsset) -> Obstacles {
-    let mut o = Obstacles::new(true);
-    o.insert(
-        "floor",
-        Arc::new(BoxSdf::new(Vector3::new(3.0, 0.25, 3.0))),
-        Pose::new(1.0, 0.0, Vector3::new(0.0, -0.25, 0.0)),
-        true,
-        &[],
-    );
-    let shelf_pose = at(0.0, 0.0, 0.0, 0.0);
-    o.insert(
-        "shelf",
-        shelf.exact_field(),
-        shelf_pose,
-        false,
-        shelf.check_points(),
-    );
+    let mut o = floor_and_shelf(shelf);
     let book_pose = at(0.2, SHELF_BOARDS[1] + 0.0015, 0.0, FRAC_PI_2);
     o.insert(
         "book_1",

@@ -7,13 +7,14 @@ use std::sync::Arc;
 use nalgebra::Vector3;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use scenethesis_physics_opt::{PrepareSettings, PreparedAsset, SceneProblem};
+use scenethesis_physics_opt::{Obstacles, PrepareSettings, PreparedAsset, SceneProblem};
 use scenethesis_primitives::{cuboid, cylinder};
 use scenethesis_scene_graph::{
     Aabb, Architecture, AssetRef, Material, Mesh, MeshPart, ParentRef, Pose, RelationKind, Scene,
     SceneObject,
 };
 use scenethesis_scene_graph::{Placement, SupportSurface, SurfaceKind};
+use scenethesis_sdf::BoxSdf;
 
 /// Table top height.
 pub const TABLE_TOP: f64 = 0.76;
@@ -32,6 +33,27 @@ fn mesh(parts: Vec<MeshPart>) -> Mesh {
 fn square(x0: f32, z0: f32, x1: f32, z1: f32) -> Vec<[f32; 2]> {
     // Counter-clockwise seen from above (+Y toward the viewer): x right, z down the page.
     vec![[x0, z0], [x0, z1], [x1, z1], [x1, z0]]
+}
+
+/// Exact obstacles: the floor slab (its top at y = 0, 6 m square) and `shelf` at the origin,
+/// unturned, with its check samples.
+pub fn floor_and_shelf(shelf: &PreparedAsset) -> Obstacles {
+    let mut o = Obstacles::new(true);
+    o.insert(
+        "floor",
+        Arc::new(BoxSdf::new(Vector3::new(3.0, 0.25, 3.0))),
+        Pose::new(1.0, 0.0, Vector3::new(0.0, -0.25, 0.0)),
+        true,
+        &[],
+    );
+    o.insert(
+        "shelf",
+        shelf.exact_field(),
+        at(0.0, 0.0, 0.0, 0.0),
+        false,
+        shelf.check_points(),
+    );
+    o
 }
 
 /// A 1.2 × 0.8 m table, 0.76 m high: a 4 cm top on four 5 cm legs.
