@@ -140,11 +140,14 @@ pub fn optimize_scene(
         (Some(a), Some(b)) => Some(a.min(b)),
         (a, b) => a.or(b),
     };
-    let room = RoomBounds::of(&scene.architecture);
+    let rooms: Vec<RoomBounds> = order
+        .iter()
+        .map(|o| RoomBounds::of_room(&scene.architecture, o.room.as_deref()))
+        .collect();
     let mut timings = OptimizeTimings::default();
     let mut clock = Instant::now();
     let mut sweep = Sweep::new(&scene.architecture, order.len());
-    for object in &order {
+    for (object, &room) in order.iter().zip(&rooms) {
         sweep.place(problem, optimizer, settings, object, room, deadline);
     }
     timings.sweep = lap(&mut clock);
@@ -163,7 +166,7 @@ pub fn optimize_scene(
         };
         let scope = FinishScope {
             order: &order,
-            room,
+            rooms: &rooms,
             deadline,
         };
         checked = finish_pass(problem, optimizer, settings, &scope, &mut finished);
@@ -174,15 +177,16 @@ pub fn optimize_scene(
         .iter()
         .zip(&reports)
         .zip(&supports)
-        .map(|((object, report), support)| Placed {
+        .zip(&rooms)
+        .map(|(((object, report), support), &room)| Placed {
             id: &object.id,
             asset: &problem.assets[&object.id],
             pose: report.pose,
             support,
+            room: Some(room),
         })
         .collect();
-    let verdicts =
-        checked.unwrap_or_else(|| verify(&placed, &exact, Some(room), &settings.tolerances));
+    let verdicts = checked.unwrap_or_else(|| verify(&placed, &exact, &settings.tolerances));
     for (report, verdict) in reports.iter_mut().zip(verdicts) {
         report.penetration = verdict.penetration;
         report.support_gap = verdict.support_gap;
@@ -336,11 +340,11 @@ struct Finished<'r> {
     exact: &'r mut Obstacles,
 }
 
-/// What the final separation pass works over: the objects in sweep order, the room and the
-/// instant it must end by.
+/// What the final separation pass works over: the objects in sweep order, the rectangle each
+/// must stay inside and the instant it must end by.
 struct FinishScope<'s, 'o> {
     order: &'s [&'o SceneObject],
-    room: RoomBounds,
+    rooms: &'s [RoomBounds],
     deadline: Option<Instant>,
 }
 
@@ -365,7 +369,7 @@ fn finish_pass(
         order,
         assets: &assets,
         architecture: &architecture,
-        room: scope.room,
+        rooms: scope.rooms,
         losses: &settings.losses,
         tolerances: settings.tolerances,
         settle: optimizer.settles(),

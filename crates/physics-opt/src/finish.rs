@@ -53,8 +53,8 @@ pub(crate) struct FinishInput<'a> {
     pub assets: &'a [Arc<PreparedAsset>],
     /// The architecture's fields.
     pub architecture: &'a [(String, Arc<dyn SignedDistance>, Pose)],
-    /// The floor rectangle.
-    pub room: RoomBounds,
+    /// The rectangle each object must stay inside, in `order`.
+    pub rooms: &'a [RoomBounds],
     /// Loss settings.
     pub losses: &'a LossSettings,
     /// Post-condition tolerances.
@@ -136,7 +136,7 @@ pub(crate) fn finish(
                 asset: &asset,
                 obstacles: &others,
                 support: &support,
-                room: Some(input.room),
+                room: Some(input.rooms[i]),
                 alignment: None,
                 settings: input.losses,
                 deadline: input.deadline,
@@ -477,9 +477,10 @@ fn pending(
             asset: &dense[i],
             pose: poses[i],
             support: &supports[i],
+            room: Some(input.rooms[i]),
         })
         .collect();
-    let verdicts = verify(&placed, &all, Some(input.room), tol);
+    let verdicts = verify(&placed, &all, tol);
     let mut out = Vec::new();
     for (i, v) in verdicts.iter().enumerate() {
         let collides = v.issues.iter().any(|issue| match issue {

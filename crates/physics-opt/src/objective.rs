@@ -79,6 +79,46 @@ impl RoomBounds {
         }
     }
 
+    /// The rectangle an object of house room `room` must stay inside: the bounds of that
+    /// room's outline (its walls' inner faces), or the whole floor's ([`RoomBounds::of`]) for
+    /// no room or one the architecture does not hold. A house's interior walls are thin:
+    /// started deeper than half a wall into one, an object's push out of it would lead
+    /// through it into the next room.
+    ///
+    /// ```
+    /// use scenethesis_physics_opt::RoomBounds;
+    /// use scenethesis_scene_graph::{nalgebra::Point2, Architecture, RoomArea};
+    ///
+    /// let mut house = Architecture::rectangular_room(8.0, 4.0, 2.8, 0.9);
+    /// let bath = [(0.0, -2.0), (3.0, -2.0), (3.0, 2.0), (0.0, 2.0)];
+    /// house.rooms.push(RoomArea {
+    ///     id: "bathroom".into(),
+    ///     room_type: "bathroom".into(),
+    ///     polygon: bath.iter().map(|&(x, z)| Point2::new(x, z)).collect(),
+    /// });
+    /// let bounds = RoomBounds::of_room(&house, Some("bathroom"));
+    /// assert_eq!((bounds.min.x, bounds.max.x), (0.0, 3.0));
+    /// assert_eq!(RoomBounds::of_room(&house, None), RoomBounds::of(&house));
+    /// ```
+    pub fn of_room(architecture: &Architecture, room: Option<&str>) -> Self {
+        let outline = room
+            .and_then(|id| architecture.room(id))
+            .map(|area| &area.polygon)
+            .filter(|polygon| !polygon.is_empty());
+        let Some(polygon) = outline else {
+            return Self::of(architecture);
+        };
+        let fold = |pick: fn(f64, f64) -> f64, start: f64| {
+            polygon.iter().fold(Point2::new(start, start), |m, p| {
+                Point2::new(pick(m.x, p.x), pick(m.y, p.y))
+            })
+        };
+        Self {
+            min: fold(f64::min, f64::INFINITY),
+            max: fold(f64::max, f64::NEG_INFINITY),
+        }
+    }
+
     /// How far a world box sticks out of the rectangle (0 when inside).
     pub fn overhang(&self, b: &Aabb) -> f64 {
         [

@@ -43,6 +43,8 @@ pub(crate) struct Placed<'a> {
     pub asset: &'a PreparedAsset,
     pub pose: Pose,
     pub support: &'a Support,
+    /// The rectangle it must stay inside, if any.
+    pub room: Option<RoomBounds>,
 }
 
 /// The verdict for one object.
@@ -55,12 +57,7 @@ pub(crate) struct Verdict {
 
 /// Checks every post-condition of `placed` (whose exact fields are in `exact`, under their
 /// ids, together with the architecture).
-pub(crate) fn verify(
-    placed: &[Placed<'_>],
-    exact: &Obstacles,
-    room: Option<RoomBounds>,
-    tol: &Tolerances,
-) -> Vec<Verdict> {
+pub(crate) fn verify(placed: &[Placed<'_>], exact: &Obstacles, tol: &Tolerances) -> Vec<Verdict> {
     let mut verdicts: Vec<Verdict> = placed.iter().map(|_| Verdict::default()).collect();
     // Deepest penetration per unordered pair (object index, obstacle id).
     let mut pairs: BTreeMap<(String, String), f64> = BTreeMap::new();
@@ -126,7 +123,7 @@ pub(crate) fn verify(
                 }
             }
         }
-        if let Some(room) = room {
+        if let Some(room) = obj.room {
             let bounds = Aabb::from_points(points.iter()).unwrap_or(own_box);
             let overhang = room.overhang(&bounds);
             if overhang > tol.room {

@@ -302,6 +302,59 @@ fn object_through_a_wall_is_brought_inside_the_room() {
     }
 }
 
+/// A house's two rooms, x < 0 and x > 0, split by a 10 cm interior wall along x = 0, with a
+/// 60 cm cabinet of the west room started across that wall, centred in it: the wall's own
+/// field cannot say which side the cabinet belongs on.
+fn cabinet_across_an_interior_wall() -> SceneProblem {
+    use scenethesis_scene_graph::{nalgebra::Point2, RoomArea, Wall};
+    let b = Arc::new(boxed([0.6, 0.8, 0.4], [0.95, 1.05]));
+    let mut cabinet = object(
+        "cabinet",
+        None,
+        RelationKind::OnFloor,
+        &b,
+        at(0.0, 0.0, 0.0, 0.0),
+    );
+    cabinet.room = Some("west".into());
+    let mut problem = problem("cabinet", vec![(cabinet, b)]);
+    let architecture = &mut problem.scene.architecture;
+    architecture.walls.push(Wall {
+        id: "wall_inner".into(),
+        start: Point2::new(0.0, -2.0),
+        end: Point2::new(0.0, 2.0),
+        height: 2.8,
+        thickness: 0.1,
+    });
+    let area = |id: &str, x0: f64, x1: f64| RoomArea {
+        id: id.into(),
+        room_type: "bedroom".into(),
+        polygon: [(x0, -2.0), (x1, -2.0), (x1, 2.0), (x0, 2.0)]
+            .iter()
+            .map(|&(x, z)| Point2::new(x, z))
+            .collect(),
+    };
+    architecture.rooms = vec![area("west", -3.0, -0.05), area("east", 0.05, 3.0)];
+    problem
+}
+
+#[test]
+fn an_object_across_an_interior_wall_comes_out_into_its_own_room() {
+    let problem = cabinet_across_an_interior_wall();
+    for opt in optimizers() {
+        let placement = run(&problem, opt.as_ref());
+        assert_all_ok(&placement);
+        let p = placement.pose("cabinet").unwrap();
+        // Its east face at the wall's west face, not through the wall in the east room.
+        let east_face = p.translation.x + 0.3 * p.scale;
+        assert!(east_face <= -0.049, "[{}] {p:?}", placement.optimizer);
+        assert!(
+            east_face > -0.1,
+            "[{}] moved too far: {p:?}",
+            placement.optimizer
+        );
+    }
+}
+
 #[test]
 fn children_follow_their_parent_when_it_moves() {
     let cup = Arc::new(cup());
