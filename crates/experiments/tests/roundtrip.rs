@@ -172,7 +172,7 @@ fn alignment_is_never_worse_than_the_raw_lift_on_unseen_prompts() {
 /// (`cargo test -p scenethesis-experiments --test roundtrip -- --ignored --nocapture`): at
 /// least 30 %, no scene worse than its raw lift, every final row without collisions. The
 /// scenes whose final row moved more than 2 cm from the alignment row are listed, not failed
-/// (docs/guidance.md: two of the ten).
+/// (docs/guidance.md: one of the ten).
 #[test]
 #[ignore = "ten generated scenes: minutes in the test profile"]
 fn alignment_cuts_the_error_by_thirty_percent_over_ten_unseen_scenes() {
