@@ -18,7 +18,7 @@ use crate::matcher::{Matcher, TargetRegion};
 /// The yaw that turns `object`'s front (+Z) the way the plan says, when it says so: toward the
 /// target of a `facing` relation (an object of `scene`), or away from the wall of an
 /// `against-wall` relation (a `facing` target first); for a square footprint, toward what
-/// stands in front of it ([`fronted_by`]). This settles the front/back ambiguity of
+/// stands in front of it (`fronted_by`). This settles the front/back ambiguity of
 /// silhouettes.
 pub fn facing_hint(scene: &Scene, object: &SceneObject) -> Option<f64> {
     let here = object.pose.translation;

@@ -56,7 +56,7 @@ impl Guide for ProceduralGuide {
     /// finds no room, the room grows by 12 % and the layout is redone (at most twice). A room
     /// whose walls are given ([`Plan::room_is_fixed`]: a house room) does not grow: the layout
     /// is redone once without the loose pieces that could make room
-    /// ([`pieces_to_leave_out`]), and kept when fewer of the important objects are dropped.
+    /// (`pieces_to_leave_out`), and kept when fewer of the important objects are dropped.
     fn layout(
         &self,
         plan: &Plan,
