@@ -87,15 +87,10 @@ impl RoomBounds {
     ///
     /// ```
     /// use scenethesis_physics_opt::RoomBounds;
-    /// use scenethesis_scene_graph::{nalgebra::Point2, Architecture, RoomArea};
+    /// use scenethesis_scene_graph::{Architecture, RoomArea};
     ///
     /// let mut house = Architecture::rectangular_room(8.0, 4.0, 2.8, 0.9);
-    /// let bath = [(0.0, -2.0), (3.0, -2.0), (3.0, 2.0), (0.0, 2.0)];
-    /// house.rooms.push(RoomArea {
-    ///     id: "bathroom".into(),
-    ///     room_type: "bathroom".into(),
-    ///     polygon: bath.iter().map(|&(x, z)| Point2::new(x, z)).collect(),
-    /// });
+    /// house.rooms.push(RoomArea::rectangle("bathroom", "bathroom", [0.0, -2.0], [3.0, 2.0]));
     /// let bounds = RoomBounds::of_room(&house, Some("bathroom"));
     /// assert_eq!((bounds.min.x, bounds.max.x), (0.0, 3.0));
     /// assert_eq!(RoomBounds::of_room(&house, None), RoomBounds::of(&house));

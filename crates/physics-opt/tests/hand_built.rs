@@ -325,14 +325,8 @@ fn cabinet_across_an_interior_wall() -> SceneProblem {
         height: 2.8,
         thickness: 0.1,
     });
-    let area = |id: &str, x0: f64, x1: f64| RoomArea {
-        id: id.into(),
-        room_type: "bedroom".into(),
-        polygon: [(x0, -2.0), (x1, -2.0), (x1, 2.0), (x0, 2.0)]
-            .iter()
-            .map(|&(x, z)| Point2::new(x, z))
-            .collect(),
-    };
+    let area =
+        |id: &str, x0: f64, x1: f64| RoomArea::rectangle(id, "bedroom", [x0, -2.0], [x1, 2.0]);
     architecture.rooms = vec![area("west", -3.0, -0.05), area("east", 0.05, 3.0)];
     problem
 }

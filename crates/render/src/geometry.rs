@@ -552,14 +552,8 @@ mod tests {
     fn only_a_wall_between_two_rooms_of_a_house_is_interior() {
         use scenethesis_scene_graph::RoomArea;
         let mut house = Architecture::rectangular_room(6.0, 4.0, 2.8, 0.9);
-        let room = |id: &str, x0: f64, x1: f64| RoomArea {
-            id: id.into(),
-            room_type: "bedroom".into(),
-            polygon: [(x0, -2.0), (x1, -2.0), (x1, 2.0), (x0, 2.0)]
-                .iter()
-                .map(|&(x, z)| Point2::new(x, z))
-                .collect(),
-        };
+        let room =
+            |id: &str, x0: f64, x1: f64| RoomArea::rectangle(id, "bedroom", [x0, -2.0], [x1, 2.0]);
         house.rooms = vec![room("west", -3.0, -0.05), room("east", 0.05, 3.0)];
         let partition = Wall {
             id: "partition".into(),

@@ -53,6 +53,29 @@ pub struct RoomArea {
 }
 
 impl RoomArea {
+    /// A rectangular room from its floor's corners `min` and `max` in (x, z), m, its outline
+    /// counter-clockwise seen from above.
+    ///
+    /// ```
+    /// use scenethesis_scene_graph::RoomArea;
+    /// let bath = RoomArea::rectangle("bath_0", "bathroom", [0.0, -2.0], [3.0, 2.0]);
+    /// assert!(bath.contains_xz(1.0, 0.5) && !bath.contains_xz(3.5, 0.5));
+    /// assert_eq!(bath.polygon.len(), 4);
+    /// ```
+    pub fn rectangle(id: &str, room_type: &str, min: [f64; 2], max: [f64; 2]) -> Self {
+        let corners = [
+            (min[0], min[1]),
+            (max[0], min[1]),
+            (max[0], max[1]),
+            (min[0], max[1]),
+        ];
+        Self {
+            id: id.into(),
+            room_type: room_type.into(),
+            polygon: corners.iter().map(|&(x, z)| Point2::new(x, z)).collect(),
+        }
+    }
+
     /// Whether the (x, z) point lies inside the outline (even-odd rule; a point on an edge
     /// may count either way).
     pub fn contains_xz(&self, x: f64, z: f64) -> bool {

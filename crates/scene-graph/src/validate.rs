@@ -1261,15 +1261,8 @@ mod tests {
     #[test]
     fn rooms_doors_and_objects_name_known_rooms() {
         use crate::RoomArea;
-        use nalgebra::Point2;
-        let rect = |id: &str, x0: f64, x1: f64| RoomArea {
-            id: id.into(),
-            room_type: "bedroom".into(),
-            polygon: [(x0, -2.0), (x1, -2.0), (x1, 2.0), (x0, 2.0)]
-                .iter()
-                .map(|&(x, z)| Point2::new(x, z))
-                .collect(),
-        };
+        let rect =
+            |id: &str, x0: f64, x1: f64| RoomArea::rectangle(id, "bedroom", [x0, -2.0], [x1, 2.0]);
         let mut sofa = object("sofa", ParentRef::Ground, RelationKind::OnFloor);
         sofa.room = Some("bedroom_1".into());
         let mut scene = scene_with(vec![sofa]);
