@@ -183,7 +183,7 @@ pub fn optimize_scene(
             asset: &problem.assets[&object.id],
             pose: report.pose,
             support,
-            room: Some(room),
+            room,
         })
         .collect();
     let verdicts = checked.unwrap_or_else(|| verify(&placed, &exact, &settings.tolerances));
@@ -282,16 +282,10 @@ impl<'a> Sweep<'a> {
         let support = resolve_support(problem, object, &start, &self.finals);
         let alignment = problem.alignments.get(&object.id);
         let mut object_problem = ObjectProblem {
-            id: &object.id,
-            asset,
-            obstacles: &self.grid,
-            support: &support,
             room: Some(room),
             alignment,
-            settings: &settings.losses,
             deadline,
-            memo: None,
-            iteration_limit: None,
+            ..ObjectProblem::new(&object.id, asset, &self.grid, &support, &settings.losses)
         };
         let (mut pose, alignment_iterations, mut physics_iterations) = if past(deadline) {
             // Out of time: not reached, it keeps its starting pose.

@@ -132,16 +132,10 @@ pub(crate) fn finish(
             let support = supports[i].clone();
             let memo = ContactMemo::new();
             let problem = ObjectProblem {
-                id: &input.order[i].id,
-                asset: &asset,
-                obstacles: &others,
-                support: &support,
                 room: Some(input.rooms[i]),
-                alignment: None,
-                settings: input.losses,
                 deadline: input.deadline,
                 memo: Some(&memo),
-                iteration_limit: None,
+                ..ObjectProblem::new(&input.order[i].id, &asset, &others, &support, input.losses)
             };
             let resettle = Resettle {
                 input,
@@ -477,7 +471,7 @@ fn pending(
             asset: &dense[i],
             pose: poses[i],
             support: &supports[i],
-            room: Some(input.rooms[i]),
+            room: input.rooms[i],
         })
         .collect();
     let verdicts = verify(&placed, &all, tol);

@@ -96,21 +96,9 @@ impl RoomBounds {
     /// assert_eq!(RoomBounds::of_room(&house, None), RoomBounds::of(&house));
     /// ```
     pub fn of_room(architecture: &Architecture, room: Option<&str>) -> Self {
-        let outline = room
-            .and_then(|id| architecture.room(id))
-            .map(|area| &area.polygon)
-            .filter(|polygon| !polygon.is_empty());
-        let Some(polygon) = outline else {
-            return Self::of(architecture);
-        };
-        let fold = |pick: fn(f64, f64) -> f64, start: f64| {
-            polygon.iter().fold(Point2::new(start, start), |m, p| {
-                Point2::new(pick(m.x, p.x), pick(m.y, p.y))
-            })
-        };
-        Self {
-            min: fold(f64::min, f64::INFINITY),
-            max: fold(f64::max, f64::NEG_INFINITY),
+        match room.and_then(|id| architecture.room(id)?.bounds()) {
+            Some((min, max)) => Self { min, max },
+            None => Self::of(architecture),
         }
     }
 
@@ -215,7 +203,50 @@ pub struct ObjectProblem<'a> {
     pub iteration_limit: Option<usize>,
 }
 
-impl ObjectProblem<'_> {
+impl<'a> ObjectProblem<'a> {
+    /// The problem of object `id` (of `asset`) among `obstacles`, resting as `support` says,
+    /// with `settings`: no room to stay inside, no correspondences, deadline, memo or
+    /// iteration limit (set those fields on the value to have them).
+    ///
+    /// ```
+    /// use scenethesis_physics_opt::{
+    ///     LossSettings, ObjectProblem, Obstacles, PrepareSettings, PreparedAsset, Support,
+    /// };
+    /// use scenethesis_scene_graph::{Material, Mesh, Placement, Pose};
+    ///
+    /// let oak = Material::new("oak", [0.6, 0.4, 0.2], 0.7);
+    /// let mesh = Mesh::cuboid("crate", oak, [-0.2, 0.0, -0.2], [0.2, 0.4, 0.2]);
+    /// let prepare = PrepareSettings::default();
+    /// let asset =
+    ///     PreparedAsset::new("crate", &mesh, Vec::new(), [0.9, 1.1], Placement::Floor, &prepare)
+    ///         .unwrap();
+    /// let (obstacles, settings) = (Obstacles::new(true), LossSettings::default());
+    /// let problem = ObjectProblem::new("crate_0", &asset, &obstacles, &Support::Free, &settings);
+    /// assert!(problem.room.is_none() && problem.iteration_limit.is_none());
+    /// // Nothing to collide with.
+    /// assert!(problem.contacts(&Pose::default()).is_free());
+    /// ```
+    pub fn new(
+        id: &'a str,
+        asset: &'a PreparedAsset,
+        obstacles: &'a Obstacles,
+        support: &'a Support,
+        settings: &'a LossSettings,
+    ) -> Self {
+        Self {
+            id,
+            asset,
+            obstacles,
+            support,
+            room: None,
+            alignment: None,
+            settings,
+            deadline: None,
+            memo: None,
+            iteration_limit: None,
+        }
+    }
+
     /// Whether the [`ObjectProblem::deadline`] has passed: optimizers check it before each
     /// iteration (it only ever stops work early; a deadline not reached changes nothing).
     pub fn out_of_time(&self) -> bool {
@@ -650,18 +681,7 @@ mod tests {
         support: &'a Support,
         settings: &'a LossSettings,
     ) -> ObjectProblem<'a> {
-        ObjectProblem {
-            id: "cube",
-            asset,
-            obstacles,
-            support,
-            room: None,
-            alignment: None,
-            settings,
-            deadline: None,
-            memo: None,
-            iteration_limit: None,
-        }
+        ObjectProblem::new("cube", asset, obstacles, support, settings)
     }
 
     #[test]

@@ -43,8 +43,8 @@ pub(crate) struct Placed<'a> {
     pub asset: &'a PreparedAsset,
     pub pose: Pose,
     pub support: &'a Support,
-    /// The rectangle it must stay inside, if any.
-    pub room: Option<RoomBounds>,
+    /// The rectangle it must stay inside.
+    pub room: RoomBounds,
 }
 
 /// The verdict for one object.
@@ -123,12 +123,10 @@ pub(crate) fn verify(placed: &[Placed<'_>], exact: &Obstacles, tol: &Tolerances)
                 }
             }
         }
-        if let Some(room) = obj.room {
-            let bounds = Aabb::from_points(points.iter()).unwrap_or(own_box);
-            let overhang = room.overhang(&bounds);
-            if overhang > tol.room {
-                v.issues.push(Issue::OutsideRoom { overhang });
-            }
+        let bounds = Aabb::from_points(points.iter()).unwrap_or(own_box);
+        let overhang = obj.room.overhang(&bounds);
+        if overhang > tol.room {
+            v.issues.push(Issue::OutsideRoom { overhang });
         }
     }
     for ((a, b), depth) in pairs {

@@ -111,13 +111,13 @@ fn a_budget_spent_mid_stage_ends_it_early() {
 #[test]
 fn an_iteration_limit_caps_each_stage_below_the_optimizers_budget() {
     use scenethesis_physics_opt::{LossSettings, ObjectProblem, Stage, Support};
-    use support::{at, book, book_problem, floor_and_shelf, shelf, SHELF_BOARDS};
+    use support::{at, book, floor_and_shelf, shelf, SHELF_BOARDS};
 
     let (shelf, moving) = (shelf(), book());
     let obstacles = floor_and_shelf(&shelf);
     let settings = LossSettings::default();
     let support = Support::Free;
-    let free = book_problem(&moving, &obstacles, &support, &settings);
+    let free = ObjectProblem::new("book_0", &moving, &obstacles, &support, &settings);
     let limited = ObjectProblem {
         iteration_limit: Some(2),
         ..free

@@ -13,7 +13,7 @@ use scenethesis_physics_opt::{
     ContactMemo, LossSettings, ObjectProblem, Obstacles, PreparedAsset, Support,
 };
 use scenethesis_scene_graph::Pose;
-use support::{at, book, book_problem, floor_and_shelf, shelf, SHELF_BOARDS};
+use support::{at, book, floor_and_shelf, shelf, SHELF_BOARDS};
 
 /// The shelf at the origin, a second book on its middle board and the floor slab, exact.
 fn obstacles(shelf: &PreparedAsset, other: &PreparedAsset) -> Obstacles {
@@ -63,7 +63,7 @@ fn remembered_checks_find_the_same_contacts_as_fresh_ones() {
     let obstacles = obstacles(&shelf, &other);
     let settings = LossSettings::default();
     let support = Support::Free;
-    let fresh = book_problem(&moving, &obstacles, &support, &settings);
+    let fresh = ObjectProblem::new("book_0", &moving, &obstacles, &support, &settings);
     let memo = ContactMemo::new();
     let remembering = ObjectProblem {
         memo: Some(&memo),

@@ -111,8 +111,7 @@ fn fill(image: &mut RgbaImage, x: i64, y: i64, w: u32, h: u32, colour: Rgba<u8>)
 /// the room farthest from its walls (an L's label sits in one of its arms, not in the missing
 /// corner).
 fn label_point(room: &RoomArea) -> Option<(f64, f64)> {
-    let first = *room.polygon.first()?;
-    let (lo, hi) = (room.polygon.iter()).fold((first, first), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
+    let (lo, hi) = room.bounds()?;
     let steps = 8;
     let grid = (0..=steps).flat_map(|i| {
         (0..=steps).map(move |j| {

@@ -90,6 +90,24 @@ impl RoomArea {
         inside
     }
 
+    /// The corners `(min, max)` in (x, z) of the outline's bounding box; `None` for an empty
+    /// outline.
+    ///
+    /// ```
+    /// use scenethesis_scene_graph::RoomArea;
+    /// let bath = RoomArea::rectangle("bath_0", "bathroom", [0.0, -2.0], [3.0, 2.0]);
+    /// let (min, max) = bath.bounds().unwrap();
+    /// assert_eq!((min.x, min.y, max.x, max.y), (0.0, -2.0, 3.0, 2.0));
+    /// ```
+    pub fn bounds(&self) -> Option<(Point2<f64>, Point2<f64>)> {
+        let first = *self.polygon.first()?;
+        Some(
+            self.polygon
+                .iter()
+                .fold((first, first), |(lo, hi), p| (lo.inf(p), hi.sup(p))),
+        )
+    }
+
     /// The outline's area in m² (shoelace formula; positive for either winding).
     pub fn area(&self) -> f64 {
         let poly = &self.polygon;

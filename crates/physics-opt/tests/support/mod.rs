@@ -7,9 +7,7 @@ use std::sync::Arc;
 use nalgebra::Vector3;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use scenethesis_physics_opt::{
-    LossSettings, ObjectProblem, Obstacles, PrepareSettings, PreparedAsset, SceneProblem, Support,
-};
+use scenethesis_physics_opt::{Obstacles, PrepareSettings, PreparedAsset, SceneProblem};
 use scenethesis_primitives::{cuboid, cylinder};
 use scenethesis_scene_graph::{
     Aabb, Architecture, AssetRef, Material, Mesh, MeshPart, ParentRef, Pose, RelationKind, Scene,
@@ -56,28 +54,6 @@ pub fn floor_and_shelf(shelf: &PreparedAsset) -> Obstacles {
         shelf.check_points(),
     );
     o
-}
-
-/// The problem of a book (`book_0`, of `asset`) among `obstacles`, resting as `support` says:
-/// no room, correspondences, deadline, memo or iteration limit.
-pub fn book_problem<'a>(
-    asset: &'a PreparedAsset,
-    obstacles: &'a Obstacles,
-    support: &'a Support,
-    settings: &'a LossSettings,
-) -> ObjectProblem<'a> {
-    ObjectProblem {
-        id: "book_0",
-        asset,
-        obstacles,
-        support,
-        room: None,
-        alignment: None,
-        settings,
-        deadline: None,
-        memo: None,
-        iteration_limit: None,
-    }
 }
 
 /// A 1.2 × 0.8 m table, 0.76 m high: a 4 cm top on four 5 cm legs.
