@@ -237,7 +237,7 @@ pub fn yaw_symmetry(mesh: &Mesh) -> f64 {
         .flat_map(|part| part.positions.iter())
         .map(|p| nalgebra::Point2::new(p[0] as f64, p[2] as f64))
         .collect();
-    let hull = scenethesis_vision::footprint::convex_hull(&points);
+    let hull = scenethesis_scene_graph::convex_hull(&points);
     let Some(rect) = scenethesis_vision::min_area_rectangle(&hull, 0.0) else {
         return std::f64::consts::PI;
     };

@@ -15,7 +15,7 @@ use std::time::Instant;
 
 use nalgebra::{Point2, Vector2};
 use scenethesis_correspondence::shape::turned;
-use scenethesis_scene_graph::{yaw_distance, Pose, SceneObject};
+use scenethesis_scene_graph::{convex_hull, yaw_distance, Pose, SceneObject};
 use scenethesis_sdf::SignedDistance;
 
 use crate::memo::ContactMemo;
@@ -630,38 +630,6 @@ fn inside_hull(points: &[Point2<f64>], c: &Point2<f64>, margin: f64) -> bool {
         let len = e.norm();
         len < 1e-12 || (e.x * (c.y - a.y) - e.y * (c.x - a.x)) / len >= margin
     })
-}
-
-/// The convex hull, counter-clockwise (Andrew's monotone chain).
-fn convex_hull(points: &[Point2<f64>]) -> Vec<Point2<f64>> {
-    let mut p: Vec<Point2<f64>> = points.to_vec();
-    p.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
-    p.dedup();
-    if p.len() < 3 {
-        return p;
-    }
-    let cross = |o: &Point2<f64>, a: &Point2<f64>, b: &Point2<f64>| {
-        (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x)
-    };
-    let mut hull: Vec<Point2<f64>> = Vec::with_capacity(2 * p.len());
-    for pass in 0..2 {
-        let start = hull.len();
-        let iter: Box<dyn Iterator<Item = &Point2<f64>>> = if pass == 0 {
-            Box::new(p.iter())
-        } else {
-            Box::new(p.iter().rev())
-        };
-        for q in iter {
-            while hull.len() >= start + 2
-                && cross(&hull[hull.len() - 2], &hull[hull.len() - 1], q) <= 0.0
-            {
-                hull.pop();
-            }
-            hull.push(*q);
-        }
-        hull.pop();
-    }
-    hull
 }
 
 #[cfg(test)]

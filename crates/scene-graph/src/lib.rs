@@ -74,6 +74,7 @@ mod carry;
 mod door;
 mod floor_raster;
 mod hash;
+mod hull;
 mod io;
 mod joint;
 pub mod limits;
@@ -105,6 +106,7 @@ pub use door::{
 };
 pub use floor_raster::{Components, FloorRaster, BLOCKED_CELL};
 pub use hash::{fnv1a64, fnv1a64_from, mix64, FNV_OFFSET_BASIS, GOLDEN_GAMMA};
+pub use hull::convex_hull;
 pub use io::{read_bounded, write_file_atomic, SceneIoError};
 pub use joint::{
     carried_by, opening_sweep, Joint, JointError, JointKind, JointState, OpenState, OpensTo,

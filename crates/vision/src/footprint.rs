@@ -6,6 +6,7 @@
 //! not stretch it.
 
 use nalgebra::{Point2, Vector2};
+use scenethesis_scene_graph::convex_hull;
 
 use crate::points::quantile;
 
@@ -117,41 +118,6 @@ fn polygon_area(p: &[Point2<f64>]) -> f64 {
         .map(|i| p[i].coords.perp(&p[(i + 1) % p.len()].coords))
         .sum::<f64>()
         / 2.0
-}
-
-/// The convex hull of `points` in counter-clockwise order (Andrew's monotone chain); collinear
-/// points are dropped.
-pub fn convex_hull(points: &[Point2<f64>]) -> Vec<Point2<f64>> {
-    let mut pts: Vec<Point2<f64>> = points
-        .iter()
-        .copied()
-        .filter(|p| p.x.is_finite() && p.y.is_finite())
-        .collect();
-    pts.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
-    pts.dedup();
-    if pts.len() < 3 {
-        return pts;
-    }
-    let cross = |o: &Point2<f64>, a: &Point2<f64>, b: &Point2<f64>| (a - o).perp(&(b - o));
-    let mut hull: Vec<Point2<f64>> = Vec::with_capacity(pts.len() * 2);
-    for pass in 0..2 {
-        let start = hull.len();
-        let iter: Box<dyn Iterator<Item = &Point2<f64>>> = if pass == 0 {
-            Box::new(pts.iter())
-        } else {
-            Box::new(pts.iter().rev())
-        };
-        for p in iter {
-            while hull.len() >= start + 2
-                && cross(&hull[hull.len() - 2], &hull[hull.len() - 1], p) <= 0.0
-            {
-                hull.pop();
-            }
-            hull.push(*p);
-        }
-        hull.pop();
-    }
-    hull
 }
 
 /// The minimum-area floor rectangle around `points` (world `(x, z)` pairs), with its extents
