@@ -292,7 +292,8 @@ impl<'a> Sweep<'a> {
             (object_problem.project(&start), 0, 0)
         } else {
             let aligned = optimizer.optimize(&object_problem, Stage::Alignment, start);
-            let settled = optimizer.optimize(&object_problem, Stage::Physics, aligned.pose);
+            let rested = rested_by_scale(&object_problem, optimizer.settles(), aligned.pose);
+            let settled = optimizer.optimize(&object_problem, Stage::Physics, rested);
             (settled.pose, aligned.iterations, settled.iterations)
         };
         let mut polished = false;
@@ -324,6 +325,20 @@ impl<'a> Sweep<'a> {
             issues: Vec::new(),
         });
         self.supports.push(support);
+    }
+}
+
+/// The alignment stage's `pose` of an object the image placed, rested on its support by a
+/// change of scale ([`ObjectProblem::rest_by_scale`]) when the optimizer `settles` it: a
+/// shrink always, a growth only when the grown object touches nothing placed so far (grown
+/// into a neighbour, the physics stage would push it off the place the image shows).
+fn rested_by_scale(problem: &ObjectProblem<'_>, settles: bool, pose: Pose) -> Pose {
+    if problem.alignment.is_none() || !settles {
+        return pose;
+    }
+    match problem.rest_by_scale(&pose) {
+        Some(rested) if rested.scale <= pose.scale || problem.contacts(&rested).is_free() => rested,
+        _ => pose,
     }
 }
 

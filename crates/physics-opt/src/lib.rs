@@ -10,7 +10,9 @@
 //!    [`Correspondence`](scenethesis_correspondence::Correspondence)s under the guide's pinhole
 //!    camera ([`PoseAlignment`](scenethesis_correspondence::PoseAlignment): the correspond
 //!    stage's loss, which `scenethesis-correspondence` holds with the pose parameters and the
-//!    damped least-squares step both stages take);
+//!    damped least-squares step both stages take); an object the image placed off its surface
+//!    support then rests on it by a change of scale that keeps its top where the image shows
+//!    it ([`ObjectProblem::rest_by_scale`]);
 //! 2. **physics**: the paper's translation collision loss (penetrating surface points push the
 //!    object along point → centroid by their depth), scale collision loss (only when the
 //!    penetration forms two or more separate clusters, pulling the scale toward
@@ -34,6 +36,7 @@ mod carry;
 mod contact;
 mod driver;
 mod finish;
+mod footprint;
 mod memo;
 mod objective;
 mod obstacles;
@@ -50,7 +53,9 @@ pub use driver::{
     DEFAULT_OPTIMIZE_BUDGET_SECS,
 };
 pub use memo::ContactMemo;
-pub use objective::{LossSettings, Losses, ObjectProblem, RoomBounds, Stage};
+pub use objective::{
+    LossSettings, Losses, ObjectProblem, RoomBounds, Stage, REST_BY_SCALE_GAP, REST_BY_SCALE_LIMIT,
+};
 pub use obstacles::Obstacles;
 pub use optimizer::{LearningRates, Optimizer, Sgd, StageOutcome};
 pub use prepare::{PrepareSettings, PreparedAsset};

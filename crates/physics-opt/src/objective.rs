@@ -61,6 +61,14 @@ impl Default for LossSettings {
     }
 }
 
+/// The largest relative change of scale by which [`ObjectProblem::rest_by_scale`] brings an
+/// object onto its support.
+pub const REST_BY_SCALE_LIMIT: f64 = 0.2;
+/// A gap (metres) between an object's bottom and its resting height below which
+/// [`ObjectProblem::rest_by_scale`] leaves it to the physics stage: the fit's own noise, not
+/// worth a change of size (and of where the things on the object stand).
+pub const REST_BY_SCALE_GAP: f64 = 0.01;
+
 /// The floor rectangle an object must stay inside, in world (x, z).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct RoomBounds {
@@ -592,7 +600,8 @@ impl<'a> ObjectProblem<'a> {
     }
 
     /// The nearest feasible pose: scale inside its range (and below a compartment's clearance),
-    /// the footprint centre over the support region, and the object's box inside the room.
+    /// the footprint centre over the support region, and the object's footprint inside the
+    /// room ([`PreparedAsset::footprint_box`]).
     pub fn project(&self, pose: &Pose) -> Pose {
         let mut p = *pose;
         let [lo, hi] = self.scale_range();
@@ -610,7 +619,7 @@ impl<'a> ObjectProblem<'a> {
             p.translation.z = c.y;
         }
         if let Some(room) = self.room {
-            p.translation += room.shift_inside(&self.world_box(&p));
+            p.translation += room.shift_inside(&self.asset.footprint_box(&p));
         }
         p
     }
@@ -625,6 +634,37 @@ impl<'a> ObjectProblem<'a> {
             (clearance - self.settings.support_clearance - 2.0 * self.settings.collision_margin)
                 / height,
         )
+    }
+
+    /// The pose that rests the object on its surface support by a change of scale that keeps
+    /// its top where it is. A guidance image sees an object's top; where its bottom meets the
+    /// support is hidden, or the least certain part of the fit: a bed fitted 8 % too small
+    /// floats 3 cm so that its mattress meets the image, and put down as it is, the mattress
+    /// and the cushions on it would sink by as much. The scale stays within its range (the
+    /// physics stage then closes what is left of the gap). `None` without a surface support,
+    /// for a gap under [`REST_BY_SCALE_GAP`], or when resting would change the scale by more
+    /// than [`REST_BY_SCALE_LIMIT`]: that object is misplaced, not misjudged in size.
+    pub fn rest_by_scale(&self, pose: &Pose) -> Option<Pose> {
+        let resting = self.resting_height(pose)?;
+        if (pose.translation.y - resting).abs() < REST_BY_SCALE_GAP {
+            return None;
+        }
+        let bounds = self.asset.bounds();
+        let height = (bounds.max.y - bounds.min.y).max(1e-6);
+        let base = resting + pose.scale * bounds.min.y;
+        let top = pose.translation.y + pose.scale * bounds.max.y;
+        let wanted = (top - base) / height;
+        if (wanted / pose.scale - 1.0).abs() > REST_BY_SCALE_LIMIT {
+            return None;
+        }
+        let [lo, hi] = self.scale_range();
+        let hi = self
+            .clearance_scale_limit()
+            .map_or(hi, |l| hi.min(l).max(lo));
+        let mut rested = *pose;
+        rested.scale = wanted.clamp(lo, hi);
+        rested.translation.y = top - rested.scale * bounds.max.y;
+        Some(self.project(&rested))
     }
 
     /// The translation height that puts the object's bottom at its support plus clearance
@@ -673,6 +713,17 @@ mod tests {
             true,
             &[],
         );
+    }
+
+    /// A table top at 0.75 m, unbounded.
+    fn table_top() -> Support {
+        Support::Surface(SupportPlane {
+            owner: "table".into(),
+            surface: "top".into(),
+            height: 0.75,
+            region: None,
+            clearance: None,
+        })
     }
 
     fn problem<'a>(
@@ -734,13 +785,7 @@ mod tests {
         let asset = cube(0.1);
         let obstacles = Obstacles::new(true);
         let settings = LossSettings::default();
-        let support = Support::Surface(SupportPlane {
-            owner: "table".into(),
-            surface: "top".into(),
-            height: 0.75,
-            region: None,
-            clearance: None,
-        });
+        let support = table_top();
         let p = problem(&asset, &obstacles, &support, &settings);
         let pose = Pose::new(1.0, 0.0, Vector3::new(0.0, 0.80, 0.0));
         let (losses, grad) = p.losses_and_gradient(&pose, Stage::Physics);
@@ -752,5 +797,34 @@ mod tests {
             p.resting_height(&pose),
             Some(0.75 + settings.support_clearance)
         );
+    }
+
+    #[test]
+    fn resting_by_scale_keeps_the_top_the_image_sees() {
+        // A 1 m cube (scale range 0.5–1.5) on a table top at 0.75 m.
+        let asset = cube(0.5);
+        let obstacles = Obstacles::new(true);
+        let settings = LossSettings::default();
+        let support = table_top();
+        let p = problem(&asset, &obstacles, &support, &settings);
+        let rest = 0.75 + settings.support_clearance;
+        for (bottom, top) in [(0.80, 1.70), (0.70, 1.80)] {
+            // Floating 5 cm (it grows) or sunk 5 cm (it shrinks): the top stays, the bottom
+            // rests.
+            let pose = Pose::new(top - bottom, 0.3, Vector3::new(0.2, bottom, -0.1));
+            let rested = p.rest_by_scale(&pose).expect("a gap within the limit");
+            assert!((rested.translation.y - rest).abs() < 1e-12, "{rested:?}");
+            assert!((rested.translation.y + rested.scale - top).abs() < 1e-12);
+            assert_eq!((rested.yaw, rested.translation.x), (0.3, 0.2));
+        }
+        // Within the fit's noise of rest (under 1 cm), or 40 cm off (a misplaced object, not a
+        // misjudged size): no change.
+        let resting = Pose::new(0.9, 0.0, Vector3::new(0.0, rest + 0.008, 0.0));
+        assert_eq!(p.rest_by_scale(&resting), None);
+        let far = Pose::new(0.9, 0.0, Vector3::new(0.0, 1.15, 0.0));
+        assert_eq!(p.rest_by_scale(&far), None);
+        // Without a surface to rest on there is nothing to do.
+        let free = problem(&asset, &obstacles, &Support::Free, &settings);
+        assert_eq!(free.rest_by_scale(&resting), None);
     }
 }

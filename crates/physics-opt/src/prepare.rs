@@ -5,11 +5,12 @@
 use std::sync::{Arc, OnceLock};
 
 use nalgebra::{Point3, Vector3};
-use scenethesis_scene_graph::{Aabb, Mesh};
+use scenethesis_scene_graph::{Aabb, Mesh, Pose};
 use scenethesis_scene_graph::{Asset, Placement, SupportSurface};
 use scenethesis_sdf::{sampling, GridSdf, MeshSdf, SignedDistance};
 use serde::{Deserialize, Serialize};
 
+use crate::footprint::Footprint;
 use crate::PhysicsOptError;
 
 /// How densely to sample an asset.
@@ -64,6 +65,7 @@ pub struct PreparedAsset {
     check_points: Vec<Point3<f64>>,
     centroid: Point3<f64>,
     bounds: Aabb,
+    footprint: Footprint,
     sample_spacing: f64,
     support_surfaces: Vec<SupportSurface>,
     scale_range: [f64; 2],
@@ -175,6 +177,12 @@ impl PreparedAsset {
                     .map(|p| Point3::from(*p).cast::<f64>()),
             );
         }
+        let footprint = Footprint::of(
+            mesh.parts
+                .iter()
+                .flat_map(|p| p.positions.iter())
+                .map(|p| Point3::from(*p).cast::<f64>()),
+        );
         let exact = Arc::new(exact);
         Ok(Self {
             grid: Arc::new(LazyGrid::new(exact.clone(), settings.grid_cell)),
@@ -184,6 +192,7 @@ impl PreparedAsset {
             check_points: check,
             centroid,
             bounds,
+            footprint,
             sample_spacing,
             support_surfaces,
             scale_range,
@@ -204,6 +213,7 @@ impl PreparedAsset {
             check_points: self.check_points.clone(),
             centroid: self.centroid,
             bounds: self.bounds,
+            footprint: self.footprint.clone(),
             sample_spacing: self.sample_spacing * ratio.sqrt(),
             support_surfaces: self.support_surfaces.clone(),
             scale_range: self.scale_range,
@@ -259,6 +269,21 @@ impl PreparedAsset {
     /// The mesh's bounding box, asset frame.
     pub fn bounds(&self) -> &Aabb {
         &self.bounds
+    }
+
+    /// The world box the asset spans at `pose`: the heights of its turned bounding box, and
+    /// across the floor the extent of its footprint (the convex hull of its outline seen from
+    /// above), which for a turned asset whose outline is not its bounding rectangle is
+    /// tighter than the turned box (a round plant turned by 30° still spans its radius).
+    pub fn footprint_box(&self, pose: &Pose) -> Aabb {
+        let turned = self.bounds.transformed(pose);
+        match self.footprint.extent(pose) {
+            Some((lo, hi)) => Aabb::new(
+                Point3::new(lo.x, turned.min.y, lo.y),
+                Point3::new(hi.x, turned.max.y, hi.y),
+            ),
+            None => turned,
+        }
     }
 
     /// The mean spacing of the surface samples, metres (at scale 1).

@@ -689,3 +689,78 @@ fn frame_whose_kickstand_hangs_off_the_table_moves_onto_it() {
         "{p:?}"
     );
 }
+
+/// An object the image placed 4 cm above the floor rests by a change of scale that keeps its
+/// top where the image shows it; one that would grow into its neighbour is put down instead.
+#[test]
+fn an_image_placed_object_off_the_floor_keeps_its_top_unless_growing_would_touch_a_neighbour() {
+    let b = Arc::new(boxed([0.5, 0.8, 0.5], [0.8, 1.2]));
+    let floating = |x: f64| at(x, 0.04, 0.0, 0.0);
+    let mut problem = problem(
+        "cabinet_a",
+        vec![
+            (
+                object(
+                    "cabinet_a",
+                    None,
+                    RelationKind::OnFloor,
+                    &b,
+                    at(-1.0, 0.0, 0.0, 0.0),
+                ),
+                b.clone(),
+            ),
+            // Free all round: it grows by 5 % about its top.
+            (
+                object("cabinet_b", None, RelationKind::OnFloor, &b, floating(1.0)),
+                b.clone(),
+            ),
+            // 5 mm beside cabinet_a: 5 % wider it would touch it.
+            (
+                object(
+                    "cabinet_c",
+                    None,
+                    RelationKind::OnFloor,
+                    &b,
+                    floating(-0.495),
+                ),
+                b.clone(),
+            ),
+        ],
+    );
+    let camera = Camera::look_at(
+        Intrinsics::from_vertical_fov(640, 480, 1.0),
+        Point3::new(0.0, 1.8, 3.0),
+        Point3::new(0.0, 0.4, 0.0),
+        Vector3::y(),
+    );
+    for id in ["cabinet_b", "cabinet_c"] {
+        problem.set_alignment(id, PoseAlignment::new(camera, Vec::new()));
+    }
+    for opt in optimizers() {
+        let placement = run(&problem, opt.as_ref());
+        assert_all_ok(&placement);
+        let grown = placement.object("cabinet_b").unwrap().pose;
+        let top = grown.translation.y + 0.8 * grown.scale;
+        assert!(
+            (top - 0.84).abs() < 1e-3,
+            "[{}] {grown:?}",
+            placement.optimizer
+        );
+        assert!(
+            (grown.scale - 1.05).abs() < 2e-3,
+            "[{}] {grown:?}",
+            placement.optimizer
+        );
+        let put_down = placement.object("cabinet_c").unwrap().pose;
+        assert_eq!(
+            put_down.scale, 1.0,
+            "[{}] {put_down:?}",
+            placement.optimizer
+        );
+        assert!(
+            put_down.translation.y < 0.005,
+            "[{}] {put_down:?}",
+            placement.optimizer
+        );
+    }
+}

@@ -54,6 +54,22 @@ fn faces(o: &SceneObject, t: &SceneObject) -> bool {
     d.norm() > 1e-9 && front_dir(o).dot(&d.normalize()) >= FACING_TOLERANCE.cos()
 }
 
+/// How much further toward `direction` (a unit floor vector) the box of `o` reaches than the
+/// ellipse inscribed in it: 0 for a box square to `direction`, up to 41 % of the half extent
+/// for a square box turned by 45°. The relation checks see only boxes, and a turned round
+/// object (a plant pot, a barrel) touching a wall has its box's corners in the wall; they are
+/// not the object's (the collision metrics check its real geometry).
+fn turned_corner_reach(o: &SceneObject, direction: &Vector2<f64>) -> f64 {
+    let half = o.local_bounds.size() * o.pose.scale / 2.0;
+    let (along, across) = (
+        front_dir(o).dot(direction).abs(),
+        right_dir(o).dot(direction).abs(),
+    );
+    let boxed = half.z * along + half.x * across;
+    let inscribed = ((half.z * along).powi(2) + (half.x * across).powi(2)).sqrt();
+    (boxed - inscribed).max(0.0)
+}
+
 /// Whether `relation` of object `subject` holds in `scene`'s geometry (world boxes and
 /// poses), or `None` if the subject or target does not exist.
 ///
@@ -63,8 +79,9 @@ fn faces(o: &SceneObject, t: &SceneObject) -> bool {
 /// centre over the target's box. *Left of* / *right of* are seen facing the target's front
 /// (left = the target's local −X); *facing* allows 50° of yaw error; *beside* and *around*
 /// need the boxes within 1 m and 0.6 m; *against-wall* needs the back within 0.1 m of the
-/// wall's inner face (target `ground` means any wall); *mounted* needs the same of the target
-/// wall and the bottom off the floor (more than the 2 cm contact tolerance above it).
+/// wall's inner face and not more than 2 cm into it beyond where a turned box's corners reach
+/// past its inscribed outline (target `ground` means any wall); *mounted* needs the same of the
+/// target wall and the bottom off the floor (more than the 2 cm contact tolerance above it).
 pub fn relation_holds(scene: &Scene, subject: &str, relation: &Relation) -> Option<bool> {
     let o = scene.object(subject)?;
     let ob = o.world_aabb();
@@ -88,7 +105,7 @@ pub fn relation_holds(scene: &Scene, subject: &str, relation: &Relation) -> Opti
                 .iter()
                 .map(|c| (Vector2::new(c.x, c.z) - face.coords).dot(&n))
                 .fold(f64::MAX, f64::min);
-            (-CONTACT..=0.1).contains(&nearest)
+            (-CONTACT - turned_corner_reach(o, &n)..=0.1).contains(&nearest)
         });
         let off_floor = relation.kind == RelationKind::AgainstWall || ob.min.y > CONTACT;
         return Some(backed && off_floor);

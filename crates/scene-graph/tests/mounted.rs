@@ -207,3 +207,36 @@ fn mounted_holds_with_the_back_on_the_wall_and_the_bottom_off_the_floor() {
         Some(true)
     );
 }
+
+/// A turned round planter touching the back wall stands against it, though the corners of its
+/// turned box lie in the wall; pushed into the wall, or square to it and 3 cm in, it does not.
+#[test]
+fn a_turned_round_object_touching_the_wall_stands_against_it() {
+    let mut scene = room();
+    let planter = SceneObject {
+        category: "plant".into(),
+        local_bounds: Aabb::new(Point3::new(-0.3, 0.0, -0.3), Point3::new(0.3, 1.2, 0.3)),
+        pose: Pose::new(1.0, 0.7, Vector3::new(2.0, 0.0, -1.69)),
+        ..object(
+            "plant_0",
+            ParentRef::Ground,
+            RelationKind::AgainstWall,
+            Vector3::zeros(),
+        )
+    };
+    scene.objects.push(planter);
+    let against = Relation::new(RelationKind::AgainstWall, "wall_0");
+    // The pot's rim is 1 cm off the wall; its turned box reaches 0.3 (cos 0.7 + sin 0.7) =
+    // 0.42 m from the centre, 11 cm into the wall.
+    assert_eq!(relation_holds(&scene, "plant_0", &against), Some(true));
+    scene.object_mut("plant_0").unwrap().pose.translation.z = -1.64;
+    assert_eq!(relation_holds(&scene, "plant_0", &against), Some(true));
+    // 5 cm into the wall.
+    scene.object_mut("plant_0").unwrap().pose.translation.z = -1.75;
+    assert_eq!(relation_holds(&scene, "plant_0", &against), Some(false));
+    // Square to the wall and 3 cm into it.
+    let p = scene.object_mut("plant_0").unwrap();
+    p.pose.yaw = 0.0;
+    p.pose.translation.z = -1.73;
+    assert_eq!(relation_holds(&scene, "plant_0", &against), Some(false));
+}
