@@ -6,7 +6,7 @@ use std::sync::{Arc, OnceLock};
 use nalgebra::{Point2, Point3, Vector3};
 use scenethesis_imagery::{Camera, Intrinsics};
 use scenethesis_render::{views, Frame, Instance, RenderScene, Renderer, RendererOptions};
-use scenethesis_scene_graph::{Architecture, Material, Mesh, MeshPart, Pose};
+use scenethesis_scene_graph::{convex_hull, Architecture, Material, Mesh, MeshPart, Pose};
 
 fn renderer() -> &'static Renderer {
     static RENDERER: OnceLock<Renderer> = OnceLock::new();
@@ -124,33 +124,6 @@ fn inside_and_border_distance(hull: &[Point2<f64>], p: Point2<f64>) -> (bool, f6
     (inside, border)
 }
 
-/// Convex hull of 2D points (Andrew's monotone chain).
-fn convex_hull(mut pts: Vec<Point2<f64>>) -> Vec<Point2<f64>> {
-    pts.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
-    let cross = |o: Point2<f64>, a: Point2<f64>, b: Point2<f64>| {
-        (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x)
-    };
-    let mut hull: Vec<Point2<f64>> = Vec::new();
-    for pass in 0..2 {
-        let start = hull.len();
-        let iter: Box<dyn Iterator<Item = &Point2<f64>>> = if pass == 0 {
-            Box::new(pts.iter())
-        } else {
-            Box::new(pts.iter().rev())
-        };
-        for &p in iter {
-            while hull.len() >= start + 2
-                && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0
-            {
-                hull.pop();
-            }
-            hull.push(p);
-        }
-        hull.pop();
-    }
-    hull
-}
-
 #[test]
 fn instance_mask_equals_the_projected_silhouette_within_one_pixel() {
     let pose = cube_pose();
@@ -170,7 +143,7 @@ fn instance_mask_equals_the_projected_silhouette_within_one_pixel() {
         .iter()
         .map(|c| camera.project(&pose.transform_point(c)).unwrap().pixel)
         .collect();
-    let hull = convex_hull(corners);
+    let hull = convex_hull(&corners);
     let mask = frame.mask("cube");
     let (mut inside_count, mut mismatches) = (0, 0);
     for y in 0..k.height {
