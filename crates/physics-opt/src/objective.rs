@@ -604,11 +604,7 @@ impl<'a> ObjectProblem<'a> {
     /// room ([`PreparedAsset::footprint_box`]).
     pub fn project(&self, pose: &Pose) -> Pose {
         let mut p = *pose;
-        let [lo, hi] = self.scale_range();
-        let mut hi = hi;
-        if let Some(limit) = self.clearance_scale_limit() {
-            hi = hi.min(limit).max(lo);
-        }
+        let [lo, hi] = self.feasible_scales();
         p.scale = p.scale.clamp(lo, hi);
         if !p.yaw.is_finite() {
             p.yaw = pose.yaw;
@@ -622,6 +618,16 @@ impl<'a> ObjectProblem<'a> {
             p.translation += room.shift_inside(&self.asset.footprint_box(&p));
         }
         p
+    }
+
+    /// The scales [`ObjectProblem::project`] allows: the asset's scale range, its top lowered
+    /// to the largest scale that fits under the support's clearance (never below the bottom).
+    fn feasible_scales(&self) -> [f64; 2] {
+        let [lo, hi] = self.scale_range();
+        match self.clearance_scale_limit() {
+            Some(limit) => [lo, hi.min(limit).max(lo)],
+            None => [lo, hi],
+        }
     }
 
     /// The largest scale at which the object fits under its support's clearance, if the
@@ -657,10 +663,7 @@ impl<'a> ObjectProblem<'a> {
         if (wanted / pose.scale - 1.0).abs() > REST_BY_SCALE_LIMIT {
             return None;
         }
-        let [lo, hi] = self.scale_range();
-        let hi = self
-            .clearance_scale_limit()
-            .map_or(hi, |l| hi.min(l).max(lo));
+        let [lo, hi] = self.feasible_scales();
         let mut rested = *pose;
         rested.scale = wanted.clamp(lo, hi);
         rested.translation.y = top - rested.scale * bounds.max.y;
